@@ -1,0 +1,24 @@
+"""lemke: linear complementarity problems by Lemke's complementary pivoting method.
+
+Public API: :func:`solve_lcp`, :class:`LCPResult`, :class:`Status`, :class:`Options`,
+:class:`WarmStart`, and the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`.
+"""
+from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
+from ._lcp import solve_lcp
+from ._options import Options
+from ._result import LCPResult, WarmStart
+from ._status import Status
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "LCPResult",
+    "Options",
+    "Status",
+    "WarmStart",
+    "is_lcp_ray",
+    "is_lcp_solution",
+    "lcp_residual",
+    "solve_lcp",
+    "__version__",
+]

@@ -1,0 +1,73 @@
+"""Checks made on the caller's data: is a point a solution, is a direction a ray.
+
+The same functions serve the solver (to accept or downgrade a result), the tests and the
+benchmarks, so every part of the project judges answers the same way.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+_EPS = np.finfo(np.float64).eps
+
+
+def lcp_scales(M: np.ndarray, q: np.ndarray, z: np.ndarray, tol: float):
+    """Absolute tolerances ``(s_z, s_w)`` for z and w (see :mod:`lemke._options`)."""
+    n = q.size
+    m_max = float(np.max(np.abs(M))) if M.size else 0.0
+    q_max = float(np.max(np.abs(q))) if q.size else 0.0
+    z_max = float(np.max(np.abs(z))) if z.size else 0.0
+    s_w = tol * max(q_max, m_max) + 4.0 * n * _EPS * m_max * z_max
+    z_scale = max(z_max, q_max / m_max if m_max > 0 else 0.0)
+    s_z = tol * z_scale
+    return s_z, s_w
+
+
+def lcp_residual(z: np.ndarray, w: np.ndarray) -> float:
+    """``max_i |min(z_i, w_i)|``: zero exactly when z, w >= 0 and z'w = 0."""
+    return float(np.max(np.abs(np.minimum(z, w)))) if z.size else 0.0
+
+
+def is_lcp_solution(M, q, z, tol: float = 1e-9) -> bool:
+    """Whether z solves the LCP (M, q) within the scale-aware tolerance ``tol``."""
+    M = np.asarray(M, dtype=np.float64)
+    q = np.asarray(q, dtype=np.float64)
+    z = np.asarray(z, dtype=np.float64)
+    w = M @ z + q
+    s_z, s_w = lcp_scales(M, q, z, tol)
+    return bool(
+        np.all(z >= -s_z)
+        and np.all(w >= -s_w)
+        and np.all((z <= s_z) | (np.abs(w) <= s_w))
+    )
+
+
+def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
+    """Whether ``(z, z0) + t * ray`` is an almost-complementary ray of the augmented system.
+
+    With ``u = M z + q + d z0`` and ``du = M dz + d dz0`` this asks: the direction is
+    non-zero and non-negative, u and du are non-negative, and every pair stays
+    complementary along the ray (``z_i u_i``, ``z_i du_i``, ``dz_i u_i`` and ``dz_i du_i``
+    all vanish), all within the tolerance.  For copositive-plus M (positive semidefinite M
+    included) such a ray proves that the LCP has no feasible point.
+    """
+    M = np.asarray(M, dtype=np.float64)
+    q, d, z = (np.asarray(a, dtype=np.float64) for a in (q, d, z))
+    ray = np.asarray(ray, dtype=np.float64)
+    n = q.size
+    dz, dz0 = ray[:n], float(ray[n])
+    r_max = float(np.max(np.abs(ray)))
+    if r_max == 0.0 or dz0 < -tol * r_max or np.any(dz < -tol * r_max):
+        return False
+    u = M @ z + q + d * z0
+    du = M @ dz + d * dz0
+    s_z, s_u = lcp_scales(M, q, z, tol)
+    s_u += tol * float(np.max(np.abs(d))) * abs(z0)
+    s_du = tol * r_max * max(float(np.max(np.abs(M))), float(np.max(np.abs(d))))
+    s_dz = tol * r_max
+    if np.any(z < -s_z) or np.any(u < -s_u) or np.any(du < -s_du):
+        return False
+    z_zero = z <= s_z
+    dz_zero = dz <= s_dz
+    u_zero = np.abs(u) <= s_u
+    du_zero = np.abs(du) <= s_du
+    return bool(np.all((z_zero | (u_zero & du_zero)) & (dz_zero | (u_zero & du_zero))))

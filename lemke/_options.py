@@ -1,0 +1,77 @@
+"""User options and their scale-aware defaults.
+
+Every tolerance here is *relative*; the solver multiplies it by a scale taken from the data,
+so multiplying M and q by any positive constant gives the same pivots and the same answer.
+
+``max_pivots`` (default ``100 * (n + 1)``)
+    The cap on pivots, counting the first pivot of the artificial variable and the last one.
+    Lemke's method needs at most a handful of pivots per variable on most problems; the
+    default leaves room for Murty's exponential example up to n = 10 (2**n pivots).
+``pivot_tol`` (default ``1e-11``)
+    An entry of the driving column takes part in the ratio test only when it is below
+    ``-pivot_tol * max|column|``; smaller entries are treated as rounding noise.
+``tie_tol`` (default ``1e-11``)
+    Rows whose basic variable would end within ``tie_tol * max|q|`` of zero at the minimum
+    ratio are tied; ties go to the artificial variable if it is among them, else to the
+    lexicographic rule on the rows of the basis inverse (which makes cycling impossible).
+``tol`` (default ``1e-9``)
+    Acceptance test for a solution, made on the caller's data: with
+    ``s_w = tol * max(max|q|, max|M|) + 4 n eps max|M| max|z|`` (the data's size plus the
+    rounding floor of computing Mz) and ``s_z = tol * max(max|z|, max|q| / max|M|)``,
+    a point is a solution when ``z >= -s_z``, ``w >= -s_w`` and, for every i,
+    ``z_i <= s_z`` or ``|w_i| <= s_w``.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass, fields, replace
+from typing import Any, Mapping
+
+
+@dataclass(frozen=True)
+class Options:
+    """Solver options; every field is optional.  See the module docstring for the defaults."""
+
+    max_pivots: int | None = None
+    pivot_tol: float = 1e-11
+    tie_tol: float = 1e-11
+    tol: float = 1e-9
+
+    def __post_init__(self):
+        mp = self.max_pivots
+        if mp is not None:
+            if isinstance(mp, bool) or not isinstance(mp, numbers.Integral):
+                raise TypeError(f"options.max_pivots must be an integer or None, got {mp!r}")
+            if int(mp) < 0:
+                raise ValueError(f"options.max_pivots must be >= 0, got {mp}")
+            object.__setattr__(self, "max_pivots", int(mp))
+        for name in ("pivot_tol", "tie_tol", "tol"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, numbers.Real):
+                raise TypeError(f"options.{name} must be a real number, got {v!r}")
+            v = float(v)
+            if not (math.isfinite(v) and 0.0 <= v < 1.0):
+                raise ValueError(f"options.{name} must be finite and in [0, 1), got {v}")
+            object.__setattr__(self, name, v)
+
+    def pivot_limit(self, n: int) -> int:
+        """The pivot cap in force for a problem of size ``n``."""
+        return 100 * (n + 1) if self.max_pivots is None else self.max_pivots
+
+
+def as_options(options: Options | Mapping[str, Any] | None) -> Options:
+    """Accept ``None``, an :class:`Options` or a mapping of its field names."""
+    if options is None:
+        return Options()
+    if isinstance(options, Options):
+        return options
+    if isinstance(options, Mapping):
+        known = {f.name for f in fields(Options)}
+        unknown = sorted(set(options) - known)
+        if unknown:
+            raise ValueError(
+                f"unknown option(s) {', '.join(map(repr, unknown))}; known: {', '.join(sorted(known))}"
+            )
+        return replace(Options(), **dict(options))
+    raise TypeError(f"options must be None, a lemke.Options or a dict, got {type(options).__name__}")

@@ -1,0 +1,93 @@
+"""Immutable results.  ``success`` and ``message`` are derived from ``status``, never stored."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._status import Status
+
+
+def frozen_array(a) -> np.ndarray:
+    """Mark a result array read-only, so a result cannot be changed after the fact."""
+    a = np.asarray(a, dtype=np.float64)
+    a.setflags(write=False)
+    return a
+
+
+@dataclass(frozen=True)
+class WarmStart:
+    """A complementary basis, as a plain value: pass it back as ``solve_lcp(..., warm_start=)``.
+
+    ``z_basic`` lists (sorted, 0-based) the indices i whose z_i is basic; for every other i,
+    w_i is basic.  It is hashable and picklable and holds nothing else.
+    """
+
+    n: int
+    z_basic: tuple[int, ...]
+
+    def __post_init__(self):
+        n = self.n
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+            raise ValueError(f"WarmStart.n must be a non-negative integer, got {n!r}")
+        try:
+            idx = tuple(sorted(int(i) for i in self.z_basic))
+        except (TypeError, ValueError):
+            raise TypeError("WarmStart.z_basic must be a sequence of integers") from None
+        if len(set(idx)) != len(idx) or (idx and (idx[0] < 0 or idx[-1] >= n)):
+            raise ValueError(f"WarmStart.z_basic must hold distinct indices in [0, {n}), got {idx}")
+        object.__setattr__(self, "n", int(n))
+        object.__setattr__(self, "z_basic", idx)
+
+
+@dataclass(frozen=True)
+class LCPResult:
+    """The outcome of :func:`lemke.solve_lcp`.
+
+    Attributes
+    ----------
+    z, w : ndarray
+        The final point and ``w = M z + q`` recomputed from the caller's data.  On a solved
+        problem they are the solution; otherwise z is where the method stopped.
+    status : Status
+    pivots : int
+        Pivots made, counting the first pivot (the artificial variable entering) and the
+        last (the artificial variable leaving).
+    residual : float
+        ``max_i |min(z_i, w_i)|`` from the caller's data (0 for an exact solution).
+    ray : ndarray or None
+        On ``RAY_TERMINATION`` the direction of the secondary ray, length n + 1: the
+        direction of z followed by that of the artificial variable z0.  Along it,
+        ``(z + t ray[:n], z0 + t ray[n])`` stays almost complementary for all t >= 0.
+    z0 : float
+        The artificial variable's final value (0 when solved).
+    covering : ndarray
+        The covering vector d actually used, in the caller's coordinates (the artificial
+        variable's column: ``w = M z + q + d z0``); needed to check the ray.
+    warm_start : WarmStart or None
+        The final basis, to pass back for a nearby problem.
+    """
+
+    z: np.ndarray
+    w: np.ndarray
+    status: Status
+    pivots: int
+    residual: float
+    ray: np.ndarray | None
+    z0: float
+    covering: np.ndarray
+    warm_start: WarmStart | None
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SOLVED
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+    def __repr__(self) -> str:
+        return (
+            f"LCPResult(status={self.status.name}, pivots={self.pivots}, "
+            f"residual={self.residual:.3g}, n={self.z.size})"
+        )

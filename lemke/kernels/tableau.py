@@ -1,0 +1,189 @@
+"""Lemke's complementary pivoting on a condensed tableau.
+
+The tableau holds only the non-basic columns.  Row i says
+
+    basic[i] = rhs[i] + sum_j T[i, j] * nonbasic[j]
+
+for the n basic variables and the n + 1 non-basic ones (z0, the artificial variable, among
+them).  A cold start is ``T = [M | d]``, ``rhs = q``, w basic and z, z0 non-basic: the
+system ``w = M z + q + d z0``.  Storing n x (n + 1) numbers instead of the full
+n x (2n + 2) tableau halves the memory each pivot sweeps.
+
+Variables are labelled ``0..n-1`` for w, ``n..2n-1`` for z and ``2n`` for z0.  The columns
+of the basis inverse, needed by the lexicographic rule, are read off the tableau: the
+variable that was basic in row j at the start has the unit column e_row when basic and
+``-T[:, col]`` when non-basic.
+"""
+import numpy as np
+
+from . import kernel
+
+SOLVED = 0
+MAX_PIVOTS = 1
+RAY_TERMINATION = 2
+
+
+@kernel
+def pivot(T, rhs, r, s):
+    """Exchange the basic variable of row r with the non-basic variable of column s."""
+    n, m = T.shape
+    inv = 1.0 / T[r, s]
+    for j in range(m):
+        T[r, j] = -T[r, j] * inv
+    T[r, s] = inv
+    rhs[r] = -rhs[r] * inv
+    rr = rhs[r]
+    for i in range(n):
+        if i == r:
+            continue
+        f = T[i, s]
+        if f == 0.0:  # an exact zero leaves row i unchanged: sparse columns cost nothing
+            continue
+        for j in range(m):
+            T[i, j] += f * T[r, j]
+        T[i, s] = f * inv
+        rhs[i] += f * rr
+
+
+@kernel
+def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_tol, tie_abs,
+               cand, vals):
+    """The row that blocks column s, or -1 when nothing blocks (a ray).
+
+    Minimum ratio first; rows tied within ``tie_abs`` go to the artificial variable when it
+    is among them, else to the lexicographic rule on the rows of the basis inverse divided
+    by the pivot entries.  The rows of [rhs | B^-1] stay lexicographically positive, so no
+    basis repeats and the method cannot cycle.
+    """
+    n = T.shape[0]
+    cmax = 0.0
+    for i in range(n):
+        a = abs(T[i, s])
+        if a > cmax:
+            cmax = a
+    thr = -pivot_tol * cmax
+    theta = np.inf
+    for i in range(n):
+        t = T[i, s]
+        if t < thr:
+            ratio = rhs[i] / -t
+            if ratio < theta:
+                theta = ratio
+    if theta == np.inf:
+        return -1
+    k = 0
+    for i in range(n):
+        t = T[i, s]
+        if t < thr and rhs[i] + t * theta <= tie_abs:
+            cand[k] = i
+            k += 1
+    if k == 1:
+        return cand[0]
+    for c in range(k):
+        if basis[cand[c]] == artificial:
+            return cand[c]
+    # Lexicographic rule: column j of B^-1 is the column of the variable basic in row j
+    # at the start.
+    for j in range(n):
+        lab = start_basis[j]
+        vmin = np.inf
+        vabs = 0.0
+        for c in range(k):
+            i = cand[c]
+            if is_basic[lab]:
+                b = 1.0 if pos[lab] == i else 0.0
+            else:
+                b = -T[i, pos[lab]]
+            v = b / -T[i, s]
+            vals[c] = v
+            if v < vmin:
+                vmin = v
+            if abs(v) > vabs:
+                vabs = abs(v)
+        lim = vmin + pivot_tol * vabs
+        kk = 0
+        for c in range(k):
+            if vals[c] <= lim:
+                cand[kk] = cand[c]
+                kk += 1
+        k = kk
+        if k == 1:
+            return cand[0]
+    # Still tied (only possible through rounding): take the largest pivot.
+    best = cand[0]
+    for c in range(1, k):
+        if T[cand[c], s] < T[best, s]:
+            best = cand[c]
+    return best
+
+
+@kernel
+def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_out):
+    """Run Lemke's method from the tableau (T, rhs) with the artificial variable non-basic.
+
+    ``basis`` (n) and ``nonbasic`` (n + 1) hold the labels of the rows and columns and are
+    updated in place; so are T and rhs.  Returns ``(status, pivots)``.  ``x_out`` (n + 1)
+    receives the final z and z0; on a ray, ``ray_out`` (n + 1) receives its direction.
+    """
+    n = T.shape[0]
+    artificial = 2 * n
+    pos = np.empty(2 * n + 1, dtype=np.int64)
+    is_basic = np.zeros(2 * n + 1, dtype=np.bool_)
+    start_basis = basis.copy()
+    for i in range(n):
+        pos[basis[i]] = i
+        is_basic[basis[i]] = True
+    for j in range(n + 1):
+        pos[nonbasic[j]] = j
+    cand = np.empty(n, dtype=np.int64)
+    vals = np.empty(n, dtype=np.float64)
+    ray_out[:] = 0.0
+
+    status = MAX_PIVOTS
+    pivots = 0
+    s = pos[artificial]
+    # First pivot: z0 rises until every basic variable is >= 0; the row that needs the most
+    # (ties to the highest start row, the lexicographic choice) leaves.
+    r = -1
+    need = 0.0
+    for i in range(n):
+        t = -rhs[i] / T[i, s]
+        if r < 0 or t > need:
+            need = t
+            r = i
+    for i in range(n):
+        if rhs[i] + T[i, s] * need <= tie_abs:
+            r = i
+    while pivots < max_pivots:
+        leaving = basis[r]
+        entering = nonbasic[s]
+        pivot(T, rhs, r, s)
+        pivots += 1
+        basis[r] = entering
+        nonbasic[s] = leaving
+        pos[entering] = r
+        is_basic[entering] = True
+        pos[leaving] = s
+        is_basic[leaving] = False
+        if leaving == artificial:
+            status = SOLVED
+            break
+        s = pos[leaving + n if leaving < n else leaving - n]  # the complement enters
+        r = ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_tol,
+                       tie_abs, cand, vals)
+        if r < 0:
+            status = RAY_TERMINATION
+            entering = nonbasic[s]
+            for i in range(n):
+                lab = basis[i]
+                if lab >= n:
+                    ray_out[lab - n] = T[i, s]
+            if entering >= n:
+                ray_out[entering - n] = 1.0
+            break
+    x_out[:] = 0.0
+    for i in range(n):
+        lab = basis[i]
+        if lab >= n:
+            x_out[lab - n] = rhs[i]
+    return status, pivots
