@@ -77,18 +77,25 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     if n == 0 or q.min() >= 0.0:
         return _result(M, q, np.zeros(n), Status.SOLVED, 0, None, 0.0, d, WarmStart(n, ()))
 
+    # Work in units where max|M| = 1 and max|d| = 1: z keeps its units, w and z0 are
+    # rescaled, and the relative tolerances then compare like with like (the result does
+    # not change when M and q are multiplied by a constant).
+    m_scale = float(np.max(np.abs(M))) or 1.0
+    d_scale = float(np.max(d))
     T = np.empty((n, n + 1))
-    T[:, :n] = M
-    T[:, n] = d
-    rhs = q.copy()
+    np.multiply(M, 1.0 / m_scale, out=T[:, :n])
+    np.multiply(d, 1.0 / d_scale, out=T[:, n])
+    rhs = q * (1.0 / m_scale)
     basis = np.arange(n, dtype=np.int64)
     nonbasic = np.arange(n, 2 * n + 1, dtype=np.int64)
     x = np.empty(n + 1)
     ray = np.empty(n + 1)
-    tie_abs = opts.tie_tol * float(np.max(np.abs(q)))
+    tie_abs = opts.tie_tol * float(np.max(np.abs(rhs)))
     code, pivots = tableau.lemke(
         T, rhs, basis, nonbasic, opts.pivot_limit(n), opts.pivot_tol, tie_abs, x, ray
     )
+    x[n] *= m_scale / d_scale  # z0 back in the caller's units
+    ray[n] *= m_scale / d_scale
     z, z0 = x[:n], float(x[n])
     beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
     basis_value = WarmStart(n, tuple(beta.tolist()))

@@ -1,0 +1,236 @@
+"""The LCP solver on literature problems, degenerate cases, limits and its contract."""
+import numpy as np
+import pytest
+from helpers import assert_lcp_solution, assert_ray
+
+import lemke
+from lemke import Status, problems
+
+
+def solve_ok(M, q, **kw):
+    res = lemke.solve_lcp(M, q, **kw)
+    assert res.status == Status.SOLVED, res.message
+    assert res.success
+    assert_lcp_solution(M, q, res.z)
+    np.testing.assert_allclose(res.w, np.asarray(M, float) @ res.z + np.asarray(q, float))
+    return res
+
+
+def test_cps_447_running_example():
+    p = problems.cps_447()
+    res = solve_ok(p.M, p.q)
+    np.testing.assert_allclose(res.z, [0.0, 1.0, 3.0], atol=1e-12)
+    assert res.residual <= 1e-12
+
+
+@pytest.mark.parametrize("n", range(3, 11))
+def test_murty_takes_2_to_the_n_pivots(n):
+    # Convention: every pivot counts, the first (z0 enters) and the last (z0 leaves).
+    p = problems.murty(n)
+    res = solve_ok(p.M, p.q)
+    assert res.pivots == 2**n
+    expected = np.zeros(n)
+    expected[-1] = 2.0**n
+    np.testing.assert_allclose(res.z, expected, atol=1e-9)
+
+
+def test_murty_file_size_6_matches_generator():
+    p = problems.murty(6)
+    assert p.q.tolist() == [-126.0, -124.0, -120.0, -112.0, -96.0, -64.0]
+
+
+def test_degenerate_example_from_the_issue():
+    # The argmin ratio test ends on a false ray here; the solution is z = (0, 0.5).
+    p = problems.degenerate()
+    res = solve_ok(p.M, p.q)
+    np.testing.assert_allclose(res.z, [0.0, 0.5], atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "M, q",
+    [
+        # repeated rows and a zero in q
+        ([[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]], [-1.0, -1.0, 0.0]),
+        # all q equal: a 3-way tie on the first ratio test, cycles with lowest-index ties
+        ([[1.0, 2.0, 0.0], [0.0, 1.0, 2.0], [2.0, 0.0, 1.0]], [-1.0, -1.0, -1.0]),
+        # PSD with the artificial variable tied with an ordinary one (CPS 4.4.16)
+        ([[1.0, -1.0], [-1.0, 1.0]], [1.0, -1.0]),
+        # zero matrix block and zeros in q
+        ([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [-1.0, -1.0, 0.0]], [0.0, -1.0, 2.0]),
+        # four identical rows (redundant contacts)
+        (np.ones((4, 4)), -np.ones(4)),
+        # rank one, many ties
+        (np.outer([1.0, 2.0, 1.0, 2.0], [1.0, 2.0, 1.0, 2.0]), [-1.0, -2.0, -1.0, -2.0]),
+    ],
+    ids=["repeated-rows", "cycling", "artificial-tie", "zero-block", "identical-rows", "rank-one"],
+)
+def test_degenerate_problems(M, q):
+    solve_ok(M, q)
+
+
+def test_q_nonnegative_is_answered_at_once():
+    M = np.array([[1.0, 2.0], [3.0, -4.0]])
+    res = solve_ok(M, [0.0, 2.0])
+    assert res.pivots == 0 and np.all(res.z == 0)
+
+
+def test_empty_problem():
+    res = lemke.solve_lcp(np.zeros((0, 0)), np.zeros(0))
+    assert res.status == Status.SOLVED and res.z.shape == (0,) and res.pivots == 0
+
+
+def test_pivot_cap():
+    p = problems.murty(10)
+    res = lemke.solve_lcp(p.M, p.q, options={"max_pivots": 100})
+    assert res.status == Status.MAX_PIVOTS and res.pivots == 100 and not res.success
+    assert lemke.solve_lcp(p.M, p.q, options=lemke.Options(max_pivots=0)).pivots == 0
+    assert lemke.Options().pivot_limit(10) == 1100
+
+
+def test_covering_vector():
+    rng = np.random.default_rng(3)
+    M, q = problems.random_p_matrix(8, rng)
+    ref = solve_ok(M, q)
+    for d in (np.arange(1.0, 9.0), rng.uniform(0.01, 100.0, 8)):
+        res = solve_ok(M, q, d=d)
+        np.testing.assert_allclose(res.z, ref.z, atol=1e-9)  # P-matrix: unique solution
+        assert np.array_equal(res.covering, d)
+
+
+@pytest.mark.parametrize(
+    "M, q",
+    [
+        ([[-1.0]], [-1.0]),  # -z - 1 >= 0 is impossible
+        ([[0.0, 0.0], [1.0, 1.0]], [-1.0, 1.0]),  # row 0: 0 z - 1 >= 0
+        ([[-1.0, -2.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 2.0]], [-1.0, 2.0, -3.0]),
+    ],
+)
+def test_infeasible_problems_end_on_a_checked_ray(M, q):
+    res = lemke.solve_lcp(M, q)
+    assert res.status == Status.RAY_TERMINATION and not res.success
+    assert res.ray is not None and res.ray.shape == (len(q) + 1,)
+    assert_ray(M, q, res.covering, res.z, res.z0, res.ray)
+    assert lemke.is_lcp_ray(M, q, res.covering, res.z, res.z0, res.ray)
+
+
+def test_psd_ray_is_a_farkas_certificate():
+    # For PSD M a secondary ray proves infeasibility: y = dz >= 0 with M'y <= 0, q'y < 0.
+    M = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    q = np.array([-1.0, -1.0])  # z1 - z2 >= 1 and z2 - z1 >= 1 cannot both hold
+    res = lemke.solve_lcp(M, q)
+    assert res.status == Status.RAY_TERMINATION
+    y = res.ray[:2]
+    assert np.all(y >= 0) and np.all(M.T @ y <= 1e-12) and q @ y < 0
+
+
+def test_sparse_matrix_accepted():
+    sp = pytest.importorskip("scipy.sparse")
+    p = problems.cps_447()
+    res = lemke.solve_lcp(sp.csr_matrix(p.M), p.q)
+    assert res.success
+    assert_lcp_solution(p.M, p.q, res.z)
+    np.testing.assert_allclose(res.z, [0.0, 1.0, 3.0], atol=1e-12)
+
+
+def test_integer_and_list_input():
+    res = solve_ok([[2, 1], [1, 2]], [-5, -6])
+    np.testing.assert_allclose(res.z, [4.0 / 3.0, 7.0 / 3.0])
+
+
+def test_callers_arrays_are_not_modified():
+    p = problems.murty(5)
+    M, q, d = p.M.copy(), p.q.copy(), np.full(5, 2.0)
+    for a in (M, q, d):
+        a.setflags(write=False)  # any write would raise
+    res = lemke.solve_lcp(M, q, d=d)
+    assert res.success
+    assert np.array_equal(M, p.M) and np.array_equal(q, p.q) and np.all(d == 2.0)
+
+
+def test_result_is_immutable():
+    p = problems.degenerate()
+    res = lemke.solve_lcp(p.M, p.q)
+    with pytest.raises(AttributeError):
+        res.status = Status.MAX_PIVOTS
+    with pytest.raises(ValueError):
+        res.z[0] = 1.0
+
+
+@pytest.mark.parametrize(
+    "M, q, kw, exc, words",
+    [
+        (np.ones((2, 3)), np.ones(2), {}, ValueError, "square"),
+        (np.ones(3), np.ones(3), {}, ValueError, "square"),
+        (np.eye(2), np.ones(3), {}, ValueError, "shape (2,)"),
+        (np.eye(2), np.ones((2, 1)), {}, ValueError, "shape (2,)"),
+        ([[1.0, np.nan], [0.0, 1.0]], [1.0, 1.0], {}, ValueError, "NaN"),
+        (np.eye(2), [1.0, np.inf], {}, ValueError, "q has a NaN or infinite"),
+        ([["a", "b"], ["c", "d"]], [1.0, 1.0], {}, TypeError, "real numbers"),
+        (np.eye(2), [1 + 2j, 0], {}, TypeError, "real numbers"),
+        ([[1.0, 2.0], [3.0]], [1.0, 1.0], {}, TypeError, "numeric"),
+        (np.eye(2), [-1.0, 1.0], {"d": [1.0, 0.0]}, ValueError, "positive"),
+        (np.eye(2), [-1.0, 1.0], {"d": [1.0, -2.0]}, ValueError, "positive"),
+        (np.eye(2), [-1.0, 1.0], {"method": "magic"}, ValueError, "unknown method"),
+        (np.eye(2), [-1.0, 1.0], {"options": {"max_pivots": -1}}, ValueError, "max_pivots"),
+        (np.eye(2), [-1.0, 1.0], {"options": {"maxpivots": 3}}, ValueError, "unknown option"),
+        (np.eye(2), [-1.0, 1.0], {"options": {"tol": "small"}}, TypeError, "tol"),
+        (np.eye(2), [-1.0, 1.0], {"options": 3}, TypeError, "options"),
+        (np.eye(2), [-1.0, 1.0], {"warm_start": "basis"}, TypeError, "warm_start"),
+        (np.eye(2), [-1.0, 1.0], {"warm_start": lemke.WarmStart(3, (0,))}, ValueError, "size 3"),
+    ],
+)
+def test_bad_input_is_named(M, q, kw, exc, words):
+    with pytest.raises(exc) as info:
+        lemke.solve_lcp(M, q, **kw)
+    assert words in str(info.value)
+
+
+def test_status_messages():
+    assert [int(s) for s in Status] == [0, 1, 2, 3]
+    for s in Status:
+        assert len(s.message) > 40
+
+
+def test_kernel_answer_is_rechecked(monkeypatch):
+    """A kernel that claims success with a wrong point must not give SOLVED."""
+    from lemke import _lcp
+
+    def lying_kernel(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x, ray):
+        x[:] = 1.0
+        x[-1] = 0.0
+        basis[:] = np.arange(T.shape[0])  # all w basic: the basis point is z = 0, wrong too
+        return 0, 7
+
+    monkeypatch.setattr(_lcp.tableau, "lemke", lying_kernel)
+    p = problems.cps_447()
+    res = lemke.solve_lcp(p.M, p.q)
+    assert res.status == Status.NUMERICAL_FAILURE and not res.success
+
+    def lying_ray(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x, ray):
+        x[:] = 0.0
+        ray[:] = 0.0
+        ray[0] = 1.0  # w = Mz + q decreases along this direction
+        return 2, 3
+
+    monkeypatch.setattr(_lcp.tableau, "lemke", lying_ray)
+    res = lemke.solve_lcp(p.M, p.q)
+    assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
+
+
+def test_scale_invariance():
+    rng = np.random.default_rng(11)
+    M, q = problems.contact_like(12, rng)
+    ref = solve_ok(M, q)
+    for c in (1e-8, 1e-3, 1e4, 1e9):
+        res = solve_ok(c * M, c * q)
+        assert res.pivots == ref.pivots
+        np.testing.assert_allclose(res.z, ref.z, rtol=1e-9, atol=1e-12 * np.abs(ref.z).max())
+
+
+def test_tiny_data_is_not_declared_solved_by_absolute_tolerance():
+    # With data of size 1e-12, z = 0 leaves w = q < 0: a bare absolute tolerance would pass it.
+    M = 1e-12 * np.eye(3)
+    q = -1e-12 * np.ones(3)
+    assert not lemke.is_lcp_solution(M, q, np.zeros(3))
+    res = solve_ok(M, q)
+    np.testing.assert_allclose(res.z, np.ones(3))
