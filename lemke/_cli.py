@@ -91,8 +91,7 @@ def main(argv=None) -> int:
             return 0
         if args.command == "solve":
             return _solve(args)
-        _parser().print_help()
-        return 2
+        raise _UsageError("no command given; try `lemke solve` or `lemke problems` (or --help)")
     except _UsageError as exc:
         print(f"lemke: error: {exc}", file=sys.stderr)
         return 2
