@@ -7,6 +7,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._problem import as_matrix, as_vector
+from .kernels import certify
+
 _EPS = np.finfo(np.float64).eps
 
 
@@ -27,18 +30,22 @@ def lcp_residual(z: np.ndarray, w: np.ndarray) -> float:
     return float(np.max(np.abs(np.minimum(z, w)))) if z.size else 0.0
 
 
+def check_lcp(M: np.ndarray, q: np.ndarray, z: np.ndarray, tol: float):
+    """``(w, is_solution, residual)`` for float64 arrays of matching shapes; w = M z + q."""
+    w = np.empty_like(q)
+    ok, residual = certify.lcp_check(M, q, z, tol, w)
+    return w, bool(ok), float(residual)
+
+
 def is_lcp_solution(M, q, z, tol: float = 1e-9) -> bool:
-    """Whether z solves the LCP (M, q) within the scale-aware tolerance ``tol``."""
-    M = np.asarray(M, dtype=np.float64)
-    q = np.asarray(q, dtype=np.float64)
-    z = np.asarray(z, dtype=np.float64)
-    w = M @ z + q
-    s_z, s_w = lcp_scales(M, q, z, tol)
-    return bool(
-        np.all(z >= -s_z)
-        and np.all(w >= -s_w)
-        and np.all((z <= s_z) | (np.abs(w) <= s_w))
-    )
+    """Whether z solves the LCP (M, q) within the scale-aware tolerance ``tol``: with
+    ``s_w = tol * max(max|q|, max|M|) + 4 n eps max|M| max|z|`` and
+    ``s_z = tol * max(max|z|, max|q| / max|M|)``, it asks ``z >= -s_z``, ``w >= -s_w`` and,
+    for each i, ``z_i <= s_z`` or ``|w_i| <= s_w``."""
+    M = as_matrix(M)
+    q = as_vector(q, M.shape[0], "q")
+    z = as_vector(z, M.shape[0], "z")
+    return check_lcp(M, q, z, float(tol))[1]
 
 
 def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:

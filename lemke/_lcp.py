@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
+from ._certify import check_lcp, is_lcp_ray
 from ._options import as_options
 from ._problem import as_lcp
 from ._result import LCPResult, WarmStart, frozen_array
@@ -69,55 +69,46 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         d = np.ones(n)
 
     if warm_start is not None and warm_start.z_basic:
-        beta = np.asarray(warm_start.z_basic, dtype=np.int64)
-        z = _basis_point(M, q, beta)
-        if z is not None and is_lcp_solution(M, q, z, opts.tol):
-            return _result(M, q, z, Status.SOLVED, 0, None, 0.0, d, warm_start)
+        z = _basis_point(M, q, np.asarray(warm_start.z_basic, dtype=np.int64))
+        if z is not None:
+            w, ok, residual = check_lcp(M, q, z, opts.tol)
+            if ok:
+                return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, d, warm_start)
 
     if n == 0 or q.min() >= 0.0:
-        return _result(M, q, np.zeros(n), Status.SOLVED, 0, None, 0.0, d, WarmStart(n, ()))
+        z = np.zeros(n)
+        return _result(z, q.copy(), 0.0, Status.SOLVED, 0, None, 0.0, d, WarmStart(n, ()))
 
-    # Work in units where max|M| = 1 and max|d| = 1: z keeps its units, w and z0 are
-    # rescaled, and the relative tolerances then compare like with like (the result does
-    # not change when M and q are multiplied by a constant).
-    m_scale = float(np.max(np.abs(M))) or 1.0
-    d_scale = float(np.max(d))
-    T = np.empty((n, n + 1))
-    np.multiply(M, 1.0 / m_scale, out=T[:, :n])
-    np.multiply(d, 1.0 / d_scale, out=T[:, n])
-    rhs = q * (1.0 / m_scale)
-    basis = np.arange(n, dtype=np.int64)
-    nonbasic = np.arange(n, 2 * n + 1, dtype=np.int64)
     x = np.empty(n + 1)
     ray = np.empty(n + 1)
-    tie_abs = opts.tie_tol * float(np.max(np.abs(rhs)))
-    code, pivots = tableau.lemke(
-        T, rhs, basis, nonbasic, opts.pivot_limit(n), opts.pivot_tol, tie_abs, x, ray
+    basis = np.empty(n, dtype=np.int64)
+    code, pivots = tableau.solve(
+        M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, x, ray, basis
     )
-    x[n] *= m_scale / d_scale  # z0 back in the caller's units
-    ray[n] *= m_scale / d_scale
     z, z0 = x[:n], float(x[n])
+    w, ok, residual = check_lcp(M, q, z, opts.tol)  # on the caller's data, whatever the status
     beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
-    basis_value = WarmStart(n, tuple(beta.tolist()))
+    final_basis = WarmStart._trusted(n, tuple(beta.tolist()))
     status = Status(code)
 
     if status == Status.SOLVED:
-        z = np.maximum(z, 0.0)  # round-off below zero; anything worse fails the check
-        if not is_lcp_solution(M, q, z, opts.tol):
+        if not ok:
             # Recompute the point of the final basis from the caller's data: one dense
             # solve, more accurate than a tableau that went through many pivots.
             zb = _basis_point(M, q, beta)
-            if zb is not None and is_lcp_solution(M, q, zb, opts.tol):
-                z = zb
-            else:
+            if zb is not None:
+                wb, ok, rb = check_lcp(M, q, zb, opts.tol)
+                if ok:
+                    z, w, residual = zb, wb, rb
+            if not ok:
                 status = Status.NUMERICAL_FAILURE
-        return _result(M, q, z, status, pivots, None, 0.0, d, basis_value)
-    if status == Status.RAY_TERMINATION:
-        if not is_lcp_ray(M, q, d, z, z0, ray, opts.tol):
-            status = Status.NUMERICAL_FAILURE
-            ray = None
-        return _result(M, q, z, status, pivots, ray, z0, d, basis_value)
-    return _result(M, q, z, status, pivots, None, z0, d, basis_value)
+        return _result(z, w, residual, status, pivots, None, 0.0, d, final_basis)
+
+    if status == Status.RAY_TERMINATION and not is_lcp_ray(M, q, d, z, z0, ray, opts.tol):
+        status = Status.NUMERICAL_FAILURE
+    if status != Status.RAY_TERMINATION:
+        ray = None
+    return _result(z, w, residual, status, pivots, ray, z0, d, final_basis)
 
 
 def _basis_point(M, q, beta):
@@ -129,22 +120,20 @@ def _basis_point(M, q, beta):
             z[beta] = np.linalg.solve(M[np.ix_(beta, beta)], -q[beta])
         except np.linalg.LinAlgError:
             return None
-        if not np.all(np.isfinite(z)):
+        if not np.isfinite(z).all():
             return None
     return np.maximum(z, 0.0)  # a negative z_beta beyond round-off makes it no solution
 
 
-def _result(M, q, z, status, pivots, ray, z0, d, warm_start):
-    z = np.array(z, dtype=np.float64)
-    w = M @ z + q
+def _result(z, w, residual, status, pivots, ray, z0, d, warm_start):
     return LCPResult(
         z=frozen_array(z),
         w=frozen_array(w),
         status=status,
         pivots=int(pivots),
-        residual=lcp_residual(z, w),
-        ray=None if ray is None else frozen_array(np.array(ray)),
+        residual=float(residual),
+        ray=None if ray is None else frozen_array(ray),
         z0=float(z0),
-        covering=frozen_array(np.array(d)),
+        covering=frozen_array(d.copy()),  # d may be the caller's array
         warm_start=warm_start,
     )

@@ -63,7 +63,7 @@ class Options:
 def as_options(options: Options | Mapping[str, Any] | None) -> Options:
     """Accept ``None``, an :class:`Options` or a mapping of its field names."""
     if options is None:
-        return Options()
+        return _DEFAULT
     if isinstance(options, Options):
         return options
     if isinstance(options, Mapping):
@@ -75,3 +75,6 @@ def as_options(options: Options | Mapping[str, Any] | None) -> Options:
             )
         return replace(Options(), **dict(options))
     raise TypeError(f"options must be None, a lemke.Options or a dict, got {type(options).__name__}")
+
+
+_DEFAULT = Options()

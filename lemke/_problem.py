@@ -1,7 +1,7 @@
 """Validation and coercion of user input, done once at the boundary.
 
-Everything returned is a fresh float64 array owned by the solver: the caller's arrays are
-never written to.
+The arrays returned are float64; they are the caller's own arrays when those already are
+float64 (no copy), so the solver treats them as read-only and never writes to them.
 """
 from __future__ import annotations
 
@@ -12,17 +12,14 @@ def _to_float_array(x, name: str) -> np.ndarray:
     if hasattr(x, "toarray") and hasattr(x, "nnz"):  # scipy.sparse: densified for now
         x = x.toarray()
     try:
-        a = np.array(x, copy=True)
+        a = np.asarray(x)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a numeric array: {exc}") from None
-    if a.dtype == object or not (
-        np.issubdtype(a.dtype, np.floating)
-        or np.issubdtype(a.dtype, np.integer)
-        or a.dtype == np.bool_
-    ):
+    if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
         raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
-    a = a.astype(np.float64, copy=False)
-    if not np.all(np.isfinite(a)):
+    if a.dtype != np.float64:
+        a = a.astype(np.float64)
+    if not np.isfinite(a).all():
         bad = np.argwhere(~np.isfinite(a))[0]
         raise ValueError(f"{name} has a NaN or infinite entry at index {tuple(int(i) for i in bad)}")
     return a

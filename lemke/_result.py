@@ -39,6 +39,14 @@ class WarmStart:
         object.__setattr__(self, "n", int(n))
         object.__setattr__(self, "z_basic", idx)
 
+    @classmethod
+    def _trusted(cls, n: int, z_basic: tuple) -> "WarmStart":
+        """Build from values the solver made itself (sorted, in range): no checks."""
+        ws = object.__new__(cls)
+        object.__setattr__(ws, "n", n)
+        object.__setattr__(ws, "z_basic", z_basic)
+        return ws
+
 
 @dataclass(frozen=True)
 class LCPResult:

@@ -8,11 +8,14 @@ from lemke import Status, problems
 
 
 def solve_ok(M, q, **kw):
+    M, q = np.asarray(M, float), np.asarray(q, float)
     res = lemke.solve_lcp(M, q, **kw)
     assert res.status == Status.SOLVED, res.message
     assert res.success
     assert_lcp_solution(M, q, res.z)
-    np.testing.assert_allclose(res.w, np.asarray(M, float) @ res.z + np.asarray(q, float))
+    w = np.asarray(M, float) @ res.z + np.asarray(q, float)
+    scale = np.abs(q).max() + np.abs(M).max() * np.abs(res.z).max()
+    np.testing.assert_allclose(res.w, w, rtol=1e-12, atol=1e-13 * scale)
     return res
 
 
@@ -195,24 +198,25 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     """A kernel that claims success with a wrong point must not give SOLVED."""
     from lemke import _lcp
 
-    def lying_kernel(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x, ray):
+    def lying_kernel(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, basis):
         x[:] = 1.0
         x[-1] = 0.0
-        basis[:] = np.arange(T.shape[0])  # all w basic: the basis point is z = 0, wrong too
+        basis[:] = np.arange(q.size)  # all w basic: the basis point is z = 0, wrong too
         return 0, 7
 
-    monkeypatch.setattr(_lcp.tableau, "lemke", lying_kernel)
+    monkeypatch.setattr(_lcp.tableau, "solve", lying_kernel)
     p = problems.cps_447()
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and not res.success
 
-    def lying_ray(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x, ray):
+    def lying_ray(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, basis):
         x[:] = 0.0
         ray[:] = 0.0
         ray[0] = 1.0  # w = Mz + q decreases along this direction
+        basis[:] = np.arange(q.size)
         return 2, 3
 
-    monkeypatch.setattr(_lcp.tableau, "lemke", lying_ray)
+    monkeypatch.setattr(_lcp.tableau, "solve", lying_ray)
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
 

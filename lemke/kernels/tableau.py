@@ -24,13 +24,18 @@ RAY_TERMINATION = 2
 
 
 @kernel
-def pivot(T, rhs, r, s):
-    """Exchange the basic variable of row r with the non-basic variable of column s."""
+def pivot(T, rhs, r, s, prow):
+    """Exchange the basic variable of row r with the non-basic variable of column s.
+
+    ``prow`` is scratch of length n + 1 holding the new pivot row: reading it from its own
+    buffer (not from T) lets the row updates vectorize.
+    """
     n, m = T.shape
     inv = 1.0 / T[r, s]
     for j in range(m):
-        T[r, j] = -T[r, j] * inv
-    T[r, s] = inv
+        prow[j] = -T[r, j] * inv
+    prow[s] = inv
+    T[r, :] = prow
     rhs[r] = -rhs[r] * inv
     rr = rhs[r]
     for i in range(n):
@@ -39,10 +44,15 @@ def pivot(T, rhs, r, s):
         f = T[i, s]
         if f == 0.0:  # an exact zero leaves row i unchanged: sparse columns cost nothing
             continue
-        for j in range(m):
-            T[i, j] += f * T[r, j]
+        _axpy(T[i], f, prow)
         T[i, s] = f * inv
         rhs[i] += f * rr
+
+
+@kernel
+def _axpy(y, a, x):
+    for j in range(y.shape[0]):
+        y[j] += a * x[j]
 
 
 @kernel
@@ -94,6 +104,8 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
                 b = 1.0 if pos[lab] == i else 0.0
             else:
                 b = -T[i, pos[lab]]
+                if abs(b) <= pivot_tol:  # rounding noise on an exact zero (M has max 1)
+                    b = 0.0
             v = b / -T[i, s]
             vals[c] = v
             if v < vmin:
@@ -137,6 +149,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_ou
         pos[nonbasic[j]] = j
     cand = np.empty(n, dtype=np.int64)
     vals = np.empty(n, dtype=np.float64)
+    prow = np.empty(n + 1, dtype=np.float64)
     ray_out[:] = 0.0
 
     status = MAX_PIVOTS
@@ -157,7 +170,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_ou
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
-        pivot(T, rhs, r, s)
+        pivot(T, rhs, r, s, prow)
         pivots += 1
         basis[r] = entering
         nonbasic[s] = leaving
@@ -186,4 +199,47 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_ou
         lab = basis[i]
         if lab >= n:
             x_out[lab - n] = rhs[i]
+    return status, pivots
+
+
+@kernel
+def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, basis):
+    """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.
+
+    Works in units where max|M| = 1 and max|d| = 1: z keeps its units, w and z0 are
+    rescaled, so the relative tolerances compare like with like and multiplying M and q by
+    a constant changes nothing.  Returns ``(status, pivots)``; ``x_out`` gets z and z0 (in
+    the caller's units), ``ray_out`` the ray, ``basis`` the final row labels.
+    """
+    n = q.shape[0]
+    m_scale = 0.0
+    for i in range(n):
+        for j in range(n):
+            m_scale = max(m_scale, abs(M[i, j]))
+    if m_scale == 0.0:
+        m_scale = 1.0
+    d_scale = 0.0
+    for i in range(n):
+        d_scale = max(d_scale, d[i])
+    T = np.empty((n, n + 1))
+    rhs = np.empty(n)
+    q_max = 0.0
+    for i in range(n):
+        for j in range(n):
+            T[i, j] = M[i, j] / m_scale
+        T[i, n] = d[i] / d_scale
+        rhs[i] = q[i] / m_scale
+        q_max = max(q_max, abs(rhs[i]))
+    nonbasic = np.empty(n + 1, dtype=np.int64)
+    for i in range(n):
+        basis[i] = i
+        nonbasic[i] = n + i
+    nonbasic[n] = 2 * n
+    status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol * q_max,
+                           x_out, ray_out)
+    x_out[n] *= m_scale / d_scale
+    ray_out[n] *= m_scale / d_scale
+    if status == SOLVED:
+        for i in range(n):
+            x_out[i] = max(x_out[i], 0.0)  # round-off below zero; worse fails the check
     return status, pivots

@@ -1,0 +1,38 @@
+"""The acceptance test of a solution, in one pass over M (see lemke._options for the rule)."""
+import numpy as np
+
+from . import kernel
+
+EPS = np.finfo(np.float64).eps
+
+
+@kernel
+def lcp_check(M, q, z, tol, w):
+    """Fill ``w = M z + q`` and return ``(is_solution, residual)`` where residual is
+    ``max_i |min(z_i, w_i)|``."""
+    n = q.shape[0]
+    m_max = 0.0
+    q_max = 0.0
+    z_max = 0.0
+    for j in range(n):
+        z_max = max(z_max, abs(z[j]))
+    for i in range(n):
+        acc = q[i]
+        row = M[i]
+        for j in range(n):
+            a = row[j]
+            acc += a * z[j]
+            m_max = max(m_max, abs(a))
+        w[i] = acc
+        q_max = max(q_max, abs(q[i]))
+    s_w = tol * max(q_max, m_max) + 4.0 * n * EPS * m_max * z_max
+    s_z = tol * max(z_max, q_max / m_max if m_max > 0.0 else 0.0)
+    ok = True
+    residual = 0.0
+    for i in range(n):
+        zi = z[i]
+        wi = w[i]
+        residual = max(residual, abs(min(zi, wi)))
+        if zi < -s_z or wi < -s_w or (zi > s_z and abs(wi) > s_w):
+            ok = False
+    return ok, residual
