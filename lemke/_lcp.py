@@ -1,16 +1,19 @@
 """solve_lcp: validate -> set up the tableau -> kernel -> check on the caller's data -> result."""
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
+import scipy.linalg
 
 from ._certify import check_lcp, is_lcp_ray
 from ._options import as_options
 from ._problem import as_lcp
 from ._result import LCPResult, WarmStart, frozen_array
 from ._status import Status
-from .kernels import tableau
+from .kernels import tableau, unrevised
 
-METHODS = ("tableau",)
+METHODS = ("tableau", "unrevised")
 
 
 def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) -> LCPResult:
@@ -68,34 +71,88 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     if d is None:
         d = np.ones(n)
 
+    restart_pivots = 0
     if warm_start is not None and warm_start.z_basic:
-        z = _basis_point(M, q, np.asarray(warm_start.z_basic, dtype=np.int64))
+        beta = np.zeros(n, dtype=np.bool_)
+        beta[list(warm_start.z_basic)] = True
+        z = _basis_point(M, q, np.flatnonzero(beta))
         if z is not None:
             w, ok, residual = check_lcp(M, q, z, opts.tol)
-            if ok:
+            if ok:  # the old basis still solves it
                 return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, d, warm_start)
+            # Restart Lemke from the old basis: the principal pivoting transform of (M, q)
+            # by it, with a constant covering vector in the transformed coordinates.  In the
+            # caller's coordinates that is the column c e_alpha - M[:, beta] 1, with c =
+            # max|M| so that z rows and w rows get the same constant in scaled units.
+            m_scale = max(M.max(), -M.min()) or 1.0
+            d_basis = m_scale * (~beta) - M[:, beta].sum(axis=1)
+            res = _lemke(method, M, q, d_basis, beta, opts)
+            if res is not None and res.status == Status.SOLVED:
+                return res
+            restart_pivots = 0 if res is None else res.pivots  # fall back to a cold solve
 
     if n == 0 or q.min() >= 0.0:
         z = np.zeros(n)
         return _result(z, q.copy(), 0.0, Status.SOLVED, 0, None, 0.0, d, WarmStart(n, ()))
+    res = _lemke(method, M, q, d, None, opts)
+    if restart_pivots:
+        res = replace(res, pivots=res.pivots + restart_pivots)
+    return res
 
+
+def _lemke(method, M, q, d, z_start, opts):
+    """Run Lemke's method (cold when ``z_start`` is None, else from the complementary basis
+    with z_i basic where z_start[i], whose transformed covering vector must be all ones), then
+    check the outcome on the caller's data.  None when the starting block is singular."""
+    n = q.size
     x = np.empty(n + 1)
     ray = np.empty(n + 1)
-    basis = np.empty(n, dtype=np.int64)
-    code, pivots = tableau.solve(
-        M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, x, ray, basis
-    )
+    max_pivots = opts.pivot_limit(n)
+    if method == "tableau" and z_start is None:
+        basis = np.empty(n, dtype=np.int64)
+        code, pivots = tableau.solve(M, q, d, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, basis)
+        final_beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
+    else:
+        # The same scaled units as tableau.solve: max|M| = 1, max|d| = 1.
+        m_scale = max(M.max(), -M.min()) or 1.0
+        d_scale = max(d.max(), -d.min())
+        A = np.empty((n, n + 1))
+        np.multiply(M, 1.0 / m_scale, out=A[:, :n])
+        np.multiply(d, 1.0 / d_scale, out=A[:, n])
+        qs = q * (1.0 / m_scale)
+        start = np.zeros(n, dtype=np.bool_) if z_start is None else z_start
+        if method == "unrevised":
+            z_basic = np.empty(n, dtype=np.bool_)
+            tie_abs = opts.tie_tol * max(qs.max(), -qs.min())
+            code, pivots = unrevised.lemke(
+                A, qs, start, max_pivots, opts.pivot_tol, tie_abs, x, ray, z_basic
+            )
+            final_beta = np.flatnonzero(z_basic)
+        else:
+            T, rhs, basis, nonbasic = _transformed_tableau(A, qs, start)
+            if T is None:
+                return None
+            tie_abs = opts.tie_tol * max(rhs.max(), -rhs.min())
+            code, pivots = tableau.lemke(
+                T, rhs, basis, nonbasic, max_pivots, opts.pivot_tol, tie_abs, x, ray
+            )
+            final_beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
+        x[n] *= m_scale / d_scale
+        ray[n] *= m_scale / d_scale
+        if code == Status.SOLVED:
+            np.maximum(x, 0.0, out=x)
+    if code == Status.NUMERICAL_FAILURE and z_start is not None and pivots == 0:
+        return None  # singular starting block
     z, z0 = x[:n], float(x[n])
     w, ok, residual = check_lcp(M, q, z, opts.tol)  # on the caller's data, whatever the status
-    beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
-    final_basis = WarmStart._trusted(n, tuple(beta.tolist()))
+    final_basis = WarmStart._trusted(n, tuple(final_beta.tolist()))
     status = Status(code)
 
     if status == Status.SOLVED:
         if not ok:
             # Recompute the point of the final basis from the caller's data: one dense
             # solve, more accurate than a tableau that went through many pivots.
-            zb = _basis_point(M, q, beta)
+            zb = _basis_point(M, q, final_beta)
             if zb is not None:
                 wb, ok, rb = check_lcp(M, q, zb, opts.tol)
                 if ok:
@@ -109,6 +166,42 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     if status != Status.RAY_TERMINATION:
         ray = None
     return _result(z, w, residual, status, pivots, ray, z0, d, final_basis)
+
+
+def _transformed_tableau(A, q, beta):
+    """The condensed tableau of ``w = A[:, :n] z + q + A[:, n] z0`` after the principal
+    pivot on the block beta: row i holds z_i (i in beta) or w_i, column i the other
+    variable of pair i, column n holds z0.  None if A[beta, beta] is singular."""
+    n = q.size
+    b = np.flatnonzero(beta)
+    a = np.flatnonzero(~beta)
+    Mbb = A[np.ix_(b, b)]
+    try:
+        lu = scipy.linalg.lu_factor(Mbb, check_finite=False)
+    except (ValueError, np.linalg.LinAlgError):
+        return None, None, None, None
+    if not np.all(np.isfinite(lu[0])) or np.min(np.abs(np.diag(lu[0]))) <= 1e-14 * max(1.0, np.abs(Mbb).max()):
+        return None, None, None, None
+    T = np.empty((n, n + 1))
+    rhs = np.empty(n)
+    # Rows beta: z_b = Mbb^-1 (w_b - M_ba z_a - q_b - d_b z0).
+    rhs_side = np.hstack([np.eye(b.size), A[np.ix_(b, a)], A[b, n, None], q[b, None]])
+    sol = scipy.linalg.lu_solve(lu, rhs_side, check_finite=False)
+    inv, Sba, sd, sq = sol[:, : b.size], sol[:, b.size : n], sol[:, n], sol[:, n + 1]
+    T[np.ix_(b, b)] = inv
+    T[np.ix_(b, a)] = -Sba
+    T[b, n] = -sd
+    rhs[b] = -sq
+    # Rows alpha: w_a = M_ab z_b + M_aa z_a + q_a + d_a z0.
+    Mab = A[np.ix_(a, b)]
+    T[np.ix_(a, b)] = Mab @ inv
+    T[np.ix_(a, a)] = A[np.ix_(a, a)] - Mab @ Sba
+    rhs[a] = q[a] - Mab @ sq
+    T[a, n] = A[a, n] - Mab @ sd
+    labels = np.arange(n, dtype=np.int64)
+    basis = np.where(beta, labels + n, labels)
+    nonbasic = np.append(np.where(beta, labels, labels + n), 2 * n)
+    return T, rhs, basis, nonbasic
 
 
 def _basis_point(M, q, beta):
