@@ -19,18 +19,18 @@ def solve_ok(M, q, **kw):
     return res
 
 
-def test_cps_447_running_example():
+def test_cps_447_running_example(method):
     p = problems.cps_447()
-    res = solve_ok(p.M, p.q)
+    res = solve_ok(p.M, p.q, method=method)
     np.testing.assert_allclose(res.z, [0.0, 1.0, 3.0], atol=1e-12)
     assert res.residual <= 1e-12
 
 
 @pytest.mark.parametrize("n", range(3, 11))
-def test_murty_takes_2_to_the_n_pivots(n):
+def test_murty_takes_2_to_the_n_pivots(n, method):
     # Convention: every pivot counts, the first (z0 enters) and the last (z0 leaves).
     p = problems.murty(n)
-    res = solve_ok(p.M, p.q)
+    res = solve_ok(p.M, p.q, method=method)
     assert res.pivots == 2**n
     expected = np.zeros(n)
     expected[-1] = 2.0**n
@@ -42,10 +42,10 @@ def test_murty_file_size_6_matches_generator():
     assert p.q.tolist() == [-126.0, -124.0, -120.0, -112.0, -96.0, -64.0]
 
 
-def test_degenerate_example_from_the_issue():
+def test_degenerate_example_from_the_issue(method):
     # The argmin ratio test ends on a false ray here; the solution is z = (0, 0.5).
     p = problems.degenerate()
-    res = solve_ok(p.M, p.q)
+    res = solve_ok(p.M, p.q, method=method)
     np.testing.assert_allclose(res.z, [0.0, 0.5], atol=1e-12)
 
 
@@ -67,35 +67,35 @@ def test_degenerate_example_from_the_issue():
     ],
     ids=["repeated-rows", "cycling", "artificial-tie", "zero-block", "identical-rows", "rank-one"],
 )
-def test_degenerate_problems(M, q):
-    solve_ok(M, q)
+def test_degenerate_problems(M, q, method):
+    solve_ok(M, q, method=method)
 
 
-def test_q_nonnegative_is_answered_at_once():
+def test_q_nonnegative_is_answered_at_once(method):
     M = np.array([[1.0, 2.0], [3.0, -4.0]])
-    res = solve_ok(M, [0.0, 2.0])
+    res = solve_ok(M, [0.0, 2.0], method=method)
     assert res.pivots == 0 and np.all(res.z == 0)
 
 
-def test_empty_problem():
-    res = lemke.solve_lcp(np.zeros((0, 0)), np.zeros(0))
+def test_empty_problem(method):
+    res = lemke.solve_lcp(np.zeros((0, 0)), np.zeros(0), method=method)
     assert res.status == Status.SOLVED and res.z.shape == (0,) and res.pivots == 0
 
 
-def test_pivot_cap():
+def test_pivot_cap(method):
     p = problems.murty(10)
-    res = lemke.solve_lcp(p.M, p.q, options={"max_pivots": 100})
+    res = lemke.solve_lcp(p.M, p.q, method=method, options={"max_pivots": 100})
     assert res.status == Status.MAX_PIVOTS and res.pivots == 100 and not res.success
     assert lemke.solve_lcp(p.M, p.q, options=lemke.Options(max_pivots=0)).pivots == 0
     assert lemke.Options().pivot_limit(10) == 1100
 
 
-def test_covering_vector():
+def test_covering_vector(method):
     rng = np.random.default_rng(3)
     M, q = problems.random_p_matrix(8, rng)
-    ref = solve_ok(M, q)
+    ref = solve_ok(M, q, method=method)
     for d in (np.arange(1.0, 9.0), rng.uniform(0.01, 100.0, 8)):
-        res = solve_ok(M, q, d=d)
+        res = solve_ok(M, q, d=d, method=method)
         np.testing.assert_allclose(res.z, ref.z, atol=1e-9)  # P-matrix: unique solution
         assert np.array_equal(res.covering, d)
 
@@ -108,19 +108,19 @@ def test_covering_vector():
         ([[-1.0, -2.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 2.0]], [-1.0, 2.0, -3.0]),
     ],
 )
-def test_infeasible_problems_end_on_a_checked_ray(M, q):
-    res = lemke.solve_lcp(M, q)
+def test_infeasible_problems_end_on_a_checked_ray(M, q, method):
+    res = lemke.solve_lcp(M, q, method=method)
     assert res.status == Status.RAY_TERMINATION and not res.success
     assert res.ray is not None and res.ray.shape == (len(q) + 1,)
     assert_ray(M, q, res.covering, res.z, res.z0, res.ray)
     assert lemke.is_lcp_ray(M, q, res.covering, res.z, res.z0, res.ray)
 
 
-def test_psd_ray_is_a_farkas_certificate():
+def test_psd_ray_is_a_farkas_certificate(method):
     # For PSD M a secondary ray proves infeasibility: y = dz >= 0 with M'y <= 0, q'y < 0.
     M = np.array([[1.0, -1.0], [-1.0, 1.0]])
     q = np.array([-1.0, -1.0])  # z1 - z2 >= 1 and z2 - z1 >= 1 cannot both hold
-    res = lemke.solve_lcp(M, q)
+    res = lemke.solve_lcp(M, q, method=method)
     assert res.status == Status.RAY_TERMINATION
     y = res.ray[:2]
     assert np.all(y >= 0) and np.all(M.T @ y <= 1e-12) and q @ y < 0
@@ -140,12 +140,12 @@ def test_integer_and_list_input():
     np.testing.assert_allclose(res.z, [4.0 / 3.0, 7.0 / 3.0])
 
 
-def test_callers_arrays_are_not_modified():
+def test_callers_arrays_are_not_modified(method):
     p = problems.murty(5)
     M, q, d = p.M.copy(), p.q.copy(), np.full(5, 2.0)
     for a in (M, q, d):
         a.setflags(write=False)  # any write would raise
-    res = lemke.solve_lcp(M, q, d=d)
+    res = lemke.solve_lcp(M, q, d=d, method=method)
     assert res.success
     assert np.array_equal(M, p.M) and np.array_equal(q, p.q) and np.all(d == 2.0)
 
@@ -221,20 +221,32 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
 
 
-def test_scale_invariance():
+def test_scale_invariance(method):
     rng = np.random.default_rng(11)
     M, q = problems.contact_like(12, rng)
-    ref = solve_ok(M, q)
+    ref = solve_ok(M, q, method=method)
     for c in (1e-8, 1e-3, 1e4, 1e9):
-        res = solve_ok(c * M, c * q)
+        res = solve_ok(c * M, c * q, method=method)
         assert res.pivots == ref.pivots
         np.testing.assert_allclose(res.z, ref.z, rtol=1e-9, atol=1e-12 * np.abs(ref.z).max())
 
 
-def test_tiny_data_is_not_declared_solved_by_absolute_tolerance():
+def test_tiny_data_is_not_declared_solved_by_absolute_tolerance(method):
     # With data of size 1e-12, z = 0 leaves w = q < 0: a bare absolute tolerance would pass it.
     M = 1e-12 * np.eye(3)
     q = -1e-12 * np.ones(3)
     assert not lemke.is_lcp_solution(M, q, np.zeros(3))
-    res = solve_ok(M, q)
+    res = solve_ok(M, q, method=method)
     np.testing.assert_allclose(res.z, np.ones(3))
+
+
+def test_methods_agree(method):
+    """Same z on problems with a unique solution, same pivots on nondegenerate ones."""
+    rng = np.random.default_rng(21)
+    for n in (1, 2, 5, 17, 40, 90):
+        M, q = problems.random_p_matrix(n, rng)
+        a = solve_ok(M, q, method="tableau")
+        b = solve_ok(M, q, method=method)
+        assert a.pivots == b.pivots
+        np.testing.assert_allclose(b.z, a.z, rtol=1e-8, atol=1e-10 * max(1.0, np.abs(a.z).max()))
+        assert a.warm_start == b.warm_start

@@ -97,7 +97,7 @@ def _is_feasible(M, q):
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c["name"] for c in CASES])
-def test_drake_case(case):
+def test_drake_case(case, method):
     M, q = _problem(case)
     n = case["n"]
 
@@ -107,7 +107,7 @@ def test_drake_case(case):
         # Drake solves the named case first on the same solver object; here the first
         # result's warm_start is passed explicitly.
         M1, q1 = _problem(BY_NAME[case["warm_start_from"]])
-        first = lemke.solve_lcp(M1, q1)
+        first = lemke.solve_lcp(M1, q1, method=method)
         assert first.status == lemke.Status.SOLVED
         warm = first.warm_start
         # Does the old basis still give a solution of the new problem?  Then the warm
@@ -122,7 +122,7 @@ def test_drake_case(case):
         except np.linalg.LinAlgError:  # singular M_bb: the old basis is no basis here
             basis_still_solves = False
 
-    result = lemke.solve_lcp(M, q, warm_start=warm)
+    result = lemke.solve_lcp(M, q, warm_start=warm, method=method)
 
     if n == 0:
         assert result.status == lemke.Status.SOLVED

@@ -83,9 +83,9 @@ def _enumerate_solutions(M, q):
 
 
 @pytest.mark.parametrize("name", _params())
-def test_siconos_lcp(name):
+def test_siconos_lcp(name, method):
     M, q = read_lcp(LCP_DIR / name)
-    result = lemke.solve_lcp(M, q)
+    result = lemke.solve_lcp(M, q, method=method)
     if name in RAY_FILES:
         assert result.status == lemke.Status.RAY_TERMINATION, result.message
         assert_ray(M, q, result.covering, result.z, result.z0, result.ray)

@@ -15,6 +15,11 @@ scales = st.sampled_from([1e-6, 1.0, 1e6])
 
 
 def check_solved(M, q):
+    """Both methods solve it, and their answers pass the independent check."""
+    for method in lemke.METHODS:
+        res = lemke.solve_lcp(M, q, method=method)
+        assert res.status == Status.SOLVED, (method, res, res.message)
+        assert_lcp_solution(M, q, res.z)
     res = lemke.solve_lcp(M, q)
     assert res.status == Status.SOLVED, (res, res.message)
     assert_lcp_solution(M, q, res.z)
@@ -73,9 +78,10 @@ def test_infeasible_row_ends_on_a_checked_ray(seed, n):
     M[i] = -np.abs(M[i])  # row i: M_i <= 0 and q_i < 0, so w_i < 0 for every z >= 0
     q = rng.standard_normal(n)
     q[i] = -abs(q[i]) - 0.1
-    res = lemke.solve_lcp(M, q)
-    assert res.status == Status.RAY_TERMINATION, res
-    assert_ray(M, q, res.covering, res.z, res.z0, res.ray)
+    for method in lemke.METHODS:
+        res = lemke.solve_lcp(M, q, method=method)
+        assert res.status == Status.RAY_TERMINATION, (method, res)
+        assert_ray(M, q, res.covering, res.z, res.z0, res.ray)
 
 
 @SETTINGS

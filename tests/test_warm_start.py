@@ -3,28 +3,28 @@ import pickle
 
 import numpy as np
 import pytest
-from helpers import assert_lcp_solution
+from helpers import assert_lcp_solution, assert_ray
 
 import lemke
 from lemke import problems
 
 
-def test_same_basis_still_solves_gives_zero_pivots():
+def test_same_basis_still_solves_gives_zero_pivots(method):
     rng = np.random.default_rng(5)
     M, q = problems.random_p_matrix(30, rng)
-    cold = lemke.solve_lcp(M, q)
+    cold = lemke.solve_lcp(M, q, method=method)
     assert cold.success and cold.pivots > 0
-    warm = lemke.solve_lcp(M, q + 1e-9 * np.abs(q).max(), warm_start=cold.warm_start)
+    warm = lemke.solve_lcp(M, q + 1e-9 * np.abs(q).max(), warm_start=cold.warm_start, method=method)
     assert warm.success and warm.pivots == 0
     assert_lcp_solution(M, q + 1e-9 * np.abs(q).max(), warm.z)
 
 
-def test_stale_basis_falls_back_and_is_right():
+def test_stale_basis_falls_back_and_is_right(method):
     rng = np.random.default_rng(6)
     M, q = problems.random_psd(20, rng)
-    cold = lemke.solve_lcp(M, q)
+    cold = lemke.solve_lcp(M, q, method=method)
     other_q = rng.standard_normal(20)
-    res = lemke.solve_lcp(M, other_q, warm_start=cold.warm_start)
+    res = lemke.solve_lcp(M, other_q, warm_start=cold.warm_start, method=method)
     assert res.success
     assert_lcp_solution(M, other_q, res.z)
 
@@ -47,3 +47,36 @@ def test_warm_start_is_a_plain_value():
         lemke.WarmStart(3, (0, 3))
     with pytest.raises(ValueError):
         lemke.WarmStart(3, (1, 1))
+
+
+@pytest.mark.parametrize("kind", ["q", "M and q"])
+def test_small_change_restarts_from_the_old_basis(method, kind):
+    """A change that moves the solution's basis costs a few pivots, not a cold solve."""
+    rng = np.random.default_rng(8)
+    n = 120
+    M, q = problems.random_p_matrix(n, rng)
+    prev = lemke.solve_lcp(M, q, method=method)
+    restarts = []
+    for step in range(10):
+        q = q + 2e-2 * np.abs(q).max() * rng.standard_normal(n)
+        if kind == "M and q":
+            M = M + 2e-2 * np.abs(M).max() * rng.standard_normal((n, n)) / np.sqrt(n)
+        cold = lemke.solve_lcp(M, q, method=method)
+        res = lemke.solve_lcp(M, q, method=method, warm_start=prev.warm_start)
+        assert res.success
+        assert_lcp_solution(M, q, res.z)
+        np.testing.assert_allclose(res.z, cold.z, atol=1e-8 * np.abs(cold.z).max())  # unique
+        restarts.append(res.pivots)
+        assert res.pivots < cold.pivots / 4, (res.pivots, cold.pivots)
+        prev = res
+    assert max(restarts) > 0  # the basis did change: the restart path was exercised
+
+
+def test_restart_ray_is_checked_with_its_own_covering_vector(method):
+    """An infeasible problem reached by a warm start ends on a ray valid for the column used."""
+    M = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    first = lemke.solve_lcp(M, [1.0, -1.0], method=method)
+    assert first.success and first.warm_start.z_basic
+    res = lemke.solve_lcp(M, [-1.0, -1.0], method=method, warm_start=first.warm_start)
+    assert res.status == lemke.Status.RAY_TERMINATION
+    assert_ray(M, [-1.0, -1.0], res.covering, res.z, res.z0, res.ray)
