@@ -1,17 +1,20 @@
 """lemke: linear complementarity problems by Lemke's complementary pivoting method.
 
-Public API: :func:`solve_lcp`, :class:`LCPResult`, :class:`Status`, :class:`Options`,
-:class:`WarmStart`, and the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`.
+Public API: :func:`solve_lcp` (methods in ``METHODS``), :class:`LCPResult`, :class:`Status`,
+:class:`Options`, :class:`WarmStart`, :func:`pivot_column` (one step of the unrevised
+method), and the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`.
 """
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
-from ._lcp import solve_lcp
+from ._lcp import METHODS, solve_lcp
 from ._options import Options
+from ._pivot_column import pivot_column
 from ._result import LCPResult, WarmStart
 from ._status import Status
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "METHODS",
     "LCPResult",
     "Options",
     "Status",
@@ -19,6 +22,7 @@ __all__ = [
     "is_lcp_ray",
     "is_lcp_solution",
     "lcp_residual",
+    "pivot_column",
     "solve_lcp",
     "__version__",
 ]
