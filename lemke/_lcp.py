@@ -123,18 +123,16 @@ def _lemke(method, M, q, d, z_start, opts):
         start = np.zeros(n, dtype=np.bool_) if z_start is None else z_start
         if method == "unrevised":
             z_basic = np.empty(n, dtype=np.bool_)
-            tie_abs = opts.tie_tol * max(qs.max(), -qs.min())
             code, pivots = unrevised.lemke(
-                A, qs, start, max_pivots, opts.pivot_tol, tie_abs, x, ray, z_basic
+                A, qs, start, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
             )
             final_beta = np.flatnonzero(z_basic)
         else:
             T, rhs, basis, nonbasic = _transformed_tableau(A, qs, start)
             if T is None:
                 return None
-            tie_abs = opts.tie_tol * max(rhs.max(), -rhs.min())
             code, pivots = tableau.lemke(
-                T, rhs, basis, nonbasic, max_pivots, opts.pivot_tol, tie_abs, x, ray
+                T, rhs, basis, nonbasic, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray
             )
             final_beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
         x[n] *= m_scale / d_scale

@@ -11,8 +11,8 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     An entry of the driving column takes part in the ratio test only when it is below
     ``-pivot_tol * max|column|``; smaller entries are treated as rounding noise.
 ``tie_tol`` (default ``1e-11``)
-    Rows whose basic variable would end within ``tie_tol * max|q|`` of zero at the minimum
-    ratio are tied; ties go to the artificial variable if it is among them, else to the
+    Rows whose basic variable would end within ``tie_tol * max|basic values|`` of zero at
+    the minimum ratio are tied (values below zero by rounding count as zero); ties go to the artificial variable if it is among them, else to the
     lexicographic rule on the rows of the basis inverse (which makes cycling impossible).
 ``tol`` (default ``1e-9``)
     Acceptance test for a solution, made on the caller's data: with

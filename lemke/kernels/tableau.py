@@ -56,27 +56,29 @@ def _axpy(y, a, x):
 
 
 @kernel
-def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_tol, tie_abs,
+def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_tol, tie_tol,
                cand, vals):
     """The row that blocks column s, or -1 when nothing blocks (a ray).
 
-    Minimum ratio first; rows tied within ``tie_abs`` go to the artificial variable when it
-    is among them, else to the lexicographic rule on the rows of the basis inverse divided
-    by the pivot entries.  The rows of [rhs | B^-1] stay lexicographically positive, so no
-    basis repeats and the method cannot cycle.
+    Minimum ratio first; rows that would end within ``tie_tol * max|rhs|`` of zero at the
+    minimum ratio are tied, and ties go to the artificial variable when it is among them,
+    else to the lexicographic rule on the rows of the basis inverse divided by the pivot
+    entries.  The rows of [rhs | B^-1] stay lexicographically positive, so no basis repeats
+    and the method cannot cycle.  Values below zero by rounding count as zero.
     """
     n = T.shape[0]
     cmax = 0.0
+    vmax = 0.0
     for i in range(n):
-        a = abs(T[i, s])
-        if a > cmax:
-            cmax = a
+        cmax = max(cmax, abs(T[i, s]))
+        vmax = max(vmax, abs(rhs[i]))
     thr = -pivot_tol * cmax
+    tie_abs = tie_tol * vmax
     theta = np.inf
     for i in range(n):
         t = T[i, s]
         if t < thr:
-            ratio = rhs[i] / -t
+            ratio = max(rhs[i], 0.0) / -t
             if ratio < theta:
                 theta = ratio
     if theta == np.inf:
@@ -84,7 +86,7 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
     k = 0
     for i in range(n):
         t = T[i, s]
-        if t < thr and rhs[i] + t * theta <= tie_abs:
+        if t < thr and max(rhs[i], 0.0) + t * theta <= tie_abs:
             cand[k] = i
             k += 1
     if k == 1:
@@ -130,7 +132,7 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
 
 
 @kernel
-def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_out):
+def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_out):
     """Run Lemke's method from the tableau (T, rhs) with the artificial variable non-basic.
 
     ``basis`` (n) and ``nonbasic`` (n + 1) hold the labels of the rows and columns and are
@@ -164,6 +166,10 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_ou
         if r < 0 or t > need:
             need = t
             r = i
+    tie_abs = 0.0
+    for i in range(n):
+        tie_abs = max(tie_abs, abs(rhs[i]))
+    tie_abs *= tie_tol
     for i in range(n):
         if rhs[i] + T[i, s] * need <= tie_abs:
             r = i
@@ -183,7 +189,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_abs, x_out, ray_ou
             break
         s = pos[leaving + n if leaving < n else leaving - n]  # the complement enters
         r = ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_tol,
-                       tie_abs, cand, vals)
+                       tie_tol, cand, vals)
         if r < 0:
             status = RAY_TERMINATION
             entering = nonbasic[s]
@@ -223,20 +229,18 @@ def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, basis):
         d_scale = max(d_scale, d[i])
     T = np.empty((n, n + 1))
     rhs = np.empty(n)
-    q_max = 0.0
     for i in range(n):
         for j in range(n):
             T[i, j] = M[i, j] / m_scale
         T[i, n] = d[i] / d_scale
         rhs[i] = q[i] / m_scale
-        q_max = max(q_max, abs(rhs[i]))
     nonbasic = np.empty(n + 1, dtype=np.int64)
     for i in range(n):
         basis[i] = i
         nonbasic[i] = n + i
     nonbasic[n] = 2 * n
-    status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol * q_max,
-                           x_out, ray_out)
+    status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out,
+                           ray_out)
     x_out[n] *= m_scale / d_scale
     ray_out[n] *= m_scale / d_scale
     if status == SOLVED:

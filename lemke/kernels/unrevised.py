@@ -8,10 +8,11 @@ n).  They have the same size k, and the basic point solves the k x k system
 
 with every basic w_i = q_i + A[i, beta] z_beta.  The change of the basic variables per unit
 of a driving variable comes from the same block, so each pivot needs only products with
-G = H^-1.  G is updated from pivot to pivot in O(k^2) (one of four cases: the block gains a
-row and a column, loses them, or has one row or one column replaced); it is refactored from
-scratch every ``REFACTOR_EVERY`` pivots and whenever the basic point fails its residual
-check.
+G = H^-1 and with AB = A[:, beta] (kept as a contiguous copy, one column changed a pivot).
+G is updated from pivot to pivot in O(k^2), one of four cases: the block gains a row and a
+column, loses them, or has one row or one column replaced.  The basic point is recomputed
+from G at every pivot and its residual checked; G is refactored (LAPACK) when the check
+fails, when an update's pivot is tiny, and every ``REFACTOR_EVERY`` pivots.
 
 Labels and rules are those of the tableau kernel: 0..n-1 for w, n..2n-1 for z, 2n for z0;
 minimum ratio, ties to the artificial variable, then the lexicographic rule on the basis
@@ -23,122 +24,111 @@ from . import kernel
 from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED
 
 NUMERICAL_FAILURE = 3
-REFACTOR_EVERY = 100
+REFACTOR_EVERY = 200
+RESIDUAL_TOL = 1e-10
 
 
 @kernel
-def invert(A, alist, blist, k, G, W):
-    """G[:k, :k] = inverse of A[alist, blist] by Gauss-Jordan with partial pivoting, using
-    W (at least k x 2k) as scratch.  Returns False when the block is numerically singular."""
+def invert(AB, alist, k, G):
+    """G[:k, :k] = inverse of H = AB[alist[:k], :k] (LAPACK).  False when H is singular
+    or the inverse is not finite."""
+    H = np.empty((k, k))
+    for r in range(k):
+        H[r, :] = AB[alist[r], :k]
+    try:
+        Hi = np.linalg.inv(H)
+    except Exception:  # exactly singular
+        return False
     for r in range(k):
         for c in range(k):
-            W[r, c] = A[alist[r], blist[c]]
-            W[r, k + c] = 1.0 if r == c else 0.0
-    scale = 0.0
-    for r in range(k):
-        for c in range(k):
-            scale = max(scale, abs(W[r, c]))
-    tiny = 1e-14 * scale * k
-    for c in range(k):
-        p = c
-        for r in range(c + 1, k):
-            if abs(W[r, c]) > abs(W[p, c]):
-                p = r
-        if abs(W[p, c]) <= tiny:
-            return False
-        if p != c:
-            for j in range(2 * k):
-                t = W[p, j]
-                W[p, j] = W[c, j]
-                W[c, j] = t
-        inv = 1.0 / W[c, c]
-        for j in range(2 * k):
-            W[c, j] *= inv
-        for r in range(k):
-            if r != c:
-                f = W[r, c]
-                if f != 0.0:
-                    for j in range(2 * k):
-                        W[r, j] -= f * W[c, j]
-    for r in range(k):
-        for c in range(k):
-            G[r, c] = W[r, k + c]
+            if not np.isfinite(Hi[r, c]):
+                return False
+            G[r, c] = Hi[r, c]
     return True
 
 
 @kernel
-def basic_point(A, q, alist, blist, k, G, apos, zb, wv, tmp):
-    """z_beta = -G q_alpha with one step of refinement, and w_i for the basic w's.
-    Returns the relative residual of H z_beta + q_alpha before refinement."""
-    n = q.shape[0]
-    for p in range(k):
+def _matvec(G, k, x, out):
+    """out[:k] = G[:k, :k] x[:k]."""
+    for r in range(k):
         acc = 0.0
         for c in range(k):
-            acc -= G[p, c] * q[alist[c]]
-        zb[p] = acc
+            acc += G[r, c] * x[c]
+        out[r] = acc
+
+
+@kernel
+def _dot(row, x, k):
+    acc = 0.0
+    for c in range(k):
+        acc += row[c] * x[c]
+    return acc
+
+
+@kernel
+def _all_w(AB, q, apos, zb, k, wv):
+    """wv = q + AB[:, :k] z_beta; returns max |w_i| over i in alpha (the residual of
+    H z_beta + q_alpha, zero in exact arithmetic)."""
     res = 0.0
+    for i in range(q.shape[0]):
+        w = q[i] + _dot(AB[i], zb, k)
+        wv[i] = w
+        if apos[i] >= 0:
+            res = max(res, abs(w))
+    return res
+
+
+@kernel
+def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2):
+    """z_beta = -G q_alpha and every w_i = q_i + AB[i] z_beta (the values of the basic w's).
+    Refines z_beta once when the residual of H z_beta + q_alpha is not small.  Returns
+    that residual relative to the size of q_alpha and z_beta."""
+    for r in range(k):
+        tmp[r] = -q[alist[r]]
+    _matvec(G, k, tmp, zb)
+    res = _all_w(AB, q, apos, zb, k, wv)
     size = 0.0
     for r in range(k):
-        i = alist[r]
-        acc = q[i]
-        big = abs(q[i])
+        size = max(size, abs(q[alist[r]]), abs(zb[r]))
+    if size > 0.0 and res > RESIDUAL_TOL * size:
+        for r in range(k):
+            tmp[r] = wv[alist[r]]
+        _matvec(G, k, tmp, tmp2)
         for c in range(k):
-            t = A[i, blist[c]] * zb[c]
-            acc += t
-            big = max(big, abs(t))
-        tmp[r] = acc
-        res = max(res, abs(acc))
-        size = max(size, big)
-    for p in range(k):
-        acc = 0.0
-        for c in range(k):
-            acc += G[p, c] * tmp[c]
-        zb[p] -= acc
-    for i in range(n):
-        if apos[i] < 0:
-            acc = q[i]
-            for c in range(k):
-                acc += A[i, blist[c]] * zb[c]
-            wv[i] = acc
+            zb[c] -= tmp2[c]
+        res = _all_w(AB, q, apos, zb, k, wv)
     return res / size if size > 0.0 else 0.0
 
 
 @kernel
-def direction(A, label, n, alist, blist, k, G, apos, dzb, dw):
+def direction(A, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
     """The change of every basic variable per unit increase of the non-basic ``label``:
-    dzb (k, for the basic z's in beta order) and dw (n, read at the basic w's)."""
+    dzb (k, the basic z's in beta order) and dw (n, read at the basic w's)."""
     if label < n:  # a w leaves zero: H dz_beta = e_p
         p = apos[label]
         for r in range(k):
             dzb[r] = G[r, p]
         for i in range(n):
             if apos[i] < 0:
-                acc = 0.0
-                for c in range(k):
-                    acc += A[i, blist[c]] * dzb[c]
-                dw[i] = acc
+                dw[i] = _dot(AB[i], dzb, k)
     else:  # a z (or z0) enters: H dz_beta = -A[alpha, e]
         e = label - n
         for r in range(k):
-            acc = 0.0
-            for c in range(k):
-                acc -= G[r, c] * A[alist[c], e]
-            dzb[r] = acc
+            tmp[r] = -A[alist[r], e]
+        _matvec(G, k, tmp, dzb)
         for i in range(n):
             if apos[i] < 0:
-                acc = A[i, e]
-                for c in range(k):
-                    acc += A[i, blist[c]] * dzb[c]
-                dw[i] = acc
+                dw[i] = A[i, e] + _dot(AB[i], dzb, k)
 
 
 @kernel
-def lemke(A, q, z_start, max_pivots, pivot_tol, tie_abs, x_out, ray_out, z_basic_out):
+def lemke(A, q, z_start, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """Lemke's method from the complementary basis with z_i basic where z_start[i].
 
-    ``A`` = [M | d] (n x (n + 1)) and q, in the scaled units of tableau.solve.  Returns
-    ``(status, pivots)``; x_out gets z and z0, ray_out the ray on RAY_TERMINATION and
-    z_basic_out the final set of basic z's.
+    ``A`` = [M | d] (n x (n + 1)) and q, in the scaled units of tableau.solve; the
+    artificial variable's column must be positive in the coordinates of that basis.
+    Returns ``(status, pivots)``; x_out gets z and z0, ray_out the ray on
+    RAY_TERMINATION and z_basic_out the final set of basic z's.
     """
     n = q.shape[0]
     art = 2 * n
@@ -146,6 +136,7 @@ def lemke(A, q, z_start, max_pivots, pivot_tol, tie_abs, x_out, ray_out, z_basic
     blist = np.empty(n, dtype=np.int64)  # H's columns: the basic z's (n stands for z0)
     apos = np.full(n, -1, dtype=np.int64)
     bpos = np.full(n + 1, -1, dtype=np.int64)
+    AB = np.empty((n, n))  # AB[:, c] = A[:, blist[c]]
     k = 0
     for i in range(n):
         if z_start[i]:
@@ -153,9 +144,9 @@ def lemke(A, q, z_start, max_pivots, pivot_tol, tie_abs, x_out, ray_out, z_basic
             blist[k] = i
             apos[i] = k
             bpos[i] = k
+            AB[:, k] = A[:, i]
             k += 1
     G = np.empty((n, n))
-    W = np.empty((n, 2 * n))
     zb = np.empty(n)
     wv = np.empty(n)
     dzb = np.empty(n)
@@ -163,82 +154,51 @@ def lemke(A, q, z_start, max_pivots, pivot_tol, tie_abs, x_out, ray_out, z_basic
     lz = np.empty(n)
     lw = np.empty(n)
     tmp = np.empty(n)
+    tmp2 = np.empty(n)
     row = np.empty(n)
-    cand = np.empty(n, dtype=np.int64)  # candidates as labels
+    cand = np.empty(n, dtype=np.int64)  # tied candidates, as labels
     vals = np.empty(n)
     ray_out[:] = 0.0
     x_out[:] = 0.0
 
     status = MAX_PIVOTS
-    if not invert(A, alist, blist, k, G, W):
+    pivots = 0
+    if k > 0 and not invert(AB, alist, k, G):
         status = NUMERICAL_FAILURE
         max_pivots = 0
-    basic_point(A, q, alist, blist, k, G, apos, zb, wv, tmp)
-    pivots = 0
+    basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
     since_refactor = 0
     entering = art
     while pivots < max_pivots:
-        direction(A, entering, n, alist, blist, k, G, apos, dzb, dw)
-        # --- choose the leaving variable -------------------------------------------------
-        leaving = -1
+        direction(A, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
         if pivots == 0:
             # z0 rises until every basic variable is >= 0; the one that needs the most
             # leaves, ties to the highest pair index (the lexicographic choice).
             need = -np.inf
+            tie_abs = 0.0
             for i in range(n):
                 v = zb[bpos[i]] if bpos[i] >= 0 else wv[i]
                 dv = dzb[bpos[i]] if bpos[i] >= 0 else dw[i]
-                t = -v / dv
-                if t > need:
-                    need = t
+                need = max(need, -v / dv)
+                tie_abs = max(tie_abs, abs(v))
+            tie_abs *= tie_tol
+            leaving = -1
             for i in range(n):
                 v = zb[bpos[i]] if bpos[i] >= 0 else wv[i]
                 dv = dzb[bpos[i]] if bpos[i] >= 0 else dw[i]
                 if v + dv * need <= tie_abs:
                     leaving = n + i if bpos[i] >= 0 else i
         else:
-            cmax = 0.0
-            for p in range(k):
-                cmax = max(cmax, abs(dzb[p]))
-            for i in range(n):
-                if apos[i] < 0:
-                    cmax = max(cmax, abs(dw[i]))
-            thr = -pivot_tol * cmax
-            theta = np.inf
-            for p in range(k):
-                if dzb[p] < thr:
-                    theta = min(theta, zb[p] / -dzb[p])
-            for i in range(n):
-                if apos[i] < 0 and dw[i] < thr:
-                    theta = min(theta, wv[i] / -dw[i])
-            if theta == np.inf:
+            leaving = ratio_test(A, AB, n, alist, blist, k, G, apos, bpos, zb, wv, dzb, dw,
+                                 z_start, pivot_tol, tie_tol, cand, vals, lz, lw, tmp)
+            if leaving < 0:
                 status = RAY_TERMINATION
                 if entering >= n:
                     ray_out[entering - n] = 1.0
                 for p in range(k):
                     ray_out[blist[p]] = dzb[p]
                 break
-            nc = 0
-            art_tied = False
-            for p in range(k):
-                if dzb[p] < thr and zb[p] + dzb[p] * theta <= tie_abs:
-                    cand[nc] = n + blist[p]
-                    nc += 1
-                    if blist[p] == n:
-                        art_tied = True
-            for i in range(n):
-                if apos[i] < 0 and dw[i] < thr and wv[i] + dw[i] * theta <= tie_abs:
-                    cand[nc] = i
-                    nc += 1
-            if art_tied:
-                leaving = art
-            elif nc == 1:
-                leaving = cand[0]
-            else:
-                leaving = lex_choice(A, n, alist, blist, k, G, apos, bpos, cand, nc, vals,
-                                     z_start, dzb, dw, lz, lw, pivot_tol)
-        # --- exchange ------------------------------------------------------------------
-        ok = exchange(A, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row)
+        ok = exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row)
         if entering >= n and leaving < n:
             k += 1  # the block gained a row and a column
         elif entering < n and leaving >= n:
@@ -247,15 +207,15 @@ def lemke(A, q, z_start, max_pivots, pivot_tol, tie_abs, x_out, ray_out, z_basic
         since_refactor += 1
         if not ok or since_refactor >= REFACTOR_EVERY:
             since_refactor = 0
-            if not invert(A, alist, blist, k, G, W):
+            if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
                 break
-        if basic_point(A, q, alist, blist, k, G, apos, zb, wv, tmp) > 1e-9:
+        if basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2) > RESIDUAL_TOL:
             since_refactor = 0
-            if not invert(A, alist, blist, k, G, W):
+            if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
                 break
-            basic_point(A, q, alist, blist, k, G, apos, zb, wv, tmp)
+            basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
         if leaving == art:
             status = SOLVED
             break
@@ -268,15 +228,51 @@ def lemke(A, q, z_start, max_pivots, pivot_tol, tie_abs, x_out, ray_out, z_basic
 
 
 @kernel
-def lex_choice(A, n, alist, blist, k, G, apos, bpos, cand, nc, vals, z_start, dzb, dw, lz, lw,
-               pivot_tol):
-    """Break a ratio tie by the lexicographic rule (columns of the basis inverse relative
-    to the starting basis, whose row j holds z_j if z_start[j] else w_j)."""
+def ratio_test(A, AB, n, alist, blist, k, G, apos, bpos, zb, wv, dzb, dw, z_start,
+               pivot_tol, tie_tol, cand, vals, lz, lw, tmp):
+    """The leaving variable's label, or -1 when nothing blocks: the rule of
+    tableau.ratio_test over the basic z's (zb, dzb) and the basic w's (wv, dw)."""
+    art = 2 * n
+    cmax = 0.0
+    vmax = 0.0
+    for p in range(k):
+        cmax = max(cmax, abs(dzb[p]))
+        vmax = max(vmax, abs(zb[p]))
+    for i in range(n):
+        if apos[i] < 0:
+            cmax = max(cmax, abs(dw[i]))
+            vmax = max(vmax, abs(wv[i]))
+    thr = -pivot_tol * cmax
+    tie_abs = tie_tol * vmax
+    theta = np.inf
+    for p in range(k):
+        if dzb[p] < thr:
+            theta = min(theta, max(zb[p], 0.0) / -dzb[p])
+    for i in range(n):
+        if apos[i] < 0 and dw[i] < thr:
+            theta = min(theta, max(wv[i], 0.0) / -dw[i])
+    if theta == np.inf:
+        return -1
+    nc = 0
+    for p in range(k):
+        if dzb[p] < thr and max(zb[p], 0.0) + dzb[p] * theta <= tie_abs:
+            if blist[p] == n:
+                return art
+            cand[nc] = n + blist[p]
+            nc += 1
+    for i in range(n):
+        if apos[i] < 0 and dw[i] < thr and max(wv[i], 0.0) + dw[i] * theta <= tie_abs:
+            cand[nc] = i
+            nc += 1
+    if nc == 1:
+        return cand[0]
+    # Lexicographic rule: column j of the basis inverse relative to the starting basis is
+    # the unit vector of its pair-j variable when that is basic, else minus its direction.
     for j in range(n):
         lab = n + j if z_start[j] else j
         basic = bpos[j] >= 0 if z_start[j] else apos[j] < 0
         if not basic:
-            direction(A, lab, n, alist, blist, k, G, apos, lz, lw)
+            direction(A, AB, lab, n, alist, k, G, apos, lz, lw, tmp)
         vmin = np.inf
         vabs = 0.0
         for c in range(nc):
@@ -285,7 +281,7 @@ def lex_choice(A, n, alist, blist, k, G, apos, bpos, cand, nc, vals, z_start, dz
                 b = 1.0 if cl == lab else 0.0
             else:
                 b = -(lz[bpos[cl - n]] if cl >= n else lw[cl])
-                if abs(b) <= pivot_tol:
+                if abs(b) <= pivot_tol:  # rounding noise on an exact zero (M has max 1)
                     b = 0.0
             piv = dzb[bpos[cl - n]] if cl >= n else dw[cl]
             v = b / -piv
@@ -301,7 +297,7 @@ def lex_choice(A, n, alist, blist, k, G, apos, bpos, cand, nc, vals, z_start, dz
         nc = kk
         if nc == 1:
             return cand[0]
-    best = cand[0]
+    best = cand[0]  # still tied (only through rounding): the largest pivot
     bestp = 0.0
     for c in range(nc):
         cl = cand[c]
@@ -313,24 +309,22 @@ def lex_choice(A, n, alist, blist, k, G, apos, bpos, cand, nc, vals, z_start, dz
 
 
 @kernel
-def exchange(A, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
-    """Update the index sets and G = H^-1 for ``entering`` replacing ``leaving``.
+def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
+    """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``.
     Returns False when the update's pivot is too small to trust (then refactor)."""
     if entering >= n and leaving < n:
-        # z_e enters, w_i leaves: H gains row i and column e (bordering).
+        # z_e enters, w_i leaves: H gains row i and column e.  With u = G A[alpha, e]
+        # (= -dzb), r = A[i, beta] G and the Schur complement s = dw[i]:
+        # G' = [[G + u r / s, -u / s], [-r / s, 1 / s]].
         e = entering - n
         i = leaving
-        s = dw[i]  # = A[i,e] + A[i,beta] dz_beta, the Schur complement
-        for c in range(k):  # row = A[i, beta] G
-            acc = 0.0
-            for p in range(k):
-                acc += A[i, blist[p]] * G[p, c]
-            row[c] = acc
-        for p in range(k):  # u = G A[alpha, e] = -dzb
+        s = dw[i]
+        _row_times(AB[i], G, k, row)
+        for p in range(k):
             f = -dzb[p] / s
             for c in range(k):
                 G[p, c] += f * row[c]
-            G[p, k] = -(-dzb[p]) / s
+            G[p, k] = dzb[p] / s
         for c in range(k):
             G[k, c] = -row[c] / s
         G[k, k] = 1.0 / s
@@ -338,38 +332,38 @@ def exchange(A, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, r
         apos[i] = k
         blist[k] = e
         bpos[e] = k
+        AB[:, k] = A[:, e]
         return abs(s) > 1e-13
     if entering >= n:
-        # z_e replaces z_l in H's columns (Sherman-Morrison on column p).
+        # z_e replaces z_l as column p of H (Sherman-Morrison): with u = G A[alpha, e],
+        # G' = G - (u - e_p) G[p, :] / u[p].
         e = entering - n
         l = leaving - n
         p = bpos[l]
-        piv = -dzb[p]  # = (G A[alpha, e])[p]
+        piv = -dzb[p]
         for c in range(k):
             row[c] = G[p, c] / piv
         for r in range(k):
-            u = -dzb[r] - (1.0 if r == p else 0.0)
-            if u != 0.0:
+            f = -dzb[r] - (1.0 if r == p else 0.0)
+            if f != 0.0:
                 for c in range(k):
-                    G[r, c] -= u * row[c]
+                    G[r, c] -= f * row[c]
         blist[p] = e
         bpos[l] = -1
         bpos[e] = p
+        AB[:, p] = A[:, e]
         return abs(piv) > 1e-13
     if leaving < n:
-        # w_j enters (leaves alpha), w_i leaves (joins alpha): row p of H becomes A[i, beta].
+        # w_j enters, w_i leaves: row p of H becomes A[i, beta].  With r = A[i, beta] G:
+        # G' = G - G[:, p] (r - e_p) / r[p].
         j = entering
         i = leaving
         p = apos[j]
-        for c in range(k):  # row = A[i, beta] G
-            acc = 0.0
-            for r in range(k):
-                acc += A[i, blist[r]] * G[r, c]
-            row[c] = acc
-        piv = row[p]  # = A[i, beta] G[:, p] = dw[i]
+        _row_times(AB[i], G, k, row)
+        piv = row[p]
         row[p] -= 1.0
         for r in range(k):
-            f = dzb[r] / piv  # G[:, p] / piv
+            f = dzb[r] / piv  # dzb = G[:, p]
             if f != 0.0:
                 for c in range(k):
                     G[r, c] -= f * row[c]
@@ -377,7 +371,9 @@ def exchange(A, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, r
         apos[j] = -1
         apos[i] = p
         return abs(piv) > 1e-13
-    # w_j enters, z_l leaves: H loses row p (w_j) and column m (z_l).
+    # w_j enters, z_l leaves: H loses row p (w_j) and column m (z_l):
+    # G' = G[-m, -p] - G[-m, p] G[m, -p] / G[m, p]; then the last row and column of G
+    # (and of the index lists) move into the freed slots.
     j = entering
     l = leaving - n
     p = apos[j]
@@ -390,10 +386,11 @@ def exchange(A, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, r
                 for c in range(k):
                     G[r, c] -= f * G[m, c]
     last = k - 1
-    for c in range(k):  # move the last row of G into row m
+    for c in range(k):
         G[m, c] = G[last, c]
-    for r in range(last):  # and the last column into column p
+    for r in range(last):
         G[r, p] = G[r, last]
+    AB[:, m] = AB[:, last]
     bl = blist[last]
     blist[m] = bl
     bpos[bl] = m
@@ -403,3 +400,15 @@ def exchange(A, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, r
     apos[al] = p
     apos[j] = -1
     return abs(piv) > 1e-13
+
+
+@kernel
+def _row_times(x, G, k, out):
+    """out[:k] = x[:k] G[:k, :k] (row-major friendly)."""
+    for c in range(k):
+        out[c] = 0.0
+    for p in range(k):
+        f = x[p]
+        if f != 0.0:
+            for c in range(k):
+                out[c] += f * G[p, c]
