@@ -78,3 +78,14 @@ def test_cli_problems_lists_every_named_problem(capsys):
 def test_console_command_runs():
     out = subprocess.run([sys.executable, "-m", "lemke", "solve", "degenerate"], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0 and "SOLVED" in out.stdout and "[0. , 0.5]" in out.stdout
+
+
+def test_readme_example_runs():
+    """The README's Python example runs as written (its asserts included)."""
+    from pathlib import Path
+
+    readme = Path(__file__).resolve().parents[1] / "README.md"
+    text = readme.read_text()
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    out = run_python(code)
+    assert out.split() == ["SOLVED", "[0.", "1.", "3.]", "5", "0"]
