@@ -9,7 +9,7 @@ import scipy.linalg
 from ._certify import check_lcp, is_lcp_ray
 from ._options import as_options
 from ._problem import as_lcp
-from ._result import LCPResult, WarmStart, frozen_array
+from ._result import LCPResult, WarmStart
 from ._status import Status
 from .kernels import tableau, unrevised
 
@@ -107,11 +107,12 @@ def _lemke(method, M, q, d, z_start, opts):
     n = q.size
     x = np.empty(n + 1)
     ray = np.empty(n + 1)
+    z_basic = np.empty(n, dtype=np.bool_)
     max_pivots = opts.pivot_limit(n)
     if method == "tableau" and z_start is None:
-        basis = np.empty(n, dtype=np.int64)
-        code, pivots = tableau.solve(M, q, d, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, basis)
-        final_beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
+        code, pivots = tableau.solve(
+            M, q, d, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
+        )
     else:
         # The same scaled units as tableau.solve: max|M| = 1, max|d| = 1.
         m_scale = max(M.max(), -M.min()) or 1.0
@@ -122,19 +123,17 @@ def _lemke(method, M, q, d, z_start, opts):
         qs = q * (1.0 / m_scale)
         start = np.zeros(n, dtype=np.bool_) if z_start is None else z_start
         if method == "unrevised":
-            z_basic = np.empty(n, dtype=np.bool_)
             code, pivots = unrevised.lemke(
                 A, qs, start, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
             )
-            final_beta = np.flatnonzero(z_basic)
         else:
             T, rhs, basis, nonbasic = _transformed_tableau(A, qs, start)
             if T is None:
                 return None
             code, pivots = tableau.lemke(
-                T, rhs, basis, nonbasic, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray
+                T, rhs, basis, nonbasic, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray,
+                z_basic,
             )
-            final_beta = np.sort(basis[(basis >= n) & (basis < 2 * n)] - n)
         x[n] *= m_scale / d_scale
         ray[n] *= m_scale / d_scale
         if code == Status.SOLVED:
@@ -143,6 +142,7 @@ def _lemke(method, M, q, d, z_start, opts):
         return None  # singular starting block
     z, z0 = x[:n], float(x[n])
     w, ok, residual = check_lcp(M, q, z, opts.tol)  # on the caller's data, whatever the status
+    final_beta = np.flatnonzero(z_basic)
     final_basis = WarmStart._trusted(n, tuple(final_beta.tolist()))
     status = Status(code)
 
@@ -217,14 +217,8 @@ def _basis_point(M, q, beta):
 
 
 def _result(z, w, residual, status, pivots, ray, z0, d, warm_start):
-    return LCPResult(
-        z=frozen_array(z),
-        w=frozen_array(w),
-        status=status,
-        pivots=int(pivots),
-        residual=float(residual),
-        ray=None if ray is None else frozen_array(ray),
-        z0=float(z0),
-        covering=frozen_array(d.copy()),  # d may be the caller's array
-        warm_start=warm_start,
-    )
+    """The result, its arrays made read-only (all are the solver's own, never the caller's)."""
+    d = d.copy()  # d may be the caller's array
+    for a in (z, w, d) if ray is None else (z, w, d, ray):
+        a.setflags(write=False)
+    return LCPResult(z, w, status, int(pivots), float(residual), ray, float(z0), d, warm_start)

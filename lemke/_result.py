@@ -8,13 +8,6 @@ import numpy as np
 from ._status import Status
 
 
-def frozen_array(a) -> np.ndarray:
-    """Mark a result array read-only, so a result cannot be changed after the fact."""
-    a = np.asarray(a, dtype=np.float64)
-    a.setflags(write=False)
-    return a
-
-
 @dataclass(frozen=True)
 class WarmStart:
     """A complementary basis, as a plain value: pass it back as ``solve_lcp(..., warm_start=)``.

@@ -198,10 +198,10 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     """A kernel that claims success with a wrong point must not give SOLVED."""
     from lemke import _lcp
 
-    def lying_kernel(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, basis):
+    def lying_kernel(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, z_basic):
         x[:] = 1.0
         x[-1] = 0.0
-        basis[:] = np.arange(q.size)  # all w basic: the basis point is z = 0, wrong too
+        z_basic[:] = False  # all w basic: the basis point is z = 0, wrong too
         return 0, 7
 
     monkeypatch.setattr(_lcp.tableau, "solve", lying_kernel)
@@ -209,11 +209,11 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and not res.success
 
-    def lying_ray(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, basis):
+    def lying_ray(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, z_basic):
         x[:] = 0.0
         ray[:] = 0.0
         ray[0] = 1.0  # w = Mz + q decreases along this direction
-        basis[:] = np.arange(q.size)
+        z_basic[:] = False
         return 2, 3
 
     monkeypatch.setattr(_lcp.tableau, "solve", lying_ray)

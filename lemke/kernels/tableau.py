@@ -132,12 +132,13 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
 
 
 @kernel
-def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_out):
+def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """Run Lemke's method from the tableau (T, rhs) with the artificial variable non-basic.
 
     ``basis`` (n) and ``nonbasic`` (n + 1) hold the labels of the rows and columns and are
     updated in place; so are T and rhs.  Returns ``(status, pivots)``.  ``x_out`` (n + 1)
-    receives the final z and z0; on a ray, ``ray_out`` (n + 1) receives its direction.
+    receives the final z and z0; on a ray, ``ray_out`` (n + 1) receives its direction;
+    ``z_basic_out`` (n) says which z's end basic.
     """
     n = T.shape[0]
     artificial = 2 * n
@@ -201,21 +202,24 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
                 ray_out[entering - n] = 1.0
             break
     x_out[:] = 0.0
+    z_basic_out[:] = False
     for i in range(n):
         lab = basis[i]
         if lab >= n:
             x_out[lab - n] = rhs[i]
+            if lab < artificial:
+                z_basic_out[lab - n] = True
     return status, pivots
 
 
 @kernel
-def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, basis):
+def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.
 
     Works in units where max|M| = 1 and max|d| = 1: z keeps its units, w and z0 are
     rescaled, so the relative tolerances compare like with like and multiplying M and q by
     a constant changes nothing.  Returns ``(status, pivots)``; ``x_out`` gets z and z0 (in
-    the caller's units), ``ray_out`` the ray, ``basis`` the final row labels.
+    the caller's units), ``ray_out`` the ray, ``z_basic_out`` the final basic z's.
     """
     n = q.shape[0]
     m_scale = 0.0
@@ -234,13 +238,14 @@ def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, basis):
             T[i, j] = M[i, j] / m_scale
         T[i, n] = d[i] / d_scale
         rhs[i] = q[i] / m_scale
+    basis = np.empty(n, dtype=np.int64)
     nonbasic = np.empty(n + 1, dtype=np.int64)
     for i in range(n):
         basis[i] = i
         nonbasic[i] = n + i
     nonbasic[n] = 2 * n
     status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out,
-                           ray_out)
+                           ray_out, z_basic_out)
     x_out[n] *= m_scale / d_scale
     ray_out[n] *= m_scale / d_scale
     if status == SOLVED:
