@@ -70,15 +70,25 @@ LEMKE_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(lemke.__file__)))
 
 # --------------------------------------------------------------------------- problems
 
-def make_problem(n: int, k: int):
-    """Problem k of size n: M = A A' + (B - B'), q ~ N(0, I)."""
+def make_factors(n: int, k: int):
+    """The data of problem k of size n: A, B (standard normal / sqrt(n)) and q ~ N(0, I)."""
     rng = np.random.default_rng([SEED, n, k])
     s = 1.0 / math.sqrt(n)
     A = rng.standard_normal((n, n)) * s
     B = rng.standard_normal((n, n)) * s
-    M = A @ A.T + (B - B.T)
     q = rng.standard_normal(n)
-    return np.ascontiguousarray(M), q
+    return A, B, q
+
+
+def assemble(A, B):
+    """M = A A' + (B - B'): positive semidefinite symmetric part plus a skew part."""
+    return np.ascontiguousarray(A @ A.T + (B - B.T))
+
+
+def make_problem(n: int, k: int):
+    """Problem k of size n: M = A A' + (B - B'), q ~ N(0, I)."""
+    A, B, q = make_factors(n, k)
+    return assemble(A, B), q
 
 
 def default_problem_count(n: int) -> int:
@@ -135,23 +145,52 @@ def time_problem(M, q, repeats, min_time, max_repeats):
         reps = min(max(reps, 3), max_repeats)
     else:
         reps = repeats
-    tl, tq = [], []
+    (tl, tq), _ = time_interleaved([lambda: run_lemke(M, q), lambda: run_qe(M, q)], reps)
+    return rl, rq, statistics.median(tl), statistics.median(tq), reps
+
+
+def time_interleaved(calls, reps, start=0, collect=True, keep_results=False, rng=None):
+    """Call every function in ``calls`` (no arguments) ``reps`` times, interleaved: repeat i
+    runs them in the order rotated by ``start + i`` (for two calls: order swapped every
+    repeat), or, given a numpy Generator ``rng``, in a random order drawn from it for every
+    repeat (with three or more calls a rotation keeps each call's predecessor fixed, which
+    can bias the times through cache effects).  Each call is timed with
+    ``time.perf_counter``; the garbage collector is off during the loop (after a
+    ``gc.collect()`` unless ``collect`` is false).
+
+    Returns ``(times, results)``: ``times[j]`` lists the seconds of every call of
+    ``calls[j]``; ``results[j]`` lists what those calls returned (all of them with
+    ``keep_results``, else only the last one's).
+    """
+    k = len(calls)
+    times = [[] for _ in range(k)]
+    results = [[] for _ in range(k)]
     gc_was_enabled = gc.isenabled()
-    gc.collect()
+    if collect:
+        gc.collect()
     gc.disable()
     try:
         pc = time.perf_counter
         for i in range(reps):
-            if i % 2 == 0:
-                t0 = pc(); run_lemke(M, q); t1 = pc(); run_qe(M, q); t2 = pc()
-                tl.append(t1 - t0); tq.append(t2 - t1)
+            if rng is not None:
+                order = rng.permutation(k).tolist()
             else:
-                t0 = pc(); run_qe(M, q); t1 = pc(); run_lemke(M, q); t2 = pc()
-                tq.append(t1 - t0); tl.append(t2 - t1)
+                r = (start + i) % k if k else 0
+                order = [*range(r, k), *range(r)]
+            for j in order:
+                f = calls[j]
+                t0 = pc()
+                out = f()
+                t1 = pc()
+                times[j].append(t1 - t0)
+                if keep_results:
+                    results[j].append(out)
+                else:
+                    results[j] = [out]
     finally:
         if gc_was_enabled:
             gc.enable()
-    return rl, rq, statistics.median(tl), statistics.median(tq), reps
+    return times, results
 
 
 def bench_sizes(sizes, problems, repeats, min_time, max_repeats, log):

@@ -4,14 +4,13 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import scipy.linalg
 
 from ._certify import check_lcp, is_lcp_ray
 from ._options import as_options
 from ._problem import as_lcp
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import tableau, unrevised
+from .kernels import linalg, tableau, unrevised
 
 METHODS = ("tableau", "unrevised")
 
@@ -27,15 +26,20 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     ----------
     M : (n, n) array_like or scipy.sparse matrix
     q : (n,) array_like
-    method : {"tableau"}
-        ``"tableau"``: complementary pivoting on a condensed tableau with a lexicographic
-        ratio test (no cycling on degenerate problems).
+    method : {"tableau", "unrevised"}
+        ``"tableau"``: complementary pivoting on a condensed tableau.  ``"unrevised"``: the
+        method of Dai & Drumwright, which keeps only the index sets and the inverse of the
+        block M[alpha, beta], updated in O(k^2) a pivot.  Both use the same rules (minimum
+        ratio, ties to the artificial variable, then lexicographic: no cycling) and give the
+        same pivots.
     d : (n,) array_like, optional
         Covering vector, the artificial variable's column (positive; default all ones).
     warm_start : WarmStart, optional
-        The ``warm_start`` of an earlier result for a problem of the same size.  If that
-        basis still solves this problem the answer comes with zero pivots; otherwise the
-        problem is solved from scratch.
+        The ``warm_start`` of an earlier result (either method) for a problem of the same
+        size.  If that basis still solves this problem the answer comes with zero pivots;
+        otherwise Lemke restarts from it (the unrevised method on the principal pivoting
+        transform by that basis, with a constant covering vector there; ``d`` is not used),
+        and if that fails too, the problem is solved cold.
     options : Options or dict, optional
         ``max_pivots`` and the tolerances; see :class:`lemke.Options`.
 
@@ -75,7 +79,9 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     if warm_start is not None and warm_start.z_basic:
         beta = np.zeros(n, dtype=np.bool_)
         beta[list(warm_start.z_basic)] = True
-        z = _basis_point(M, q, np.flatnonzero(beta))
+        b = np.flatnonzero(beta)
+        Mbb = linalg.principal_block(M, b)
+        z = _basis_point(Mbb, q, b)
         if z is not None:
             w, ok, residual = check_lcp(M, q, z, opts.tol)
             if ok:  # the old basis still solves it
@@ -85,8 +91,8 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             # caller's coordinates that is the column c e_alpha - M[:, beta] 1, with c =
             # max|M| so that z rows and w rows get the same constant in scaled units.
             m_scale = max(M.max(), -M.min()) or 1.0
-            d_basis = m_scale * (~beta) - M[:, beta].sum(axis=1)
-            res = _lemke(method, M, q, d_basis, beta, opts)
+            d_basis = m_scale * (~beta) - M[:, b].sum(axis=1)
+            res = _lemke(method, M, q, d_basis, beta, opts, Mbb)
             if res is not None and res.status == Status.SOLVED:
                 return res
             restart_pivots = 0 if res is None else res.pivots  # fall back to a cold solve
@@ -100,10 +106,11 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     return res
 
 
-def _lemke(method, M, q, d, z_start, opts):
+def _lemke(method, M, q, d, z_start, opts, Mbb=None):
     """Run Lemke's method (cold when ``z_start`` is None, else from the complementary basis
-    with z_i basic where z_start[i], whose transformed covering vector must be all ones), then
-    check the outcome on the caller's data.  None when the starting block is singular."""
+    with z_i basic where z_start[i], whose block is Mbb and in whose coordinates d must be a
+    positive constant), then check the outcome on the caller's data.  None when the
+    starting block is singular."""
     n = q.size
     x = np.empty(n + 1)
     ray = np.empty(n + 1)
@@ -122,18 +129,19 @@ def _lemke(method, M, q, d, z_start, opts):
         np.multiply(d, 1.0 / d_scale, out=A[:, n])
         qs = q * (1.0 / m_scale)
         start = np.zeros(n, dtype=np.bool_) if z_start is None else z_start
-        if method == "unrevised":
-            code, pivots = unrevised.lemke(
-                A, qs, start, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
-            )
-        else:
-            T, rhs, basis, nonbasic = _transformed_tableau(A, qs, start)
-            if T is None:
+        G0 = np.empty((0, 0))
+        if z_start is not None:
+            try:  # numpy's LAPACK, like _basis_point (two BLAS thread pools would collide)
+                G0 = np.linalg.inv(Mbb) * m_scale
+            except np.linalg.LinAlgError:
                 return None
-            code, pivots = tableau.lemke(
-                T, rhs, basis, nonbasic, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray,
-                z_basic,
-            )
+            if not np.isfinite(G0).all():
+                return None
+        # A restart always runs the unrevised method: it needs only the inverse of the old
+        # block, where the tableau would need the whole transformed tableau (O(n^3)).
+        code, pivots = unrevised.lemke(
+            A, qs, start, G0, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
+        )
         x[n] *= m_scale / d_scale
         ray[n] *= m_scale / d_scale
         if code == Status.SOLVED:
@@ -150,7 +158,7 @@ def _lemke(method, M, q, d, z_start, opts):
         if not ok:
             # Recompute the point of the final basis from the caller's data: one dense
             # solve, more accurate than a tableau that went through many pivots.
-            zb = _basis_point(M, q, final_beta)
+            zb = _basis_point(linalg.principal_block(M, final_beta), q, final_beta)
             if zb is not None:
                 wb, ok, rb = check_lcp(M, q, zb, opts.tol)
                 if ok:
@@ -166,49 +174,13 @@ def _lemke(method, M, q, d, z_start, opts):
     return _result(z, w, residual, status, pivots, ray, z0, d, final_basis)
 
 
-def _transformed_tableau(A, q, beta):
-    """The condensed tableau of ``w = A[:, :n] z + q + A[:, n] z0`` after the principal
-    pivot on the block beta: row i holds z_i (i in beta) or w_i, column i the other
-    variable of pair i, column n holds z0.  None if A[beta, beta] is singular."""
-    n = q.size
-    b = np.flatnonzero(beta)
-    a = np.flatnonzero(~beta)
-    Mbb = A[np.ix_(b, b)]
-    try:
-        lu = scipy.linalg.lu_factor(Mbb, check_finite=False)
-    except (ValueError, np.linalg.LinAlgError):
-        return None, None, None, None
-    if not np.all(np.isfinite(lu[0])) or np.min(np.abs(np.diag(lu[0]))) <= 1e-14 * max(1.0, np.abs(Mbb).max()):
-        return None, None, None, None
-    T = np.empty((n, n + 1))
-    rhs = np.empty(n)
-    # Rows beta: z_b = Mbb^-1 (w_b - M_ba z_a - q_b - d_b z0).
-    rhs_side = np.hstack([np.eye(b.size), A[np.ix_(b, a)], A[b, n, None], q[b, None]])
-    sol = scipy.linalg.lu_solve(lu, rhs_side, check_finite=False)
-    inv, Sba, sd, sq = sol[:, : b.size], sol[:, b.size : n], sol[:, n], sol[:, n + 1]
-    T[np.ix_(b, b)] = inv
-    T[np.ix_(b, a)] = -Sba
-    T[b, n] = -sd
-    rhs[b] = -sq
-    # Rows alpha: w_a = M_ab z_b + M_aa z_a + q_a + d_a z0.
-    Mab = A[np.ix_(a, b)]
-    T[np.ix_(a, b)] = Mab @ inv
-    T[np.ix_(a, a)] = A[np.ix_(a, a)] - Mab @ Sba
-    rhs[a] = q[a] - Mab @ sq
-    T[a, n] = A[a, n] - Mab @ sd
-    labels = np.arange(n, dtype=np.int64)
-    basis = np.where(beta, labels + n, labels)
-    nonbasic = np.append(np.where(beta, labels, labels + n), 2 * n)
-    return T, rhs, basis, nonbasic
-
-
-def _basis_point(M, q, beta):
-    """The point of the complementary basis with z_beta basic, or None if M_beta,beta is
-    singular: ``z_beta = -M_bb^-1 q_beta``, other z zero."""
+def _basis_point(Mbb, q, beta):
+    """The point of the complementary basis with z_beta basic (Mbb = M[beta, beta]), or
+    None if Mbb is singular: ``z_beta = -Mbb^-1 q_beta``, the other z zero."""
     z = np.zeros(q.size)
     if beta.size:
         try:
-            z[beta] = np.linalg.solve(M[np.ix_(beta, beta)], -q[beta])
+            z[beta] = np.linalg.solve(Mbb, -q[beta])
         except np.linalg.LinAlgError:
             return None
         if not np.isfinite(z).all():

@@ -2,6 +2,7 @@
 import numpy as np
 
 from . import kernel
+from .linalg import absmax, dot
 
 EPS = np.finfo(np.float64).eps
 
@@ -17,13 +18,9 @@ def lcp_check(M, q, z, tol, w):
     for j in range(n):
         z_max = max(z_max, abs(z[j]))
     for i in range(n):
-        acc = q[i]
         row = M[i]
-        for j in range(n):
-            a = row[j]
-            acc += a * z[j]
-            m_max = max(m_max, abs(a))
-        w[i] = acc
+        w[i] = q[i] + dot(row, z, n)
+        m_max = max(m_max, absmax(row, n))
         q_max = max(q_max, abs(q[i]))
     s_w = tol * max(q_max, m_max) + 4.0 * n * EPS * m_max * z_max
     s_z = tol * max(z_max, q_max / m_max if m_max > 0.0 else 0.0)

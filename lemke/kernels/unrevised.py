@@ -21,6 +21,7 @@ inverse relative to the starting basis (whose row j holds the basic variable of 
 import numpy as np
 
 from . import kernel
+from .linalg import dot, matvec
 from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED
 
 NUMERICAL_FAILURE = 3
@@ -48,30 +49,12 @@ def invert(AB, alist, k, G):
 
 
 @kernel
-def _matvec(G, k, x, out):
-    """out[:k] = G[:k, :k] x[:k]."""
-    for r in range(k):
-        acc = 0.0
-        for c in range(k):
-            acc += G[r, c] * x[c]
-        out[r] = acc
-
-
-@kernel
-def _dot(row, x, k):
-    acc = 0.0
-    for c in range(k):
-        acc += row[c] * x[c]
-    return acc
-
-
-@kernel
 def _all_w(AB, q, apos, zb, k, wv):
     """wv = q + AB[:, :k] z_beta; returns max |w_i| over i in alpha (the residual of
     H z_beta + q_alpha, zero in exact arithmetic)."""
     res = 0.0
     for i in range(q.shape[0]):
-        w = q[i] + _dot(AB[i], zb, k)
+        w = q[i] + dot(AB[i], zb, k)
         wv[i] = w
         if apos[i] >= 0:
             res = max(res, abs(w))
@@ -85,7 +68,7 @@ def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2):
     that residual relative to the size of q_alpha and z_beta."""
     for r in range(k):
         tmp[r] = -q[alist[r]]
-    _matvec(G, k, tmp, zb)
+    matvec(G, k, tmp, zb)
     res = _all_w(AB, q, apos, zb, k, wv)
     size = 0.0
     for r in range(k):
@@ -93,7 +76,7 @@ def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2):
     if size > 0.0 and res > RESIDUAL_TOL * size:
         for r in range(k):
             tmp[r] = wv[alist[r]]
-        _matvec(G, k, tmp, tmp2)
+        matvec(G, k, tmp, tmp2)
         for c in range(k):
             zb[c] -= tmp2[c]
         res = _all_w(AB, q, apos, zb, k, wv)
@@ -110,24 +93,25 @@ def direction(A, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
             dzb[r] = G[r, p]
         for i in range(n):
             if apos[i] < 0:
-                dw[i] = _dot(AB[i], dzb, k)
+                dw[i] = dot(AB[i], dzb, k)
     else:  # a z (or z0) enters: H dz_beta = -A[alpha, e]
         e = label - n
         for r in range(k):
             tmp[r] = -A[alist[r], e]
-        _matvec(G, k, tmp, dzb)
+        matvec(G, k, tmp, dzb)
         for i in range(n):
             if apos[i] < 0:
-                dw[i] = A[i, e] + _dot(AB[i], dzb, k)
+                dw[i] = A[i, e] + dot(AB[i], dzb, k)
 
 
 @kernel
-def lemke(A, q, z_start, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """Lemke's method from the complementary basis with z_i basic where z_start[i].
 
     ``A`` = [M | d] (n x (n + 1)) and q, in the scaled units of tableau.solve; the
-    artificial variable's column must be positive in the coordinates of that basis.
-    Returns ``(status, pivots)``; x_out gets z and z0, ray_out the ray on
+    artificial variable's column must be positive in the coordinates of that basis.  ``G0``
+    is the inverse of the starting block A[z_start, z_start] when the caller has it, else
+    an empty array.  Returns ``(status, pivots)``; x_out gets z and z0, ray_out the ray on
     RAY_TERMINATION and z_basic_out the final set of basic z's.
     """
     n = q.shape[0]
@@ -163,7 +147,9 @@ def lemke(A, q, z_start, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic
 
     status = MAX_PIVOTS
     pivots = 0
-    if k > 0 and not invert(AB, alist, k, G):
+    if G0.shape[0] == k:
+        G[:k, :k] = G0
+    elif not invert(AB, alist, k, G):
         status = NUMERICAL_FAILURE
         max_pivots = 0
     basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
