@@ -3,6 +3,8 @@ import pickle
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from helpers import assert_lcp_solution, assert_ray
 
 import lemke
@@ -80,3 +82,19 @@ def test_restart_ray_is_checked_with_its_own_covering_vector(method):
     res = lemke.solve_lcp(M, [-1.0, -1.0], method=method, warm_start=first.warm_start)
     assert res.status == lemke.Status.RAY_TERMINATION
     assert_ray(M, [-1.0, -1.0], res.covering, res.z, res.z0, res.ray)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(1, 30), st.sampled_from(lemke.METHODS))
+def test_any_warm_start_gives_a_right_answer(seed, n, method):
+    """A warm start from an unrelated problem (any basis at all) never gives a wrong answer
+    or a crash: monotone feasible problems are still solved, and checked."""
+    rng = np.random.default_rng(seed)
+    A = rng.standard_normal((n, max(1, n // 2)))
+    B = rng.standard_normal((n, n))
+    M = A @ A.T + B - B.T  # PSD plus skew, rank deficient: many singular blocks
+    q = np.maximum(rng.standard_normal(n), 0.0) - M @ np.maximum(rng.standard_normal(n), 0.0)
+    ws = lemke.WarmStart(n, tuple(np.flatnonzero(rng.random(n) < 0.5)))
+    res = lemke.solve_lcp(M, q, method=method, warm_start=ws)
+    assert res.status == lemke.Status.SOLVED, res
+    assert_lcp_solution(M, q, res.z)
