@@ -59,3 +59,10 @@ def principal_block(M, idx):
         for c in range(k):
             out[r, c] = row[idx[c]]
     return out
+
+
+@kernel
+def axpy(y, a, x):
+    """y += a x, over the length of y."""
+    for j in range(y.shape[0]):
+        y[j] += a * x[j]

@@ -17,6 +17,7 @@ variable that was basic in row j at the start has the unit column e_row when bas
 import numpy as np
 
 from . import kernel
+from .linalg import axpy
 
 SOLVED = 0
 MAX_PIVOTS = 1
@@ -44,15 +45,9 @@ def pivot(T, rhs, r, s, prow):
         f = T[i, s]
         if f == 0.0:  # an exact zero leaves row i unchanged: sparse columns cost nothing
             continue
-        _axpy(T[i], f, prow)
+        axpy(T[i], f, prow)
         T[i, s] = f * inv
         rhs[i] += f * rr
-
-
-@kernel
-def _axpy(y, a, x):
-    for j in range(y.shape[0]):
-        y[j] += a * x[j]
 
 
 @kernel
@@ -98,8 +93,6 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
     # at the start.
     for j in range(n):
         lab = start_basis[j]
-        vmin = np.inf
-        vabs = 0.0
         for c in range(k):
             i = cand[c]
             if is_basic[lab]:
@@ -108,19 +101,8 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
                 b = -T[i, pos[lab]]
                 if abs(b) <= pivot_tol:  # rounding noise on an exact zero (M has max 1)
                     b = 0.0
-            v = b / -T[i, s]
-            vals[c] = v
-            if v < vmin:
-                vmin = v
-            if abs(v) > vabs:
-                vabs = abs(v)
-        lim = vmin + pivot_tol * vabs
-        kk = 0
-        for c in range(k):
-            if vals[c] <= lim:
-                cand[kk] = cand[c]
-                kk += 1
-        k = kk
+            vals[c] = b / -T[i, s]
+        k = keep_lowest(cand, vals, k, pivot_tol)
         if k == 1:
             return cand[0]
     # Still tied (only possible through rounding): take the largest pivot.
@@ -129,6 +111,24 @@ def ratio_test(T, rhs, s, basis, pos, is_basic, start_basis, artificial, pivot_t
         if T[cand[c], s] < T[best, s]:
             best = cand[c]
     return best
+
+
+@kernel
+def keep_lowest(cand, vals, k, tol):
+    """Keep (in place, in order) the candidates whose value is within ``tol * max|value|``
+    of the lowest: one column of the lexicographic rule.  Returns how many remain."""
+    vmin = np.inf
+    vabs = 0.0
+    for c in range(k):
+        vmin = min(vmin, vals[c])
+        vabs = max(vabs, abs(vals[c]))
+    lim = vmin + tol * vabs
+    kept = 0
+    for c in range(k):
+        if vals[c] <= lim:
+            cand[kept] = cand[c]
+            kept += 1
+    return kept
 
 
 @kernel

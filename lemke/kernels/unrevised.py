@@ -21,8 +21,8 @@ inverse relative to the starting basis (whose row j holds the basic variable of 
 import numpy as np
 
 from . import kernel
-from .linalg import dot, matvec
-from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED
+from .linalg import axpy, dot, matvec
+from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED, keep_lowest
 
 NUMERICAL_FAILURE = 3
 REFACTOR_EVERY = 200
@@ -259,8 +259,6 @@ def ratio_test(A, AB, n, alist, blist, k, G, apos, bpos, zb, wv, dzb, dw, z_star
         basic = bpos[j] >= 0 if z_start[j] else apos[j] < 0
         if not basic:
             direction(A, AB, lab, n, alist, k, G, apos, lz, lw, tmp)
-        vmin = np.inf
-        vabs = 0.0
         for c in range(nc):
             cl = cand[c]
             if basic:
@@ -270,17 +268,8 @@ def ratio_test(A, AB, n, alist, blist, k, G, apos, bpos, zb, wv, dzb, dw, z_star
                 if abs(b) <= pivot_tol:  # rounding noise on an exact zero (M has max 1)
                     b = 0.0
             piv = dzb[bpos[cl - n]] if cl >= n else dw[cl]
-            v = b / -piv
-            vals[c] = v
-            vmin = min(vmin, v)
-            vabs = max(vabs, abs(v))
-        lim = vmin + pivot_tol * vabs
-        kk = 0
-        for c in range(nc):
-            if vals[c] <= lim:
-                cand[kk] = cand[c]
-                kk += 1
-        nc = kk
+            vals[c] = b / -piv
+        nc = keep_lowest(cand, vals, nc, pivot_tol)
         if nc == 1:
             return cand[0]
     best = cand[0]  # still tied (only through rounding): the largest pivot
@@ -307,9 +296,7 @@ def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, d
         s = dw[i]
         _row_times(AB[i], G, k, row)
         for p in range(k):
-            f = -dzb[p] / s
-            for c in range(k):
-                G[p, c] += f * row[c]
+            axpy(G[p, :k], -dzb[p] / s, row[:k])
             G[p, k] = dzb[p] / s
         for c in range(k):
             G[k, c] = -row[c] / s
@@ -332,8 +319,7 @@ def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, d
         for r in range(k):
             f = -dzb[r] - (1.0 if r == p else 0.0)
             if f != 0.0:
-                for c in range(k):
-                    G[r, c] -= f * row[c]
+                axpy(G[r, :k], -f, row[:k])
         blist[p] = e
         bpos[l] = -1
         bpos[e] = p
@@ -351,8 +337,7 @@ def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, d
         for r in range(k):
             f = dzb[r] / piv  # dzb = G[:, p]
             if f != 0.0:
-                for c in range(k):
-                    G[r, c] -= f * row[c]
+                axpy(G[r, :k], -f, row[:k])
         alist[p] = i
         apos[j] = -1
         apos[i] = p
@@ -369,8 +354,7 @@ def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, d
         if r != m:
             f = G[r, p] / piv
             if f != 0.0:
-                for c in range(k):
-                    G[r, c] -= f * G[m, c]
+                axpy(G[r, :k], -f, G[m, :k])
     last = k - 1
     for c in range(k):
         G[m, c] = G[last, c]
@@ -391,10 +375,7 @@ def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, d
 @kernel
 def _row_times(x, G, k, out):
     """out[:k] = x[:k] G[:k, :k] (row-major friendly)."""
-    for c in range(k):
-        out[c] = 0.0
+    out[:k] = 0.0
     for p in range(k):
-        f = x[p]
-        if f != 0.0:
-            for c in range(k):
-                out[c] += f * G[p, c]
+        if x[p] != 0.0:
+            axpy(out[:k], x[p], G[p, :k])
