@@ -10,19 +10,12 @@ import numpy as np
 from ._problem import as_matrix, as_vector
 from .kernels import certify
 
-_EPS = np.finfo(np.float64).eps
-
-
 def lcp_scales(M: np.ndarray, q: np.ndarray, z: np.ndarray, tol: float):
     """Absolute tolerances ``(s_z, s_w)`` for z and w (see :mod:`lemke._options`)."""
-    n = q.size
-    m_max = float(np.max(np.abs(M))) if M.size else 0.0
-    q_max = float(np.max(np.abs(q))) if q.size else 0.0
-    z_max = float(np.max(np.abs(z))) if z.size else 0.0
-    s_w = tol * max(q_max, m_max) + 4.0 * n * _EPS * m_max * z_max
-    z_scale = max(z_max, q_max / m_max if m_max > 0 else 0.0)
-    s_z = tol * z_scale
-    return s_z, s_w
+    def size(a):
+        return float(np.max(np.abs(a))) if a.size else 0.0
+
+    return certify.tolerances(q.size, size(M), size(q), size(z), float(tol))
 
 
 def lcp_residual(z: np.ndarray, w: np.ndarray) -> float:

@@ -86,13 +86,8 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             w, ok, residual = check_lcp(M, q, z, opts.tol)
             if ok:  # the old basis still solves it
                 return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, d, warm_start)
-            # Restart Lemke from the old basis: the principal pivoting transform of (M, q)
-            # by it, with a constant covering vector in the transformed coordinates.  In the
-            # caller's coordinates that is the column c e_alpha - M[:, beta] 1, with c =
-            # max|M| so that z rows and w rows get the same constant in scaled units.
-            m_scale = max(M.max(), -M.min()) or 1.0
-            d_basis = m_scale * (~beta) - M[:, b].sum(axis=1)
-            res = _lemke(method, M, q, d_basis, beta, opts, Mbb)
+            # Restart Lemke from the old basis (see _lemke for its covering vector).
+            res = _lemke(method, M, q, None, beta, opts, Mbb)
             if res is not None and res.status == Status.SOLVED:
                 return res
             restart_pivots = 0 if res is None else res.pivots  # fall back to a cold solve
@@ -107,10 +102,14 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
 
 
 def _lemke(method, M, q, d, z_start, opts, Mbb=None):
-    """Run Lemke's method (cold when ``z_start`` is None, else from the complementary basis
-    with z_i basic where z_start[i], whose block is Mbb and in whose coordinates d must be a
-    positive constant), then check the outcome on the caller's data.  None when the
-    starting block is singular."""
+    """Run Lemke's method, then check the outcome on the caller's data.
+
+    Cold when ``z_start`` is None, with covering vector d.  Otherwise (d is None) a restart
+    from the complementary basis with z_i basic where z_start[i], whose block is Mbb: Lemke
+    on the principal pivoting transform of (M, q) by that basis, with a constant covering
+    vector in the transformed coordinates.  In the caller's coordinates that is the column
+    c e_alpha - M[:, beta] 1, with c = max|M| so that z rows and w rows get the same
+    constant in scaled units.  None when the starting block is singular."""
     n = q.size
     x = np.empty(n + 1)
     ray = np.empty(n + 1)
@@ -123,6 +122,8 @@ def _lemke(method, M, q, d, z_start, opts, Mbb=None):
     else:
         # The same scaled units as tableau.solve: max|M| = 1, max|d| = 1.
         m_scale = max(M.max(), -M.min()) or 1.0
+        if z_start is not None:
+            d = m_scale * (~z_start) - M[:, z_start].sum(axis=1)
         d_scale = max(d.max(), -d.min())
         A = np.empty((n, n + 1))
         np.multiply(M, 1.0 / m_scale, out=A[:, :n])

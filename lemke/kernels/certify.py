@@ -8,6 +8,15 @@ EPS = np.finfo(np.float64).eps
 
 
 @kernel
+def tolerances(n, m_max, q_max, z_max, tol):
+    """The absolute tolerances ``(s_z, s_w)`` of the acceptance test from the sizes of the
+    data: s_w is the data's size plus the rounding floor of computing M z."""
+    s_w = tol * max(q_max, m_max) + 4.0 * n * EPS * m_max * z_max
+    s_z = tol * max(z_max, q_max / m_max if m_max > 0.0 else 0.0)
+    return s_z, s_w
+
+
+@kernel
 def lcp_check(M, q, z, tol, w):
     """Fill ``w = M z + q`` and return ``(is_solution, residual)`` where residual is
     ``max_i |min(z_i, w_i)|``."""
@@ -22,8 +31,7 @@ def lcp_check(M, q, z, tol, w):
         w[i] = q[i] + dot(row, z, n)
         m_max = max(m_max, absmax(row, n))
         q_max = max(q_max, abs(q[i]))
-    s_w = tol * max(q_max, m_max) + 4.0 * n * EPS * m_max * z_max
-    s_z = tol * max(z_max, q_max / m_max if m_max > 0.0 else 0.0)
+    s_z, s_w = tolerances(n, m_max, q_max, z_max, tol)
     ok = True
     residual = 0.0
     for i in range(n):
