@@ -1,18 +1,20 @@
 """solve_lcp: validate -> set up the tableau -> kernel -> check on the caller's data -> result."""
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from ._certify import check_lcp, is_lcp_ray
-from ._options import as_options
+from ._options import _DEFAULT, as_options
 from ._problem import as_lcp
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import linalg, tableau, unrevised
+from .kernels import certify, cold, linalg, unrevised
 
 METHODS = ("tableau", "unrevised")
+_KERNELS = {"tableau": cold.checked_tableau, "unrevised": cold.checked_unrevised}
+_F64 = np.dtype(np.float64)
+_NO_D = np.empty(0)
+_STATUS = tuple(Status)
 
 
 def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) -> LCPResult:
@@ -62,6 +64,15 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
+    if (d is None and warm_start is None and type(M) is np.ndarray and type(q) is np.ndarray
+            and M.dtype is _F64 and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
+            and M.shape[0] == M.shape[1] == q.shape[0] and method in _KERNELS
+            and M.flags.c_contiguous):
+        # The common case in one kernel call (which checks that M and q are finite); no
+        # copies: the data are float64 already, and the kernels never write to them.
+        res = _cold(method, M, q, _NO_D, _DEFAULT if options is None else as_options(options))
+        if res is not None:
+            return res  # else M or q is not finite: the validation below says where
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     M, q, d = as_lcp(M, q, d)
@@ -72,8 +83,6 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
         if warm_start.n != n:
             raise ValueError(f"warm_start is for a problem of size {warm_start.n}, this one has n = {n}")
-    if d is None:
-        d = np.ones(n)
 
     restart_pivots = 0
     if warm_start is not None and warm_start.z_basic:
@@ -85,94 +94,98 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         if z is not None:
             w, ok, residual = check_lcp(M, q, z, opts.tol)
             if ok:  # the old basis still solves it
-                return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, d, warm_start)
-            # Restart Lemke from the old basis (see _lemke for its covering vector).
-            res = _lemke(method, M, q, None, beta, opts, Mbb)
+                cov = np.ones(n) if d is None else d.copy()
+                return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, cov, warm_start)
+            res = _restart(M, q, beta, Mbb, opts)
             if res is not None and res.status == Status.SOLVED:
                 return res
             restart_pivots = 0 if res is None else res.pivots  # fall back to a cold solve
 
-    if n == 0 or q.min() >= 0.0:
-        z = np.zeros(n)
-        return _result(z, q.copy(), 0.0, Status.SOLVED, 0, None, 0.0, d, WarmStart(n, ()))
-    res = _lemke(method, M, q, d, None, opts)
-    if restart_pivots:
-        res = replace(res, pivots=res.pivots + restart_pivots)
-    return res
+    return _cold(method, M, q, _NO_D if d is None else d, opts, restart_pivots)
 
 
-def _lemke(method, M, q, d, z_start, opts, Mbb=None):
-    """Run Lemke's method, then check the outcome on the caller's data.
+def _cold(method, M, q, d, opts, extra_pivots=0):
+    """A cold solve (float64, C-contiguous, validated shapes): one kernel call that also
+    checks the answer on the caller's data, then :func:`_outcome`.  None when M or q is not
+    finite."""
+    n = q.shape[0]
+    buf = np.empty(4 * n + 2)
+    basic = np.empty(n, dtype=np.int64)
+    code, pivots, k, ok, residual = _KERNELS[method](
+        M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic
+    )
+    if code == 0 and ok:  # solved and checked: the common case, inline
+        buf.setflags(write=False)
+        return LCPResult._make(
+            buf[:n], buf[2 * n + 2 : 3 * n + 2], Status.SOLVED, pivots + extra_pivots, residual,
+            None, 0.0, buf[3 * n + 2 :], WarmStart._trusted(n, tuple(basic.tolist()[:k])),
+        )
+    if code == cold.NOT_FINITE:
+        return None
+    return _outcome(M, q, opts, code, pivots + extra_pivots, basic[:k], ok, residual, buf)
 
-    Cold when ``z_start`` is None, with covering vector d.  Otherwise (d is None) a restart
-    from the complementary basis with z_i basic where z_start[i], whose block is Mbb: Lemke
+
+def _restart(M, q, beta, Mbb, opts):
+    """Lemke from the complementary basis with z_i basic where beta[i], whose block is Mbb:
     on the principal pivoting transform of (M, q) by that basis, with a constant covering
     vector in the transformed coordinates.  In the caller's coordinates that is the column
     c e_alpha - M[:, beta] 1, with c = max|M| so that z rows and w rows get the same
-    constant in scaled units.  None when the starting block is singular."""
+    constant in scaled units.  It always runs the unrevised method: that needs only the
+    inverse of the old block, where the tableau would need the whole transformed tableau
+    (O(n^3)).  None when the starting block is singular."""
     n = q.size
-    x = np.empty(n + 1)
-    ray = np.empty(n + 1)
+    m_scale = max(M.max(), -M.min()) or 1.0
+    buf = np.empty(4 * n + 2)
+    x, ray, w, cov = cold.layout(n, buf)
+    np.subtract(m_scale * (~beta), M[:, beta].sum(axis=1), out=cov)
+    try:  # numpy's LAPACK, like _basis_point (two BLAS thread pools would collide)
+        G0 = np.linalg.inv(Mbb) * m_scale
+    except np.linalg.LinAlgError:
+        return None
+    if not np.isfinite(G0).all():
+        return None
     z_basic = np.empty(n, dtype=np.bool_)
-    max_pivots = opts.pivot_limit(n)
-    if method == "tableau" and z_start is None:
-        code, pivots = tableau.solve(
-            M, q, d, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
-        )
-    else:
-        # The same scaled units as tableau.solve: max|M| = 1, max|d| = 1.
-        m_scale = max(M.max(), -M.min()) or 1.0
-        if z_start is not None:
-            d = m_scale * (~z_start) - M[:, z_start].sum(axis=1)
-        d_scale = max(d.max(), -d.min())
-        A = np.empty((n, n + 1))
-        np.multiply(M, 1.0 / m_scale, out=A[:, :n])
-        np.multiply(d, 1.0 / d_scale, out=A[:, n])
-        qs = q * (1.0 / m_scale)
-        start = np.zeros(n, dtype=np.bool_) if z_start is None else z_start
-        G0 = np.empty((0, 0))
-        if z_start is not None:
-            try:  # numpy's LAPACK, like _basis_point (two BLAS thread pools would collide)
-                G0 = np.linalg.inv(Mbb) * m_scale
-            except np.linalg.LinAlgError:
-                return None
-            if not np.isfinite(G0).all():
-                return None
-        # A restart always runs the unrevised method: it needs only the inverse of the old
-        # block, where the tableau would need the whole transformed tableau (O(n^3)).
-        code, pivots = unrevised.lemke(
-            A, qs, start, G0, max_pivots, opts.pivot_tol, opts.tie_tol, x, ray, z_basic
-        )
-        x[n] *= m_scale / d_scale
-        ray[n] *= m_scale / d_scale
-        if code == Status.SOLVED:
-            np.maximum(x, 0.0, out=x)
-    if code == Status.NUMERICAL_FAILURE and z_start is not None and pivots == 0:
+    code, pivots = unrevised.solve(M, q, cov, beta, G0, opts.pivot_limit(n), opts.pivot_tol,
+                                   opts.tie_tol, x, ray, z_basic)
+    if code == Status.NUMERICAL_FAILURE and pivots == 0:
         return None  # singular starting block
-    z, z0 = x[:n], float(x[n])
-    w, ok, residual = check_lcp(M, q, z, opts.tol)  # on the caller's data, whatever the status
-    final_beta = np.flatnonzero(z_basic)
-    final_basis = WarmStart._trusted(n, tuple(final_beta.tolist()))
-    status = Status(code)
+    ok, residual = certify.lcp_check(M, q, x[:n], opts.tol, w)
+    return _outcome(M, q, opts, code, pivots, np.flatnonzero(z_basic), ok, residual, buf)
 
+
+def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf):
+    """The result of a kernel's run, from its output buffer (see ``kernels.cold``), the
+    basic z's and the kernel's check of the point on the caller's data.
+
+    A solved point that failed the check is recomputed from the final basis (one dense
+    solve on the caller's data) and downgraded to NUMERICAL_FAILURE if that fails too; a
+    ray is checked on the caller's data, and downgraded if it fails."""
+    n = q.shape[0]
+    buf.setflags(write=False)  # every view taken below is read-only
+    z, w, cov = buf[:n], buf[2 * n + 2 : 3 * n + 2], buf[3 * n + 2 :]  # cold.layout's
+    if code == cold.TRIVIAL:
+        return LCPResult._make(z, w, Status.SOLVED, 0, 0.0, None, 0.0, cov, WarmStart._trusted(n, ()))
+    final_basis = WarmStart._trusted(n, tuple(basic.tolist()))
+    if code == 0 and ok:  # Status.SOLVED
+        return LCPResult._make(z, w, Status.SOLVED, pivots, residual, None, 0.0, cov, final_basis)
+    status = _STATUS[code]
+    ray = buf[n + 1 : 2 * n + 2]
     if status == Status.SOLVED:
+        # Recompute the point of the final basis from the caller's data: one dense solve,
+        # more accurate than a tableau that went through many pivots.
+        zb = _basis_point(linalg.principal_block(M, basic), q, basic)
+        if zb is not None:
+            wb, ok, rb = check_lcp(M, q, zb, opts.tol)
+            if ok:
+                z, w, residual = zb, wb, rb
         if not ok:
-            # Recompute the point of the final basis from the caller's data: one dense
-            # solve, more accurate than a tableau that went through many pivots.
-            zb = _basis_point(linalg.principal_block(M, final_beta), q, final_beta)
-            if zb is not None:
-                wb, ok, rb = check_lcp(M, q, zb, opts.tol)
-                if ok:
-                    z, w, residual = zb, wb, rb
-            if not ok:
-                status = Status.NUMERICAL_FAILURE
-        return _result(z, w, residual, status, pivots, None, 0.0, d, final_basis)
-
-    if status == Status.RAY_TERMINATION and not is_lcp_ray(M, q, d, z, z0, ray, opts.tol):
+            status = Status.NUMERICAL_FAILURE
+        return _result(z, w, residual, status, pivots, None, 0.0, cov, final_basis)
+    z0 = float(buf[n])
+    if status == Status.RAY_TERMINATION and not is_lcp_ray(M, q, cov, z, z0, ray, opts.tol):
         status = Status.NUMERICAL_FAILURE
-    if status != Status.RAY_TERMINATION:
-        ray = None
-    return _result(z, w, residual, status, pivots, ray, z0, d, final_basis)
+    return _result(z, w, residual, status, pivots, ray if status == Status.RAY_TERMINATION else None,
+                   z0, cov, final_basis)
 
 
 def _basis_point(Mbb, q, beta):
@@ -189,9 +202,8 @@ def _basis_point(Mbb, q, beta):
     return np.maximum(z, 0.0)  # a negative z_beta beyond round-off makes it no solution
 
 
-def _result(z, w, residual, status, pivots, ray, z0, d, warm_start):
+def _result(z, w, residual, status, pivots, ray, z0, cov, warm_start):
     """The result, its arrays made read-only (all are the solver's own, never the caller's)."""
-    d = d.copy()  # d may be the caller's array
-    for a in (z, w, d) if ray is None else (z, w, d, ray):
+    for a in (z, w, cov) if ray is None else (z, w, cov, ray):
         a.setflags(write=False)
-    return LCPResult(z, w, status, int(pivots), float(residual), ray, float(z0), d, warm_start)
+    return LCPResult._make(z, w, status, int(pivots), float(residual), ray, float(z0), cov, warm_start)

@@ -36,8 +36,9 @@ class WarmStart:
     def _trusted(cls, n: int, z_basic: tuple) -> "WarmStart":
         """Build from values the solver made itself (sorted, in range): no checks."""
         ws = object.__new__(cls)
-        object.__setattr__(ws, "n", n)
-        object.__setattr__(ws, "z_basic", z_basic)
+        f = ws.__dict__
+        f["n"] = n
+        f["z_basic"] = z_basic
         return ws
 
 
@@ -78,6 +79,24 @@ class LCPResult:
     z0: float
     covering: np.ndarray
     warm_start: WarmStart | None
+
+    @classmethod
+    def _make(cls, z, w, status, pivots, residual, ray, z0, covering, warm_start) -> "LCPResult":
+        """Build from the solver's own values, skipping the dataclass ``__init__`` (a frozen
+        one sets every field through ``object.__setattr__``): this is on the hot path of
+        small problems."""
+        res = object.__new__(cls)
+        f = res.__dict__
+        f["z"] = z
+        f["w"] = w
+        f["status"] = status
+        f["pivots"] = pivots
+        f["residual"] = residual
+        f["ray"] = ray
+        f["z0"] = z0
+        f["covering"] = covering
+        f["warm_start"] = warm_start
+        return res
 
     @property
     def success(self) -> bool:

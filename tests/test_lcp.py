@@ -197,6 +197,18 @@ def test_status_messages():
 def test_kernel_answer_is_rechecked(monkeypatch):
     """A kernel that claims success with a wrong point must not give SOLVED."""
     from lemke import _lcp
+    from lemke.kernels import cold
+
+    def with_solve(solve):
+        """cold.checked_tableau with its pivoting replaced by ``solve`` (the same check)."""
+        def checked(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+            n = q.shape[0]
+            assert cold.prologue(M, q, d, buf) == 0
+            z_basic = np.empty(n, dtype=np.bool_)
+            code, pivots = solve(M, q, d, max_pivots, pivot_tol, tie_tol, buf[: n + 1],
+                                 buf[n + 1 : 2 * n + 2], z_basic)
+            return cold.epilogue(M, q, tol, buf, code, pivots, z_basic, basic)
+        return checked
 
     def lying_kernel(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, z_basic):
         x[:] = 1.0
@@ -204,7 +216,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         z_basic[:] = False  # all w basic: the basis point is z = 0, wrong too
         return 0, 7
 
-    monkeypatch.setattr(_lcp.tableau, "solve", lying_kernel)
+    monkeypatch.setitem(_lcp._KERNELS, "tableau", with_solve(lying_kernel))
     p = problems.cps_447()
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and not res.success
@@ -216,7 +228,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         z_basic[:] = False
         return 2, 3
 
-    monkeypatch.setattr(_lcp.tableau, "solve", lying_ray)
+    monkeypatch.setitem(_lcp._KERNELS, "tableau", with_solve(lying_ray))
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
 

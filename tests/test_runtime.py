@@ -19,8 +19,8 @@ def run_python(code, **env):
 
 def test_import_compiles_nothing():
     out = run_python(
-        "import lemke, lemke.kernels.tableau as t, lemke.kernels.certify as c, lemke.kernels.linalg\n"
-        "print(sum(len(f.signatures) for f in (t.solve, t.lemke, t.pivot, t.ratio_test, t.keep_lowest, c.lcp_check, c.tolerances, lemke.kernels.linalg.dot, lemke.kernels.linalg.axpy)))"
+        "import lemke, lemke.kernels.tableau as t, lemke.kernels.certify as c, lemke.kernels.linalg, lemke.kernels.cold as k\n"
+        "print(sum(len(f.signatures) for f in (t.solve, t.lemke, t.pivot, t.ratio_test, t.keep_lowest, c.lcp_check, c.tolerances, lemke.kernels.linalg.dot, lemke.kernels.linalg.axpy, k.checked_tableau, k.checked_unrevised, k.batch)))"
     )
     assert out.strip() == "0"
 

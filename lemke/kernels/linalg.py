@@ -66,3 +66,26 @@ def axpy(y, a, x):
     """y += a x, over the length of y."""
     for j in range(y.shape[0]):
         y[j] += a * x[j]
+
+
+@kernel
+def scaled_system(M, q, d):
+    """``(A, qs, m_scale, d_scale)``: A = [M / m_scale | d / d_scale] (n x (n + 1)) and
+    qs = q / m_scale, in the units where max|M| = 1 and max|d| = 1 that every Lemke kernel
+    works in (so the relative tolerances compare like with like, and multiplying M and q
+    by a constant changes nothing)."""
+    n = q.shape[0]
+    m_scale = 0.0
+    for i in range(n):
+        m_scale = max(m_scale, absmax(M[i], n))
+    if m_scale == 0.0:
+        m_scale = 1.0
+    d_scale = absmax(d, n)
+    A = np.empty((n, n + 1))
+    qs = np.empty(n)
+    for i in range(n):
+        for j in range(n):
+            A[i, j] = M[i, j] / m_scale
+        A[i, n] = d[i] / d_scale
+        qs[i] = q[i] / m_scale
+    return A, qs, m_scale, d_scale

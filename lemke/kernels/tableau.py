@@ -17,7 +17,7 @@ variable that was basic in row j at the start has the unit column e_row when bas
 import numpy as np
 
 from . import kernel
-from .linalg import axpy
+from .linalg import axpy, scaled_system
 
 SOLVED = 0
 MAX_PIVOTS = 1
@@ -216,28 +216,12 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
 def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.
 
-    Works in units where max|M| = 1 and max|d| = 1: z keeps its units, w and z0 are
-    rescaled, so the relative tolerances compare like with like and multiplying M and q by
-    a constant changes nothing.  Returns ``(status, pivots)``; ``x_out`` gets z and z0 (in
-    the caller's units), ``ray_out`` the ray, ``z_basic_out`` the final basic z's.
+    Works in the scaled units of ``linalg.scaled_system``: z keeps its units, w and z0 are
+    rescaled.  Returns ``(status, pivots)``; ``x_out`` gets z and z0 (in the caller's
+    units), ``ray_out`` the ray, ``z_basic_out`` the final basic z's.
     """
     n = q.shape[0]
-    m_scale = 0.0
-    for i in range(n):
-        for j in range(n):
-            m_scale = max(m_scale, abs(M[i, j]))
-    if m_scale == 0.0:
-        m_scale = 1.0
-    d_scale = 0.0
-    for i in range(n):
-        d_scale = max(d_scale, d[i])
-    T = np.empty((n, n + 1))
-    rhs = np.empty(n)
-    for i in range(n):
-        for j in range(n):
-            T[i, j] = M[i, j] / m_scale
-        T[i, n] = d[i] / d_scale
-        rhs[i] = q[i] / m_scale
+    T, rhs, m_scale, d_scale = scaled_system(M, q, d)
     basis = np.empty(n, dtype=np.int64)
     nonbasic = np.empty(n + 1, dtype=np.int64)
     for i in range(n):
@@ -246,9 +230,17 @@ def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     nonbasic[n] = 2 * n
     status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out,
                            ray_out, z_basic_out)
-    x_out[n] *= m_scale / d_scale
-    ray_out[n] *= m_scale / d_scale
-    if status == SOLVED:
-        for i in range(n):
-            x_out[i] = max(x_out[i], 0.0)  # round-off below zero; worse fails the check
+    unscale(x_out, ray_out, m_scale / d_scale, status == SOLVED)
     return status, pivots
+
+
+@kernel
+def unscale(x_out, ray_out, z0_factor, solved):
+    """Back to the caller's units: z0 and its ray entry times ``z0_factor``; a solved z is
+    clamped at 0 (round-off below zero; anything worse fails the check)."""
+    n = x_out.shape[0] - 1
+    x_out[n] *= z0_factor
+    ray_out[n] *= z0_factor
+    if solved:
+        for i in range(n + 1):
+            x_out[i] = max(x_out[i], 0.0)

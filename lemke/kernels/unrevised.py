@@ -21,8 +21,8 @@ inverse relative to the starting basis (whose row j holds the basic variable of 
 import numpy as np
 
 from . import kernel
-from .linalg import axpy, dot, matvec
-from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED, keep_lowest
+from .linalg import axpy, dot, matvec, scaled_system
+from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED, keep_lowest, unscale
 
 NUMERICAL_FAILURE = 3
 REFACTOR_EVERY = 200
@@ -210,6 +210,18 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
         x_out[blist[p]] = zb[p]
     for i in range(n):
         z_basic_out[i] = bpos[i] >= 0
+    return status, pivots
+
+
+@kernel
+def solve(M, q, d, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+    """Lemke's method from the basis ``z_start`` on (M, q) with covering vector d, in the
+    scaled units of ``linalg.scaled_system`` (``G0``: the inverse of the starting block in
+    those units, or an empty array).  Outputs as ``lemke``, in the caller's units."""
+    A, qs, m_scale, d_scale = scaled_system(M, q, d)
+    status, pivots = lemke(A, qs, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+                           z_basic_out)
+    unscale(x_out, ray_out, m_scale / d_scale, status == SOLVED)
     return status, pivots
 
 
