@@ -111,3 +111,35 @@ class LCPResult:
             f"LCPResult(status={self.status.name}, pivots={self.pivots}, "
             f"residual={self.residual:.3g}, n={self.z.size})"
         )
+
+
+@dataclass(frozen=True)
+class LCPBatchResult:
+    """The outcome of :func:`lemke.solve_lcp_batch`: row b of every array is what
+    :func:`lemke.solve_lcp` gives for problem b (the same status, pivots and bits).
+
+    Attributes
+    ----------
+    z, w : ndarray, shape (B, n)
+        The final points and ``w = M z + q`` on the caller's data.
+    status : ndarray of int, shape (B,)
+        :class:`Status` codes (``lemke.Status(result.status[b])`` names one).
+    pivots : ndarray of int, shape (B,)
+    residual : ndarray of float, shape (B,)
+        ``max_i |min(z_i, w_i)|`` per problem.
+    """
+
+    z: np.ndarray
+    w: np.ndarray
+    status: np.ndarray
+    pivots: np.ndarray
+    residual: np.ndarray
+
+    @property
+    def success(self) -> np.ndarray:
+        """Boolean array: which problems were solved."""
+        return self.status == Status.SOLVED
+
+    def __repr__(self) -> str:
+        b, n = self.z.shape
+        return f"LCPBatchResult(B={b}, n={n}, solved={int(self.success.sum())}/{b})"
