@@ -94,7 +94,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     out_f = np.empty((B, 2))
     args = (_METHOD_CODES[method], M, q)
     tail = (opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, bufs, basics, out_i, out_f)
-    chunks = min(B, 4 * workers) if workers > 1 else min(B, 1)
+    chunks = min(B, 2 * workers) if workers > 1 else min(B, 1)
     bounds = np.linspace(0, B, chunks + 1).astype(int) if chunks else np.zeros(1, dtype=int)
     if chunks <= 1:
         for lo, hi in zip(bounds[:-1], bounds[1:]):
