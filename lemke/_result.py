@@ -42,8 +42,22 @@ class WarmStart:
         return ws
 
 
+class Outcome:
+    """What every result derives from its ``status``: ``success`` and ``message``."""
+
+    __slots__ = ()
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SOLVED
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+
 @dataclass(frozen=True)
-class LCPResult:
+class LCPResult(Outcome):
     """The outcome of :func:`lemke.solve_lcp`.
 
     Attributes
@@ -97,14 +111,6 @@ class LCPResult:
         f["covering"] = covering
         f["warm_start"] = warm_start
         return res
-
-    @property
-    def success(self) -> bool:
-        return self.status == Status.SOLVED
-
-    @property
-    def message(self) -> str:
-        return self.status.message
 
     def __repr__(self) -> str:
         return (
