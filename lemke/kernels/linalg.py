@@ -69,6 +69,14 @@ def axpy(y, a, x):
 
 
 @kernel
+def axpy4(y, a0, x0, a1, x1, a2, x2, a3, x3):
+    """Four axpy's in one pass over y, with the roundings of four in a row: each y[j] is
+    loaded and stored once instead of four times."""
+    for j in range(y.shape[0]):
+        y[j] = (((y[j] + a0 * x0[j]) + a1 * x1[j]) + a2 * x2[j]) + a3 * x3[j]
+
+
+@kernel
 def scaled_system(M, q, d):
     """``(A, qs, m_scale, d_scale)``: A = [M / m_scale | d / d_scale] (n x (n + 1)) and
     qs = q / m_scale, in the units where max|M| = 1 and max|d| = 1 that every Lemke kernel
