@@ -512,6 +512,13 @@ def profile_plot(records, qp_names, qp_rows, path):
     return True
 
 
+def section(a, title, text, head, align):
+    """A report section: title, a paragraph, and the head of its table (``align``: one
+    markdown alignment cell per column)."""
+    for line in (f"## {title}", "", text, "", "| " + " | ".join(head) + " |", "|" + "|".join(align) + "|"):
+        a(line)
+
+
 def render(info, args, records, warm, batches, qp_names, qp_rows, fc, plotted, total_s):
     versions = ""
     try:
@@ -564,14 +571,12 @@ def render(info, args, records, warm, batches, qp_names, qp_rows, fc, plotted, t
     L.extend(lcp_tables(records))
     a("")
     if batches:
-        a("## Batches: `solve_lcp_batch` (time per problem)")
-        a("")
-        a(f"Random PSD problems (distinct M per problem), {args.batch_repeats} interleaved repeats, "
-          f"medians; {info['usable_cores']} usable cores.")
-        a("")
         names = list(batches[0]["t"])
-        a("| n | B | " + " | ".join(names) + " | speed-up on all cores | quantecon loop / batch | solved | wrong |")
-        a("|---:|---:|" + "---:|" * len(names) + "---:|---:|---:|---:|")
+        section(a, "Batches: `solve_lcp_batch` (time per problem)",
+                f"Random PSD problems (distinct M per problem), {args.batch_repeats} interleaved "
+                f"repeats, medians; {info['usable_cores']} usable cores.",
+                ["n", "B", *names, "speed-up on all cores", "quantecon loop / batch", "solved", "wrong"],
+                ["---:"] * (len(names) + 6))
         for b in batches:
             t = b["t"]
             sp = t["batch, 1 thread"] / t["batch, all cores"]
@@ -580,32 +585,29 @@ def render(info, args, records, warm, batches, qp_names, qp_rows, fc, plotted, t
               + f" | {sp:.2f}x | {vq} | {b['solved']}/{b['B']} | {b['wrong']} |")
         a("")
     if warm:
-        a("## Warm-start sequences")
-        a("")
-        a(f"Problem 0 of the psd family, moved {args.steps} times (each step a fresh standard normal "
-          "perturbation times 1e-3 times the rms of the moved data); median time a step. *lemke "
-          "warm* passes the previous step's `warm_start`; *drake warm* reuses one "
-          "`UnrevisedLemkeSolver` (it keeps the last basis inside); *cold* solves from scratch.")
-        a("")
         names = list(warm[0]["t"])
-        a("| n | moved | " + " | ".join(names) + " | lemke warm pivots (median) | steps with 0 pivots | wrong or failed |")
-        a("|---:|---|" + "---:|" * len(names) + "---:|---:|---|")
+        section(a, "Warm-start sequences",
+                f"Problem 0 of the psd family, moved {args.steps} times (each step a fresh standard "
+                "normal perturbation times 1e-3 times the rms of the moved data); median time a "
+                "step. *lemke warm* passes the previous step's `warm_start`; *drake warm* reuses one "
+                "`UnrevisedLemkeSolver` (it keeps the last basis inside); *cold* solves from scratch.",
+                ["n", "moved", *names, "lemke warm pivots (median)", "steps with 0 pivots", "wrong or failed"],
+                ["---:", "---", *["---:"] * (len(names) + 2), "---"])
         for w in warm:
             bad = ", ".join(f"{k} {v}" for k, v in w["bad"].items() if v) or "0"
             a(f"| {w['n']} | {w['scenario']} | " + " | ".join(fmt_t(w["t"][k]) for k in names)
               + f" | {w['pivots']:g} | {w['zero']}/{w['steps']} | {bad} |")
         a("")
     if qp_rows:
-        a("## Convex QPs")
-        a("")
-        a("Dense strictly convex QPs `min 1/2 x'Px + q'x` s.t. `Gx <= h` (n/2 rows), `Ax = b` (n/4 "
-          "rows), P = L L' + 0.1 I, feasible by construction. Peers through `qpsolvers.solve_qp` "
-          "(its conversion overhead included), default settings. *|Δx|*, *|Δobj|*: largest "
-          "difference from quadprog's answer over the problems; *ok*: an answer with "
-          "constraint violation <= 1e-6 (relative).")
-        a("")
-        a("| n | problems | " + " | ".join(qp_names) + " | lemke tableau / best peer | max \\|Δx\\| (" + ", ".join(qp_names) + ") | max \\|Δobj\\| lemke | ok |")
-        a("|---:|---:|" + "---:|" * len(qp_names) + "---:|---|---:|---|")
+        section(a, "Convex QPs",
+                "Dense strictly convex QPs `min 1/2 x'Px + q'x` s.t. `Gx <= h` (n/2 rows), `Ax = b` "
+                "(n/4 rows), P = L L' + 0.1 I, feasible by construction. Peers through "
+                "`qpsolvers.solve_qp` (its conversion overhead included), default settings. *|Δx|*, "
+                "*|Δobj|*: largest difference from quadprog's answer over the problems; *ok*: an "
+                "answer with constraint violation <= 1e-6 (relative).",
+                ["n", "problems", *qp_names, "lemke tableau / best peer",
+                 "max \\|Δx\\| (" + ", ".join(qp_names) + ")", "max \\|Δobj\\| lemke", "ok"],
+                ["---:"] * (len(qp_names) + 3) + ["---", "---:", "---"])
         peers = [s for s in qp_names if not s.startswith("lemke")]
         for n in sorted({r["n"] for r in qp_rows}):
             rs = [r for r in qp_rows if r["n"] == n]
