@@ -145,8 +145,8 @@ def _restart(M, q, beta, Mbb, opts):
     if not np.isfinite(G0).all():
         return None
     z_basic = np.empty(n, dtype=np.bool_)
-    code, pivots = unrevised.solve(M, q, cov, beta, G0, opts.pivot_limit(n), opts.pivot_tol,
-                                   opts.tie_tol, x, ray, z_basic)
+    code, pivots = unrevised.solve(M, q, cov, m_scale, beta, G0, opts.pivot_limit(n),
+                                   opts.pivot_tol, opts.tie_tol, x, ray, z_basic)
     if code == Status.NUMERICAL_FAILURE and pivots == 0:
         return None  # singular starting block
     ok, residual = certify.lcp_check(M, q, x[:n], opts.tol, w)

@@ -203,11 +203,12 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         """cold.checked_tableau with its pivoting replaced by ``solve`` (the same check)."""
         def checked(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
-            assert cold.prologue(M, q, d, buf) == 0
+            code, m_max = cold.prologue(M, q, d, buf)
+            assert code == 0
             z_basic = np.empty(n, dtype=np.bool_)
             code, pivots = solve(M, q, d, max_pivots, pivot_tol, tie_tol, buf[: n + 1],
                                  buf[n + 1 : 2 * n + 2], z_basic)
-            return cold.epilogue(M, q, tol, buf, code, pivots, z_basic, basic)
+            return cold.epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic)
         return checked
 
     def lying_kernel(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, z_basic):
@@ -278,7 +279,7 @@ def test_delayed_updates_change_no_bit(block):
         n = q.size
         runs = []
         for b in (1, block):
-            T, rhs, _, _ = linalg.scaled_system(M, q, np.ones(n))
+            T, rhs, _ = linalg.scaled_system(M, q, np.ones(n), np.abs(M).max())
             basis = np.arange(n)
             nonbasic = np.r_[np.arange(n, 2 * n), 2 * n]
             out = (np.empty(n + 1), np.empty(n + 1), np.empty(n, dtype=np.bool_))

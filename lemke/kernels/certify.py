@@ -22,14 +22,21 @@ def lcp_check(M, q, z, tol, w):
     ``max_i |min(z_i, w_i)|``."""
     n = q.shape[0]
     m_max = 0.0
+    for i in range(n):
+        m_max = max(m_max, absmax(M[i], n))
+    return lcp_check_sized(M, q, z, tol, w, m_max)
+
+
+@kernel
+def lcp_check_sized(M, q, z, tol, w, m_max):
+    """``lcp_check`` when the caller already knows ``m_max = max|M|``."""
+    n = q.shape[0]
     q_max = 0.0
     z_max = 0.0
     for j in range(n):
         z_max = max(z_max, abs(z[j]))
     for i in range(n):
-        row = M[i]
-        w[i] = q[i] + dot(row, z, n)
-        m_max = max(m_max, absmax(row, n))
+        w[i] = q[i] + dot(M[i], z, n)
         q_max = max(q_max, abs(q[i]))
     s_z, s_w = tolerances(n, m_max, q_max, z_max, tol)
     ok = True

@@ -9,7 +9,8 @@ z's into an int64 array of length n.
 import numpy as np
 
 from . import kernel, tableau, unrevised
-from .certify import lcp_check
+from .certify import lcp_check_sized
+from .linalg import finite_absmax, nan_probe
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -26,31 +27,28 @@ def layout(n, buf):
 @kernel
 def prologue(M, q, d, buf):
     """Check that M and q are finite and fill the covering vector (an empty d stands for
-    all ones).  Returns NOT_FINITE, TRIVIAL (q >= 0: z = 0 and w = q written) or 0."""
+    all ones).  Returns ``(code, m_scale)``: code NOT_FINITE, TRIVIAL (q >= 0: z = 0 and
+    w = q written) or 0; m_scale = max|M| (1 when M = 0)."""
     n = q.shape[0]
     x, ray, w, cov = layout(n, buf)
-    finite = True
+    finite, m_max = finite_absmax(M)
+    finite &= nan_probe(q, n) == 0.0
+    if not finite:
+        return NOT_FINITE, m_max
     q_min = 0.0
     for i in range(n):
-        row = M[i]
-        for j in range(n):
-            finite &= np.isfinite(row[j])
-        finite &= np.isfinite(q[i])
         q_min = min(q_min, q[i])
-    if not finite:
-        return NOT_FINITE
-    for i in range(n):
         cov[i] = d[i] if d.shape[0] else 1.0
     if q_min >= 0.0:
         x[:] = 0.0
         ray[:] = 0.0
         w[:] = q
-        return TRIVIAL
-    return 0
+        return TRIVIAL, m_max
+    return 0, m_max
 
 
 @kernel
-def epilogue(M, q, tol, buf, code, pivots, z_basic, basic):
+def epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic):
     """After the pivoting (when ``code`` is a status of the kernels): check the point in
     ``buf`` on (M, q), filling w, and list the basic z's in ``basic``.  Returns the
     ``(code, pivots, k, ok, residual)`` of the ``checked_*`` kernels."""
@@ -58,7 +56,7 @@ def epilogue(M, q, tol, buf, code, pivots, z_basic, basic):
         return code, 0, 0, code == TRIVIAL, 0.0
     n = q.shape[0]
     x, ray, w, cov = layout(n, buf)
-    ok, residual = lcp_check(M, q, x[:n], tol, w)
+    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, m_max)
     k = 0
     for i in range(n):
         if z_basic[i]:
@@ -76,23 +74,25 @@ def checked_tableau(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     NOT_FINITE (nothing else done) or TRIVIAL (z = 0, w = q); the first k entries of
     ``basic`` are the basic z's; ok and residual are the result of ``lcp_check``.
     """
-    code, pivots, z_basic = prologue(M, q, d, buf), 0, np.empty(q.shape[0], dtype=np.bool_)
+    (code, m_max), pivots, z_basic = prologue(M, q, d, buf), 0, np.empty(q.shape[0], dtype=np.bool_)
     if code == 0:
         x, ray, w, cov = layout(q.shape[0], buf)
-        code, pivots = tableau.solve(M, q, cov, max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
-    return epilogue(M, q, tol, buf, code, pivots, z_basic, basic)
+        code, pivots = tableau.solve(M, q, cov, m_max if m_max > 0.0 else 1.0, max_pivots,
+                                     pivot_tol, tie_tol, x, ray, z_basic)
+    return epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic)
 
 
 @kernel
 def checked_unrevised(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """:func:`checked_tableau` by the unrevised method, from the all-w basis."""
     n = q.shape[0]
-    code, pivots, z_basic = prologue(M, q, d, buf), 0, np.empty(n, dtype=np.bool_)
+    (code, m_max), pivots, z_basic = prologue(M, q, d, buf), 0, np.empty(n, dtype=np.bool_)
     if code == 0:
         x, ray, w, cov = layout(n, buf)
-        code, pivots = unrevised.solve(M, q, cov, np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
+        code, pivots = unrevised.solve(M, q, cov, m_max if m_max > 0.0 else 1.0,
+                                       np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
                                        max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
-    return epilogue(M, q, tol, buf, code, pivots, z_basic, basic)
+    return epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic)
 
 
 @kernel

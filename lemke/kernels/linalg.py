@@ -21,6 +21,29 @@ def dot(x, y, k):
     return acc
 
 
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def nan_probe(x, k):
+    """sum_{j < k} 0 * x[j]: 0 when every x[j] is finite, NaN otherwise (reordering the sum
+    changes neither)."""
+    acc = 0.0
+    for j in range(k):
+        acc += 0.0 * x[j]
+    return acc
+
+
+@kernel
+def finite_absmax(M):
+    """``(finite, max|M|)`` in one pass over the rows of a square matrix."""
+    n = M.shape[0]
+    probe = 0.0
+    m_max = 0.0
+    for i in range(n):
+        row = M[i]
+        probe += nan_probe(row, n)
+        m_max = max(m_max, absmax(row, n))
+    return probe == 0.0, m_max
+
+
 @kernel
 def matvec(G, k, x, out):
     """out[:k] = G[:k, :k] x[:k]."""
@@ -69,31 +92,21 @@ def axpy(y, a, x):
 
 
 @kernel
-def axpy4(y, a0, x0, a1, x1, a2, x2, a3, x3):
-    """Four axpy's in one pass over y, with the roundings of four in a row: each y[j] is
-    loaded and stored once instead of four times."""
-    for j in range(y.shape[0]):
-        y[j] = (((y[j] + a0 * x0[j]) + a1 * x1[j]) + a2 * x2[j]) + a3 * x3[j]
-
-
-@kernel
-def scaled_system(M, q, d):
-    """``(A, qs, m_scale, d_scale)``: A = [M / m_scale | d / d_scale] (n x (n + 1)) and
+def scaled_system(M, q, d, m_scale):
+    """``(A, qs, d_scale)``: A = [M / m_scale | d / d_scale] (n x (n + 1)) and
     qs = q / m_scale, in the units where max|M| = 1 and max|d| = 1 that every Lemke kernel
     works in (so the relative tolerances compare like with like, and multiplying M and q
-    by a constant changes nothing)."""
+    by a constant changes nothing).  ``m_scale`` is max|M|, or 1 when M = 0.  The divisions
+    are multiplications by the reciprocal (a division costs ten times more)."""
     n = q.shape[0]
-    m_scale = 0.0
-    for i in range(n):
-        m_scale = max(m_scale, absmax(M[i], n))
-    if m_scale == 0.0:
-        m_scale = 1.0
     d_scale = absmax(d, n)
+    inv_m = 1.0 / m_scale
+    inv_d = 1.0 / d_scale
     A = np.empty((n, n + 1))
     qs = np.empty(n)
     for i in range(n):
         for j in range(n):
-            A[i, j] = M[i, j] / m_scale
-        A[i, n] = d[i] / d_scale
-        qs[i] = q[i] / m_scale
-    return A, qs, m_scale, d_scale
+            A[i, j] = M[i, j] * inv_m
+        A[i, n] = d[i] * inv_d
+        qs[i] = q[i] * inv_m
+    return A, qs, d_scale

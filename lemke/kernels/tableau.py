@@ -26,7 +26,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 import numpy as np
 
 from . import kernel
-from .linalg import axpy, axpy4, scaled_system
+from .linalg import axpy, scaled_system
 
 SOLVED = 0
 MAX_PIVOTS = 1
@@ -37,7 +37,7 @@ RAY_TERMINATION = 2
 def block_size(n):
     """Pivots kept pending before they are applied: 1 (no delay) while the tableau fits in
     the cache anyway."""
-    return 1 if n < 48 else 8
+    return 1 if n < 400 else 8
 
 
 @kernel
@@ -59,11 +59,11 @@ def current_column(T, U, V, k, s, col):
 
 
 @kernel
-def pivot(T, rhs, r, s, col, U, V, k, prow):
+def pivot(T, rhs, r, s, col, U, V, k, prow, act):
     """Exchange the basic variable of row r with the non-basic variable of column s (whose
     current values are in ``col``), with k pivots pending; returns the new number pending.
 
-    ``prow`` is scratch of length n + 1 for the new pivot row.
+    ``prow`` is scratch of length n + 1 for the new pivot row, ``act`` for ``flush``.
     """
     n, m = T.shape
     inv = 1.0 / col[r]
@@ -93,18 +93,19 @@ def pivot(T, rhs, r, s, col, U, V, k, prow):
     V[k, s] = 0.0
     k += 1
     if k == U.shape[1]:
-        flush(T, U, V, k)
+        flush(T, U, V, k, act)
         k = 0
     return k
 
 
 @kernel
-def flush(T, U, V, k):
+def flush(T, U, V, k, act):
     """Apply the k pending pivots, row by row, four at a time (the terms of a row with a
-    zero factor are skipped, as an immediate update would skip them)."""
-    act = np.empty(k, dtype=np.int64)
-    for i in range(T.shape[0]):
-        row = T[i]
+    zero factor are skipped, as an immediate update would skip them).  ``act``: scratch of
+    length >= k.  Indexes T and V directly: a row view per row costs more than the update
+    itself at small n."""
+    n, m = T.shape
+    for i in range(n):
         na = 0
         for p in range(k):
             if U[i, p] != 0.0:
@@ -113,10 +114,15 @@ def flush(T, U, V, k):
         c = 0
         while c + 4 <= na:
             p0, p1, p2, p3 = act[c], act[c + 1], act[c + 2], act[c + 3]
-            axpy4(row, U[i, p0], V[p0], U[i, p1], V[p1], U[i, p2], V[p2], U[i, p3], V[p3])
+            a0, a1, a2, a3 = U[i, p0], U[i, p1], U[i, p2], U[i, p3]
+            for j in range(m):
+                T[i, j] = (((T[i, j] + a0 * V[p0, j]) + a1 * V[p1, j]) + a2 * V[p2, j]) + a3 * V[p3, j]
             c += 4
         while c < na:
-            axpy(row, U[i, act[c]], V[act[c]])
+            p = act[c]
+            a = U[i, p]
+            for j in range(m):
+                T[i, j] += a * V[p, j]
             c += 1
 
 
@@ -229,6 +235,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     col = np.empty(n, dtype=np.float64)
     U = np.empty((n, block))
     V = np.empty((block, n + 1))
+    act = np.empty(block, dtype=np.int64)
     k = 0  # pivots pending
     ray_out[:] = 0.0
 
@@ -255,7 +262,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
-        k = pivot(T, rhs, r, s, col, U, V, k, prow)
+        k = pivot(T, rhs, r, s, col, U, V, k, prow, act)
         pivots += 1
         basis[r] = entering
         nonbasic[s] = leaving
@@ -292,15 +299,16 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
 
 
 @kernel
-def solve(M, q, d, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+def solve(M, q, d, m_scale, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.
 
-    Works in the scaled units of ``linalg.scaled_system``: z keeps its units, w and z0 are
-    rescaled.  Returns ``(status, pivots)``; ``x_out`` gets z and z0 (in the caller's
-    units), ``ray_out`` the ray, ``z_basic_out`` the final basic z's.
+    Works in the scaled units of ``linalg.scaled_system`` (``m_scale``: max|M|, or 1 when
+    M = 0): z keeps its units, w and z0 are rescaled.  Returns ``(status, pivots)``;
+    ``x_out`` gets z and z0 (in the caller's units), ``ray_out`` the ray, ``z_basic_out``
+    the final basic z's.
     """
     n = q.shape[0]
-    T, rhs, m_scale, d_scale = scaled_system(M, q, d)
+    T, rhs, d_scale = scaled_system(M, q, d, m_scale)
     basis = np.empty(n, dtype=np.int64)
     nonbasic = np.empty(n + 1, dtype=np.int64)
     for i in range(n):

@@ -214,11 +214,13 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
 
 
 @kernel
-def solve(M, q, d, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+def solve(M, q, d, m_scale, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+          z_basic_out):
     """Lemke's method from the basis ``z_start`` on (M, q) with covering vector d, in the
-    scaled units of ``linalg.scaled_system`` (``G0``: the inverse of the starting block in
-    those units, or an empty array).  Outputs as ``lemke``, in the caller's units."""
-    A, qs, m_scale, d_scale = scaled_system(M, q, d)
+    scaled units of ``linalg.scaled_system`` (``m_scale``: max|M|, or 1 when M = 0; ``G0``:
+    the inverse of the starting block in those units, or an empty array).  Outputs as
+    ``lemke``, in the caller's units."""
+    A, qs, d_scale = scaled_system(M, q, d, m_scale)
     status, pivots = lemke(A, qs, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
                            z_basic_out)
     unscale(x_out, ray_out, m_scale / d_scale, status == SOLVED)
