@@ -34,6 +34,7 @@ from .kernels import mlcp as kmlcp
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
+PIVOT_TOL_LADDER = (1e-7,)  # a larger pivot tolerance, tried after a numerical failure
 EPS = float(np.finfo(np.float64).eps)
 EPS_EXT = float(np.finfo(np.longdouble).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
@@ -292,26 +293,33 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
         vb = np.zeros(m, dtype=bool)
         vb[list(warm_start.z_basic)] = True
         lcp_ws = WarmStart._trusted(m, tuple(np.flatnonzero(red.to_reduced(vb)).tolist()))
-    res = solve_lcp(red.M, red.q, method=method, warm_start=lcp_ws, options=opts)
-    pivots = res.pivots
-    x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
     # A long pivot sequence on badly scaled data can end one degenerate decision off: the
     # final basis, recomputed from the caller's data, then misses by a little.  Lemke's
     # method restarted from that basis (solve_lcp's warm start: fresh factorization, a few
-    # pivots) corrects it.
-    for _ in range(MAX_RESTARTS):
-        if ok or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
-            break
-        res = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start, options=opts)
+    # pivots) corrects it.  If it still fails, the method is run again with a larger pivot
+    # tolerance (a pivot on an entry at rounding level makes garbage of everything after it).
+    pivots = 0
+    for pivot_tol in [opts.pivot_tol] + [t for t in PIVOT_TOL_LADDER if t > opts.pivot_tol]:
+        o = opts if pivot_tol == opts.pivot_tol else replace(opts, pivot_tol=pivot_tol)
+        res = solve_lcp(red.M, red.q, method=method, warm_start=lcp_ws, options=o)
         pivots += res.pivots
         x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
+        for _ in range(MAX_RESTARTS):
+            if ok or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
+                break
+            res = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start, options=o)
+            pivots += res.pivots
+            x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
+        if ok or res.status != Status.NUMERICAL_FAILURE:
+            break
+        lcp_ws = None
     if res.status in (Status.SOLVED, Status.NUMERICAL_FAILURE):
         # Accepted, but not exact to rounding: on a degenerate problem a basic variable
         # that should be zero can come out slightly negative at the accepted basis.  One
         # restart with a much stricter acceptance test moves to the exact basis nearby.
         if ok and residual > CLEAN * max(_size(e), _size(E) * _size(x)):
             res2 = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start,
-                             options=replace(opts, tol=opts.tol * 1e-3))
+                             options=replace(o, tol=opts.tol * 1e-3))
             out = _evaluate(E, e, n, red, res2, opts.tol)
             if out[2] and out[3] < residual:
                 pivots += res2.pivots
