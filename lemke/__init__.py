@@ -1,6 +1,8 @@
 """lemke: linear complementarity problems by Lemke's complementary pivoting method.
 
-Public API: :func:`solve_lcp` (methods in ``METHODS``), :class:`LCPResult`, :class:`Status`,
+Public API: :func:`solve_lcp` (methods in ``METHODS``), :func:`solve_mlcp` (mixed LCPs),
+:func:`solve_qp` (convex QPs, with :class:`Certificate` when there is no optimum), their
+results :class:`LCPResult`, :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
 :class:`Options`, :class:`WarmStart`, :func:`pivot_column` (one step of the unrevised
 method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as values
 (:class:`Problem`) and in files (:func:`read_problem`, :func:`write_problem`,
@@ -9,9 +11,11 @@ method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as 
 from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
 from ._lcp import METHODS, solve_lcp
+from ._mlcp import MLCPResult, solve_mlcp
 from ._options import Options
 from ._pivot_column import pivot_column
 from ._problem import Problem
+from ._qp import Certificate, QPResult, solve_qp
 from ._result import LCPResult, WarmStart
 from ._status import Status
 
@@ -19,10 +23,13 @@ __version__ = "0.1.0"
 
 __all__ = [
     "METHODS",
+    "Certificate",
     "LCPResult",
+    "MLCPResult",
     "Options",
     "Problem",
     "ProblemFormatError",
+    "QPResult",
     "Status",
     "WarmStart",
     "is_lcp_ray",
@@ -32,6 +39,8 @@ __all__ = [
     "read_problem",
     "result_to_dict",
     "solve_lcp",
+    "solve_mlcp",
+    "solve_qp",
     "write_problem",
     "write_result",
     "__version__",

@@ -41,8 +41,22 @@ class WarmStart:
         return ws
 
 
+class Outcome:
+    """What every result derives from its ``status``: ``success`` and ``message``."""
+
+    __slots__ = ()
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SOLVED
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+
 @dataclass(frozen=True)
-class LCPResult:
+class LCPResult(Outcome):
     """The outcome of :func:`lemke.solve_lcp`.
 
     Attributes
@@ -78,14 +92,6 @@ class LCPResult:
     z0: float
     covering: np.ndarray
     warm_start: WarmStart | None
-
-    @property
-    def success(self) -> bool:
-        return self.status == Status.SOLVED
-
-    @property
-    def message(self) -> str:
-        return self.status.message
 
     def __repr__(self) -> str:
         return (

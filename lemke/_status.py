@@ -4,12 +4,14 @@ from enum import IntEnum
 
 class Status(IntEnum):
     """How a solve ended.  ``0`` is the only success; the numbering follows SciPy and quantecon
-    (0 solved, 1 iteration limit, 2 ray)."""
+    (0 solved, 1 iteration limit, 2 ray); 4 and 5 are the QP verdicts with a certificate."""
 
     SOLVED = 0
     MAX_PIVOTS = 1
     RAY_TERMINATION = 2
     NUMERICAL_FAILURE = 3
+    PRIMAL_INFEASIBLE = 4
+    DUAL_INFEASIBLE = 5
 
     @property
     def message(self) -> str:
@@ -35,5 +37,15 @@ _MESSAGES = {
         "The final point failed the check against the caller's data (rounding or an "
         "ill-conditioned basis). Rescale the problem, or loosen options.tol if a larger "
         "residual is acceptable."
+    ),
+    Status.PRIMAL_INFEASIBLE: (
+        "No feasible point exists, and result.certificate proves it (for a QP, a Farkas "
+        "vector: multipliers whose combination of the constraints reads 0 <= c with c < 0; for "
+        "an MLCP, the equations contradict each other). Check the constraint data."
+    ),
+    Status.DUAL_INFEASIBLE: (
+        "The objective is unbounded below along a direction that keeps every constraint "
+        "(result.certificate: P d = 0, A d = 0, G d <= 0, d within the bounds' directions, "
+        "q'd < 0), or the problem has no optimum for that reason. Add bounds or check q."
     ),
 }

@@ -189,7 +189,7 @@ def test_bad_input_is_named(M, q, kw, exc, words):
 
 
 def test_status_messages():
-    assert [int(s) for s in Status] == [0, 1, 2, 3]
+    assert [int(s) for s in Status] == [0, 1, 2, 3, 4, 5]
     for s in Status:
         assert len(s.message) > 40
 

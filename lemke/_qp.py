@@ -1,0 +1,499 @@
+r"""solve_qp: convex quadratic programs through the mixed LCP of their KKT conditions.
+
+The QP, in qpsolvers' convention::
+
+    minimize    1/2 x'P x + q'x
+    subject to  G x <= h,   A x = b,   lb <= x <= ub.
+
+Each variable is put in the form that costs least: a free variable stays free (a free
+variable of the MLCP, never split into two signs); a variable with one finite bound is
+shifted to x' >= 0 (``x = lb + x'`` or ``x = ub - x'``); a variable with two finite bounds is
+shifted and gets one extra row ``x' <= ub - lb``; a fixed variable (lb = ub) is substituted.
+The equality multipliers y are free variables; the inequality multipliers z pair with the
+slacks ``h - G x``.  With u = (x_free, y) and v = (x', z, z_ub), the KKT conditions are the
+MLCP ``E (u, v) + e = (0, w)`` with::
+
+            x_free    y        x'          z        z_ub
+    E = [ [ P_ff      A_f'     P_fn S      G_f'     0     ]   dual rows of free x  (= 0)
+          [ -A_f      0        -A_n S      0        0     ]   b - A x              (= 0)
+          [ S P_nf    S A_n'   S P_nn S    S G_n'   I_box ]   dual rows of x'      (⊥ x')
+          [ -G_f      0        -G_n S      0        0     ]   h - G x              (⊥ z)
+          [ 0         0        -I_box      0        0     ] ] ub - lb - x'         (⊥ z_ub)
+
+(S the signs of the shifts), whose symmetric part is P's: a monotone MLCP, so Lemke's method
+solves it or ends on a ray, and the ray splits into a Farkas vector (the QP is infeasible)
+or a direction of unbounded descent.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._lcp import METHODS
+from ._mlcp import solve_stacked
+from ._options import as_options
+from ._problem import _to_float_array
+from ._result import Outcome, WarmStart
+from ._status import Status
+
+INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
+SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
+CONVEXITY_TOL = 1e-10  # relative: P + CONVEXITY_TOL max|P| I must have a Cholesky factor
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """A proof that a QP has no optimum, checkable with its data alone.
+
+    ``kind == "primal_infeasible"``: a Farkas vector ``(y, z, z_box)`` with ``z >= 0``,
+    ``z_box_j <= 0`` only where lb_j is finite and ``>= 0`` only where ub_j is finite, and
+    ``G'z + A'y + z_box = 0``, while ``value = h'z + b'y + lb'min(z_box, 0) +
+    ub'max(z_box, 0) < 0``: for any feasible x, ``0 = (G'z + A'y + z_box)'x <= value < 0``.
+
+    ``kind == "dual_infeasible"``: a direction ``dx`` with ``P dx = 0``, ``A dx = 0``,
+    ``G dx <= 0``, ``dx_j >= 0`` where only lb_j is finite, ``<= 0`` where only ub_j is,
+    ``= 0`` where both are, and ``value = q'dx < 0``: the objective decreases without bound
+    along it from any feasible point.
+
+    Both are scaled to largest entry 1.
+    """
+
+    kind: str
+    value: float
+    y: np.ndarray | None = None
+    z: np.ndarray | None = None
+    z_box: np.ndarray | None = None
+    dx: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class QPResult(Outcome):
+    """The outcome of :func:`lemke.solve_qp`.
+
+    Attributes
+    ----------
+    x : ndarray
+        The primal solution (where the method stopped if not solved).
+    y, z, z_box : ndarray
+        Multipliers of ``A x = b``, of ``G x <= h`` (>= 0) and of the bounds (negative at an
+        active lower bound, positive at an active upper bound), qpsolvers' convention:
+        ``P x + q + A'y + G'z + z_box = 0``.
+    obj : float
+        ``1/2 x'P x + q'x``.
+    status : Status
+        ``SOLVED``, ``PRIMAL_INFEASIBLE`` or ``DUAL_INFEASIBLE`` (with ``certificate``),
+        ``MAX_PIVOTS`` or ``NUMERICAL_FAILURE``.
+    pivots : int
+    primal_residual, dual_residual, duality_gap : float
+        qpsolvers' formulas on the caller's data: ``max(|Ax - b|, [Gx - h]+, [lb - x]+,
+        [x - ub]+)``, ``|P x + q + A'y + G'z + z_box|`` (max norms) and ``|x'Px + q'x + b'y +
+        h'z + lb'min(z_box, 0) + ub'max(z_box, 0)|``.
+    certificate : Certificate or None
+    warm_start : WarmStart or None
+        The final basis; pass it back for a nearby QP with the same structure.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+    z_box: np.ndarray
+    obj: float
+    status: Status
+    pivots: int
+    primal_residual: float
+    dual_residual: float
+    duality_gap: float
+    certificate: Certificate | None
+    warm_start: WarmStart | None
+
+    def __repr__(self) -> str:
+        return (
+            f"QPResult(status={self.status.name}, obj={self.obj:.10g}, pivots={self.pivots}, "
+            f"primal_residual={self.primal_residual:.3g}, dual_residual={self.dual_residual:.3g}, "
+            f"duality_gap={self.duality_gap:.3g}, n={self.x.size})"
+        )
+
+
+def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="tableau",
+             warm_start=None, options=None) -> QPResult:
+    r"""Solve the convex quadratic program
+
+    .. math::  \min_x \tfrac12 x^\top P x + q^\top x \quad \text{s.t.} \quad
+               G x \le h, \; A x = b, \; lb \le x \le ub
+
+    by Lemke's method on the mixed LCP of its KKT conditions (qpsolvers' argument order and
+    meaning).
+
+    Parameters
+    ----------
+    P : (n, n) array_like
+        Symmetric positive semidefinite (P = 0, a linear program, included).  It is
+        symmetrized as (P + P')/2; an asymmetry beyond ``1e-10 max|P|`` is an error (a
+        triangular P is a common slip), and so is a P that is not positive semidefinite.
+    q : (n,) array_like
+    G, h : (m, n) and (m,) array_like, optional
+        Inequalities; a 1-D G is one row.  h must be finite.
+    A, b : (p, n) and (p,) array_like, optional
+        Equalities.
+    lb, ub : (n,) array_like, optional
+        Bounds; entries of magnitude >= 1e20 and infinities mean no bound.
+    method : {"tableau", "unrevised"}
+        The Lemke method (see :func:`lemke.solve_lcp`).
+    warm_start : WarmStart, optional
+        ``result.warm_start`` of an earlier QP with the same sizes and the same kinds of
+        bounds.
+    options : Options or dict, optional
+        See :class:`lemke.Options`.
+
+    Returns
+    -------
+    QPResult
+        ``SOLVED`` only after the KKT point passed the check on the data.  An infeasible or
+        unbounded QP ends ``PRIMAL_INFEASIBLE`` or ``DUAL_INFEASIBLE`` with a checked
+        :class:`Certificate`.
+
+    Examples
+    --------
+    >>> import lemke
+    >>> r = lemke.solve_qp([[2.0, 0.0], [0.0, 2.0]], [-2.0, -5.0], G=[[1.0, 1.0]], h=[1.0])
+    >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
+    ('SOLVED', [-0.25, 1.25], [2.5])
+    """
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    qp = _QP(P, q, G, h, A, b, lb, ub)
+    opts = as_options(options)
+    if warm_start is not None and not isinstance(warm_start, WarmStart):
+        raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
+    return _solve(qp, method, opts, warm_start, certify=True)
+
+
+class _QP:
+    """The validated data, the variables' kinds and the KKT system as a stacked MLCP."""
+
+    def __init__(self, P, q, G, h, A, b, lb, ub):
+        q = _to_float_array(q, "q")
+        if q.ndim != 1 or q.size == 0:
+            raise ValueError(f"q must be a non-empty vector, got shape {q.shape}")
+        n = q.size
+        P = _to_float_array(P, "P")
+        if P.shape != (n, n):
+            raise ValueError(f"P must have shape ({n}, {n}) to match q, got {P.shape}")
+        self.n, self.q = n, q
+        self.P = _symmetric_psd(P)
+        self.G, self.h = _rows(G, h, n, "G", "h")
+        self.A, self.b = _rows(A, b, n, "A", "b")
+        self.lb = _bound(lb, n, "lb", -np.inf)
+        self.ub = _bound(ub, n, "ub", np.inf)
+        bad = np.flatnonzero(self.lb > self.ub)
+        if bad.size:
+            j = int(bad[0])
+            raise ValueError(f"lb[{j}] = {self.lb[j]} exceeds ub[{j}] = {self.ub[j]}: no x satisfies the bounds")
+        self._kinds()
+        self._stack()
+
+    def _kinds(self):
+        lo, up = np.isfinite(self.lb), np.isfinite(self.ub)
+        fixed = lo & up & (self.lb == self.ub)
+        self.free = np.flatnonzero(~lo & ~up)
+        self.shifted = np.flatnonzero((lo | up) & ~fixed)  # x = x0 + sign * x', x' >= 0
+        self.fixed = np.flatnonzero(fixed)
+        self.sign = np.where(lo[self.shifted], 1.0, -1.0)
+        self.boxed = np.flatnonzero(lo[self.shifted] & up[self.shifted])  # positions in shifted
+        x0 = np.zeros(self.n)
+        x0[lo] = self.lb[lo]
+        x0[~lo & up] = self.ub[~lo & up]
+        self.x0 = x0
+
+    def _stack(self):
+        P, G, A = self.P, self.G, self.A
+        F, Nn, S = self.free, self.shifted, self.sign
+        nf, nn, nb = F.size, Nn.size, self.boxed.size
+        p, mg = A.shape[0], G.shape[0]
+        n_free = nf + p
+        N = n_free + nn + mg + nb
+        E = np.zeros((N, N))
+        g0 = P @ self.x0 + self.q
+        # column blocks
+        cf, cy, cx, cz, cb = 0, nf, nf + p, nf + p + nn, nf + p + nn + mg
+        # row blocks: same order (free dual rows, equalities, x' rows, inequality rows, box rows)
+        PS = P[:, Nn] * S
+        E[cf:cy, cf:cy] = P[np.ix_(F, F)]
+        E[cf:cy, cy:cx] = A[:, F].T
+        E[cf:cy, cx:cz] = PS[F]
+        E[cf:cy, cz:cb] = G[:, F].T
+        E[cy:cx, cf:cy] = -A[:, F]
+        E[cy:cx, cx:cz] = -A[:, Nn] * S
+        E[cx:cz, cf:cy] = S[:, None] * P[np.ix_(Nn, F)]
+        E[cx:cz, cy:cx] = S[:, None] * A[:, Nn].T
+        E[cx:cz, cx:cz] = S[:, None] * PS[Nn]
+        E[cx:cz, cz:cb] = S[:, None] * G[:, Nn].T
+        E[cz:cb, cf:cy] = -G[:, F]
+        E[cz:cb, cx:cz] = -G[:, Nn] * S
+        E[cx + self.boxed, cb + np.arange(nb)] = 1.0
+        E[cb + np.arange(nb), cx + self.boxed] = -1.0
+        j_box = Nn[self.boxed]
+        e = np.concatenate([
+            g0[F], self.b - A @ self.x0, S * g0[Nn], self.h - G @ self.x0,
+            self.ub[j_box] - self.lb[j_box],
+        ])
+        self.E, self.e, self.n_free = E, e, n_free
+        self.blocks = (cf, cy, cx, cz, cb, N)
+
+    def unpack(self, x_mlcp):
+        """(x, y, z, x', z_ub) from the MLCP's stacked (u, v)."""
+        cf, cy, cx, cz, cb, N = self.blocks
+        x = self.x0.copy()
+        x[self.free] = x_mlcp[cf:cy]
+        x[self.shifted] += self.sign * x_mlcp[cx:cz]
+        return x, x_mlcp[cy:cx], x_mlcp[cz:cb], x_mlcp[cx:cz], x_mlcp[cb:N]
+
+    def direction(self, d_mlcp):
+        """The change of x along a direction of the MLCP's (u, v)."""
+        cf, cy, cx, cz, _, _ = self.blocks
+        dx = np.zeros(self.n)
+        dx[self.free] = d_mlcp[cf:cy]
+        dx[self.shifted] = self.sign * d_mlcp[cx:cz]
+        return dx
+
+
+def _symmetric_psd(P):
+    scale = float(np.max(np.abs(P))) if P.size else 0.0
+    if scale == 0.0:
+        return np.zeros_like(P)
+    asym = np.abs(P - P.T)
+    if asym.max() > SYMMETRY_TOL * scale:
+        i, j = np.unravel_index(int(np.argmax(asym)), asym.shape)
+        raise ValueError(
+            f"P is not symmetric: P[{i}, {j}] = {P[i, j]:.6g} but P[{j}, {i}] = {P[j, i]:.6g} "
+            "(pass the full symmetric matrix, not one triangle)"
+        )
+    Ps = 0.5 * (P + P.T)
+    try:
+        np.linalg.cholesky(Ps + (CONVEXITY_TOL * scale) * np.eye(P.shape[0]))
+    except np.linalg.LinAlgError:
+        lam = np.linalg.eigvalsh(Ps)
+        raise ValueError(
+            f"P is not positive semidefinite: its smallest eigenvalue is {lam[0]:.3g} (largest "
+            f"{lam[-1]:.3g}); solve_qp solves convex QPs only, a KKT point of a non-convex one "
+            "need not be a minimum"
+        ) from None
+    return Ps
+
+
+def _rows(M, v, n, mname, vname):
+    if M is None and v is None:
+        return np.zeros((0, n)), np.zeros(0)
+    if M is None or v is None:
+        given, missing = (mname, vname) if v is None else (vname, mname)
+        raise ValueError(f"{given} was given without {missing}: pass both or neither")
+    M = _to_float_array(M, mname)
+    if M.ndim == 1:
+        M = M.reshape(1, -1)
+    v = _to_float_array(v, vname).reshape(-1) if np.ndim(v) == 0 else _to_float_array(v, vname)
+    if M.ndim != 2 or M.shape[1] != n:
+        raise ValueError(f"{mname} must have {n} columns (the size of q), got shape {M.shape}")
+    if v.shape != (M.shape[0],):
+        raise ValueError(f"{vname} must have shape ({M.shape[0]},) to match {mname}, got {v.shape}")
+    return M, v
+
+
+def _bound(v, n, name, infinite):
+    if v is None:
+        return np.full(n, infinite)
+    try:
+        a = np.array(v, dtype=np.float64).reshape(-1) if np.ndim(v) else np.full(n, float(v))
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a numeric vector: {exc}") from None
+    if a.shape != (n,):
+        raise ValueError(f"{name} must have shape ({n},) to match q, got {a.shape}")
+    if np.isnan(a).any():
+        raise ValueError(f"{name} has a NaN entry at index {int(np.flatnonzero(np.isnan(a))[0])}")
+    a[a >= INFINITY] = np.inf
+    a[a <= -INFINITY] = -np.inf
+    if infinite < 0 and np.isposinf(a).any():
+        raise ValueError(f"{name} has an entry +inf: a lower bound must be below +inf")
+    if infinite > 0 and np.isneginf(a).any():
+        raise ValueError(f"{name} has an entry -inf: an upper bound must be above -inf")
+    return a
+
+
+def _solve(qp, method, opts, warm_start, certify):
+    m_pairs = qp.e.size - qp.n_free
+    if warm_start is not None and warm_start.n != m_pairs:
+        warm_start = None  # a basis of a QP with another structure: solve cold
+    r = solve_stacked(qp.E, qp.e, qp.n_free, method, opts, warm_start)
+    x, y, z, xs, zu = qp.unpack(np.concatenate([r.u, r.v]))
+    z_box = _bound_multipliers(qp, x, y, z, r.w, zu)
+    status, certificate = r.status, None
+    if status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
+        status, certificate = Status.NUMERICAL_FAILURE, None
+        if certify:
+            certificate = _certificate_from_ray(qp, r.ray, opts.tol) if r.ray is not None else None
+            if certificate is None:
+                certificate = _certificate_by_lp(qp, method, opts)
+            if certificate is not None:
+                status = (Status.PRIMAL_INFEASIBLE if certificate.kind == "primal_infeasible"
+                          else Status.DUAL_INFEASIBLE)
+    return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start)
+
+
+def _bound_multipliers(qp, x, y, z, w, zu):
+    """z_box: minus the bound rows' w for a lower bound, plus it for an upper bound (plus
+    the upper multiplier of a boxed variable); for a fixed variable, what makes its dual row
+    zero."""
+    n = qp.n
+    cf, cy, cx, cz, cb, N = qp.blocks
+    nf_p = cx  # w starts at the first pair row
+    z_box = np.zeros(n)
+    w_x = w[cx - nf_p:cz - nf_p]
+    z_box[qp.shifted] = -qp.sign * w_x
+    z_box[qp.shifted[qp.boxed]] += zu
+    if qp.fixed.size:
+        g = qp.P @ x + qp.q + qp.A.T @ y + qp.G.T @ z
+        z_box[qp.fixed] = -g[qp.fixed]
+    return z_box
+
+
+def residuals(qp, x, y, z, z_box):
+    """qpsolvers' primal residual, dual residual and duality gap on the validated data."""
+    P, q, G, h, A, b, lb, ub = qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
+    Px = P @ x
+    primal = max(
+        0.0,
+        float(np.max(G @ x - h)) if h.size else 0.0,
+        float(np.max(np.abs(A @ x - b))) if b.size else 0.0,
+        float(np.max(lb - x)),
+        float(np.max(x - ub)),
+    )
+    dual = float(np.max(np.abs(Px + q + A.T @ y + G.T @ z + z_box)))
+    lo, up = np.isfinite(lb), np.isfinite(ub)
+    gap = abs(
+        float(x @ Px + q @ x + h @ z + b @ y)
+        + float(lb[lo] @ np.minimum(z_box[lo], 0.0))
+        + float(ub[up] @ np.maximum(z_box[up], 0.0))
+    )
+    return primal, dual, gap
+
+
+def _result(qp, x, y, z, z_box, status, pivots, certificate, warm_start):
+    y, z = y.copy(), z.copy()
+    primal, dual, gap = residuals(qp, x, y, z, z_box)
+    obj = float(0.5 * x @ (qp.P @ x) + qp.q @ x)
+    for a in (x, y, z, z_box):
+        a.setflags(write=False)
+    return QPResult(x, y, z, z_box, obj, status, int(pivots), primal, dual, gap, certificate, warm_start)
+
+
+# ----------------------------------------------------------------------------- certificates
+
+def _normalized(*parts):
+    size = max((float(np.max(np.abs(p))) for p in parts if p.size), default=0.0)
+    if size == 0.0:
+        return None
+    return [p / size for p in parts]
+
+
+def farkas_value(qp, y, z, z_box):
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    return (float(qp.h @ z + qp.b @ y) + float(qp.lb[lo] @ np.minimum(z_box[lo], 0.0))
+            + float(qp.ub[up] @ np.maximum(z_box[up], 0.0)))
+
+
+def _data_scale(qp):
+    return max([1.0] + [float(np.max(np.abs(a))) for a in (qp.P, qp.G, qp.A, qp.q, qp.h, qp.b) if a.size])
+
+
+def _check_farkas(qp, y, z, tol):
+    """A verified primal-infeasibility Certificate from (y, z), or None."""
+    parts = _normalized(y, z)
+    if parts is None:
+        return None
+    y, z = parts
+    if np.any(z < -tol):
+        return None
+    z = np.maximum(z, 0.0)
+    z_box = -(qp.A.T @ y + qp.G.T @ z)
+    s = tol * _data_scale(qp) * 10.0
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    # a bound multiplier may only have the sign of a finite bound
+    if np.any(z_box[~lo] < -s) or np.any(z_box[~up] > s):
+        return None
+    z_box[~lo] = np.maximum(z_box[~lo], 0.0)
+    z_box[~up] = np.minimum(z_box[~up], 0.0)
+    residual = float(np.max(np.abs(qp.A.T @ y + qp.G.T @ z + z_box)))
+    value = farkas_value(qp, y, z, z_box)
+    bound = max(1.0, _size(qp.lb[lo]), _size(qp.ub[up]))
+    if residual > s or value >= -s * bound:
+        return None
+    return Certificate("primal_infeasible", value, y=y, z=z, z_box=z_box)
+
+
+def _check_direction(qp, dx, tol):
+    """A verified dual-infeasibility Certificate from dx, or None."""
+    parts = _normalized(dx)
+    if parts is None:
+        return None
+    (dx,) = parts
+    s = tol * _data_scale(qp) * 10.0
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    if (np.any(dx[lo] < -tol) or np.any(dx[up] > tol)
+            or _size(qp.P @ dx) > s or _size(qp.A @ dx) > s
+            or (qp.h.size and float(np.max(qp.G @ dx)) > s)):
+        return None
+    dx = dx.copy()
+    dx[lo] = np.maximum(dx[lo], 0.0)
+    dx[up] = np.minimum(dx[up], 0.0)
+    value = float(qp.q @ dx)
+    if value >= -s:
+        return None
+    return Certificate("dual_infeasible", value, dx=dx)
+
+
+def _size(a):
+    return float(np.max(np.abs(a))) if a.size else 0.0
+
+
+def _certificate_from_ray(qp, ray, tol):
+    """Along a ray of a monotone KKT system, P dx = 0 and the ray splits in two: (dy, dz) is
+    a Farkas vector when h'dz + b'dy + ... < 0, else dx is a direction of descent."""
+    dx = qp.direction(ray)
+    _, dy, dz, _, dzu = qp.unpack(ray)
+    return _check_farkas(qp, dy, dz, tol) or _check_direction(qp, dx, tol)
+
+
+def _certificate_by_lp(qp, method, opts):
+    """When the ray is not available (the equations were inconsistent, or the ray failed its
+    check): find a certificate by Lemke's method on two small bounded LPs, each normalized
+    by a box, and check it."""
+    n = qp.n
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    # Farkas: min h'z + b'y - lb'zl + ub'zu  s.t.  A'y + G'z - zl + zu = 0, boxes [0, 1].
+    p, mg = qp.A.shape[0], qp.G.shape[0]
+    il, iu = np.flatnonzero(lo), np.flatnonzero(up)
+    k = p + mg + il.size + iu.size
+    if k:
+        Aeq = np.zeros((n, k))
+        Aeq[:, :p] = qp.A.T
+        Aeq[:, p:p + mg] = qp.G.T
+        Aeq[il, p + mg + np.arange(il.size)] = -1.0
+        Aeq[iu, p + mg + il.size + np.arange(iu.size)] = 1.0
+        c = np.concatenate([qp.b, qp.h, -qp.lb[il], qp.ub[iu]])
+        lbx = np.concatenate([-np.ones(p), np.zeros(k - p)])
+        aux = _QP(np.zeros((k, k)), c, None, None, Aeq, np.zeros(n), lbx, np.ones(k))
+        r = _solve(aux, method, opts, None, certify=False)
+        if r.status == Status.SOLVED:
+            cert = _check_farkas(qp, r.x[:p], r.x[p:p + mg], opts.tol)
+            if cert is not None:
+                return cert
+    # Direction: min q'd  s.t.  P d = 0, A d = 0, G d <= 0, d in the bounds' cone and [-1, 1].
+    lbd = np.where(lo, 0.0, -1.0)
+    ubd = np.where(up, 0.0, 1.0)
+    Aeq = np.vstack([qp.P, qp.A])
+    aux = _QP(np.zeros((n, n)), qp.q, qp.G if mg else None, np.zeros(mg) if mg else None,
+              Aeq, np.zeros(Aeq.shape[0]), lbd, ubd)
+    r = _solve(aux, method, opts, None, certify=False)
+    if r.status == Status.SOLVED:
+        return _check_direction(qp, r.x, opts.tol)
+    return None
