@@ -16,6 +16,7 @@ from . import problems
 from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
 from ._lcp import METHODS
 from ._options import Options
+from ._problem import Problem
 
 DEFAULT_PROBLEM = "cps-4.4.7"
 _SHOWN = 8  # entries of a solution shown in the human output
@@ -171,7 +172,7 @@ def _table(rows: list[dict]) -> str:
     errors = sum("error" in r for r in rows)
     total = sum(r.get("time_s", 0.0) for r in rows)
     lines.append(f"{len(rows)} problems: {solved} solved, {len(rows) - solved - errors} not solved, "
-                 f"{errors} not read; solve time {_ms(total)}")
+                 f"{errors} bad input (see the errors above); solve time {_ms(total)}")
     kinds = {r.get("kind") for r in rows}
     if kinds - {"lcp", "-", None}:
         lines.append("size: n (LCP), free+complementary (MLCP), variables x constraint rows (QP)")
@@ -236,7 +237,6 @@ def _solve(args) -> int:
     options = _options(args)
     single = len(sources) == 1
     rows, code = [], 0
-    _warm_up(args.method)
     progress = _Progress(len(sources))
     for k, src in enumerate(sources):
         progress.show(k, src.name)
@@ -261,9 +261,19 @@ def _solve(args) -> int:
     return code
 
 
-def _warm_up(method: str) -> None:
-    """Load the compiled kernels (from numba's cache, or compile them once) before timing."""
-    problems.cps_447().solve(method=method)
+_WARM = set()
+
+
+def _warm_up(kind: str, method: str) -> None:
+    """Load the kernels for a kind of problem (from numba's cache, or compile them, once per
+    run) before timing one: the times shown are those of the solves."""
+    if (kind, method) not in _WARM:
+        _WARM.add((kind, method))
+        example = {"lcp": problems.cps_447, "qp": problems.hs21}.get(kind)
+        if example is not None:
+            example().solve(method=method)
+        else:
+            Problem.mlcp([[2.0]], [[1.0]], [[1.0]], [[-1.0]], [-1.0], [-1.0]).solve(method=method)
 
 
 def _json(doc: dict) -> str:
@@ -301,8 +311,9 @@ def _run_one(src, args, options) -> dict:
     else:
         prob, name, where = src, src.name, src.name
     row = {"name": name, "kind": prob.kind, "size": _size(prob), "problem": prob}
-    t0 = time.perf_counter()
     try:
+        _warm_up(prob.kind, args.method)
+        t0 = time.perf_counter()
         res = prob.solve(method=args.method, options=options)
     except (NotImplementedError, ValueError, TypeError) as exc:  # the solver refused the data
         return dict(row, error=f"{where}: {' '.join(str(exc).split())}")
