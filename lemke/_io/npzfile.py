@@ -19,7 +19,7 @@ KINDS = ("lcp", "mlcp", "qp")  # the kinds of problem this format holds
 
 def _text(archive, key: str) -> str:
     a = archive[key]
-    if a.ndim != 0 or a.dtype.kind != "U":
+    if not isinstance(a, np.ndarray) or a.ndim != 0 or a.dtype.kind != "U":
         raise BadFile(f"'{key}' must be a 0-d string array, found {a.dtype} of shape {a.shape}")
     return str(a)
 
@@ -44,15 +44,17 @@ def read(data: bytes, path) -> Problem:
                 raise BadFile(f"unknown array(s) for a {kind} problem: {', '.join(unknown)}")
             arrays = {k: archive[k] for k in FIELDS[kind] if k in keys}
             text = {k: _text(archive, k) for k in ("name", "source") if k in keys}
-            constant = archive["objective_constant"] if "objective_constant" in keys else np.float64(0.0)
+            constant = archive["objective_constant"] if "objective_constant" in keys else np.array(0.0)
     except BadFile:
         raise
     except Exception as exc:  # numpy's own errors for a damaged archive or array
         raise BadFile(f"not a readable .npz file: {type(exc).__name__}: {exc}") from None
     for k, a in arrays.items():
+        if not isinstance(a, np.ndarray):
+            raise BadFile(f"'{k}' is not a .npy array in the archive")
         if a.dtype.kind not in "fiu":
             raise BadFile(f"array '{k}' must hold real numbers, found dtype {a.dtype}")
-    if constant.shape != () or constant.dtype.kind not in "fiu":
+    if not isinstance(constant, np.ndarray) or constant.shape != () or constant.dtype.kind not in "fiu":
         raise BadFile("'objective_constant' must be a 0-d number")
     return make_problem(kind, arrays, path, ".npz", objective_constant=float(constant), **text)
 
