@@ -103,6 +103,8 @@ def _sources(names: list[str]) -> list:
             out.append(path)
         else:
             prob = _builtin(name)
+            if prob is None and (os.sep in name or path.suffix.lower() in EXTENSIONS):
+                raise _UsageError(f"{name}: no such file or directory")
             if prob is None:
                 raise _UsageError(f"{name}: no such file, and not a built-in problem (see `lemke problems`)")
             out.append(prob)

@@ -296,6 +296,13 @@ def _bad(path, *words):
     return message
 
 
+def _bad_texts(path, cases: dict):
+    """Each text of ``cases`` in ``path`` fails with a message that says its word."""
+    for text, word in cases.items():
+        path.write_text(text)
+        _bad(path, word)
+
+
 def test_missing_directory_and_unreadable(tmp_path):
     _bad(tmp_path / "nope.json", "cannot read", "No such file")
     _bad(tmp_path, "is a directory")
@@ -350,9 +357,7 @@ def test_dat_errors(tmp_path):
         "2\n0\n2\n2\n2 2\n1 0 0 inf\n1 1\n": "inf",
         "2.5\n": "integer",
     }
-    for text, word in cases.items():
-        path.write_text(text)
-        _bad(path, word)
+    _bad_texts(path, cases)
 
 
 def test_malformed_json(tmp_path):
@@ -375,9 +380,7 @@ def test_malformed_json(tmp_path):
         '{"M": [[1e999]], "q": [1]}': "infinite entry",
         "[" * 100000: "nested too deeply",
     }
-    for text, word in cases.items():
-        path.write_text(text)
-        _bad(path, word)
+    _bad_texts(path, cases)
 
 
 def test_npz_errors(tmp_path):
@@ -428,9 +431,7 @@ def test_qps_errors(tmp_path):
         "NAME t\nROWS\n X c1\nENDATA\n": "row type 'X'",
         "NAME t\n x y\nENDATA\n": "outside any section",
     }
-    for text, word in cases.items():
-        path.write_text(text)
-        _bad(path, word)
+    _bad_texts(path, cases)
 
 
 def test_unknown_format(tmp_path):

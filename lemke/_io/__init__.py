@@ -159,8 +159,7 @@ def result_to_dict(result, problem: Problem | None = None, **extra) -> dict:
     out.update(status=result.status.name, status_code=int(result.status), success=bool(result.success),
                message=result.message)
     out.update({f.name: _plain(getattr(result, f.name)) for f in dataclasses.fields(result) if f.name != "status"})
-    if problem is not None and problem.kind == "qp" and getattr(result, "obj", None) is not None:
-        out["objective"] = _plain(result.obj + problem.objective_constant)
+    out.update({k: _plain(v) for k, v in _objective(result, problem).items()})
     out.update({k: _plain(v) for k, v in extra.items()})
     return out
 
@@ -186,9 +185,16 @@ def _result_arrays(result, problem, extra) -> dict:
     for f in dataclasses.fields(result):
         if f.name != "status":
             put(f.name, getattr(result, f.name))
-    for k, v in extra.items():
+    for k, v in {**_objective(result, problem), **extra}.items():
         put(k, v)
     return {k: np.asarray(v) for k, v in out.items()}
+
+
+def _objective(result, problem) -> dict:
+    """``{"objective": obj + the problem's constant}`` for a QP, else nothing."""
+    if problem is not None and problem.kind == "qp" and getattr(result, "obj", None) is not None:
+        return {"objective": result.obj + problem.objective_constant}
+    return {}
 
 
 def write_result(result, path, *, problem: Problem | None = None, protect=(), **extra) -> None:
