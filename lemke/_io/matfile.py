@@ -1,4 +1,4 @@
-"""MATLAB ``.mat`` files (v5, as ``scipy.io.loadmat`` reads them).
+"""MATLAB level-5 ``.mat`` files (read by :mod:`.matv5`, written by ``scipy.io.savemat``).
 
 A QP in the Maros-Meszaros layout of qpbenchmark / osqp_benchmarks (see
 ``/work/shared/data/maros-meszaros/README.md``)::
@@ -18,14 +18,13 @@ identity rows, infinities as +-1e20).
 """
 from __future__ import annotations
 
-import io
-
 import numpy as np
 import scipy.io
 import scipy.sparse as sp
 
 from .._problem import FIELDS, Problem
-from .common import BadFile, check_size, finite_or_none, infer_kind, make_problem
+from . import matv5
+from .common import BadFile, finite_or_none, infer_kind, make_problem
 
 INFINITY = 1e20  # how the files write infinity
 _IS_INFINITE = 9e19
@@ -35,17 +34,14 @@ KINDS = ("lcp", "mlcp", "qp")  # the kinds of problem this format holds
 
 
 def _array(d: dict, key: str, what: str) -> np.ndarray:
-    """``d[key]`` as a dense float array (sparse matrices are checked for size first)."""
+    """``d[key]`` as a float64 array (sparse matrices were made dense by the loader)."""
     if key not in d:
-        found = ", ".join(sorted(k for k in d if not k.startswith("__"))) or "nothing"
-        raise BadFile(f"a {what} .mat file needs the variable '{key}'; found: {found}")
+        raise BadFile(f"a {what} .mat file needs the variable '{key}'; found: {', '.join(sorted(d)) or 'nothing'}")
     a = d[key]
-    if sp.issparse(a):
-        check_size(*a.shape, f"'{key}'")
-        a = a.toarray()
-    if not isinstance(a, np.ndarray) or a.dtype.kind not in "fiub":
-        raise BadFile(f"'{key}' must be a numeric array, found {type(a).__name__} {getattr(a, 'dtype', '')}")
-    return a.astype(np.float64)
+    if not isinstance(a, np.ndarray):
+        found = "text" if isinstance(a, str) else f"MATLAB class {a.cls}"
+        raise BadFile(f"'{key}' must be a numeric array, found {found}")
+    return a
 
 
 def _vector(d: dict, key: str, what: str) -> np.ndarray:
@@ -66,25 +62,21 @@ def _scalar(d: dict, key: str, default=None) -> float:
 
 def _kind(d: dict) -> str:
     if "kind" in d:
-        k = d["kind"]
-        if isinstance(k, np.ndarray) and k.dtype.kind == "U" and k.size == 1:
-            return str(k.ravel()[0])
+        if isinstance(d["kind"], str):
+            return d["kind"]
         raise BadFile("'kind' must be a string")
     try:
-        return infer_kind(k for k in d if not k.startswith("__"))
+        return infer_kind(d)
     except BadFile:
-        found = ", ".join(sorted(k for k in d if not k.startswith("__"))) or "nothing"
+        found = ", ".join(sorted(d)) or "nothing"
         raise BadFile(f"a .mat problem needs the Maros-Meszaros variables P, q, A, l, u (or M, q for an "
                       f"LCP; A, B, C, D, a, b for an MLCP); found: {found}") from None
 
 
 def read(data: bytes, path) -> Problem:
-    if data[512:520] == b"\x89HDF\r\n\x1a\n":
+    if data[512:520] == b"\x89HDF\r\n\x1a\n" or data[124:128] == b"\x00\x02IM":
         raise BadFile("MATLAB v7.3 (HDF5) files are not supported; save with -v7")
-    try:
-        d = scipy.io.loadmat(io.BytesIO(data), mat_dtype=False, squeeze_me=False, struct_as_record=True)
-    except Exception as exc:  # scipy's errors for a damaged or foreign file
-        raise BadFile(f"not a readable MATLAB .mat file: {type(exc).__name__}: {exc}") from None
+    d = matv5.load(data)
     kind = _kind(d)
     if kind == "qp":
         return _read_qp(d, path)
