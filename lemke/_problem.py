@@ -227,7 +227,7 @@ class Problem:
         if self.kind == "lcp":
             return f"n = {s[0]}"
         if self.kind == "mlcp":
-            return f"n = {s[0]} free + {s[1]} complementary"
+            return f"n = {s[0]} free, m = {s[1]} complementary"
         return f"n = {s[0]}, {s[1]} inequalit{'y' if s[1] == 1 else 'ies'}, {s[2]} equalit{'y' if s[2] == 1 else 'ies'}"
 
     def objective(self, x) -> float:

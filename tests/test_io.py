@@ -395,6 +395,12 @@ def test_npz_errors(tmp_path):
     _bad(path, "'kind' must be a 0-d string")
     np.savez(path, M=np.array([["a"]]), q=np.ones(1))
     _bad(path, "real numbers")
+    np.savez(path, M=np.eye(1), q=np.ones(1))
+    data = bytearray(path.read_bytes())
+    central = data.index(b"PK\x01\x02")
+    data[central + 6] = 0xFF  # "version needed to extract" beyond what zipfile knows
+    path.write_bytes(bytes(data))
+    _bad(path, "zip file version")
     with zipfile.ZipFile(path, "w") as z:
         z.writestr("M.npy", b"not an array")
     _bad(path, "'M' is not a .npy array")
@@ -520,3 +526,13 @@ def test_result_dict_is_plain_json():
     assert doc["status"] == "RAY_TERMINATION" and isinstance(doc["ray"], list)
     json.dumps(doc, allow_nan=False)
     assert io.StringIO(json.dumps(doc)).read()
+
+
+def test_readme_json_examples_read(tmp_path):
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
+    block = readme.split("```json\n", 1)[1].split("```", 1)[0]
+    docs = [json.loads(line) for line in block.replace(",\n ", ", ").splitlines()]
+    assert [d["kind"] for d in docs] == ["lcp", "mlcp", "qp"]
+    for doc in docs:
+        (tmp_path / "x.json").write_text(json.dumps(doc))
+        assert lemke.read_problem(tmp_path / "x.json").solve().success
