@@ -19,6 +19,7 @@ Stacked, ``E x + e = (0, w)`` with ``x = (u, v)``, ``E = [[A, C], [D, B]]`` and
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -29,11 +30,12 @@ from ._options import as_options
 from ._problem import _to_float_array
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import certify
 from .kernels import mlcp as kmlcp
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
+EPS = float(np.finfo(np.float64).eps)
+EPS_EXT = float(np.finfo(np.longdouble).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
 
 
@@ -162,10 +164,17 @@ def _as_mlcp(A, B, C, D, a, b):
 def check_mlcp(E, e, n, x, tol):
     """``(w, ok, residual)`` for the stacked MLCP ``E x + e = (0, w)``: the LCP acceptance
     rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
-    equations, with the tolerances taken from the whole stacked system."""
+    equations, with the tolerances taken from the whole stacked system and ``E x + e``
+    computed in extended precision (so the rounding allowance is that of longdouble)."""
     N = e.size
-    y = E @ x + e
-    s_z, s_w = certify.tolerances(N, _size(E), _size(e), _size(x), float(tol))
+    # In extended precision, so that the test needs no allowance for rounding in computing
+    # E x (such an allowance grows with |x| and would pass any huge x).  Where numpy's
+    # longdouble is plain double the allowance is the double one, as in the LCP test.
+    y_ext = E.astype(np.longdouble) @ x.astype(np.longdouble) + e.astype(np.longdouble)
+    y = y_ext.astype(np.float64)
+    e_max, E_max = _size(e), _size(E)
+    s_z = tol * max(_size(x), e_max / E_max if E_max > 0.0 else 0.0)
+    s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * _size(x)
     v, w = x[n:], y[n:]
     res_eq = _size(y[:n])
     ok = res_eq <= s_w and bool(
@@ -221,6 +230,11 @@ class _Reduction:
         self.T = T
         if self.code != kmlcp.OK:
             return
+        # A constant that cancelled to zero in exact arithmetic comes out at rounding
+        # level; a -1e-16 would make Lemke's method start (and end on a ray) where the
+        # exchanged point already solves the problem.
+        const = T[:, N]
+        const[np.abs(const) < N * EPS * _size(e * self.r)] = 0.0
         # Pair k: output label n + k (w_k), input label N + n + k (v_k).  Where is each?
         where_row = np.full(2 * N, -1)
         where_row[self.row_label] = np.arange(N)
@@ -360,7 +374,9 @@ def _refined_solve(K, rhs, steps=2):
     extended precision (numpy's longdouble): on a degenerate basis a variable that is zero
     comes out zero to the last digits instead of at cond(K) eps.  None if K is singular."""
     try:
-        lu = scipy.linalg.lu_factor(K, check_finite=False)
+        with warnings.catch_warnings():  # a singular K is an answer here, not a warning
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            lu = scipy.linalg.lu_factor(K, check_finite=False)
     except (np.linalg.LinAlgError, ValueError):
         return None
     if not np.all(np.isfinite(lu[0])) or np.any(np.diag(lu[0]) == 0.0):
