@@ -174,7 +174,7 @@ def _table(rows: list[dict]) -> str:
     errors = sum("error" in r for r in rows)
     total = sum(r.get("time_s", 0.0) for r in rows)
     lines.append(f"{len(rows)} problems: {solved} solved, {len(rows) - solved - errors} not solved, "
-                 f"{errors} bad input (see the errors above); solve time {_ms(total)}")
+                 f"{errors} bad input{' (errors above)' if errors else ''}; solve time {_ms(total)}")
     kinds = {r.get("kind") for r in rows}
     if kinds - {"lcp", "-", None}:
         lines.append("size: n (LCP), free+complementary (MLCP), variables x constraint rows (QP)")
