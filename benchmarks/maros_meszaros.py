@@ -20,8 +20,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-import scipy.io
-import scipy.sparse as sp
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import lemke  # noqa: E402
@@ -31,35 +29,12 @@ DEFAULT_DATA = HERE.parents[0].parent / "shared" / "data" / "maros-meszaros"
 
 
 def load(path: Path):
-    """The problem in qpsolvers' form ``(P, q, G, h, A, b, lb, ub)`` and its constant r,
-    following the data folder's README (equalities when u - l < 1e-10, |value| > 9e19 is
-    infinite, each finite side of a general row gives one row of G)."""
-    d = scipy.io.loadmat(path)
-    n = int(d["n"].ravel()[0])
-    P = sp.csc_matrix(d["P"]).astype(np.float64).toarray()
-    q = d["q"].ravel().astype(np.float64)
-    r = float(d["r"].ravel()[0])
-    Afull = sp.csc_matrix(d["A"]).astype(np.float64).toarray()
-    lo = d["l"].ravel().astype(np.float64)
-    up = d["u"].ravel().astype(np.float64)
-    lo[lo < -9e19] = -np.inf
-    up[up > 9e19] = np.inf
-    Ac, lc, uc = Afull[:-n], lo[:-n], up[:-n]
-    lb, ub = lo[-n:], up[-n:]
-    eq = (uc - lc) < 1e-10
-    G_rows, h_rows = [], []
-    for i in np.flatnonzero(~eq):
-        if np.isfinite(uc[i]):
-            G_rows.append(Ac[i])
-            h_rows.append(uc[i])
-        if np.isfinite(lc[i]):
-            G_rows.append(-Ac[i])
-            h_rows.append(-lc[i])
-    G = np.array(G_rows).reshape(-1, n) if G_rows else None
-    h = np.array(h_rows) if h_rows else None
-    A = Ac[eq] if eq.any() else None
-    b = uc[eq] if eq.any() else None
-    return (P, q, G, h, A, b, lb, ub), r
+    """The problem in qpsolvers' form ``(P, q, G, h, A, b, lb, ub)`` and its constant r, read
+    by ``lemke.read_problem`` (the conversion of the data folder's README: equalities when
+    u - l < 1e-10, |value| > 9e19 is infinite, each finite side of a general row one row of
+    G)."""
+    p = lemke.read_problem(path)
+    return tuple(getattr(p, k) for k in ("P", "q", "G", "h", "A", "b", "lb", "ub")), p.objective_constant
 
 
 def references(readme: Path) -> dict:
@@ -84,8 +59,10 @@ def gap_floor(problem, res) -> float:
         total += np.abs(h) @ z
     if b is not None:
         total += np.abs(b) @ y
-    lo, up = np.isfinite(lb), np.isfinite(ub)
-    total += np.abs(lb[lo]) @ zb[lo] + np.abs(ub[up]) @ zb[up]
+    for bound in (lb, ub):
+        if bound is not None:
+            finite = np.isfinite(bound)
+            total += np.abs(bound[finite]) @ zb[finite]
     return float(np.finfo(float).eps * total)
 
 
