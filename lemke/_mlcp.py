@@ -34,7 +34,7 @@ from .kernels import mlcp as kmlcp
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
-PIVOT_TOL_LADDER = (1e-7,)  # a larger pivot tolerance, tried after a numerical failure
+LARGE_PIVOT_TOL = 1e-7  # the pivot tolerance of the last try after numerical failures
 EPS = float(np.finfo(np.float64).eps)
 EPS_EXT = float(np.finfo(np.longdouble).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
@@ -178,7 +178,10 @@ def check_mlcp(E, e, n, x, tol):
     s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * _size(x)
     v, w = x[n:], y[n:]
     res_eq = _size(y[:n])
-    ok = res_eq <= s_w and bool(
+    # A point so large that rounding it to double moves E x by more than the tolerance
+    # cannot be certified at that tolerance (such points come from pivots on noise).
+    certifiable = EPS * E_max * _size(x) <= tol * max(e_max, E_max)
+    ok = certifiable and res_eq <= s_w and bool(
         np.all(v >= -s_z) and np.all(w >= -s_w) and np.all((v <= s_z) | (np.abs(w) <= s_w))
     )
     residual = max(res_eq, float(np.max(np.abs(np.minimum(v, w)))) if v.size else 0.0)
@@ -231,9 +234,10 @@ class _Reduction:
         self.T = T
         if self.code != kmlcp.OK:
             return
-        # A constant that cancelled to zero in exact arithmetic comes out at rounding
-        # level; a -1e-16 would make Lemke's method start (and end on a ray) where the
-        # exchanged point already solves the problem.
+        # Constants that cancel to zero in exact arithmetic come out at rounding level: a
+        # -1e-16 would make Lemke's method start where the exchanged point already solves
+        # the problem.  The data is equilibrated, so the exchanges' rounding is below
+        # N eps max|T|.
         const = T[:, N]
         const[np.abs(const) < N * EPS * _size(e * self.r)] = 0.0
         # Pair k: output label n + k (w_k), input label N + n + k (v_k).  Where is each?
@@ -248,6 +252,10 @@ class _Reduction:
         self.posc = np.where(self.swapped, where_col[n + k], where_col[N + n + k])
         self.M = np.ascontiguousarray(T[np.ix_(self.posr, self.posc)])
         self.q = T[self.posr, N].copy()
+        # The same for the matrix, as a second try (see solve_stacked): left in, noise can be
+        # pivoted on (a column of pure noise passes any test relative to its own size), but
+        # zeroing it changes the tie-breaking of degenerate paths, so it is not the first try.
+        self.M_clean = np.where(np.abs(self.M) < N * EPS * max(1.0, _size(T[:, :N])), 0.0, self.M)
         # Rows where a free variable is basic, and what stayed behind (redundant pairs).
         self.free_rows = np.flatnonzero((self.row_label >= N) & (self.row_label < N + n))
         self.redundant = np.sort(self.row_label[self.row_label < n])  # equations left out
@@ -296,29 +304,43 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
     # A long pivot sequence on badly scaled data can end one degenerate decision off: the
     # final basis, recomputed from the caller's data, then misses by a little.  Lemke's
     # method restarted from that basis (solve_lcp's warm start: fresh factorization, a few
-    # pivots) corrects it.  If it still fails, the method is run again with a larger pivot
-    # tolerance (a pivot on an entry at rounding level makes garbage of everything after it).
+    # pivots) corrects it.  If it still fails, it is run again on the reduced matrix with
+    # its rounding noise zeroed, then with a larger pivot tolerance (a pivot on an entry at
+    # rounding level makes garbage of everything after it).
     pivots = 0
-    for pivot_tol in [opts.pivot_tol] + [t for t in PIVOT_TOL_LADDER if t > opts.pivot_tol]:
-        o = opts if pivot_tol == opts.pivot_tol else replace(opts, pivot_tol=pivot_tol)
-        res = solve_lcp(red.M, red.q, method=method, warm_start=lcp_ws, options=o)
+    tries = [(red.M, opts), (red.M_clean, opts)]
+    if opts.pivot_tol < LARGE_PIVOT_TOL:
+        tries.append((red.M, replace(opts, pivot_tol=LARGE_PIVOT_TOL)))
+    outcomes = []
+    for M, o in tries:
+        res = solve_lcp(M, red.q, method=method, warm_start=lcp_ws, options=o)
         pivots += res.pivots
-        x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
+        out = _evaluate(E, e, n, red, res, opts.tol)
         for _ in range(MAX_RESTARTS):
-            if ok or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
+            if out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
                 break
-            res = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start, options=o)
+            res = solve_lcp(M, red.q, method=method, warm_start=res.warm_start, options=o)
             pivots += res.pivots
-            x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
-        if ok or res.status != Status.NUMERICAL_FAILURE:
+            out = _evaluate(E, e, n, red, res, opts.tol)
+        outcomes.append((M, o, res, out))
+        if out[2] or res.status == Status.MAX_PIVOTS:
             break
         lcp_ws = None
+    # The first solved try; else the first ray (for its certificate); else the first try.
+    M, o, res, (x, w, ok, residual, basis) = next(
+        (t for t in outcomes if t[3][2]),
+        next((t for t in outcomes if t[2].status == Status.RAY_TERMINATION), outcomes[0]),
+    )
+    if ok and res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
+        # The exchanged point already solves it; rounding in a constant that should be
+        # zero made the reduced LCP look unsolved (a ray at once).
+        return _result(x, w, n, Status.SOLVED, pivots, residual, None, basis)
     if res.status in (Status.SOLVED, Status.NUMERICAL_FAILURE):
         # Accepted, but not exact to rounding: on a degenerate problem a basic variable
         # that should be zero can come out slightly negative at the accepted basis.  One
         # restart with a much stricter acceptance test moves to the exact basis nearby.
         if ok and residual > CLEAN * max(_size(e), _size(E) * _size(x)):
-            res2 = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start,
+            res2 = solve_lcp(M, red.q, method=method, warm_start=res.warm_start,
                              options=replace(o, tol=opts.tol * 1e-3))
             out = _evaluate(E, e, n, red, res2, opts.tol)
             if out[2] and out[3] < residual:
