@@ -311,3 +311,43 @@ def test_warm_start_sequence(method):
         total_warm += res.pivots
         ws = res.warm_start
     assert total_warm < cold.pivots * 5
+
+
+# ------------------------------------------------------------------ regressions from fuzzing
+
+def _fuzz_case(n, m, p, rank, seed, bounds, scale):
+    """The generator of test_property_feasible_qps_are_solved, for one drawn case."""
+    rng = np.random.default_rng(seed)
+    p = min(p, n)
+    B = rng.standard_normal((n, min(rank, n)))
+    P, q = scale * (B @ B.T), scale * rng.standard_normal(n)
+    x0 = rng.standard_normal(n)
+    G = rng.standard_normal((m, n))
+    if m >= 2:
+        G[-1] = G[0]
+    h = G @ x0 + rng.uniform(0.0, 1.0, m) * (rng.random(m) < 0.7)
+    A = rng.standard_normal((p, n))
+    b = A @ x0
+    lb = {"none": None, "mixed": np.where(rng.random(n) < 0.5, x0 - 1.0, -np.inf)}[bounds]
+    ub = {"none": None, "mixed": np.where(rng.random(n) < 0.5, x0 + 1.0, np.inf)}[bounds]
+    return P, q, G if m else None, h if m else None, A if p else None, b if p else None, lb, ub
+
+
+@pytest.mark.parametrize("case,expected", [
+    # the reduced LCP was pure rounding noise (~1e-13): Lemke pivoted on it
+    ((2, 8, 2, 3, 2691688280, "none", 1.0), lemke.Status.SOLVED),
+    # ... and reached x ~ 1e16, which an allowance growing with |x| once passed as SOLVED
+    ((6, 3, 0, 1, 12842682, "mixed", 1e-4), lemke.Status.DUAL_INFEASIBLE),
+    # a constant of -1e-14 that should be 0: a ray at once although the point solved it
+    ((2, 7, 2, 2, 3001, "none", 1e-4), lemke.Status.SOLVED),
+    # large but accurate multipliers (|y| ~ 1e7) must not be refused as uncertifiable
+    ((4, 7, 3, 3, 1602336078, "none", 1e4), lemke.Status.SOLVED),
+])
+def test_fuzz_regressions(case, expected, method):
+    P, q, G, h, A, b, lb, ub = _fuzz_case(*case)
+    res = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method)
+    assert res.status == expected, res
+    if expected == lemke.Status.SOLVED:
+        assert_qp_kkt(P, q, G, h, A, b, lb, ub, res, rtol=1e-7)
+    else:
+        assert_unbounded_direction(P, q, G, A, lb, ub, res.certificate)
