@@ -5,14 +5,18 @@ of one size in parallel threads), :func:`solve_mlcp` (mixed LCPs), :func:`solve_
 QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
 :class:`LCPBatchResult`, :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
 :class:`Options`, :class:`WarmStart`, :func:`pivot_column` (one step of the unrevised
-method), and the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`.
+method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as values
+(:class:`Problem`) and in files (:func:`read_problem`, :func:`write_problem`,
+:func:`write_result`, :class:`ProblemFormatError`).
 """
 from ._batch import solve_lcp_batch
+from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
 from ._lcp import METHODS, solve_lcp
 from ._mlcp import MLCPResult, solve_mlcp
 from ._options import Options
 from ._pivot_column import pivot_column
+from ._problem import Problem
 from ._qp import Certificate, QPResult, solve_qp
 from ._result import LCPBatchResult, LCPResult, WarmStart
 from ._status import Status
@@ -26,6 +30,8 @@ __all__ = [
     "LCPResult",
     "MLCPResult",
     "Options",
+    "Problem",
+    "ProblemFormatError",
     "QPResult",
     "Status",
     "WarmStart",
@@ -33,9 +39,13 @@ __all__ = [
     "is_lcp_solution",
     "lcp_residual",
     "pivot_column",
+    "read_problem",
+    "result_to_dict",
     "solve_lcp",
     "solve_lcp_batch",
     "solve_mlcp",
     "solve_qp",
+    "write_problem",
+    "write_result",
     "__version__",
 ]

@@ -1,18 +1,25 @@
-"""The ``lemke`` command.  ``main(argv)`` returns the exit code: 0 solved, 1 read but not
-solved, 2 usage or input error (one line on stderr, never a traceback)."""
+"""The ``lemke`` command.  ``main(argv)`` returns the exit code: 0 all solved, 1 some problem
+read but not solved, 2 a usage or input error (one line on stderr naming the file and what is
+wrong, never a traceback), 130 interrupted."""
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
 from . import problems
-from ._lcp import METHODS, solve_lcp
+from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
+from ._lcp import METHODS
 from ._options import Options
+from ._problem import Problem
 
 DEFAULT_PROBLEM = "cps-4.4.7"
+_SHOWN = 8  # entries of a solution shown in the human output
 
 
 class _UsageError(Exception):
@@ -24,76 +31,341 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(message)
 
 
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
+    return value
+
+
+def _tolerance(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number, got {text!r}") from None
+    if not 0.0 <= value < 1.0:  # NaN fails too
+        raise argparse.ArgumentTypeError(f"must be in [0, 1), got {text}")
+    return value
+
+
 def _parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="lemke", description="Solve linear complementarity problems by Lemke's method.")
-    sub = p.add_subparsers(dest="command")
-    s = sub.add_parser("solve", help="solve a built-in problem (see `lemke problems`)")
-    s.add_argument("source", nargs="*", help=f"built-in problem name (default: {DEFAULT_PROBLEM})")
-    s.add_argument("--method", default="tableau", choices=METHODS)
-    s.add_argument("--max-pivots", type=int, default=None)
-    s.add_argument("--tol", type=float, default=None, help="acceptance tolerance (relative)")
+    p = _Parser(prog="lemke", description="Solve linear complementarity problems (and MLCPs and "
+                "convex QPs) by Lemke's method.  Exit code: 0 solved, 1 not solved, 2 bad input.")
+    p.add_argument("--version", action="store_true", help="print the version and exit")
+    sub = p.add_subparsers(dest="command", parser_class=_Parser)
+    s = sub.add_parser("solve", help="solve problems from files, directories or the built-in list",
+                       description="Solve each SOURCE: a problem file (formats: "
+                       f"{', '.join(sorted(EXTENSIONS))}; also told by content), a directory (its "
+                       "problem files, sorted) or a built-in problem (`lemke problems`).  With no "
+                       f"SOURCE, the built-in example {DEFAULT_PROBLEM}.")
+    s.add_argument("source", nargs="*", metavar="SOURCE", help="file, directory or built-in name")
+    s.add_argument("--method", default="tableau", choices=METHODS, help="pivoting method (default: tableau)")
+    s.add_argument("--format", choices=FORMATS, help="read every file in this format (default: by extension and content)")
+    s.add_argument("--max-pivots", type=_count, metavar="N", help="pivot limit (default: 100 (n + 1))")
+    s.add_argument("--tol", type=_tolerance, metavar="X", help="acceptance tolerance, relative (default: 1e-9)")
+    s.add_argument("--pivot-tol", type=_tolerance, metavar="X", help="ratio-test threshold, relative (default: 1e-11)")
+    s.add_argument("--tie-tol", type=_tolerance, metavar="X", help="tie threshold, relative (default: 1e-11)")
+    s.add_argument("--json", action="store_true", help="print the result(s) as JSON on stdout (a list for several)")
+    s.add_argument("--out", metavar="FILE", help="write the result(s) to FILE (.json, or .npz for one problem)")
     sub.add_parser("problems", help="list the built-in problems")
     return p
 
 
-def _lookup(name: str) -> problems.Problem:
-    base, _, arg = name.partition("-") if name.startswith("murty") else (name, "", "")
-    if base not in problems.NAMED:
-        raise _UsageError(f"unknown problem {name!r}; see `lemke problems`")
-    if arg:
-        if not arg.isdigit() or not 1 <= int(arg) <= 30:
-            raise _UsageError(f"{name!r}: the size of murty-N must be an integer in 1..30")
-        return problems.NAMED[base](int(arg))
-    return problems.NAMED[base]()
+# --------------------------------------------------------------------------- sources
+
+def _builtin(name: str):
+    """The built-in problem ``name`` (``murty-N`` for Murty's example of size N), or None."""
+    if name in problems.NAMED:
+        return problems.NAMED[name]()
+    base, _, size = name.partition("-")
+    if base == "murty" and size:
+        if not size.isdigit() or not 1 <= int(size) <= 30:
+            raise _UsageError(f"{name}: the size N of murty-N must be an integer in 1..30")
+        return problems.murty(int(size))
+    return None
 
 
-def _show(vec: np.ndarray, limit: int = 10) -> str:
-    head = np.array2string(vec[:limit], precision=6, suppress_small=True, separator=", ")
-    return head if vec.size <= limit else f"{head[:-1]}, ...] ({vec.size} entries)"
+def _sources(names: list[str]) -> list:
+    """Each SOURCE as a Path (a file to read) or a Problem (built-in); directories expanded."""
+    out = []
+    for name in names:
+        path = Path(name)
+        if path.is_dir():
+            files = sorted(p for p in path.iterdir()
+                           if p.is_file() and p.suffix.lower() in EXTENSIONS and not p.name.startswith("."))
+            if not files:
+                raise _UsageError(f"{name}: no problem files ({', '.join(sorted(EXTENSIONS))}) in this directory")
+            out += files
+        elif path.exists() or os.path.lexists(path):
+            out.append(path)
+        else:
+            prob = _builtin(name)
+            if prob is None and (os.sep in name or path.suffix.lower() in EXTENSIONS):
+                raise _UsageError(f"{name}: no such file or directory")
+            if prob is None:
+                raise _UsageError(f"{name}: no such file, and not a built-in problem (see `lemke problems`)")
+            out.append(prob)
+    return out
+
+
+# --------------------------------------------------------------------------- output
+
+def _show(vec: np.ndarray) -> str:
+    head = np.array2string(vec[:_SHOWN], precision=6, suppress_small=True, separator=", ",
+                           max_line_width=10**6)
+    return head if vec.size <= _SHOWN else f"{head[:-1]}, ...] ({vec.size} entries)"
+
+
+def _solution(prob, res) -> list[tuple[str, str]]:
+    if prob.kind == "lcp":
+        return [("z", _show(res.z))]
+    if prob.kind == "mlcp":
+        return [("u", _show(res.u)), ("v", _show(res.v))]
+    rows = [("x", _show(res.x))]
+    if res.obj is not None and np.isfinite(res.obj):
+        constant = f" (incl. the constant {prob.objective_constant:g})" if prob.objective_constant else ""
+        rows.append(("objective", f"{res.obj + prob.objective_constant:.10g}{constant}"))
+    return rows
+
+
+def _residual(res) -> float:
+    if hasattr(res, "residual"):
+        return float(res.residual)
+    return float(max(res.primal_residual, res.dual_residual))  # a QP
+
+
+def _report(prob, res, seconds: float) -> str:
+    lines = [f"{prob.name} ({prob.kind.upper()}, {prob.size_text()})", f"  from       {prob.source}",
+             f"  status     {res.status.name}: {res.message}", f"  pivots     {res.pivots}",
+             f"  residual   {_residual(res):.3g}", f"  time       {_ms(seconds)}"]
+    lines += [f"  {key:10s} {text}" for key, text in _solution(prob, res)]
+    return "\n".join(lines)
+
+
+def _ms(seconds: float) -> str:
+    return f"{seconds * 1e3:.3f} ms" if seconds < 1 else f"{seconds:.3f} s"
+
+
+def _size(prob) -> str:
+    s = prob.shape
+    if prob.kind == "lcp":
+        return str(s[0])
+    return f"{s[0]}+{s[1]}" if prob.kind == "mlcp" else f"{s[0]}x{s[1] + s[2]}"
+
+
+def _table(rows: list[dict]) -> str:
+    head = ("name", "kind", "size", "status", "pivots", "residual", "time")
+    cells = [head]
+    for r in rows:
+        if "error" in r:
+            cells.append((r["name"], r.get("kind", "-"), r.get("size", "-"), "ERROR", "-", "-", "-"))
+        else:
+            cells.append((r["name"], r["kind"], r["size"], r["status"], str(r["pivots"]),
+                          f"{r['residual_']:.2g}", _ms(r["time_s"])))
+    widths = [max(len(c[i]) for c in cells) for i in range(len(head))]
+    right = {4, 5, 6}
+    lines = ["  ".join(c.rjust(w) if i in right else c.ljust(w) for i, (c, w) in enumerate(zip(cell, widths))).rstrip()
+             for cell in cells]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    solved = sum(r.get("status") == "SOLVED" for r in rows)
+    errors = sum("error" in r for r in rows)
+    total = sum(r.get("time_s", 0.0) for r in rows)
+    lines.append(f"{len(rows)} problems: {solved} solved, {len(rows) - solved - errors} not solved, "
+                 f"{errors} bad input{' (errors above)' if errors else ''}; solve time {_ms(total)}")
+    kinds = {r.get("kind") for r in rows}
+    if kinds - {"lcp", "-", None}:
+        lines.append("size: n (LCP), free+complementary (MLCP), variables x constraint rows (QP)")
+    return "\n".join(lines)
+
+
+class _Progress:
+    """A one-line progress bar on stderr, only when stderr is a terminal."""
+
+    def __init__(self, total: int):
+        self.total = total
+        self.on = total > 1 and sys.stderr.isatty()
+
+    def show(self, done: int, label: str) -> None:
+        if self.on:
+            filled = 30 * done // self.total
+            sys.stderr.write(f"\r[{'#' * filled}{'.' * (30 - filled)}] {done}/{self.total} {label[:40]:40s}")
+            sys.stderr.flush()
+
+    def clear(self) -> None:
+        if self.on:
+            sys.stderr.write("\r" + " " * 80 + "\r")
+            sys.stderr.flush()
+
+
+# --------------------------------------------------------------------------- commands
+
+def _options(args) -> Options:
+    opts = {k: getattr(args, k) for k in ("max_pivots", "tol", "pivot_tol", "tie_tol") if getattr(args, k) is not None}
+    return Options(**opts)
+
+
+def _check_out(out: str | None, sources: list) -> None:
+    if out is None:
+        return
+    suffix = Path(out).suffix.lower()
+    if suffix not in (".json", ".npz"):
+        raise _UsageError(f"--out {out}: the result is written as .json or .npz, not {suffix or 'a file without extension'}")
+    if suffix == ".npz" and len(sources) > 1:
+        raise _UsageError(f"--out {out}: several results are written as .json (a list), not .npz")
+    if Path(out).is_dir():
+        raise _UsageError(f"--out {out}: is a directory")
+    for src in sources:
+        if isinstance(src, Path) and _same(out, src):
+            raise _UsageError(f"--out {out}: refusing to write over the input file {src}")
+
+
+def _same(a, b) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.abspath(a) == os.path.abspath(b)
 
 
 def _solve(args) -> int:
-    names = args.source or [DEFAULT_PROBLEM]
-    if not args.source:
-        print(f"No problem given: solving the built-in example {DEFAULT_PROBLEM!r}.")
-    opts = {}
-    if args.max_pivots is not None:
-        opts["max_pivots"] = args.max_pivots
-    if args.tol is not None:
-        opts["tol"] = args.tol
+    if not args.source:  # said on stderr under --json, so that stdout stays JSON
+        print(f"No problem given: solving the built-in example {DEFAULT_PROBLEM!r} "
+              "(`lemke problems` lists the others; `lemke solve FILE` solves a file).",
+              file=sys.stderr if args.json else sys.stdout)
+    sources = _sources(args.source or [DEFAULT_PROBLEM])
+    _check_out(args.out, sources)
+    options = _options(args)
+    single = len(sources) == 1
+    rows, code = [], 0
+    progress = _Progress(len(sources))
+    for k, src in enumerate(sources):
+        progress.show(k, src.name)
+        row = _run_one(src, args, options)
+        rows.append(row)
+        if "error" in row:
+            progress.clear()
+            print(f"lemke: error: {row['error']}", file=sys.stderr)
+            code = 2
+        else:
+            code = max(code, 0 if row["status"] == "SOLVED" else 1)
+            if single and not args.json:
+                print(_report(row["problem"], row["result"], row["time_s"]))
+    progress.clear()
+    docs = [_doc(row) for row in rows]
+    if args.json:
+        print(_json(docs[0]) if single else "[\n" + ",\n".join(map(_json, docs)) + "\n]")
+    elif not single:
+        print(_table(rows))
+    if args.out is not None:
+        _write_out(args.out, docs, rows, sources)
+    return code
+
+
+_WARM = set()
+
+
+def _warm_up(kind: str, method: str) -> None:
+    """Load the kernels for a kind of problem (from numba's cache, or compile them, once per
+    run) before timing one: the times shown are those of the solves."""
+    if (kind, method) not in _WARM:
+        _WARM.add((kind, method))
+        example = {"lcp": problems.cps_447, "qp": problems.hs21}.get(kind)
+        if example is not None:
+            example().solve(method=method)
+        else:
+            Problem.mlcp([[2.0]], [[1.0]], [[1.0]], [[-1.0]], [-1.0], [-1.0]).solve(method=method)
+
+
+def _json(doc: dict) -> str:
+    """A result as JSON, one key a line (arrays on one line)."""
+    items = (f" {json.dumps(k)}: {json.dumps(v, allow_nan=False)}" for k, v in doc.items())
+    return "{\n" + ",\n".join(items) + "\n}"
+
+
+def _doc(row: dict) -> dict:
+    if "error" in row:
+        return {"name": row["name"], "error": row["error"]}
+    return result_to_dict(row["result"], row["problem"], time_s=row["time_s"])
+
+
+def _write_out(out: str, docs: list, rows: list, sources: list) -> None:
+    protect = [s for s in sources if isinstance(s, Path)]
     try:
-        options = Options(**opts)
-    except (TypeError, ValueError) as exc:
-        raise _UsageError(str(exc)) from None
-    worst = 0
-    for name in names:
-        prob = _lookup(name)
+        if len(rows) > 1:
+            write_result(docs, out, protect=protect)
+        elif "error" not in rows[0]:
+            row = rows[0]
+            write_result(row["result"], out, problem=row["problem"], protect=protect, time_s=row["time_s"])
+    except (OSError, ValueError) as exc:
+        raise _UsageError(f"--out {out}: cannot write: {getattr(exc, 'strerror', None) or exc}") from None
+
+
+def _run_one(src, args, options) -> dict:
+    """Read and solve one source: its row of the table (with "error", or the result)."""
+    if isinstance(src, Path):
+        try:
+            prob = read_problem(src, format=args.format)
+        except ProblemFormatError as exc:
+            return {"name": src.name, "error": str(exc)}
+        name, where = src.name, str(src)
+    else:
+        prob, name, where = src, src.name, src.name
+    row = {"name": name, "kind": prob.kind, "size": _size(prob), "problem": prob}
+    try:
+        _warm_up(prob.kind, args.method)
         t0 = time.perf_counter()
-        res = solve_lcp(prob.M, prob.q, method=args.method, options=options)
-        dt = time.perf_counter() - t0
-        print(f"{prob.name} (n = {prob.q.size}; {prob.source})")
-        print(f"  status   {res.status.name}: {res.message}")
-        print(f"  pivots   {res.pivots}")
-        print(f"  residual {res.residual:.3g}")
-        print(f"  time     {dt * 1e3:.3f} ms")
-        print(f"  z        {_show(res.z)}")
-        worst = max(worst, 0 if res.success else 1)
-    return worst
+        res = prob.solve(method=args.method, options=options)
+    except (NotImplementedError, ValueError, TypeError) as exc:  # the solver refused the data
+        return dict(row, error=f"{where}: {' '.join(str(exc).split())}")
+    row.update(status=res.status.name, pivots=res.pivots, residual_=_residual(res),
+               time_s=time.perf_counter() - t0, result=res)
+    return row
+
+
+def _list_problems() -> int:
+    named = [fn() for fn in problems.NAMED.values()]
+    width = max(len(p.name) for p in named) + 2
+    print("Built-in problems (`lemke solve NAME`; murty-N for Murty's example of size N):")
+    for p in named:
+        murty = p.name.startswith("murty")
+        size = f"n = N (default {p.q.size})" if murty else p.size_text()
+        print(f"  {'murty-N' if murty else p.name:{width}s}{p.kind.upper():5s} {size}")
+        print(f"  {'':{width}s}{p.source}")
+    return 0
 
 
 def main(argv=None) -> int:
     try:
         args = _parser().parse_args(argv)
-        if args.command == "problems":
-            for name, fn in problems.NAMED.items():
-                p = fn()
-                print(f"{name:12s} n = {p.q.size:<3d} {p.source}")
+        if args.version:
+            from . import __version__
+
+            print(f"lemke {__version__}")
             return 0
+        if args.command == "problems":
+            return _list_problems()
         if args.command == "solve":
             return _solve(args)
         raise _UsageError("no command given; try `lemke solve` or `lemke problems` (or --help)")
     except _UsageError as exc:
         print(f"lemke: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("lemke: interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:  # e.g. `lemke solve dir | head`
+        try:
+            sys.stdout = open(os.devnull, "w")
+        except OSError:
+            pass
+        return 1
+    except Exception as exc:  # never a traceback; LEMKE_TRACEBACK=1 shows it
+        if os.environ.get("LEMKE_TRACEBACK"):
+            raise
+        print(f"lemke: error: internal error ({type(exc).__name__}: {' '.join(str(exc).split())}); "
+              "set LEMKE_TRACEBACK=1 to see where", file=sys.stderr)
         return 2
 
 

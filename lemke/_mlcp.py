@@ -22,18 +22,19 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
-import scipy.linalg
 
 from ._lcp import METHODS, solve_lcp
 from ._options import as_options
 from ._problem import _to_float_array
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import certify
 from .kernels import mlcp as kmlcp
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
+LARGE_PIVOT_TOL = 1e-7  # the pivot tolerance of the last try after numerical failures
+EPS = float(np.finfo(np.float64).eps)
+EPS_EXT = float(np.finfo(np.longdouble).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
 
 
@@ -162,13 +163,23 @@ def _as_mlcp(A, B, C, D, a, b):
 def check_mlcp(E, e, n, x, tol):
     """``(w, ok, residual)`` for the stacked MLCP ``E x + e = (0, w)``: the LCP acceptance
     rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
-    equations, with the tolerances taken from the whole stacked system."""
+    equations, with the tolerances taken from the whole stacked system and ``E x + e``
+    computed in extended precision (so the rounding allowance is that of longdouble)."""
     N = e.size
-    y = E @ x + e
-    s_z, s_w = certify.tolerances(N, _size(E), _size(e), _size(x), float(tol))
+    # In extended precision, so that the test needs no allowance for rounding in computing
+    # E x (such an allowance grows with |x| and would pass any huge x).  Where numpy's
+    # longdouble is plain double the allowance is the double one, as in the LCP test.
+    y_ext = E.astype(np.longdouble) @ x.astype(np.longdouble) + e.astype(np.longdouble)
+    y = y_ext.astype(np.float64)
+    e_max, E_max = _size(e), _size(E)
+    s_z = tol * max(_size(x), e_max / E_max if E_max > 0.0 else 0.0)
+    s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * _size(x)
     v, w = x[n:], y[n:]
     res_eq = _size(y[:n])
-    ok = res_eq <= s_w and bool(
+    # A point so large that rounding it to double moves E x by far more than the tolerance
+    # cannot be certified (such points, |x| ~ 1e16 on data ~ 1, come from pivots on noise).
+    certifiable = EPS * E_max * _size(x) <= 1e3 * tol * max(e_max, E_max)
+    ok = certifiable and res_eq <= s_w and bool(
         np.all(v >= -s_z) and np.all(w >= -s_w) and np.all((v <= s_z) | (np.abs(w) <= s_w))
     )
     residual = max(res_eq, float(np.max(np.abs(np.minimum(v, w)))) if v.size else 0.0)
@@ -221,6 +232,12 @@ class _Reduction:
         self.T = T
         if self.code != kmlcp.OK:
             return
+        # Constants that cancel to zero in exact arithmetic come out at rounding level: a
+        # -1e-16 would make Lemke's method start where the exchanged point already solves
+        # the problem.  The data is equilibrated, so the exchanges' rounding is below
+        # N eps max|T|.
+        const = T[:, N]
+        const[np.abs(const) < N * EPS * _size(e * self.r)] = 0.0
         # Pair k: output label n + k (w_k), input label N + n + k (v_k).  Where is each?
         where_row = np.full(2 * N, -1)
         where_row[self.row_label] = np.arange(N)
@@ -233,6 +250,10 @@ class _Reduction:
         self.posc = np.where(self.swapped, where_col[n + k], where_col[N + n + k])
         self.M = np.ascontiguousarray(T[np.ix_(self.posr, self.posc)])
         self.q = T[self.posr, N].copy()
+        # The same for the matrix, as a second try (see solve_stacked): left in, noise can be
+        # pivoted on (a column of pure noise passes any test relative to its own size), but
+        # zeroing it changes the tie-breaking of degenerate paths, so it is not the first try.
+        self.M_clean = np.where(np.abs(self.M) < N * EPS * max(1.0, _size(T[:, :N])), 0.0, self.M)
         # Rows where a free variable is basic, and what stayed behind (redundant pairs).
         self.free_rows = np.flatnonzero((self.row_label >= N) & (self.row_label < N + n))
         self.redundant = np.sort(self.row_label[self.row_label < n])  # equations left out
@@ -278,26 +299,47 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
         vb = np.zeros(m, dtype=bool)
         vb[list(warm_start.z_basic)] = True
         lcp_ws = WarmStart._trusted(m, tuple(np.flatnonzero(red.to_reduced(vb)).tolist()))
-    res = solve_lcp(red.M, red.q, method=method, warm_start=lcp_ws, options=opts)
-    pivots = res.pivots
-    x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
     # A long pivot sequence on badly scaled data can end one degenerate decision off: the
     # final basis, recomputed from the caller's data, then misses by a little.  Lemke's
     # method restarted from that basis (solve_lcp's warm start: fresh factorization, a few
-    # pivots) corrects it.
-    for _ in range(MAX_RESTARTS):
-        if ok or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
-            break
-        res = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start, options=opts)
+    # pivots) corrects it.  If it still fails, it is run again on the reduced matrix with
+    # its rounding noise zeroed, then with a larger pivot tolerance (a pivot on an entry at
+    # rounding level makes garbage of everything after it).
+    pivots = 0
+    tries = [(red.M, opts), (red.M_clean, opts)]
+    if opts.pivot_tol < LARGE_PIVOT_TOL:
+        tries.append((red.M, replace(opts, pivot_tol=LARGE_PIVOT_TOL)))
+    outcomes = []
+    for M, o in tries:
+        res = solve_lcp(M, red.q, method=method, warm_start=lcp_ws, options=o)
         pivots += res.pivots
-        x, w, ok, residual, basis = _evaluate(E, e, n, red, res, opts.tol)
+        out = _evaluate(E, e, n, red, res, opts.tol)
+        for _ in range(MAX_RESTARTS):
+            if out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
+                break
+            res = solve_lcp(M, red.q, method=method, warm_start=res.warm_start, options=o)
+            pivots += res.pivots
+            out = _evaluate(E, e, n, red, res, opts.tol)
+        outcomes.append((M, o, res, out))
+        if out[2] or res.status == Status.MAX_PIVOTS:
+            break
+        lcp_ws = None
+    # The first solved try; else the first ray (for its certificate); else the first try.
+    M, o, res, (x, w, ok, residual, basis) = next(
+        (t for t in outcomes if t[3][2]),
+        next((t for t in outcomes if t[2].status == Status.RAY_TERMINATION), outcomes[0]),
+    )
+    if ok and res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
+        # The exchanged point already solves it; rounding in a constant that should be
+        # zero made the reduced LCP look unsolved (a ray at once).
+        return _result(x, w, n, Status.SOLVED, pivots, residual, None, basis)
     if res.status in (Status.SOLVED, Status.NUMERICAL_FAILURE):
         # Accepted, but not exact to rounding: on a degenerate problem a basic variable
         # that should be zero can come out slightly negative at the accepted basis.  One
         # restart with a much stricter acceptance test moves to the exact basis nearby.
         if ok and residual > CLEAN * max(_size(e), _size(E) * _size(x)):
-            res2 = solve_lcp(red.M, red.q, method=method, warm_start=res.warm_start,
-                             options=replace(opts, tol=opts.tol * 1e-3))
+            res2 = solve_lcp(M, red.q, method=method, warm_start=res.warm_start,
+                             options=replace(o, tol=opts.tol * 1e-3))
             out = _evaluate(E, e, n, red, res2, opts.tol)
             if out[2] and out[3] < residual:
                 pivots += res2.pivots
@@ -356,21 +398,21 @@ def _basis_point(E, e, n, v_basic, red):
 
 
 def _refined_solve(K, rhs, steps=2):
-    """Solve K x = rhs by LU with iterative refinement whose residuals are computed in
-    extended precision (numpy's longdouble): on a degenerate basis a variable that is zero
-    comes out zero to the last digits instead of at cond(K) eps.  None if K is singular."""
+    """Solve K x = rhs with iterative refinement whose residuals are computed in extended
+    precision (numpy's longdouble): on a degenerate basis a variable that is zero comes
+    out zero to the last digits instead of at cond(K) eps.  None if K is singular.
+
+    numpy's LAPACK only, never scipy's: the two carry separate OpenBLAS thread pools, and
+    alternating between them on a busy machine made a 200 x 200 Cholesky take 0.4 s."""
     try:
-        lu = scipy.linalg.lu_factor(K, check_finite=False)
-    except (np.linalg.LinAlgError, ValueError):
+        x = np.linalg.solve(K, rhs)
+        K_ext = K.astype(np.longdouble)
+        rhs_ext = rhs.astype(np.longdouble)
+        for _ in range(steps):
+            r = (rhs_ext - K_ext @ x.astype(np.longdouble)).astype(np.float64)
+            x = x + np.linalg.solve(K, r)
+    except np.linalg.LinAlgError:
         return None
-    if not np.all(np.isfinite(lu[0])) or np.any(np.diag(lu[0]) == 0.0):
-        return None
-    x = scipy.linalg.lu_solve(lu, rhs, check_finite=False)
-    K_ext = K.astype(np.longdouble)
-    rhs_ext = rhs.astype(np.longdouble)
-    for _ in range(steps):
-        r = (rhs_ext - K_ext @ x.astype(np.longdouble)).astype(np.float64)
-        x = x + scipy.linalg.lu_solve(lu, r, check_finite=False)
     return x if np.isfinite(x).all() else None
 
 

@@ -26,7 +26,7 @@ or a direction of unbounded descent.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -56,7 +56,8 @@ class Certificate:
     ``= 0`` where both are, and ``value = q'dx < 0``: the objective decreases without bound
     along it from any feasible point.
 
-    Both are scaled to largest entry 1.
+    Both are scaled to largest entry 1.  A QP that is both primal and dual infeasible is
+    reported primal infeasible, and its certificate then holds ``dx`` as well.
     """
 
     kind: str
@@ -327,15 +328,10 @@ def _solve(qp, method, opts, warm_start, certify):
     x, y, z, xs, zu = qp.unpack(np.concatenate([r.u, r.v]))
     z_box = _bound_multipliers(qp, x, y, z, r.w, zu)
     status, certificate = r.status, None
-    if status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
-        status, certificate = Status.NUMERICAL_FAILURE, None
-        if certify:
-            certificate = _certificate_from_ray(qp, r.ray, opts.tol) if r.ray is not None else None
-            if certificate is None:
-                certificate = _certificate_by_lp(qp, method, opts)
-            if certificate is not None:
-                status = (Status.PRIMAL_INFEASIBLE if certificate.kind == "primal_infeasible"
-                          else Status.DUAL_INFEASIBLE)
+    if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS:
+        status, certificate = _verdict(qp, r, method, opts)
+    elif status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
+        status = Status.NUMERICAL_FAILURE  # an auxiliary problem: no certificate sought
     return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start)
 
 
@@ -455,45 +451,67 @@ def _size(a):
     return float(np.max(np.abs(a))) if a.size else 0.0
 
 
-def _certificate_from_ray(qp, ray, tol):
-    """Along a ray of a monotone KKT system, P dx = 0 and the ray splits in two: (dy, dz) is
-    a Farkas vector when h'dz + b'dy + ... < 0, else dx is a direction of descent."""
-    dx = qp.direction(ray)
-    _, dy, dz, _, dzu = qp.unpack(ray)
-    return _check_farkas(qp, dy, dz, tol) or _check_direction(qp, dx, tol)
+def _verdict(qp, r, method, opts):
+    """``(status, certificate)`` for a KKT system without a solution found.
+
+    Along a ray of a monotone KKT system P dx = 0, and the ray splits in two: (dy, dz) is a
+    Farkas vector when h'dz + b'dy + ... < 0, else dx is a direction of descent.  When
+    there is no ray (the equations were inconsistent, or the method failed) or it gives
+    only a direction, two small bounded LPs, solved by the same method, look for the
+    certificates.  Primal infeasibility wins: a QP with no feasible point is reported so
+    even if it is also dual infeasible (the certificate then carries both).  Nothing
+    verified: NUMERICAL_FAILURE."""
+    farkas = direction = None
+    if r.ray is not None:
+        _, dy, dz, _, _ = qp.unpack(r.ray)
+        farkas = _check_farkas(qp, dy, dz, opts.tol)
+        direction = _check_direction(qp, qp.direction(r.ray), opts.tol)
+    if farkas is None:
+        farkas = _farkas_by_lp(qp, method, opts)
+    if farkas is None and direction is None:
+        direction = _direction_by_lp(qp, method, opts)
+    if farkas is not None:
+        if direction is not None:
+            farkas = replace(farkas, dx=direction.dx)
+        return Status.PRIMAL_INFEASIBLE, farkas
+    if direction is not None:
+        return Status.DUAL_INFEASIBLE, direction
+    return Status.NUMERICAL_FAILURE, None
 
 
-def _certificate_by_lp(qp, method, opts):
-    """When the ray is not available (the equations were inconsistent, or the ray failed its
-    check): find a certificate by Lemke's method on two small bounded LPs, each normalized
-    by a box, and check it."""
+def _farkas_by_lp(qp, method, opts):
+    """min h'z + b'y - lb'zl + ub'zu  s.t.  A'y + G'z - zl + zu = 0, y in [-1, 1], the
+    others in [0, 1]: a negative optimum is a Farkas vector."""
     n = qp.n
     lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
-    # Farkas: min h'z + b'y - lb'zl + ub'zu  s.t.  A'y + G'z - zl + zu = 0, boxes [0, 1].
     p, mg = qp.A.shape[0], qp.G.shape[0]
     il, iu = np.flatnonzero(lo), np.flatnonzero(up)
     k = p + mg + il.size + iu.size
-    if k:
-        Aeq = np.zeros((n, k))
-        Aeq[:, :p] = qp.A.T
-        Aeq[:, p:p + mg] = qp.G.T
-        Aeq[il, p + mg + np.arange(il.size)] = -1.0
-        Aeq[iu, p + mg + il.size + np.arange(iu.size)] = 1.0
-        c = np.concatenate([qp.b, qp.h, -qp.lb[il], qp.ub[iu]])
-        lbx = np.concatenate([-np.ones(p), np.zeros(k - p)])
-        aux = _QP(np.zeros((k, k)), c, None, None, Aeq, np.zeros(n), lbx, np.ones(k))
-        r = _solve(aux, method, opts, None, certify=False)
-        if r.status == Status.SOLVED:
-            cert = _check_farkas(qp, r.x[:p], r.x[p:p + mg], opts.tol)
-            if cert is not None:
-                return cert
-    # Direction: min q'd  s.t.  P d = 0, A d = 0, G d <= 0, d in the bounds' cone and [-1, 1].
-    lbd = np.where(lo, 0.0, -1.0)
-    ubd = np.where(up, 0.0, 1.0)
+    if k == 0:
+        return None
+    Aeq = np.zeros((n, k))
+    Aeq[:, :p] = qp.A.T
+    Aeq[:, p:p + mg] = qp.G.T
+    Aeq[il, p + mg + np.arange(il.size)] = -1.0
+    Aeq[iu, p + mg + il.size + np.arange(iu.size)] = 1.0
+    c = np.concatenate([qp.b, qp.h, -qp.lb[il], qp.ub[iu]])
+    lbx = np.concatenate([-np.ones(p), np.zeros(k - p)])
+    aux = _QP(np.zeros((k, k)), c, None, None, Aeq, np.zeros(n), lbx, np.ones(k))
+    r = _solve(aux, method, opts, None, certify=False)
+    if r.status != Status.SOLVED:
+        return None
+    return _check_farkas(qp, r.x[:p], r.x[p:p + mg], opts.tol)
+
+
+def _direction_by_lp(qp, method, opts):
+    """min q'd  s.t.  P d = 0, A d = 0, G d <= 0, d in the bounds' cone and in [-1, 1]: a
+    negative optimum is a direction of unbounded descent."""
+    n, mg = qp.n, qp.G.shape[0]
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
     Aeq = np.vstack([qp.P, qp.A])
     aux = _QP(np.zeros((n, n)), qp.q, qp.G if mg else None, np.zeros(mg) if mg else None,
-              Aeq, np.zeros(Aeq.shape[0]), lbd, ubd)
+              Aeq, np.zeros(Aeq.shape[0]), np.where(lo, 0.0, -1.0), np.where(up, 0.0, 1.0))
     r = _solve(aux, method, opts, None, certify=False)
-    if r.status == Status.SOLVED:
-        return _check_direction(qp, r.x, opts.tol)
-    return None
+    if r.status != Status.SOLVED:
+        return None
+    return _check_direction(qp, r.x, opts.tol)

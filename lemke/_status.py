@@ -20,8 +20,8 @@ class Status(IntEnum):
 
 _MESSAGES = {
     Status.SOLVED: (
-        "Solved: z >= 0, w = Mz + q >= 0 and z'w = 0 hold for the caller's data within the "
-        "tolerance."
+        "Solved, and checked on the caller's data within the tolerance: z >= 0, w = Mz + q >= 0 "
+        "and z'w = 0 (for an MLCP also its equations; for a QP its KKT conditions)."
     ),
     Status.MAX_PIVOTS: (
         "Stopped at the pivot limit before reaching a solution. Raise options.max_pivots "

@@ -1,27 +1,21 @@
 """Named problems from the literature and random generators (shared by tests, benchmarks and
-the command line).  Each named problem is a function returning an :class:`Problem`."""
+the command line).  Each named problem is a function returning a :class:`lemke.Problem`;
+``NAMED`` maps the names that ``lemke problems`` lists to them."""
 from __future__ import annotations
-
-from dataclasses import dataclass
 
 import numpy as np
 
+from ._problem import Problem
 
-@dataclass(frozen=True)
-class Problem:
-    """An LCP with its provenance."""
-
-    name: str
-    M: np.ndarray
-    q: np.ndarray
-    source: str
+__all__ = ["NAMED", "Problem", "bimatrix", "contact_box", "contact_like", "cps_447", "degenerate",
+           "hs21", "murty", "random_p_matrix", "random_psd"]
 
 
 def cps_447() -> Problem:
     """Cottle-Pang-Stone Example 4.4.7: the running example of the pivot_column note."""
     M = np.array([[0.0, -1.0, 2.0], [2.0, 0.0, -2.0], [-1.0, 1.0, 0.0]])
     q = np.array([-3.0, 6.0, -1.0])
-    return Problem("cps-4.4.7", M, q, "Cottle, Pang & Stone (1992), Example 4.4.7; solution z = (0, 1, 3)")
+    return Problem.lcp(M, q, name="cps-4.4.7", source="Cottle, Pang & Stone (1992), Example 4.4.7; solution z = (0, 1, 3)")
 
 
 def murty(n: int = 6) -> Problem:
@@ -30,17 +24,65 @@ def murty(n: int = 6) -> Problem:
     first one); the solution is z = (0, ..., 0, 2^n)."""
     M = np.triu(np.full((n, n), 2.0), 1) + np.eye(n)
     q = -(2.0 ** (n + 1) - 2.0 ** np.arange(1, n + 1))
-    return Problem(f"murty-{n}", M, q, "Murty (1988), Linear Complementarity, chapter 6")
+    return Problem.lcp(M, q, name=f"murty-{n}", source=f"Murty (1988), Linear Complementarity, chapter 6; Lemke takes 2^{n} pivots")
 
 
 def degenerate() -> Problem:
     """A singular PSD problem on which the plain argmin ratio test ends on a false ray."""
     M = np.array([[4.0, -4.0], [-4.0, 4.0]])
     q = np.array([2.0, -2.0])
-    return Problem("degenerate", M, q, "lemke's issue tracker; a solution is z = (0, 0.5)")
+    return Problem.lcp(M, q, name="degenerate", source="lemke's issue tracker (a plain ratio test ends on a false ray); a solution is z = (0, 0.5)")
 
 
-NAMED = {"cps-4.4.7": cps_447, "murty": murty, "degenerate": degenerate}
+def bimatrix() -> Problem:
+    """The 3 x 2 example game of von Stengel (2002) (payoffs A to the row player,
+    B to the column player), as the LCP of Lemke & Howson (1964): with the costs
+    A' = 7 - A > 0 and B' = 7 - B > 0, find x, y >= 0 with A' y - 1 >= 0 _|_ x and
+    B'^T x - 1 >= 0 _|_ y; x / sum(x), y / sum(y) is then an equilibrium.  Lemke's method with
+    a covering vector ends on a secondary ray here (this M is not copositive-plus; the
+    Lemke-Howson start from the artificial equilibrium is needed), although the game has
+    three equilibria, e.g. the pure one x = (1, 0, 0), y = (1, 0)."""
+    A = np.array([[3.0, 3.0], [2.0, 5.0], [0.0, 6.0]])
+    B = np.array([[3.0, 2.0], [2.0, 6.0], [3.0, 1.0]])
+    m, k = A.shape
+    M = np.block([[np.zeros((m, m)), 7.0 - A], [(7.0 - B).T, np.zeros((k, k))]])
+    return Problem.lcp(M, -np.ones(m + k), name="bimatrix", source=(
+        "von Stengel (2002), Computing equilibria for two-person games, 3 x 2 example, as the "
+        "Lemke-Howson LCP; Lemke with d = 1 ends on a ray (equilibria exist, e.g. x = (1, 0, 0), y = (1, 0))"))
+
+
+def contact_box() -> Problem:
+    """One time step of a box (1 x 0.6 x 0.4, mass 1) falling flat onto the ground at 1 m/s,
+    with frictionless contact points at the 4 bottom corners and a redundant fifth at the centre
+    of the bottom face.  Velocity-level scheme (Stewart & Trinkle 1996, Anitescu & Potra 1997):
+    M = J W J' (rank 3 for 5 contacts, so the impulses are not unique), q = J (v + h W f) with
+    h = 0.01 and gravity; the solution stops the box (J v+ = 0 where z > 0)."""
+    size, mass = np.array([1.0, 0.6, 0.4]), 1.0
+    inertia = mass / 12.0 * (size[[1, 0, 0]] ** 2 + size[[2, 2, 1]] ** 2)
+    W = np.diag(np.r_[np.full(3, 1.0 / mass), 1.0 / inertia])
+    normal = np.array([0.0, 0.0, 1.0])
+    corners = [(sx * size[0] / 2, sy * size[1] / 2, -size[2] / 2) for sx in (-1, 1) for sy in (-1, 1)]
+    points = corners + [(0.0, 0.0, -size[2] / 2)]
+    J = np.array([np.r_[normal, np.cross(p, normal)] for p in points])
+    h, v0 = 0.01, np.array([0.1, 0.0, -1.0, 0.2, 0.0, 0.0])
+    v = v0 + h * W @ np.array([0.0, 0.0, -9.81 * mass, 0.0, 0.0, 0.0])
+    return Problem.lcp(J @ W @ J.T, J @ v, name="contact-box", source=(
+        "a box landing on a plane, 4 corner contacts + 1 redundant, one step of the "
+        "Stewart-Trinkle / Anitescu-Potra scheme: M = J W J' (rank 3), q = J v"))
+
+
+def hs21() -> Problem:
+    """Hock & Schittkowski problem 21 as in the Maros-Meszaros set (HS21): minimize
+    0.01 x1^2 + x2^2 - 100 s.t. 10 x1 - x2 >= 10, 2 <= x1 <= 50, -50 <= x2 <= 50.  The
+    optimum is -99.96 at x = (2, 0)."""
+    return Problem.qp(np.diag([0.02, 2.0]), np.zeros(2), G=np.array([[-10.0, 1.0]]), h=np.array([-10.0]),
+                      lb=np.array([2.0, -50.0]), ub=np.array([50.0, 50.0]), objective_constant=-100.0,
+                      name="hs21", source=("Hock & Schittkowski (1981) problem 21, Maros & Meszaros (1999) "
+                                           "HS21; optimum -99.96 at x = (2, 0)"))
+
+
+NAMED = {"cps-4.4.7": cps_447, "murty": murty, "degenerate": degenerate, "bimatrix": bimatrix,
+         "contact-box": contact_box, "hs21": hs21}
 
 
 def random_psd(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:

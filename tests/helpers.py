@@ -36,3 +36,92 @@ def assert_ray(M, q, d, z, z0, ray, rtol=1e-8):
     assert du.min() >= -rtol * du_scale, "w decreases along the ray"
     for a, b, sa, sb in ((z, u, 1.0, u_scale), (z, du, 1.0, du_scale), (dz, u, scale, u_scale), (dz, du, scale, du_scale)):
         assert np.max(np.abs(a * b)) <= rtol * max(sa, np.abs(z).max()) * sb, "complementarity fails along the ray"
+
+
+def _bounds(n, lb, ub):
+    lb = np.full(n, -np.inf) if lb is None else np.asarray(lb, dtype=float)
+    ub = np.full(n, np.inf) if ub is None else np.asarray(ub, dtype=float)
+    return np.where(lb <= -1e20, -np.inf, lb), np.where(ub >= 1e20, np.inf, ub)
+
+
+def _rows(M, v, n):
+    if M is None:
+        return np.zeros((0, n)), np.zeros(0)
+    return np.atleast_2d(np.asarray(M, dtype=float)), np.asarray(v, dtype=float).reshape(-1)
+
+
+def assert_qp_kkt(P, q, G, h, A, b, lb, ub, res, rtol=1e-8):
+    """Assert the KKT conditions of min 1/2 x'Px + q'x s.t. Gx <= h, Ax = b, lb <= x <= ub
+    at (res.x, res.y, res.z, res.z_box), each relative to the sizes involved."""
+    P = np.asarray(P, dtype=float)
+    q = np.asarray(q, dtype=float)
+    n = q.size
+    G, h = _rows(G, h, n)
+    A, b = _rows(A, b, n)
+    lb, ub = _bounds(n, lb, ub)
+    x, y, z, zb = (np.asarray(a, dtype=float) for a in (res.x, res.y, res.z, res.z_box))
+    assert x.shape == (n,) and y.shape == b.shape and z.shape == h.shape and zb.shape == (n,)
+    xs = max(1.0, np.abs(x).max())
+    data = max([1.0] + [np.abs(a).max() for a in (P, q, G, h, A, b) if a.size])
+    mult = max([1.0] + [np.abs(a).max() for a in (y, z, zb) if a.size])
+    # primal feasibility
+    if h.size:
+        assert (G @ x - h).max() <= rtol * data * xs, "G x <= h fails"
+    if b.size:
+        assert np.abs(A @ x - b).max() <= rtol * data * xs, "A x = b fails"
+    assert np.all(x >= lb - rtol * xs) and np.all(x <= ub + rtol * xs), "bounds fail"
+    # dual feasibility and stationarity
+    assert np.all(z >= -rtol * mult), "a multiplier of G x <= h is negative"
+    stat = P @ x + q + A.T @ y + G.T @ z + zb
+    assert np.abs(stat).max() <= rtol * data * max(xs, mult), f"stationarity fails: {np.abs(stat).max()}"
+    # complementarity: inactive constraints and bounds have zero multipliers
+    if h.size:
+        slack = h - G @ x
+        assert np.max(np.abs(z * slack)) <= rtol * data * xs * mult, "z'(h - Gx) is not 0"
+    lo_gap = np.where(np.isfinite(lb), x - lb, np.inf)
+    up_gap = np.where(np.isfinite(ub), ub - x, np.inf)
+    tol_b = rtol * data * xs * mult
+    assert np.all((zb >= -rtol * mult) | (np.minimum(lo_gap, 1e300) * -zb <= tol_b)), "z_box < 0 off a lower bound"
+    assert np.all((zb <= rtol * mult) | (np.minimum(up_gap, 1e300) * zb <= tol_b)), "z_box > 0 off an upper bound"
+    assert np.isclose(res.obj, 0.5 * x @ P @ x + q @ x, rtol=1e-12, atol=1e-12 * data * xs * xs)
+
+
+def assert_farkas(G, h, A, b, lb, ub, cert, n, rtol=1e-8):
+    """Assert that (y, z, z_box) proves {Gx <= h, Ax = b, lb <= x <= ub} empty:
+    z >= 0, z_box signs allowed by finite bounds, G'z + A'y + z_box = 0 and
+    h'z + b'y + lb'min(z_box, 0) + ub'max(z_box, 0) < 0."""
+    G, h = _rows(G, h, n)
+    A, b = _rows(A, b, n)
+    lb, ub = _bounds(n, lb, ub)
+    y, z, zb = (np.asarray(a, dtype=float) for a in (cert.y, cert.z, cert.z_box))
+    scale = max(np.abs(y).max(initial=0), np.abs(z).max(initial=0), np.abs(zb).max(initial=0))
+    assert scale > 0
+    y, z, zb = y / scale, z / scale, zb / scale
+    assert np.all(z >= 0), "Farkas z must be >= 0"
+    assert np.all(zb[~np.isfinite(lb)] >= 0) and np.all(zb[~np.isfinite(ub)] <= 0), "z_box sign without a bound"
+    data = max([1.0] + [np.abs(a).max() for a in (G, A) if a.size])
+    assert np.abs(G.T @ z + A.T @ y + zb).max() <= rtol * data
+    lo, up = np.isfinite(lb), np.isfinite(ub)
+    value = h @ z + b @ y + lb[lo] @ np.minimum(zb[lo], 0) + ub[up] @ np.maximum(zb[up], 0)
+    assert value < -rtol * data, f"the Farkas value {value} is not negative"
+
+
+def assert_unbounded_direction(P, q, G, A, lb, ub, cert, rtol=1e-8):
+    """Assert that dx is a direction of unbounded descent: P dx = 0, A dx = 0, G dx <= 0,
+    dx within the bounds' recession cone and q'dx < 0."""
+    P = np.asarray(P, dtype=float)
+    q = np.asarray(q, dtype=float)
+    n = q.size
+    G, _ = _rows(G, np.zeros(0 if G is None else np.atleast_2d(G).shape[0]), n)
+    A, _ = _rows(A, np.zeros(0 if A is None else np.atleast_2d(A).shape[0]), n)
+    lb, ub = _bounds(n, lb, ub)
+    d = np.asarray(cert.dx, dtype=float)
+    d = d / np.abs(d).max()
+    data = max([1.0] + [np.abs(a).max() for a in (P, G, A, q) if a.size])
+    assert np.abs(P @ d).max() <= rtol * data
+    if A.size:
+        assert np.abs(A @ d).max() <= rtol * data
+    if G.size:
+        assert (G @ d).max() <= rtol * data
+    assert np.all(d[np.isfinite(lb)] >= 0) and np.all(d[np.isfinite(ub)] <= 0)
+    assert q @ d < -rtol * data
