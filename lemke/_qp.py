@@ -31,7 +31,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ._lcp import METHODS
-from ._mlcp import solve_stacked
+from ._mlcp import _size, solve_stacked
 from ._options import as_options
 from ._problem import _to_float_array
 from ._result import Outcome, WarmStart
@@ -325,7 +325,7 @@ def _solve(qp, method, opts, warm_start, certify):
     if warm_start is not None and warm_start.n != m_pairs:
         warm_start = None  # a basis of a QP with another structure: solve cold
     r = solve_stacked(qp.E, qp.e, qp.n_free, method, opts, warm_start)
-    x, y, z, xs, zu = qp.unpack(np.concatenate([r.u, r.v]))
+    x, y, z, _, zu = qp.unpack(np.concatenate([r.u, r.v]))
     z_box = _bound_multipliers(qp, x, y, z, r.w, zu)
     status, certificate = r.status, None
     if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS:
@@ -339,11 +339,8 @@ def _bound_multipliers(qp, x, y, z, w, zu):
     """z_box: minus the bound rows' w for a lower bound, plus it for an upper bound (plus
     the upper multiplier of a boxed variable); for a fixed variable, what makes its dual row
     zero."""
-    n = qp.n
-    cf, cy, cx, cz, cb, N = qp.blocks
-    nf_p = cx  # w starts at the first pair row
-    z_box = np.zeros(n)
-    w_x = w[cx - nf_p:cz - nf_p]
+    z_box = np.zeros(qp.n)
+    w_x = w[:qp.shifted.size]  # the pairs' w begin with the rows of the shifted x'
     z_box[qp.shifted] = -qp.sign * w_x
     z_box[qp.shifted[qp.boxed]] += zu
     if qp.fixed.size:
@@ -445,10 +442,6 @@ def _check_direction(qp, dx, tol):
     if value >= -s:
         return None
     return Certificate("dual_infeasible", value, dx=dx)
-
-
-def _size(a):
-    return float(np.max(np.abs(a))) if a.size else 0.0
 
 
 def _verdict(qp, r, method, opts):

@@ -115,5 +115,11 @@ def test_bad_input(change, match):
     args.update(change)
     with pytest.raises(ValueError, match=match):
         lemke.solve_mlcp(**args)
-    with pytest.raises(TypeError):
+
+
+def test_bad_warm_start():
+    with pytest.raises(TypeError, match="warm_start"):
         lemke.solve_mlcp(np.eye(1), np.eye(1), [[0.0]], [[0.0]], [1.0], [0.0], warm_start="basis")
+    ws = lemke.WarmStart(3, ())
+    with pytest.raises(ValueError, match="pairs"):
+        lemke.solve_mlcp(np.eye(1), np.eye(1), [[0.0]], [[0.0]], [1.0], [0.0], warm_start=ws)

@@ -151,6 +151,28 @@ def test_random_semidefinite(method):
             solve_checked(P, q, G, h, A, b, lb, ub, method=method)
 
 
+def _fuzz_case(n, m, p, rank, seed, bounds, scale):
+    """A random feasible QP: P of the given rank times scale, m inequalities (the last
+    repeating the first), p equalities, some constraints active at the feasible point x0,
+    and bounds of the given kind around x0."""
+    rng = np.random.default_rng(seed)
+    p = min(p, n)
+    B = rng.standard_normal((n, min(rank, n)))
+    P, q = scale * (B @ B.T), scale * rng.standard_normal(n)
+    x0 = rng.standard_normal(n)
+    G = rng.standard_normal((m, n))
+    if m >= 2:
+        G[-1] = G[0]
+    h = G @ x0 + rng.uniform(0.0, 1.0, m) * (rng.random(m) < 0.7)
+    A = rng.standard_normal((p, n))
+    b = A @ x0
+    mixed_lb = np.where(rng.random(n) < 0.5, x0 - 1.0, -np.inf)
+    mixed_ub = np.where(rng.random(n) < 0.5, x0 + 1.0, np.inf)
+    lb = {"none": None, "lower": x0 - 1.0, "box": x0 - 1.0, "mixed": mixed_lb}[bounds]
+    ub = {"none": None, "lower": None, "box": x0 + 1.0, "mixed": mixed_ub}[bounds]
+    return P, q, G if m else None, h if m else None, A if p else None, b if p else None, lb, ub
+
+
 @settings(max_examples=60, deadline=None)
 @given(
     n=st.integers(1, 8),
@@ -165,22 +187,7 @@ def test_property_feasible_qps_are_solved(n, m, p, rank, seed, bounds, scale):
     """Random feasible QPs with rank-deficient P (an LP when rank = 0), redundant rows and
     any mix of bounds: SOLVED, or DUAL_INFEASIBLE with a checked direction (an LP or
     semidefinite QP without enough constraints is unbounded)."""
-    rng = np.random.default_rng(seed)
-    p = min(p, n)
-    B = rng.standard_normal((n, min(rank, n)))
-    P = scale * (B @ B.T)
-    q = scale * rng.standard_normal(n)
-    x0 = rng.standard_normal(n)
-    G = rng.standard_normal((m, n))
-    if m >= 2:
-        G[-1] = G[0]  # a redundant row
-    h = G @ x0 + rng.uniform(0.0, 1.0, m) * (rng.random(m) < 0.7)  # some active at x0
-    A = rng.standard_normal((p, n))
-    b = A @ x0
-    lb = {"none": None, "lower": x0 - 1.0, "box": x0 - 1.0, "mixed": np.where(rng.random(n) < 0.5, x0 - 1.0, -np.inf)}[bounds]
-    ub = {"none": None, "lower": None, "box": x0 + 1.0, "mixed": np.where(rng.random(n) < 0.5, x0 + 1.0, np.inf)}[bounds]
-    Gm, hm = (G, h) if m else (None, None)
-    Am, bm = (A, b) if p else (None, None)
+    P, q, Gm, hm, Am, bm, lb, ub = _fuzz_case(n, m, p, rank, seed, bounds, scale)
     res = lemke.solve_qp(P, q, Gm, hm, Am, bm, lb, ub)
     assert res.status in (lemke.Status.SOLVED, lemke.Status.DUAL_INFEASIBLE), res
     if res.status == lemke.Status.SOLVED:
@@ -314,24 +321,6 @@ def test_warm_start_sequence(method):
 
 
 # ------------------------------------------------------------------ regressions from fuzzing
-
-def _fuzz_case(n, m, p, rank, seed, bounds, scale):
-    """The generator of test_property_feasible_qps_are_solved, for one drawn case."""
-    rng = np.random.default_rng(seed)
-    p = min(p, n)
-    B = rng.standard_normal((n, min(rank, n)))
-    P, q = scale * (B @ B.T), scale * rng.standard_normal(n)
-    x0 = rng.standard_normal(n)
-    G = rng.standard_normal((m, n))
-    if m >= 2:
-        G[-1] = G[0]
-    h = G @ x0 + rng.uniform(0.0, 1.0, m) * (rng.random(m) < 0.7)
-    A = rng.standard_normal((p, n))
-    b = A @ x0
-    lb = {"none": None, "mixed": np.where(rng.random(n) < 0.5, x0 - 1.0, -np.inf)}[bounds]
-    ub = {"none": None, "mixed": np.where(rng.random(n) < 0.5, x0 + 1.0, np.inf)}[bounds]
-    return P, q, G if m else None, h if m else None, A if p else None, b if p else None, lb, ub
-
 
 @pytest.mark.parametrize("case,expected", [
     # the reduced LCP was pure rounding noise (~1e-13): Lemke pivoted on it
