@@ -19,7 +19,10 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     ``s_w = tol * max(max|q|, max|M|) + 4 n eps max|M| max|z|`` (the data's size plus the
     rounding floor of computing Mz) and ``s_z = tol * max(max|z|, max|q| / max|M|)``,
     a point is a solution when ``z >= -s_z``, ``w >= -s_w`` and, for every i,
-    ``z_i <= s_z`` or ``|w_i| <= s_w``.
+    ``z_i <= s_z`` or ``|w_i| <= s_w`` -- and when it is small enough to be certified at
+    all: ``eps max|M| max|z| <= 1000 tol max(max|q|, max|M|)`` (a larger z, such as the
+    |z| ~ 1e16 of a pivot on rounding noise, would pass the rounding allowance whatever
+    it is).
 """
 from __future__ import annotations
 

@@ -286,3 +286,14 @@ def test_delayed_updates_change_no_bit(block):
             code = tableau.lemke(T, rhs, basis, nonbasic, 10_000, 1e-11, 1e-11, *out, b)
             runs.append((code, out[0].tobytes(), out[1].tobytes(), out[2].tobytes(), basis.tolist()))
         assert runs[0] == runs[1]
+
+
+def test_a_point_too_large_to_certify_is_no_solution():
+    """z ~ 1e16 on data ~ 1 (what a pivot on rounding noise produces): the allowance for
+    rounding in M z grows with |z| and would pass it, so such a z is never accepted."""
+    M = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    q = np.array([-1.0, 1.0])
+    z = np.array([1e16, 1e16])  # w = Mz + q = (-1, 1): not a solution
+    assert not lemke.is_lcp_solution(M, q, z)
+    assert lemke.is_lcp_solution(M, q, np.array([1.0, 0.0]))
+    assert lemke.is_lcp_solution(1e-8 * M, 1e-8 * q, np.array([1.0, 0.0]))  # scale-free
