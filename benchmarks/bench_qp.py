@@ -22,21 +22,9 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from bench_lcp import mark_end, machine_info, publish, report_head, report_parser, time_interleaved  # noqa: E402
 
 import lemke  # noqa: E402
+from lemke.problems import random_convex_qp  # noqa: E402
 
 PEERS = ("quadprog", "daqp", "proxqp", "piqp")
-
-
-def random_qp(rng, n):
-    m, p = n, max(1, n // 5)
-    B = rng.standard_normal((n, n))
-    P = B @ B.T / n + 1e-3 * np.eye(n)
-    q = rng.standard_normal(n)
-    x0 = rng.standard_normal(n)
-    G = rng.standard_normal((m, n))
-    h = G @ x0 + rng.uniform(0.0, 1.0, m)
-    A = rng.standard_normal((p, n))
-    b = A @ x0
-    return P, q, G, h, A, b, x0 - rng.uniform(0.1, 2.0, n), x0 + rng.uniform(0.1, 2.0, n)
 
 
 def main(argv=None):
@@ -56,14 +44,14 @@ def main(argv=None):
         qpsolvers, peers = None, []
     missing = [s for s in PEERS if s not in peers]
     rng = np.random.default_rng(2026)
-    lemke.solve_qp(*random_qp(rng, 5))  # compile / load the kernels outside the timing
+    lemke.solve_qp(*random_convex_qp(5, rng))  # compile / load the kernels outside the timing
     rows = []
     for n in args.sizes:
         med = {s: [] for s in ["lemke", *peers]}
         dev = {s: 0.0 for s in med}
         pivots, wrong = [], {s: 0 for s in med}
         for _ in range(args.problems):
-            prob = random_qp(rng, n)
+            prob = random_convex_qp(n, rng)
             calls = [lambda: lemke.solve_qp(*prob)]
             calls += [lambda s=s: qpsolvers.solve_qp(*prob, solver=s) for s in peers]
             times, results = time_interleaved(calls, args.reps, rng=rng)

@@ -112,3 +112,23 @@ def contact_like(n: int, rng: np.random.Generator, bodies: int | None = None):
     q = J @ v
     q[n // 2] = q[0]
     return J @ W @ J.T, q
+
+
+def random_convex_qp(n: int, rng: np.random.Generator, m: int | None = None,
+                     p: int | None = None, rank: int | None = None):
+    """A feasible convex QP ``(P, q, G, h, A, b, lb, ub)`` in qpsolvers' form: P = B B'/n
+    (plus 1e-3 I when of full rank; rank-deficient when ``rank < n``), m inequalities
+    (default n) and p equalities (default n/5) that a random point x0 satisfies, and a box
+    around x0."""
+    m = n if m is None else m
+    p = max(1, n // 5) if p is None else p
+    rank = n if rank is None else rank
+    B = rng.standard_normal((n, rank))
+    P = B @ B.T / n + (1e-3 * np.eye(n) if rank == n else 0.0)
+    q = rng.standard_normal(n)
+    x0 = rng.standard_normal(n)
+    G = rng.standard_normal((m, n))
+    h = G @ x0 + rng.uniform(0.0, 1.0, m)
+    A = rng.standard_normal((p, n))
+    b = A @ x0
+    return P, q, G, h, A, b, x0 - rng.uniform(0.1, 2.0, n), x0 + rng.uniform(0.1, 2.0, n)

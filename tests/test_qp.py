@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lemke
+from lemke.problems import random_convex_qp
 from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
 
 
@@ -111,29 +112,12 @@ def test_result_is_read_only_and_inputs_untouched():
 
 # ------------------------------------------------------------------ random QPs vs quadprog
 
-def random_qp(rng, n, m, p, rank=None):
-    """A feasible convex QP: P = B B' (rank-deficient when rank < n) plus constraints that a
-    random point satisfies, and bounds around it."""
-    rank = n if rank is None else rank
-    B = rng.standard_normal((n, rank))
-    P = B @ B.T / n + (1e-3 * np.eye(n) if rank == n else 0.0)
-    q = rng.standard_normal(n)
-    x0 = rng.standard_normal(n)
-    G = rng.standard_normal((m, n))
-    h = G @ x0 + rng.uniform(0.0, 1.0, m)
-    A = rng.standard_normal((p, n))
-    b = A @ x0
-    lb = x0 - rng.uniform(0.1, 2.0, n)
-    ub = x0 + rng.uniform(0.1, 2.0, n)
-    return P, q, G, h, A, b, lb, ub
-
-
 @pytest.mark.parametrize("n,m,p", [(5, 3, 1), (10, 8, 2), (30, 20, 5), (60, 40, 10)])
 def test_random_strictly_convex_against_quadprog(n, m, p, method):
     quadprog = pytest.importorskip("quadprog")
     rng = np.random.default_rng(n * 100 + m)
     for _ in range(5):
-        P, q, G, h, A, b, lb, ub = random_qp(rng, n, m, p)
+        P, q, G, h, A, b, lb, ub = random_convex_qp(n, rng, m, p)
         res = solve_checked(P, q, G, h, A, b, lb, ub, method=method)
         # quadprog: min 1/2 x'Gx - a'x s.t. C'x >= b, the first meq equalities
         C = np.vstack([A, -G, np.eye(n), -np.eye(n)]).T
@@ -147,7 +131,7 @@ def test_random_semidefinite(method):
     rng = np.random.default_rng(7)
     for n in (4, 12, 25):
         for _ in range(5):
-            P, q, G, h, A, b, lb, ub = random_qp(rng, n, n // 2, 1, rank=max(1, n // 3))
+            P, q, G, h, A, b, lb, ub = random_convex_qp(n, rng, n // 2, 1, rank=max(1, n // 3))
             solve_checked(P, q, G, h, A, b, lb, ub, method=method)
 
 
@@ -305,7 +289,7 @@ def test_warm_start_sequence(method):
     """A moving target: each solve starts from the previous basis; the same problem again
     takes zero pivots, a nearby one a few."""
     rng = np.random.default_rng(3)
-    P, q, G, h, A, b, lb, ub = random_qp(rng, 30, 20, 3)
+    P, q, G, h, A, b, lb, ub = random_convex_qp(30, rng, 20, 3)
     cold = solve_checked(P, q, G, h, A, b, lb, ub, method=method)
     again = solve_checked(P, q, G, h, A, b, lb, ub, method=method, warm_start=cold.warm_start)
     assert again.pivots == 0
