@@ -88,9 +88,9 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers must be a positive integer or None, got {workers!r}")
 
-    bufs = np.empty((B, 4 * n + 2))
+    bufs = np.empty((B, 6 * n + 2))
     basics = np.empty((B, n), dtype=np.int64)
-    out_i = np.empty((B, 3), dtype=np.int64)
+    out_i = np.empty((B, 4), dtype=np.int64)
     out_f = np.empty((B, 2))
     args = (_METHOD_CODES[method], M, q)
     tail = (opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, bufs, basics, out_i, out_f)
@@ -114,9 +114,9 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     # Everything but a checked solution (and q >= 0) goes through solve_lcp's own logic:
     # the recomputation from the final basis, the ray check, the downgrades.
     for b in np.flatnonzero((out_i[:, 0] != cold.TRIVIAL) & ((out_i[:, 0] != 0) | (out_f[:, 0] == 0.0))):
-        code, piv, k = (int(v) for v in out_i[b])
+        code, piv, k, recoveries = (int(v) for v in out_i[b])
         res = _outcome(M[0 if M.shape[0] == 1 else b], q[b], opts, code, piv, basics[b, :k],
-                       bool(out_f[b, 0]), float(out_f[b, 1]), bufs[b])
+                       bool(out_f[b, 0]), float(out_f[b, 1]), bufs[b].copy(), recoveries)
         z[b], w[b], status[b], residual[b] = res.z, res.w, int(res.status), res.residual
     for a in (z, w, status, pivots, residual):
         a.setflags(write=False)

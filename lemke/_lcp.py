@@ -11,10 +11,10 @@ from ._status import Status
 from .kernels import certify, cold, linalg, unrevised
 
 METHODS = ("tableau", "unrevised")
-_KERNELS = {"tableau": cold.checked_tableau, "unrevised": cold.checked_unrevised}
+_KERNELS = {"tableau": cold.TABLEAU, "unrevised": cold.UNREVISED}
+_CHECKED = cold.checked  # a module attribute, so that a test can stand a lying kernel in
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
-_STATUS = tuple(Status)
 
 
 def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) -> LCPResult:
@@ -95,8 +95,11 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             w, ok, residual = check_lcp(M, q, z, opts.tol)
             if ok:  # the old basis still solves it
                 cov = np.ones(n) if d is None else d.copy()
-                return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, cov, warm_start)
-            res = _restart(M, q, beta, Mbb, opts)
+                R, C = np.empty(n), np.empty(n)
+                linalg.equilibrate(M, R, C)
+                return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, cov, warm_start,
+                               R, C, 0)
+            res = _restart(M, q, beta, opts)
             if res is not None and res.status == Status.SOLVED:
                 return res
             restart_pivots = 0 if res is None else res.pivots  # fall back to a cold solve
@@ -104,56 +107,61 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     return _cold(method, M, q, _NO_D if d is None else d, opts, restart_pivots)
 
 
+def _views(buf, n):
+    """The read-only views ``(z, z0, ray, w, cov, row_scale, col_scale)`` of a kernel's output
+    buffer (``kernels.cold.layout``)."""
+    buf.setflags(write=False)
+    return (buf[:n], buf[n], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2],
+            buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 :])
+
+
 def _cold(method, M, q, d, opts, extra_pivots=0):
     """A cold solve (float64, C-contiguous, validated shapes): one kernel call that also
     checks the answer on the caller's data, then :func:`_outcome`.  None when M or q is not
     finite."""
     n = q.shape[0]
-    buf = np.empty(4 * n + 2)
+    buf = np.empty(6 * n + 2)
     basic = np.empty(n, dtype=np.int64)
-    code, pivots, k, ok, residual = _KERNELS[method](
-        M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic
+    code, pivots, k, ok, residual, recoveries = _CHECKED(
+        _KERNELS[method], M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol,
+        buf, basic
     )
     if code == 0 and ok:  # solved and checked: the common case, inline
-        buf.setflags(write=False)
+        z, z0, ray, w, cov, rs, cs = _views(buf, n)
         return LCPResult._make(
-            buf[:n], buf[2 * n + 2 : 3 * n + 2], Status.SOLVED, pivots + extra_pivots, residual,
-            None, 0.0, buf[3 * n + 2 :], WarmStart._trusted(n, tuple(basic.tolist()[:k])),
+            z, w, Status.SOLVED, pivots + extra_pivots, residual, None, 0.0, cov,
+            WarmStart._trusted(n, tuple(basic.tolist()[:k])), rs, cs, recoveries,
         )
     if code == cold.NOT_FINITE:
         return None
-    return _outcome(M, q, opts, code, pivots + extra_pivots, basic[:k], ok, residual, buf)
+    return _outcome(M, q, opts, code, pivots + extra_pivots, basic[:k], ok, residual, buf,
+                    recoveries)
 
 
-def _restart(M, q, beta, Mbb, opts):
-    """Lemke from the complementary basis with z_i basic where beta[i], whose block is Mbb:
-    on the principal pivoting transform of (M, q) by that basis, with a constant covering
-    vector in the transformed coordinates.  In the caller's coordinates that is the column
+def _restart(M, q, beta, opts):
+    """Lemke from the complementary basis with z_i basic where beta[i]: on the principal
+    pivoting transform of (M, q) by that basis, with a constant covering vector in the
+    transformed coordinates.  In the caller's coordinates that is the column
     c e_alpha - M[:, beta] 1, with c = max|M| so that z rows and w rows get the same
-    constant in scaled units.  It always runs the unrevised method: that needs only the
-    inverse of the old block, where the tableau would need the whole transformed tableau
-    (O(n^3)).  None when the starting block is singular."""
+    constant.  It always runs the unrevised method: that needs only the inverse of the old
+    block, where the tableau would need the whole transformed tableau (O(n^3)).  None when
+    the starting block is singular."""
     n = q.size
     m_scale = max(M.max(), -M.min()) or 1.0
-    buf = np.empty(4 * n + 2)
-    x, ray, w, cov = cold.layout(n, buf)
+    buf = np.empty(6 * n + 2)
+    x, ray, w, cov, R, C = cold.layout(n, buf)
     np.subtract(m_scale * (~beta), M[:, beta].sum(axis=1), out=cov)
-    try:  # numpy's LAPACK, like _basis_point (two BLAS thread pools would collide)
-        G0 = np.linalg.inv(Mbb) * m_scale
-    except np.linalg.LinAlgError:
-        return None
-    if not np.isfinite(G0).all():
-        return None
+    linalg.equilibrate(M, R, C)
     z_basic = np.empty(n, dtype=np.bool_)
-    code, pivots = unrevised.solve(M, q, cov, m_scale, beta, G0, opts.pivot_limit(n),
+    code, pivots = unrevised.solve(M, q, cov, R, C, beta, np.empty((0, 0)), opts.pivot_limit(n),
                                    opts.pivot_tol, opts.tie_tol, x, ray, z_basic)
     if code == Status.NUMERICAL_FAILURE and pivots == 0:
         return None  # singular starting block
-    ok, residual = certify.lcp_check(M, q, x[:n], opts.tol, w)
-    return _outcome(M, q, opts, code, pivots, np.flatnonzero(z_basic), ok, residual, buf)
+    ok, residual = certify.lcp_check_sized(M, q, x[:n], opts.tol, w, R)
+    return _outcome(M, q, opts, code, pivots, np.flatnonzero(z_basic), ok, residual, buf, 0)
 
 
-def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf):
+def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
     """The result of a kernel's run, from its output buffer (see ``kernels.cold``), the
     basic z's and the kernel's check of the point on the caller's data.
 
@@ -161,15 +169,16 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf):
     solve on the caller's data) and downgraded to NUMERICAL_FAILURE if that fails too; a
     ray is checked on the caller's data, and downgraded if it fails."""
     n = q.shape[0]
-    buf.setflags(write=False)  # every view taken below is read-only
-    z, w, cov = buf[:n], buf[2 * n + 2 : 3 * n + 2], buf[3 * n + 2 :]  # cold.layout's
+    z, z0, ray, w, cov, rs, cs = _views(buf, n)
     if code == cold.TRIVIAL:
-        return LCPResult._make(z, w, Status.SOLVED, 0, 0.0, None, 0.0, cov, WarmStart._trusted(n, ()))
+        return LCPResult._make(z, w, Status.SOLVED, 0, 0.0, None, 0.0, cov,
+                               WarmStart._trusted(n, ()), rs, cs, 0)
     final_basis = WarmStart._trusted(n, tuple(basic.tolist()))
     if code == 0 and ok:  # Status.SOLVED
-        return LCPResult._make(z, w, Status.SOLVED, pivots, residual, None, 0.0, cov, final_basis)
-    status = _STATUS[code]
-    ray = buf[n + 1 : 2 * n + 2]
+        return LCPResult._make(z, w, Status.SOLVED, pivots, residual, None, 0.0, cov,
+                               final_basis, rs, cs, recoveries)
+    status = Status(code)
+    extra = (rs, cs, recoveries)
     if status == Status.SOLVED:
         # Recompute the point of the final basis from the caller's data: one dense solve,
         # more accurate than a tableau that went through many pivots.
@@ -180,12 +189,12 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf):
                 z, w, residual = zb, wb, rb
         if not ok:
             status = Status.NUMERICAL_FAILURE
-        return _result(z, w, residual, status, pivots, None, 0.0, cov, final_basis)
-    z0 = float(buf[n])
+        return _result(z, w, residual, status, pivots, None, 0.0, cov, final_basis, *extra)
+    z0 = float(z0)
     if status == Status.RAY_TERMINATION and not is_lcp_ray(M, q, cov, z, z0, ray, opts.tol):
         status = Status.NUMERICAL_FAILURE
     return _result(z, w, residual, status, pivots, ray if status == Status.RAY_TERMINATION else None,
-                   z0, cov, final_basis)
+                   z0, cov, final_basis, *extra)
 
 
 def _basis_point(Mbb, q, beta):
@@ -202,8 +211,10 @@ def _basis_point(Mbb, q, beta):
     return np.maximum(z, 0.0)  # a negative z_beta beyond round-off makes it no solution
 
 
-def _result(z, w, residual, status, pivots, ray, z0, cov, warm_start):
+def _result(z, w, residual, status, pivots, ray, z0, cov, warm_start, row_scale, col_scale,
+            recoveries):
     """The result, its arrays made read-only (all are the solver's own, never the caller's)."""
     for a in (z, w, cov) if ray is None else (z, w, cov, ray):
         a.setflags(write=False)
-    return LCPResult._make(z, w, status, int(pivots), float(residual), ray, float(z0), cov, warm_start)
+    return LCPResult._make(z, w, status, int(pivots), float(residual), ray, float(z0), cov,
+                           warm_start, row_scale, col_scale, int(recoveries))

@@ -82,6 +82,13 @@ class LCPResult(Outcome):
         variable's column: ``w = M z + q + d z0``); needed to check the ray.
     warm_start : WarmStart or None
         The final basis, to pass back for a nearby problem.
+    row_scale, col_scale : ndarray
+        The equilibration the kernels pivoted on: powers of two R and C such that every
+        row and column of ``diag(R) M diag(C)`` has its largest entry near 1 (see
+        ``lemke.kernels.linalg.equilibrate``).  In exact arithmetic they change nothing.
+    recoveries : int
+        How many times the solve was restarted after the method revisited a basis (see
+        ``lemke.kernels.cold``); 0 on almost every problem.
     """
 
     z: np.ndarray
@@ -93,9 +100,13 @@ class LCPResult(Outcome):
     z0: float
     covering: np.ndarray
     warm_start: WarmStart | None
+    row_scale: np.ndarray
+    col_scale: np.ndarray
+    recoveries: int = 0
 
     @classmethod
-    def _make(cls, z, w, status, pivots, residual, ray, z0, covering, warm_start) -> "LCPResult":
+    def _make(cls, z, w, status, pivots, residual, ray, z0, covering, warm_start, row_scale,
+              col_scale, recoveries) -> "LCPResult":
         """Build from the solver's own values, skipping the dataclass ``__init__`` (a frozen
         one sets every field through ``object.__setattr__``): this is on the hot path of
         small problems."""
@@ -110,6 +121,9 @@ class LCPResult(Outcome):
         f["z0"] = z0
         f["covering"] = covering
         f["warm_start"] = warm_start
+        f["row_scale"] = row_scale
+        f["col_scale"] = col_scale
+        f["recoveries"] = recoveries
         return res
 
     def __repr__(self) -> str:

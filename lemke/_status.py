@@ -4,7 +4,8 @@ from enum import IntEnum
 
 class Status(IntEnum):
     """How a solve ended.  ``0`` is the only success; the numbering follows SciPy and quantecon
-    (0 solved, 1 iteration limit, 2 ray); 4 and 5 are the QP verdicts with a certificate."""
+    (0 solved, 1 iteration limit, 2 ray); 4 and 5 are the QP verdicts with a certificate; 6
+    says the method cycled."""
 
     SOLVED = 0
     MAX_PIVOTS = 1
@@ -12,6 +13,7 @@ class Status(IntEnum):
     NUMERICAL_FAILURE = 3
     PRIMAL_INFEASIBLE = 4
     DUAL_INFEASIBLE = 5
+    CYCLING = 6
 
     @property
     def message(self) -> str:
@@ -37,6 +39,12 @@ _MESSAGES = {
         "The final point failed the check against the caller's data (rounding or an "
         "ill-conditioned basis). Rescale the problem, or loosen options.tol if a larger "
         "residual is acceptable."
+    ),
+    Status.CYCLING: (
+        "Lemke's method revisited a basis (it cycled, through rounding on a degenerate "
+        "problem), and the restarts (exact ties only, then a perturbed covering vector) "
+        "cycled too; result.recoveries counts them. Rescale or perturb the problem, or try "
+        "the other method."
     ),
     Status.PRIMAL_INFEASIBLE: (
         "No feasible point exists, and result.certificate proves it (for a QP, a Farkas "

@@ -189,7 +189,7 @@ def test_bad_input_is_named(M, q, kw, exc, words):
 
 
 def test_status_messages():
-    assert [int(s) for s in Status] == [0, 1, 2, 3, 4, 5]
+    assert [int(s) for s in Status] == [0, 1, 2, 3, 4, 5, 6]
     for s in Status:
         assert len(s.message) > 40
 
@@ -199,37 +199,41 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     from lemke import _lcp
     from lemke.kernels import cold
 
+    from lemke.kernels import certify
+
     def with_solve(solve):
-        """cold.checked_tableau with its pivoting replaced by ``solve`` (the same check)."""
-        def checked(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+        """cold.checked with its pivoting replaced by ``solve`` (the same check)."""
+        def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
-            code, m_max = cold.prologue(M, q, d, buf)
-            assert code == 0
+            assert cold.prologue(M, q, d, buf) == 0
+            x, ray, w, cov, R, C = cold.layout(n, buf)
             z_basic = np.empty(n, dtype=np.bool_)
-            code, pivots = solve(M, q, d, max_pivots, pivot_tol, tie_tol, buf[: n + 1],
-                                 buf[n + 1 : 2 * n + 2], z_basic)
-            return cold.epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic)
+            code, pivots = solve(x, ray, z_basic)
+            ok, residual = certify.lcp_check_sized(M, q, x[:n], tol, w, R)
+            basic_z = np.flatnonzero(z_basic)
+            basic[: basic_z.size] = basic_z
+            return code, pivots, basic_z.size, ok, residual, 0
         return checked
 
-    def lying_kernel(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, z_basic):
+    def lying_kernel(x, ray, z_basic):
         x[:] = 1.0
         x[-1] = 0.0
         z_basic[:] = False  # all w basic: the basis point is z = 0, wrong too
         return 0, 7
 
-    monkeypatch.setitem(_lcp._KERNELS, "tableau", with_solve(lying_kernel))
+    monkeypatch.setattr(_lcp, "_CHECKED", with_solve(lying_kernel))
     p = problems.cps_447()
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and not res.success
 
-    def lying_ray(M, q, d, max_pivots, pivot_tol, tie_tol, x, ray, z_basic):
+    def lying_ray(x, ray, z_basic):
         x[:] = 0.0
         ray[:] = 0.0
         ray[0] = 1.0  # w = Mz + q decreases along this direction
         z_basic[:] = False
         return 2, 3
 
-    monkeypatch.setitem(_lcp._KERNELS, "tableau", with_solve(lying_ray))
+    monkeypatch.setattr(_lcp, "_CHECKED", with_solve(lying_ray))
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
 
@@ -279,7 +283,9 @@ def test_delayed_updates_change_no_bit(block):
         n = q.size
         runs = []
         for b in (1, block):
-            T, rhs, _ = linalg.scaled_system(M, q, np.ones(n), np.abs(M).max())
+            R, C = np.empty(n), np.empty(n)
+            linalg.equilibrate(M, R, C)
+            T, rhs, _ = linalg.scaled_system(M, q, np.ones(n), R, C)
             basis = np.arange(n)
             nonbasic = np.r_[np.arange(n, 2 * n), 2 * n]
             out = (np.empty(n + 1), np.empty(n + 1), np.empty(n, dtype=np.bool_))

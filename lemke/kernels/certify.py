@@ -1,20 +1,41 @@
-"""The acceptance test of a solution, in one pass over M (see lemke._options for the rule)."""
+"""The acceptance test of a solution, row by row (see lemke._options for the rule).
+
+Every row is judged against its own size: with ``r_i = |M_i.| |z| + |q_i|`` (the sizes of
+the terms that make up w_i) a point passes row i when ``w_i >= -t r_i`` and, if z_i is not
+zero, ``|w_i| <= t r_i``, where ``t = tol + (n + 2) eps`` (the tolerance plus the rounding
+of computing one row of M z + q).  This is the componentwise backward error of Oettli and
+Prager: the point is an exact solution of a problem whose every entry of M and q moved by at
+most a relative t.  No row can hide behind another row's magnitude, and multiplying rows
+or columns of M by positive scales changes nothing.
+
+A z_i counts as zero when setting it to zero would move every w_j by at most ``t r_j``:
+``z_i <= t min_j r_j / |M_ji|`` over the j with M_ji != 0 (0 when column i is zero).
+
+A point so large that the rounding of M z dwarfs the data is never accepted, whatever its
+residual: in the row-equilibrated coordinates (rows scaled by the powers of two R of
+``linalg.equilibrate``), ``eps max_i R_i |M_i.| |z| <= CERTIFIABLE * t * max(max_i R_i |q_i|,
+1)``.  (A pivot on rounding noise can give |z| ~ 1e16 on data of size 1; such a z passes
+every backward-error test, since any nearby singular matrix has one, but it answers a
+different problem.)
+"""
 import numpy as np
 
 from . import kernel
-from .linalg import absmax, dot
+from .linalg import dot_and_size, equilibrate
 
 EPS = np.finfo(np.float64).eps
-CERTIFIABLE = 1e3  # see lcp_check_sized
+CERTIFIABLE = 1e3
 
 
 @kernel
-def tolerances(n, m_max, q_max, z_max, tol):
-    """The absolute tolerances ``(s_z, s_w)`` of the acceptance test from the sizes of the
-    data: s_w is the data's size plus the rounding floor of computing M z."""
-    s_w = tol * max(q_max, m_max) + 4.0 * n * EPS * m_max * z_max
-    s_z = tol * max(z_max, q_max / m_max if m_max > 0.0 else 0.0)
-    return s_z, s_w
+def zero_size(M, rows, i, t):
+    """The largest z_i that counts as zero: ``t min_j rows[j] / |M_ji|`` over M_ji != 0."""
+    s = np.inf
+    for j in range(M.shape[0]):
+        a = abs(M[j, i])
+        if a > 0.0:
+            s = min(s, rows[j] / a)
+    return t * s if s < np.inf else 0.0
 
 
 @kernel
@@ -22,33 +43,74 @@ def lcp_check(M, q, z, tol, w):
     """Fill ``w = M z + q`` and return ``(is_solution, residual)`` where residual is
     ``max_i |min(z_i, w_i)|``."""
     n = q.shape[0]
-    m_max = 0.0
-    for i in range(n):
-        m_max = max(m_max, absmax(M[i], n))
-    return lcp_check_sized(M, q, z, tol, w, m_max)
+    R = np.empty(n)
+    C = np.empty(n)
+    equilibrate(M, R, C)
+    return lcp_check_sized(M, q, z, tol, w, R)
 
 
 @kernel
-def lcp_check_sized(M, q, z, tol, w, m_max):
-    """``lcp_check`` when the caller already knows ``m_max = max|M|``."""
+def lcp_check_sized(M, q, z, tol, w, R):
+    """``lcp_check`` when the caller already has the row scales R of ``equilibrate``."""
     n = q.shape[0]
-    q_max = 0.0
-    z_max = 0.0
-    for j in range(n):
-        z_max = max(z_max, abs(z[j]))
+    t = tol + (n + 2) * EPS
+    rows = np.empty(n)
+    big = 0.0
+    data = 1.0
     for i in range(n):
-        w[i] = q[i] + dot(M[i], z, n)
-        q_max = max(q_max, abs(q[i]))
-    s_z, s_w = tolerances(n, m_max, q_max, z_max, tol)
-    # The allowance for rounding grows with |z|: a z so large that rounding it to double
-    # moves M z by far more than the tolerance (|z| ~ 1e16 on data ~ 1, as after a pivot on
-    # noise) would pass anything, so it is never accepted.
-    ok = EPS * m_max * z_max <= CERTIFIABLE * tol * max(q_max, m_max)
+        mz, size = dot_and_size(M[i], z, n)
+        w[i] = q[i] + mz
+        rows[i] = size + abs(q[i])
+        big = max(big, R[i] * size)
+        data = max(data, R[i] * abs(q[i]))
+    ok = EPS * big <= CERTIFIABLE * t * data
     residual = 0.0
     for i in range(n):
         zi = z[i]
         wi = w[i]
         residual = max(residual, abs(min(zi, wi)))
-        if zi < -s_z or wi < -s_w or (zi > s_z and abs(wi) > s_w):
+        s_w = t * rows[i]
+        if wi < -s_w or not (wi == wi and zi == zi):
             ok = False
+        elif zi < 0.0 or (zi > 0.0 and abs(wi) > s_w):
+            if abs(zi) > zero_size(M, rows, i, t):
+                ok = False
     return ok, residual
+
+
+@kernel
+def lcp_ray_check(M, q, d, z, z0, ray, tol):
+    """Whether ``(z, z0) + t ray`` (t >= 0) is a secondary ray of the augmented system
+    ``u = M z + q + d z0``, judged row by row as :func:`lcp_check_sized` judges a solution:
+    the direction is non-zero and non-negative, u and du = M dz + d dz0 stay non-negative,
+    and in every pair either z_i and dz_i are zero or u_i and du_i are."""
+    n = q.shape[0]
+    t = tol + (n + 3) * EPS
+    dz0 = ray[n]
+    r_max = abs(dz0)
+    for j in range(n):
+        r_max = max(r_max, abs(ray[j]))
+    if not (r_max > 0.0 and r_max < np.inf) or dz0 < -t * r_max or not z0 == z0:
+        return False
+    ru = np.empty(n)
+    rdu = np.empty(n)
+    u = np.empty(n)
+    du = np.empty(n)
+    for i in range(n):
+        mz, sz = dot_and_size(M[i], z, n)
+        u[i] = q[i] + mz + d[i] * z0
+        ru[i] = abs(q[i]) + sz + abs(d[i] * z0)
+        md, sd = dot_and_size(M[i], ray, n)
+        du[i] = md + d[i] * dz0
+        rdu[i] = sd + abs(d[i] * dz0)
+    for i in range(n):
+        if not (u[i] >= -t * ru[i] and du[i] >= -t * rdu[i]):
+            return False
+        flat = abs(u[i]) <= t * ru[i] and abs(du[i]) <= t * rdu[i]
+        zi = z[i]
+        di = ray[i]
+        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t):
+            return False
+        if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t):
+            return False
+    return True

@@ -1,40 +1,72 @@
-"""A cold solve in one kernel call: check the data, pivot, check the answer on the caller's
-data.  ``solve_lcp`` and ``solve_lcp_batch`` both go through these kernels, so a problem
-in a batch gets exactly the same answer as on its own.
+"""A cold solve in one kernel call: check the data, equilibrate, pivot (recovering from a
+cycle), check the answer on the caller's data.  ``solve_lcp`` and ``solve_lcp_batch`` both go
+through these kernels, so a problem in a batch gets exactly the same answer as on its own.
 
-Every output goes into one float64 buffer of length 4n + 2 (the front makes read-only views
-of it), laid out as ``[z | z0 | ray (n + 1) | w | covering d]``, and the indices of the basic
-z's into an int64 array of length n.
+Every output goes into one float64 buffer of length 6n + 2 (the front makes read-only views
+of it), laid out as ``[z | z0 | ray (n + 1) | w | covering d | row scales | column scales]``
+(see :func:`layout`), and the indices of the basic z's into an int64 array of length n.
+
+**Recovery from a cycle.**  The pivoting rule (``kernels.pivoting``) is lexicographic, so in
+exact arithmetic no basis repeats; rounding can still make a near-tie come out differently
+from one visit to the next.  When the kernel detects a repeated basis it stops with
+CYCLING, and the solve is restarted, with the pivots left of the budget:
+
+1. with exact ties only (``tie_tol = 0``), unless that was already the setting;
+2. then with the covering vector perturbed by a relative 1e-6 (a fixed pseudo-random
+   factor per row, so the run is reproducible), which separates the first key of rows that
+   the problem's data tie exactly.
+
+If the last one cycles too, the status is CYCLING, never a silent pivot cap.
+
+**Recovery from a failed check.**  With the default covering vector, a run whose point fails
+the check on the caller's data, or whose ray fails the ray check, or that met a numerical
+failure, is followed by one more run (its pivots counted) with the covering vector
+``d_i = |q_i|`` (1 / R_i where q_i = 0) and exact tests (``pivot_tol = tie_tol = 0``).  On
+badly scaled data (rows of q that differ by many orders of magnitude) the constant covering
+vector makes z0 so large that the small rows of q are lost to rounding in q + d z0; a
+covering vector proportional to |q| keeps every row at its own scale.  The second run is
+kept when it ends solved and checked, or solved where the first did not (the front then
+recomputes the point from its final basis).
+
+The number of restarts of both kinds is returned (``LCPResult.recoveries``).
 """
 import numpy as np
 
-from . import kernel, tableau, unrevised
-from .certify import lcp_check_sized
-from .linalg import finite_absmax, nan_probe
+from . import kernel, pivoting, tableau, unrevised
+from .certify import lcp_check_sized, lcp_ray_check
+from .linalg import equilibrate, finite_absmax, nan_probe
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
 TABLEAU = 0
 UNREVISED = 1
+PERTURBATION = 1e-6  # the relative size of the covering vector's perturbation (step 2)
+
+
+@kernel
+def buffer_size(n):
+    return 6 * n + 2
 
 
 @kernel
 def layout(n, buf):
-    """The views ``(x, ray, w, cov)`` of the output buffer (x = z followed by z0)."""
-    return buf[: n + 1], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2], buf[3 * n + 2 :]
+    """The views ``(x, ray, w, cov, R, C)`` of the output buffer (x = z followed by z0)."""
+    return (buf[: n + 1], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2],
+            buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 :])
 
 
 @kernel
 def prologue(M, q, d, buf):
-    """Check that M and q are finite and fill the covering vector (an empty d stands for
-    all ones).  Returns ``(code, m_scale)``: code NOT_FINITE, TRIVIAL (q >= 0: z = 0 and
-    w = q written) or 0; m_scale = max|M| (1 when M = 0)."""
+    """Check that M and q are finite, fill the equilibration scales and the covering vector
+    (an empty d stands for all ones).  Returns code NOT_FINITE, TRIVIAL (q >= 0: z = 0
+    and w = q written) or 0."""
     n = q.shape[0]
-    x, ray, w, cov = layout(n, buf)
+    x, ray, w, cov, R, C = layout(n, buf)
     finite, m_max = finite_absmax(M)
     finite &= nan_probe(q, n) == 0.0
     if not finite:
-        return NOT_FINITE, m_max
+        return NOT_FINITE
+    equilibrate(M, R, C)
     q_min = 0.0
     for i in range(n):
         q_min = min(q_min, q[i])
@@ -43,76 +75,104 @@ def prologue(M, q, d, buf):
         x[:] = 0.0
         ray[:] = 0.0
         w[:] = q
-        return TRIVIAL, m_max
-    return 0, m_max
+        return TRIVIAL
+    return 0
 
 
 @kernel
-def epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic):
-    """After the pivoting (when ``code`` is a status of the kernels): check the point in
-    ``buf`` on (M, q), filling w, and list the basic z's in ``basic``.  Returns the
-    ``(code, pivots, k, ok, residual)`` of the ``checked_*`` kernels."""
-    if code < 0:  # the prologue's NOT_FINITE or TRIVIAL
-        return code, 0, 0, code == TRIVIAL, 0.0
+def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic):
+    """One run of the chosen method from the all-w basis; returns ``(status, pivots)``."""
     n = q.shape[0]
-    x, ray, w, cov = layout(n, buf)
-    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, m_max)
+    x, ray, w, cov, R, C = layout(n, buf)
+    if method == TABLEAU:
+        return tableau.solve(M, q, cov, R, C, max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
+    return unrevised.solve(M, q, cov, R, C, np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
+                           max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
+
+
+@kernel
+def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic):
+    """:func:`pivot_once`, then the recoveries of the module docstring while it cycles.
+    Returns ``(status, pivots, recoveries)``; the pivots of every run are counted."""
+    code, pivots = pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic)
+    recoveries = 0
+    if code == pivoting.CYCLING and tie_tol > 0.0:
+        recoveries += 1
+        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic)
+        pivots += p
+    if code == pivoting.CYCLING:
+        recoveries += 1
+        n = q.shape[0]
+        cov = layout(n, buf)[3]
+        keys = pivoting.label_keys(n)
+        for i in range(n):
+            u = (keys[i] >> np.uint64(11)) * (1.0 / 9007199254740992.0)  # in [0, 1)
+            cov[i] *= 1.0 + PERTURBATION * u
+        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic)
+        pivots += p
+    return code, pivots, recoveries
+
+
+@kernel
+def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
+    (empty: all ones), then check the answer on (M, q).
+
+    Returns ``(code, pivots, k, ok, residual, recoveries)``: code is a status of the
+    kernels, or NOT_FINITE (nothing else done) or TRIVIAL (z = 0, w = q); the first k
+    entries of ``basic`` are the basic z's; ok and residual are the result of
+    ``certify.lcp_check``; recoveries counts the restarts after a cycle.
+    """
+    n = q.shape[0]
+    code = prologue(M, q, d, buf)
+    if code < 0:
+        return code, 0, 0, code == TRIVIAL, 0.0, 0
+    z_basic = np.empty(n, dtype=np.bool_)
+    code, pivots, recoveries = pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol,
+                                                buf, z_basic)
+    x, ray, w, cov, R, C = layout(n, buf)
+    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    if d.shape[0] == 0 and pivots < max_pivots and (
+            code == pivoting.NUMERICAL_FAILURE or (code == pivoting.SOLVED and not ok) or (
+                code == pivoting.RAY_TERMINATION
+                and not lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol))):
+        buf2 = buf.copy()
+        x2, ray2, w2, cov2, R2, C2 = layout(n, buf2)
+        for i in range(n):
+            cov2[i] = abs(q[i]) if q[i] != 0.0 else 1.0 / R[i]
+        z_basic2 = np.empty(n, dtype=np.bool_)
+        code2, pivots2, rec2 = pivot_recovering(method, M, q, max_pivots - pivots, 0.0, 0.0,
+                                                buf2, z_basic2)
+        pivots += pivots2
+        recoveries += rec2 + 1
+        ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
+        if code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED):
+            buf[:] = buf2
+            z_basic[:] = z_basic2
+            code, ok, residual = code2, ok2, residual2
     k = 0
     for i in range(n):
         if z_basic[i]:
             basic[k] = i
             k += 1
-    return code, pivots, k, ok, residual
-
-
-@kernel
-def checked_tableau(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
-    """Solve LCP(M, q) cold by the tableau method with covering vector d (empty: all ones),
-    then check the answer on (M, q).
-
-    Returns ``(code, pivots, k, ok, residual)``: code is a status of the kernels, or
-    NOT_FINITE (nothing else done) or TRIVIAL (z = 0, w = q); the first k entries of
-    ``basic`` are the basic z's; ok and residual are the result of ``lcp_check``.
-    """
-    (code, m_max), pivots, z_basic = prologue(M, q, d, buf), 0, np.empty(q.shape[0], dtype=np.bool_)
-    if code == 0:
-        x, ray, w, cov = layout(q.shape[0], buf)
-        code, pivots = tableau.solve(M, q, cov, m_max if m_max > 0.0 else 1.0, max_pivots,
-                                     pivot_tol, tie_tol, x, ray, z_basic)
-    return epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic)
-
-
-@kernel
-def checked_unrevised(M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
-    """:func:`checked_tableau` by the unrevised method, from the all-w basis."""
-    n = q.shape[0]
-    (code, m_max), pivots, z_basic = prologue(M, q, d, buf), 0, np.empty(n, dtype=np.bool_)
-    if code == 0:
-        x, ray, w, cov = layout(n, buf)
-        code, pivots = unrevised.solve(M, q, cov, m_max if m_max > 0.0 else 1.0,
-                                       np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
-                                       max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
-    return epilogue(M, q, m_max, tol, buf, code, pivots, z_basic, basic)
+    return code, pivots, k, ok, residual, recoveries
 
 
 @kernel
 def batch(method, M, q, lo, hi, max_pivots, pivot_tol, tie_tol, tol, bufs, basics, out_i,
           out_f):
-    """``checked_tableau`` or ``checked_unrevised`` (``method``) on problems ``lo..hi-1`` of a batch: M (B, n, n), or (1, n, n) shared
-    by all, and q (B, n).  Row b of ``out_i`` gets (code, pivots, k), of ``out_f``
-    (ok, residual)."""
+    """:func:`checked` on problems ``lo..hi-1`` of a batch: M (B, n, n), or (1, n, n) shared
+    by all, and q (B, n).  Row b of ``out_i`` gets (code, pivots, k, recoveries), of
+    ``out_f`` (ok, residual)."""
     no_d = np.empty(0)
     shared = M.shape[0] == 1
     for b in range(lo, hi):
-        Mb = M[0 if shared else b]
-        if method == TABLEAU:
-            code, pivots, k, ok, residual = checked_tableau(
-                Mb, q[b], no_d, max_pivots, pivot_tol, tie_tol, tol, bufs[b], basics[b])
-        else:
-            code, pivots, k, ok, residual = checked_unrevised(
-                Mb, q[b], no_d, max_pivots, pivot_tol, tie_tol, tol, bufs[b], basics[b])
+        code, pivots, k, ok, residual, recoveries = checked(
+            method, M[0 if shared else b], q[b], no_d, max_pivots, pivot_tol, tie_tol, tol,
+            bufs[b], basics[b])
         out_i[b, 0] = code
         out_i[b, 1] = pivots
         out_i[b, 2] = k
+        out_i[b, 3] = recoveries
         out_f[b, 0] = 1.0 if ok else 0.0
         out_f[b, 1] = residual

@@ -6,6 +6,8 @@ dependency chain and cannot use SIMD.  ``dot`` alone is compiled with the fastma
 comparisons, infinities or NaNs, which the pivoting rules depend on): about 5x faster, with
 a different but equally accurate rounding order.
 """
+import math
+
 import numpy as np
 from numba import njit
 
@@ -19,6 +21,18 @@ def dot(x, y, k):
     for j in range(k):
         acc += x[j] * y[j]
     return acc
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def dot_and_size(x, y, k):
+    """``(sum x[j] y[j], sum |x[j] y[j]|)`` over j < k: a row of M z and its size."""
+    acc = 0.0
+    size = 0.0
+    for j in range(k):
+        t = x[j] * y[j]
+        acc += t
+        size += abs(t)
+    return acc, size
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
@@ -92,21 +106,53 @@ def axpy(y, a, x):
 
 
 @kernel
-def scaled_system(M, q, d, m_scale):
-    """``(A, qs, d_scale)``: A = [M / m_scale | d / d_scale] (n x (n + 1)) and
-    qs = q / m_scale, in the units where max|M| = 1 and max|d| = 1 that every Lemke kernel
-    works in (so the relative tolerances compare like with like, and multiplying M and q
-    by a constant changes nothing).  ``m_scale`` is max|M|, or 1 when M = 0.  The divisions
-    are multiplications by the reciprocal (a division costs ten times more)."""
+def pow2_scale(x):
+    """The power of two nearest to 1 / x (x > 0), or 1 for x = 0 or x not finite: an exact
+    scale factor (multiplying by it adds no rounding)."""
+    if not (x > 0.0 and x < np.inf):
+        return 1.0
+    m, e = math.frexp(x)  # x = m 2**e, 0.5 <= m < 1
+    return math.ldexp(1.0, 1 - e) if m < 0.7071067811865476 else math.ldexp(1.0, -e)
+
+
+@kernel
+def equilibrate(M, R, C):
+    """Row and column scales of M, powers of two, so that every row and every column of
+    diag(R) M diag(C) has its largest entry in [0.7, 1.42) (a zero row or column keeps
+    scale 1): one pass for the rows, one for the columns (LAPACK's dgeequb recipe).  The
+    scales are exact, and Lemke's path does not depend on them in exact arithmetic (every
+    ratio and every lexicographic comparison is invariant under positive diagonal scaling);
+    they make the kernels' relative tolerances mean the same in every row and column."""
+    n = M.shape[0]
+    for i in range(n):
+        R[i] = pow2_scale(absmax(M[i], n))
+    cmax = np.zeros(n)
+    for i in range(n):
+        r = R[i]
+        row = M[i]
+        for j in range(n):
+            cmax[j] = max(cmax[j], abs(row[j]) * r)
+    for j in range(n):
+        C[j] = pow2_scale(cmax[j])
+
+
+@kernel
+def scaled_system(M, q, d, R, C):
+    """``(A, qs, d_scale)``: A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q, the
+    equilibrated system that every Lemke kernel works in (R, C from :func:`equilibrate`;
+    d_scale = max |R d|, so that the artificial column has largest entry 1).  z' = z / C
+    and z0' = z0 d_scale are its unknowns."""
     n = q.shape[0]
-    d_scale = absmax(d, n)
-    inv_m = 1.0 / m_scale
+    d_scale = 0.0
+    for i in range(n):
+        d_scale = max(d_scale, abs(d[i]) * R[i])
     inv_d = 1.0 / d_scale
     A = np.empty((n, n + 1))
     qs = np.empty(n)
     for i in range(n):
+        r = R[i]
         for j in range(n):
-            A[i, j] = M[i, j] * inv_m
-        A[i, n] = d[i] * inv_d
-        qs[i] = q[i] * inv_m
+            A[i, j] = (M[i, j] * r) * C[j]
+        A[i, n] = (d[i] * r) * inv_d
+        qs[i] = q[i] * r
     return A, qs, d_scale

@@ -25,12 +25,9 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 """
 import numpy as np
 
-from . import kernel
-from .linalg import axpy, scaled_system
-
-SOLVED = 0
-MAX_PIVOTS = 1
-RAY_TERMINATION = 2
+from . import kernel, pivoting
+from .linalg import axpy, equilibrate, scaled_system
+from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
 @kernel
@@ -127,85 +124,36 @@ def flush(T, U, V, k, act):
 
 
 @kernel
-def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis, artificial,
-               pivot_tol, tie_tol, cand, vals):
+def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
+               artificial, pivot_tol, tie_tol, cand, keys, z0_max):
     """The row that blocks the entering column (current values in ``col``), or -1 when
-    nothing blocks (a ray).
-
-    Minimum ratio first; rows that would end within ``tie_tol * max|rhs|`` of zero at the
-    minimum ratio are tied, and ties go to the artificial variable when it is among them,
-    else to the lexicographic rule on the rows of the basis inverse divided by the pivot
-    entries.  The rows of [rhs | B^-1] stay lexicographically positive, so no basis repeats
-    and the method cannot cycle.  Values below zero by rounding count as zero.
-    """
+    nothing blocks (a ray): the rule of :mod:`lemke.kernels.pivoting`, with the columns of
+    the basis inverse read off the tableau."""
     n = T.shape[0]
-    cmax = 0.0
-    vmax = 0.0
-    for i in range(n):
-        cmax = max(cmax, abs(col[i]))
-        vmax = max(vmax, abs(rhs[i]))
-    thr = -pivot_tol * cmax
-    tie_abs = tie_tol * vmax
-    theta = np.inf
-    for i in range(n):
-        t = col[i]
-        if t < thr:
-            ratio = max(rhs[i], 0.0) / -t
-            if ratio < theta:
-                theta = ratio
-    if theta == np.inf:
-        return -1
-    k = 0
-    for i in range(n):
-        t = col[i]
-        if t < thr and max(rhs[i], 0.0) + t * theta <= tie_abs:
-            cand[k] = i
-            k += 1
-    if k == 1:
-        return cand[0]
-    for c in range(k):
+    art = pos[artificial] if is_basic[artificial] else -1
+    # The tableau updates its values in place and has no tight size of the terms behind
+    # each one, so it passes the values themselves: only negative values count as 0.
+    nc = pivoting.min_ratio(rhs, rhs, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+    if nc <= 1:
+        return cand[0] if nc == 1 else -1
+    for c in range(nc):
         if basis[cand[c]] == artificial:
             return cand[c]
-    # Lexicographic rule: column j of B^-1 is the column of the variable basic in row j
-    # at the start.
+    # Column j of B^-1 is the column of the variable basic in row j at the start: the unit
+    # vector of its row while it is basic, minus its tableau column while it is not.
     for j in range(n):
         lab = start_basis[j]
-        for c in range(k):
+        for c in range(nc):
             i = cand[c]
             if is_basic[lab]:
                 b = 1.0 if pos[lab] == i else 0.0
             else:
                 b = -entry(T, U, V, k_pending, i, pos[lab])
-                if abs(b) <= pivot_tol:  # rounding noise on an exact zero (M has max 1)
-                    b = 0.0
-            vals[c] = b / -col[i]
-        k = keep_lowest(cand, vals, k, pivot_tol)
-        if k == 1:
+            keys[c] = pivoting.lex_key(b, col[i], pivot_tol)
+        nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
+        if nc == 1:
             return cand[0]
-    # Still tied (only possible through rounding): take the largest pivot.
-    best = cand[0]
-    for c in range(1, k):
-        if col[cand[c]] < col[best]:
-            best = cand[c]
-    return best
-
-
-@kernel
-def keep_lowest(cand, vals, k, tol):
-    """Keep (in place, in order) the candidates whose value is within ``tol * max|value|``
-    of the lowest: one column of the lexicographic rule.  Returns how many remain."""
-    vmin = np.inf
-    vabs = 0.0
-    for c in range(k):
-        vmin = min(vmin, vals[c])
-        vabs = max(vabs, abs(vals[c]))
-    lim = vmin + tol * vabs
-    kept = 0
-    for c in range(k):
-        if vals[c] <= lim:
-            cand[kept] = cand[c]
-            kept += 1
-    return kept
+    return pivoting.largest_pivot(cand, col, nc) if nc > 0 else -1
 
 
 @kernel
@@ -230,7 +178,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     for j in range(n + 1):
         pos[nonbasic[j]] = j
     cand = np.empty(n, dtype=np.int64)
-    vals = np.empty(n, dtype=np.float64)
+    keys = np.empty(n, dtype=np.float64)
     prow = np.empty(n + 1, dtype=np.float64)
     col = np.empty(n, dtype=np.float64)
     U = np.empty((n, block))
@@ -243,25 +191,21 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     pivots = 0
     s = pos[artificial]
     current_column(T, U, V, k, s, col)
-    # First pivot: z0 rises until every basic variable is >= 0; the row that needs the most
-    # (ties to the highest start row, the lexicographic choice) leaves.
-    r = -1
-    need = 0.0
-    for i in range(n):
-        t = -rhs[i] / col[i]
-        if r < 0 or t > need:
-            need = t
-            r = i
-    tie_abs = 0.0
-    for i in range(n):
-        tie_abs = max(tie_abs, abs(rhs[i]))
-    tie_abs *= tie_tol
-    for i in range(n):
-        if rhs[i] + col[i] * need <= tie_abs:
-            r = i
+    # First pivot: z0 rises until every basic variable is >= 0 (pivoting.first_row).
+    r = pivoting.first_row(rhs, col, n, tie_tol)
+    if r < 0:
+        max_pivots = 0
+        status = NUMERICAL_FAILURE
+    hkeys = pivoting.label_keys(2 * n + 1)
+    h = pivoting.fingerprint(hkeys, basis, n)
+    detector = pivoting.new_detector()
+    z0_max = 0.0
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
+        if not abs(col[r]) < np.inf:  # a NaN or infinite pivot: give up, never index with it
+            status = NUMERICAL_FAILURE
+            break
         k = pivot(T, rhs, r, s, col, U, V, k, prow, act)
         pivots += 1
         basis[r] = entering
@@ -273,10 +217,16 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
         if leaving == artificial:
             status = SOLVED
             break
+        h ^= hkeys[leaving] ^ hkeys[entering]
+        if pivoting.repeats(detector, h):
+            status = CYCLING
+            break
         s = pos[leaving + n if leaving < n else leaving - n]  # the complement enters
         current_column(T, U, V, k, s, col)
-        r = ratio_test(T, U, V, k, col, rhs, basis, pos, is_basic, start_basis, artificial,
-                       pivot_tol, tie_tol, cand, vals)
+        if is_basic[artificial]:
+            z0_max = max(z0_max, rhs[pos[artificial]])
+        r = ratio_test(T, U, V, k, col, rhs, basis, pos, is_basic, start_basis,
+                       artificial, pivot_tol, tie_tol, cand, keys, z0_max)
         if r < 0:
             status = RAY_TERMINATION
             entering = nonbasic[s]
@@ -299,16 +249,15 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
 
 
 @kernel
-def solve(M, q, d, m_scale, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.
 
-    Works in the scaled units of ``linalg.scaled_system`` (``m_scale``: max|M|, or 1 when
-    M = 0): z keeps its units, w and z0 are rescaled.  Returns ``(status, pivots)``;
-    ``x_out`` gets z and z0 (in the caller's units), ``ray_out`` the ray, ``z_basic_out``
-    the final basic z's.
+    Works on the equilibrated system of ``linalg.scaled_system`` (R, C: the row and column
+    scales).  Returns ``(status, pivots)``; ``x_out`` gets z and z0 (in the caller's units),
+    ``ray_out`` the ray, ``z_basic_out`` the final basic z's.
     """
     n = q.shape[0]
-    T, rhs, d_scale = scaled_system(M, q, d, m_scale)
+    T, rhs, d_scale = scaled_system(M, q, d, R, C)
     basis = np.empty(n, dtype=np.int64)
     nonbasic = np.empty(n + 1, dtype=np.int64)
     for i in range(n):
@@ -317,15 +266,19 @@ def solve(M, q, d, m_scale, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_ba
     nonbasic[n] = 2 * n
     status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out,
                            ray_out, z_basic_out, block_size(n))
-    unscale(x_out, ray_out, m_scale / d_scale, status == SOLVED)
+    unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
 
 @kernel
-def unscale(x_out, ray_out, z0_factor, solved):
-    """Back to the caller's units: z0 and its ray entry times ``z0_factor``; a solved z is
-    clamped at 0 (round-off below zero; anything worse fails the check)."""
+def unscale(x_out, ray_out, C, z0_factor, solved):
+    """Back to the caller's units: z and its ray times the column scales C, z0 and its ray
+    entry times ``z0_factor``; a solved z is clamped at 0 (round-off below zero; anything
+    worse fails the check)."""
     n = x_out.shape[0] - 1
+    for i in range(n):
+        x_out[i] *= C[i]
+        ray_out[i] *= C[i]
     x_out[n] *= z0_factor
     ray_out[n] *= z0_factor
     if solved:

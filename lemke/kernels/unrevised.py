@@ -14,17 +14,18 @@ column, loses them, or has one row or one column replaced.  The basic point is r
 from G at every pivot and its residual checked; G is refactored (LAPACK) when the check
 fails, when an update's pivot is tiny, and every ``REFACTOR_EVERY`` pivots.
 
-Labels and rules are those of the tableau kernel: 0..n-1 for w, n..2n-1 for z, 2n for z0;
-minimum ratio, ties to the artificial variable, then the lexicographic rule on the basis
-inverse relative to the starting basis (whose row j holds the basic variable of pair j).
+Labels are those of the tableau kernel: 0..n-1 for w, n..2n-1 for z, 2n for z0.  The rule is
+:mod:`lemke.kernels.pivoting`'s, applied to the basic variables in pair order (pair j's basic
+variable, z0 last), with the basis inverse taken relative to the starting basis (whose row j
+holds the basic variable of pair j).
 """
 import numpy as np
 
-from . import kernel
-from .linalg import axpy, dot, matvec, scaled_system
-from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED, keep_lowest, unscale
+from . import kernel, pivoting
+from .linalg import axpy, dot, dot_and_size, matvec, scaled_system
+from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
+from .tableau import unscale
 
-NUMERICAL_FAILURE = 3
 REFACTOR_EVERY = 200
 RESIDUAL_TOL = 1e-10
 
@@ -49,38 +50,42 @@ def invert(AB, alist, k, G):
 
 
 @kernel
-def _all_w(AB, q, apos, zb, k, wv):
-    """wv = q + AB[:, :k] z_beta; returns max |w_i| over i in alpha (the residual of
-    H z_beta + q_alpha, zero in exact arithmetic)."""
+def _all_w(AB, q, apos, zb, k, wv, wmag):
+    """wv = q + AB[:, :k] z_beta; returns the residual of H z_beta + q_alpha (zero in exact
+    arithmetic), row by row relative to the size of the row's terms: max over i in alpha of
+    |w_i| / (|q_i| + |AB[i]| |z_beta|)."""
     res = 0.0
     for i in range(q.shape[0]):
-        w = q[i] + dot(AB[i], zb, k)
+        mz, size = dot_and_size(AB[i], zb, k)
+        w = q[i] + mz
         wv[i] = w
+        wmag[i] = size + abs(q[i])
         if apos[i] >= 0:
-            res = max(res, abs(w))
+            size += abs(q[i])
+            if abs(w) > res * size:
+                res = abs(w) / size
     return res
 
 
 @kernel
-def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2):
+def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag):
     """z_beta = -G q_alpha and every w_i = q_i + AB[i] z_beta (the values of the basic w's).
-    Refines z_beta once when the residual of H z_beta + q_alpha is not small.  Returns
-    that residual relative to the size of q_alpha and z_beta."""
+    Refines z_beta once when the row-wise residual of H z_beta + q_alpha (see ``_all_w``)
+    is above RESIDUAL_TOL, and returns that residual.  ``zmag`` and ``wmag`` receive the
+    sizes of the terms that formed each value (|G| |q_alpha| and |q| + |AB| |z_beta|)."""
     for r in range(k):
         tmp[r] = -q[alist[r]]
-    matvec(G, k, tmp, zb)
-    res = _all_w(AB, q, apos, zb, k, wv)
-    size = 0.0
     for r in range(k):
-        size = max(size, abs(q[alist[r]]), abs(zb[r]))
-    if size > 0.0 and res > RESIDUAL_TOL * size:
+        zb[r], zmag[r] = dot_and_size(G[r], tmp, k)
+    res = _all_w(AB, q, apos, zb, k, wv, wmag)
+    if res > RESIDUAL_TOL:
         for r in range(k):
             tmp[r] = wv[alist[r]]
         matvec(G, k, tmp, tmp2)
         for c in range(k):
             zb[c] -= tmp2[c]
-        res = _all_w(AB, q, apos, zb, k, wv)
-    return res / size if size > 0.0 else 0.0
+        res = _all_w(AB, q, apos, zb, k, wv, wmag)
+    return res
 
 
 @kernel
@@ -140,8 +145,14 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     tmp = np.empty(n)
     tmp2 = np.empty(n)
     row = np.empty(n)
-    cand = np.empty(n, dtype=np.int64)  # tied candidates, as labels
-    vals = np.empty(n)
+    cand = np.empty(n, dtype=np.int64)  # tied candidates, as positions in rlab
+    keys = np.empty(n)
+    rlab = np.empty(n, dtype=np.int64)  # the basic variables in pair order, z0 last:
+    rv = np.empty(n)  # their values
+    rc = np.empty(n)  # and their changes per unit of the entering variable
+    rm = np.empty(n)  # and the sizes of the terms that formed the values
+    zmag = np.empty(n)
+    wmag = np.empty(n)
     ray_out[:] = 0.0
     x_out[:] = 0.0
 
@@ -152,31 +163,28 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     elif not invert(AB, alist, k, G):
         status = NUMERICAL_FAILURE
         max_pivots = 0
-    basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
+    basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
     since_refactor = 0
     entering = art
+    hkeys = pivoting.label_keys(2 * n + 1)
+    h = np.uint64(0)
+    for i in range(n):
+        h ^= hkeys[n + i] if bpos[i] >= 0 else hkeys[i]
+    detector = pivoting.new_detector()
+    z0_max = np.zeros(1)  # the largest value z0 has had (ratio_test keeps it)
     while pivots < max_pivots:
         direction(A, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
+        m = gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm)
         if pivots == 0:
-            # z0 rises until every basic variable is >= 0; the one that needs the most
-            # leaves, ties to the highest pair index (the lexicographic choice).
-            need = -np.inf
-            tie_abs = 0.0
-            for i in range(n):
-                v = zb[bpos[i]] if bpos[i] >= 0 else wv[i]
-                dv = dzb[bpos[i]] if bpos[i] >= 0 else dw[i]
-                need = max(need, -v / dv)
-                tie_abs = max(tie_abs, abs(v))
-            tie_abs *= tie_tol
-            leaving = -1
-            for i in range(n):
-                v = zb[bpos[i]] if bpos[i] >= 0 else wv[i]
-                dv = dzb[bpos[i]] if bpos[i] >= 0 else dw[i]
-                if v + dv * need <= tie_abs:
-                    leaving = n + i if bpos[i] >= 0 else i
+            # z0 rises until every basic variable is >= 0 (pivoting.first_row).
+            r = pivoting.first_row(rv, rc, m, tie_tol)
+            if r < 0:
+                status = NUMERICAL_FAILURE
+                break
+            leaving = rlab[r]
         else:
-            leaving = ratio_test(A, AB, n, alist, blist, k, G, apos, bpos, zb, wv, dzb, dw,
-                                 z_start, pivot_tol, tie_tol, cand, vals, lz, lw, tmp)
+            leaving = ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start,
+                                 pivot_tol, tie_tol, rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, z0_max)
             if leaving < 0:
                 status = RAY_TERMINATION
                 if entering >= n:
@@ -184,6 +192,10 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
                 for p in range(k):
                     ray_out[blist[p]] = dzb[p]
                 break
+        piv = dzb[bpos[leaving - n]] if leaving >= n else dw[leaving]
+        if not abs(piv) < np.inf:  # a NaN or infinite pivot: give up
+            status = NUMERICAL_FAILURE
+            break
         ok = exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row)
         if entering >= n and leaving < n:
             k += 1  # the block gained a row and a column
@@ -196,14 +208,18 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
             if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
                 break
-        if basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2) > RESIDUAL_TOL:
+        if basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag) > RESIDUAL_TOL:
             since_refactor = 0
             if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
                 break
-            basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
+            basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
         if leaving == art:
             status = SOLVED
+            break
+        h ^= hkeys[leaving] ^ hkeys[entering]
+        if pivoting.repeats(detector, h):
+            status = CYCLING
             break
         entering = leaving + n if leaving < n else leaving - n
     for p in range(k):
@@ -214,87 +230,74 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
 
 
 @kernel
-def solve(M, q, d, m_scale, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
           z_basic_out):
-    """Lemke's method from the basis ``z_start`` on (M, q) with covering vector d, in the
-    scaled units of ``linalg.scaled_system`` (``m_scale``: max|M|, or 1 when M = 0; ``G0``:
-    the inverse of the starting block in those units, or an empty array).  Outputs as
-    ``lemke``, in the caller's units."""
-    A, qs, d_scale = scaled_system(M, q, d, m_scale)
+    """Lemke's method from the basis ``z_start`` on (M, q) with covering vector d, on the
+    equilibrated system of ``linalg.scaled_system`` (R, C: the row and column scales;
+    ``G0``: the inverse of the starting block in those units, or an empty array).  Outputs
+    as ``lemke``, in the caller's units."""
+    A, qs, d_scale = scaled_system(M, q, d, R, C)
     status, pivots = lemke(A, qs, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
                            z_basic_out)
-    unscale(x_out, ray_out, m_scale / d_scale, status == SOLVED)
+    unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
 
 @kernel
-def ratio_test(A, AB, n, alist, blist, k, G, apos, bpos, zb, wv, dzb, dw, z_start,
-               pivot_tol, tie_tol, cand, vals, lz, lw, tmp):
-    """The leaving variable's label, or -1 when nothing blocks: the rule of
-    tableau.ratio_test over the basic z's (zb, dzb) and the basic w's (wv, dw)."""
+def gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm):
+    """The basic variables in pair order (z0 last): labels, values and changes per unit of
+    the entering variable.  Returns how many (n: z0 and one variable of every pair but the
+    entering one's)."""
+    m = 0
+    for i in range(n + 1):
+        if bpos[i] >= 0:
+            rlab[m] = n + i
+            rv[m] = zb[bpos[i]]
+            rc[m] = dzb[bpos[i]]
+            rm[m] = zmag[bpos[i]]
+            m += 1
+        elif i < n and apos[i] < 0:
+            rlab[m] = i
+            rv[m] = wv[i]
+            rc[m] = dw[i]
+            rm[m] = wmag[i]
+            m += 1
+    return m
+
+
+@kernel
+def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, tie_tol,
+               rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, z0_max):
+    """The leaving variable's label, or -1 when nothing blocks: pivoting's rule over the
+    basic variables gathered in (rlab, rv, rc)."""
     art = 2 * n
-    cmax = 0.0
-    vmax = 0.0
-    for p in range(k):
-        cmax = max(cmax, abs(dzb[p]))
-        vmax = max(vmax, abs(zb[p]))
-    for i in range(n):
-        if apos[i] < 0:
-            cmax = max(cmax, abs(dw[i]))
-            vmax = max(vmax, abs(wv[i]))
-    thr = -pivot_tol * cmax
-    tie_abs = tie_tol * vmax
-    theta = np.inf
-    for p in range(k):
-        if dzb[p] < thr:
-            theta = min(theta, max(zb[p], 0.0) / -dzb[p])
-    for i in range(n):
-        if apos[i] < 0 and dw[i] < thr:
-            theta = min(theta, max(wv[i], 0.0) / -dw[i])
-    if theta == np.inf:
-        return -1
-    nc = 0
-    for p in range(k):
-        if dzb[p] < thr and max(zb[p], 0.0) + dzb[p] * theta <= tie_abs:
-            if blist[p] == n:
-                return art
-            cand[nc] = n + blist[p]
-            nc += 1
-    for i in range(n):
-        if apos[i] < 0 and dw[i] < thr and max(wv[i], 0.0) + dw[i] * theta <= tie_abs:
-            cand[nc] = i
-            nc += 1
-    if nc == 1:
-        return cand[0]
-    # Lexicographic rule: column j of the basis inverse relative to the starting basis is
-    # the unit vector of its pair-j variable when that is basic, else minus its direction.
+    r_art = m - 1 if m > 0 and rlab[m - 1] == art else -1
+    if r_art >= 0:
+        z0_max[0] = max(z0_max[0], rv[r_art])
+    nc = pivoting.min_ratio(rv, rm, rc, m, pivot_tol, tie_tol, cand, r_art, z0_max[0])
+    if nc <= 1:
+        return rlab[cand[0]] if nc == 1 else -1
+    for c in range(nc):
+        if rlab[cand[c]] == art:
+            return art
+    # Column j of the basis inverse relative to the starting basis is the unit vector of
+    # its pair-j variable when that is basic, else minus its direction.
     for j in range(n):
         lab = n + j if z_start[j] else j
         basic = bpos[j] >= 0 if z_start[j] else apos[j] < 0
         if not basic:
             direction(A, AB, lab, n, alist, k, G, apos, lz, lw, tmp)
         for c in range(nc):
-            cl = cand[c]
+            cl = rlab[cand[c]]
             if basic:
                 b = 1.0 if cl == lab else 0.0
             else:
                 b = -(lz[bpos[cl - n]] if cl >= n else lw[cl])
-                if abs(b) <= pivot_tol:  # rounding noise on an exact zero (M has max 1)
-                    b = 0.0
-            piv = dzb[bpos[cl - n]] if cl >= n else dw[cl]
-            vals[c] = b / -piv
-        nc = keep_lowest(cand, vals, nc, pivot_tol)
+            keys[c] = pivoting.lex_key(b, rc[cand[c]], pivot_tol)
+        nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
         if nc == 1:
-            return cand[0]
-    best = cand[0]  # still tied (only through rounding): the largest pivot
-    bestp = 0.0
-    for c in range(nc):
-        cl = cand[c]
-        piv = abs(dzb[bpos[cl - n]] if cl >= n else dw[cl])
-        if piv > bestp:
-            bestp = piv
-            best = cl
-    return best
+            return rlab[cand[0]]
+    return rlab[pivoting.largest_pivot(cand, rc, nc)] if nc > 0 else -1
 
 
 @kernel
