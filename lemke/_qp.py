@@ -58,7 +58,10 @@ class Certificate:
     along it from any feasible point.
 
     Both are scaled to largest entry 1.  A QP that is both primal and dual infeasible is
-    reported primal infeasible, and its certificate then holds ``dx`` as well.
+    reported primal infeasible, and its ``"primal_infeasible"`` certificate then holds both
+    proofs: the Farkas vector ``(y, z, z_box)`` with its ``value``, and in ``dx`` a
+    direction as above (``q'dx < 0``; not part of ``value``), each checked on its own.  On
+    a ``"primal_infeasible"`` certificate ``dx`` is None when no such direction was found.
     """
 
     kind: str
@@ -92,6 +95,9 @@ class QPResult(Outcome):
         [x - ub]+)``, ``|P x + q + A'y + G'z + z_box|`` (max norms) and ``|x'Px + q'x + b'y +
         h'z + lb'min(z_box, 0) + ub'max(z_box, 0)|``.
     certificate : Certificate or None
+        On ``PRIMAL_INFEASIBLE`` a Farkas vector, whose ``dx`` is also a direction of
+        unbounded descent when the QP is dual infeasible as well (else None); on
+        ``DUAL_INFEASIBLE`` a direction ``dx``.  None otherwise.
     warm_start : WarmStart or None
         The final basis; pass it back for a nearby QP with the same structure.
     """
@@ -156,7 +162,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     QPResult
         ``SOLVED`` only after the KKT point passed the check on the data.  An infeasible or
         unbounded QP ends ``PRIMAL_INFEASIBLE`` or ``DUAL_INFEASIBLE`` with a checked
-        :class:`Certificate`.
+        :class:`Certificate`; one that is both ends ``PRIMAL_INFEASIBLE``, its certificate
+        carrying the direction too (``certificate.dx``).
 
     Examples
     --------
@@ -472,12 +479,14 @@ def _verdict(qp, r, method, opts):
     """``(status, certificate)`` for a KKT system without a solution found.
 
     Along a ray of a monotone KKT system P dx = 0, and the ray splits in two: (dy, dz) is a
-    Farkas vector when h'dz + b'dy + ... < 0, else dx is a direction of descent.  When
-    there is no ray (the equations were inconsistent, or the method failed) or it gives
-    only a direction, two small bounded LPs, solved by the same method, look for the
-    certificates.  Primal infeasibility wins: a QP with no feasible point is reported so
-    even if it is also dual infeasible (the certificate then carries both).  Nothing
-    verified: NUMERICAL_FAILURE."""
+    Farkas vector when h'dz + b'dy + ... < 0, and dx a direction of descent when q'dx < 0.
+    Whichever of the two the ray does not give (there is no ray when the equations were
+    inconsistent or the method failed) is looked for by a small bounded LP, solved by the
+    same method: both are always sought, since a QP can be primal and dual infeasible at
+    once.  Primal
+    infeasibility wins the status: a QP with no feasible point is reported so, and when it
+    is also dual infeasible its certificate carries the direction too (``dx``), each part
+    checked on its own.  Nothing verified: NUMERICAL_FAILURE."""
     farkas = direction = None
     if r.ray is not None:
         _, dy, dz, _, _ = qp.unpack(r.ray)
@@ -485,7 +494,7 @@ def _verdict(qp, r, method, opts):
         direction = _check_direction(qp, qp.direction(r.ray), opts.tol)
     if farkas is None:
         farkas = _farkas_by_lp(qp, method, opts)
-    if farkas is None and direction is None:
+    if direction is None:
         direction = _direction_by_lp(qp, method, opts)
     if farkas is not None:
         if direction is not None:
@@ -521,16 +530,38 @@ def _farkas_by_lp(qp, method, opts):
 
 
 def _direction_by_lp(qp, method, opts):
-    """min q'd  s.t.  P d = 0, A d = 0, G d <= 0, d in the bounds' cone and in [-1, 1]: a
-    negative optimum is a direction of unbounded descent."""
+    """min q'd  s.t.  P d = 0, A d = 0, G d <= delta, d in the bounds' cone: a negative
+    optimum is a direction of unbounded descent (then checked by _check_direction).
+
+    The LP is posed on d = N t, N an orthonormal basis of P's null space (the eigenvectors
+    of eigenvalue at most ``tol`` times the data's size; all of R^n when P = 0), with t in
+    [-1, 1]: P d = 0 then holds by construction, not as n nearly dependent equations that
+    can leave the LP's KKT system too ill-conditioned to solve.  The bounds' cone becomes
+    rows (-N_j t <= 0 where only lb_j is finite, N_j t <= 0 where only ub_j is, N_j t = 0
+    where both are).  The rows of G get the slack ``delta = tol`` times the data's size,
+    a tenth of what the check allows: a row that is orthogonal to the direction only up
+    to rounding (g'd = 1e-14 where it is 0 in exact arithmetic) must not block it, and
+    the LP would otherwise return d = 0."""
     if qp.free.size + qp.shifted.size == 0:
         return None  # no variable can move (none at all, or every one fixed)
-    n, mg = qp.n, qp.G.shape[0]
+    scale = _data_scale(qp)
     lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
-    Aeq = np.vstack([qp.P, qp.A])
-    aux = _QP(np.zeros((n, n)), qp.q, qp.G if mg else None, np.zeros(mg) if mg else None,
-              Aeq, np.zeros(Aeq.shape[0]), np.where(lo, 0.0, -1.0), np.where(up, 0.0, 1.0))
+    slack = np.full(qp.G.shape[0], opts.tol * scale)
+    if not np.any(qp.P != 0.0):  # an LP: N = I, and the cone is bounds on d itself
+        N = np.eye(qp.n)
+        aux = _QP(np.zeros((qp.n, qp.n)), qp.q, qp.G, slack, qp.A, np.zeros(qp.A.shape[0]),
+                  np.where(lo, 0.0, -1.0), np.where(up, 0.0, 1.0))
+    else:
+        lam, V = np.linalg.eigh(qp.P)
+        N = V[:, lam <= opts.tol * scale]
+        k = N.shape[1]
+        if k == 0:
+            return None  # P is definite: P d = 0 only for d = 0
+        G = np.vstack([qp.G @ N, -N[lo & ~up], N[up & ~lo]])
+        h = np.concatenate([slack, np.zeros(G.shape[0] - slack.size)])
+        A = np.vstack([qp.A @ N, N[lo & up]])
+        aux = _QP(np.zeros((k, k)), N.T @ qp.q, G, h, A, np.zeros(A.shape[0]), -np.ones(k), np.ones(k))
     r = _solve(aux, method, opts, None, certify=False)
     if r.status != Status.SOLVED:
         return None
-    return _check_direction(qp, r.x, opts.tol)
+    return _check_direction(qp, N @ r.x, opts.tol)

@@ -1,4 +1,5 @@
-"""Empty problems (n = 0 LCPs and MLCPs, QPs with no variable or every variable fixed).
+"""Empty problems (n = 0 LCPs and MLCPs, QPs with no variable or every variable fixed) and
+QPs that are infeasible and unbounded at once (both certificates).
 
 Every answer is judged by the tests' own checks (tests/helpers.py) or by the conditions
 written out here, never by lemke's certify code."""
@@ -6,10 +7,12 @@ import json
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import lemke
 from lemke import _cli
-from helpers import assert_farkas, assert_lcp_solution, assert_qp_kkt
+from helpers import assert_farkas, assert_lcp_solution, assert_qp_kkt, assert_unbounded_direction
 
 z0 = np.zeros
 
@@ -239,3 +242,108 @@ def test_empty_problems_survive_a_file_round_trip(tmp_path, fmt, method):
         back = lemke.read_problem(path)
         assert back.kind == prob.kind and back.shape == prob.shape
         assert back.solve(method=method).status == lemke.Status.SOLVED
+
+
+# ------------------------------------------------------------------ infeasible and unbounded
+
+def check_both(P, q, G, h, A, b, lb, ub, res):
+    """PRIMAL_INFEASIBLE, with a Farkas vector and a direction of descent, each checked here."""
+    assert res.status == lemke.Status.PRIMAL_INFEASIBLE, res
+    cert = res.certificate
+    assert cert.kind == "primal_infeasible"
+    assert_farkas(G, h, A, b, lb, ub, cert, np.size(q))
+    assert cert.dx is not None, "the direction of descent is missing"
+    assert_unbounded_direction(P, q, G, A, lb, ub, cert)
+
+
+def test_infeasible_and_unbounded_lp(method):
+    """min -x1 s.t. x2 <= -1, x2 >= 0 (as rows of G), x1 free: no x, and x1 -> +inf would
+    descend without bound."""
+    P, q = z0((2, 2)), np.array([-1.0, 0.0])
+    G, h = np.array([[0.0, 1.0], [0.0, -1.0]]), np.array([-1.0, 0.0])
+    res = lemke.solve_qp(P, q, G, h, method=method)
+    check_both(P, q, G, h, None, None, None, None, res)
+
+
+def test_infeasible_and_unbounded_with_a_bound_and_an_equality(method):
+    """The same with x2 >= 0 as a bound, in a QP: P acts on x3 only, and x3 = 0.5 is an
+    equality; d = (1, 0, 0) still descends."""
+    P = np.diag([0.0, 0.0, 2.0])
+    q = np.array([-1.0, 0.0, 1.0])
+    G, h = np.array([[0.0, 1.0, 0.0]]), np.array([-1.0])
+    A, b = np.array([[0.0, 0.0, 1.0]]), np.array([0.5])
+    lb = np.array([-np.inf, 0.0, -np.inf])
+    res = lemke.solve_qp(P, q, G, h, A, b, lb, None, method=method)
+    check_both(P, q, G, h, A, b, lb, None, res)
+
+
+def test_infeasible_but_bounded_has_no_direction(method):
+    """P positive definite: P d = 0 only for d = 0, so no direction of descent exists."""
+    G, h = np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([-1.0, -1.0])
+    res = lemke.solve_qp(np.eye(2), np.array([1.0, -3.0]), G, h, method=method)
+    assert res.status == lemke.Status.PRIMAL_INFEASIBLE
+    assert_farkas(G, h, None, None, None, None, res.certificate, 2)
+    assert res.certificate.dx is None
+
+
+def test_feasible_and_unbounded_stays_dual_infeasible(method):
+    G, h = np.array([[0.0, 1.0]]), np.array([1.0])
+    res = lemke.solve_qp(z0((2, 2)), np.array([-1.0, 0.0]), G, h, method=method)
+    assert res.status == lemke.Status.DUAL_INFEASIBLE
+    assert_unbounded_direction(z0((2, 2)), [-1.0, 0.0], G, None, None, None, res.certificate)
+    assert res.certificate.y is None and res.certificate.z is None
+
+
+@settings(max_examples=25, deadline=None)
+@given(n=st.integers(3, 7), rank=st.integers(0, 2), m=st.integers(0, 4), seed=st.integers(0, 2**32 - 1))
+def test_property_infeasible_and_unbounded_get_both(n, rank, m, seed):
+    """A random QP built to be both: P = B B' (rank < n) with a null direction d that q
+    descends along; rows with g'd <= 0 (so d stays a direction) and a contradicting pair."""
+    rng = np.random.default_rng(seed)
+    B = rng.standard_normal((n, rank))
+    P = B @ B.T
+    # d: a unit vector orthogonal to B's columns, so P d = 0
+    d = rng.standard_normal(n)
+    if rank:
+        Q, _ = np.linalg.qr(B)
+        d -= Q @ (Q.T @ d)
+    d /= np.linalg.norm(d)
+    q = -d + P @ rng.standard_normal(n)  # q'd = -1
+    a = rng.standard_normal(n)
+    a -= (a @ d) * d  # a'd = 0: the contradicting pair does not block d
+    noise = rng.standard_normal((m, n))
+    noise -= np.outer(noise @ d, d) + np.outer(rng.uniform(0.0, 1.0, m), d)  # g'd <= 0
+    G = np.vstack([a, -a, noise])
+    h = np.concatenate([[-1.0 - rng.uniform()], [-1.0], rng.uniform(1.0, 2.0, m)])
+    res = lemke.solve_qp(P, q, G, h)
+    check_both(P, q, G, h, None, None, None, None, res)
+
+
+@settings(max_examples=40, deadline=None)
+@given(n=st.integers(2, 7), m=st.integers(1, 5), rank=st.integers(0, 7), seed=st.integers(0, 2**32 - 1))
+def test_property_direction_is_reported_exactly_when_one_exists(n, m, rank, seed):
+    """Infeasible QPs (a contradicting pair of rows) with random q and a P of any rank: the
+    Farkas vector always, and dx exactly when an LP solved by scipy's HiGHS (the judge
+    here, on P's null space) finds a direction of descent."""
+    from scipy.linalg import null_space
+    from scipy.optimize import linprog
+
+    rng = np.random.default_rng(seed)
+    a = rng.standard_normal(n)
+    G = np.vstack([a, -a, rng.standard_normal((m, n))])
+    h = np.concatenate([[-1.0 - rng.uniform()], [-1.0], rng.uniform(1.0, 2.0, m)])
+    B = rng.standard_normal((n, min(rank, n)))
+    P, q = B @ B.T, rng.standard_normal(n)
+    res = lemke.solve_qp(P, q, G, h)
+    assert res.status == lemke.Status.PRIMAL_INFEASIBLE, res
+    assert_farkas(G, h, None, None, None, None, res.certificate, n)
+    N = null_space(P, rcond=1e-9) if rank else np.eye(n)
+    exists = False
+    if N.shape[1]:
+        lp = linprog(N.T @ q, A_ub=G @ N, b_ub=np.zeros(G.shape[0]), bounds=[(-1.0, 1.0)] * N.shape[1],
+                     method="highs")
+        assert lp.status == 0
+        exists = lp.fun < -1e-7
+    assert (res.certificate.dx is not None) == exists
+    if exists:
+        assert_unbounded_direction(P, q, G, None, None, None, res.certificate)
