@@ -48,6 +48,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     ----------
     M : (B, n, n) array_like, or (n, n) shared by all problems
     q : (B, n) array_like
+        B = 0 (no problem) and n = 0 (empty problems, each SOLVED) are allowed.
     method : {"tableau", "unrevised"}
     options : Options or dict, optional
     workers : int, optional
@@ -75,6 +76,8 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     if q.ndim != 2:
         raise ValueError(f"q must have shape (B, n), got shape {q.shape}")
     B, n = q.shape
+    if n == 0 and M.size == 0 and M.ndim < 3:
+        M = np.zeros((0, 0))  # [] is the empty matrix, shared
     if M.ndim == 2:
         if M.shape != (n, n):
             raise ValueError(f"a shared M must have shape ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")

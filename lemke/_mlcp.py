@@ -93,7 +93,8 @@ def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=N
     A : (n, n) array_like      B : (m, m) array_like
     C : (n, m) array_like      D : (m, n) array_like
     a : (n,) array_like        b : (m,) array_like
-        Dense or scipy.sparse; n = 0 (a plain LCP) and m = 0 (linear equations) are allowed.
+        Dense or scipy.sparse; n = 0 (a plain LCP), m = 0 (linear equations) and both (an
+        empty problem: SOLVED with empty u, v, w) are allowed; ``[]`` is an empty block.
     method : {"tableau", "unrevised"}
         The Lemke method for the reduced LCP (see :func:`lemke.solve_lcp`).
     warm_start : WarmStart, optional
@@ -197,11 +198,13 @@ def _equilibrate(E, n, iterations=10):
     N = E.shape[0]
     r = np.ones(N)
     s = np.ones(N)
+    if N == 0:  # an empty system: nothing to scale (and max over no entries is undefined)
+        return r, s
     absE = np.abs(E)
     for _ in range(iterations):
         S = absE * r[:, None] * s[None, :]
-        rows = S.max(axis=1) if N else S
-        cols = S.max(axis=0) if N else S
+        rows = S.max(axis=1)
+        cols = S.max(axis=0)
         rows[rows == 0.0] = 1.0
         cols[cols == 0.0] = 1.0
         r[:n] /= np.sqrt(rows[:n])

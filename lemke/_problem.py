@@ -34,6 +34,8 @@ def _to_float_array(x, name: str, allow_inf: int = 0) -> np.ndarray:
 def as_matrix(M, name: str = "M") -> np.ndarray:
     """A square float64 copy of ``M`` (dense or scipy.sparse)."""
     a = _to_float_array(M, name)
+    if a.ndim == 1 and a.size == 0:
+        a = np.zeros((0, 0))  # [] is the empty matrix
     if a.ndim != 2 or a.shape[0] != a.shape[1]:
         raise ValueError(f"{name} must be a square 2-D matrix, got shape {a.shape}")
     return np.ascontiguousarray(a)
@@ -73,6 +75,10 @@ KINDS = tuple(FIELDS)
 def _stored(x, name: str, shape: tuple, allow_inf: int = 0) -> np.ndarray:
     """A read-only float64 copy of ``x``, which must have ``shape``."""
     a = _to_float_array(x, name, allow_inf)
+    if a.size == 0 and 0 in shape:
+        # No entries either way: [] (or [[]]) stands for any empty matrix, e.g. a JSON file's
+        # C of shape (0, m), which a list of no rows cannot spell.
+        a = np.zeros(shape)
     if a.shape != shape:
         raise ValueError(f"{name} must have shape {shape}, got shape {a.shape}")
     a = np.array(a, dtype=np.float64, order="C", copy=True)

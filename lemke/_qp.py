@@ -37,6 +37,7 @@ from ._problem import _to_float_array
 from ._result import Outcome, WarmStart
 from ._status import Status
 
+EPS = float(np.finfo(np.float64).eps)
 INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
 SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
 CONVEXITY_TOL = 1e-10  # relative: P + CONVEXITY_TOL max|P| I must have a Cholesky factor
@@ -57,7 +58,10 @@ class Certificate:
     along it from any feasible point.
 
     Both are scaled to largest entry 1.  A QP that is both primal and dual infeasible is
-    reported primal infeasible, and its certificate then holds ``dx`` as well.
+    reported primal infeasible, and its ``"primal_infeasible"`` certificate then holds both
+    proofs: the Farkas vector ``(y, z, z_box)`` with its ``value``, and in ``dx`` a
+    direction as above (``q'dx < 0``; not part of ``value``), each checked on its own.  On
+    a ``"primal_infeasible"`` certificate ``dx`` is None when no such direction was found.
     """
 
     kind: str
@@ -91,6 +95,9 @@ class QPResult(Outcome):
         [x - ub]+)``, ``|P x + q + A'y + G'z + z_box|`` (max norms) and ``|x'Px + q'x + b'y +
         h'z + lb'min(z_box, 0) + ub'max(z_box, 0)|``.
     certificate : Certificate or None
+        On ``PRIMAL_INFEASIBLE`` a Farkas vector, whose ``dx`` is also a direction of
+        unbounded descent when the QP is dual infeasible as well (else None); on
+        ``DUAL_INFEASIBLE`` a direction ``dx``.  None otherwise.
     warm_start : WarmStart or None
         The final basis; pass it back for a nearby QP with the same structure.
     """
@@ -129,7 +136,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     Parameters
     ----------
     P : (n, n) array_like
-        Symmetric positive semidefinite (P = 0, a linear program, included).  It is
+        Symmetric positive semidefinite (P = 0, a linear program, included; n = 0, no
+        variables, too: the constraints are then the constant rows 0 <= h, 0 = b).  It is
         symmetrized as (P + P')/2; an asymmetry beyond ``1e-10 max|P|`` is an error (a
         triangular P is a common slip), and so is a P that is not positive semidefinite.
     q : (n,) array_like
@@ -138,7 +146,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     A, b : (p, n) and (p,) array_like, optional
         Equalities.
     lb, ub : (n,) array_like, optional
-        Bounds; entries of magnitude >= 1e20 and infinities mean no bound.
+        Bounds; entries of magnitude >= 1e20 and infinities mean no bound.  lb = ub fixes a
+        variable (every variable may be fixed); its z_box is what makes its row of
+        ``P x + q + A'y + G'z + z_box = 0`` hold.
     method : {"tableau", "unrevised"}
         The Lemke method (see :func:`lemke.solve_lcp`).
     warm_start : WarmStart, optional
@@ -152,7 +162,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     QPResult
         ``SOLVED`` only after the KKT point passed the check on the data.  An infeasible or
         unbounded QP ends ``PRIMAL_INFEASIBLE`` or ``DUAL_INFEASIBLE`` with a checked
-        :class:`Certificate`.
+        :class:`Certificate`; one that is both ends ``PRIMAL_INFEASIBLE``, its certificate
+        carrying the direction too (``certificate.dx``).
 
     Examples
     --------
@@ -175,10 +186,12 @@ class _QP:
 
     def __init__(self, P, q, G, h, A, b, lb, ub):
         q = _to_float_array(q, "q")
-        if q.ndim != 1 or q.size == 0:
-            raise ValueError(f"q must be a non-empty vector, got shape {q.shape}")
-        n = q.size
+        if q.ndim != 1:
+            raise ValueError(f"q must be a vector, got shape {q.shape}")
+        n = q.size  # n = 0 is allowed: the constraints are then constant rows 0 <= h, 0 = b
         P = _to_float_array(P, "P")
+        if n == 0 and P.size == 0:
+            P = np.zeros((0, 0))  # [] or any other empty array
         if P.shape != (n, n):
             raise ValueError(f"P must have shape ({n}, {n}) to match q, got {P.shape}")
         self.n, self.q = n, q
@@ -236,7 +249,8 @@ class _QP:
         E[cb + np.arange(nb), cx + self.boxed] = -1.0
         j_box = Nn[self.boxed]
         e = np.concatenate([
-            g0[F], self.b - A @ self.x0, S * g0[Nn], self.h - G @ self.x0,
+            g0[F], _constant_rows(A, self.b, self.x0, self.fixed),
+            S * g0[Nn], _constant_rows(G, self.h, self.x0, self.fixed),
             self.ub[j_box] - self.lb[j_box],
         ])
         self.E, self.e, self.n_free = E, e, n_free
@@ -257,6 +271,21 @@ class _QP:
         dx[self.free] = d_mlcp[cf:cy]
         dx[self.shifted] = self.sign * d_mlcp[cx:cz]
         return dx
+
+
+def _constant_rows(M, v, x0, fixed):
+    """``v - M x0``, the right-hand sides after the shift, where a row that holds fixed
+    variables only (a constant row: it reads 0 = c or 0 <= c) gets exactly 0 when c is at
+    the level of the rounding in computing it: 3 * 0.1 = 0.3 must not read as a violated
+    row.  Other rows keep their value (the solver handles their rounding)."""
+    c = v - M @ x0
+    if M.shape[0] and fixed.size:
+        moving = np.ones(M.shape[1], dtype=bool)
+        moving[fixed] = False
+        constant = ~np.any(M[:, moving] != 0.0, axis=1)
+        rounding = 4.0 * (fixed.size + 1) * EPS * (np.abs(v) + np.abs(M[:, fixed]) @ np.abs(x0[fixed]))
+        c[constant & (np.abs(c) <= rounding)] = 0.0
+    return c
 
 
 def _symmetric_psd(P):
@@ -290,9 +319,11 @@ def _rows(M, v, n, mname, vname):
         given, missing = (mname, vname) if v is None else (vname, mname)
         raise ValueError(f"{given} was given without {missing}: pass both or neither")
     M = _to_float_array(M, mname)
-    if M.ndim == 1:
-        M = M.reshape(1, -1)
     v = _to_float_array(v, vname).reshape(-1) if np.ndim(v) == 0 else _to_float_array(v, vname)
+    if M.ndim == 1 and M.size == 0 and v.ndim == 1 and (n == 0 or v.size == 0):
+        M = np.zeros((v.size, n))  # [] for rows of no variables, or for no rows at all
+    elif M.ndim == 1:
+        M = M.reshape(1, -1)
     if M.ndim != 2 or M.shape[1] != n:
         raise ValueError(f"{mname} must have {n} columns (the size of q), got shape {M.shape}")
     if v.shape != (M.shape[0],):
@@ -355,12 +386,12 @@ def residuals(qp, x, y, z, z_box):
     Px = P @ x
     primal = max(
         0.0,
-        float(np.max(G @ x - h)) if h.size else 0.0,
-        float(np.max(np.abs(A @ x - b))) if b.size else 0.0,
-        float(np.max(lb - x)),
-        float(np.max(x - ub)),
+        float(np.max(G @ x - h, initial=0.0)),
+        _size(A @ x - b),
+        float(np.max(lb - x, initial=0.0)),
+        float(np.max(x - ub, initial=0.0)),
     )
-    dual = float(np.max(np.abs(Px + q + A.T @ y + G.T @ z + z_box)))
+    dual = _size(Px + q + A.T @ y + G.T @ z + z_box)
     lo, up = np.isfinite(lb), np.isfinite(ub)
     gap = abs(
         float(x @ Px + q @ x + h @ z + b @ y)
@@ -415,7 +446,7 @@ def _check_farkas(qp, y, z, tol):
         return None
     z_box[~lo] = np.maximum(z_box[~lo], 0.0)
     z_box[~up] = np.minimum(z_box[~up], 0.0)
-    residual = float(np.max(np.abs(qp.A.T @ y + qp.G.T @ z + z_box)))
+    residual = _size(qp.A.T @ y + qp.G.T @ z + z_box)
     value = farkas_value(qp, y, z, z_box)
     bound = max(1.0, _size(qp.lb[lo]), _size(qp.ub[up]))
     if residual > s or value >= -s * bound:
@@ -448,12 +479,14 @@ def _verdict(qp, r, method, opts):
     """``(status, certificate)`` for a KKT system without a solution found.
 
     Along a ray of a monotone KKT system P dx = 0, and the ray splits in two: (dy, dz) is a
-    Farkas vector when h'dz + b'dy + ... < 0, else dx is a direction of descent.  When
-    there is no ray (the equations were inconsistent, or the method failed) or it gives
-    only a direction, two small bounded LPs, solved by the same method, look for the
-    certificates.  Primal infeasibility wins: a QP with no feasible point is reported so
-    even if it is also dual infeasible (the certificate then carries both).  Nothing
-    verified: NUMERICAL_FAILURE."""
+    Farkas vector when h'dz + b'dy + ... < 0, and dx a direction of descent when q'dx < 0.
+    Whichever of the two the ray does not give (there is no ray when the equations were
+    inconsistent or the method failed) is looked for by a small bounded LP, solved by the
+    same method: both are always sought, since a QP can be primal and dual infeasible at
+    once.  Primal
+    infeasibility wins the status: a QP with no feasible point is reported so, and when it
+    is also dual infeasible its certificate carries the direction too (``dx``), each part
+    checked on its own.  Nothing verified: NUMERICAL_FAILURE."""
     farkas = direction = None
     if r.ray is not None:
         _, dy, dz, _, _ = qp.unpack(r.ray)
@@ -461,7 +494,7 @@ def _verdict(qp, r, method, opts):
         direction = _check_direction(qp, qp.direction(r.ray), opts.tol)
     if farkas is None:
         farkas = _farkas_by_lp(qp, method, opts)
-    if farkas is None and direction is None:
+    if direction is None:
         direction = _direction_by_lp(qp, method, opts)
     if farkas is not None:
         if direction is not None:
@@ -497,14 +530,38 @@ def _farkas_by_lp(qp, method, opts):
 
 
 def _direction_by_lp(qp, method, opts):
-    """min q'd  s.t.  P d = 0, A d = 0, G d <= 0, d in the bounds' cone and in [-1, 1]: a
-    negative optimum is a direction of unbounded descent."""
-    n, mg = qp.n, qp.G.shape[0]
+    """min q'd  s.t.  P d = 0, A d = 0, G d <= delta, d in the bounds' cone: a negative
+    optimum is a direction of unbounded descent (then checked by _check_direction).
+
+    The LP is posed on d = N t, N an orthonormal basis of P's null space (the eigenvectors
+    of eigenvalue at most ``tol`` times the data's size; all of R^n when P = 0), with t in
+    [-1, 1]: P d = 0 then holds by construction, not as n nearly dependent equations that
+    can leave the LP's KKT system too ill-conditioned to solve.  The bounds' cone becomes
+    rows (-N_j t <= 0 where only lb_j is finite, N_j t <= 0 where only ub_j is, N_j t = 0
+    where both are).  The rows of G get the slack ``delta = tol`` times the data's size,
+    a tenth of what the check allows: a row that is orthogonal to the direction only up
+    to rounding (g'd = 1e-14 where it is 0 in exact arithmetic) must not block it, and
+    the LP would otherwise return d = 0."""
+    if qp.free.size + qp.shifted.size == 0:
+        return None  # no variable can move (none at all, or every one fixed)
+    scale = _data_scale(qp)
     lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
-    Aeq = np.vstack([qp.P, qp.A])
-    aux = _QP(np.zeros((n, n)), qp.q, qp.G if mg else None, np.zeros(mg) if mg else None,
-              Aeq, np.zeros(Aeq.shape[0]), np.where(lo, 0.0, -1.0), np.where(up, 0.0, 1.0))
+    slack = np.full(qp.G.shape[0], opts.tol * scale)
+    if not np.any(qp.P != 0.0):  # an LP: N = I, and the cone is bounds on d itself
+        N = np.eye(qp.n)
+        aux = _QP(np.zeros((qp.n, qp.n)), qp.q, qp.G, slack, qp.A, np.zeros(qp.A.shape[0]),
+                  np.where(lo, 0.0, -1.0), np.where(up, 0.0, 1.0))
+    else:
+        lam, V = np.linalg.eigh(qp.P)
+        N = V[:, lam <= opts.tol * scale]
+        k = N.shape[1]
+        if k == 0:
+            return None  # P is definite: P d = 0 only for d = 0
+        G = np.vstack([qp.G @ N, -N[lo & ~up], N[up & ~lo]])
+        h = np.concatenate([slack, np.zeros(G.shape[0] - slack.size)])
+        A = np.vstack([qp.A @ N, N[lo & up]])
+        aux = _QP(np.zeros((k, k)), N.T @ qp.q, G, h, A, np.zeros(A.shape[0]), -np.ones(k), np.ones(k))
     r = _solve(aux, method, opts, None, certify=False)
     if r.status != Status.SOLVED:
         return None
-    return _check_direction(qp, r.x, opts.tol)
+    return _check_direction(qp, N @ r.x, opts.tol)

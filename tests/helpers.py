@@ -61,7 +61,7 @@ def assert_qp_kkt(P, q, G, h, A, b, lb, ub, res, rtol=1e-8):
     lb, ub = _bounds(n, lb, ub)
     x, y, z, zb = (np.asarray(a, dtype=float) for a in (res.x, res.y, res.z, res.z_box))
     assert x.shape == (n,) and y.shape == b.shape and z.shape == h.shape and zb.shape == (n,)
-    xs = max(1.0, np.abs(x).max())
+    xs = max(1.0, np.abs(x).max(initial=0.0))
     data = max([1.0] + [np.abs(a).max() for a in (P, q, G, h, A, b) if a.size])
     mult = max([1.0] + [np.abs(a).max() for a in (y, z, zb) if a.size])
     # primal feasibility
@@ -72,8 +72,8 @@ def assert_qp_kkt(P, q, G, h, A, b, lb, ub, res, rtol=1e-8):
     assert np.all(x >= lb - rtol * xs) and np.all(x <= ub + rtol * xs), "bounds fail"
     # dual feasibility and stationarity
     assert np.all(z >= -rtol * mult), "a multiplier of G x <= h is negative"
-    stat = P @ x + q + A.T @ y + G.T @ z + zb
-    assert np.abs(stat).max() <= rtol * data * max(xs, mult), f"stationarity fails: {np.abs(stat).max()}"
+    stat = np.abs(P @ x + q + A.T @ y + G.T @ z + zb).max(initial=0.0)
+    assert stat <= rtol * data * max(xs, mult), f"stationarity fails: {stat}"
     # complementarity: inactive constraints and bounds have zero multipliers
     if h.size:
         slack = h - G @ x
@@ -100,7 +100,7 @@ def assert_farkas(G, h, A, b, lb, ub, cert, n, rtol=1e-8):
     assert np.all(z >= 0), "Farkas z must be >= 0"
     assert np.all(zb[~np.isfinite(lb)] >= 0) and np.all(zb[~np.isfinite(ub)] <= 0), "z_box sign without a bound"
     data = max([1.0] + [np.abs(a).max() for a in (G, A) if a.size])
-    assert np.abs(G.T @ z + A.T @ y + zb).max() <= rtol * data
+    assert np.abs(G.T @ z + A.T @ y + zb).max(initial=0.0) <= rtol * data
     lo, up = np.isfinite(lb), np.isfinite(ub)
     value = h @ z + b @ y + lb[lo] @ np.minimum(zb[lo], 0) + ub[up] @ np.maximum(zb[up], 0)
     assert value < -rtol * data, f"the Farkas value {value} is not negative"
