@@ -9,20 +9,23 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     default leaves room for Murty's exponential example up to n = 10 (2**n pivots).
 ``pivot_tol`` (default ``1e-11``)
     An entry of the driving column takes part in the ratio test only when it is below
-    ``-pivot_tol * max|column|``; smaller entries are treated as rounding noise.
+    ``-pivot_tol * max|column|`` (in the equilibrated units); smaller entries are treated
+    as rounding noise, and so are entries of the basis inverse below ``pivot_tol`` in the
+    lexicographic keys.
 ``tie_tol`` (default ``1e-11``)
-    Rows whose basic variable would end within ``tie_tol * max|basic values|`` of zero at
-    the minimum ratio are tied (values below zero by rounding count as zero); ties go to the artificial variable if it is among them, else to the
-    lexicographic rule on the rows of the basis inverse (which makes cycling impossible).
+    Two keys of the lexicographic ratio rule (the ratios first, then the entries of the
+    basis inverse divided by the pivot entries) are tied when they agree to within
+    ``tie_tol`` relative to their own size: ``x <= m + tie_tol * max(|x|, |m|)``; never
+    because both are near zero.  0 asks for exact ties.  See ``lemke.kernels.pivoting`` for
+    the rule and why the default sits above the rounding of well-conditioned bases.
 ``tol`` (default ``1e-9``)
-    Acceptance test for a solution, made on the caller's data: with
-    ``s_w = tol * max(max|q|, max|M|) + 4 n eps max|M| max|z|`` (the data's size plus the
-    rounding floor of computing Mz) and ``s_z = tol * max(max|z|, max|q| / max|M|)``,
-    a point is a solution when ``z >= -s_z``, ``w >= -s_w`` and, for every i,
-    ``z_i <= s_z`` or ``|w_i| <= s_w`` -- and when it is small enough to be certified at
-    all: ``eps max|M| max|z| <= 1000 tol max(max|q|, max|M|)`` (a larger z, such as the
-    |z| ~ 1e16 of a pivot on rounding noise, would pass the rounding allowance whatever
-    it is).
+    Acceptance test for a solution, made on the caller's data row by row
+    (``lemke.kernels.certify``): with ``r_i = |M_i.| |z| + |q_i|`` and
+    ``t = tol + (n + 2) eps``, ``w_i >= -t r_i``, and ``|w_i| <= t r_i`` unless z_i is zero
+    (below ``t min_j r_j / |M_ji|``: zeroing it moves no w_j by more than ``t r_j``); and z
+    must be small enough to be certified at all (in the row-equilibrated coordinates,
+    ``eps max_i R_i |M_i.| |z| <= 1000 t max(max_i R_i |q_i|, 1)``: a z such as the
+    |z| ~ 1e16 of a pivot on rounding noise answers a different problem).
 """
 from __future__ import annotations
 
