@@ -19,6 +19,42 @@ def assert_lcp_solution(M, q, z, rtol=1e-8):
     assert worst <= rtol * z_scale * w_scale, f"z'w is not 0: max |z_i w_i| = {worst}"
 
 
+def assert_lcp_solution_rowwise(M, q, z, rtol=1e-8):
+    """Assert that z solves LCP(M, q) row by row, each row against its own size.
+
+    With ``s_i = |M_i.| |z| + |q_i|`` (the size of the terms that make up w_i):
+    w_i >= -rtol s_i for every i, and |w_i| <= rtol s_i wherever z_i > 0.  Unlike
+    :func:`assert_lcp_solution` this is unchanged by row and column scalings
+    (``D1 M D2``, ``D1 q``, z -> D2^-1 z), so a row whose entries are tiny next to the
+    others' is held to its own scale.  z must be >= 0: a negative z_j is allowed only when
+    it is rounding noise on a zero, i.e. its column of M is not zero and it moves no row by
+    more than that row's tolerance (|M_rj z_j| <= rtol s_r for all r).
+
+    Meant for problems such as P-matrices with dense rows.  On a degenerate problem whose
+    solution leaves a row with nothing but rounding noise in it (a friction-cone row
+    mu c_n - beta+ - beta- of an idle contact, all three ~1e-16) that noise is the row's
+    whole size, and the test fails although the answer is right to working precision.
+    """
+    M = np.asarray(M, dtype=float)
+    q = np.asarray(q, dtype=float)
+    z = np.asarray(z, dtype=float)
+    assert z.shape == q.shape and np.all(np.isfinite(z)), "z has the wrong shape or is not finite"
+    if q.size == 0:
+        return
+    w = M @ z + q
+    s = np.abs(M) @ np.abs(z) + np.abs(q)
+    # A negative z_j passes when it moves no row by more than that row's tolerance.
+    negligible = np.any(M != 0, axis=0) & np.all(np.abs(M) * np.abs(z)[None, :] <= rtol * s[:, None], axis=0)
+    bad = np.flatnonzero((z < 0) & ~negligible)
+    assert bad.size == 0, f"z has negative entries {z[bad][:5]} at {bad[:5]}"
+    low = np.flatnonzero(w < -rtol * s)
+    assert low.size == 0, (f"w = Mz + q is negative in rows {low[:5]}: w = {w[low][:5]}, "
+                           f"row sizes {s[low][:5]}")
+    open_ = np.flatnonzero((z > 0) & (np.abs(w) > rtol * s))
+    assert open_.size == 0, (f"z_i > 0 with w_i != 0 in rows {open_[:5]}: z = {z[open_][:5]}, "
+                             f"w = {w[open_][:5]}, row sizes {s[open_][:5]}")
+
+
 def assert_ray(M, q, d, z, z0, ray, rtol=1e-8):
     """Assert that (z, z0) + t * ray stays almost complementary and feasible for all t >= 0."""
     M = np.asarray(M, dtype=float)

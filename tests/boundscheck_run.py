@@ -1,0 +1,126 @@
+"""Run the degenerate families under numba's bounds checking (run by test_boundscheck.py).
+
+Meant to be started with ``NUMBA_BOUNDSCHECK=1`` and a fresh, empty ``NUMBA_CACHE_DIR``:
+every kernel is then compiled here with bounds checks, and an out-of-range index raises
+IndexError instead of reading or writing memory that is not the array's.  The statuses do
+not matter here (test_cycling.py checks them); every solve runs, and each exception is
+reported with the problem that raised it.  The last line of stdout is a JSON summary
+(``errors``, ``solves``, ``boundscheck_probe``, ``dispatchers``: the compile statistics of
+every lemke kernel, so that the caller can check that nothing came from a cache).  Exit
+status 1 when a solve raised.
+"""
+import importlib
+import json
+import os
+import pkgutil
+import sys
+import time
+import traceback
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import lemke  # noqa: E402
+import lemke.kernels  # noqa: E402
+import stress_cases  # noqa: E402
+from lemke import problems  # noqa: E402
+
+errors = []
+solves = 0
+
+
+def attempt(label, fn):
+    global solves
+    solves += 1
+    try:
+        fn()
+    except Exception as e:  # every exception is a finding; go on with the next
+        errors.append({"case": label, "error": repr(e), "traceback": traceback.format_exc()[-1500:]})
+
+
+def lcp(label, M, q, **kw):
+    # Writable copies: a read-only array is another type to numba, and would compile every
+    # kernel a second time.
+    M, q = np.array(M), np.array(q)
+    for method in lemke.METHODS:
+        attempt(f"{label} [{method}] {kw.get('options') or ''}",
+                lambda method=method: lemke.solve_lcp(M, q, method=method, **kw))
+
+
+def probe():
+    """Whether numba's bounds checking is in force in this process (a throw-away kernel
+    indexing past the end of an array must raise IndexError)."""
+    from numba import njit
+
+    @njit
+    def past_the_end(a):
+        return a[a.shape[0] + 3]
+
+    try:
+        past_the_end(np.zeros(2))
+    except IndexError:
+        return True
+    return False
+
+
+def main():
+    t0 = time.perf_counter()
+    on = probe()
+    dart = {c.name: tuple(map(np.array, stress_cases.problem(c.key)))
+            for c in stress_cases.BASE_CASES if c.family == "dart"}
+    M12, q12 = dart["Lemke_12D"]
+    for t in (0.0, 1e-14, 1e-11, 1e-6):
+        lcp("dart/Lemke_12D", M12, q12, options={"tie_tol": t})
+    for name, (M, q) in dart.items():
+        lcp(f"dart/{name}", M, q)
+    murty = stress_cases.BY_KEY[f"murty/murty-{stress_cases.MURTY_N}"]
+    lcp(murty.key, *stress_cases.problem(murty.key), options=dict(murty.options))
+    for c in stress_cases.BASE_CASES:
+        if c.family == "siconos":
+            lcp(c.key, *stress_cases.problem(c.key))
+    for key in ("int/n5-s0", "int/n9-s1", "int/n12-s2", "int-p/n7-s0", "int-p/n12-s3"):
+        lcp(key, *stress_cases.problem(key))
+    # A short scene of the contact simulation (its own solves run bounds-checked too).
+    steps = []
+    attempt("contact_sim.step_lcps(3, 12, 30)", lambda: steps.extend(
+        stress_cases.contact_sim.step_lcps(3, 12, 30)))
+    for k in range(10, len(steps), 4):
+        lcp(f"contact seed 3 step {k}", *steps[k])
+    # Extreme options on DART 12D (crashes in the options sweep of test_cycling.py).
+    for t, p, mp in ((0.0, 0.0, None), (0.0, 0.0, 2), (0.0, 1e-300, None), (5e-324, 0.0, 1), (0.5, 0.5, 0)):
+        lcp("dart/Lemke_12D", M12, q12, options={"tie_tol": t, "pivot_tol": p, "max_pivots": mp})
+    # The other entry points, one small problem each.
+    for method in lemke.METHODS:
+        qs = np.stack([q12, q12[::-1], np.abs(q12)])
+        attempt(f"solve_lcp_batch(Lemke_12D) [{method}]", lambda m=method: lemke.solve_lcp_batch(M12, qs, method=m))
+        M4, q4 = dart["Lemke_4D"]  # its basis does not solve the reversed q: a restart from it
+        attempt(f"warm start restart (Lemke_4D) [{method}]", lambda m=method: lemke.solve_lcp(
+            M4, q4[::-1].copy(), method=m, warm_start=lemke.solve_lcp(M4, q4, method=m).warm_start))
+        attempt(f"solve_mlcp (2 x 2) [{method}]", lambda m=method: lemke.solve_mlcp(
+            [[2.0]], [[1.0]], [[1.0]], [[-1.0]], [-1.0], [-1.0], method=m))
+        hs21 = problems.hs21()
+        attempt(f"solve_qp (hs21) [{method}]", lambda m=method: lemke.solve_qp(
+            hs21.P, hs21.q, hs21.G, hs21.h, lb=hs21.lb, ub=hs21.ub, method=m))
+
+    # Compile statistics of every lemke kernel that was used.
+    dispatchers = {}
+    for info in pkgutil.iter_modules(lemke.kernels.__path__):
+        mod = importlib.import_module(f"lemke.kernels.{info.name}")
+        for name, obj in vars(mod).items():
+            stats = getattr(obj, "stats", None)
+            if getattr(obj, "signatures", None) and stats is not None and hasattr(stats, "cache_hits"):
+                dispatchers[f"{info.name}.{name}"] = {
+                    "cache_path": str(stats.cache_path), "hits": sum(stats.cache_hits.values()),
+                    "misses": sum(stats.cache_misses.values())}
+    summary = {"errors": errors, "solves": solves, "boundscheck_probe": on, "dispatchers": dispatchers,
+               "kernels_dir": str(Path(lemke.kernels.__file__).parent), "seconds": time.perf_counter() - t0,
+               "cache_dir": os.environ.get("NUMBA_CACHE_DIR", "")}
+    print(json.dumps(summary))
+    return 1 if errors else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
