@@ -8,6 +8,12 @@ Prager: the point is an exact solution of a problem whose every entry of M and q
 most a relative t.  No row can hide behind another row's magnitude, and multiplying rows
 or columns of M by positive scales changes nothing.
 
+The one allowance that is not per row is the rounding of the data itself: an entry of q
+below ``(n + 2) eps max|q|`` cannot be told from zero (a contact LCP's q_i = -2e-15 next to
+q_j = 5 is the rounding of a product that is zero), so ``|q_i|`` is read as at least that
+in ``r_i``.  Rows whose data is 1e-13 of the largest row or larger are judged at their own
+scale.
+
 A z_i counts as zero when setting it to zero would move every w_j by at most ``t r_j``:
 ``z_i <= t min_j r_j / |M_ji|`` over the j with M_ji != 0 (0 when column i is zero).
 
@@ -57,10 +63,14 @@ def lcp_check_sized(M, q, z, tol, w, R):
     rows = np.empty(n)
     big = 0.0
     data = 1.0
+    q_floor = 0.0
+    for i in range(n):
+        q_floor = max(q_floor, abs(q[i]))
+    q_floor *= (n + 2) * EPS  # entries of q below this are rounding of q's largest one
     for i in range(n):
         mz, size = dot_and_size(M[i], z, n)
         w[i] = q[i] + mz
-        rows[i] = size + abs(q[i])
+        rows[i] = size + max(abs(q[i]), q_floor)
         big = max(big, R[i] * size)
         data = max(data, R[i] * abs(q[i]))
     ok = EPS * big <= CERTIFIABLE * t * data
