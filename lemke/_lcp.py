@@ -138,10 +138,10 @@ def _restart(M, q, beta, Mbb, opts):
     buf = np.empty(4 * n + 2)
     x, ray, w, cov = cold.layout(n, buf)
     np.subtract(m_scale * (~beta), M[:, beta].sum(axis=1), out=cov)
-    try:  # numpy's LAPACK, like _basis_point (two BLAS thread pools would collide)
-        G0 = np.linalg.inv(Mbb) * m_scale
-    except np.linalg.LinAlgError:
+    G0 = Mbb.copy()  # inverted by a kernel on this thread: no BLAS thread pool (README, Threads)
+    if not linalg.invert_in_place(G0, G0.shape[0]):
         return None
+    G0 *= m_scale
     if not np.isfinite(G0).all():
         return None
     z_basic = np.empty(n, dtype=np.bool_)
@@ -193,12 +193,10 @@ def _basis_point(Mbb, q, beta):
     None if Mbb is singular: ``z_beta = -Mbb^-1 q_beta``, the other z zero."""
     z = np.zeros(q.size)
     if beta.size:
-        try:
-            z[beta] = np.linalg.solve(Mbb, -q[beta])
-        except np.linalg.LinAlgError:
+        ok, zb = linalg.solve(Mbb, -q[beta])  # a kernel on this thread: no BLAS thread pool
+        if not ok:
             return None
-        if not np.isfinite(z).all():
-            return None
+        z[beta] = zb
     return np.maximum(z, 0.0)  # a negative z_beta beyond round-off makes it no solution
 
 

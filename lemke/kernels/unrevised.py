@@ -21,7 +21,7 @@ inverse relative to the starting basis (whose row j holds the basic variable of 
 import numpy as np
 
 from . import kernel
-from .linalg import axpy, dot, matvec, scaled_system
+from .linalg import axpy, dot, invert_in_place, matvec, scaled_system
 from .tableau import MAX_PIVOTS, RAY_TERMINATION, SOLVED, keep_lowest, unscale
 
 NUMERICAL_FAILURE = 3
@@ -31,21 +31,11 @@ RESIDUAL_TOL = 1e-10
 
 @kernel
 def invert(AB, alist, k, G):
-    """G[:k, :k] = inverse of H = AB[alist[:k], :k] (LAPACK).  False when H is singular
-    or the inverse is not finite."""
-    H = np.empty((k, k))
+    """G[:k, :k] = inverse of H = AB[alist[:k], :k], by ``linalg.invert_in_place`` (one
+    thread, no LAPACK).  False when H is singular or the inverse is not finite."""
     for r in range(k):
-        H[r, :] = AB[alist[r], :k]
-    try:
-        Hi = np.linalg.inv(H)
-    except Exception:  # exactly singular
-        return False
-    for r in range(k):
-        for c in range(k):
-            if not np.isfinite(Hi[r, c]):
-                return False
-            G[r, c] = Hi[r, c]
-    return True
+        G[r, :k] = AB[alist[r], :k]
+    return invert_in_place(G, k)
 
 
 @kernel
