@@ -156,3 +156,178 @@ def scaled_system(M, q, d, R, C):
         A[i, n] = (d[i] * r) * inv_d
         qs[i] = q[i] * r
     return A, qs, d_scale
+
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+def _row_update(y, f, x, lo, k):
+    """y[lo:k] -= f x[lo:k].  No reduction, so it vectorizes without reordering anything:
+    the only fastmath flag, ``contract``, allows fused multiply-adds.  The loop runs over
+    slices from 0 (indexing from ``lo`` keeps numba's negative-index wraparound in the
+    loop, which stops vectorization: 3x slower)."""
+    ys = y[lo:k]
+    xs = x[lo:k]
+    for c in range(ys.shape[0]):
+        ys[c] -= f * xs[c]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+def _row_update2(y, f, x, g, u, k):
+    """y[:k] = (y[:k] - f x[:k]) - g u[:k]: two eliminations in one pass over y."""
+    for c in range(k):
+        y[c] = (y[c] - f * x[c]) - g * u[c]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def _block_probe(G, k):
+    """0 when every entry of G[:k, :k] is finite, NaN otherwise."""
+    probe = 0.0
+    for r in range(k):
+        probe += nan_probe(G[r], k)
+    return probe
+
+
+@kernel
+def _swap_rows(G, i, j, k):
+    if i != j:
+        for c in range(k):
+            t = G[i, c]
+            G[i, c] = G[j, c]
+            G[j, c] = t
+
+
+@kernel
+def _pivot_row(G, j, k, col_shift):
+    """The row r in j..k-1 with the largest |G[r, j] - G[r, j - 1] * col_shift| (with
+    col_shift = 0: the largest |G[r, j]|), or -1 when that is 0 or not a number."""
+    p = -1
+    best = 0.0
+    for r in range(j, k):
+        a = abs(G[r, j] - G[r, j - 1] * col_shift) if col_shift != 0.0 else abs(G[r, j])
+        if a > best:
+            best = a
+            p = r
+        elif a != a:  # NaN
+            return -1
+    return p
+
+
+@kernel
+def invert_in_place(G, k):
+    """Replace G[:k, :k] by its inverse, by Gauss-Jordan elimination with partial pivoting
+    on one thread: no BLAS or LAPACK call, so no thread pool is started and nothing
+    competes for cores with the caller's threads.  About k^3 multiply-adds in passes over
+    contiguous rows, two pivots per pass (half the memory traffic of one at a time).
+
+    Returns False when the block is not finite, a pivot is exactly zero (the block is
+    singular in floating point), or the inverse is not finite; G[:k, :k] then holds
+    garbage.  Never raises.  G may be larger than k x k (only the leading block is read
+    and written)."""
+    if k < 0 or k > G.shape[0] or k > G.shape[1]:
+        return False
+    if _block_probe(G, k) != 0.0:
+        return False
+    piv = np.empty(k, dtype=np.int64)
+    j = 0
+    while j < k:
+        # Pivot j: the largest entry of column j (up to date) in rows j..k-1.
+        p = _pivot_row(G, j, k, 0.0)
+        if p < 0:
+            return False
+        piv[j] = p
+        _swap_rows(G, j, p, k)
+        rowj = G[j]
+        d = 1.0 / rowj[j]
+        rowj[j] = 1.0
+        for c in range(k):
+            rowj[c] *= d
+        if j + 1 == k:  # the last pivot alone
+            for r in range(j):
+                rowr = G[r]
+                f = rowr[j]
+                if f != 0.0:
+                    rowr[j] = 0.0
+                    _row_update(rowr, f, rowj, 0, k)
+            break
+        # Pivot j + 1 from column j + 1 as pivot j will leave it: G[r, j + 1] - G[r, j] h.
+        h = rowj[j + 1]
+        p = _pivot_row(G, j + 1, k, h)
+        if p < 0:
+            return False
+        piv[j + 1] = p
+        _swap_rows(G, j + 1, p, k)
+        row1 = G[j + 1]  # eliminate pivot j from it, then scale it
+        f1 = row1[j]
+        row1[j] = 0.0
+        _row_update(row1, f1, rowj, 0, k)
+        d1 = 1.0 / row1[j + 1]
+        row1[j + 1] = 1.0
+        for c in range(k):
+            row1[c] *= d1
+        # Every other row: both eliminations in one pass.  Column j of the result is
+        # -f rowj[j] - g row1[j], column j + 1 is -g row1[j + 1] (the in-place trick).
+        for r in range(k):
+            if r == j or r == j + 1:
+                continue
+            rowr = G[r]
+            f = rowr[j]
+            g = rowr[j + 1] - f * h
+            if f != 0.0 or g != 0.0:
+                _row_update2(rowr, f, rowj, g, row1, k)
+                rowr[j] = -f * rowj[j] - g * row1[j]
+                rowr[j + 1] = -g * row1[j + 1]
+        # Row j last (the pass above read it as pivot j left it).
+        rowj[j + 1] = 0.0
+        _row_update(rowj, h, row1, 0, k)
+        j += 2
+    # The rows were swapped on the way: swap the inverse's columns back, in reverse order.
+    for j in range(k - 1, -1, -1):
+        p = piv[j]
+        if p != j:
+            for r in range(k):
+                t = G[r, j]
+                G[r, j] = G[r, p]
+                G[r, p] = t
+    return _block_probe(G, k) == 0.0
+
+
+@kernel
+def solve(H, b):
+    """``(ok, x)`` with H x = b for a square H, by Gaussian elimination with partial
+    pivoting on one thread (no BLAS or LAPACK call); H and b are not modified.  ok is
+    False when H or b is not finite, a pivot is exactly zero (H is singular in floating
+    point), the shapes do not match or x is not finite.  Never raises."""
+    k = b.shape[0]
+    x = np.zeros(k)
+    if H.shape[0] != k or H.shape[1] != k:
+        return False, x
+    A = np.empty((k, k))
+    y = np.empty(k)
+    for r in range(k):
+        A[r, :] = H[r, :]
+        y[r] = b[r]
+    if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
+        return False, x
+    for j in range(k):
+        p = _pivot_row(A, j, k, 0.0)
+        if p < 0:
+            return False, x
+        _swap_rows(A, j, p, k)
+        t = y[j]
+        y[j] = y[p]
+        y[p] = t
+        rowj = A[j]
+        inv = 1.0 / rowj[j]
+        for r in range(j + 1, k):
+            rowr = A[r]
+            f = rowr[j] * inv
+            if f != 0.0:
+                _row_update(rowr, f, rowj, j + 1, k)
+                y[r] -= f * y[j]
+    for r in range(k - 1, -1, -1):
+        acc = y[r]
+        rowr = A[r]
+        for c in range(r + 1, k):
+            acc -= rowr[c] * x[c]
+        x[r] = acc / rowr[r]
+    return nan_probe(x, k) == 0.0, x

@@ -22,7 +22,7 @@ holds the basic variable of pair j).
 import numpy as np
 
 from . import kernel, pivoting
-from .linalg import axpy, dot, dot_and_size, matvec, scaled_system
+from .linalg import axpy, dot, dot_and_size, invert_in_place, matvec, scaled_system
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
@@ -32,21 +32,11 @@ RESIDUAL_TOL = 1e-10
 
 @kernel
 def invert(AB, alist, k, G):
-    """G[:k, :k] = inverse of H = AB[alist[:k], :k] (LAPACK).  False when H is singular
-    or the inverse is not finite."""
-    H = np.empty((k, k))
+    """G[:k, :k] = inverse of H = AB[alist[:k], :k], by ``linalg.invert_in_place`` (one
+    thread, no LAPACK).  False when H is singular or the inverse is not finite."""
     for r in range(k):
-        H[r, :] = AB[alist[r], :k]
-    try:
-        Hi = np.linalg.inv(H)
-    except Exception:  # exactly singular
-        return False
-    for r in range(k):
-        for c in range(k):
-            if not np.isfinite(Hi[r, c]):
-                return False
-            G[r, c] = Hi[r, c]
-    return True
+        G[r, :k] = AB[alist[r], :k]
+    return invert_in_place(G, k)
 
 
 @kernel

@@ -1,0 +1,120 @@
+"""The kernels' own dense factorizations (``lemke.kernels.linalg``): single-threaded
+replacements for LAPACK, so that no kernel starts a BLAS thread pool."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lemke
+from lemke import problems
+from lemke.kernels import linalg
+
+
+def _matrix(rng, k, kind):
+    H = rng.standard_normal((k, k))
+    if kind == "sparse":
+        H[np.abs(H) < 1.0] = 0.0
+    elif kind == "zero diagonal":  # every pivot needs a row exchange
+        np.fill_diagonal(H, 0.0)
+    elif kind == "graded":
+        H *= np.logspace(-6, 6, k)[:, None]
+    return H
+
+
+KINDS = ["dense", "sparse", "zero diagonal", "graded"]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_invert_in_place_matches_lapack(kind):
+    rng = np.random.default_rng(11)
+    for k in [1, 2, 3, 4, 7, 16, 33, 64, 101]:
+        H = _matrix(rng, k, kind)
+        cond = np.linalg.cond(H)
+        if cond > 1e10:
+            continue
+        pad = k % 3
+        G = np.full((k + pad, k + pad), 7.0)
+        G[:k, :k] = H
+        assert linalg.invert_in_place(G, k)
+        assert (G[k:] == 7.0).all() and (G[:, k:] == 7.0).all()  # only the block is touched
+        ref = np.linalg.inv(H)
+        tol = 50 * k * cond * np.finfo(float).eps
+        assert np.abs(G[:k, :k] - ref).max() <= tol * np.abs(ref).max()
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_solve_matches_lapack(kind):
+    rng = np.random.default_rng(12)
+    for k in [1, 2, 3, 5, 16, 40, 101]:
+        H = _matrix(rng, k, kind)
+        cond = np.linalg.cond(H)
+        if cond > 1e10:
+            continue
+        b = rng.standard_normal(k)
+        H0, b0 = H.copy(), b.copy()
+        ok, x = linalg.solve(H, b)
+        assert ok
+        assert (H == H0).all() and (b == b0).all()
+        ref = np.linalg.solve(H, b)
+        tol = 50 * k * cond * np.finfo(float).eps
+        assert np.abs(x - ref).max() <= tol * np.abs(ref).max()
+
+
+def test_empty_and_non_contiguous():
+    assert linalg.invert_in_place(np.empty((0, 0)), 0)
+    ok, x = linalg.solve(np.empty((0, 0)), np.empty(0))
+    assert ok and x.shape == (0,)
+    H = np.random.default_rng(13).standard_normal((10, 10))
+    ok, x = linalg.solve(H[::2, ::2], np.ones(5))
+    assert ok
+    np.testing.assert_allclose(H[::2, ::2] @ x, 1.0, rtol=1e-10)
+
+
+SINGULAR_OR_NOT_FINITE = [
+    np.zeros((3, 3)),
+    np.array([[1.0, 2.0], [2.0, 4.0]]),
+    np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [1.0, 2.0, 3.0]]),  # repeated row
+    np.array([[np.nan, 1.0], [1.0, 1.0]]),
+    np.array([[np.inf, 1.0], [1.0, 1.0]]),
+    np.array([[1.0, 1.0], [1.0, -np.inf]]),
+    np.array([[1e-310, 0.0], [0.0, 1.0]]),  # 1 / a denormal overflows
+]
+
+
+@pytest.mark.parametrize("H", SINGULAR_OR_NOT_FINITE)
+def test_singular_or_not_finite_is_false_never_raises(H):
+    k = H.shape[0]
+    with np.errstate(all="ignore"):
+        assert not linalg.invert_in_place(H.copy(), k)
+        ok, _ = linalg.solve(H, np.ones(k))
+    assert not ok
+
+
+def test_bad_sizes_are_false():
+    assert not linalg.invert_in_place(np.eye(3), 4)
+    assert not linalg.invert_in_place(np.eye(3), -1)
+    assert not linalg.solve(np.eye(3), np.ones(2))[0]
+    assert not linalg.solve(np.ones((2, 3)), np.ones(2))[0]
+    assert not linalg.solve(np.eye(2), np.array([np.nan, 1.0]))[0]
+
+
+def test_no_kernel_calls_lapack():
+    """The kernels factorize with these routines, never through numba's np.linalg (scipy's
+    multithreaded OpenBLAS)."""
+    kernels = Path(lemke.__file__).parent / "kernels"
+    for path in kernels.glob("*.py"):
+        assert "np.linalg" not in path.read_text(), path.name
+
+
+def test_refactorization_keeps_the_methods_together():
+    """Past 200 pivots the unrevised method refactors its block (by invert_in_place): on
+    rank-deficient contact problems that need that, both methods still take the same
+    pivots to the same answer."""
+    for k in range(3):
+        M, q = problems.contact_like(300, np.random.default_rng([5, k]))
+        a = lemke.solve_lcp(M, q, method="tableau")
+        b = lemke.solve_lcp(M, q, method="unrevised")
+        assert a.success and b.success
+        assert a.pivots == b.pivots > 200
+        assert a.warm_start == b.warm_start
+        np.testing.assert_allclose(b.z, a.z, rtol=1e-8, atol=1e-8 * max(1.0, np.abs(a.z).max()))
