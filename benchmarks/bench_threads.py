@@ -28,11 +28,12 @@ put first on PYTHONPATH, so it is a directory holding a ``lemke`` package), the 
 alternating order from section to section.  Each version compiles its kernels once into a
 numba cache of its own (``NUMBA_CACHE_DIR``, a temporary directory): numba's on-disk cache
 keys a kernel by its own source file only, so a cache left by an older ``unrevised.py``
-would still serve ``cold.py``'s kernels that inline it.  The subprocesses and the load process run with
-the BLAS thread variables (``OPENBLAS_NUM_THREADS``, ``OMP_NUM_THREADS``,
+would still serve ``cold.py``'s kernels that inline it.  The subprocesses and the load
+process run with the BLAS thread variables (``OPENBLAS_NUM_THREADS``, ``OMP_NUM_THREADS``,
 ``MKL_NUM_THREADS``) removed from their environment, so numpy and scipy use their default
 thread pools, unless ``--blas-threads N`` sets them.  Every answer is checked by lemke
-itself (status SOLVED is required) and the two methods' pivot counts are compared.
+itself (a status other than SOLVED is marked in the report) and the two methods' pivot
+counts are compared.
 
 The report gives the machine (``nproc``, CPU model), the load average sampled while each
 subprocess runs and the CPU time the load process used, and per family and size the median
@@ -94,10 +95,16 @@ def loadavg():
         return "?"
 
 
-def time_pair(call, repeats):
+def time_pair(call, repeats, min_time):
     """Median seconds of ``call(method)`` for both methods, interleaved: wall-clock time,
     and the CPU time of the whole process (every thread: BLAS threads and batch workers
-    included) as ``cpu_<method>``."""
+    included) as ``cpu_<method>``.  At least ``repeats`` calls each, more if that takes
+    less than ``min_time`` seconds (judged from one call of each)."""
+    t0 = time.perf_counter()
+    call("tableau")
+    call("unrevised")
+    once = (time.perf_counter() - t0) / 2
+    repeats = max(repeats, min(int(min_time / max(once, 1e-6)), 50 * repeats))
     times = {m: [] for m in ("tableau", "unrevised", "cpu_tableau", "cpu_unrevised")}
     for r in range(repeats):
         for m in ("tableau", "unrevised") if r % 2 == 0 else ("unrevised", "tableau"):
@@ -134,7 +141,7 @@ def child(args):
                 res = {m: lemke.solve_lcp_batch(Ms, qs, method=m, workers=args.workers)
                        for m in ("tableau", "unrevised")}
                 t = time_pair(lambda m: lemke.solve_lcp_batch(Ms, qs, method=m, workers=args.workers),
-                              args.repeats)
+                              args.repeats, args.min_time)
                 row.update(t_tab=t["tableau"], t_unr=t["unrevised"],
                            ratio=t["unrevised"] / t["tableau"],
                            cpu_ratio=t["cpu_unrevised"] / t["cpu_tableau"],
@@ -145,7 +152,7 @@ def child(args):
                 per = []
                 for M, q in probs:
                     res = {m: lemke.solve_lcp(M, q, method=m) for m in ("tableau", "unrevised")}
-                    t = time_pair(lambda m: lemke.solve_lcp(M, q, method=m), args.repeats)
+                    t = time_pair(lambda m: lemke.solve_lcp(M, q, method=m), args.repeats, args.min_time)
                     # Warm starts from the tableau's final basis.
                     noise = np.random.default_rng([SEED, n, 99]).standard_normal(n)
                     if family == "contact":  # q only moves up: it stays solvable
@@ -234,7 +241,8 @@ def run_section(section, label, path, args):
     t0 = time.perf_counter()
     cmd = [sys.executable, os.path.abspath(__file__), "--child", section,
            "--sizes", *map(str, args.sizes), "--problems", str(args.problems),
-           "--repeats", str(args.repeats), "--workers", str(args.workers)]
+           "--repeats", str(args.repeats), "--min-time", str(args.min_time),
+           "--workers", str(args.workers)]
     cache = os.path.join(args.cache_root, label)
     proc = subprocess.run(cmd, env=clean_env(path, args.blas_threads, cache), stdout=subprocess.PIPE,
                           text=True, check=True)
@@ -291,7 +299,8 @@ def render(info, args, results, total):
             f"{info['numpy']}, scipy {info['scipy']}, numba {info['numba']}; BLAS threads: "
             f"{info['blas']}; {info['date']}; {total:.0f} s in all.", "",
             f"Versions: {', '.join(f'`{lab}` = {p}' for lab, p in args.versions)}.  "
-            f"{args.problems} problems per family and size, {args.repeats} interleaved repeats; "
+            f"{args.problems} problems per family and size, at least {args.repeats} interleaved "
+            f"repeats (more where {args.repeats} take less than {args.min_time} s); "
             f"batches of all {args.problems} with `workers={args.workers}`.", ""]
     out += ["## Load", "", "| section | version | load average while it ran (1 min, sampled every 5 s) "
             "| load process | wall s |", "|---|---|---|---|---|"]
@@ -362,6 +371,8 @@ def main(argv=None):
     ap.add_argument("--sizes", nargs="+", type=int, default=[100, 300])
     ap.add_argument("--problems", type=int, default=6)
     ap.add_argument("--repeats", type=int, default=15)
+    ap.add_argument("--min-time", type=float, default=0.2,
+                    help="more repeats for fast calls: at least this many seconds per method")
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--sections", nargs="+", choices=SECTIONS, default=list(SECTIONS))
     ap.add_argument("--blas-threads", type=int, default=0,

@@ -172,10 +172,13 @@ def _row_update(y, f, x, lo, k):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
-def _row_update2(y, f, x, g, u, k):
-    """y[:k] = (y[:k] - f x[:k]) - g u[:k]: two eliminations in one pass over y."""
-    for c in range(k):
-        y[c] = (y[c] - f * x[c]) - g * u[c]
+def _row_update2(y, f, x, g, u, lo, k):
+    """y[lo:k] = (y[lo:k] - f x[lo:k]) - g u[lo:k]: two eliminations in one pass over y."""
+    ys = y[lo:k]
+    xs = x[lo:k]
+    us = u[lo:k]
+    for c in range(ys.shape[0]):
+        ys[c] = (ys[c] - f * xs[c]) - g * us[c]
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
@@ -273,7 +276,7 @@ def invert_in_place(G, k):
             f = rowr[j]
             g = rowr[j + 1] - f * h
             if f != 0.0 or g != 0.0:
-                _row_update2(rowr, f, rowj, g, row1, k)
+                _row_update2(rowr, f, rowj, g, row1, 0, k)
                 rowr[j] = -f * rowj[j] - g * row1[j]
                 rowr[j + 1] = -g * row1[j + 1]
         # Row j last (the pass above read it as pivot j left it).
@@ -294,9 +297,10 @@ def invert_in_place(G, k):
 @kernel
 def solve(H, b):
     """``(ok, x)`` with H x = b for a square H, by Gaussian elimination with partial
-    pivoting on one thread (no BLAS or LAPACK call); H and b are not modified.  ok is
-    False when H or b is not finite, a pivot is exactly zero (H is singular in floating
-    point), the shapes do not match or x is not finite.  Never raises."""
+    pivoting on one thread (no BLAS or LAPACK call), two pivots per pass over the rows
+    below them; H and b are not modified.  ok is False when H or b is not finite, a pivot
+    is exactly zero (H is singular in floating point), the shapes do not match or x is not
+    finite.  Never raises."""
     k = b.shape[0]
     x = np.zeros(k)
     if H.shape[0] != k or H.shape[1] != k:
@@ -308,7 +312,8 @@ def solve(H, b):
         y[r] = b[r]
     if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
         return False, x
-    for j in range(k):
+    j = 0
+    while j < k:
         p = _pivot_row(A, j, k, 0.0)
         if p < 0:
             return False, x
@@ -318,12 +323,32 @@ def solve(H, b):
         y[p] = t
         rowj = A[j]
         inv = 1.0 / rowj[j]
-        for r in range(j + 1, k):
+        if j + 1 == k:
+            break
+        for r in range(j + 1, k):  # the multipliers of pivot j, kept in column j
+            A[r, j] *= inv
+        # Pivot j + 1 from column j + 1 as pivot j leaves it: A[r, j + 1] - l_r A[j, j + 1].
+        h = rowj[j + 1]
+        p = _pivot_row(A, j + 1, k, h)
+        if p < 0:
+            return False, x
+        _swap_rows(A, j + 1, p, k)
+        t = y[j + 1]
+        y[j + 1] = y[p]
+        y[p] = t
+        row1 = A[j + 1]
+        l1 = row1[j]
+        _row_update(row1, l1, rowj, j + 1, k)
+        y[j + 1] -= l1 * y[j]
+        inv1 = 1.0 / row1[j + 1]
+        for r in range(j + 2, k):  # both eliminations in one pass over each row below
             rowr = A[r]
-            f = rowr[j] * inv
-            if f != 0.0:
-                _row_update(rowr, f, rowj, j + 1, k)
-                y[r] -= f * y[j]
+            f = rowr[j]
+            g = (rowr[j + 1] - f * h) * inv1
+            if f != 0.0 or g != 0.0:
+                _row_update2(rowr, f, rowj, g, row1, j + 2, k)
+                y[r] = (y[r] - f * y[j]) - g * y[j + 1]
+        j += 2
     for r in range(k - 1, -1, -1):
         acc = y[r]
         rowr = A[r]
