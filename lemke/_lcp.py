@@ -158,6 +158,8 @@ def _restart(M, q, beta, opts):
     if code == Status.NUMERICAL_FAILURE and pivots == 0:
         return None  # singular starting block
     ok, residual = certify.lcp_check_sized(M, q, x[:n], opts.tol, w, R)
+    if ok:
+        code = Status.SOLVED  # the point where it stopped solves the LCP (see kernels.cold)
     return _outcome(M, q, opts, code, pivots, np.flatnonzero(z_basic), ok, residual, buf, 0)
 
 

@@ -10,12 +10,13 @@ or columns of M by positive scales changes nothing.
 
 The one allowance that is not per row is the rounding of the data itself: an entry of q
 below ``(n + 2) eps max|q|`` cannot be told from zero (a contact LCP's q_i = -2e-15 next to
-q_j = 5 is the rounding of a product that is zero), so ``|q_i|`` is read as at least that
-in ``r_i``.  Rows whose data is 1e-13 of the largest row or larger are judged at their own
-scale.
+q_j = 5 is the rounding of a product that is zero), so every row may miss by that much:
+``s_w,i = t r_i + (n + 2) eps max|q|``.  That is rounding, not a tolerance: a row whose
+data is 1e-13 of the largest row's or larger is judged at its own scale.
 
-A z_i counts as zero when setting it to zero would move every w_j by at most ``t r_j``:
-``z_i <= t min_j r_j / |M_ji|`` over the j with M_ji != 0 (0 when column i is zero).
+A z_i counts as zero when setting it to zero would move every w_j by at most row j's
+allowance: ``|z_i| <= min_j (t r_j + f) / |M_ji|`` over the j with M_ji != 0 (0 when column i
+is zero), with f the rounding floor below.
 
 A point so large that the rounding of M z dwarfs the data is never accepted, whatever its
 residual: in the row-equilibrated coordinates (rows scaled by the powers of two R of
@@ -34,14 +35,16 @@ CERTIFIABLE = 1e3
 
 
 @kernel
-def zero_size(M, rows, i, t):
-    """The largest z_i that counts as zero: ``t min_j rows[j] / |M_ji|`` over M_ji != 0."""
+def zero_size(M, rows, i, t, floor):
+    """The largest z_i that counts as zero: zeroing it moves no w_j by more than that row's
+    allowance ``t rows[j] + floor``: ``min_j (t rows[j] + floor) / |M_ji|`` over M_ji != 0
+    (0 when column i is zero)."""
     s = np.inf
     for j in range(M.shape[0]):
         a = abs(M[j, i])
         if a > 0.0:
-            s = min(s, rows[j] / a)
-    return t * s if s < np.inf else 0.0
+            s = min(s, (t * rows[j] + floor) / a)
+    return s if s < np.inf else 0.0
 
 
 @kernel
@@ -70,7 +73,7 @@ def lcp_check_sized(M, q, z, tol, w, R):
     for i in range(n):
         mz, size = dot_and_size(M[i], z, n)
         w[i] = q[i] + mz
-        rows[i] = size + max(abs(q[i]), q_floor)
+        rows[i] = size + abs(q[i])
         big = max(big, R[i] * size)
         data = max(data, R[i] * abs(q[i]))
     ok = EPS * big <= CERTIFIABLE * t * data
@@ -79,11 +82,11 @@ def lcp_check_sized(M, q, z, tol, w, R):
         zi = z[i]
         wi = w[i]
         residual = max(residual, abs(min(zi, wi)))
-        s_w = t * rows[i]
+        s_w = t * rows[i] + q_floor
         if wi < -s_w or not (wi == wi and zi == zi):
             ok = False
         elif zi < 0.0 or (zi > 0.0 and abs(wi) > s_w):
-            if abs(zi) > zero_size(M, rows, i, t):
+            if abs(zi) > zero_size(M, rows, i, t, q_floor):
                 ok = False
     return ok, residual
 
@@ -119,8 +122,8 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
         flat = abs(u[i]) <= t * ru[i] and abs(du[i]) <= t * rdu[i]
         zi = z[i]
         di = ray[i]
-        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t):
+        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t, 0.0):
             return False
-        if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t):
+        if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t, 0.0):
             return False
     return True

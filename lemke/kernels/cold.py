@@ -28,6 +28,9 @@ covering vector proportional to |q| keeps every row at its own scale.  The secon
 kept when it ends solved and checked, or solved where the first did not (the front then
 recomputes the point from its final basis).
 
+A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes the check
+(z0 zero to rounding) is SOLVED: the check, not the path, decides.
+
 The number of restarts of both kinds is returned (``LCPResult.recoveries``).
 """
 import numpy as np
@@ -132,6 +135,10 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
                                                 buf, z_basic)
     x, ray, w, cov, R, C = layout(n, buf)
     ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    if ok and code != pivoting.SOLVED:
+        # The point where the method stopped (a "ray" or a cap reached with z0 zero to
+        # rounding) passes the check on the caller's data: it is a solution.
+        code = pivoting.SOLVED
     if d.shape[0] == 0 and pivots < max_pivots and (
             code == pivoting.NUMERICAL_FAILURE or (code == pivoting.SOLVED and not ok) or (
                 code == pivoting.RAY_TERMINATION

@@ -28,12 +28,11 @@ merely because both are small: a basic variable of size 1e-10 is not tied with o
 0 (both count as what they are), which is what keeps the right-hand side the first key even
 when q mixes entries of 1e-2 and 1e-10.  What is zero is decided per row: a value counts as
 zero when it is below ``VALUE_ROUNDING`` times the size of the terms it was formed from,
-i.e. when it is rounding of an exact zero.  The unrevised method recomputes every value from
-the basis inverse at each pivot and knows that size exactly (|G| |q_alpha|, |q| + |AB| |z|);
-there, exact zeros come out as +-1e-17.  The tableau updates its values in place, where a
-bound on that size would grow with every pivot and zero real values, so it gives the values
-themselves as their size: only what is negative counts as zero there (and the tableau keeps
-exact zeros exact far more often).  ``tie_tol = 0`` asks for exact ties only; the row
+i.e. when it is rounding of an exact zero.  That size is |B^-1| |q| for a value B^-1 q.  The
+unrevised method recomputes every value from the basis inverse at each pivot and has it at
+once (|G| |q_alpha|, |q| + |AB| |z|).  The tableau keeps an upper bound, updated with every
+pivot, and computes the exact size from the row of B^-1 only for the few rows whose value is
+below VALUE_ROUNDING times that bound.  ``tie_tol = 0`` asks for exact ties only; the row
 of the minimum always ties itself, so the candidate list is never empty.
 
 The entries of the basis inverse that are zero in exact arithmetic come out as rounding
@@ -88,8 +87,8 @@ def min_ratio(vals, mags, col, m, pivot_tol, tie_tol, cand, art, z0_max):
     """The blocking rows tied at the minimum ratio, in increasing order, in ``cand``;
     returns how many (0: nothing blocks, a ray).
 
-    ``mags[i]`` is the size of the terms that formed ``vals[i]`` (a bound on sum |terms|,
-    kept by the method): a value below ``VALUE_ROUNDING * mags[i]`` is zero to rounding (a
+    ``mags[i]`` is the size of the terms that formed ``vals[i]`` (sum |terms|, from the
+    method): a value below ``VALUE_ROUNDING * mags[i]`` is zero to rounding (a
     degenerate row that came out as +-1e-17 instead of 0), and counts as 0, as do negative
     values.
 
@@ -104,6 +103,12 @@ Z0_ROUNDING = 1e-11, whatever tie_tol
     for i in range(m):
         cmax = max(cmax, abs(col[i]))
     thr = -pivot_tol * cmax
+    if art >= 0 and vals[art] <= Z0_ROUNDING * z0_max and abs(col[art]) > -thr:
+        # z0 is zero to rounding: the current point already solves the LCP; z0 leaves by a
+        # degenerate pivot whatever the sign of its entry (the entering variable moves by
+        # rounding only).
+        cand[0] = art
+        return 1
     theta = np.inf
     for i in range(m):
         if col[i] < thr:
