@@ -26,7 +26,9 @@ badly scaled data (rows of q that differ by many orders of magnitude) the consta
 vector makes z0 so large that the small rows of q are lost to rounding in q + d z0; a
 covering vector proportional to |q| keeps every row at its own scale.  The second run is
 kept when it ends solved and checked, or solved where the first did not (the front then
-recomputes the point from its final basis).
+recomputes the point from its final basis).  If the answer still fails, a last run uses the
+other method (tableau <-> unrevised) with the default covering vector: the two compute their
+values differently, and rounding rarely defeats both on one problem.
 
 A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes the check
 (z0 zero to rounding) is SOLVED: the check, not the path, decides.
@@ -153,10 +155,30 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         pivots += pivots2
         recoveries += rec2 + 1
         ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
+        if ok2 and code2 != pivoting.SOLVED:
+            code2 = pivoting.SOLVED
         if code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED):
             buf[:] = buf2
             z_basic[:] = z_basic2
             code, ok, residual = code2, ok2, residual2
+        if not (code == pivoting.SOLVED and ok) and pivots < max_pivots:
+            # Last: the other method, with the default covering vector.  The two compute
+            # their values differently (updated in place / recomputed from the basis
+            # inverse), so rounding rarely defeats both on the same problem.
+            for i in range(n):
+                cov2[i] = 1.0
+            other = UNREVISED if method == TABLEAU else TABLEAU
+            code2, pivots2, rec2 = pivot_recovering(other, M, q, max_pivots - pivots, pivot_tol,
+                                                    tie_tol, buf2, z_basic2)
+            pivots += pivots2
+            recoveries += rec2 + 1
+            ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
+            if ok2 and code2 != pivoting.SOLVED:
+                code2 = pivoting.SOLVED
+            if code2 == pivoting.SOLVED and ok2:
+                buf[:] = buf2
+                z_basic[:] = z_basic2
+                code, ok, residual = code2, ok2, residual2
     k = 0
     for i in range(n):
         if z_basic[i]:

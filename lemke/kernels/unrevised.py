@@ -27,7 +27,7 @@ from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, S
 from .tableau import unscale
 
 REFACTOR_EVERY = 200
-RESIDUAL_TOL = 1e-10
+RESIDUAL_TOL = 1e-12
 
 
 @kernel
