@@ -96,15 +96,27 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     """Whether ``(z, z0) + t ray`` (t >= 0) is a secondary ray of the augmented system
     ``u = M z + q + d z0``, judged row by row as :func:`lcp_check_sized` judges a solution:
     the direction is non-zero and non-negative, u and du = M dz + d dz0 stay non-negative,
-    and in every pair either z_i and dz_i are zero or u_i and du_i are."""
+    and in every pair either z_i and dz_i are zero or u_i and du_i are.  As there, the
+    rounding of the data is allowed for: entries of the direction below
+    ``(n + 3) eps max|ray|`` are read as zero, and u may miss by ``(n + 3) eps max|q|``."""
     n = q.shape[0]
-    t = tol + (n + 3) * EPS
-    dz0 = ray[n]
-    r_max = abs(dz0)
-    for j in range(n):
+    g = (n + 3) * EPS
+    t = tol + g
+    r_max = 0.0
+    for j in range(n + 1):
         r_max = max(r_max, abs(ray[j]))
-    if not (r_max > 0.0 and r_max < np.inf) or dz0 < -t * r_max or not z0 == z0:
+    if not (r_max > 0.0 and r_max < np.inf) or not z0 == z0:
         return False
+    dz = np.empty(n + 1)
+    for j in range(n + 1):
+        dz[j] = ray[j] if abs(ray[j]) > g * r_max else 0.0
+    dz0 = dz[n]
+    if dz0 < 0.0:
+        return False
+    q_floor = 0.0
+    for i in range(n):
+        q_floor = max(q_floor, abs(q[i]))
+    q_floor *= g
     ru = np.empty(n)
     rdu = np.empty(n)
     u = np.empty(n)
@@ -113,16 +125,18 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
         mz, sz = dot_and_size(M[i], z, n)
         u[i] = q[i] + mz + d[i] * z0
         ru[i] = abs(q[i]) + sz + abs(d[i] * z0)
-        md, sd = dot_and_size(M[i], ray, n)
+        md, sd = dot_and_size(M[i], dz, n)
         du[i] = md + d[i] * dz0
         rdu[i] = sd + abs(d[i] * dz0)
     for i in range(n):
-        if not (u[i] >= -t * ru[i] and du[i] >= -t * rdu[i]):
+        s_u = t * ru[i] + q_floor
+        s_du = t * rdu[i]
+        if not (u[i] >= -s_u and du[i] >= -s_du):
             return False
-        flat = abs(u[i]) <= t * ru[i] and abs(du[i]) <= t * rdu[i]
+        flat = abs(u[i]) <= s_u and abs(du[i]) <= s_du
         zi = z[i]
-        di = ray[i]
-        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t, 0.0):
+        di = dz[i]
+        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t, q_floor):
             return False
         if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t, 0.0):
             return False
