@@ -8,11 +8,12 @@ Prager: the point is an exact solution of a problem whose every entry of M and q
 most a relative t.  No row can hide behind another row's magnitude, and multiplying rows
 or columns of M by positive scales changes nothing.
 
-The one allowance that is not per row is the rounding of the data itself: an entry of q
-below ``(n + 2) eps max|q|`` cannot be told from zero (a contact LCP's q_i = -2e-15 next to
-q_j = 5 is the rounding of a product that is zero), so every row may miss by that much:
-``s_w,i = t r_i + (n + 2) eps max|q|``.  That is rounding, not a tolerance: a row whose
-data is 1e-13 of the largest row's or larger is judged at its own scale.
+One allowance is added for the rounding of the data itself: in the row-equilibrated units
+(rows scaled by the powers of two R of ``linalg.equilibrate``, which undo any scaling the
+rows came in), an entry of q below ``(n + 2) eps max_k R_k |q_k|`` cannot be told from zero
+(a contact LCP's q_i = -2e-15 next to q_j = 5 is the rounding of a product that is zero), so
+row i may miss by ``f_i = (n + 2) eps max_k R_k |q_k| / R_i``: ``s_w,i = t r_i + f_i``.  It is
+rounding, not a tolerance, and it does not change when a row of (M, q) is scaled.
 
 A z_i counts as zero when setting it to zero would move every w_j by at most row j's
 allowance: ``|z_i| <= min_j (t r_j + f) / |M_ji|`` over the j with M_ji != 0 (0 when column i
@@ -35,15 +36,15 @@ CERTIFIABLE = 1e3
 
 
 @kernel
-def zero_size(M, rows, i, t, floor):
+def zero_size(M, rows, i, t, floors):
     """The largest z_i that counts as zero: zeroing it moves no w_j by more than that row's
-    allowance ``t rows[j] + floor``: ``min_j (t rows[j] + floor) / |M_ji|`` over M_ji != 0
-    (0 when column i is zero)."""
+    allowance ``t rows[j] + floors[j]``: ``min_j (t rows[j] + floors[j]) / |M_ji|`` over
+    M_ji != 0 (0 when column i is zero)."""
     s = np.inf
     for j in range(M.shape[0]):
         a = abs(M[j, i])
         if a > 0.0:
-            s = min(s, (t * rows[j] + floor) / a)
+            s = min(s, (t * rows[j] + floors[j]) / a)
     return s if s < np.inf else 0.0
 
 
@@ -66,14 +67,15 @@ def lcp_check_sized(M, q, z, tol, w, R):
     rows = np.empty(n)
     big = 0.0
     data = 1.0
-    q_floor = 0.0
+    q_top = 0.0  # the largest |q_i| in the row-equilibrated units
     for i in range(n):
-        q_floor = max(q_floor, abs(q[i]))
-    q_floor *= (n + 2) * EPS  # entries of q below this are rounding of q's largest one
+        q_top = max(q_top, R[i] * abs(q[i]))
+    floors = np.empty(n)
     for i in range(n):
         mz, size = dot_and_size(M[i], z, n)
         w[i] = q[i] + mz
         rows[i] = size + abs(q[i])
+        floors[i] = (n + 2) * EPS * q_top / R[i]  # rounding of q's largest row, in row i's units
         big = max(big, R[i] * size)
         data = max(data, R[i] * abs(q[i]))
     ok = EPS * big <= CERTIFIABLE * t * data
@@ -82,11 +84,11 @@ def lcp_check_sized(M, q, z, tol, w, R):
         zi = z[i]
         wi = w[i]
         residual = max(residual, abs(min(zi, wi)))
-        s_w = t * rows[i] + q_floor
+        s_w = t * rows[i] + floors[i]
         if wi < -s_w or not (wi == wi and zi == zi):
             ok = False
         elif zi < 0.0 or (zi > 0.0 and abs(wi) > s_w):
-            if abs(zi) > zero_size(M, rows, i, t, q_floor):
+            if abs(zi) > zero_size(M, rows, i, t, floors):
                 ok = False
     return ok, residual
 
@@ -98,7 +100,8 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     the direction is non-zero and non-negative, u and du = M dz + d dz0 stay non-negative,
     and in every pair either z_i and dz_i are zero or u_i and du_i are.  As there, the
     rounding of the data is allowed for: entries of the direction below
-    ``(n + 3) eps max|ray|`` are read as zero, and u may miss by ``(n + 3) eps max|q|``."""
+    ``(n + 3) eps max|ray|`` are read as zero, and u may miss by the rounding floor of q (in
+the row-equilibrated units, as there)."""
     n = q.shape[0]
     g = (n + 3) * EPS
     t = tol + g
@@ -113,10 +116,16 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     dz0 = dz[n]
     if dz0 < 0.0:
         return False
-    q_floor = 0.0
+    R = np.empty(n)
+    C = np.empty(n)
+    equilibrate(M, R, C)
+    q_top = 0.0
     for i in range(n):
-        q_floor = max(q_floor, abs(q[i]))
-    q_floor *= g
+        q_top = max(q_top, R[i] * abs(q[i]))
+    floors = np.empty(n)
+    for i in range(n):
+        floors[i] = g * q_top / R[i]
+    no_floor = np.zeros(n)
     ru = np.empty(n)
     rdu = np.empty(n)
     u = np.empty(n)
@@ -129,15 +138,15 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
         du[i] = md + d[i] * dz0
         rdu[i] = sd + abs(d[i] * dz0)
     for i in range(n):
-        s_u = t * ru[i] + q_floor
+        s_u = t * ru[i] + floors[i]
         s_du = t * rdu[i]
         if not (u[i] >= -s_u and du[i] >= -s_du):
             return False
         flat = abs(u[i]) <= s_u and abs(du[i]) <= s_du
         zi = z[i]
         di = dz[i]
-        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t, q_floor):
+        if (zi < 0.0 or (zi > 0.0 and not flat)) and abs(zi) > zero_size(M, ru, i, t, floors):
             return False
-        if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t, 0.0):
+        if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t, no_floor):
             return False
     return True

@@ -27,7 +27,7 @@ vector makes z0 so large that the small rows of q are lost to rounding in q + d 
 covering vector proportional to |q| keeps every row at its own scale.  The second run is
 kept when it ends solved and checked, or solved where the first did not (the front then
 recomputes the point from its final basis).  If the answer still fails, a last run uses the
-other method (tableau <-> unrevised) with the default covering vector: the two compute their
+other method (tableau <-> unrevised) with that covering vector: the two compute their
 values differently, and rounding rarely defeats both on one problem.
 
 A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes the check
@@ -166,7 +166,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             # their values differently (updated in place / recomputed from the basis
             # inverse), so rounding rarely defeats both on the same problem.
             for i in range(n):
-                cov2[i] = 1.0
+                cov2[i] = abs(q[i]) if q[i] != 0.0 else 1.0 / R[i]
             other = UNREVISED if method == TABLEAU else TABLEAU
             code2, pivots2, rec2 = pivot_recovering(other, M, q, max_pivots - pivots, pivot_tol,
                                                     tie_tol, buf2, z_basic2)

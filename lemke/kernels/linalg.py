@@ -115,25 +115,48 @@ def pow2_scale(x):
     return math.ldexp(1.0, 1 - e) if m < 0.7071067811865476 else math.ldexp(1.0, -e)
 
 
+EQUILIBRATE_SWEEPS = 16
+
+
 @kernel
 def equilibrate(M, R, C):
-    """Row and column scales of M, powers of two, so that every row and every column of
-    diag(R) M diag(C) has its largest entry in [0.7, 1.42) (a zero row or column keeps
-    scale 1): one pass for the rows, one for the columns (LAPACK's dgeequb recipe).  The
-    scales are exact, and Lemke's path does not depend on them in exact arithmetic (every
-    ratio and every lexicographic comparison is invariant under positive diagonal scaling);
-    they make the kernels' relative tolerances mean the same in every row and column."""
+    """Row and column scales of M, powers of two, such that every non-zero row and column of
+    diag(R) M diag(C) has its largest entry within a factor 2 of 1: Ruiz's iteration (divide
+    each row and each column by the square root of its largest entry, rounded to a power of
+    two), at most EQUILIBRATE_SWEEPS passes, stopping at the first pass that finds the
+    matrix balanced (one pass for a matrix that already is).  The scales are exact, and
+    Lemke's path does not depend on them in exact arithmetic (every ratio and every
+    lexicographic comparison is invariant under positive diagonal scaling); they make the
+    kernels' relative tolerances mean the same in every row and column, whatever scaling
+    the caller's rows and columns came in."""
     n = M.shape[0]
-    for i in range(n):
-        R[i] = pow2_scale(absmax(M[i], n))
-    cmax = np.zeros(n)
-    for i in range(n):
-        r = R[i]
-        row = M[i]
-        for j in range(n):
-            cmax[j] = max(cmax[j], abs(row[j]) * r)
-    for j in range(n):
-        C[j] = pow2_scale(cmax[j])
+    R[:] = 1.0
+    C[:] = 1.0
+    rmax = np.empty(n)
+    cmax = np.empty(n)
+    for sweep in range(EQUILIBRATE_SWEEPS):
+        rmax[:] = 0.0
+        cmax[:] = 0.0
+        for i in range(n):
+            r = R[i]
+            row = M[i]
+            for j in range(n):
+                a = abs(row[j]) * r * C[j]
+                if a > rmax[i]:
+                    rmax[i] = a
+                if a > cmax[j]:
+                    cmax[j] = a
+        balanced = True
+        for i in range(n):
+            if rmax[i] > 0.0 and (rmax[i] < 0.5 or rmax[i] > 2.0):
+                balanced = False
+            if cmax[i] > 0.0 and (cmax[i] < 0.5 or cmax[i] > 2.0):
+                balanced = False
+        if balanced:
+            break
+        for i in range(n):
+            R[i] *= pow2_scale(math.sqrt(rmax[i]))
+            C[i] *= pow2_scale(math.sqrt(cmax[i]))
 
 
 @kernel
