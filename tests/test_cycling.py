@@ -121,8 +121,9 @@ SWEPT = [c for c in BASE_CASES if c.family in ("murty", "siconos", "drake")]
 
 OPEN_ISSUE_11 = pytest.mark.xfail(
     strict=False,
-    reason="open in issue 11 (measured in its note): some cases of this family still end "
-           "NUMERICAL_FAILURE or take other pivots in the two methods",
+    reason="open in issue 11 (measured in its note): a few cases of this family still end "
+           "NUMERICAL_FAILURE (degenerate, rank-deficient contact steps and their scaled "
+           "copies) or take other pivots in the two methods",
 )
 
 
@@ -156,7 +157,6 @@ def test_dart_12d_has_solutions():
     assert found >= 1
 
 
-@OPEN_ISSUE_11
 @pytest.mark.parametrize("tie_tol", SWEEP, ids=_tie_id)
 @pytest.mark.parametrize("case", SWEPT, ids=_ids(SWEPT))
 def test_tie_tol_sweep(case, tie_tol, method):
@@ -177,7 +177,6 @@ def test_murty_takes_2_to_the_n_pivots(tie_tol, method):
 INTEGER = [c for c in BASE_CASES if c.family in ("int", "int-p")]
 
 
-@OPEN_ISSUE_11
 @pytest.mark.parametrize("case", INTEGER, ids=_ids(INTEGER))
 def test_integer_matrices(case, method):
     check(case, solve(case.key, method, _options(case)))
@@ -347,7 +346,6 @@ print("END", flush=True)
 """
 
 
-@OPEN_ISSUE_11
 def test_option_values_do_not_crash(tmp_path):
     """Every value Options accepts for tie_tol, pivot_tol and tol (0, the tiniest, 0.5 and
     the largest double below 1) and max_pivots 0, 1, 2, in every combination, through
