@@ -96,7 +96,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             if ok:  # the old basis still solves it
                 cov = np.ones(n) if d is None else d.copy()
                 R, C = np.empty(n), np.empty(n)
-                linalg.equilibrate(M, R, C)
+                linalg.equilibrate(M, q, R, C)
                 return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, cov, warm_start,
                                R, C, 0)
             res = _restart(M, q, beta, opts)
@@ -152,7 +152,7 @@ def _restart(M, q, beta, opts):
     buf = np.empty(6 * n + 2)
     x, ray, w, cov, R, C = cold.layout(n, buf)
     np.subtract(m_scale * (~beta), M[:, beta].sum(axis=1), out=cov)
-    linalg.equilibrate(M, R, C)
+    linalg.equilibrate(M, q, R, C)
     z_basic = np.empty(n, dtype=np.bool_)
     code, pivots = unrevised.solve(M, q, cov, R, C, beta, np.empty((0, 0)), opts.pivot_limit(n),
                                    opts.pivot_tol, opts.tie_tol, x, ray, z_basic)

@@ -284,7 +284,7 @@ def test_delayed_updates_change_no_bit(block):
         runs = []
         for b in (1, block):
             R, C = np.empty(n), np.empty(n)
-            linalg.equilibrate(M, R, C)
+            linalg.equilibrate(M, q, R, C)
             T, rhs, _ = linalg.scaled_system(M, q, np.ones(n), R, C)
             basis = np.arange(n)
             nonbasic = np.r_[np.arange(n, 2 * n), 2 * n]

@@ -55,7 +55,7 @@ def lcp_check(M, q, z, tol, w):
     n = q.shape[0]
     R = np.empty(n)
     C = np.empty(n)
-    equilibrate(M, R, C)
+    equilibrate(M, q, R, C)
     return lcp_check_sized(M, q, z, tol, w, R)
 
 
@@ -118,7 +118,7 @@ the row-equilibrated units, as there)."""
         return False
     R = np.empty(n)
     C = np.empty(n)
-    equilibrate(M, R, C)
+    equilibrate(M, q, R, C)
     q_top = 0.0
     for i in range(n):
         q_top = max(q_top, R[i] * abs(q[i]))

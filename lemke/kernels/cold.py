@@ -20,18 +20,25 @@ If the last one cycles too, the status is CYCLING, never a silent pivot cap.
 
 **Recovery from a failed check.**  With the default covering vector, a run whose point fails
 the check on the caller's data, or whose ray fails the ray check, or that met a numerical
-failure, is followed by one more run (its pivots counted) with the covering vector
-``d_i = |q_i|`` (1 / R_i where q_i = 0) and exact tests (``pivot_tol = tie_tol = 0``).  On
-badly scaled data (rows of q that differ by many orders of magnitude) the constant covering
-vector makes z0 so large that the small rows of q are lost to rounding in q + d z0; a
-covering vector proportional to |q| keeps every row at its own scale.  The second run is
-kept when it ends solved and checked, or solved where the first did not (the front then
-recomputes the point from its final basis).  If the answer still fails, a last run uses the
-other method (tableau <-> unrevised) with that covering vector: the two compute their
-values differently, and rounding rarely defeats both on one problem.
+failure, is followed by up to three more runs (their pivots counted, within the same cap),
+until one ends solved and checked:
 
-A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes the check
-(z0 zero to rounding) is SOLVED: the check, not the path, decides.
+1. the covering vector that is all ones in the *equilibrated* coordinates (d = 1 / R).  The
+   default d = 1 is all ones in the caller's coordinates; when the rows of M come in very
+   different scales (1e-8 next to 1e8), it is very uneven after equilibration, and the
+   relative pivot tolerance then hides the small rows' entries;
+2. d proportional to |q| in the equilibrated coordinates (each entry at least 1e-3 of the
+   largest), with exact tests (``pivot_tol = tie_tol = 0``): z0 then starts near 1 in every
+   row, so rows of q that differ by many orders of magnitude are not lost to rounding in
+   q + d z0;
+3. the other method (tableau <-> unrevised) with d = 1 / R: the two compute their values
+   differently (updated in place / recomputed from the basis inverse), and rounding rarely
+   defeats both on one problem.
+
+A run that ends solved replaces one that did not even when its check fails (the front then
+recomputes the point from its final basis).  A checked ray stops the ladder: it is a
+verdict.  A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes
+the check (z0 zero to rounding) is SOLVED: the check, not the path, decides.
 
 The number of restarts of both kinds is returned (``LCPResult.recoveries``).
 """
@@ -71,7 +78,7 @@ def prologue(M, q, d, buf):
     finite &= nan_probe(q, n) == 0.0
     if not finite:
         return NOT_FINITE
-    equilibrate(M, R, C)
+    equilibrate(M, q, R, C)
     q_min = 0.0
     for i in range(n):
         q_min = min(q_min, q[i])
@@ -118,6 +125,28 @@ def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic)
     return code, pivots, recoveries
 
 
+RETRIES = 3
+
+
+@kernel
+def retry_covering(step, q, R, cov):
+    """The covering vector of recovery run ``step`` (see the module docstring), written in
+    ``cov``; returns whether that run uses exact tests.  0: all ones in the equilibrated
+    coordinates (1 / R); 1: |q| in them, each entry at least 1e-3 of the largest (exact
+    tests); 2 (the other method): all ones in the equilibrated coordinates again."""
+    n = q.shape[0]
+    if step == 1:
+        top = 0.0
+        for i in range(n):
+            top = max(top, R[i] * abs(q[i]))
+        for i in range(n):
+            cov[i] = max(R[i] * abs(q[i]), 1e-3 * top) / R[i] if top > 0.0 else 1.0 / R[i]
+        return True
+    for i in range(n):
+        cov[i] = 1.0 / R[i]
+    return False
+
+
 @kernel
 def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
@@ -141,41 +170,28 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         # The point where the method stopped (a "ray" or a cap reached with z0 zero to
         # rounding) passes the check on the caller's data: it is a solution.
         code = pivoting.SOLVED
-    if d.shape[0] == 0 and pivots < max_pivots and (
-            code == pivoting.NUMERICAL_FAILURE or (code == pivoting.SOLVED and not ok) or (
-                code == pivoting.RAY_TERMINATION
-                and not lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol))):
-        buf2 = buf.copy()
-        x2, ray2, w2, cov2, R2, C2 = layout(n, buf2)
-        for i in range(n):
-            cov2[i] = abs(q[i]) if q[i] != 0.0 else 1.0 / R[i]
+    if d.shape[0] == 0:
+        buf2 = np.empty_like(buf)
         z_basic2 = np.empty(n, dtype=np.bool_)
-        code2, pivots2, rec2 = pivot_recovering(method, M, q, max_pivots - pivots, 0.0, 0.0,
-                                                buf2, z_basic2)
-        pivots += pivots2
-        recoveries += rec2 + 1
-        ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
-        if ok2 and code2 != pivoting.SOLVED:
-            code2 = pivoting.SOLVED
-        if code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED):
-            buf[:] = buf2
-            z_basic[:] = z_basic2
-            code, ok, residual = code2, ok2, residual2
-        if not (code == pivoting.SOLVED and ok) and pivots < max_pivots:
-            # Last: the other method, with the default covering vector.  The two compute
-            # their values differently (updated in place / recomputed from the basis
-            # inverse), so rounding rarely defeats both on the same problem.
-            for i in range(n):
-                cov2[i] = abs(q[i]) if q[i] != 0.0 else 1.0 / R[i]
-            other = UNREVISED if method == TABLEAU else TABLEAU
-            code2, pivots2, rec2 = pivot_recovering(other, M, q, max_pivots - pivots, pivot_tol,
-                                                    tie_tol, buf2, z_basic2)
+        other = UNREVISED if method == TABLEAU else TABLEAU
+        for step in range(RETRIES):
+            if (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
+                break
+            if code == pivoting.RAY_TERMINATION and lcp_ray_check(M, q, cov, x[:n], x[n], ray,
+                                                                  tol):
+                break  # a checked ray: a verdict, not a failure
+            buf2[:] = buf
+            x2, ray2, w2, cov2, R2, C2 = layout(n, buf2)
+            exact = retry_covering(step, q, R, cov2)
+            code2, pivots2, rec2 = pivot_recovering(
+                other if step == RETRIES - 1 else method, M, q, max_pivots - pivots,
+                0.0 if exact else pivot_tol, 0.0 if exact else tie_tol, buf2, z_basic2)
             pivots += pivots2
             recoveries += rec2 + 1
             ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
-            if ok2 and code2 != pivoting.SOLVED:
+            if ok2:
                 code2 = pivoting.SOLVED
-            if code2 == pivoting.SOLVED and ok2:
+            if code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED):
                 buf[:] = buf2
                 z_basic[:] = z_basic2
                 code, ok, residual = code2, ok2, residual2

@@ -119,24 +119,30 @@ EQUILIBRATE_SWEEPS = 16
 
 
 @kernel
-def equilibrate(M, R, C):
-    """Row and column scales of M, powers of two, such that every non-zero row and column of
-    diag(R) M diag(C) has its largest entry within a factor 2 of 1: Ruiz's iteration (divide
-    each row and each column by the square root of its largest entry, rounded to a power of
+def equilibrate(M, q, R, C):
+    """Row and column scales of the LCP (M, q), powers of two, such that every non-zero row
+    and column of [diag(R) M diag(C) | c diag(R) q] has its largest entry within a factor 2
+    of 1, for some constant c: Ruiz's iteration on M with q as one more column (divide each
+    row and each column by the square root of its largest entry, rounded to a power of
     two), at most EQUILIBRATE_SWEEPS passes, stopping at the first pass that finds the
-    matrix balanced (one pass for a matrix that already is).  The scales are exact, and
-    Lemke's path does not depend on them in exact arithmetic (every ratio and every
-    lexicographic comparison is invariant under positive diagonal scaling); they make the
-    kernels' relative tolerances mean the same in every row and column, whatever scaling
-    the caller's rows and columns came in."""
+    matrix balanced (one pass for a matrix that already is).
+
+    The scales are exact, and Lemke's path does not depend on them in exact arithmetic
+    (every ratio and every lexicographic comparison is invariant under positive diagonal
+    scaling); they make the kernels' relative tolerances and the acceptance test's rounding
+    floor mean the same in every row and column, whatever scaling the caller's rows and
+    columns came in.  q takes part so that rows are balanced as whole equations: in
+    diag(1e12, 1e-12) z + (-1, -1) both rows keep their -1 (the columns take the scale)."""
     n = M.shape[0]
     R[:] = 1.0
     C[:] = 1.0
+    cq = pow2_scale(absmax(q, n))  # q's own size never unbalances anything
     rmax = np.empty(n)
     cmax = np.empty(n)
     for sweep in range(EQUILIBRATE_SWEEPS):
         rmax[:] = 0.0
         cmax[:] = 0.0
+        qmax = 0.0
         for i in range(n):
             r = R[i]
             row = M[i]
@@ -146,7 +152,10 @@ def equilibrate(M, R, C):
                     rmax[i] = a
                 if a > cmax[j]:
                     cmax[j] = a
-        balanced = True
+            a = abs(q[i]) * r * cq
+            rmax[i] = max(rmax[i], a)
+            qmax = max(qmax, a)
+        balanced = not (qmax > 0.0 and (qmax < 0.5 or qmax > 2.0))
         for i in range(n):
             if rmax[i] > 0.0 and (rmax[i] < 0.5 or rmax[i] > 2.0):
                 balanced = False
@@ -157,6 +166,7 @@ def equilibrate(M, R, C):
         for i in range(n):
             R[i] *= pow2_scale(math.sqrt(rmax[i]))
             C[i] *= pow2_scale(math.sqrt(cmax[i]))
+        cq *= pow2_scale(math.sqrt(qmax))
 
 
 @kernel
