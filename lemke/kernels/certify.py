@@ -105,20 +105,32 @@ the row-equilibrated units, as there)."""
     n = q.shape[0]
     g = (n + 3) * EPS
     t = tol + g
-    r_max = 0.0
-    for j in range(n + 1):
-        r_max = max(r_max, abs(ray[j]))
-    if not (r_max > 0.0 and r_max < np.inf) or not z0 == z0:
+    if not z0 == z0:
         return False
-    dz = np.empty(n + 1)
     for j in range(n + 1):
-        dz[j] = ray[j] if abs(ray[j]) > g * r_max else 0.0
-    dz0 = dz[n]
-    if dz0 < 0.0:
-        return False
+        if not abs(ray[j]) < np.inf:
+            return False
     R = np.empty(n)
     C = np.empty(n)
     equilibrate(M, q, R, C)
+    # Rounding in the direction: an entry of dz below g times the largest (in the
+    # equilibrated units of the columns) is zero; so is dz0 when its contribution d dz0 is
+    # below g times the size of M dz (dz0 has the units of z0, not of z).
+    top = 0.0
+    for j in range(n):
+        top = max(top, abs(ray[j]) / C[j])
+    dz = np.empty(n + 1)
+    for j in range(n):
+        dz[j] = ray[j] if abs(ray[j]) / C[j] > g * top else 0.0
+    mdz = 0.0
+    d_max = 0.0
+    for i in range(n):
+        mdz = max(mdz, dot_and_size(M[i], dz, n)[1])
+        d_max = max(d_max, abs(d[i]))
+    dz[n] = ray[n] if abs(ray[n]) * d_max > g * mdz else 0.0
+    dz0 = dz[n]
+    if dz0 < 0.0 or (top == 0.0 and dz0 == 0.0):
+        return False
     q_top = 0.0
     for i in range(n):
         q_top = max(q_top, R[i] * abs(q[i]))
