@@ -36,8 +36,9 @@ until one ends solved and checked:
    defeats both on one problem.
 
 A run that ends solved replaces one that did not even when its check fails (the front then
-recomputes the point from its final basis).  A checked ray stops the ladder: it is a
-verdict.  A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes
+recomputes the point from its final basis); a run that ends on a checked ray replaces a
+failed one (with its covering vector, which the result reports).  A checked ray stops the
+ladder: it is a verdict.  A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes
 the check (z0 zero to rounding) is SOLVED: the check, not the path, decides.
 
 The number of restarts of both kinds is returned (``LCPResult.recoveries``).
@@ -191,7 +192,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
             if ok2:
                 code2 = pivoting.SOLVED
-            if code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED):
+            if (code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)) or (
+                    code2 == pivoting.RAY_TERMINATION
+                    and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
                 buf[:] = buf2
                 z_basic[:] = z_basic2
                 code, ok, residual = code2, ok2, residual2
