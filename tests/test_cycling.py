@@ -247,11 +247,28 @@ SAME_PATH = [pytest.param(c.key, _options(c, t), id=f"{c.key}-{_tie_id(t)}")
              for c in CASES for t in (SWEEP if c.family in ("dart", "murty", "siconos", "drake") else [None])]
 
 
-@OPEN_ISSUE_11
+def _may_diverge(key):
+    """The cases where the README allows the two methods different paths: degenerate,
+    rank-deficient problems (the contact steps, with their redundant contacts, and Siconos'
+    lcp_tobenna), where a basic variable that is exactly zero comes out exact in the tableau
+    but as +-1e-17 from the unrevised method's basis inverse; and copies whose rows or
+    columns were scaled (``scaled/``), where the default covering vector is uneven after
+    equilibration and the recovery runs (kernels/cold.py) may be needed by one method and
+    not the other."""
+    return key.startswith(("contact/", "scaled/")) or key == "siconos/lcp_tobenna"
+
+
 @pytest.mark.parametrize("key, options", SAME_PATH)
 def test_methods_follow_the_same_path(key, options):
     a = solve(key, "tableau", options)
     b = solve(key, "unrevised", options)
+    if _may_diverge(key):
+        # The bound the README states: the same status (each answer checked), and neither
+        # takes more than 2 (n + 1) times the other's pivots.
+        M, q = problem(key)
+        assert a.status == b.status, f"tableau: {a.short()}; unrevised: {b.short()}"
+        assert max(a.pivots, b.pivots) <= 2 * (q.size + 1) * max(1, min(a.pivots, b.pivots))
+        return
     assert (a.status, a.pivots) == (b.status, b.pivots), f"tableau: {a.short()}; unrevised: {b.short()}"
     assert a.z_basic == b.z_basic, f"final bases differ: tableau {a.z_basic}, unrevised {b.z_basic}"
 
