@@ -20,10 +20,11 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     the rule and why the default sits above the rounding of well-conditioned bases.
 ``tol`` (default ``1e-9``)
     Acceptance test for a solution, made on the caller's data row by row
-    (``lemke.kernels.certify``): with ``r_i = |M_i.| |z| + |q_i|`` and
-    ``t = tol + (n + 2) eps``, ``w_i >= -t r_i``, and ``|w_i| <= t r_i`` unless z_i is zero
-    (below ``t min_j r_j / |M_ji|``: zeroing it moves no w_j by more than ``t r_j``); and z
-    must be small enough to be certified at all (in the row-equilibrated coordinates,
+    (``lemke.kernels.certify``): with ``r_i = |M_i.| |z| + |q_i|``, ``t = tol + (n + 2) eps``
+    and f_i the rounding of q's largest entry in row i's equilibrated units,
+    ``w_i >= -(t r_i + f_i)``, and ``|w_i| <= t r_i + f_i`` unless z_i is zero (small enough
+    that zeroing it moves no w_j by more than row j's allowance); and z must be small
+    enough to be certified at all (in the row-equilibrated coordinates,
     ``eps max_i R_i |M_i.| |z| <= 1000 t max(max_i R_i |q_i|, 1)``: a z such as the
     |z| ~ 1e16 of a pivot on rounding noise answers a different problem).
 """

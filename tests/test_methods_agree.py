@@ -3,7 +3,8 @@ the cases listed in ``DIVERGE`` the same pivot count, the same z and the same fi
 (both follow kernels/pivoting.py's rule, so even where the solution is not unique both
 methods must reach the same one).
 
-``DIVERGE``: the one known exception, and the bound the README promises for it.  On highly
+``DIVERGE``: the one exception among these files, and the bound the README promises for it
+(the README's other exceptions, contact steps and scaled copies, are in test_cycling.py).  On highly
 degenerate integer data (tobenna: q in {-1, 0}, M with entries up to 250) the two methods'
 values of a basic variable that is exactly zero differ in the last bits (the tableau keeps
 exact zeros exact; the unrevised method recomputes them from the basis inverse as +-1e-17
