@@ -37,8 +37,9 @@ until one ends solved and checked:
 
 A run that ends solved replaces one that did not even when its check fails (the front then
 recomputes the point from its final basis); a run that ends on a checked ray replaces a
-failed one (with its covering vector, which the result reports).  A checked ray stops the
-ladder: it is a verdict.  A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes
+failed one (with its covering vector, which the result reports), but the ladder goes on in
+case a later run solves.  A checked ray of the first run stops the ladder: it is the
+verdict on the default covering vector.  A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes
 the check (z0 zero to rounding) is SOLVED: the check, not the path, decides.
 
 The number of restarts of both kinds is returned (``LCPResult.recoveries``).
@@ -178,9 +179,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         for step in range(RETRIES):
             if (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
                 break
-            if code == pivoting.RAY_TERMINATION and lcp_ray_check(M, q, cov, x[:n], x[n], ray,
-                                                                  tol):
-                break  # a checked ray: a verdict, not a failure
+            if step == 0 and code == pivoting.RAY_TERMINATION and lcp_ray_check(
+                    M, q, cov, x[:n], x[n], ray, tol):
+                break  # a checked ray of the first run: a verdict, not a failure
             buf2[:] = buf
             x2, ray2, w2, cov2, R2, C2 = layout(n, buf2)
             exact = retry_covering(step, q, R, cov2)
@@ -193,7 +194,8 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             if ok2:
                 code2 = pivoting.SOLVED
             if (code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)) or (
-                    code2 == pivoting.RAY_TERMINATION
+                    code2 == pivoting.RAY_TERMINATION and code != pivoting.RAY_TERMINATION
+                    and code != pivoting.SOLVED
                     and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
                 buf[:] = buf2
                 z_basic[:] = z_basic2
