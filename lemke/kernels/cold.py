@@ -176,6 +176,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         buf2 = np.empty_like(buf)
         z_basic2 = np.empty(n, dtype=np.bool_)
         other = UNREVISED if method == TABLEAU else TABLEAU
+        have_ray = False  # buf holds a checked ray of a retry
         for step in range(RETRIES):
             if (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
                 break
@@ -193,10 +194,13 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
             if ok2:
                 code2 = pivoting.SOLVED
-            if (code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)) or (
-                    code2 == pivoting.RAY_TERMINATION and code != pivoting.RAY_TERMINATION
-                    and code != pivoting.SOLVED
+            take = code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)
+            if (not take and not have_ray and code2 == pivoting.RAY_TERMINATION
                     and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
+                take = have_ray = True  # kept while no later run solves
+            elif take:
+                have_ray = False
+            if take:
                 buf[:] = buf2
                 z_basic[:] = z_basic2
                 code, ok, residual = code2, ok2, residual2
