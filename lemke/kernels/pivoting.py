@@ -30,9 +30,12 @@ when q mixes entries of 1e-2 and 1e-10.  What is zero is decided per row: a valu
 zero when it is below ``VALUE_ROUNDING`` times the size of the terms it was formed from,
 i.e. when it is rounding of an exact zero.  That size is |B^-1| |q| for a value B^-1 q.  The
 unrevised method recomputes every value from the basis inverse at each pivot and has it at
-once (|G| |q_alpha|, |q| + |AB| |z|).  The tableau keeps an upper bound, updated with every
-pivot, and computes the exact size from the row of B^-1 only for the few rows whose value is
-below VALUE_ROUNDING times that bound.  ``tie_tol = 0`` asks for exact ties only; the row
+once (|G| |q_alpha|, |q| + |AB| |z|); there exact zeros come out as +-1e-17.  The tableau
+updates its values in place and keeps exact zeros exact far more often; a running bound on
+that size grows with every pivot and would zero real values, and the exact size costs O(n)
+a row (tried: 10x slower), so the tableau gives the values themselves as their size, and
+only negative values count as zero there.  This is one source of the differences between
+the two methods that the README lists.  ``tie_tol = 0`` asks for exact ties only; the row
 of the minimum always ties itself, so the candidate list is never empty.
 
 The entries of the basis inverse that are zero in exact arithmetic come out as rounding
