@@ -92,11 +92,11 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         Mbb = linalg.principal_block(M, b)
         z = _basis_point(Mbb, q, b)
         if z is not None:
-            w, ok, residual = check_lcp(M, q, z, opts.tol)
+            R, C, w = np.empty(n), np.empty(n), np.empty(n)
+            linalg.equilibrate(M, q, R, C)  # once: the check and the result use them
+            ok, residual = certify.lcp_check_sized(M, q, z, opts.tol, w, R)
             if ok:  # the old basis still solves it
                 cov = np.ones(n) if d is None else d.copy()
-                R, C = np.empty(n), np.empty(n)
-                linalg.equilibrate(M, q, R, C)
                 return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, cov, warm_start,
                                R, C, 0)
             res = _restart(M, q, beta, opts)

@@ -20,7 +20,7 @@ If the last one cycles too, the status is CYCLING, never a silent pivot cap.
 
 **Recovery from a failed check.**  With the default covering vector, a run whose point fails
 the check on the caller's data, or whose ray fails the ray check, or that met a numerical
-failure, is followed by up to three more runs (their pivots counted, within the same cap),
+failure, is followed by up to four more runs (their pivots counted, within the same cap),
 until one ends solved and checked:
 
 1. the covering vector that is all ones in the *equilibrated* coordinates (d = 1 / R).  The
@@ -31,7 +31,10 @@ until one ends solved and checked:
    largest), with exact tests (``pivot_tol = tie_tol = 0``): z0 then starts near 1 in every
    row, so rows of q that differ by many orders of magnitude are not lost to rounding in
    q + d z0;
-3. the other method (tableau <-> unrevised) with d = 1 / R: the two compute their values
+3. a covering vector with fixed pseudo-random factors in [1, 2) in the equilibrated
+   coordinates: on degenerate contact problems (piles with deep overlaps) the path of a
+   constant covering vector can run into rounding that a generic one avoids;
+4. the other method (tableau <-> unrevised) with d = 1 / R: the two compute their values
    differently (updated in place / recomputed from the basis inverse), and rounding rarely
    defeats both on one problem.
 
@@ -127,7 +130,7 @@ def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic)
     return code, pivots, recoveries
 
 
-RETRIES = 3
+RETRIES = 4
 
 
 @kernel
@@ -135,7 +138,8 @@ def retry_covering(step, q, R, cov):
     """The covering vector of recovery run ``step`` (see the module docstring), written in
     ``cov``; returns whether that run uses exact tests.  0: all ones in the equilibrated
     coordinates (1 / R); 1: |q| in them, each entry at least 1e-3 of the largest (exact
-    tests); 2 (the other method): all ones in the equilibrated coordinates again."""
+    tests); 2: fixed pseudo-random factors in [1, 2) in them; 3 (the other method): all
+    ones in the equilibrated coordinates again."""
     n = q.shape[0]
     if step == 1:
         top = 0.0
@@ -144,6 +148,11 @@ def retry_covering(step, q, R, cov):
         for i in range(n):
             cov[i] = max(R[i] * abs(q[i]), 1e-3 * top) / R[i] if top > 0.0 else 1.0 / R[i]
         return True
+    if step == 2:
+        keys = pivoting.label_keys(n)
+        for i in range(n):
+            cov[i] = (1.0 + (keys[i] >> np.uint64(11)) * (1.0 / 9007199254740992.0)) / R[i]
+        return False
     for i in range(n):
         cov[i] = 1.0 / R[i]
     return False
