@@ -11,8 +11,9 @@ of a driving variable comes from the same block, so each pivot needs only produc
 G = H^-1 and with AB = A[:, beta] (kept as a contiguous copy, one column changed a pivot).
 G is updated from pivot to pivot in O(k^2), one of four cases: the block gains a row and a
 column, loses them, or has one row or one column replaced.  The basic point is recomputed
-from G at every pivot and its residual checked; G is refactored (LAPACK) when the check
-fails, when an update's pivot is tiny, and every ``REFACTOR_EVERY`` pivots.
+from G at every pivot and its residual checked row by row (relative to each row's terms,
+RESIDUAL_TOL); G is refactored (``linalg.invert_in_place``, on the calling thread) when the
+check fails, when an update's pivot is tiny, and every ``REFACTOR_EVERY`` pivots.
 
 Labels are those of the tableau kernel: 0..n-1 for w, n..2n-1 for z, 2n for z0.  The rule is
 :mod:`lemke.kernels.pivoting`'s, applied to the basic variables in pair order (pair j's basic
