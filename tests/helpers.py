@@ -1,4 +1,6 @@
 """Independent checks used by the tests (deliberately not lemke's own certify code)."""
+import itertools
+
 import numpy as np
 
 
@@ -161,3 +163,27 @@ def assert_unbounded_direction(P, q, G, A, lb, ub, cert, rtol=1e-8):
         assert (G @ d).max() <= rtol * data
     assert np.all(d[np.isfinite(lb)] >= 0) and np.all(d[np.isfinite(ub)] <= 0)
     assert q @ d < -rtol * data
+
+
+def enumerate_solutions(M, q):
+    """Every solution at a complementary basis with a non-singular M_aa, by trying all 2^n
+    of them (small n only), each accepted by :func:`assert_lcp_solution`."""
+    M = np.asarray(M, dtype=float)
+    q = np.asarray(q, dtype=float)
+    n = q.size
+    found = []
+    for k in range(n + 1):
+        for a in itertools.combinations(range(n), k):
+            a = list(a)
+            z = np.zeros(n)
+            if a:
+                try:
+                    z[a] = np.linalg.solve(M[np.ix_(a, a)], -q[a])
+                except np.linalg.LinAlgError:
+                    continue
+            try:
+                assert_lcp_solution(M, q, z)
+            except AssertionError:
+                continue
+            found.append(z)
+    return found

@@ -41,7 +41,6 @@ from __future__ import annotations
 import atexit
 import contextlib
 import functools
-import itertools
 import json
 import os
 import subprocess
@@ -53,7 +52,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import lemke
-from helpers import assert_lcp_solution, assert_lcp_solution_rowwise, assert_ray
+from helpers import assert_lcp_solution, assert_lcp_solution_rowwise, assert_ray, enumerate_solutions
 from lemke import Status
 from stress_cases import ALL, BASE_CASES, BY_KEY, CASES, DATA, MURTY_N, SCALED_CASES, p_matrix, scaling
 from stress_worker import Solver
@@ -147,22 +146,7 @@ def test_dart_12d_has_solutions():
     # By enumeration of its 2^12 complementary bases, independently of lemke: several give
     # a point that passes the tests' check (10 at rtol 1e-8; more at looser tolerances).
     M, q = problem("dart/Lemke_12D")
-    n, found = q.size, 0
-    for k in range(n + 1):
-        for a in itertools.combinations(range(n), k):
-            a = list(a)
-            z = np.zeros(n)
-            if a:
-                try:
-                    z[a] = np.linalg.solve(M[np.ix_(a, a)], -q[a])
-                except np.linalg.LinAlgError:
-                    continue
-            try:
-                assert_lcp_solution(M, q, z)
-            except AssertionError:
-                continue
-            found += 1
-    assert found >= 1
+    assert enumerate_solutions(M, q)
 
 
 @pytest.mark.parametrize("tie_tol", SWEEP, ids=_tie_id)

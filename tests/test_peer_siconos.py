@@ -4,7 +4,6 @@ Data from the Siconos project (INRIA, Apache-2.0); see tests/data/siconos/README
 files carry no expected solution, so every answer is checked on the data itself.
 """
 import importlib.util
-import itertools
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +11,7 @@ import pytest
 from scipy.optimize import linprog
 
 import lemke
-from helpers import assert_lcp_solution, assert_ray
+from helpers import assert_lcp_solution, assert_ray, enumerate_solutions
 from siconos_dat import read_lcp
 
 LCP_DIR = Path(__file__).parent / "data" / "siconos" / "lcp"
@@ -61,27 +60,6 @@ def _is_feasible(M, q):
     return res.status == 0
 
 
-def _enumerate_solutions(M, q):
-    """All solutions at complementary bases with a nonsingular M_aa (small n only)."""
-    n = q.size
-    found = []
-    for k in range(n + 1):
-        for a in itertools.combinations(range(n), k):
-            a = list(a)
-            z = np.zeros(n)
-            if a:
-                try:
-                    z[a] = np.linalg.solve(M[np.ix_(a, a)], -q[a])
-                except np.linalg.LinAlgError:
-                    continue
-            try:
-                assert_lcp_solution(M, q, z)
-            except AssertionError:
-                continue
-            found.append(z)
-    return found
-
-
 @pytest.mark.parametrize("name", _params())
 def test_siconos_lcp(name, method):
     M, q = read_lcp(LCP_DIR / name)
@@ -92,7 +70,7 @@ def test_siconos_lcp(name, method):
         if RAY_FILES[name] == "infeasible":
             assert not _is_feasible(M, q)
         else:
-            assert _enumerate_solutions(M, q), "expected a solution to exist"
+            assert enumerate_solutions(M, q), "expected a solution to exist"
     else:
         assert result.status == lemke.Status.SOLVED, result.message
         assert_lcp_solution(M, q, result.z)
