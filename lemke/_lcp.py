@@ -124,8 +124,7 @@ def _cold(method, M, q, d, opts, extra_pivots=0):
     basic = np.empty(n, dtype=np.int64)
     code, pivots, k, ok, residual, recoveries = _CHECKED(
         _KERNELS[method], M, q, d, max(0, opts.pivot_limit(n) - extra_pivots), opts.pivot_tol,
-        opts.tie_tol, opts.tol,
-        buf, basic
+        opts.tie_tol, opts.tol, buf, basic
     )
     if code == 0 and ok:  # solved and checked: the common case, inline
         z, z0, ray, w, cov, rs, cs = _views(buf, n)

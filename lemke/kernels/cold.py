@@ -21,7 +21,9 @@ If the last one cycles too, the status is CYCLING, never a silent pivot cap.
 **Recovery from a failed check.**  With the default covering vector, a run whose point fails
 the check on the caller's data, or whose ray fails the ray check, or that met a numerical
 failure, is followed by up to four more runs (their pivots counted, within the same cap),
-until one ends solved and checked:
+until one ends solved and checked.  Recovery runs of the tableau are *careful*: they test
+"zero to rounding" with the exact |B^-1| |q| of the rows under a running bound (see
+``tableau.ratio_test``), which the first run skips for speed.  The runs:
 
 1. the covering vector that is all ones in the *equilibrated* coordinates (d = 1 / R).  The
    default d = 1 is all ones in the caller's coordinates; when the rows of M come in very
@@ -97,25 +99,26 @@ def prologue(M, q, d, buf):
 
 
 @kernel
-def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic):
+def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful):
     """One run of the chosen method from the all-w basis; returns ``(status, pivots)``."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
     if method == TABLEAU:
-        return tableau.solve(M, q, cov, R, C, max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
+        return tableau.solve(M, q, cov, R, C, max_pivots, pivot_tol, tie_tol, x, ray, z_basic,
+                             careful)
     return unrevised.solve(M, q, cov, R, C, np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
                            max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
 
 
 @kernel
-def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic):
+def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful):
     """:func:`pivot_once`, then the recoveries of the module docstring while it cycles.
     Returns ``(status, pivots, recoveries)``; the pivots of every run are counted."""
-    code, pivots = pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic)
+    code, pivots = pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful)
     recoveries = 0
     if code == pivoting.CYCLING and tie_tol > 0.0:
         recoveries += 1
-        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic)
+        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
         pivots += p
     if code == pivoting.CYCLING:
         recoveries += 1
@@ -123,9 +126,8 @@ def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic)
         cov = layout(n, buf)[3]
         keys = pivoting.label_keys(n)
         for i in range(n):
-            u = (keys[i] >> np.uint64(11)) * (1.0 / 9007199254740992.0)  # in [0, 1)
-            cov[i] *= 1.0 + PERTURBATION * u
-        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic)
+            cov[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
+        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
         pivots += p
     return code, pivots, recoveries
 
@@ -151,7 +153,7 @@ def retry_covering(step, q, R, cov):
     if step == 2:
         keys = pivoting.label_keys(n)
         for i in range(n):
-            cov[i] = (1.0 + (keys[i] >> np.uint64(11)) * (1.0 / 9007199254740992.0)) / R[i]
+            cov[i] = (1.0 + pivoting.unit_random(keys, i)) / R[i]
         return False
     for i in range(n):
         cov[i] = 1.0 / R[i]
@@ -166,7 +168,8 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     Returns ``(code, pivots, k, ok, residual, recoveries)``: code is a status of the
     kernels, or NOT_FINITE (nothing else done) or TRIVIAL (z = 0, w = q); the first k
     entries of ``basic`` are the basic z's; ok and residual are the result of
-    ``certify.lcp_check``; recoveries counts the restarts after a cycle.
+    ``certify.lcp_check``; recoveries counts the restarts (after a cycle or a failed
+    check, see the module docstring).
     """
     n = q.shape[0]
     code = prologue(M, q, d, buf)
@@ -174,15 +177,15 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         return code, 0, 0, code == TRIVIAL, 0.0, 0
     z_basic = np.empty(n, dtype=np.bool_)
     code, pivots, recoveries = pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol,
-                                                buf, z_basic)
+                                                buf, z_basic, False)
     x, ray, w, cov, R, C = layout(n, buf)
     ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
     if ok and code != pivoting.SOLVED:
         # The point where the method stopped (a "ray" or a cap reached with z0 zero to
         # rounding) passes the check on the caller's data: it is a solution.
         code = pivoting.SOLVED
-    if d.shape[0] == 0:
-        buf2 = np.empty_like(buf)
+    if d.shape[0] == 0 and not (code == pivoting.SOLVED and ok) and pivots < max_pivots:
+        buf2 = np.empty_like(buf)  # only on the failure path: no allocation when solved
         z_basic2 = np.empty(n, dtype=np.bool_)
         other = UNREVISED if method == TABLEAU else TABLEAU
         have_ray = False  # buf holds a checked ray of a retry
@@ -197,7 +200,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             exact = retry_covering(step, q, R, cov2)
             code2, pivots2, rec2 = pivot_recovering(
                 other if step == RETRIES - 1 else method, M, q, max_pivots - pivots,
-                0.0 if exact else pivot_tol, 0.0 if exact else tie_tol, buf2, z_basic2)
+                0.0 if exact else pivot_tol, 0.0 if exact else tie_tol, buf2, z_basic2, True)
             pivots += pivots2
             recoveries += rec2 + 1
             ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)

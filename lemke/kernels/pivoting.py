@@ -33,8 +33,9 @@ unrevised method recomputes every value from the basis inverse at each pivot and
 once (|G| |q_alpha|, |q| + |AB| |z|); there exact zeros come out as +-1e-17.  The tableau
 updates its values in place and keeps exact zeros exact far more often; a running bound on
 that size grows with every pivot and would zero real values, and the exact size costs O(n)
-a row (tried: 10x slower), so the tableau gives the values themselves as their size, and
-only negative values count as zero there.  This is one source of the differences between
+a row (tried: 10x slower), so the tableau's first run gives the values themselves as their size, and
+only negative values count as zero there; its recovery runs (kernels.cold) compute the
+exact size for the few rows under a running bound.  This is one source of the differences between
 the two methods that the README lists.  ``tie_tol = 0`` asks for exact ties only; the row
 of the minimum always ties itself, so the candidate list is never empty.
 
@@ -185,6 +186,12 @@ def label_keys(n_labels):
         x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
         keys[lab] = x ^ (x >> np.uint64(31))
     return keys
+
+
+@kernel
+def unit_random(keys, i):
+    """A fixed pseudo-random number in [0, 1) from key i (its top 53 bits)."""
+    return (keys[i] >> np.uint64(11)) * (1.0 / 9007199254740992.0)
 
 
 @kernel

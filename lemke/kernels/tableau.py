@@ -56,7 +56,7 @@ def current_column(T, U, V, k, s, col):
 
 
 @kernel
-def pivot(T, rhs, r, s, col, U, V, k, prow, act):
+def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
     """Exchange the basic variable of row r with the non-basic variable of column s (whose
     current values are in ``col``), with k pivots pending; returns the new number pending.
 
@@ -75,6 +75,8 @@ def pivot(T, rhs, r, s, col, U, V, k, prow, act):
     T[r, :] = prow
     rhs[r] = -rhs[r] * inv
     rr = rhs[r]
+    magb[r] *= abs(inv)  # an upper bound on |B^-1| |q| per row (see ratio_test)
+    mr = magb[r]
     for p in range(k):  # row r and column s are now exact in T
         U[r, p] = 0.0
         V[p, s] = 0.0
@@ -85,6 +87,7 @@ def pivot(T, rhs, r, s, col, U, V, k, prow, act):
             T[i, s] = f * inv
             if f != 0.0:  # an exact zero leaves row i unchanged: sparse columns cost nothing
                 rhs[i] += f * rr
+                magb[i] += abs(f) * mr
     U[r, k] = 0.0
     V[k, :] = prow
     V[k, s] = 0.0
@@ -125,17 +128,33 @@ def flush(T, U, V, k, act):
 
 @kernel
 def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
-               artificial, pivot_tol, tie_tol, cand, keys, z0_max):
+               artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags, careful):
     """The row that blocks the entering column (current values in ``col``), or -1 when
     nothing blocks (a ray): the rule of :mod:`lemke.kernels.pivoting`, with the columns of
     the basis inverse read off the tableau."""
     n = T.shape[0]
     art = pos[artificial] if is_basic[artificial] else -1
-    # The tableau updates its values in place and has no cheap, tight size of the terms
-    # behind each one (a running bound grows with every pivot and would zero real values;
-    # the exact |B^-1| |q| costs O(n) a row), so it passes the values themselves as their
-    # size: only negative values count as zero here (kernels.pivoting).
-    nc = pivoting.min_ratio(rhs, rhs, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+    # The size of the terms behind each value, |B^-1| |q|, for the rule's test of "zero to
+    # rounding".  Only when ``careful`` (the recovery runs of kernels.cold): magb bounds it
+    # from above (updated with every pivot), so only a row whose value is below
+    # VALUE_ROUNDING * magb can be rounding, and only for those rows is the exact size
+    # computed, from the row of B^-1 (O(n) each; the bound grows with the pivots, and on
+    # large problems that makes the first run up to 10x slower, so the first run passes the
+    # values themselves: only negative values count as zero there).
+    for i in range(n):
+        v = rhs[i]
+        mags[i] = v
+        if careful and col[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
+            size = 0.0
+            for j in range(n):
+                lab = start_basis[j]
+                if is_basic[lab]:
+                    b = 1.0 if pos[lab] == i else 0.0
+                else:
+                    b = entry(T, U, V, k_pending, i, pos[lab])
+                size += abs(b) * abs(q0[j])
+            mags[i] = size
+    nc = pivoting.min_ratio(rhs, mags, col, n, pivot_tol, tie_tol, cand, art, z0_max)
     if nc <= 1:
         return cand[0] if nc == 1 else -1
     for c in range(nc):
@@ -160,7 +179,7 @@ def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
 
 @kernel
 def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
-          block):
+          block, careful=False):
     """Run Lemke's method from the tableau (T, rhs) with the artificial variable non-basic,
     keeping up to ``block`` pivots pending (any block gives the same bits).
 
@@ -202,13 +221,16 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     h = pivoting.fingerprint(hkeys, basis, n)
     detector = pivoting.new_detector()
     z0_max = 0.0
+    q0 = rhs.copy()  # the right-hand side of the starting basis
+    magb = np.abs(rhs)
+    mags = np.empty(n)
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
         if not abs(col[r]) < np.inf:  # a NaN or infinite pivot: give up, never index with it
             status = NUMERICAL_FAILURE
             break
-        k = pivot(T, rhs, r, s, col, U, V, k, prow, act)
+        k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
         pivots += 1
         basis[r] = entering
         nonbasic[s] = leaving
@@ -228,7 +250,8 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
         if is_basic[artificial]:
             z0_max = max(z0_max, rhs[pos[artificial]])
         r = ratio_test(T, U, V, k, col, rhs, basis, pos, is_basic, start_basis,
-                       artificial, pivot_tol, tie_tol, cand, keys, z0_max)
+                       artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags,
+                       careful)
         if r < 0:
             status = RAY_TERMINATION
             entering = nonbasic[s]
@@ -251,7 +274,8 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
 
 
 @kernel
-def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
+          careful=False):
     """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.
 
     Works on the equilibrated system of ``linalg.scaled_system`` (R, C: the row and column
@@ -267,7 +291,7 @@ def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic
         nonbasic[i] = n + i
     nonbasic[n] = 2 * n
     status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out,
-                           ray_out, z_basic_out, block_size(n))
+                           ray_out, z_basic_out, block_size(n), careful)
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
