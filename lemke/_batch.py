@@ -10,7 +10,7 @@ import numpy as np
 
 from ._lcp import METHODS, _outcome
 from ._options import as_options
-from ._problem import _to_float_array
+from ._validate import real_array
 from ._result import LCPBatchResult
 from .kernels import cold
 
@@ -71,8 +71,8 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     opts = as_options(options)
-    M = _to_float_array(M, "M")
-    q = _to_float_array(q, "q")
+    M = real_array(M, "M")
+    q = real_array(q, "q")
     if q.ndim != 2:
         raise ValueError(f"q must have shape (B, n), got shape {q.shape}")
     B, n = q.shape

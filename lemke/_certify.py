@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._problem import as_matrix, as_vector
+from ._validate import square_matrix, vector
 from .kernels import certify
 
 def lcp_residual(z: np.ndarray, w: np.ndarray) -> float:
@@ -28,9 +28,9 @@ def is_lcp_solution(M, q, z, tol: float = 1e-9) -> bool:
     ``w_i >= -t r_i``, and ``|w_i| <= t r_i`` unless z_i is zero (small enough that zeroing
     it moves no w_j by more than ``t r_j``); z >= 0 in the same sense; and z is not so large
     that the rounding of M z dwarfs the data (see ``lemke.kernels.certify``)."""
-    M = as_matrix(M)
-    q = as_vector(q, M.shape[0], "q")
-    z = as_vector(z, M.shape[0], "z")
+    M = square_matrix(M)
+    q = vector(q, M.shape[0], "q")
+    z = vector(z, M.shape[0], "z")
     return check_lcp(M, q, z, float(tol))[1]
 
 
@@ -44,8 +44,8 @@ def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
     copositive-plus M (positive semidefinite M included) such a ray proves that the LCP has
     no feasible point.
     """
-    M = as_matrix(M)
+    M = square_matrix(M)
     n = M.shape[0]
-    q, d, z = (as_vector(a, n, name) for a, name in ((q, "q"), (d, "d"), (z, "z")))
-    ray = as_vector(ray, n + 1, "ray")
+    q, d, z = (vector(a, n, name) for a, name in ((q, "q"), (d, "d"), (z, "z")))
+    ray = vector(ray, n + 1, "ray")
     return bool(certify.lcp_ray_check(M, q, d, z, float(z0), ray, float(tol)))

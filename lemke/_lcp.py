@@ -5,7 +5,7 @@ import numpy as np
 
 from ._certify import check_lcp, is_lcp_ray
 from ._options import _DEFAULT, as_options
-from ._problem import as_lcp
+from . import _validate
 from ._result import LCPResult, WarmStart
 from ._status import Status
 from .kernels import certify, cold, linalg, unrevised
@@ -75,7 +75,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             return res  # else M or q is not finite: the validation below says where
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
-    M, q, d = as_lcp(M, q, d)
+    M, q, d = _validate.lcp(M, q, d)
     opts = as_options(options)
     n = q.size
     if warm_start is not None:

@@ -25,7 +25,7 @@ import numpy as np
 
 from ._lcp import METHODS, solve_lcp
 from ._options import as_options
-from ._problem import _to_float_array
+from . import _validate
 from ._result import Outcome, WarmStart
 from ._status import Status
 from .kernels import mlcp as kmlcp
@@ -136,23 +136,9 @@ def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=N
 
 def _as_mlcp(A, B, C, D, a, b):
     """Validate the six blocks; returns the stacked ``(E, e, n)``."""
-    a = _to_float_array(a, "a").reshape(-1) if np.ndim(a) <= 1 else _to_float_array(a, "a")
-    b = _to_float_array(b, "b").reshape(-1) if np.ndim(b) <= 1 else _to_float_array(b, "b")
-    if a.ndim != 1:
-        raise ValueError(f"a must be a vector, got shape {a.shape}")
-    if b.ndim != 1:
-        raise ValueError(f"b must be a vector, got shape {b.shape}")
+    blocks = _validate.mlcp(A, B, C, D, a, b)
+    a, b = blocks["a"], blocks["b"]
     n, m = a.size, b.size
-    blocks = {}
-    for name, x, shape in (("A", A, (n, n)), ("B", B, (m, m)), ("C", C, (n, m)), ("D", D, (m, n))):
-        arr = _to_float_array(x, name)
-        if arr.size == 0 and 0 in shape:
-            arr = np.zeros(shape)
-        if arr.shape != shape:
-            raise ValueError(
-                f"{name} must have shape {shape} (n = {n} from a, m = {m} from b), got {arr.shape}"
-            )
-        blocks[name] = arr
     E = np.empty((n + m, n + m))
     E[:n, :n] = blocks["A"]
     E[:n, n:] = blocks["C"]

@@ -12,7 +12,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy.linalg import get_lapack_funcs
 
-from ._problem import _to_float_array
+from ._validate import real_array
 
 _EPS = np.finfo(np.float64).eps
 _LABEL = re.compile(r"([wz])([1-9][0-9]*)\Z")
@@ -239,13 +239,13 @@ def pivot_column(M, q, basic, nonbasic, driving):
     >>> column
     array([ 0. , -1. ,  0.5])
     """
-    M = _to_float_array(M, "M")
+    M = real_array(M, "M")
     if M.ndim != 2 or M.shape[1] != M.shape[0] + 1:
         raise ValueError(
             f"M must be n x (n + 1), the LCP matrix with the covering vector as its last column; got shape {M.shape}"
         )
     n = M.shape[0]
-    q = _to_float_array(q, "q")
+    q = real_array(q, "q")
     if q.shape != (n,):
         raise ValueError(f"q must have shape ({n},) to match M of shape {M.shape}, got shape {q.shape}")
     basic = _label_list(basic, "basic")

@@ -33,14 +33,11 @@ import numpy as np
 from ._lcp import METHODS
 from ._mlcp import _size, solve_stacked
 from ._options import as_options
-from ._problem import _to_float_array
+from . import _validate
 from ._result import Outcome, WarmStart
 from ._status import Status
 
 EPS = float(np.finfo(np.float64).eps)
-INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
-SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
-CONVEXITY_TOL = 1e-10  # relative: P + CONVEXITY_TOL max|P| I must have a Cholesky factor
 
 
 @dataclass(frozen=True)
@@ -185,25 +182,13 @@ class _QP:
     """The validated data, the variables' kinds and the KKT system as a stacked MLCP."""
 
     def __init__(self, P, q, G, h, A, b, lb, ub):
-        q = _to_float_array(q, "q")
-        if q.ndim != 1:
-            raise ValueError(f"q must be a vector, got shape {q.shape}")
-        n = q.size  # n = 0 is allowed: the constraints are then constant rows 0 <= h, 0 = b
-        P = _to_float_array(P, "P")
-        if n == 0 and P.size == 0:
-            P = np.zeros((0, 0))  # [] or any other empty array
-        if P.shape != (n, n):
-            raise ValueError(f"P must have shape ({n}, {n}) to match q, got {P.shape}")
-        self.n, self.q = n, q
-        self.P = _symmetric_psd(P)
-        self.G, self.h = _rows(G, h, n, "G", "h")
-        self.A, self.b = _rows(A, b, n, "A", "b")
-        self.lb = _bound(lb, n, "lb", -np.inf)
-        self.ub = _bound(ub, n, "ub", np.inf)
-        bad = np.flatnonzero(self.lb > self.ub)
-        if bad.size:
-            j = int(bad[0])
-            raise ValueError(f"lb[{j}] = {self.lb[j]} exceeds ub[{j}] = {self.ub[j]}: no x satisfies the bounds")
+        d = _validate.qp(P, q, G, h, A, b, lb, ub)
+        self.n, self.q = n, q = d["q"].size, d["q"]
+        self.P = _validate.symmetric_psd(d["P"])
+        self.G, self.h = d.get("G", np.zeros((0, n))), d.get("h", np.zeros(0))
+        self.A, self.b = d.get("A", np.zeros((0, n))), d.get("b", np.zeros(0))
+        self.lb = d.get("lb", np.full(n, -np.inf))
+        self.ub = d.get("ub", np.full(n, np.inf))
         self._kinds()
         self._stack()
 
@@ -286,69 +271,6 @@ def _constant_rows(M, v, x0, fixed):
         rounding = 4.0 * (fixed.size + 1) * EPS * (np.abs(v) + np.abs(M[:, fixed]) @ np.abs(x0[fixed]))
         c[constant & (np.abs(c) <= rounding)] = 0.0
     return c
-
-
-def _symmetric_psd(P):
-    scale = float(np.max(np.abs(P))) if P.size else 0.0
-    if scale == 0.0:
-        return np.zeros_like(P)
-    asym = np.abs(P - P.T)
-    if asym.max() > SYMMETRY_TOL * scale:
-        i, j = np.unravel_index(int(np.argmax(asym)), asym.shape)
-        raise ValueError(
-            f"P is not symmetric: P[{i}, {j}] = {P[i, j]:.6g} but P[{j}, {i}] = {P[j, i]:.6g} "
-            "(pass the full symmetric matrix, not one triangle)"
-        )
-    Ps = 0.5 * (P + P.T)
-    try:
-        np.linalg.cholesky(Ps + (CONVEXITY_TOL * scale) * np.eye(P.shape[0]))
-    except np.linalg.LinAlgError:
-        lam = np.linalg.eigvalsh(Ps)
-        raise ValueError(
-            f"P is not positive semidefinite: its smallest eigenvalue is {lam[0]:.3g} (largest "
-            f"{lam[-1]:.3g}); solve_qp solves convex QPs only, a KKT point of a non-convex one "
-            "need not be a minimum"
-        ) from None
-    return Ps
-
-
-def _rows(M, v, n, mname, vname):
-    if M is None and v is None:
-        return np.zeros((0, n)), np.zeros(0)
-    if M is None or v is None:
-        given, missing = (mname, vname) if v is None else (vname, mname)
-        raise ValueError(f"{given} was given without {missing}: pass both or neither")
-    M = _to_float_array(M, mname)
-    v = _to_float_array(v, vname).reshape(-1) if np.ndim(v) == 0 else _to_float_array(v, vname)
-    if M.ndim == 1 and M.size == 0 and v.ndim == 1 and (n == 0 or v.size == 0):
-        M = np.zeros((v.size, n))  # [] for rows of no variables, or for no rows at all
-    elif M.ndim == 1:
-        M = M.reshape(1, -1)
-    if M.ndim != 2 or M.shape[1] != n:
-        raise ValueError(f"{mname} must have {n} columns (the size of q), got shape {M.shape}")
-    if v.shape != (M.shape[0],):
-        raise ValueError(f"{vname} must have shape ({M.shape[0]},) to match {mname}, got {v.shape}")
-    return M, v
-
-
-def _bound(v, n, name, infinite):
-    if v is None:
-        return np.full(n, infinite)
-    try:
-        a = np.array(v, dtype=np.float64).reshape(-1) if np.ndim(v) else np.full(n, float(v))
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a numeric vector: {exc}") from None
-    if a.shape != (n,):
-        raise ValueError(f"{name} must have shape ({n},) to match q, got {a.shape}")
-    if np.isnan(a).any():
-        raise ValueError(f"{name} has a NaN entry at index {int(np.flatnonzero(np.isnan(a))[0])}")
-    a[a >= INFINITY] = np.inf
-    a[a <= -INFINITY] = -np.inf
-    if infinite < 0 and np.isposinf(a).any():
-        raise ValueError(f"{name} has an entry +inf: a lower bound must be below +inf")
-    if infinite > 0 and np.isneginf(a).any():
-        raise ValueError(f"{name} has an entry -inf: an upper bound must be above -inf")
-    return a
 
 
 def _solve(qp, method, opts, warm_start, certify):

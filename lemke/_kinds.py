@@ -1,0 +1,143 @@
+"""The registry of problem kinds: everything the rest of the package needs to know about a
+kind, in one entry.
+
+:class:`lemke.Problem`, the file formats (``infer_kind`` and each format's ``KINDS``), the
+command line and ``result_to_dict`` read ``KINDS`` and never spell a kind themselves.  A new
+kind (a box LCP, a bimatrix game) is one :class:`Kind` here, its validation in
+``_validate.py``, its solver and, where it is solved through another kind, its reduction in
+``_reductions/``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from . import _validate
+from ._lcp import solve_lcp
+from ._mlcp import solve_mlcp
+from ._qp import solve_qp
+
+
+@dataclass(frozen=True)
+class Kind:
+    """One kind of problem.
+
+    Attributes
+    ----------
+    name : str
+        The kind's key (``Problem.kind``, the ``kind`` of a JSON or npz file).
+    fields : tuple of str
+        The arrays, in the order of the solver's positional arguments.
+    required : tuple of str
+        The fields a problem must have (the others may be None).
+    signature : frozenset of str
+        Arrays whose presence tells the kind of a file that does not name it.
+    validate : callable
+        ``validate(*fields) -> {name: float64 array}`` (the given fields only), raising
+        ``ValueError``/``TypeError``; the solver validates with the same function.
+    solve : callable
+        The solver, ``solve(*fields, method=, options=, ...)``.
+    shape : callable
+        ``shape(arrays) -> tuple`` of the problem's sizes.
+    size_text : callable
+        ``size_text(shape) -> str``, the size in words (``n = 3``).
+    size_short : callable
+        ``size_short(shape) -> str``, the size in a table cell (``3``, ``2+1``, ``4x3``).
+    size_legend : str
+        What ``size_short`` means, for the command line's table.
+    answer : tuple of str
+        The result's fields that hold the answer, shown by the command line.
+    has_objective : bool
+        Whether the problem has an objective (and ``objective_constant``).
+    example : dict
+        The arrays of a tiny instance (the command line loads the kernels with it).
+    """
+
+    name: str
+    fields: tuple
+    required: tuple
+    signature: frozenset
+    validate: Callable
+    solve: Callable
+    shape: Callable
+    size_text: Callable
+    size_short: Callable
+    size_legend: str
+    answer: tuple
+    has_objective: bool = False
+    example: dict | None = None
+
+
+def _plural(k: int, one: str, many: str) -> str:
+    return f"{k} {one if k == 1 else many}"
+
+
+LCP = Kind(
+    name="lcp",
+    fields=("M", "q"),
+    required=("M", "q"),
+    signature=frozenset({"M"}),
+    validate=_validate.lcp_fields,
+    solve=solve_lcp,
+    shape=lambda a: (a["q"].size,),
+    size_text=lambda s: f"n = {s[0]}",
+    size_short=lambda s: str(s[0]),
+    size_legend="n (LCP)",
+    answer=("z",),
+    example={"M": [[2.0, 1.0], [1.0, 2.0]], "q": [-5.0, -6.0]},
+)
+
+MLCP = Kind(
+    name="mlcp",
+    fields=("A", "B", "C", "D", "a", "b"),
+    required=("A", "B", "C", "D", "a", "b"),
+    signature=frozenset({"A", "B", "C", "D"}),
+    validate=_validate.mlcp,
+    solve=solve_mlcp,
+    shape=lambda a: (a["a"].size, a["b"].size),
+    size_text=lambda s: f"n = {s[0]} free, m = {s[1]} complementary",
+    size_short=lambda s: f"{s[0]}+{s[1]}",
+    size_legend="free+complementary (MLCP)",
+    answer=("u", "v"),
+    example={"A": [[2.0]], "B": [[1.0]], "C": [[1.0]], "D": [[-1.0]], "a": [-1.0], "b": [-1.0]},
+)
+
+QP = Kind(
+    name="qp",
+    fields=("P", "q", "G", "h", "A", "b", "lb", "ub"),
+    required=("P", "q"),
+    signature=frozenset({"P"}),
+    validate=_validate.qp,
+    solve=solve_qp,
+    shape=lambda a: (a["q"].size,) + tuple(a[k].shape[0] if k in a else 0 for k in ("G", "A")),
+    size_text=lambda s: (f"n = {s[0]}, {_plural(s[1], 'inequality', 'inequalities')}, "
+                         f"{_plural(s[2], 'equality', 'equalities')}"),
+    size_short=lambda s: f"{s[0]}x{s[1] + s[2]}",
+    size_legend="variables x constraint rows (QP)",
+    answer=("x",),
+    has_objective=True,
+    example={"P": [[2.0, 0.0], [0.0, 2.0]], "q": [-2.0, -5.0], "G": [[1.0, 1.0]], "h": [1.0]},
+)
+
+#: Every kind, by name, in the order the documentation lists them.
+KINDS: dict[str, Kind] = {k.name: k for k in (LCP, MLCP, QP)}
+
+
+def kind(name: str) -> Kind:
+    """The registered kind ``name``; ``ValueError`` listing the kinds otherwise."""
+    try:
+        return KINDS[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"kind must be one of {', '.join(map(repr, KINDS))}, got {name!r}") from None
+
+
+#: The order in which a file's arrays are matched against the signatures (a QP also has
+#: an ``A``; an LCP file has no ``P``).
+_INFER_ORDER = (QP, LCP, MLCP)
+
+
+def infer(keys) -> Kind | None:
+    """The first kind (in ``_INFER_ORDER``) whose signature arrays are all among ``keys``,
+    or None."""
+    keys = set(keys)
+    return next((k for k in _INFER_ORDER if k.signature <= keys), None)

@@ -1,0 +1,229 @@
+"""Validation of user input, once, at the boundary: every solver and :class:`lemke.Problem`
+call these, so an error reads the same wherever it is found.
+
+Every function returns float64 arrays; they are the caller's own arrays when those already
+are float64 (no copy), so the solvers treat them as read-only and never write to them.
+Errors are ``TypeError`` (not numbers at all) or ``ValueError`` (wrong shape, NaN, an
+infinity where none is allowed, inconsistent data), each naming the argument and the entry.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def real_array(x, name: str, allow_inf: int = 0) -> np.ndarray:
+    """float64 view or copy of ``x``; NaN is refused, and so is an infinite entry unless
+    ``allow_inf`` is -1 (``-inf`` allowed: lower bounds) or +1 (``+inf``: upper bounds)."""
+    if hasattr(x, "toarray") and hasattr(x, "nnz"):  # scipy.sparse: densified for now
+        x = x.toarray()
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a numeric array: {exc}") from None
+    if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
+        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+    if a.dtype != np.float64:
+        a = a.astype(np.float64)
+    good = np.isfinite(a)
+    if allow_inf:
+        good |= a == allow_inf * np.inf
+    if not good.all():
+        bad = np.argwhere(~good)[0]
+        what = "a NaN or infinite" if not allow_inf else f"a NaN or {'+' if allow_inf < 0 else '-'}inf"
+        raise ValueError(f"{name} has {what} entry at index {tuple(int(i) for i in bad)}")
+    return a
+
+
+def square_matrix(M, name: str = "M") -> np.ndarray:
+    """A square, C-contiguous float64 ``M`` (dense or scipy.sparse)."""
+    a = real_array(M, name)
+    if a.ndim == 1 and a.size == 0:
+        a = np.zeros((0, 0))  # [] is the empty matrix
+    if a.ndim != 2 or a.shape[0] != a.shape[1]:
+        raise ValueError(f"{name} must be a square 2-D matrix, got shape {a.shape}")
+    return np.ascontiguousarray(a)
+
+
+def vector(v, n: int, name: str) -> np.ndarray:
+    """A float64 ``v``, which must have shape (n,)."""
+    a = real_array(v, name)
+    if a.shape != (n,):
+        raise ValueError(f"{name} must have shape ({n},) to match M, got shape {a.shape}")
+    return a
+
+
+def length(x, name: str) -> int:
+    """The length of the vector ``x`` (which fixes a dimension of a problem)."""
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a numeric array: {exc}") from None
+    if a.ndim != 1:
+        raise ValueError(f"{name} must be a 1-D vector, got shape {a.shape}")
+    return a.shape[0]
+
+
+def block(x, name: str, shape: tuple, why: str = "") -> np.ndarray:
+    """A float64 ``x`` of the given shape; ``[]`` (any array with no entries) stands for any
+    empty shape, e.g. a C of shape (0, m), which a list of no rows cannot spell."""
+    a = real_array(x, name)
+    if a.size == 0 and 0 in shape:
+        a = np.zeros(shape)
+    if a.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}{why}, got shape {a.shape}")
+    return a
+
+
+# --------------------------------------------------------------------------- the kinds
+
+def lcp(M, q, d=None):
+    """An LCP: ``(M, q, d)`` as float64; ``d`` (the covering vector, positive) is None when
+    not given."""
+    M = square_matrix(M)
+    n = M.shape[0]
+    q = vector(q, n, "q")
+    if d is not None:
+        d = vector(d, n, "d")
+        if n and not np.all(d > 0):
+            raise ValueError(f"the covering vector d must be positive; d[{int(np.argmin(d))}] = {d.min()}")
+    return M, q, d
+
+
+def lcp_fields(M, q) -> dict:
+    """The arrays of an LCP by name (what :class:`lemke.Problem` stores)."""
+    n = length(q, "q")
+    return {"M": block(M, "M", (n, n)), "q": block(q, "q", (n,))}
+
+
+def mlcp(A, B, C, D, a, b) -> dict:
+    """The six blocks of an MLCP (Siconos' storage 2), by name; n is the length of a, m that
+    of b (a scalar is a vector of length 1)."""
+    a = real_array(a, "a").reshape(-1) if np.ndim(a) <= 1 else real_array(a, "a")
+    b = real_array(b, "b").reshape(-1) if np.ndim(b) <= 1 else real_array(b, "b")
+    if a.ndim != 1:
+        raise ValueError(f"a must be a vector, got shape {a.shape}")
+    if b.ndim != 1:
+        raise ValueError(f"b must be a vector, got shape {b.shape}")
+    n, m = a.size, b.size
+    why = f" (n = {n} from a, m = {m} from b)"
+    out = {name: block(x, name, shape, why)
+           for name, x, shape in (("A", A, (n, n)), ("B", B, (m, m)), ("C", C, (n, m)), ("D", D, (m, n)))}
+    out["a"], out["b"] = a, b
+    return {k: out[k] for k in "ABCDab"}
+
+
+def qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> dict:
+    """The arrays of a QP in qpsolvers' form, by name, only those given (G with h, A with
+    b).  A 1-D G or A is one row; a scalar bound applies to every variable; ``lb`` may hold
+    -inf and ``ub`` +inf (no bound; magnitudes >= 1e20 count as infinite), and lb <= ub.  Convexity is the solver's check
+    (:func:`symmetric_psd`), not a property of the data's form."""
+    q = real_array(q, "q")
+    if q.ndim != 1:
+        raise ValueError(f"q must be a vector, got shape {q.shape}")
+    n = q.size  # n = 0 is allowed: the constraints are then constant rows 0 <= h, 0 = b
+    P = real_array(P, "P")
+    if n == 0 and P.size == 0:
+        P = np.zeros((0, 0))  # [] or any other empty array
+    if P.shape != (n, n):
+        raise ValueError(f"P must have shape ({n}, {n}) to match q, got {P.shape}")
+    out = {"P": P, "q": q}
+    for M, v, mname, vname in ((G, h, "G", "h"), (A, b, "A", "b")):
+        if M is not None or v is not None:
+            out[mname], out[vname] = _rows(M, v, n, mname, vname)
+    for v, name, sign in ((lb, "lb", -1), (ub, "ub", 1)):
+        if v is not None:
+            out[name] = _bound(v, n, name, sign)
+    if "lb" in out and "ub" in out:
+        bad = np.flatnonzero(out["lb"] > out["ub"])
+        if bad.size:
+            j = int(bad[0])
+            raise ValueError(f"lb[{j}] = {out['lb'][j]} exceeds ub[{j}] = {out['ub'][j]}: no x satisfies the bounds")
+    return out
+
+
+def _rows(M, v, n, mname, vname):
+    if M is None or v is None:
+        given, missing = (mname, vname) if v is None else (vname, mname)
+        raise ValueError(f"{given} was given without {missing}: pass both or neither")
+    M = real_array(M, mname)
+    v = real_array(v, vname).reshape(-1) if np.ndim(v) == 0 else real_array(v, vname)
+    if M.size == 0 and v.ndim == 1 and (n == 0 or v.size == 0):
+        M = np.zeros((v.size, n))  # [] for rows of no variables, or for no rows at all
+    elif M.ndim == 1:
+        M = M.reshape(1, -1)
+    if M.ndim != 2 or M.shape[1] != n:
+        raise ValueError(f"{mname} must have {n} columns (the size of q), got shape {M.shape}")
+    if v.shape != (M.shape[0],):
+        raise ValueError(f"{vname} must have shape ({M.shape[0]},) to match {mname}, got {v.shape}")
+    return M, v
+
+
+INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
+
+
+def _bound(v, n, name, sign):
+    """A bound vector (a scalar applies to all n; entries of magnitude >= 1e20 become
+    infinite); NaN refused, and an infinity of the wrong sign (a lower bound of +inf, an
+    upper bound of -inf)."""
+    try:
+        a = np.array(v, dtype=np.float64).reshape(-1) if np.ndim(v) else np.full(n, float(v))
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a numeric vector: {exc}") from None
+    if a.shape != (n,):
+        raise ValueError(f"{name} must have shape ({n},) to match q, got {a.shape}")
+    if np.isnan(a).any():
+        raise ValueError(f"{name} has a NaN entry at index {int(np.flatnonzero(np.isnan(a))[0])}")
+    a[a >= INFINITY] = np.inf
+    a[a <= -INFINITY] = -np.inf
+    if sign < 0 and np.isposinf(a).any():
+        raise ValueError(f"{name} has an entry +inf: a lower bound must be below +inf")
+    if sign > 0 and np.isneginf(a).any():
+        raise ValueError(f"{name} has an entry -inf: an upper bound must be above -inf")
+    return a
+
+
+SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
+CONVEXITY_TOL = 1e-10  # relative: P + CONVEXITY_TOL max|P| I must have a Cholesky factor
+
+
+def symmetric_psd(P):
+    """``(P + P') / 2`` after checking that P is symmetric (to a relative 1e-10: a triangle
+    passed for the whole matrix is a common slip) and positive semidefinite (a Cholesky
+    factor of ``P + 1e-10 max|P| I``)."""
+    scale = float(np.max(np.abs(P))) if P.size else 0.0
+    if scale == 0.0:
+        return np.zeros_like(P)
+    asym = np.abs(P - P.T)
+    if asym.max() > SYMMETRY_TOL * scale:
+        i, j = np.unravel_index(int(np.argmax(asym)), asym.shape)
+        raise ValueError(
+            f"P is not symmetric: P[{i}, {j}] = {P[i, j]:.6g} but P[{j}, {i}] = {P[j, i]:.6g} "
+            "(pass the full symmetric matrix, not one triangle)"
+        )
+    Ps = 0.5 * (P + P.T)
+    try:
+        np.linalg.cholesky(Ps + (CONVEXITY_TOL * scale) * np.eye(P.shape[0]))
+    except np.linalg.LinAlgError:
+        lam = np.linalg.eigvalsh(Ps)
+        raise ValueError(
+            f"P is not positive semidefinite: its smallest eigenvalue is {lam[0]:.3g} (largest "
+            f"{lam[-1]:.3g}); solve_qp solves convex QPs only, a KKT point of a non-convex one "
+            "need not be a minimum"
+        ) from None
+    return Ps
+
+
+def method(name, methods) -> None:
+    """``name`` must be one of ``methods``."""
+    if name not in methods:
+        raise ValueError(f"unknown method {name!r}; choose one of {', '.join(map(repr, methods))}")
+
+
+def warm_start(ws, cls, size: int, what: str) -> None:
+    """``ws`` must be None or a ``cls`` (WarmStart) for ``size`` pairs."""
+    if ws is None:
+        return
+    if not isinstance(ws, cls):
+        raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(ws).__name__}")
+    if ws.n != size:
+        raise ValueError(what.format(ws=ws.n, n=size))
