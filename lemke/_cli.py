@@ -16,6 +16,7 @@ from . import problems
 from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
 from ._lcp import METHODS
 from ._options import Options
+from ._kinds import KINDS
 from ._problem import Problem
 
 DEFAULT_PROBLEM = "cps-4.4.7"
@@ -120,12 +121,9 @@ def _show(vec: np.ndarray) -> str:
 
 
 def _solution(prob, res) -> list[tuple[str, str]]:
-    if prob.kind == "lcp":
-        return [("z", _show(res.z))]
-    if prob.kind == "mlcp":
-        return [("u", _show(res.u)), ("v", _show(res.v))]
-    rows = [("x", _show(res.x))]
-    if res.obj is not None and np.isfinite(res.obj):
+    kind = KINDS[prob.kind]
+    rows = [(key, _show(getattr(res, key))) for key in kind.answer]
+    if kind.has_objective and res.obj is not None and np.isfinite(res.obj):
         constant = f" (incl. the constant {prob.objective_constant:g})" if prob.objective_constant else ""
         rows.append(("objective", f"{res.obj + prob.objective_constant:.10g}{constant}"))
     return rows
@@ -150,10 +148,7 @@ def _ms(seconds: float) -> str:
 
 
 def _size(prob) -> str:
-    s = prob.shape
-    if prob.kind == "lcp":
-        return str(s[0])
-    return f"{s[0]}+{s[1]}" if prob.kind == "mlcp" else f"{s[0]}x{s[1] + s[2]}"
+    return KINDS[prob.kind].size_short(prob.shape)
 
 
 def _table(rows: list[dict]) -> str:
@@ -175,9 +170,9 @@ def _table(rows: list[dict]) -> str:
     total = sum(r.get("time_s", 0.0) for r in rows)
     lines.append(f"{len(rows)} problems: {solved} solved, {len(rows) - solved - errors} not solved, "
                  f"{errors} bad input{' (errors above)' if errors else ''}; solve time {_ms(total)}")
-    kinds = {r.get("kind") for r in rows}
-    if kinds - {"lcp", "-", None}:
-        lines.append("size: n (LCP), free+complementary (MLCP), variables x constraint rows (QP)")
+    kinds = [KINDS[k] for k in dict.fromkeys(r.get("kind") for r in rows) if k in KINDS]
+    if kinds and kinds != [next(iter(KINDS.values()))]:  # more than plain LCPs: say what size means
+        lines.append("size: " + ", ".join(k.size_legend for k in KINDS.values()))
     return "\n".join(lines)
 
 
@@ -271,11 +266,7 @@ def _warm_up(kind: str, method: str) -> None:
     run) before timing one: the times shown are those of the solves."""
     if (kind, method) not in _WARM:
         _WARM.add((kind, method))
-        example = {"lcp": problems.cps_447, "qp": problems.hs21}.get(kind)
-        if example is not None:
-            example().solve(method=method)
-        else:
-            Problem.mlcp([[2.0]], [[1.0]], [[1.0]], [[-1.0]], [-1.0], [-1.0]).solve(method=method)
+        Problem(kind, KINDS[kind].example).solve(method=method)
 
 
 def _json(doc: dict) -> str:

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._kinds import KINDS
 from .._problem import Problem
 from . import jsonfile, matfile, npzfile, qps, siconos
 from .common import MAX_ENTRIES, BadFile, ProblemFormatError, atomic_write, same_file
@@ -192,7 +193,7 @@ def _result_arrays(result, problem, extra) -> dict:
 
 def _objective(result, problem) -> dict:
     """``{"objective": obj + the problem's constant}`` for a QP, else nothing."""
-    if problem is not None and problem.kind == "qp" and getattr(result, "obj", None) is not None:
+    if problem is not None and KINDS[problem.kind].has_objective and getattr(result, "obj", None) is not None:
         return {"objective": result.obj + problem.objective_constant}
     return {}
 

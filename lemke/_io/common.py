@@ -7,7 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._problem import FIELDS, Problem
+from .._kinds import KINDS, infer
+from .._problem import Problem
 
 #: The most entries a dense matrix read from a file may have (2**26 float64: 512 MiB).  A file
 #: that declares more is refused before anything is allocated.
@@ -43,13 +44,10 @@ def check_size(rows: int, cols: int, what: str) -> None:
 def infer_kind(keys) -> str:
     """The kind of problem from the names of the arrays present."""
     keys = set(keys)
-    if "P" in keys:
-        return "qp"
-    if "M" in keys:
-        return "lcp"
-    if {"A", "B", "C", "D"} <= keys:
-        return "mlcp"
-    known = ", ".join("/".join(FIELDS[k][:2]) for k in FIELDS)
+    kind = infer(keys)
+    if kind is not None:
+        return kind.name
+    known = ", ".join("/".join(k.fields[:2]) for k in KINDS.values())
     raise BadFile(f"cannot tell the kind of problem: no 'kind' and none of the arrays {known}; found: "
                   f"{', '.join(sorted(map(str, keys))) or 'nothing'}")
 

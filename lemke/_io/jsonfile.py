@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from .._kinds import KINDS as REGISTRY
 from .._problem import FIELDS, Problem
 from .common import BadFile, check_size, infer_kind, make_problem
 
@@ -103,8 +104,8 @@ def read(data: bytes, path) -> Problem:
     kind = doc.get("kind")
     if kind is None:
         kind = infer_kind(set(doc) - set(_META))
-    if kind not in FIELDS:
-        raise BadFile(f"'kind' must be one of {', '.join(map(repr, FIELDS))}, found {json.dumps(kind)[:40]}")
+    if kind not in KINDS:
+        raise BadFile(f"'kind' must be one of {', '.join(map(repr, KINDS))}, found {json.dumps(kind)[:40]}")
     unknown = sorted(set(doc) - set(_META) - set(FIELDS[kind]))
     if unknown:
         raise BadFile(f"unknown key(s) for a {kind} problem: {', '.join(map(repr, unknown))}")
@@ -116,7 +117,7 @@ def read(data: bytes, path) -> Problem:
         for k in FIELDS[kind] if k in doc and doc[k] is not None
     }
     constant = doc.get("objective_constant", 0.0)
-    if kind == "qp":
+    if REGISTRY[kind].has_objective:
         constant = _number(constant, "'objective_constant'")
     return make_problem(kind, arrays, path, "JSON", name=doc.get("name", ""), source=doc.get("source", ""),
                         objective_constant=constant)
@@ -136,7 +137,7 @@ def _plain(a: np.ndarray):
 
 def to_dict(problem: Problem) -> dict:
     doc = {"kind": problem.kind, "name": problem.name, "source": problem.source}
-    if problem.kind == "qp":
+    if REGISTRY[problem.kind].has_objective:
         doc["objective_constant"] = problem.objective_constant
     for k, a in problem.arrays.items():
         doc[k] = _plain(a)

@@ -30,7 +30,8 @@ INFINITY = 1e20  # how the files write infinity
 _IS_INFINITE = 9e19
 _EQUAL = 1e-10
 
-KINDS = ("lcp", "mlcp", "qp")  # the kinds of problem this format holds
+# KINDS, the kinds of problem this format holds with their readers and writers, is declared
+# at the end of this file, after the functions it names.
 
 
 def _array(d: dict, key: str, what: str) -> np.ndarray:
@@ -78,10 +79,13 @@ def read(data: bytes, path) -> Problem:
         raise BadFile("MATLAB v7.3 (HDF5) files are not supported; save with -v7")
     d = matv5.load(data)
     kind = _kind(d)
-    if kind == "qp":
-        return _read_qp(d, path)
-    if kind not in FIELDS:
-        raise BadFile(f"'kind' must be one of {', '.join(map(repr, FIELDS))}, found {kind!r}")
+    if kind not in KINDS:
+        raise BadFile(f"'kind' must be one of {', '.join(map(repr, KINDS))}, found {kind!r}")
+    return KINDS[kind][0](d, kind, path)
+
+
+def _read_plain(d: dict, kind: str, path) -> Problem:
+    """A kind stored as its own arrays, named as the solver's arguments."""
     arrays = {k: (_vector if k.islower() else _array)(d, k, kind.upper()) for k in FIELDS[kind]}
     return make_problem(kind, arrays, path, ".mat")
 
@@ -93,7 +97,7 @@ def _infinite(v: np.ndarray) -> np.ndarray:
     return v
 
 
-def _read_qp(d: dict, path) -> Problem:
+def _read_qp(d: dict, kind: str, path) -> Problem:
     P, q, A = _array(d, "P", "QP"), _vector(d, "q", "QP"), _array(d, "A", "QP")
     l, u = _infinite(_vector(d, "l", "QP")), _infinite(_vector(d, "u", "QP"))
     n = q.size
@@ -111,7 +115,7 @@ def _read_qp(d: dict, path) -> Problem:
         eq = u - l < _EQUAL
     upper, lower = ~eq & (u < np.inf), ~eq & (l > -np.inf)
     G, h = np.vstack([A[upper], -A[lower]]), np.r_[u[upper], -l[lower]]
-    return make_problem("qp", dict(P=P, q=q, G=G if h.size else None, h=h if h.size else None,
+    return make_problem(kind, dict(P=P, q=q, G=G if h.size else None, h=h if h.size else None,
                                    A=A[eq] if eq.any() else None, b=u[eq] if eq.any() else None,
                                    lb=lb, ub=ub), path, "Maros-Meszaros .mat",
                         objective_constant=_scalar(d, "r", 0.0))
@@ -119,18 +123,29 @@ def _read_qp(d: dict, path) -> Problem:
 
 def write(problem: Problem, fh) -> None:
     out = {"kind": problem.kind}
-    if problem.kind != "qp":
-        for k, a in problem.arrays.items():
-            out[k] = a.reshape(-1, 1) if a.ndim == 1 else a
-    else:
-        n = problem.q.size
-        G, h, A, b = problem.G, problem.h, problem.A, problem.b
-        rows = [x for x in (G, A) if x is not None] + [np.eye(n)]
-        lb = np.full(n, -np.inf) if problem.lb is None else problem.lb
-        ub = np.full(n, np.inf) if problem.ub is None else problem.ub
-        l = np.r_[np.full(0 if G is None else G.shape[0], -np.inf), [] if b is None else b, lb]
-        u = np.r_[[] if h is None else h, [] if b is None else b, ub]
-        out.update(n=float(n), m=float(l.size), P=sp.csc_matrix(problem.P), q=problem.q.reshape(-1, 1),
-                   r=float(problem.objective_constant), A=sp.csc_matrix(np.vstack(rows)),
-                   l=np.clip(l, -INFINITY, INFINITY).reshape(-1, 1), u=np.clip(u, -INFINITY, INFINITY).reshape(-1, 1))
+    KINDS[problem.kind][1](problem, out)
     scipy.io.savemat(fh, out, do_compression=True)
+
+
+def _write_plain(problem: Problem, out: dict) -> None:
+    for k, a in problem.arrays.items():
+        out[k] = a.reshape(-1, 1) if a.ndim == 1 else a
+
+
+def _write_qp(problem: Problem, out: dict) -> None:
+    """Maros-Meszaros' layout: l <= [G; A; I] x <= u, with the objective constant r."""
+    n = problem.q.size
+    G, h, A, b = problem.G, problem.h, problem.A, problem.b
+    rows = [x for x in (G, A) if x is not None] + [np.eye(n)]
+    lb = np.full(n, -np.inf) if problem.lb is None else problem.lb
+    ub = np.full(n, np.inf) if problem.ub is None else problem.ub
+    l = np.r_[np.full(0 if G is None else G.shape[0], -np.inf), [] if b is None else b, lb]
+    u = np.r_[[] if h is None else h, [] if b is None else b, ub]
+    out.update(n=float(n), m=float(l.size), P=sp.csc_matrix(problem.P), q=problem.q.reshape(-1, 1),
+               r=float(problem.objective_constant), A=sp.csc_matrix(np.vstack(rows)),
+               l=np.clip(l, -INFINITY, INFINITY).reshape(-1, 1), u=np.clip(u, -INFINITY, INFINITY).reshape(-1, 1))
+
+
+#: The kinds of problem this format holds, each with its (reader, writer): a QP in
+#: Maros-Meszaros' layout, the others as their own arrays.
+KINDS = {"lcp": (_read_plain, _write_plain), "mlcp": (_read_plain, _write_plain), "qp": (_read_qp, _write_qp)}

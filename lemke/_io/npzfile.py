@@ -9,6 +9,7 @@ import zipfile
 
 import numpy as np
 
+from .._kinds import KINDS as REGISTRY
 from .._problem import FIELDS, Problem
 from .common import MAX_ENTRIES, BadFile, infer_kind, make_problem
 
@@ -37,8 +38,8 @@ def read(data: bytes, path) -> Problem:
                 raise BadFile("not an .npz archive")
             keys = set(archive.files)
             kind = _text(archive, "kind") if "kind" in keys else infer_kind(keys - {"objective_constant", *_TEXT})
-            if kind not in FIELDS:
-                raise BadFile(f"'kind' must be one of {', '.join(map(repr, FIELDS))}, found {kind!r}")
+            if kind not in KINDS:
+                raise BadFile(f"'kind' must be one of {', '.join(map(repr, KINDS))}, found {kind!r}")
             unknown = sorted(keys - set(FIELDS[kind]) - {"objective_constant", *_TEXT})
             if unknown:
                 raise BadFile(f"unknown array(s) for a {kind} problem: {', '.join(unknown)}")
@@ -62,6 +63,6 @@ def read(data: bytes, path) -> Problem:
 def write(problem: Problem, fh) -> None:
     arrays = dict(problem.arrays)
     arrays.update(kind=np.array(problem.kind), name=np.array(problem.name), source=np.array(problem.source))
-    if problem.kind == "qp":
+    if REGISTRY[problem.kind].has_objective:
         arrays["objective_constant"] = np.array(problem.objective_constant)
     np.savez_compressed(fh, **arrays)

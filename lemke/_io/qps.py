@@ -26,6 +26,7 @@ _SECTIONS = {"NAME", "ROWS", "COLUMNS", "RHS", "RANGES", "BOUNDS", "QUADOBJ", "Q
              "OBJSENSE", "ENDATA"}
 
 KINDS = ("qp",)  # the kinds of problem this format holds
+(QP,) = KINDS
 
 
 class _Model:
@@ -230,7 +231,7 @@ def read(data: bytes, path) -> Problem:
     lb[list(model.lower)] = list(model.lower.values())
     ub[list(model.upper)] = list(model.upper.values())
     lb, ub = finite_or_none(lb, ub)
-    return make_problem("qp", dict(P=P, q=q, G=np.array(G).reshape(-1, n) if G else None, h=np.array(h) if h else None,
+    return make_problem(QP, dict(P=P, q=q, G=np.array(G).reshape(-1, n) if G else None, h=np.array(h) if h else None,
                                    A=np.array(A).reshape(-1, n) if A else None, b=np.array(b) if b else None,
                                    lb=lb, ub=ub), path, "QPS", name=name, objective_constant=model.constant)
 

@@ -35,6 +35,7 @@ from .._problem import Problem
 from .common import BadFile, check_size, make_problem
 
 KINDS = ("lcp", "mlcp")  # the kinds of problem this format holds
+LCP, MLCP = KINDS
 
 
 class _Tokens:
@@ -148,13 +149,13 @@ def is_mlcp(text: str, name: str) -> bool:
     try:
         t = [int(w) for w in head]
     except ValueError:
-        return "mlcp" in name.lower()
+        return MLCP in name.lower()  # Siconos names its MLCP files *_mlcp.dat
     if len(t) < 4:
         return False
     lcp = t[1] in (0, 1) and t[2] == t[0] and t[3] == t[0]
     mlcp = t[0] in (0, 1) and t[1] in (0, 1) and (t[0] or t[1]) and (not t[0] or (len(t) > 4 and t[4] == 0))
     if lcp and mlcp:
-        return "mlcp" in name.lower()
+        return MLCP in name.lower()  # Siconos names its MLCP files *_mlcp.dat
     return bool(mlcp)
 
 
@@ -165,13 +166,13 @@ def read(data: bytes, path) -> Problem:
         raise BadFile(f"not a Siconos .dat text file (a non-ASCII byte at {exc.start})") from None
     tok = _Tokens(text)
     if is_mlcp(text, str(path)):
-        return make_problem("mlcp", _read_mlcp(tok), path, "Siconos MLCP .dat")
+        return make_problem(MLCP, _read_mlcp(tok), path, "Siconos MLCP .dat")
     n = tok.size("the problem size n")
     M = _matrix(tok, "M")
     if M.shape != (n, n):
         raise BadFile(f"M is {M.shape[0]} x {M.shape[1]}, expected {n} x {n}")
     q = tok.numbers(n, "q")
-    return make_problem("lcp", {"M": M, "q": q}, path, "Siconos LCP .dat")
+    return make_problem(LCP, {"M": M, "q": q}, path, "Siconos LCP .dat")
 
 
 def _read_mlcp(tok: _Tokens) -> dict:
@@ -214,7 +215,7 @@ def _dense_text(M: np.ndarray) -> list[str]:
 
 
 def write(problem: Problem, fh) -> None:
-    if problem.kind == "lcp":
+    if problem.kind == LCP:
         lines = [str(problem.q.size)] + _dense_text(problem.M) + [_fmt(problem.q)]
     else:
         n, m = problem.shape
