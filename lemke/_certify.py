@@ -1,14 +1,45 @@
-"""Checks made on the caller's data: is a point a solution, is a direction a ray.
+"""Acceptance, in one place: is a point a solution, is a direction a ray, is a certificate
+a proof -- for every kind, on the caller's data.
 
-The same functions serve the solver (to accept or downgrade a result), the tests and the
-benchmarks, so every part of the project judges answers the same way.
+The same functions serve the solvers (to accept or downgrade a result), the tests and the
+benchmarks, so every part of the project judges answers the same way.  The kernels keep a
+fused copy of the LCP test for speed (``kernels/certify.py``, which *is* the LCP rule below:
+``check_lcp`` calls it, and ``tests/test_certify.py`` checks that the fused check inside a
+solve gives the verdict of ``is_lcp_solution``).
+
+**The recipe.**  Every test compares a quantity that is zero (or non-negative) in exact
+arithmetic with ``tol`` (``Options.tol``, default 1e-9) times the size of the terms it is
+formed from, plus the rounding of forming it:
+
+* **LCP point** (``check_lcp``): row by row, ``t = tol + (n + 2) eps`` times
+  ``r_i = |M_i.| |z| + |q_i|`` (the componentwise backward error; details in
+  ``kernels/certify.py``), and a point so large that the rounding of M z dwarfs the data is
+  refused (``CERTIFIABLE``).
+* **MLCP point** (``check_mlcp``): the same rule on the stacked system ``E x + e``, against
+  the size of the whole stacked system (its rows have no common scale once a QP's KKT rows
+  are stacked), with ``E x + e`` in extended precision and the same ``CERTIFIABLE`` bound.
+* **QP KKT point**: the MLCP test of its KKT system (``_qp``), whose residuals are then
+  reported in qpsolvers' terms.
+* **Directions** -- an LCP ray (``is_lcp_ray``), an MLCP ray (``is_mlcp_ray``), a Farkas
+  vector (``check_farkas``) and a direction of unbounded descent (``check_direction``):
+  normalized to largest entry 1, each condition against ``tol`` times the data's size,
+  times ``RAY_SLACK`` (a direction is formed by subtracting two points, each accepted with
+  the point allowance).
 """
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from ._validate import square_matrix, vector
 from .kernels import certify
+from .kernels.certify import CERTIFIABLE
+
+EPS = float(np.finfo(np.float64).eps)
+EPS_EXT = float(np.finfo(np.longdouble).eps)
+RAY_SLACK = 10.0  # directions (rays, Farkas vectors, descent) get 10x the point's allowance
+
 
 def lcp_residual(z: np.ndarray, w: np.ndarray) -> float:
     """``max_i |min(z_i, w_i)|``: zero exactly when z, w >= 0 and z'w = 0."""
@@ -49,3 +80,148 @@ def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
     q, d, z = (vector(a, n, name) for a, name in ((q, "q"), (d, "d"), (z, "z")))
     ray = vector(ray, n + 1, "ray")
     return bool(certify.lcp_ray_check(M, q, d, z, float(z0), ray, float(tol)))
+
+
+# ----------------------------------------------------------------------------- MLCP
+
+def check_mlcp(E, e, n, x, tol):
+    """``(w, ok, residual)`` for the stacked MLCP ``E x + e = (0, w)``: the LCP acceptance
+    rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
+    equations, with the tolerances taken from the whole stacked system and ``E x + e``
+    computed in extended precision (so the rounding allowance is that of longdouble)."""
+    N = e.size
+    # In extended precision, so that the test needs no allowance for rounding in computing
+    # E x (such an allowance grows with |x| and would pass any huge x).  Where numpy's
+    # longdouble is plain double the allowance is the double one, as in the LCP test.
+    y_ext = E.astype(np.longdouble) @ x.astype(np.longdouble) + e.astype(np.longdouble)
+    y = y_ext.astype(np.float64)
+    e_max, E_max = absmax(e), absmax(E)
+    s_z = tol * max(absmax(x), e_max / E_max if E_max > 0.0 else 0.0)
+    s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * absmax(x)
+    v, w = x[n:], y[n:]
+    res_eq = absmax(y[:n])
+    # A point so large that rounding it to double moves E x by far more than the tolerance
+    # cannot be certified (such points, |x| ~ 1e16 on data ~ 1, come from pivots on noise).
+    certifiable = EPS * E_max * absmax(x) <= CERTIFIABLE * tol * max(e_max, E_max)
+    ok = certifiable and res_eq <= s_w and bool(
+        np.all(v >= -s_z) and np.all(w >= -s_w) and np.all((v <= s_z) | (np.abs(w) <= s_w))
+    )
+    residual = max(res_eq, float(np.max(np.abs(np.minimum(v, w)))) if v.size else 0.0)
+    return w, ok, residual
+
+
+def absmax(a) -> float:
+    return float(np.max(np.abs(a))) if a.size else 0.0
+
+
+def is_mlcp_ray(E, n, direction, tol) -> bool:
+    """Whether ``direction = (du, dv)`` is a homogeneous direction of the MLCP: non-zero,
+    ``A du + C dv = 0``, ``dv >= 0``, ``dw = D du + B dv >= 0`` and ``dv ⊥ dw``, within
+    ``tol`` relative to its size and the size of E."""
+    scale = absmax(direction)
+    if scale == 0.0:
+        return False
+    d = direction / scale
+    y = E @ d
+    s = tol * max(absmax(E), 1.0) * RAY_SLACK
+    dv, dw = d[n:], y[n:]
+    return bool(
+        absmax(y[:n]) <= s
+        and np.all(dv >= -tol)
+        and np.all(dw >= -s)
+        and np.all((dv <= tol) | (np.abs(dw) <= s))
+    )
+
+
+# ----------------------------------------------------------------------------- QP
+
+@dataclass(frozen=True)
+class Certificate:
+    """A proof that a QP has no optimum, checkable with its data alone.
+
+    ``kind == "primal_infeasible"``: a Farkas vector ``(y, z, z_box)`` with ``z >= 0``,
+    ``z_box_j <= 0`` only where lb_j is finite and ``>= 0`` only where ub_j is finite, and
+    ``G'z + A'y + z_box = 0``, while ``value = h'z + b'y + lb'min(z_box, 0) +
+    ub'max(z_box, 0) < 0``: for any feasible x, ``0 = (G'z + A'y + z_box)'x <= value < 0``.
+
+    ``kind == "dual_infeasible"``: a direction ``dx`` with ``P dx = 0``, ``A dx = 0``,
+    ``G dx <= 0``, ``dx_j >= 0`` where only lb_j is finite, ``<= 0`` where only ub_j is,
+    ``= 0`` where both are, and ``value = q'dx < 0``: the objective decreases without bound
+    along it from any feasible point.
+
+    Both are scaled to largest entry 1.  A QP that is both primal and dual infeasible is
+    reported primal infeasible, and its ``"primal_infeasible"`` certificate then holds both
+    proofs: the Farkas vector ``(y, z, z_box)`` with its ``value``, and in ``dx`` a
+    direction as above (``q'dx < 0``; not part of ``value``), each checked on its own.  On
+    a ``"primal_infeasible"`` certificate ``dx`` is None when no such direction was found.
+    """
+
+    kind: str
+    value: float
+    y: np.ndarray | None = None
+    z: np.ndarray | None = None
+    z_box: np.ndarray | None = None
+    dx: np.ndarray | None = None
+
+
+def normalized(*parts):
+    size = max((float(np.max(np.abs(p))) for p in parts if p.size), default=0.0)
+    if size == 0.0:
+        return None
+    return [p / size for p in parts]
+
+
+def farkas_value(qp, y, z, z_box):
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    return (float(qp.h @ z + qp.b @ y) + float(qp.lb[lo] @ np.minimum(z_box[lo], 0.0))
+            + float(qp.ub[up] @ np.maximum(z_box[up], 0.0)))
+
+
+def data_scale(qp):
+    return max([1.0] + [float(np.max(np.abs(a))) for a in (qp.P, qp.G, qp.A, qp.q, qp.h, qp.b) if a.size])
+
+
+def check_farkas(qp, y, z, tol):
+    """A verified primal-infeasibility Certificate from (y, z), or None."""
+    parts = normalized(y, z)
+    if parts is None:
+        return None
+    y, z = parts
+    if np.any(z < -tol):
+        return None
+    z = np.maximum(z, 0.0)
+    z_box = -(qp.A.T @ y + qp.G.T @ z)
+    s = tol * data_scale(qp) * RAY_SLACK
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    # a bound multiplier may only have the sign of a finite bound
+    if np.any(z_box[~lo] < -s) or np.any(z_box[~up] > s):
+        return None
+    z_box[~lo] = np.maximum(z_box[~lo], 0.0)
+    z_box[~up] = np.minimum(z_box[~up], 0.0)
+    residual = absmax(qp.A.T @ y + qp.G.T @ z + z_box)
+    value = farkas_value(qp, y, z, z_box)
+    bound = max(1.0, absmax(qp.lb[lo]), absmax(qp.ub[up]))
+    if residual > s or value >= -s * bound:
+        return None
+    return Certificate("primal_infeasible", value, y=y, z=z, z_box=z_box)
+
+
+def check_direction(qp, dx, tol):
+    """A verified dual-infeasibility Certificate from dx, or None."""
+    parts = normalized(dx)
+    if parts is None:
+        return None
+    (dx,) = parts
+    s = tol * data_scale(qp) * RAY_SLACK
+    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
+    if (np.any(dx[lo] < -tol) or np.any(dx[up] > tol)
+            or absmax(qp.P @ dx) > s or absmax(qp.A @ dx) > s
+            or (qp.h.size and float(np.max(qp.G @ dx)) > s)):
+        return None
+    dx = dx.copy()
+    dx[lo] = np.maximum(dx[lo], 0.0)
+    dx[up] = np.minimum(dx[up], 0.0)
+    value = float(qp.q @ dx)
+    if value >= -s:
+        return None
+    return Certificate("dual_infeasible", value, dx=dx)

@@ -23,6 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ._certify import check_mlcp, is_mlcp_ray, absmax as _size
 from ._lcp import METHODS, solve_lcp
 from ._options import as_options
 from . import _validate
@@ -34,7 +35,6 @@ RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
 LARGE_PIVOT_TOL = 1e-7  # the pivot tolerance of the last try after numerical failures
 EPS = float(np.finfo(np.float64).eps)
-EPS_EXT = float(np.finfo(np.longdouble).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
 
 
@@ -145,36 +145,6 @@ def _as_mlcp(A, B, C, D, a, b):
     E[n:, :n] = blocks["D"]
     E[n:, n:] = blocks["B"]
     return E, np.concatenate([a, b]), n
-
-
-def check_mlcp(E, e, n, x, tol):
-    """``(w, ok, residual)`` for the stacked MLCP ``E x + e = (0, w)``: the LCP acceptance
-    rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
-    equations, with the tolerances taken from the whole stacked system and ``E x + e``
-    computed in extended precision (so the rounding allowance is that of longdouble)."""
-    N = e.size
-    # In extended precision, so that the test needs no allowance for rounding in computing
-    # E x (such an allowance grows with |x| and would pass any huge x).  Where numpy's
-    # longdouble is plain double the allowance is the double one, as in the LCP test.
-    y_ext = E.astype(np.longdouble) @ x.astype(np.longdouble) + e.astype(np.longdouble)
-    y = y_ext.astype(np.float64)
-    e_max, E_max = _size(e), _size(E)
-    s_z = tol * max(_size(x), e_max / E_max if E_max > 0.0 else 0.0)
-    s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * _size(x)
-    v, w = x[n:], y[n:]
-    res_eq = _size(y[:n])
-    # A point so large that rounding it to double moves E x by far more than the tolerance
-    # cannot be certified (such points, |x| ~ 1e16 on data ~ 1, come from pivots on noise).
-    certifiable = EPS * E_max * _size(x) <= 1e3 * tol * max(e_max, E_max)
-    ok = certifiable and res_eq <= s_w and bool(
-        np.all(v >= -s_z) and np.all(w >= -s_w) and np.all((v <= s_z) | (np.abs(w) <= s_w))
-    )
-    residual = max(res_eq, float(np.max(np.abs(np.minimum(v, w)))) if v.size else 0.0)
-    return w, ok, residual
-
-
-def _size(a) -> float:
-    return float(np.max(np.abs(a))) if a.size else 0.0
 
 
 def _equilibrate(E, n, iterations=10):
@@ -403,25 +373,6 @@ def _refined_solve(K, rhs, steps=2):
     except np.linalg.LinAlgError:
         return None
     return x if np.isfinite(x).all() else None
-
-
-def is_mlcp_ray(E, n, direction, tol) -> bool:
-    """Whether ``direction = (du, dv)`` is a homogeneous direction of the MLCP: non-zero,
-    ``A du + C dv = 0``, ``dv >= 0``, ``dw = D du + B dv >= 0`` and ``dv ⊥ dw``, within
-    ``tol`` relative to its size and the size of E."""
-    size = _size(direction)
-    if size == 0.0:
-        return False
-    d = direction / size
-    y = E @ d
-    s = tol * max(_size(E), 1.0) * 10.0
-    dv, dw = d[n:], y[n:]
-    return bool(
-        _size(y[:n]) <= s
-        and np.all(dv >= -tol)
-        and np.all(dw >= -s)
-        and np.all((dv <= tol) | (np.abs(dw) <= s))
-    )
 
 
 def _result(x, w, n, status, pivots, residual, ray, basis):

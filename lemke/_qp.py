@@ -26,47 +26,22 @@ or a direction of unbounded descent.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from ._lcp import METHODS
-from ._mlcp import _size, solve_stacked
+from ._certify import Certificate, absmax as _size, data_scale as _data_scale
+from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
+from ._mlcp import solve_stacked
 from ._options import as_options
 from . import _validate
+from dataclasses import dataclass
+
 from ._result import Outcome, WarmStart
 from ._status import Status
 
 EPS = float(np.finfo(np.float64).eps)
-
-
-@dataclass(frozen=True)
-class Certificate:
-    """A proof that a QP has no optimum, checkable with its data alone.
-
-    ``kind == "primal_infeasible"``: a Farkas vector ``(y, z, z_box)`` with ``z >= 0``,
-    ``z_box_j <= 0`` only where lb_j is finite and ``>= 0`` only where ub_j is finite, and
-    ``G'z + A'y + z_box = 0``, while ``value = h'z + b'y + lb'min(z_box, 0) +
-    ub'max(z_box, 0) < 0``: for any feasible x, ``0 = (G'z + A'y + z_box)'x <= value < 0``.
-
-    ``kind == "dual_infeasible"``: a direction ``dx`` with ``P dx = 0``, ``A dx = 0``,
-    ``G dx <= 0``, ``dx_j >= 0`` where only lb_j is finite, ``<= 0`` where only ub_j is,
-    ``= 0`` where both are, and ``value = q'dx < 0``: the objective decreases without bound
-    along it from any feasible point.
-
-    Both are scaled to largest entry 1.  A QP that is both primal and dual infeasible is
-    reported primal infeasible, and its ``"primal_infeasible"`` certificate then holds both
-    proofs: the Farkas vector ``(y, z, z_box)`` with its ``value``, and in ``dx`` a
-    direction as above (``q'dx < 0``; not part of ``value``), each checked on its own.  On
-    a ``"primal_infeasible"`` certificate ``dx`` is None when no such direction was found.
-    """
-
-    kind: str
-    value: float
-    y: np.ndarray | None = None
-    z: np.ndarray | None = None
-    z_box: np.ndarray | None = None
-    dx: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -333,69 +308,6 @@ def _result(qp, x, y, z, z_box, status, pivots, certificate, warm_start):
 
 
 # ----------------------------------------------------------------------------- certificates
-
-def _normalized(*parts):
-    size = max((float(np.max(np.abs(p))) for p in parts if p.size), default=0.0)
-    if size == 0.0:
-        return None
-    return [p / size for p in parts]
-
-
-def farkas_value(qp, y, z, z_box):
-    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
-    return (float(qp.h @ z + qp.b @ y) + float(qp.lb[lo] @ np.minimum(z_box[lo], 0.0))
-            + float(qp.ub[up] @ np.maximum(z_box[up], 0.0)))
-
-
-def _data_scale(qp):
-    return max([1.0] + [float(np.max(np.abs(a))) for a in (qp.P, qp.G, qp.A, qp.q, qp.h, qp.b) if a.size])
-
-
-def _check_farkas(qp, y, z, tol):
-    """A verified primal-infeasibility Certificate from (y, z), or None."""
-    parts = _normalized(y, z)
-    if parts is None:
-        return None
-    y, z = parts
-    if np.any(z < -tol):
-        return None
-    z = np.maximum(z, 0.0)
-    z_box = -(qp.A.T @ y + qp.G.T @ z)
-    s = tol * _data_scale(qp) * 10.0
-    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
-    # a bound multiplier may only have the sign of a finite bound
-    if np.any(z_box[~lo] < -s) or np.any(z_box[~up] > s):
-        return None
-    z_box[~lo] = np.maximum(z_box[~lo], 0.0)
-    z_box[~up] = np.minimum(z_box[~up], 0.0)
-    residual = _size(qp.A.T @ y + qp.G.T @ z + z_box)
-    value = farkas_value(qp, y, z, z_box)
-    bound = max(1.0, _size(qp.lb[lo]), _size(qp.ub[up]))
-    if residual > s or value >= -s * bound:
-        return None
-    return Certificate("primal_infeasible", value, y=y, z=z, z_box=z_box)
-
-
-def _check_direction(qp, dx, tol):
-    """A verified dual-infeasibility Certificate from dx, or None."""
-    parts = _normalized(dx)
-    if parts is None:
-        return None
-    (dx,) = parts
-    s = tol * _data_scale(qp) * 10.0
-    lo, up = np.isfinite(qp.lb), np.isfinite(qp.ub)
-    if (np.any(dx[lo] < -tol) or np.any(dx[up] > tol)
-            or _size(qp.P @ dx) > s or _size(qp.A @ dx) > s
-            or (qp.h.size and float(np.max(qp.G @ dx)) > s)):
-        return None
-    dx = dx.copy()
-    dx[lo] = np.maximum(dx[lo], 0.0)
-    dx[up] = np.minimum(dx[up], 0.0)
-    value = float(qp.q @ dx)
-    if value >= -s:
-        return None
-    return Certificate("dual_infeasible", value, dx=dx)
-
 
 def _verdict(qp, r, method, opts):
     """``(status, certificate)`` for a KKT system without a solution found.
