@@ -8,13 +8,13 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from . import _validate
 from ._lcp import METHODS, _outcome
 from ._options import as_options
-from ._validate import real_array
 from ._result import LCPBatchResult
+from ._validate import real_array
 from .kernels import cold
 
-_METHOD_CODES = {"tableau": cold.TABLEAU, "unrevised": cold.UNREVISED}
 _pool = None
 _pool_lock = threading.Lock()
 
@@ -68,8 +68,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     >>> r.status.tolist(), r.z.round(6).tolist()
     ([0, 0], [[1.333333, 2.333333], [0.0, 0.5]])
     """
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    _validate.method(method, METHODS)
     opts = as_options(options)
     M = real_array(M, "M")
     q = real_array(q, "q")
@@ -91,11 +90,11 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ValueError(f"workers must be a positive integer or None, got {workers!r}")
 
-    bufs = np.empty((B, 6 * n + 2))
+    bufs = np.empty((B, cold.buffer_length(n)))
     basics = np.empty((B, n), dtype=np.int64)
     out_i = np.empty((B, 4), dtype=np.int64)
     out_f = np.empty((B, 2))
-    args = (_METHOD_CODES[method], M, q)
+    args = (cold.METHODS[method], M, q)
     tail = (opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, bufs, basics, out_i, out_f)
     chunks = min(B, 2 * workers) if workers > 1 else min(B, 1)
     bounds = np.linspace(0, B, chunks + 1).astype(int) if chunks else np.zeros(1, dtype=int)
@@ -109,8 +108,9 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
         for f in futures:
             f.result()
 
-    z = np.ascontiguousarray(bufs[:, :n])
-    w = np.ascontiguousarray(bufs[:, 2 * n + 2 : 3 * n + 2])
+    f = cold.fields(n)
+    z = np.ascontiguousarray(bufs[:, f["z"]])
+    w = np.ascontiguousarray(bufs[:, f["w"]])
     status = np.where(out_i[:, 0] == cold.TRIVIAL, 0, out_i[:, 0])
     pivots = out_i[:, 1].copy()
     residual = out_f[:, 1].copy()

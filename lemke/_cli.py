@@ -14,9 +14,9 @@ import numpy as np
 
 from . import problems
 from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
+from ._kinds import KINDS
 from ._lcp import METHODS
 from ._options import Options
-from ._kinds import KINDS
 from ._problem import Problem
 
 DEFAULT_PROBLEM = "cps-4.4.7"

@@ -3,15 +3,14 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import _validate
 from ._certify import check_lcp, is_lcp_ray
 from ._options import _DEFAULT, as_options
-from . import _validate
 from ._result import LCPResult, WarmStart
 from ._status import Status
 from .kernels import certify, cold, linalg, unrevised
 
-METHODS = ("tableau", "unrevised")
-_KERNELS = {"tableau": cold.TABLEAU, "unrevised": cold.UNREVISED}
+METHODS = tuple(cold.METHODS)
 _CHECKED = cold.checked  # a module attribute, so that a test can stand a lying kernel in
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
@@ -66,23 +65,19 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     """
     if (d is None and warm_start is None and type(M) is np.ndarray and type(q) is np.ndarray
             and M.dtype is _F64 and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
-            and M.shape[0] == M.shape[1] == q.shape[0] and method in _KERNELS
+            and M.shape[0] == M.shape[1] == q.shape[0] and method in cold.METHODS
             and M.flags.c_contiguous):
         # The common case in one kernel call (which checks that M and q are finite); no
         # copies: the data are float64 already, and the kernels never write to them.
         res = _cold(method, M, q, _NO_D, _DEFAULT if options is None else as_options(options))
         if res is not None:
             return res  # else M or q is not finite: the validation below says where
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    _validate.method(method, METHODS)
     M, q, d = _validate.lcp(M, q, d)
     opts = as_options(options)
     n = q.size
-    if warm_start is not None:
-        if not isinstance(warm_start, WarmStart):
-            raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
-        if warm_start.n != n:
-            raise ValueError(f"warm_start is for a problem of size {warm_start.n}, this one has n = {n}")
+    _validate.warm_start(warm_start, WarmStart, n,
+                         "warm_start is for a problem of size {ws}, this one has n = {n}")
 
     restart_pivots = 0
     if warm_start is not None and warm_start.z_basic:
@@ -109,10 +104,10 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
 
 def _views(buf, n):
     """The read-only views ``(z, z0, ray, w, cov, row_scale, col_scale)`` of a kernel's output
-    buffer (``kernels.cold.layout``)."""
+    buffer (``kernels.cold.fields``)."""
     buf.setflags(write=False)
-    return (buf[:n], buf[n], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2],
-            buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 :])
+    f = cold.fields(n)
+    return tuple(buf[f[name]] for name, _ in cold.BUFFER)
 
 
 def _cold(method, M, q, d, opts, extra_pivots=0):
@@ -120,10 +115,10 @@ def _cold(method, M, q, d, opts, extra_pivots=0):
     checks the answer on the caller's data, then :func:`_outcome`.  None when M or q is not
     finite."""
     n = q.shape[0]
-    buf = np.empty(6 * n + 2)
+    buf = np.empty(cold.buffer_length(n))
     basic = np.empty(n, dtype=np.int64)
     code, pivots, k, ok, residual, recoveries = _CHECKED(
-        _KERNELS[method], M, q, d, max(0, opts.pivot_limit(n) - extra_pivots), opts.pivot_tol,
+        cold.METHODS[method], M, q, d, max(0, opts.pivot_limit(n) - extra_pivots), opts.pivot_tol,
         opts.tie_tol, opts.tol, buf, basic
     )
     if code == 0 and ok:  # solved and checked: the common case, inline
@@ -148,7 +143,7 @@ def _restart(M, q, beta, opts):
     the starting block is singular."""
     n = q.size
     m_scale = max(M.max(), -M.min()) or 1.0
-    buf = np.empty(6 * n + 2)
+    buf = np.empty(cold.buffer_length(n))
     x, ray, w, cov, R, C = cold.layout(n, buf)
     np.subtract(m_scale * (~beta), M[:, beta].sum(axis=1), out=cov)
     linalg.equilibrate(M, q, R, C)

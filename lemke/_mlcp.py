@@ -23,10 +23,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._certify import check_mlcp, is_mlcp_ray, absmax as _size
+from . import _validate
+from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp
 from ._options import as_options
-from . import _validate
 from ._result import Outcome, WarmStart
 from ._status import Status
 from .kernels import mlcp as kmlcp
@@ -122,15 +122,10 @@ def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=N
     >>> r.status.name, r.u.round(6).tolist(), r.v.round(6).tolist()
     ('SOLVED', [1.666667], [0.666667])
     """
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    _validate.method(method, METHODS)
     E, e, n = _as_mlcp(A, B, C, D, a, b)
     m = e.size - n
-    if warm_start is not None:
-        if not isinstance(warm_start, WarmStart):
-            raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
-        if warm_start.n != m:
-            raise ValueError(f"warm_start is for {warm_start.n} pairs, this problem has m = {m}")
+    _validate.warm_start(warm_start, WarmStart, m, "warm_start is for {ws} pairs, this problem has m = {n}")
     return solve_stacked(E, e, n, method, as_options(options), warm_start)
 
 

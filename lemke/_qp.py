@@ -26,18 +26,16 @@ or a direction of unbounded descent.
 """
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._lcp import METHODS
+from . import _validate
 from ._certify import Certificate, absmax as _size, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
+from ._lcp import METHODS
 from ._mlcp import solve_stacked
 from ._options import as_options
-from . import _validate
-from dataclasses import dataclass
-
 from ._result import Outcome, WarmStart
 from ._status import Status
 
@@ -144,11 +142,10 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
-    if method not in METHODS:
-        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    _validate.method(method, METHODS)
     qp = _QP(P, q, G, h, A, b, lb, ub)
     opts = as_options(options)
-    if warm_start is not None and not isinstance(warm_start, WarmStart):
+    if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
     return _solve(qp, method, opts, warm_start, certify=True)
 

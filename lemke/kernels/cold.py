@@ -49,6 +49,8 @@ the check (z0 zero to rounding) is SOLVED: the check, not the path, decides.
 
 The number of restarts of both kinds is returned (``LCPResult.recoveries``).
 """
+import functools
+
 import numpy as np
 
 from . import kernel, pivoting, tableau, unrevised
@@ -59,17 +61,38 @@ NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
 TABLEAU = 0
 UNREVISED = 1
+#: The methods by name, with the code the kernels dispatch on: the one method registry.
+METHODS = {"tableau": TABLEAU, "unrevised": UNREVISED}
 PERTURBATION = 1e-6  # the relative size of the covering vector's perturbation (step 2)
 
 
-@kernel
-def buffer_size(n):
-    return 6 * n + 2
+#: The fields of the output buffer, in order, with their lengths as functions of n.
+BUFFER = (("z", lambda n: n), ("z0", lambda n: 1), ("ray", lambda n: n + 1), ("w", lambda n: n),
+          ("covering", lambda n: n), ("row_scale", lambda n: n), ("col_scale", lambda n: n))
+
+
+@functools.lru_cache(maxsize=256)
+def fields(n):
+    """``{name: slice}`` of the output buffer for size n (``z0`` is an index), the one
+    statement of its layout in Python; :func:`layout` is the kernels' copy, and a test
+    checks that the two agree."""
+    out, at = {}, 0
+    for name, length in BUFFER:
+        k = length(n)
+        out[name] = at if name == "z0" else slice(at, at + k)
+        at += k
+    return out
+
+
+def buffer_length(n):
+    """The length of the output buffer for size n."""
+    return sum(length(n) for _, length in BUFFER)
 
 
 @kernel
 def layout(n, buf):
-    """The views ``(x, ray, w, cov, R, C)`` of the output buffer (x = z followed by z0)."""
+    """The views ``(x, ray, w, cov, R, C)`` of the output buffer (x = z followed by z0), as
+    :data:`BUFFER` lays it out."""
     return (buf[: n + 1], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2],
             buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 :])
 
