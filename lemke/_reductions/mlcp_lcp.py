@@ -1,0 +1,173 @@
+r"""MLCP -> LCP: exchange pivots that make the free variables basic, and the LCP left.
+
+The mixed LCP in Siconos' form: find u (free, n of them) and v (m of them) with
+``A u + C v + a = 0``, ``w = D u + B v + b``, ``0 <= v ⊥ w >= 0``; stacked,
+``E x + e = (0, w)`` with ``x = (u, v)``.  The reduction (:class:`MLCPToLCP`):
+
+1. equilibrate E (row and column scaling; a pair's row and column get the same factor,
+   which keeps v ⊥ w);
+2. exchange pivots make every u basic and every equation's slack non-basic
+   (``kernels.mlcp``): the free variables enter and stay basic, never split into two signs;
+3. what is left is an LCP in the m pairs (some swapped: v_k basic, w_k the LCP's variable).
+
+Its recovery maps the LCP's answer back, or recomputes the point of the final basis from
+the caller's data (one dense solve with refinement in extended precision).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .._certify import absmax as _size
+from ..kernels import mlcp as kmlcp
+
+RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
+EPS = float(np.finfo(np.float64).eps)
+
+
+def equilibrate(E, n, iterations=10):
+    """Scaling vectors ``(r, s)`` that bring every row and column of ``r E s`` near size 1
+    (Ruiz's method): free rows and columns get their own factors, and a pair's row and
+    column the same one, so that v ⊥ w is kept."""
+    N = E.shape[0]
+    r = np.ones(N)
+    s = np.ones(N)
+    if N == 0:  # an empty system: nothing to scale (and max over no entries is undefined)
+        return r, s
+    absE = np.abs(E)
+    for _ in range(iterations):
+        S = absE * r[:, None] * s[None, :]
+        rows = S.max(axis=1)
+        cols = S.max(axis=0)
+        rows[rows == 0.0] = 1.0
+        cols[cols == 0.0] = 1.0
+        r[:n] /= np.sqrt(rows[:n])
+        s[:n] /= np.sqrt(cols[:n])
+        f = 1.0 / np.sqrt(np.maximum(rows[n:], cols[n:]))
+        r[n:] *= f
+        s[n:] *= f
+        if np.all(np.abs(rows - 1.0) < 0.1) and np.all(np.abs(cols - 1.0) < 0.1):
+            break
+    return r, s
+
+
+class MLCPToLCP:
+    """The reduction of a stacked MLCP ``E x + e = (0, w)`` (n free variables first) to an
+    LCP in its m pairs.
+
+    ``apply``: building it equilibrates E and makes every free variable basic by exchange
+    pivots; ``code`` says whether that worked (``kernels.mlcp.OK``, ``INCONSISTENT``: the
+    equations contradict each other, ``SINGULAR``), and ``M, q`` is the LCP left
+    (``M_clean`` the same with its rounding noise zeroed).  ``recover``: :meth:`point` turns
+    the LCP's z (or a direction) into the MLCP's x; :meth:`to_reduced`/:meth:`v_basic`
+    translate bases; :meth:`basis_point` recomputes the point of a basis from the caller's
+    data."""
+
+    def __init__(self, E, e, n):
+        N = e.size
+        self.n, self.N, self.m = n, N, N - n
+        self.r, self.s = equilibrate(E, n)
+        T = np.empty((N, N + 1))
+        np.multiply(E, self.r[:, None] * self.s[None, :], out=T[:, :N])
+        T[:, N] = e * self.r
+        self.row_label = np.empty(N, dtype=np.int64)
+        self.col_label = np.empty(N, dtype=np.int64)
+        self.code, self.bad_row = kmlcp.reduce(
+            T, n, RANK_TOL, _size(T[:, N]), self.row_label, self.col_label
+        )
+        self.T = T
+        if self.code != kmlcp.OK:
+            return
+        # Constants that cancel to zero in exact arithmetic come out at rounding level: a
+        # -1e-16 would make Lemke's method start where the exchanged point already solves
+        # the problem.  The data is equilibrated, so the exchanges' rounding is below
+        # N eps max|T|.
+        const = T[:, N]
+        const[np.abs(const) < N * EPS * _size(e * self.r)] = 0.0
+        # Pair k: output label n + k (w_k), input label N + n + k (v_k).  Where is each?
+        where_row = np.full(2 * N, -1)
+        where_row[self.row_label] = np.arange(N)
+        where_col = np.full(2 * N, -1)
+        where_col[self.col_label] = np.arange(N)
+        k = np.arange(self.m)
+        w_row, v_row = where_row[n + k], where_row[N + n + k]
+        self.swapped = v_row >= 0  # v_k basic (in the row), w_k the LCP variable (column)
+        self.posr = np.where(self.swapped, v_row, w_row)
+        self.posc = np.where(self.swapped, where_col[n + k], where_col[N + n + k])
+        self.M = np.ascontiguousarray(T[np.ix_(self.posr, self.posc)])
+        self.q = T[self.posr, N].copy()
+        # The same for the matrix, as a second try (see solve_stacked): left in, noise can be
+        # pivoted on (a column of pure noise passes any test relative to its own size), but
+        # zeroing it changes the tie-breaking of degenerate paths, so it is not the first try.
+        self.M_clean = np.where(np.abs(self.M) < N * EPS * max(1.0, _size(T[:, :N])), 0.0, self.M)
+        # Rows where a free variable is basic, and what stayed behind (redundant pairs).
+        self.free_rows = np.flatnonzero((self.row_label >= N) & (self.row_label < N + n))
+        self.redundant = np.sort(self.row_label[self.row_label < n])  # equations left out
+        undetermined = self.col_label[(self.col_label >= N) & (self.col_label < N + n)] - N
+        self.undetermined = np.sort(undetermined)  # free variables set to 0
+
+    def to_reduced(self, v_basic: np.ndarray) -> np.ndarray:
+        """Which LCP z's are basic, for the basis where v_k is basic when v_basic[k]."""
+        return v_basic ^ self.swapped
+
+    def v_basic(self, z_basic: np.ndarray) -> np.ndarray:
+        return z_basic ^ self.swapped
+
+    def point(self, z, z_dir=False):
+        """The stacked x = (u, v) of the MLCP from the reduced LCP's z (a direction when
+        z_dir: no constant term), in the caller's units."""
+        N, n = self.N, self.n
+        col = np.zeros(N)
+        col[self.posc] = z
+        basic = self.T[:, self.posc] @ z
+        if not z_dir:
+            basic += self.T[:, N]
+        xs = np.zeros(N)
+        for labels, values in ((self.row_label, basic), (self.col_label, col)):
+            inputs = labels >= N
+            xs[labels[inputs] - N] = values[inputs]
+        return xs * self.s
+
+    def basis_point(self, E, e, v_basic):
+        """The MLCP point of the basis where v_k is basic when v_basic[k], from the caller's
+        data (see :func:`basis_point`); None if singular."""
+        return basis_point(E, e, self.n, v_basic, self)
+
+
+def basis_point(E, e, n, v_basic, red):
+    """The point of the basis (all determined u basic, v_k basic where v_basic[k]) from the
+    caller's data: one dense solve and one step of iterative refinement.  None if singular."""
+    N = e.size
+    keep_eq = np.setdiff1d(np.arange(n), red.redundant)
+    keep_u = np.setdiff1d(np.arange(n), red.undetermined)
+    vb = n + np.flatnonzero(v_basic)
+    rows = np.concatenate([keep_eq, vb])
+    cols = np.concatenate([keep_u, vb])
+    if rows.size != cols.size:
+        return None
+    x = np.zeros(N)
+    if rows.size:
+        xb = refined_solve(E[np.ix_(rows, cols)], -e[rows])
+        if xb is None:
+            return None
+        x[cols] = xb
+    x[n:] = np.maximum(x[n:], 0.0)
+    return x
+
+
+def refined_solve(K, rhs, steps=2):
+    """Solve K x = rhs with iterative refinement whose residuals are computed in extended
+    precision (numpy's longdouble): on a degenerate basis a variable that is zero comes
+    out zero to the last digits instead of at cond(K) eps.  None if K is singular.
+
+    numpy's LAPACK only, never scipy's: the two carry separate OpenBLAS thread pools, and
+    alternating between them on a busy machine made a 200 x 200 Cholesky take 0.4 s."""
+    try:
+        x = np.linalg.solve(K, rhs)
+        K_ext = K.astype(np.longdouble)
+        rhs_ext = rhs.astype(np.longdouble)
+        for _ in range(steps):
+            r = (rhs_ext - K_ext @ x.astype(np.longdouble)).astype(np.float64)
+            x = x + np.linalg.solve(K, r)
+    except np.linalg.LinAlgError:
+        return None
+    return x if np.isfinite(x).all() else None
