@@ -20,8 +20,8 @@ from ._problem import Problem
 from ._qp import Certificate, QPResult, solve_qp
 from ._result import LCPBatchResult, LCPResult, WarmStart
 from ._status import Status
+from ._version import __version__
 
-__version__ = "0.1.0"
 
 __all__ = [
     "METHODS",

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._result import Value
 from ._validate import square_matrix, vector
 from .kernels import certify
 from .kernels.certify import CERTIFIABLE
@@ -135,8 +136,8 @@ def is_mlcp_ray(E, n, direction, tol) -> bool:
 
 # ----------------------------------------------------------------------------- QP
 
-@dataclass(frozen=True)
-class Certificate:
+@dataclass(frozen=True, eq=False)
+class Certificate(Value):
     """A proof that a QP has no optimum, checkable with its data alone.
 
     ``kind == "primal_infeasible"``: a Farkas vector ``(y, z, z_box)`` with ``z >= 0``,

@@ -18,6 +18,7 @@ from ._kinds import KINDS
 from ._lcp import METHODS
 from ._options import Options
 from ._problem import Problem
+from ._version import __version__
 
 DEFAULT_PROBLEM = "cps-4.4.7"
 _SHOWN = 8  # entries of a solution shown in the human output
@@ -331,8 +332,6 @@ def main(argv=None) -> int:
     try:
         args = _parser().parse_args(argv)
         if args.version:
-            from . import __version__
-
             print(f"lemke {__version__}")
             return 0
         if args.command == "problems":

@@ -85,7 +85,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         beta[list(warm_start.z_basic)] = True
         b = np.flatnonzero(beta)
         Mbb = linalg.principal_block(M, b)
-        z = _basis_point(Mbb, q, b)
+        z = _point_of_basis(Mbb, q, b)
         if z is not None:
             R, C, w = np.empty(n), np.empty(n), np.empty(n)
             linalg.equilibrate(M, q, R, C)  # once: the check and the result use them
@@ -179,7 +179,7 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
     if status == Status.SOLVED:
         # Recompute the point of the final basis from the caller's data: one dense solve,
         # more accurate than a tableau that went through many pivots.
-        zb = _basis_point(linalg.principal_block(M, basic), q, basic)
+        zb = _point_of_basis(linalg.principal_block(M, basic), q, basic)
         if zb is not None:
             wb, ok, rb = check_lcp(M, q, zb, opts.tol)
             if ok:
@@ -194,7 +194,7 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
                    z0, cov, final_basis, *extra)
 
 
-def _basis_point(Mbb, q, beta):
+def _point_of_basis(Mbb, q, beta):
     """The point of the complementary basis with z_beta basic (Mbb = M[beta, beta]), or
     None if Mbb is singular: ``z_beta = -Mbb^-1 q_beta``, the other z zero."""
     z = np.zeros(q.size)

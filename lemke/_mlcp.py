@@ -36,7 +36,7 @@ EPS = float(np.finfo(np.float64).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MLCPResult(Outcome):
     """The outcome of :func:`lemke.solve_mlcp`.
 

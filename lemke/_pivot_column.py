@@ -10,9 +10,9 @@ import re
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import get_lapack_funcs
 
 from ._validate import real_array
+from .kernels import linalg
 
 _EPS = np.finfo(np.float64).eps
 _LABEL = re.compile(r"([wz])([1-9][0-9]*)\Z")
@@ -109,26 +109,32 @@ def _index_sets(n: int, basic, nonbasic) -> _IndexSets:
 
 
 def _solve_block(A: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-    """``A^{-1} rhs`` by LU; LinAlgError when ``A`` is singular to working precision."""
+    """``A^{-1} rhs``; LinAlgError when ``A`` is singular to working precision.
+
+    With the kernels' own single-threaded elimination (``kernels.linalg``: no LAPACK, so no
+    BLAS thread pool): the inverse gives the exact 1-norm condition number, and the solve
+    is an LU solve with partial pivoting."""
     m = A.shape[0]
     if m == 0:
         return np.zeros_like(rhs)
-    getrf, gecon, getrs = get_lapack_funcs(("getrf", "gecon", "getrs"), (A,))
-    lu, piv, info = getrf(A)
-    if info > 0:
+    inv = np.array(A, dtype=np.float64, order="C")
+    if not linalg.invert_in_place(inv, m):
         raise np.linalg.LinAlgError(
             f"the block M^(alpha beta) ({m} x {m}) is singular: these basic variables do not form a basis"
         )
     anorm = float(np.max(np.sum(np.abs(A), axis=0)))
-    rcond, _ = gecon(lu, anorm, norm="1")
+    rcond = 1.0 / (anorm * float(np.max(np.sum(np.abs(inv), axis=0))))
     if not rcond >= _EPS:
         raise np.linalg.LinAlgError(
             f"the block M^(alpha beta) ({m} x {m}) is singular to working precision "
             f"(reciprocal condition number {rcond:.3g}): these basic variables do not form a basis"
         )
-    x, info = getrs(lu, piv, rhs)
-    if info != 0:  # pragma: no cover - getrs only fails on bad arguments
-        raise np.linalg.LinAlgError(f"LAPACK getrs failed with info = {info}")
+    A = np.ascontiguousarray(A, dtype=np.float64)
+    x = np.empty_like(rhs)
+    for j in range(rhs.shape[1]):
+        ok, x[:, j] = linalg.solve(A, np.ascontiguousarray(rhs[:, j]))
+        if not ok:
+            raise np.linalg.LinAlgError(f"the block M^(alpha beta) ({m} x {m}) is singular to working precision")
     return x
 
 

@@ -31,7 +31,7 @@ from ._status import Status
 EPS = float(np.finfo(np.float64).eps)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class QPResult(Outcome):
     """The outcome of :func:`lemke.solve_qp`.
 

@@ -1,7 +1,13 @@
-"""Immutable results.  ``success`` and ``message`` are derived from ``status``, never stored."""
+"""Immutable results.  ``success`` and ``message`` are derived from ``status``, never stored.
+
+Results are values: two results are equal (``==``) when every field is bit for bit the same
+(arrays by shape, dtype and bytes; floats by their bits, so a NaN residual equals itself),
+and ``hash`` follows the same fields, so results can be dict keys and set members.
+"""
 from __future__ import annotations
 
-from dataclasses import dataclass
+import struct
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -42,7 +48,35 @@ class WarmStart:
         return ws
 
 
-class Outcome:
+def _key(v):
+    """What ``==`` and ``hash`` compare for one field: arrays and floats by their bits."""
+    if isinstance(v, np.ndarray):
+        return ("array", v.shape, v.dtype.str, v.tobytes())
+    if isinstance(v, (float, np.floating)):
+        return ("float", struct.pack("<d", float(v)))
+    if isinstance(v, Value):
+        return v._keys()
+    return v
+
+
+class Value:
+    """Equality and hashing by fields, bit for bit (see the module docstring)."""
+
+    __slots__ = ()
+
+    def _keys(self) -> tuple:
+        return (type(self).__name__,) + tuple(_key(getattr(self, f.name)) for f in fields(self))
+
+    def __eq__(self, other):
+        if type(other) is not type(self):
+            return NotImplemented
+        return self._keys() == other._keys()
+
+    def __hash__(self) -> int:
+        return hash(self._keys())
+
+
+class Outcome(Value):
     """What every result derives from its ``status``: ``success`` and ``message``."""
 
     __slots__ = ()
@@ -56,7 +90,7 @@ class Outcome:
         return self.status.message
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class LCPResult(Outcome):
     """The outcome of :func:`lemke.solve_lcp`.
 
@@ -111,19 +145,9 @@ class LCPResult(Outcome):
         one sets every field through ``object.__setattr__``): this is on the hot path of
         small problems."""
         res = object.__new__(cls)
-        f = res.__dict__
-        f["z"] = z
-        f["w"] = w
-        f["status"] = status
-        f["pivots"] = pivots
-        f["residual"] = residual
-        f["ray"] = ray
-        f["z0"] = z0
-        f["covering"] = covering
-        f["warm_start"] = warm_start
-        f["row_scale"] = row_scale
-        f["col_scale"] = col_scale
-        f["recoveries"] = recoveries
+        res.__dict__.update(z=z, w=w, status=status, pivots=pivots, residual=residual, ray=ray,
+                            z0=z0, covering=covering, warm_start=warm_start,
+                            row_scale=row_scale, col_scale=col_scale, recoveries=recoveries)
         return res
 
     def __repr__(self) -> str:
@@ -133,8 +157,8 @@ class LCPResult(Outcome):
         )
 
 
-@dataclass(frozen=True)
-class LCPBatchResult:
+@dataclass(frozen=True, eq=False)
+class LCPBatchResult(Value):
     """The outcome of :func:`lemke.solve_lcp_batch`: row b of every array is what
     :func:`lemke.solve_lcp` gives for problem b (the same status, pivots and bits).
 

@@ -19,6 +19,12 @@ class Status(IntEnum):
     def message(self) -> str:
         return _MESSAGES[self]
 
+    def __str__(self) -> str:  # the name, not the number (IntEnum's default)
+        return self.name
+
+    def __format__(self, spec: str) -> str:
+        return format(self.name, spec)
+
 
 _MESSAGES = {
     Status.SOLVED: (

@@ -220,3 +220,16 @@ def repeats(state, h):
         state[2] = np.uint64(0)
     state[2] += np.uint64(1)
     return False
+
+
+@kernel
+def after_pivot(leaving, entering, artificial, h, hkeys, detector):
+    """The end of every pivot, in both methods: ``(h, stop)`` with the basis fingerprint h
+    updated for ``entering`` replacing ``leaving``, and stop SOLVED when the artificial
+    variable left, CYCLING when the basis repeats (the detector), else -1."""
+    if leaving == artificial:
+        return h, SOLVED
+    h ^= hkeys[leaving] ^ hkeys[entering]
+    if repeats(detector, h):
+        return h, CYCLING
+    return h, -1

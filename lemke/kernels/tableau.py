@@ -27,7 +27,7 @@ import numpy as np
 
 from . import kernel, pivoting
 from .linalg import axpy, equilibrate, scaled_system
-from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
+from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
 @kernel
@@ -238,12 +238,9 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
         is_basic[entering] = True
         pos[leaving] = s
         is_basic[leaving] = False
-        if leaving == artificial:
-            status = SOLVED
-            break
-        h ^= hkeys[leaving] ^ hkeys[entering]
-        if pivoting.repeats(detector, h):
-            status = CYCLING
+        h, stop = pivoting.after_pivot(leaving, entering, artificial, h, hkeys, detector)
+        if stop >= 0:
+            status = stop
             break
         s = pos[leaving + n if leaving < n else leaving - n]  # the complement enters
         current_column(T, U, V, k, s, col)

@@ -24,7 +24,7 @@ import numpy as np
 
 from . import kernel, pivoting
 from .linalg import axpy, dot, dot_and_size, invert_in_place, matvec, scaled_system
-from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
+from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
 REFACTOR_EVERY = 200
@@ -187,7 +187,7 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
         if not abs(piv) < np.inf:  # a NaN or infinite pivot: give up
             status = NUMERICAL_FAILURE
             break
-        ok = exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row)
+        ok = update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row)
         if entering >= n and leaving < n:
             k += 1  # the block gained a row and a column
         elif entering < n and leaving >= n:
@@ -205,12 +205,9 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
                 status = NUMERICAL_FAILURE
                 break
             basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
-        if leaving == art:
-            status = SOLVED
-            break
-        h ^= hkeys[leaving] ^ hkeys[entering]
-        if pivoting.repeats(detector, h):
-            status = CYCLING
+        h, stop = pivoting.after_pivot(leaving, entering, art, h, hkeys, detector)
+        if stop >= 0:
+            status = stop
             break
         entering = leaving + n if leaving < n else leaving - n
     for p in range(k):
@@ -292,7 +289,7 @@ def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, t
 
 
 @kernel
-def exchange(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
+def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
     """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``.
     Returns False when the update's pivot is too small to trust (then refactor)."""
     if entering >= n and leaving < n:
