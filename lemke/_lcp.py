@@ -8,10 +8,11 @@ from ._certify import check_lcp, is_lcp_ray
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import certify, cold, linalg, unrevised
+from .kernels import cold, linalg
 
 METHODS = tuple(cold.METHODS)
-_CHECKED = cold.checked  # a module attribute, so that a test can stand a lying kernel in
+_CHECKED = cold.checked  # module attributes, so that a test can stand a lying kernel in
+_WARM = cold.warm
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
 
@@ -63,43 +64,29 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
-    if (d is None and warm_start is None and type(M) is np.ndarray and type(q) is np.ndarray
+    if (d is None and type(M) is np.ndarray and type(q) is np.ndarray
             and M.dtype is _F64 and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
             and M.shape[0] == M.shape[1] == q.shape[0] and method in cold.METHODS
-            and M.flags.c_contiguous):
+            and M.flags.c_contiguous
+            and (warm_start is None or (type(warm_start) is WarmStart and warm_start.n == q.shape[0]))):
         # The common case in one kernel call (which checks that M and q are finite); no
         # copies: the data are float64 already, and the kernels never write to them.
-        res = _cold(method, M, q, _NO_D, _DEFAULT if options is None else as_options(options))
+        opts = _DEFAULT if options is None else as_options(options)
+        if warm_start is None or not warm_start.z_basic:
+            res = _cold(method, M, q, _NO_D, opts)
+        else:
+            res = _warm(method, M, q, _NO_D, warm_start, opts)
         if res is not None:
             return res  # else M or q is not finite: the validation below says where
     _validate.method(method, METHODS)
     M, q, d = _validate.lcp(M, q, d)
     opts = as_options(options)
-    n = q.size
-    _validate.warm_start(warm_start, WarmStart, n,
+    _validate.warm_start(warm_start, WarmStart, q.size,
                          "warm_start is for a problem of size {ws}, this one has n = {n}")
-
-    restart_pivots = 0
+    d = _NO_D if d is None else d
     if warm_start is not None and warm_start.z_basic:
-        beta = np.zeros(n, dtype=np.bool_)
-        beta[list(warm_start.z_basic)] = True
-        b = np.flatnonzero(beta)
-        Mbb = linalg.principal_block(M, b)
-        z = _point_of_basis(Mbb, q, b)
-        if z is not None:
-            R, C, w = np.empty(n), np.empty(n), np.empty(n)
-            linalg.equilibrate(M, q, R, C)  # once: the check and the result use them
-            ok, residual = certify.lcp_check_sized(M, q, z, opts.tol, w, R)
-            if ok:  # the old basis still solves it
-                cov = np.ones(n) if d is None else d.copy()
-                return _result(z, w, residual, Status.SOLVED, 0, None, 0.0, cov, warm_start,
-                               R, C, 0)
-            res = _restart(M, q, beta, opts)
-            if res is not None and res.status == Status.SOLVED:
-                return res
-            restart_pivots = 0 if res is None else res.pivots  # fall back to a cold solve
-
-    return _cold(method, M, q, _NO_D if d is None else d, opts, restart_pivots)
+        return _warm(method, M, q, d, warm_start, opts)
+    return _cold(method, M, q, d, opts)
 
 
 def _views(buf, n):
@@ -110,52 +97,43 @@ def _views(buf, n):
     return tuple(buf[f[name]] for name, _ in cold.BUFFER)
 
 
-def _cold(method, M, q, d, opts, extra_pivots=0):
+def _cold(method, M, q, d, opts):
     """A cold solve (float64, C-contiguous, validated shapes): one kernel call that also
-    checks the answer on the caller's data, then :func:`_outcome`.  None when M or q is not
-    finite."""
+    checks the answer on the caller's data.  None when M or q is not finite."""
     n = q.shape[0]
     buf = np.empty(cold.buffer_length(n))
     basic = np.empty(n, dtype=np.int64)
     code, pivots, k, ok, residual, recoveries = _CHECKED(
-        cold.METHODS[method], M, q, d, max(0, opts.pivot_limit(n) - extra_pivots), opts.pivot_tol,
-        opts.tie_tol, opts.tol, buf, basic
+        cold.METHODS[method], M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol,
+        opts.tol, buf, basic
     )
-    if code == 0 and ok:  # solved and checked: the common case, inline
-        z, z0, ray, w, cov, rs, cs = _views(buf, n)
-        return LCPResult._make(
-            z, w, Status.SOLVED, pivots + extra_pivots, residual, None, 0.0, cov,
-            WarmStart._trusted(n, tuple(basic.tolist()[:k])), rs, cs, recoveries,
-        )
+    if code == 0 and ok:  # solved and checked: the common case, built lazily
+        return LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries)
     if code == cold.NOT_FINITE:
         return None
-    return _outcome(M, q, opts, code, pivots + extra_pivots, basic[:k], ok, residual, buf,
-                    recoveries)
+    return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
 
 
-def _restart(M, q, beta, opts):
-    """Lemke from the complementary basis with z_i basic where beta[i]: on the principal
-    pivoting transform of (M, q) by that basis, with a constant covering vector in the
-    transformed coordinates.  In the caller's coordinates that is the column
-    c e_alpha - M[:, beta] 1, with c = max|M| so that z rows and w rows get the same
-    constant.  It always runs the unrevised method: that needs only the inverse of the old
-    block, where the tableau would need the whole transformed tableau (O(n^3)).  None when
-    the starting block is singular."""
-    n = q.size
-    m_scale = max(M.max(), -M.min()) or 1.0
+def _warm(method, M, q, d, warm_start, opts):
+    """A warm solve in one kernel call (``kernels.cold.warm``): the old basis's point if it
+    still solves the problem (0 pivots), else Lemke restarted from that basis, else a cold
+    solve.  None when M or q is not finite."""
+    n = q.shape[0]
+    beta = warm_start.__dict__.get("_beta")
+    if beta is None:  # the basis as an index array, kept with the (immutable) WarmStart
+        beta = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=np.int64)
     buf = np.empty(cold.buffer_length(n))
-    x, ray, w, cov, R, C = cold.layout(n, buf)
-    np.subtract(m_scale * (~beta), M[:, beta].sum(axis=1), out=cov)
-    linalg.equilibrate(M, q, R, C)
-    z_basic = np.empty(n, dtype=np.bool_)
-    code, pivots = unrevised.solve(M, q, cov, R, C, beta, np.empty((0, 0)), opts.pivot_limit(n),
-                                   opts.pivot_tol, opts.tie_tol, x, ray, z_basic)
-    if code == Status.NUMERICAL_FAILURE and pivots == 0:
-        return None  # singular starting block
-    ok, residual = certify.lcp_check_sized(M, q, x[:n], opts.tol, w, R)
-    if ok:
-        code = Status.SOLVED  # the point where it stopped solves the LCP (see kernels.cold)
-    return _outcome(M, q, opts, code, pivots, np.flatnonzero(z_basic), ok, residual, buf, 0)
+    basic = np.empty(n, dtype=np.int64)
+    code, pivots, k, ok, residual, recoveries, stage = _WARM(
+        cold.METHODS[method], M, q, d, beta, beta.shape[0], opts.pivot_limit(n), opts.pivot_tol,
+        opts.tie_tol, opts.tol, buf, basic
+    )
+    if code == 0 and ok:
+        return LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries,
+                               warm_start if stage == 0 else None)
+    if code == cold.NOT_FINITE:
+        return None
+    return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
 
 
 def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):

@@ -150,6 +150,35 @@ class LCPResult(Outcome):
                             row_scale=row_scale, col_scale=col_scale, recoveries=recoveries)
         return res
 
+    @classmethod
+    def _lazy(cls, buf, basic, k, status, pivots, residual, recoveries, warm_start=None) -> "LCPResult":
+        """A solved result whose arrays are read from the kernel's output buffer ``buf``
+        (``kernels.cold.fields``) on first access, and whose ``warm_start`` is built from the
+        first k entries of ``basic`` (unless given): a small solve that only reads ``z``
+        pays for no other view."""
+        res = object.__new__(cls)
+        res.__dict__.update(status=status, pivots=pivots, residual=residual, ray=None, z0=0.0,
+                            recoveries=recoveries, _buf=buf, _basic=basic, _k=k)
+        if warm_start is not None:
+            res.__dict__["warm_start"] = warm_start
+        return res
+
+    def __getattr__(self, name):
+        # Only reached for a field not yet read from the buffer (see _lazy).
+        d = self.__dict__
+        if name.startswith("_") or "_buf" not in d:
+            raise AttributeError(name)
+        buf = d.pop("_buf")
+        basic, k = d.pop("_basic"), d.pop("_k")
+        buf.setflags(write=False)
+        n = basic.shape[0]
+        # kernels.cold.fields: [z | z0 | ray | w | covering | row_scale | col_scale]
+        d.update(z=buf[:n], w=buf[2 * n + 2 : 3 * n + 2], covering=buf[3 * n + 2 : 4 * n + 2],
+                 row_scale=buf[4 * n + 2 : 5 * n + 2], col_scale=buf[5 * n + 2 :])
+        if "warm_start" not in d:
+            d["warm_start"] = WarmStart._trusted(n, tuple(basic[:k].tolist()))
+        return d[name]
+
     def __repr__(self) -> str:
         return (
             f"LCPResult(status={self.status.name}, pivots={self.pivots}, "

@@ -55,7 +55,7 @@ import numpy as np
 
 from . import kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check
-from .linalg import equilibrate, finite_absmax, nan_probe
+from .linalg import equilibrate, finite_absmax, nan_probe, principal_block, solve as lu_solve
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -265,3 +265,82 @@ def batch(method, M, q, lo, hi, max_pivots, pivot_tol, tie_tol, tol, bufs, basic
         out_i[b, 3] = recoveries
         out_f[b, 0] = 1.0 if ok else 0.0
         out_f[b, 1] = residual
+
+
+NO_BASIS = -3  # warm: the old basis's block is singular (the front reports a cold solve)
+
+
+@kernel
+def basis_point(M, q, beta, k, z):
+    """z of the complementary basis with z_i basic for i in beta[:k]: ``z_beta = -M_bb^-1
+    q_beta`` by LU (``linalg.solve``), negative entries clipped to 0, the others 0.  False
+    when M_bb is singular or the point is not finite."""
+    z[:] = 0.0
+    if k == 0:
+        return True
+    idx = beta[:k]
+    rhs = np.empty(k)
+    for i in range(k):
+        rhs[i] = -q[idx[i]]
+    ok, zb = lu_solve(principal_block(M, idx), rhs)
+    if not ok:
+        return False
+    for i in range(k):
+        z[idx[i]] = max(zb[i], 0.0)
+    return True
+
+
+@kernel
+def warm(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """A warm solve in one call: the point of the old basis (z_i basic for i in beta[:k]),
+    checked on (M, q); if it fails, Lemke's method restarted from that basis (the unrevised
+    method on the principal pivoting transform, with a constant covering vector there:
+    ``c e_alpha - M[:, beta] 1``, c = max|M|, so z rows and w rows get the same constant),
+    checked; if that fails too, :func:`checked` cold with the pivots left.
+
+    Returns ``(code, pivots, k, ok, residual, recoveries, stage)`` as :func:`checked`, and
+    stage 0 (the old basis solved it: 0 pivots), 1 (the restart solved it) or 2 (cold).
+    code NOT_FINITE: M or q has a NaN or an infinity."""
+    n = q.shape[0]
+    x, ray, w, cov, R, C = layout(n, buf)
+    finite, m_max = finite_absmax(M)
+    if not finite or nan_probe(q, n) != 0.0:
+        return NOT_FINITE, 0, 0, False, 0.0, 0, 2
+    equilibrate(M, q, R, C)
+    x[n] = 0.0
+    if basis_point(M, q, beta, k, x[:n]):
+        ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+        if ok:
+            for i in range(n):
+                cov[i] = d[i] if d.shape[0] else 1.0
+            ray[:] = 0.0
+            for i in range(k):
+                basic[i] = beta[i]
+            return pivoting.SOLVED, 0, k, True, residual, 0, 0
+        # the restart from the old basis
+        z_start = np.zeros(n, dtype=np.bool_)
+        for i in range(k):
+            z_start[beta[i]] = True
+        m_scale = m_max if m_max > 0.0 else 1.0
+        for i in range(n):
+            acc = 0.0 if z_start[i] else m_scale
+            for j in range(k):
+                acc -= M[i, beta[j]]
+            cov[i] = acc
+        z_basic = np.empty(n, dtype=np.bool_)
+        code, pivots = unrevised.solve(M, q, cov, R, C, z_start, np.empty((0, 0)), max_pivots,
+                                       pivot_tol, tie_tol, x, ray, z_basic)
+        if not (code == pivoting.NUMERICAL_FAILURE and pivots == 0):  # a singular start
+            ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+            if ok:
+                kk = 0
+                for i in range(n):
+                    if z_basic[i]:
+                        basic[kk] = i
+                        kk += 1
+                return pivoting.SOLVED, pivots, kk, True, residual, 0, 1
+    else:
+        pivots = 0
+    code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
+                                                   pivot_tol, tie_tol, tol, buf, basic)
+    return code, p + pivots, kk, ok, residual, recoveries, 2
