@@ -38,6 +38,40 @@ class WarmStart:
         object.__setattr__(self, "n", int(n))
         object.__setattr__(self, "z_basic", idx)
 
+    def take(self, indices) -> "WarmStart":
+        """The basis carried to a problem whose row i is row ``indices[i]`` of this one, for
+        when rows appear, vanish or move (contacts come and go between steps): z_i is basic
+        where old row ``indices[i]`` had z basic; a new row (``indices[i] == -1``) starts
+        with w_i basic.  ``len(indices)`` is the new size.
+
+        >>> WarmStart(3, (0, 2)).take([2, -1, 1, 0])  # old row 2 -> 0, a new row 1, ...
+        WarmStart(n=4, z_basic=(0, 3))
+        """
+        idx = np.asarray(indices)
+        if idx.ndim != 1 or (idx.size and idx.dtype.kind not in "iu"):
+            raise TypeError("indices must be a 1-D sequence of integers")
+        idx = idx.astype(np.int64)
+        if idx.size and (idx.min() < -1 or idx.max() >= self.n):
+            raise ValueError(f"indices must lie in [-1, {self.n}), got {idx.min()} .. {idx.max()}")
+        kept = idx[idx >= 0]
+        if np.unique(kept).size != kept.size:
+            raise ValueError("indices name an old row twice")
+        basic = np.zeros(self.n + 1, dtype=bool)  # the last entry: new rows, never basic
+        basic[list(self.z_basic)] = True
+        return WarmStart._trusted(int(idx.size), tuple(np.flatnonzero(basic[idx]).tolist()))
+
+    def relabel(self, old_labels, new_labels) -> "WarmStart":
+        """:meth:`take` by labels: row i of the new problem carries label ``new_labels[i]``
+        (a contact's id, say), row j of this one ``old_labels[j]``; a label not seen before is
+        a new row.  Labels are any hashable values, distinct within each list."""
+        old = list(old_labels)
+        if len(old) != self.n:
+            raise ValueError(f"old_labels has {len(old)} labels for a basis of size {self.n}")
+        where = {label: j for j, label in enumerate(old)}
+        if len(where) != len(old):
+            raise ValueError("old_labels holds a label twice")
+        return self.take(np.array([where.get(label, -1) for label in new_labels], dtype=np.int64))
+
     @classmethod
     def _trusted(cls, n: int, z_basic: tuple) -> "WarmStart":
         """Build from values the solver made itself (sorted, in range): no checks."""

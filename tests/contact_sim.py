@@ -300,6 +300,16 @@ def step_lcp(sc: Scene, step: int):
                 if b >= 0:
                     sc.pos[b] -= wb * push
 
+    # A label per LCP row, stable from step to step while a contact persists: the bodies,
+    # which of the pair's contacts (in the order found) and the row's role.
+    seen = {}
+    keys = []
+    for a, b, *_ in contacts:
+        seen[(a, b)] = seen.get((a, b), -1) + 1
+        keys.append((a, b, seen[(a, b)]))
+    apply.labels = ([("n", key) for key in keys]
+                    + [(role, key) for key in keys for role in ("t+", "t-")]
+                    + [("cone", key) for key in keys])
     return M, q, apply
 
 
