@@ -1,15 +1,15 @@
 """lemke: linear complementarity problems by Lemke's complementary pivoting method.
 
 Public API: :func:`solve_lcp` (methods in ``METHODS``), :func:`solve_lcp_batch` (many LCPs
-of one size in parallel threads), :func:`solve_mlcp` (mixed LCPs), :func:`solve_qp` (convex
-QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
+of one size in parallel threads), :func:`solve_lcp_many` (many of different sizes),
+:func:`solve_mlcp` (mixed LCPs), :func:`solve_qp` (convex QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
 :class:`LCPBatchResult`, :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
 :class:`Options`, :class:`WarmStart`, :func:`pivot_column` (one step of the unrevised
 method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as values
 (:class:`Problem`) and in files (:func:`read_problem`, :func:`write_problem`,
 :func:`write_result`, :class:`ProblemFormatError`).
 """
-from ._batch import solve_lcp_batch
+from ._batch import solve_lcp_batch, solve_lcp_many
 from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
 from ._lcp import METHODS, solve_lcp
@@ -43,6 +43,7 @@ __all__ = [
     "result_to_dict",
     "solve_lcp",
     "solve_lcp_batch",
+    "solve_lcp_many",
     "solve_mlcp",
     "solve_qp",
     "write_problem",

@@ -11,7 +11,8 @@ import numpy as np
 from . import _validate
 from ._lcp import METHODS, _outcome
 from ._options import as_options
-from ._result import LCPBatchResult
+from ._result import LCPBatchResult, LCPResult, WarmStart
+from ._status import Status
 from ._validate import real_array
 from .kernels import cold
 
@@ -35,7 +36,48 @@ def _executor():
         return _pool
 
 
-def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LCPBatchResult:
+def _workers(workers) -> int:
+    if workers is None:
+        return usable_cores()
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers must be a positive integer or None, got {workers!r}")
+    return int(workers)
+
+
+def _run(kernel, args, tail, B, workers):
+    """``kernel(*args, lo, hi, *tail)`` over chunks of the B problems: in the calling thread
+    when one worker (or one chunk), else in the pool.  Every problem is solved by the same
+    kernel whatever the chunking, so the results do not depend on the number of workers."""
+    chunks = min(B, 2 * workers) if workers > 1 else min(B, 1)
+    bounds = np.linspace(0, B, chunks + 1).astype(int) if chunks else np.zeros(1, dtype=int)
+    if chunks <= 1:
+        for lo, hi in zip(bounds[:-1], bounds[1:]):
+            kernel(*args, int(lo), int(hi), *tail)
+        return
+    pool = _executor()
+    for f in [pool.submit(kernel, *args, int(lo), int(hi), *tail) for lo, hi in zip(bounds[:-1], bounds[1:])]:
+        f.result()
+
+
+def _bases(warm_start, B, sizes):
+    """The warm starts as one index array and offsets (an empty basis: cold)."""
+    if warm_start is None:
+        return np.zeros(0, dtype=np.int64), np.zeros(B + 1, dtype=np.int64)
+    ws = list(warm_start)
+    if len(ws) != B:
+        raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")
+    lengths = np.zeros(B + 1, dtype=np.int64)
+    for b, w in enumerate(ws):
+        if w is not None:
+            _validate.warm_start(w, WarmStart, int(sizes[b]),
+                                 f"warm_start[{b}] is for a problem of size {{ws}}, problem {b} has n = {{n}}")
+            lengths[b + 1] = len(w.z_basic)
+    flat = np.fromiter((i for w in ws if w is not None for i in w.z_basic), dtype=np.int64,
+                       count=int(lengths.sum()))
+    return flat, np.cumsum(lengths)
+
+
+def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> LCPBatchResult:
     r"""Solve B linear complementarity problems of one size n by Lemke's method, in parallel.
 
     Problem b asks for z with :math:`z \ge 0`, :math:`w = M_b z + q_b \ge 0`,
@@ -54,6 +96,8 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     workers : int, optional
         Threads to use (default: every CPU core the process may run on; 1 runs in the
         calling thread).
+    warm_start : sequence of WarmStart or None, optional
+        One per problem (None: cold), e.g. the ``warm_start`` of each problem's last solve.
 
     Returns
     -------
@@ -85,28 +129,15 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
         raise ValueError(f"M must have shape ({B}, {n}, {n}) or ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
     M = np.ascontiguousarray(M)  # never a view the kernels could write through: they only read
     q = np.ascontiguousarray(q)
-    if workers is None:
-        workers = usable_cores()
-    elif isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be a positive integer or None, got {workers!r}")
+    workers = _workers(workers)
+    beta, boff = _bases(warm_start, B, np.full(B, n))
 
     bufs = np.empty((B, cold.buffer_length(n)))
     basics = np.empty((B, n), dtype=np.int64)
-    out_i = np.empty((B, 4), dtype=np.int64)
+    out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
-    args = (cold.METHODS[method], M, q)
-    tail = (opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, bufs, basics, out_i, out_f)
-    chunks = min(B, 2 * workers) if workers > 1 else min(B, 1)
-    bounds = np.linspace(0, B, chunks + 1).astype(int) if chunks else np.zeros(1, dtype=int)
-    if chunks <= 1:
-        for lo, hi in zip(bounds[:-1], bounds[1:]):
-            cold.batch(*args, int(lo), int(hi), *tail)
-    else:
-        pool = _executor()
-        futures = [pool.submit(cold.batch, *args, int(lo), int(hi), *tail)
-                   for lo, hi in zip(bounds[:-1], bounds[1:])]
-        for f in futures:
-            f.result()
+    _run(cold.batch, (cold.METHODS[method], M, q, beta, boff),
+         (opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, bufs, basics, out_i, out_f), B, workers)
 
     f = cold.fields(n)
     z = np.ascontiguousarray(bufs[:, f["z"]])
@@ -117,10 +148,81 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None) -> LC
     # Everything but a checked solution (and q >= 0) goes through solve_lcp's own logic:
     # the recomputation from the final basis, the ray check, the downgrades.
     for b in np.flatnonzero((out_i[:, 0] != cold.TRIVIAL) & ((out_i[:, 0] != 0) | (out_f[:, 0] == 0.0))):
-        code, piv, k, recoveries = (int(v) for v in out_i[b])
+        code, piv, k, recoveries, _ = (int(v) for v in out_i[b])
         res = _outcome(M[0 if M.shape[0] == 1 else b], q[b], opts, code, piv, basics[b, :k],
                        bool(out_f[b, 0]), float(out_f[b, 1]), bufs[b].copy(), recoveries)
         z[b], w[b], status[b], residual[b] = res.z, res.w, int(res.status), res.residual
     for a in (z, w, status, pivots, residual):
         a.setflags(write=False)
     return LCPBatchResult(z, w, status, pivots, residual)
+
+
+def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> list:
+    r"""Solve LCPs of different sizes (the islands of a contact scene) in one call, in
+    parallel threads without the GIL: problem b is ``(M[b], q[b])`` with its own n_b.
+
+    Parameters
+    ----------
+    M, q : sequences of (n_b, n_b) and (n_b,) array_like, of the same length B
+    method : {"tableau", "unrevised"}
+    options : Options or dict, optional
+    workers : int, optional
+        Threads (default: every usable core; 1 runs in the calling thread).
+    warm_start : sequence of WarmStart or None, optional
+        One per problem (None: cold); e.g. each island's last ``warm_start``, carried over
+        with :meth:`WarmStart.relabel` when its contacts changed.
+
+    Returns
+    -------
+    list of LCPResult
+        Result b is what ``solve_lcp(M[b], q[b], method=method, warm_start=warm_start[b],
+        options=options)`` returns, bit for bit, whatever the number of workers.
+
+    Examples
+    --------
+    >>> import lemke
+    >>> rs = lemke.solve_lcp_many([[[2.0]], [[2.0, 1.0], [1.0, 2.0]]], [[-1.0], [-5.0, -6.0]])
+    >>> [r.z.round(6).tolist() for r in rs]
+    [[0.5], [1.333333, 2.333333]]
+    """
+    _validate.method(method, METHODS)
+    opts = as_options(options)
+    workers = _workers(workers)
+    Ms, qs = list(M), list(q)
+    if len(Ms) != len(qs):
+        raise ValueError(f"M and q must hold the same number of problems, got {len(Ms)} and {len(qs)}")
+    B = len(Ms)
+    probs = []
+    for b in range(B):
+        try:
+            Mb, qb, _ = _validate.lcp(Ms[b], qs[b])
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"problem {b}: {exc}") from None
+        probs.append((Mb, qb))
+    sizes = np.array([qb.size for _, qb in probs], dtype=np.int64)
+    beta, boff = _bases(warm_start, B, sizes)
+    qoff = np.concatenate([[0], np.cumsum(sizes)])
+    moff = np.concatenate([[0], np.cumsum(sizes * sizes)])
+    lengths = np.array([cold.buffer_length(int(n)) for n in sizes], dtype=np.int64)
+    buff = np.concatenate([[0], np.cumsum(lengths)])
+    Mflat = np.concatenate([Mb.ravel() for Mb, _ in probs]) if B else np.zeros(0)
+    qflat = np.concatenate([qb for _, qb in probs]) if B else np.zeros(0)
+    limits = np.array([opts.pivot_limit(int(n)) for n in sizes], dtype=np.int64)
+    bufs = np.empty(int(buff[-1]))
+    basics = np.empty(int(qoff[-1]), dtype=np.int64)
+    out_i = np.empty((B, 5), dtype=np.int64)
+    out_f = np.empty((B, 2))
+    _run(cold.batch_ragged, (cold.METHODS[method], Mflat, moff, qflat, qoff, beta, boff),
+         (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
+    ws = [None] * B if warm_start is None else list(warm_start)
+    out = []
+    for b, (Mb, qb) in enumerate(probs):
+        code, pivots, k, recoveries, stage = (int(v) for v in out_i[b])
+        ok, residual = bool(out_f[b, 0]), float(out_f[b, 1])
+        buf, basic = bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]]
+        if code == 0 and ok:
+            out.append(LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries,
+                                       ws[b] if stage == 0 else None))
+        else:
+            out.append(_outcome(Mb, qb, opts, code, pivots, basic[:k], ok, residual, buf, recoveries))
+    return out

@@ -138,3 +138,66 @@ def test_bad_method_options_and_workers():
     for bad in (0, -1, 1.5, True):
         with pytest.raises(ValueError, match="workers"):
             lemke.solve_lcp_batch(np.eye(2), np.zeros((1, 2)), workers=bad)
+
+
+# --- warm starts in a batch, and problems of different sizes (solve_lcp_many) -------------
+
+def _islands(seed, count=40):
+    """Contact-like islands of 1..14 rows (tests/contact_sim-like rank-deficient LCPs) and a
+    nearby problem for each (q moved a little), as a simulation's next step."""
+    rng = np.random.default_rng(seed)
+    Ms, qs, qs2 = [], [], []
+    for _ in range(count):
+        n = int(rng.integers(0, 15))
+        M, q = problems.contact_like(n, rng) if n >= 2 else (np.eye(n) * 2.0, -np.ones(n))
+        Ms.append(M)
+        qs.append(q)
+        qs2.append(q + 1e-3 * rng.standard_normal(n))
+    return Ms, qs, qs2
+
+
+@pytest.mark.parametrize("method", lemke.METHODS)
+def test_many_is_bit_identical_to_one_by_one_for_any_workers(method):
+    Ms, qs, qs2 = _islands(1)
+    first = [lemke.solve_lcp(M, q, method=method) for M, q in zip(Ms, qs)]
+    ws = [r.warm_start for r in first]
+    ws[3] = None  # a cold one among the warm
+    single = [lemke.solve_lcp(M, q, method=method, warm_start=w) for M, q, w in zip(Ms, qs2, ws)]
+    for workers in (1, 2, 4):
+        many = lemke.solve_lcp_many(Ms, qs2, method=method, warm_start=ws, workers=workers)
+        assert len(many) == len(single)
+        for a, b in zip(many, single):
+            assert a == b  # every field, bit for bit (results are values)
+    for r, M, q in zip(single, Ms, qs2):
+        if r.success:
+            assert_lcp_solution(M, q, r.z)
+    assert sum(r.pivots for r in single) < sum(lemke.solve_lcp(M, q).pivots for M, q in zip(Ms, qs2))
+
+
+@pytest.mark.parametrize("method", lemke.METHODS)
+def test_batch_with_warm_starts_is_bit_identical(method):
+    rng = np.random.default_rng(2)
+    n, B = 10, 30
+    A = rng.standard_normal((n, n))
+    M = A @ A.T + 0.1 * np.eye(n)
+    Q = rng.standard_normal((B, n))
+    ws = [lemke.solve_lcp(M, q, method=method).warm_start for q in Q]
+    Q2 = Q + 1e-3 * rng.standard_normal((B, n))
+    for workers in (1, 2, 4):
+        r = lemke.solve_lcp_batch(M, Q2, method=method, warm_start=ws, workers=workers)
+        for b in range(B):
+            one = lemke.solve_lcp(M, Q2[b], method=method, warm_start=ws[b])
+            assert r.z[b].tobytes() == one.z.tobytes()
+            assert (r.status[b], r.pivots[b]) == (one.status, one.pivots)
+
+
+def test_many_bad_input():
+    with pytest.raises(ValueError, match="same number"):
+        lemke.solve_lcp_many([np.eye(2)], [])
+    with pytest.raises(ValueError, match="problem 1"):
+        lemke.solve_lcp_many([np.eye(2), np.eye(2)], [[1.0, 1.0], [1.0]])
+    with pytest.raises(ValueError, match="warm_start"):
+        lemke.solve_lcp_many([np.eye(2)], [[1.0, 1.0]], warm_start=[lemke.WarmStart(3, ())])
+    with pytest.raises(ValueError, match="one WarmStart"):
+        lemke.solve_lcp_batch(np.eye(2), [[1.0, 1.0]], warm_start=[])
+    assert lemke.solve_lcp_many([], []) == []

@@ -248,29 +248,6 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
 
 
 @kernel
-def batch(method, M, q, lo, hi, max_pivots, pivot_tol, tie_tol, tol, bufs, basics, out_i,
-          out_f):
-    """:func:`checked` on problems ``lo..hi-1`` of a batch: M (B, n, n), or (1, n, n) shared
-    by all, and q (B, n).  Row b of ``out_i`` gets (code, pivots, k, recoveries), of
-    ``out_f`` (ok, residual)."""
-    no_d = np.empty(0)
-    shared = M.shape[0] == 1
-    for b in range(lo, hi):
-        code, pivots, k, ok, residual, recoveries = checked(
-            method, M[0 if shared else b], q[b], no_d, max_pivots, pivot_tol, tie_tol, tol,
-            bufs[b], basics[b])
-        out_i[b, 0] = code
-        out_i[b, 1] = pivots
-        out_i[b, 2] = k
-        out_i[b, 3] = recoveries
-        out_f[b, 0] = 1.0 if ok else 0.0
-        out_f[b, 1] = residual
-
-
-NO_BASIS = -3  # warm: the old basis's block is singular (the front reports a cold solve)
-
-
-@kernel
 def basis_point(M, q, beta, k, z):
     """z of the complementary basis with z_i basic for i in beta[:k]: ``z_beta = -M_bb^-1
     q_beta`` by LU (``linalg.solve``), negative entries clipped to 0, the others 0.  False
@@ -344,3 +321,57 @@ def warm(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, bas
     code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
                                                    pivot_tol, tie_tol, tol, buf, basic)
     return code, p + pivots, kk, ok, residual, recoveries, 2
+
+
+@kernel
+def solve_one(method, M, q, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """What ``solve_lcp`` runs for one problem: :func:`warm` from the basis ``beta[:k]``
+    when k > 0, else :func:`checked` cold.  Returns :func:`warm`'s tuple (stage 2 cold)."""
+    if k > 0:
+        return warm(method, M, q, np.empty(0), beta, k, max_pivots, pivot_tol, tie_tol, tol,
+                    buf, basic)
+    code, pivots, kk, ok, residual, recoveries = checked(method, M, q, np.empty(0), max_pivots,
+                                                         pivot_tol, tie_tol, tol, buf, basic)
+    return code, pivots, kk, ok, residual, recoveries, 2
+
+
+@kernel
+def _record(b, out_i, out_f, code, pivots, k, ok, residual, recoveries, stage):
+    out_i[b, 0] = code
+    out_i[b, 1] = pivots
+    out_i[b, 2] = k
+    out_i[b, 3] = recoveries
+    out_i[b, 4] = stage
+    out_f[b, 0] = 1.0 if ok else 0.0
+    out_f[b, 1] = residual
+
+
+@kernel
+def batch(method, M, q, beta, boff, lo, hi, max_pivots, pivot_tol, tie_tol, tol, bufs, basics,
+          out_i, out_f):
+    """:func:`solve_one` on problems ``lo..hi-1`` of a batch of one size: M (B, n, n), or
+    (1, n, n) shared by all, and q (B, n); problem b's warm start is ``beta[boff[b]:boff[b +
+    1]]`` (empty: cold).  Row b of ``out_i`` gets (code, pivots, k, recoveries, stage), of
+    ``out_f`` (ok, residual)."""
+    shared = M.shape[0] == 1
+    for b in range(lo, hi):
+        r = solve_one(method, M[0 if shared else b], q[b], beta[boff[b]:boff[b + 1]],
+                      boff[b + 1] - boff[b], max_pivots, pivot_tol, tie_tol, tol, bufs[b],
+                      basics[b])
+        _record(b, out_i, out_f, *r)
+
+
+@kernel
+def batch_ragged(method, Ms, moff, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_tol,
+                 tie_tol, tol, bufs, buff, basics, out_i, out_f):
+    """:func:`solve_one` on problems ``lo..hi-1`` of different sizes, laid end to end: problem
+    b is ``Ms[moff[b]:moff[b + 1]]`` (n x n, row-major), ``qs[qoff[b]:qoff[b + 1]]``, warm
+    start ``beta[boff[b]:boff[b + 1]]``, output buffer ``bufs[buff[b]:buff[b + 1]]``, basic
+    indices ``basics[qoff[b]:qoff[b + 1]]``, its pivot cap ``max_pivots[b]``."""
+    for b in range(lo, hi):
+        n = qoff[b + 1] - qoff[b]
+        M = Ms[moff[b]:moff[b + 1]].reshape((n, n))
+        r = solve_one(method, M, qs[qoff[b]:qoff[b + 1]], beta[boff[b]:boff[b + 1]],
+                      boff[b + 1] - boff[b], max_pivots[b], pivot_tol, tie_tol, tol,
+                      bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]])
+        _record(b, out_i, out_f, *r)
