@@ -69,7 +69,7 @@ def _bases(warm_start, B, sizes):
     lengths = np.zeros(B + 1, dtype=np.int64)
     for b, w in enumerate(ws):
         if w is not None:
-            _validate.warm_start(w, WarmStart, int(sizes[b]),
+            _validate.warm_start(w, WarmStart, sizes[b],
                                  f"warm_start[{b}] is for a problem of size {{ws}}, problem {b} has n = {{n}}")
             lengths[b + 1] = len(w.z_basic)
     flat = np.fromiter((i for w in ws if w is not None for i in w.z_basic), dtype=np.int64,
@@ -130,7 +130,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     M = np.ascontiguousarray(M)  # never a view the kernels could write through: they only read
     q = np.ascontiguousarray(q)
     workers = _workers(workers)
-    beta, boff = _bases(warm_start, B, np.full(B, n))
+    beta, boff = _bases(warm_start, B, [n] * B)
 
     bufs = np.empty((B, cold.buffer_length(n)))
     basics = np.empty((B, n), dtype=np.int64)
@@ -192,37 +192,54 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     if len(Ms) != len(qs):
         raise ValueError(f"M and q must hold the same number of problems, got {len(Ms)} and {len(qs)}")
     B = len(Ms)
-    probs = []
-    for b in range(B):
-        try:
-            Mb, qb, _ = _validate.lcp(Ms[b], qs[b])
-        except (TypeError, ValueError) as exc:
-            raise type(exc)(f"problem {b}: {exc}") from None
-        probs.append((Mb, qb))
-    sizes = np.array([qb.size for _, qb in probs], dtype=np.int64)
+    probs = [(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb) for b, (Mb, qb) in enumerate(zip(Ms, qs))]
+    sizes = [qb.shape[0] for _, qb in probs]
     beta, boff = _bases(warm_start, B, sizes)
-    qoff = np.concatenate([[0], np.cumsum(sizes)])
-    moff = np.concatenate([[0], np.cumsum(sizes * sizes)])
-    lengths = np.array([cold.buffer_length(int(n)) for n in sizes], dtype=np.int64)
-    buff = np.concatenate([[0], np.cumsum(lengths)])
+    qoff = np.zeros(B + 1, dtype=np.int64)
+    np.cumsum(sizes, out=qoff[1:])
+    moff = np.zeros(B + 1, dtype=np.int64)
+    np.cumsum(np.square(np.array(sizes, dtype=np.int64)), out=moff[1:])
+    buff = np.zeros(B + 1, dtype=np.int64)
+    np.cumsum([cold.buffer_length(n) for n in sizes], out=buff[1:])
     Mflat = np.concatenate([Mb.ravel() for Mb, _ in probs]) if B else np.zeros(0)
     qflat = np.concatenate([qb for _, qb in probs]) if B else np.zeros(0)
-    limits = np.array([opts.pivot_limit(int(n)) for n in sizes], dtype=np.int64)
+    limits = np.array([opts.pivot_limit(n) for n in sizes], dtype=np.int64)
     bufs = np.empty(int(buff[-1]))
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
     _run(cold.batch_ragged, (cold.METHODS[method], Mflat, moff, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
+    for b in np.flatnonzero(out_i[:, 0] == cold.NOT_FINITE):
+        _checked(int(b), *probs[b])  # raises, naming the problem and the entry
     ws = [None] * B if warm_start is None else list(warm_start)
     out = []
-    for b, (Mb, qb) in enumerate(probs):
-        code, pivots, k, recoveries, stage = (int(v) for v in out_i[b])
-        ok, residual = bool(out_f[b, 0]), float(out_f[b, 1])
-        buf, basic = bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]]
+    bo, qo = buff.tolist(), qoff.tolist()
+    for b, ((code, pivots, k, recoveries, stage), (ok, residual)) in enumerate(zip(out_i.tolist(), out_f.tolist())):
+        buf, basic = bufs[bo[b]:bo[b + 1]], basics[qo[b]:qo[b + 1]]
         if code == 0 and ok:
             out.append(LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries,
                                        ws[b] if stage == 0 else None))
         else:
-            out.append(_outcome(Mb, qb, opts, code, pivots, basic[:k], ok, residual, buf, recoveries))
+            out.append(_outcome(*probs[b], opts, code, pivots, basic[:k], bool(ok), residual, buf, recoveries))
     return out
+
+
+_F64 = np.dtype(np.float64)
+
+
+def _ready(M, q) -> bool:
+    """Whether (M, q) can go to the kernels as it is (float64, C-contiguous, square M and a
+    vector q of its size): the kernels check finiteness themselves."""
+    return (type(M) is np.ndarray and type(q) is np.ndarray and M.dtype is _F64
+            and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
+            and M.shape[0] == M.shape[1] == q.shape[0] and M.flags.c_contiguous)
+
+
+def _checked(b, M, q):
+    """Problem b validated (``_validate.lcp``), its errors naming the problem."""
+    try:
+        M, q, _ = _validate.lcp(M, q)
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"problem {b}: {exc}") from None
+    return M, q

@@ -84,6 +84,7 @@ def fields(n):
     return out
 
 
+@functools.lru_cache(maxsize=256)
 def buffer_length(n):
     """The length of the output buffer for size n."""
     return sum(length(n) for _, length in BUFFER)
