@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _validate
-from ._certify import check_lcp, is_lcp_ray
+from ._certify import check_lcp
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
 from ._status import Status
@@ -142,7 +142,8 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
 
     A solved point that failed the check is recomputed from the final basis (one dense
     solve on the caller's data) and downgraded to NUMERICAL_FAILURE if that fails too; a
-    ray is checked on the caller's data, and downgraded if it fails."""
+    ray was checked on the caller's data by the kernel (``ok``), and is downgraded if it
+    failed."""
     n = q.shape[0]
     z, z0, ray, w, cov, rs, cs = _views(buf, n)
     if code == cold.TRIVIAL:
@@ -166,7 +167,7 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
             status = Status.NUMERICAL_FAILURE
         return _result(z, w, residual, status, pivots, None, 0.0, cov, final_basis, *extra)
     z0 = float(z0)
-    if status == Status.RAY_TERMINATION and not is_lcp_ray(M, q, cov, z, z0, ray, opts.tol):
+    if status == Status.RAY_TERMINATION and not ok:  # the kernel's verdict on the ray
         status = Status.NUMERICAL_FAILURE
     return _result(z, w, residual, status, pivots, ray if status == Status.RAY_TERMINATION else None,
                    z0, cov, final_basis, *extra)

@@ -192,8 +192,10 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     Returns ``(code, pivots, k, ok, residual, recoveries)``: code is a status of the
     kernels, or NOT_FINITE (nothing else done) or TRIVIAL (z = 0, w = q); the first k
     entries of ``basic`` are the basic z's; ok and residual are the result of
-    ``certify.lcp_check``; recoveries counts the restarts (after a cycle or a failed
-    check, see the module docstring).
+    ``certify.lcp_check`` on the point -- except on RAY_TERMINATION, where ok is the
+    verdict of ``certify.lcp_ray_check`` on the ray (the point never passes there);
+    recoveries counts the restarts (after a cycle or a failed check, see the module
+    docstring).
     """
     n = q.shape[0]
     code = prologue(M, q, d, buf)
@@ -240,6 +242,8 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
                 buf[:] = buf2
                 z_basic[:] = z_basic2
                 code, ok, residual = code2, ok2, residual2
+    if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
+        ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)
     k = 0
     for i in range(n):
         if z_basic[i]:
