@@ -198,12 +198,16 @@ class LCPResult(Outcome):
         return res
 
     def __getattr__(self, name):
-        # Only reached for a field not yet read from the buffer (see _lazy).
+        # Only reached for a field not yet read from the buffer (see _lazy).  Safe when two
+        # threads read a new result at once: both fill the same views, and the one that
+        # comes second finds the fields already there.
         d = self.__dict__
-        if name.startswith("_") or "_buf" not in d:
+        buf = None if name.startswith("_") else d.get("_buf")
+        if buf is None:
+            if name in d:
+                return d[name]
             raise AttributeError(name)
-        buf = d.pop("_buf")
-        basic, k = d.pop("_basic"), d.pop("_k")
+        basic, k = d["_basic"], d["_k"]
         buf.setflags(write=False)
         n = basic.shape[0]
         # kernels.cold.fields: [z | z0 | ray | w | covering | row_scale | col_scale]
@@ -211,6 +215,8 @@ class LCPResult(Outcome):
                  row_scale=buf[4 * n + 2 : 5 * n + 2], col_scale=buf[5 * n + 2 :])
         if "warm_start" not in d:
             d["warm_start"] = WarmStart._trusted(n, tuple(basic[:k].tolist()))
+        for key in ("_buf", "_basic", "_k"):
+            d.pop(key, None)
         return d[name]
 
     def __repr__(self) -> str:
