@@ -46,7 +46,7 @@ import math
 import numpy as np
 
 from . import kernel, pivoting
-from .linalg import pow2_scale
+from .linalg import axpy, pow2_scale
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 PERTURBATION = 1e-7  # relative perturbation of the right-hand side in the last restart
@@ -74,9 +74,11 @@ def positive_payoffs(A):
 
 
 @kernel
-def exchange(T, rhs, r, s, col, prow):
+def exchange(T, rhs, magb, r, s, col, prow):
     """Pivot: the non-basic variable of column s (its current column in ``col``) replaces the
-    basic variable of row r.  ``prow``: scratch of length T.shape[1]."""
+    basic variable of row r.  ``magb`` is a running upper bound on the size |B^-1| |q| of the
+    terms behind each value (see :func:`leaving_row`).  ``prow``: scratch of length
+    T.shape[1]."""
     n, k = T.shape
     inv = 1.0 / col[r]
     for j in range(k):
@@ -86,27 +88,70 @@ def exchange(T, rhs, r, s, col, prow):
         T[r, j] = prow[j]
     rr = -rhs[r] * inv
     rhs[r] = rr
+    magb[r] *= abs(inv)
+    mr = magb[r]
     for i in range(n):
         f = col[i]
         if i != r and f != 0.0:
             rhs[i] += f * rr
-            for j in range(k):
-                T[i, j] += f * prow[j]
+            magb[i] += abs(f) * mr
+            axpy(T[i], f, prow)  # a row view: unit stride, so the loop vectorizes
             T[i, s] = f * inv
 
 
 @kernel
+def binv(T, pos, is_basic, lab, i):
+    """Entry i of the basis inverse's column for the label ``lab`` basic at the start: the
+    unit vector of its row while basic, minus its tableau column when not."""
+    if is_basic[lab]:
+        return 1.0 if pos[lab] == i else 0.0
+    return -T[i, pos[lab]]
+
+
+@kernel
+def row_size(T, i, basis, wlab, wcol):
+    """The size |B^-1| |q0| of the terms behind row i's value: ``wlab[lab]`` is |q0| of the
+    row where label ``lab`` was basic at the start (0 for the other labels) and ``wcol`` the
+    same per non-basic column, so the row of B^-1 is read off the tableau row in one
+    contiguous pass."""
+    size = wlab[basis[i]]
+    Ti = T[i]
+    for c in range(Ti.shape[0]):
+        size += abs(Ti[c]) * wcol[c]
+    return size
+
+
+@kernel
+def column_weights(nonbasic, wlab, wcol):
+    """``wcol[c] = wlab[nonbasic[c]]`` (see :func:`row_size`)."""
+    for c in range(nonbasic.shape[0]):
+        wcol[c] = wlab[nonbasic[c]]
+
+
+@kernel
 def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, free, art, z0_max,
-                pivot_tol, tie_tol, cand, keys, scratch):
+                pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags):
     """The row that blocks the entering column (current entries ``col``) by the shared rule:
     ``pivoting.min_ratio`` (the artificial variable's row ``art`` first on a tie), then the
     lexicographic keys of the basis inverse relative to ``start_basis`` (the labels basic at
     the start, row by row).  Rows whose basic variable is ``free`` never block.  -1 when
-    nothing blocks."""
+    nothing blocks.
+
+    A value counts as zero when it is rounding of an exact zero: below
+    ``pivoting.VALUE_ROUNDING`` times the size |B^-1| |q0| of its terms (:func:`row_size`).
+    That size is computed only for the blocking rows whose value is below that fraction of
+    the running bound ``magb`` (which it then replaces); the others pass their value as
+    their size."""
     n = T.shape[0]
     for i in range(n):
         scratch[i] = 0.0 if free[basis[i]] else col[i]
-    nc = pivoting.min_ratio(rhs, rhs, scratch, n, pivot_tol, tie_tol, cand, art, z0_max)
+        v = rhs[i]
+        mags[i] = v
+        if scratch[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
+            size = row_size(T, i, basis, wlab, wcol)
+            mags[i] = size
+            magb[i] = size  # the bound of this row is exact again
+    nc = pivoting.min_ratio(rhs, mags, scratch, n, pivot_tol, tie_tol, cand, art, z0_max)
     if nc <= 1:
         return cand[0] if nc == 1 else -1
     for c in range(nc):
@@ -118,11 +163,7 @@ def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, free, art, z0_ma
         lab = start_basis[j]
         for c in range(nc):
             i = cand[c]
-            if is_basic[lab]:
-                b = 1.0 if pos[lab] == i else 0.0
-            else:
-                b = -T[i, pos[lab]]
-            keys[c] = pivoting.lex_key(b, scratch[i], pivot_tol)
+            keys[c] = pivoting.lex_key(binv(T, pos, is_basic, lab, i), scratch[i], pivot_tol)
         nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
         if nc == 1:
             return cand[0]
@@ -130,7 +171,7 @@ def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, free, art, z0_ma
 
 
 @kernel
-def place(T, rhs, basis, nonbasic, pos, is_basic, target, col, prow):
+def place(T, rhs, magb, basis, nonbasic, pos, is_basic, target, col, prow):
     """Pivot until the labels ``target`` (one per row, any order) are the basic ones: each
     missing label enters in the row, among those whose basic label is not wanted, with the
     largest entry.  Returns False if the target basis is singular."""
@@ -152,16 +193,16 @@ def place(T, rhs, basis, nonbasic, pos, is_basic, target, col, prow):
             return False
         for i in range(n):
             col[i] = T[i, s]
-        swap(T, rhs, basis, nonbasic, pos, is_basic, best, s, col, prow)
+        swap(T, rhs, magb, basis, nonbasic, pos, is_basic, best, s, col, prow)
     return True
 
 
 @kernel
-def swap(T, rhs, basis, nonbasic, pos, is_basic, r, s, col, prow):
+def swap(T, rhs, magb, basis, nonbasic, pos, is_basic, r, s, col, prow):
     """:func:`exchange` and the bookkeeping of the labels; returns the label that left."""
     leaving = basis[r]
     entering = nonbasic[s]
-    exchange(T, rhs, r, s, col, prow)
+    exchange(T, rhs, magb, r, s, col, prow)
     basis[r] = entering
     nonbasic[s] = leaving
     pos[entering] = r
@@ -302,6 +343,17 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
             rP[j] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, m + j)
         for i in range(m):
             rQ[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
+    mbP = np.abs(rP)  # bounds on the size of each value (leaving_row)
+    mbQ = np.abs(rQ)
+    mags = np.empty(max(m, n))
+    wlabP = np.zeros(L)
+    wlabQ = np.zeros(L)
+    for j in range(n):
+        wlabP[m + j] = abs(rP[j])
+    for i in range(m):
+        wlabQ[i] = abs(rQ[i])
+    wcolP = np.empty(m)
+    wcolQ = np.empty(n)
     big = max(m, n)
     col = np.empty(big)
     prow = np.empty(big)
@@ -311,10 +363,12 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
     free = np.zeros(L, dtype=np.bool_)
     status = MAX_PIVOTS
     pivots = 0
-    if not (place(TP, rP, bP, nP, posP, inP, startP, col, prow)
-            and place(TQ, rQ, bQ, nQ, posQ, inQ, startQ, col, prow)):
+    if not (place(TP, rP, mbP, bP, nP, posP, inP, startP, col, prow)
+            and place(TQ, rQ, mbQ, bQ, nQ, posQ, inQ, startQ, col, prow)):
         status = NUMERICAL_FAILURE
         max_pivots = 0
+    column_weights(nP, wlabP, wcolP)
+    column_weights(nQ, wlabQ, wcolQ)
     hkeys = pivoting.label_keys(2 * L)
     h = pivoting.fingerprint(hkeys, bP, n) ^ pivoting.fingerprint(hkeys, bQ + L, m)
     detector = pivoting.new_detector()
@@ -322,19 +376,22 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
     side = 0 if not inP[k] else 1  # the tableau where label k is present (non-basic)
     while pivots < max_pivots:
         if side == 0:
-            T, rhs, basis, nonbasic, pos, inb, start = TP, rP, bP, nP, posP, inP, slackP
+            T, rhs, magb, basis, nonbasic, pos, inb = TP, rP, mbP, bP, nP, posP, inP
+            start, wlab, wcol = slackP, wlabP, wcolP
         else:
-            T, rhs, basis, nonbasic, pos, inb, start = TQ, rQ, bQ, nQ, posQ, inQ, slackQ
+            T, rhs, magb, basis, nonbasic, pos, inb = TQ, rQ, mbQ, bQ, nQ, posQ, inQ
+            start, wlab, wcol = slackQ, wlabQ, wcolQ
         s = pos[entering]
         rows = T.shape[0]
         for i in range(rows):
             col[i] = T[i, s]
         r = leaving_row(T, rhs, col[:rows], basis, pos, inb, start, free, -1, 0.0,
-                        pivot_tol, tie_tol, cand, keys_, scratch)
+                        pivot_tol, tie_tol, cand, keys_, scratch, wlab, wcol, magb, mags)
         if r < 0 or not abs(col[r]) < np.inf:
             status = NUMERICAL_FAILURE  # P and Q are bounded: a ray is rounding
             break
-        leaving = swap(T, rhs, basis, nonbasic, pos, inb, r, s, col[:rows], prow)
+        leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col[:rows], prow)
+        wcol[s] = wlab[leaving]
         pivots += 1
         shift = 0 if side == 0 else L
         h ^= hkeys[leaving + shift] ^ hkeys[entering + shift]
@@ -473,6 +530,7 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
             jstar = j
     col = np.empty(N)
     prow = np.empty(L + 3)
+    magb = np.abs(rhs)
     # Setup: u for a_i*, v for b_j*, z0 for the first equation's slack, y_j* (at 0) for the
     # second's; the path then starts with x_i* entering.
     target = np.array([U, V, Z0, m + jstar])
@@ -481,8 +539,16 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
         s = pos[target[t]]
         for i in range(N):
             col[i] = T[i, s]
-        swap(T, rhs, basis, nonbasic, pos, inb, rows[t], s, col, prow)
+        swap(T, rhs, magb, basis, nonbasic, pos, inb, rows[t], s, col, prow)
     start = basis.copy()
+    # The system is relative to this basis from here on.
+    magb[:] = np.abs(rhs)
+    mags = np.empty(N)
+    wlab = np.zeros(labels)
+    for r in range(N):
+        wlab[basis[r]] = abs(rhs[r])
+    wcol = np.empty(L + 3)
+    column_weights(nonbasic, wlab, wcol)
     free = np.zeros(labels, dtype=np.bool_)
     free[U] = True
     free[V] = True
@@ -502,11 +568,12 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
             col[i] = T[i, s]
         art = pos[Z0] if inb[Z0] else -1
         r = leaving_row(T, rhs, col, basis, pos, inb, start, free, art, z0_max, pivot_tol,
-                        tie_tol, cand, keys, scratch)
+                        tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
         if r < 0 or not abs(col[r]) < np.inf:
             status = RAY_TERMINATION if r < 0 else NUMERICAL_FAILURE
             break
-        leaving = swap(T, rhs, basis, nonbasic, pos, inb, r, s, col, prow)
+        leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
+        wcol[s] = wlab[leaving]
         pivots += 1
         h ^= hkeys[leaving] ^ hkeys[entering]
         if leaving == Z0:
