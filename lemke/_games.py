@@ -15,19 +15,22 @@ The kernels are in :mod:`lemke.kernels.games`, the exact arithmetic in
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 
 from . import _games_exact as ex
-from ._options import Options, as_options
+from ._options import _DEFAULT, Options, as_options
 from ._status import Status
 from .kernels import games as kg
 from .kernels.pivoting import SOLVED
 
 METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
+_F64 = np.dtype(np.float64)
+_STATUSES = {int(s) for s in Status}
 
 
 @dataclass(frozen=True)
@@ -206,65 +209,94 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     Theory vol. 3 (2002).  A. H. van den Elzen, A. J. J. Talman, "A procedure for finding Nash
     equilibria in bi-matrix games", ZOR 35 (1991).
     """
-    A, B = _as_payoffs(A, B)
+    if not (type(A) is np.ndarray and type(B) is np.ndarray and A.dtype is _F64
+            and B.dtype is _F64 and A.ndim == 2 and A.shape == B.shape and A.size
+            and A.flags.c_contiguous and B.flags.c_contiguous) or method != "lemke-howson":
+        A, B = _as_payoffs(A, B)  # the common case skips this: the kernel checks finiteness
     m, n = A.shape
     k = _label(init_label, m, n)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
-    opts = as_options(options)
-    cap = _max_pivots(opts)
-    x = np.empty(m)
-    y = np.empty(n)
-    out = np.empty(3)
+    opts = _DEFAULT if options is None else as_options(options)
     if method == "tracing":
         if warm_start is not None:
             raise ValueError("warm_start is for method='lemke-howson'")
-        p, q = (None, None) if prior is None else prior
-        p, q = _prior(p, m, "row player"), _prior(q, n, "column player")
-        labels = np.empty(m + n + 2, dtype=np.int64)
-        code, pivots = kg.trace(A, B, p, q, cap, opts.pivot_tol, opts.tie_tol, opts.tol, x, y,
-                                labels, out)
-        basis = _trace_basis(labels, m, n)
-        restarts = 0
-    else:
-        xs, ys = _start(warm_start, m, n)
-        bP = np.empty(n, dtype=np.int64)
-        bQ = np.empty(m, dtype=np.int64)
-        code, pivots, restarts = kg.lemke_howson(A, B, k, xs, ys, cap, opts.pivot_tol,
-                                                 opts.tie_tol, opts.tol, x, y, bP, bQ, out)
-        basis = GameBasis(m, n, tuple(sorted(bP.tolist())), tuple(sorted(bQ.tolist())))
-    if code == kg.UNCHECKED or (code != SOLVED and basis is not None and not exact):
+        return _trace(A, B, prior, opts, exact)
+    fbuf = np.empty(m + n + 3)
+    ibuf = np.empty(m + n, dtype=np.int64)
+    code, pivots, restarts = kg.lemke_howson(A, B, k, _start(warm_start, m, n), _params(opts),
+                                             fbuf, ibuf)
+    if code == kg.NOT_FINITE:
+        _as_payoffs(A, B)  # raises, naming the entry
+    basis = GameBasis(m, n, tuple(sorted(ibuf[:n].tolist())), tuple(sorted(ibuf[n:].tolist())))
+    return _finish(A, B, k, basis, code, pivots, restarts, "lemke-howson", fbuf, opts, exact,
+                   warm_start is None)
+
+
+def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, cold):
+    """The result from a kernel's output: re-solve a basis whose point fails the check, the
+    exact certificate when asked, the exact method as the last resort of a cold float solve."""
+    m, n = A.shape
+    if code != SOLVED and basis is not None and not exact:
         # The path ended with every label present (or broke down) at a point that fails the
         # check: re-solve the final basis' support system afresh (rounding of a long path).
         fixed = _resolve_float(A, B, basis, opts.tol)
         if fixed is not None:
-            x, y, out = fixed
+            fbuf[:m], fbuf[m : m + n], fbuf[m + n :] = fixed
             code = SOLVED
             restarts += 1
     if exact:
-        return _certify(A, B, k, basis, code, pivots, restarts, method, cap)
-    status = Status(code) if code in (0, 1, 2, 3, 6) else Status.NUMERICAL_FAILURE
-    if status != Status.SOLVED and method == "lemke-howson" and warm_start is None:
+        return _certify(A, B, k, basis, code, pivots, restarts, method, _max_pivots(opts))
+    status = Status(code) if code in _STATUSES else Status.NUMERICAL_FAILURE
+    if status != Status.SOLVED and method == "lemke-howson" and cold:
         # Last resort, never needed in the tests: the exact method cannot fail.
-        res = _certify(A, B, k, None, code, pivots, restarts, method, cap)
+        res = _certify(A, B, k, None, code, pivots, restarts, method, _max_pivots(opts))
         if res.success:
             return _as_float(res)
-    x.flags.writeable = False
-    y.flags.writeable = False
-    return BimatrixResult(x, y, (float(out[1]), float(out[2])), status, int(pivots),
-                          float(out[0]), basis, k, method, False, int(restarts))
+    fbuf.flags.writeable = False
+    return BimatrixResult(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
+                          status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
+                          int(restarts))
+
+
+def _trace(A, B, prior, opts, exact):
+    m, n = A.shape
+    p, q = (None, None) if prior is None else prior
+    p, q = _prior(p, m, "row player"), _prior(q, n, "column player")
+    labels = np.empty(m + n + 2, dtype=np.int64)
+    fbuf = np.empty(m + n + 3)
+    code, pivots = kg.trace(A, B, p, q, _max_pivots(opts), opts.pivot_tol, opts.tie_tol,
+                            opts.tol, fbuf[:m], fbuf[m : m + n], labels, fbuf[m + n :])
+    return _finish(A, B, 0, _trace_basis(labels, m, n), code, pivots, 0, "tracing", fbuf,
+                   opts, exact, False)
+
+
+@functools.lru_cache(maxsize=64)
+def _params(opts: Options) -> np.ndarray:
+    """The kernel's packed parameters ``(max_pivots, pivot_tol, tie_tol, tol)``."""
+    out = np.array([float(_max_pivots(opts)), opts.pivot_tol, opts.tie_tol, opts.tol])
+    out.flags.writeable = False
+    return out
+
+
+@functools.lru_cache(maxsize=64)
+def _slack_start(m, n) -> np.ndarray:
+    out = np.concatenate([np.arange(m, m + n), np.arange(m)])
+    out.flags.writeable = False
+    return out
 
 
 def _start(warm_start, m, n):
+    """The start labels (those of P, then those of Q) for the kernel."""
     if warm_start is None:
-        return np.arange(m, m + n), np.arange(m)
+        return _slack_start(m, n)
     if not isinstance(warm_start, GameBasis) or (warm_start.m, warm_start.n) != (m, n):
         raise ValueError(f"warm_start must be a GameBasis of an {m} x {n} game")
-    xs, ys = np.array(warm_start.x_basic, dtype=np.int64), np.array(warm_start.y_basic, dtype=np.int64)
-    if (xs.size != n or ys.size != m or len(set(xs.tolist())) != n or len(set(ys.tolist())) != m
-            or xs.min() < 0 or ys.min() < 0 or xs.max() >= m + n or ys.max() >= m + n):
+    xs, ys = list(warm_start.x_basic), list(warm_start.y_basic)
+    if (len(xs) != n or len(ys) != m or len(set(xs)) != n or len(set(ys)) != m
+            or min(xs + ys) < 0 or max(xs + ys) >= m + n):
         raise ValueError("warm_start holds labels out of range or repeated")
-    return xs, ys
+    return np.array(xs + ys, dtype=np.int64)
 
 
 def _trace_basis(labels, m, n):

@@ -50,6 +50,7 @@ from .linalg import axpy, pow2_scale
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 PERTURBATION = 1e-7  # relative perturbation of the right-hand side in the last restart
+NOT_FINITE = -1  # a payoff is NaN or infinite: the front says which
 UNCHECKED = 7  # a path ended with every label present, at a point that fails the check
 ROUNDING_SLACK = 64.0  # regret allowance for rounding, in units of eps * (n + m) * max|payoff|
 
@@ -417,14 +418,40 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
 
 
 @kernel
-def lemke_howson(A, B, k, startP, startQ, max_pivots, pivot_tol, tie_tol, tol, x, y,
-                 basisP, basisQ, out):
-    """Lemke-Howson dropping label k from the basis (startP, startQ), checked on the
-    caller's (A, B).  A path that cycles or breaks down is restarted with exact ties, then
-    with a perturbed right-hand side.  Returns ``(status, pivots, restarts)``: ``SOLVED``
-    (checked), ``UNCHECKED`` (the path ended, every label present, but the point fails the
-    check: the front re-solves that basis), or the status of the last run.  x, y get the
-    normalized strategies, ``out`` (regret, row payoff, column payoff)."""
+def finite(A):
+    """Whether every entry of A is finite."""
+    for v in A.ravel():
+        if not abs(v) < np.inf:
+            return False
+    return True
+
+
+@kernel
+def lemke_howson(A, B, k, start, params, fbuf, ibuf):
+    """Lemke-Howson dropping label k, checked on the caller's (A, B); one kernel call per
+    solve, its arguments packed (numba's dispatch costs per argument):
+
+    - ``start`` (n + m): the basic labels to start from, those of P then those of Q (the
+      slack labels ``m..m+n-1, 0..m-1``: the artificial equilibrium);
+    - ``params``: ``(max_pivots, pivot_tol, tie_tol, tol)``;
+    - ``fbuf`` (m + n + 3) receives ``[x | y | regret, row payoff, column payoff]``,
+      ``ibuf`` (n + m) the final basic labels of P then Q.
+
+    A path that cycles or breaks down is restarted with exact ties, then with a perturbed
+    right-hand side.  Returns ``(status, pivots, restarts)``: ``SOLVED`` (checked),
+    ``UNCHECKED`` (the path ended, every label present, but the point fails the check: the
+    front re-solves that basis), ``NOT_FINITE`` (nothing done), or the status of the last
+    run."""
+    m, n = A.shape
+    if not (finite(A) and finite(B)):
+        return NOT_FINITE, 0, 0
+    max_pivots = int(params[0])
+    pivot_tol, tie_tol, tol = params[1], params[2], params[3]
+    x = fbuf[:m]
+    y = fbuf[m : m + n]
+    out = fbuf[m + n :]
+    startP, startQ = start[:n], start[n:]
+    basisP, basisQ = ibuf[:n], ibuf[n:]
     Ap = positive_payoffs(A)
     Bp = positive_payoffs(B)
     pivots = 0
