@@ -46,7 +46,7 @@ import math
 import numpy as np
 
 from . import kernel, pivoting
-from .linalg import axpy, pow2_scale
+from .linalg import pow2_scale
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 PERTURBATION = 1e-7  # relative perturbation of the right-hand side in the last restart
@@ -96,7 +96,8 @@ def exchange(T, rhs, magb, r, s, col, prow):
         if i != r and f != 0.0:
             rhs[i] += f * rr
             magb[i] += abs(f) * mr
-            axpy(T[i], f, prow)  # a row view: unit stride, so the loop vectorizes
+            for j in range(k):  # indexed directly: a row view per row costs refcounting
+                T[i, j] += f * prow[j]
             T[i, s] = f * inv
 
 
@@ -116,9 +117,8 @@ def row_size(T, i, basis, wlab, wcol):
     same per non-basic column, so the row of B^-1 is read off the tableau row in one
     contiguous pass."""
     size = wlab[basis[i]]
-    Ti = T[i]
-    for c in range(Ti.shape[0]):
-        size += abs(Ti[c]) * wcol[c]
+    for c in range(T.shape[1]):
+        size += abs(T[i, c]) * wcol[c]
     return size
 
 
@@ -130,12 +130,13 @@ def column_weights(nonbasic, wlab, wcol):
 
 
 @kernel
-def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, free, art, z0_max,
+def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, has_free, free, art, z0_max,
                 pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags):
     """The row that blocks the entering column (current entries ``col``) by the shared rule:
     ``pivoting.min_ratio`` (the artificial variable's row ``art`` first on a tie), then the
     lexicographic keys of the basis inverse relative to ``start_basis`` (the labels basic at
-    the start, row by row).  Rows whose basic variable is ``free`` never block.  -1 when
+    the start, row by row).  With ``has_free``, rows whose basic variable is ``free`` never
+    block.  -1 when
     nothing blocks.
 
     A value counts as zero when it is rounding of an exact zero: below
@@ -144,31 +145,40 @@ def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, free, art, z0_ma
     the running bound ``magb`` (which it then replaces); the others pass their value as
     their size."""
     n = T.shape[0]
+    c = col
+    if has_free:  # free rows never block: their entries count as 0
+        for i in range(n):
+            scratch[i] = 0.0 if free[basis[i]] else col[i]
+        c = scratch
+    exact_sizes = False  # mags holds the sizes (else the values stand for their sizes)
     for i in range(n):
-        scratch[i] = 0.0 if free[basis[i]] else col[i]
         v = rhs[i]
-        mags[i] = v
-        if scratch[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
+        if c[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
+            if not exact_sizes:
+                exact_sizes = True
+                for j in range(n):
+                    mags[j] = rhs[j]
             size = row_size(T, i, basis, wlab, wcol)
             mags[i] = size
             magb[i] = size  # the bound of this row is exact again
-    nc = pivoting.min_ratio(rhs, mags, scratch, n, pivot_tol, tie_tol, cand, art, z0_max)
+    nc = pivoting.min_ratio(rhs, mags if exact_sizes else rhs, c, n, pivot_tol, tie_tol, cand,
+                            art, z0_max)
     if nc <= 1:
         return cand[0] if nc == 1 else -1
-    for c in range(nc):
-        if cand[c] == art:
+    for t in range(nc):
+        if cand[t] == art:
             return art
     # Column j of the basis inverse is the current column of the variable basic in row j at
     # the start: the unit vector of its row while basic, minus its tableau column when not.
     for j in range(n):
         lab = start_basis[j]
-        for c in range(nc):
-            i = cand[c]
-            keys[c] = pivoting.lex_key(binv(T, pos, is_basic, lab, i), scratch[i], pivot_tol)
+        for t in range(nc):
+            i = cand[t]
+            keys[t] = pivoting.lex_key(binv(T, pos, is_basic, lab, i), c[i], pivot_tol)
         nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
         if nc == 1:
             return cand[0]
-    return pivoting.largest_pivot(cand, scratch, nc) if nc > 0 else -1
+    return pivoting.largest_pivot(cand, c, nc) if nc > 0 else -1
 
 
 @kernel
@@ -290,6 +300,26 @@ def normalize(v):
 # --- Lemke-Howson -----------------------------------------------------------------------------
 
 @kernel
+def step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering, free,
+         pivot_tol, tie_tol, col, prow, cand, keys, scratch, mags):
+    """One pivot of a Lemke-Howson path in one tableau: the variable with label
+    ``entering`` enters; returns the label that leaves, or -1 when nothing blocks (or the
+    pivot is not finite)."""
+    s = pos[entering]
+    rows = T.shape[0]
+    for i in range(rows):
+        col[i] = T[i, s]
+    r = leaving_row(T, rhs, col, basis, pos, inb, start, False, free, -1, 0.0, pivot_tol,
+                    tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
+    if r < 0 or not abs(col[r]) < np.inf:
+        return -1
+    magb[r] = row_size(T, r, basis, wlab, wcol)  # a loose bound here would spread to all rows
+    leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
+    wcol[s] = wlab[leaving]
+    return leaving
+
+
+@kernel
 def lh_setup(Ap, Bp):
     """The two tableaux at the artificial equilibrium: P (n x m, rows s_j, columns x_i) and
     Q (m x n, rows r_i, columns y_j), with their label bookkeeping."""
@@ -376,23 +406,17 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
     entering = k
     side = 0 if not inP[k] else 1  # the tableau where label k is present (non-basic)
     while pivots < max_pivots:
+        # Two calls rather than one call on arrays chosen by side: numba reference-counts
+        # every array variable that is reassigned, which costs more than a small pivot.
         if side == 0:
-            T, rhs, magb, basis, nonbasic, pos, inb = TP, rP, mbP, bP, nP, posP, inP
-            start, wlab, wcol = slackP, wlabP, wcolP
+            leaving = step(TP, rP, mbP, bP, nP, posP, inP, slackP, wlabP, wcolP, entering,
+                           free, pivot_tol, tie_tol, col, prow, cand, keys_, scratch, mags)
         else:
-            T, rhs, magb, basis, nonbasic, pos, inb = TQ, rQ, mbQ, bQ, nQ, posQ, inQ
-            start, wlab, wcol = slackQ, wlabQ, wcolQ
-        s = pos[entering]
-        rows = T.shape[0]
-        for i in range(rows):
-            col[i] = T[i, s]
-        r = leaving_row(T, rhs, col[:rows], basis, pos, inb, start, free, -1, 0.0,
-                        pivot_tol, tie_tol, cand, keys_, scratch, wlab, wcol, magb, mags)
-        if r < 0 or not abs(col[r]) < np.inf:
+            leaving = step(TQ, rQ, mbQ, bQ, nQ, posQ, inQ, slackQ, wlabQ, wcolQ, entering,
+                           free, pivot_tol, tie_tol, col, prow, cand, keys_, scratch, mags)
+        if leaving < 0:
             status = NUMERICAL_FAILURE  # P and Q are bounded: a ray is rounding
             break
-        leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col[:rows], prow)
-        wcol[s] = wlab[leaving]
         pivots += 1
         shift = 0 if side == 0 else L
         h ^= hkeys[leaving + shift] ^ hkeys[entering + shift]
@@ -594,11 +618,12 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
         for i in range(N):
             col[i] = T[i, s]
         art = pos[Z0] if inb[Z0] else -1
-        r = leaving_row(T, rhs, col, basis, pos, inb, start, free, art, z0_max, pivot_tol,
-                        tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
+        r = leaving_row(T, rhs, col, basis, pos, inb, start, True, free, art, z0_max,
+                        pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
         if r < 0 or not abs(col[r]) < np.inf:
             status = RAY_TERMINATION if r < 0 else NUMERICAL_FAILURE
             break
+        magb[r] = row_size(T, r, basis, wlab, wcol)  # see step()
         leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
         wcol[s] = wlab[leaving]
         pivots += 1
