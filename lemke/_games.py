@@ -15,6 +15,7 @@ The kernels are in :mod:`lemke.kernels.games`, the exact arithmetic in
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 from fractions import Fraction
@@ -30,7 +31,7 @@ from .kernels.pivoting import SOLVED
 METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
 _F64 = np.dtype(np.float64)
-_STATUSES = {int(s) for s in Status}
+_STATUSES = {int(s): s for s in Status}
 
 
 @dataclass(frozen=True)
@@ -45,6 +46,18 @@ class GameBasis:
     n: int
     x_basic: tuple[int, ...]
     y_basic: tuple[int, ...]
+
+    @classmethod
+    def _trusted(cls, m: int, n: int, labels: np.ndarray) -> "GameBasis":
+        """From a kernel's final labels (those of P, then those of Q), skipping the dataclass
+        ``__init__`` (on the hot path of small games)."""
+        b = object.__new__(cls)
+        f = b.__dict__
+        f["m"] = m
+        f["n"] = n
+        f["x_basic"] = tuple(sorted(labels[:n].tolist()))
+        f["y_basic"] = tuple(sorted(labels[n:].tolist()))
+        return b
 
 
 @dataclass(frozen=True)
@@ -95,6 +108,14 @@ class BimatrixResult:
     def success(self) -> bool:
         return self.status == Status.SOLVED
 
+    @classmethod
+    def _make(cls, *values) -> "BimatrixResult":
+        """Build from the solver's own values in field order, skipping the frozen dataclass'
+        ``__init__`` (it sets every field through ``object.__setattr__``)."""
+        res = object.__new__(cls)
+        res.__dict__.update(zip(_RESULT_FIELDS, values))
+        return res
+
     @property
     def message(self) -> str:
         return self.status.message
@@ -102,6 +123,9 @@ class BimatrixResult:
     def __repr__(self) -> str:
         return (f"BimatrixResult(status={self.status.name}, method={self.method!r}, "
                 f"pivots={self.pivots}, regret={float(self.regret):.3g}, exact={self.exact})")
+
+
+_RESULT_FIELDS = tuple(f.name for f in dataclasses.fields(BimatrixResult))
 
 
 def _as_payoffs(A, B):
@@ -228,7 +252,7 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
                                              fbuf, ibuf)
     if code == kg.NOT_FINITE:
         _as_payoffs(A, B)  # raises, naming the entry
-    basis = GameBasis(m, n, tuple(sorted(ibuf[:n].tolist())), tuple(sorted(ibuf[n:].tolist())))
+    basis = GameBasis._trusted(m, n, ibuf)
     return _finish(A, B, k, basis, code, pivots, restarts, "lemke-howson", fbuf, opts, exact,
                    warm_start is None)
 
@@ -247,16 +271,16 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
             restarts += 1
     if exact:
         return _certify(A, B, k, basis, code, pivots, restarts, method, _max_pivots(opts))
-    status = Status(code) if code in _STATUSES else Status.NUMERICAL_FAILURE
+    status = _STATUSES.get(code, Status.NUMERICAL_FAILURE)
     if status != Status.SOLVED and method == "lemke-howson" and cold:
         # Last resort, never needed in the tests: the exact method cannot fail.
         res = _certify(A, B, k, None, code, pivots, restarts, method, _max_pivots(opts))
         if res.success:
             return _as_float(res)
     fbuf.flags.writeable = False
-    return BimatrixResult(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
-                          status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
-                          int(restarts))
+    return BimatrixResult._make(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
+                                status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
+                                int(restarts))
 
 
 def _trace(A, B, prior, opts, exact):
