@@ -381,23 +381,19 @@ def _certify(A, B, k, basis, code, pivots, restarts, method, cap):
     """The exact answer: the support system of ``basis`` solved and checked in rational
     arithmetic; if that is not an equilibrium, exact Lemke-Howson dropping label k."""
     m, n = A.shape
-    Aint, ea = ex.dyadic(A)
-    Bint, eb = ex.dyadic(B)
     found = None
     if basis is not None:
         S, J, T, I = _supports(basis)
         if len(S) == len(J) and len(T) == len(I) and S and T:
-            xs = ex.support_strategy(Bint, S, J)
-            ys = ex.support_strategy(Aint.T, T, I)
-            if xs is not None and ys is not None:
-                found = (S, *xs), (T, *ys)
-                if min(found[0][1]) < 0 or min(found[1][1]) < 0:
-                    found = None
+            found = ex.certify_support(A, B, S, J, T, I)
     if found is not None:
-        ra, rb, pa, pb = ex.regret(Aint, Bint, ea, eb, *found)
+        xs, ys, ra, rb, pa, pb = found
         if ra != 0 or rb != 0:
             found = None
     if found is None:
+        # Exact Lemke-Howson from the artificial equilibrium (see solve_bimatrix).
+        Aint, ea = ex.dyadic(A)
+        Bint, eb = ex.dyadic(B)
         run = ex.lemke_howson(Aint, Bint, k, cap - pivots)
         if run is None:
             return BimatrixResult(tuple(Fraction(0) for _ in range(m)), tuple(Fraction(0) for _ in range(n)),
@@ -405,10 +401,9 @@ def _certify(A, B, k, basis, code, pivots, restarts, method, cap):
                                   None, k, method, True, restarts)
         xs, ys, p = run
         pivots += p
-        found = xs, ys
         basis = None
-        ra, rb, pa, pb = ex.regret(Aint, Bint, ea, eb, *found)
-    (S, xn, dx), (T, yn, dy) = found
+        ra, rb, pa, pb = ex.regret(Aint[:, ys[0]], Bint[xs[0], :], ea, eb, xs, ys)
+    (S, xn, dx), (T, yn, dy) = xs, ys
     ok = ra == 0 and rb == 0
     return BimatrixResult(ex.strategy(m, S, xn, dx), ex.strategy(n, T, yn, dy), (pa, pb),
                           Status.SOLVED if ok else Status.NUMERICAL_FAILURE, int(pivots),

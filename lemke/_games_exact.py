@@ -29,8 +29,14 @@ def dyadic(A: np.ndarray) -> tuple[np.ndarray, int]:
 
 
 def solve_integer(M: np.ndarray, b: np.ndarray):
-    """Solve ``M x = b`` (object arrays of ints, M square) by fraction-free Gauss-Jordan;
-    returns ``(numerators, denominator)`` with denominator > 0, or None if M is singular."""
+    """Solve ``M x = b`` (object arrays of ints, M square) by Bareiss' fraction-free
+    elimination and back substitution; returns ``(numerators, denominator)`` with
+    denominator > 0, or None if M is singular.
+
+    Forward: after step c every entry below row c is a minor of M (exact divisions by the
+    previous pivot), the last pivot is det(M).  Backward: X = det(M) x is an integer vector
+    (Cramer's rule), and row i of the triangle gives ``U_ii X_i = det b'_i - sum_j>i U_ij X_j``
+    with an exact division."""
     k = M.shape[0]
     D = np.concatenate([M, b.reshape(-1, 1)], axis=1).astype(object)
     prev = 1
@@ -42,14 +48,21 @@ def solve_integer(M: np.ndarray, b: np.ndarray):
         if r != c:
             D[[c, r]] = D[[r, c]]
         p = D[c, c]
-        row = D[c].copy()
-        D = (D * p - np.outer(D[:, c], row)) // prev
-        D[c] = row
+        if c + 1 < k:
+            below = D[c + 1 :, c:]
+            D[c + 1 :, c:] = (below * p - np.outer(below[:, 0], D[c, c:])) // prev
         prev = p
-    num = D[:, k]
-    if prev < 0:
-        num, prev = -num, -prev
-    return num, prev
+    det = prev
+    X = [0] * k
+    for i in range(k - 1, -1, -1):
+        t = det * D[i, k]
+        for j in range(i + 1, k):
+            t -= D[i, j] * X[j]
+        X[i] = t // D[i, i]
+    num = np.array(X, dtype=object)
+    if det < 0:
+        num, det = -num, -det
+    return num, det
 
 
 def support_strategy(P: np.ndarray, S, J):
@@ -71,18 +84,36 @@ def support_strategy(P: np.ndarray, S, J):
     return num[:k], den
 
 
-def regret(Aint, Bint, ea, eb, xs, ys):
+def regret(AT, BS, ea, eb, xs, ys):
     """Exact ``(row regret, column regret, row payoff, column payoff)`` as Fractions of the
-    profile ``xs = (support, numerators, denominator)`` (and ys), on A = Aint 2**ea."""
+    profile ``xs = (support S, numerators, denominator)`` and ``ys = (T, ...)``, given only
+    the payoffs they involve: ``AT = A[:, T] / 2**ea`` and ``BS = B[S, :] / 2**eb`` (ints)."""
     S, xn, dx = xs
     T, yn, dy = ys
-    Ay = Aint[:, T].dot(yn) if len(T) else np.zeros(Aint.shape[0], dtype=object)  # times dy
-    Bx = Bint[S, :].T.dot(xn) if len(S) else np.zeros(Bint.shape[1], dtype=object)  # times dx
+    Ay = AT.dot(yn)  # (A y)_i times dy
+    Bx = BS.T.dot(xn)  # (B'x)_j times dx
     pay_a = sum(int(a) * int(b) for a, b in zip(xn, Ay[S]))  # times dx dy
     pay_b = sum(int(a) * int(b) for a, b in zip(yn, Bx[T]))
-    ra = Fraction(int(max(Ay)) * dx - pay_a, dx * dy) * Fraction(2) ** ea
-    rb = Fraction(int(max(Bx)) * dy - pay_b, dx * dy) * Fraction(2) ** eb
-    return ra, rb, Fraction(pay_a, dx * dy) * Fraction(2) ** ea, Fraction(pay_b, dx * dy) * Fraction(2) ** eb
+    scale_a, scale_b = Fraction(2) ** ea, Fraction(2) ** eb
+    ra = Fraction(int(max(Ay)) * dx - pay_a, dx * dy) * scale_a
+    rb = Fraction(int(max(Bx)) * dy - pay_b, dx * dy) * scale_b
+    return ra, rb, Fraction(pay_a, dx * dy) * scale_a, Fraction(pay_b, dx * dy) * scale_b
+
+
+def certify_support(A, B, S, J, T, I):
+    """Solve the support system of a vertex pair exactly and check it: x on S making the
+    column actions J indifferent, y on T making the row actions I indifferent.  Converts
+    only the payoffs involved (A[:, T] and B[S, :]) to integers.  Returns ``(xs, ys, ra, rb,
+    pa, pb)`` (see :func:`regret`) or None when the system is singular or a strategy has a
+    negative entry."""
+    AT, ea = dyadic(np.ascontiguousarray(A[:, T]))
+    BS, eb = dyadic(np.ascontiguousarray(B[S, :]))
+    xs = support_strategy(BS, list(range(len(S))), J)
+    ys = support_strategy(AT.T, list(range(len(T))), I)
+    if xs is None or ys is None or min(xs[0]) < 0 or min(ys[0]) < 0:
+        return None
+    xs, ys = (S, *xs), (T, *ys)
+    return (xs, ys, *regret(AT, BS, ea, eb, xs, ys))
 
 
 def strategy(size, support, num, den) -> tuple[Fraction, ...]:
