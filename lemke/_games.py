@@ -49,14 +49,14 @@ class GameBasis:
 
     @classmethod
     def _trusted(cls, m: int, n: int, labels: np.ndarray) -> "GameBasis":
-        """From a kernel's final labels (those of P, then those of Q), skipping the dataclass
-        ``__init__`` (on the hot path of small games)."""
+        """From a kernel's final labels (those of P, then those of Q, each part sorted),
+        skipping the dataclass ``__init__`` (on the hot path of small games)."""
         b = object.__new__(cls)
         f = b.__dict__
         f["m"] = m
         f["n"] = n
-        f["x_basic"] = tuple(sorted(labels[:n].tolist()))
-        f["y_basic"] = tuple(sorted(labels[n:].tolist()))
+        f["x_basic"] = tuple(labels[:n].tolist())  # sorted by the kernel
+        f["y_basic"] = tuple(labels[n:].tolist())
         return b
 
 
@@ -238,7 +238,7 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
             and A.flags.c_contiguous and B.flags.c_contiguous) or method != "lemke-howson":
         A, B = _as_payoffs(A, B)  # the common case skips this: the kernel checks finiteness
     m, n = A.shape
-    k = _label(init_label, m, n)
+    k = init_label if type(init_label) is int and 0 <= init_label < m + n else _label(init_label, m, n)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     opts = _DEFAULT if options is None else as_options(options)
@@ -248,11 +248,17 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
         return _trace(A, B, prior, opts, exact)
     fbuf = np.empty(m + n + 3)
     ibuf = np.empty(m + n, dtype=np.int64)
-    code, pivots, restarts = kg.lemke_howson(A, B, k, _start(warm_start, m, n), _params(opts),
-                                             fbuf, ibuf)
+    code, pivots, restarts = kg.lemke_howson(
+        A, B, k, _slack_start(m, n) if warm_start is None else _start(warm_start, m, n),
+        _params(opts), fbuf, ibuf)
     if code == kg.NOT_FINITE:
         _as_payoffs(A, B)  # raises, naming the entry
     basis = GameBasis._trusted(m, n, ibuf)
+    if code == SOLVED and not exact:  # the common case, without _finish's detours
+        fbuf.flags.writeable = False
+        return BimatrixResult._make(fbuf[:m], fbuf[m : m + n], (fbuf[m + n + 1], fbuf[m + n + 2]),
+                                    Status.SOLVED, pivots, fbuf[m + n], basis, k,
+                                    "lemke-howson", False, restarts)
     return _finish(A, B, k, basis, code, pivots, restarts, "lemke-howson", fbuf, opts, exact,
                    warm_start is None)
 

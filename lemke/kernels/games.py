@@ -459,7 +459,7 @@ def lemke_howson(A, B, k, start, params, fbuf, ibuf):
       slack labels ``m..m+n-1, 0..m-1``: the artificial equilibrium);
     - ``params``: ``(max_pivots, pivot_tol, tie_tol, tol)``;
     - ``fbuf`` (m + n + 3) receives ``[x | y | regret, row payoff, column payoff]``,
-      ``ibuf`` (n + m) the final basic labels of P then Q.
+      ``ibuf`` (n + m) the final basic labels of P then Q (each part sorted).
 
     A path that cycles or breaks down is restarted with exact ties, then with a perturbed
     right-hand side.  Returns ``(status, pivots, restarts)``: ``SOLVED`` (checked),
@@ -492,6 +492,8 @@ def lemke_howson(A, B, k, start, params, fbuf, ibuf):
         pivots += p
         if status == SOLVED or status == MAX_PIVOTS or pivots >= max_pivots:
             break
+    basisP.sort()  # the labels as sets: sorted, as GameBasis holds them
+    basisQ.sort()
     good = normalize(x) and normalize(y)
     if not good:
         out[0] = np.inf
