@@ -371,3 +371,16 @@ def test_read_nfg_malformed(tmp_path, text, words):
 def test_read_nfg_missing_file(tmp_path):
     with pytest.raises(ProblemFormatError, match="cannot read"):
         read_nfg(tmp_path / "absent.nfg")
+
+
+def test_lemke_paths_on_degenerate_random_games():
+    """Every equilibrium found is one (checked exactly), none twice."""
+    rng = np.random.default_rng(11)
+    for _ in range(8):
+        m, n = rng.integers(2, 7, 2)
+        A, B = rng.integers(0, 3, (m, n)), rng.integers(0, 3, (m, n))
+        found = lemke.lemke_paths(A, B, exact=True)
+        assert found
+        for r in found:
+            assert_exact_equilibrium(A, B, r)
+        assert len({as_key(r) for r in found}) == len(found)

@@ -105,6 +105,15 @@ class _Tokens:
             raise BadFile(f"expected {what} (a quoted text), found {_show(tok)}")
         return tok[1]
 
+    def names(self, what: str) -> int:
+        """Read quoted names up to the closing ``}`` (consumed); returns how many."""
+        count = 0
+        while self.peek() != "}":
+            self.string(what)
+            count += 1
+        self.pos += 1
+        return count
+
     def optional_string(self):
         if isinstance(self.peek(), tuple):
             self.pos += 1
@@ -146,11 +155,7 @@ def parse_nfg(text: str) -> tuple[np.ndarray, np.ndarray]:
         raise BadFile("expected the letter R after the version")
     t.string("the title")
     t.expect("{", "'{' before the players' names")
-    players = 0
-    while t.peek() != "}":
-        t.string("a player's name")
-        players += 1
-    t.pos += 1
+    players = t.names("a player's name")
     if players != 2:
         raise BadFile(f"the game has {players} players; only two-player (bimatrix) games are supported")
     t.expect("{", "'{' before the strategies")
@@ -159,11 +164,7 @@ def parse_nfg(text: str) -> tuple[np.ndarray, np.ndarray]:
     while t.peek() != "}":
         if named:
             t.expect("{", "'{' before a player's strategy names")
-            k = 0
-            while t.peek() != "}":
-                t.string("a strategy's name")
-                k += 1
-            t.pos += 1
+            k = t.names("a strategy's name")
             if k == 0:
                 raise BadFile(f"player {len(sizes) + 1} has no strategies")
             sizes.append(k)

@@ -226,28 +226,29 @@ def swap(T, rhs, magb, basis, nonbasic, pos, is_basic, r, s, col, prow):
 # --- the check on the caller's payoffs --------------------------------------------------------
 
 @kernel
+def reply(P, v, w, by_columns):
+    """``(best, paid)`` for the player whose payoffs are the rows of P (the columns when
+    ``by_columns``) against the opponent's strategy v, playing w: best = max_k (P v)_k,
+    paid = w'P v (with P' for ``by_columns``)."""
+    outer = P.shape[1] if by_columns else P.shape[0]
+    best = -np.inf
+    paid = 0.0
+    for a in range(outer):
+        t = 0.0
+        for b in range(v.shape[0]):
+            t += (P[b, a] if by_columns else P[a, b]) * v[b]
+        best = max(best, t)
+        paid += w[a] * t
+    return best, paid
+
+
+@kernel
 def regrets(A, B, x, y):
     """``(row regret, column regret, row payoff, column payoff)`` of the profile (x, y):
     max_i (A y)_i - x'A y and max_j (B'x)_j - x'B y, on the caller's payoffs."""
-    m, n = A.shape
-    best = -np.inf
-    pay_a = 0.0
-    for i in range(m):
-        t = 0.0
-        for j in range(n):
-            t += A[i, j] * y[j]
-        best = max(best, t)
-        pay_a += x[i] * t
-    reg_a = best - pay_a
-    best = -np.inf
-    pay_b = 0.0
-    for j in range(n):
-        t = 0.0
-        for i in range(m):
-            t += B[i, j] * x[i]
-        best = max(best, t)
-        pay_b += y[j] * t
-    return reg_a, best - pay_b, pay_a, pay_b
+    best_a, pay_a = reply(A, y, x, False)
+    best_b, pay_b = reply(B, x, y, True)
+    return best_a - pay_a, best_b - pay_b, pay_a, pay_b
 
 
 @kernel
@@ -300,19 +301,21 @@ def normalize(v):
 # --- Lemke-Howson -----------------------------------------------------------------------------
 
 @kernel
-def step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering, free,
-         pivot_tol, tie_tol, col, prow, cand, keys, scratch, mags):
-    """One pivot of a Lemke-Howson path in one tableau: the variable with label
-    ``entering`` enters; returns the label that leaves, or -1 when nothing blocks (or the
-    pivot is not finite)."""
+def step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering, has_free,
+         free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys, scratch, mags):
+    """One pivot in one tableau: the variable with label ``entering`` enters, the row of
+    :func:`leaving_row` leaves.  Returns the label that left, -1 when nothing blocks (a
+    ray) or -2 when the pivot entry is not finite."""
     s = pos[entering]
     rows = T.shape[0]
     for i in range(rows):
         col[i] = T[i, s]
-    r = leaving_row(T, rhs, col, basis, pos, inb, start, False, free, -1, 0.0, pivot_tol,
-                    tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
-    if r < 0 or not abs(col[r]) < np.inf:
+    r = leaving_row(T, rhs, col, basis, pos, inb, start, has_free, free, art, z0_max,
+                    pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
+    if r < 0:
         return -1
+    if not abs(col[r]) < np.inf:
+        return -2
     magb[r] = row_size(T, r, basis, wlab, wcol)  # a loose bound here would spread to all rows
     leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
     wcol[s] = wlab[leaving]
@@ -410,10 +413,12 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
         # every array variable that is reassigned, which costs more than a small pivot.
         if side == 0:
             leaving = step(TP, rP, mbP, bP, nP, posP, inP, slackP, wlabP, wcolP, entering,
-                           free, pivot_tol, tie_tol, col, prow, cand, keys_, scratch, mags)
+                           False, free, -1, 0.0, pivot_tol, tie_tol, col, prow, cand, keys_,
+                           scratch, mags)
         else:
             leaving = step(TQ, rQ, mbQ, bQ, nQ, posQ, inQ, slackQ, wlabQ, wcolQ, entering,
-                           free, pivot_tol, tie_tol, col, prow, cand, keys_, scratch, mags)
+                           False, free, -1, 0.0, pivot_tol, tie_tol, col, prow, cand, keys_,
+                           scratch, mags)
         if leaving < 0:
             status = NUMERICAL_FAILURE  # P and Q are bounded: a ray is rounding
             break
@@ -616,18 +621,13 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
     entering = istar
     z0_max = 1.0
     while pivots < max_pivots:
-        s = pos[entering]
-        for i in range(N):
-            col[i] = T[i, s]
         art = pos[Z0] if inb[Z0] else -1
-        r = leaving_row(T, rhs, col, basis, pos, inb, start, True, free, art, z0_max,
-                        pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
-        if r < 0 or not abs(col[r]) < np.inf:
-            status = RAY_TERMINATION if r < 0 else NUMERICAL_FAILURE
+        leaving = step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering,
+                       True, free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys,
+                       scratch, mags)
+        if leaving < 0:
+            status = RAY_TERMINATION if leaving == -1 else NUMERICAL_FAILURE
             break
-        magb[r] = row_size(T, r, basis, wlab, wcol)  # see step()
-        leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
-        wcol[s] = wlab[leaving]
         pivots += 1
         h ^= hkeys[leaving] ^ hkeys[entering]
         if leaving == Z0:
