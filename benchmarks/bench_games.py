@@ -136,6 +136,7 @@ def bench(family, n, seeds, reps, log):
     fails = {k: 0 for k in times}
     pivots = {k: [] for k in times}
     ratios = []
+    extra = []  # per game: exact minus float (the rational solve and check)
     rng = random.Random(1000 * n + len(family))
     loads = []
     for seed in seeds:
@@ -165,11 +166,13 @@ def bench(family, n, seeds, reps, log):
                 per[k].append(dt)
         for k in times:
             times[k].append(statistics.median(per[k]))
+        if "lemke exact" in solvers:
+            extra.append(statistics.median(per["lemke exact"]) - statistics.median(per["lemke"]))
         if "quantecon" in timed_peers:
             ratios.append(statistics.median(per["lemke"]) / statistics.median(per["quantecon"]))
         loads.append(os.getloadavg()[0])
         log(f"  {family} n={n} seed {seed}: " + ", ".join(f"{k} {bl._t(times[k][-1])}" for k in times))
-    return times, fails, pivots, ratios, loads
+    return times, fails, pivots, ratios, extra, loads
 
 
 def main(argv=None):
@@ -198,18 +201,19 @@ def main(argv=None):
     a = L.append
     a("## Method")
     a("")
-    a(__doc__.split("\n\n", 2)[2].strip())
+    a(__doc__.split("\n\n", 3)[3].strip())
     a("")
     a("## Results")
     a("")
     a("Times: median over games of each game's median. Ratio: median (max) over games of "
       "lemke / quantecon, each game's medians. Failures: answers that fail the regret check "
-      "(or quantecon's `converged=False`), out of the games run. Load: 1-minute load average "
-      "after each game (min-max).")
+      "(or quantecon's `converged=False`), out of the games run. Exact: the whole "
+      "`exact=True` solve (float path included), and its rational part alone (exact minus float, "
+      "per game). Load: 1-minute load average after each game (min-max).")
     a("")
     a("| family | n | lemke | pivots (lemke) | quantecon | pivots (qe) | **ratio** | failures lemke / qe | nashpy (n = 20, once) | exact (n = 100) | load |")
     a("|---|---|---|---|---|---|---|---|---|---|---|")
-    for family, n, times, fails, pivots, ratios, loads in rows:
+    for family, n, times, fails, pivots, ratios, extra, loads in rows:
         games = len(times["lemke"])
         med = lambda k: bl._t(statistics.median(times[k])) if k in times else "-"  # noqa: E731
         rng_p = lambda k: f"{min(pivots[k])}–{max(pivots[k])}" if k in pivots and pivots[k] else "-"  # noqa: E731
@@ -218,7 +222,8 @@ def main(argv=None):
         nash = (f"{bl._t(statistics.median(v for v in times['nashpy'] if v == v))}, {fails['nashpy']}/{games} failed"
                 if "nashpy" in times and any(v == v for v in times["nashpy"]) else
                 (f"{fails['nashpy']}/{games} failed" if "nashpy" in times else "-"))
-        exact = (f"{med('lemke exact')} (max {bl._t(max(times['lemke exact']))}), {fails['lemke exact']} failed"
+        exact = (f"{med('lemke exact')} (max {bl._t(max(times['lemke exact']))}; rational part "
+                 f"{bl._t(statistics.median(extra))}, max {bl._t(max(extra))}), {fails['lemke exact']} failed"
                  if "lemke exact" in times else "-")
         a(f"| {family} | {n} | {med('lemke')} | {rng_p('lemke')} | {med('quantecon')} | {rng_p('quantecon')} | "
           f"{ratio} | {fails['lemke']}/{games} / {qfail}/{games} | {nash} | {exact} | {min(loads):.1f}–{max(loads):.1f} |")
