@@ -207,8 +207,10 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     exact : bool
         Certify the answer in rational arithmetic: after the floating-point path, the
         support system of the final basis is solved exactly and the equilibrium checked
-        exactly (regret 0); if that fails, Lemke-Howson is run again in exact integer
-        arithmetic.  x, y, payoffs and regret are then :class:`fractions.Fraction`.
+        exactly (regret 0); if that fails, Lemke-Howson (dropping ``init_label``, from the
+        artificial equilibrium) is run in exact integer arithmetic, and the result says
+        ``method="lemke-howson"`` and ``basis=None``.  x, y, payoffs and regret are then
+        :class:`fractions.Fraction` (x and y as tuples).
     options : Options or dict, optional
         ``max_pivots`` (default 10**6), ``pivot_tol``, ``tie_tol`` (the shared pivoting
         rule) and ``tol`` (the accepted regret, relative to each player's payoff range).
@@ -276,11 +278,11 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
             code = SOLVED
             restarts += 1
     if exact:
-        return _certify(A, B, k, basis, code, pivots, restarts, method, _max_pivots(opts))
+        return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts))
     status = _STATUSES.get(code, Status.NUMERICAL_FAILURE)
     if status != Status.SOLVED and method == "lemke-howson" and cold:
         # Last resort, never needed in the tests: the exact method cannot fail.
-        res = _certify(A, B, k, None, code, pivots, restarts, method, _max_pivots(opts))
+        res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts))
         if res.success:
             return _as_float(res)
     fbuf.flags.writeable = False
@@ -383,7 +385,7 @@ def _resolve_float(A, B, basis, tol):
     return (x, y, out) if kg.check(A, B, x, y, tol, out) else None
 
 
-def _certify(A, B, k, basis, code, pivots, restarts, method, cap):
+def _certify(A, B, k, basis, pivots, restarts, method, cap):
     """The exact answer: the support system of ``basis`` solved and checked in rational
     arithmetic; if that is not an equilibrium, exact Lemke-Howson dropping label k."""
     m, n = A.shape
@@ -408,6 +410,7 @@ def _certify(A, B, k, basis, code, pivots, restarts, method, cap):
         xs, ys, p = run
         pivots += p
         basis = None
+        method = "lemke-howson"  # (a tracing basis that failed is replaced by this path)
         ra, rb, pa, pb = ex.regret(Aint[:, ys[0]], Bint[xs[0], :], ea, eb, xs, ys)
     (S, xn, dx), (T, yn, dy) = xs, ys
     ok = ra == 0 and rb == 0
@@ -465,6 +468,6 @@ def lemke_paths(A, B, *, exact=False, options=None) -> tuple[BimatrixResult, ...
                 continue  # back at the artificial equilibrium
             visit(res)
     if exact:
-        found = [_certify(A, B, r.init_label, r.basis, 0, r.pivots, r.restarts, r.method,
+        found = [_certify(A, B, r.init_label, r.basis, r.pivots, r.restarts, r.method,
                           _max_pivots(as_options(options))) for r in found]
     return tuple(found)
