@@ -11,6 +11,7 @@ method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as 
 """
 from ._batch import solve_lcp_batch, solve_lcp_many
 from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
+from ._games import BimatrixResult, GameBasis, lemke_paths, solve_bimatrix
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
 from ._lcp import METHODS, solve_lcp
 from ._mlcp import MLCPResult, solve_mlcp
@@ -25,6 +26,8 @@ from ._version import __version__
 
 __all__ = [
     "METHODS",
+    "BimatrixResult",
+    "GameBasis",
     "Certificate",
     "LCPBatchResult",
     "LCPResult",
@@ -38,9 +41,11 @@ __all__ = [
     "is_lcp_ray",
     "is_lcp_solution",
     "lcp_residual",
+    "lemke_paths",
     "pivot_column",
     "read_problem",
     "result_to_dict",
+    "solve_bimatrix",
     "solve_lcp",
     "solve_lcp_batch",
     "solve_lcp_many",

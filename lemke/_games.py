@@ -1,0 +1,473 @@
+"""Bimatrix games: :func:`solve_bimatrix` (one Nash equilibrium, by Lemke-Howson or the
+tracing procedure, optionally certified in exact arithmetic) and :func:`lemke_paths` (every
+equilibrium that Lemke-Howson paths reach).
+
+**Convention.**  ``A[i, j]`` and ``B[i, j]`` are the payoffs of the row player and of the
+column player when the row player plays i and the column player j; both are m x n.  x (length
+m) and y (length n) are their mixed strategies.  Labels ``0..m-1`` are the row player's
+actions and ``m..m+n-1`` the column player's (as ``init_pivot`` in quantecon and
+``initial_dropped_label`` in nashpy).  In quantecon a player's payoff array has the player's
+own actions first, so this game is ``NormalFormGame((Player(A), Player(B.T)))``; in nashpy it
+is ``nash.Game(A, B)``.
+
+The kernels are in :mod:`lemke.kernels.games`, the exact arithmetic in
+:mod:`lemke._games_exact`.
+"""
+from __future__ import annotations
+
+import dataclasses
+import functools
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from . import _games_exact as ex
+from ._options import _DEFAULT, Options, as_options
+from ._status import Status
+from .kernels import games as kg
+from .kernels.pivoting import SOLVED
+
+METHODS = ("lemke-howson", "tracing")
+DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
+_F64 = np.dtype(np.float64)
+_STATUSES = {int(s): s for s in Status}
+
+
+@dataclass(frozen=True)
+class GameBasis:
+    """A vertex pair of the best-response polytopes, as a plain value: the basic labels of
+    the polytope of x (``{x >= 0: B'^T x <= 1}``, n of them: action i < m for x_i, m + j for
+    the slack of column j) and of the polytope of y (``{y >= 0: A' y <= 1}``, m of them: i
+    for the slack of row i, m + j for y_j).  Pass it back as ``solve_bimatrix(...,
+    warm_start=)`` to start a Lemke-Howson path there."""
+
+    m: int
+    n: int
+    x_basic: tuple[int, ...]
+    y_basic: tuple[int, ...]
+
+    @classmethod
+    def _trusted(cls, m: int, n: int, labels: np.ndarray) -> "GameBasis":
+        """From a kernel's final labels (those of P, then those of Q, each part sorted),
+        skipping the dataclass ``__init__`` (on the hot path of small games)."""
+        b = object.__new__(cls)
+        f = b.__dict__
+        f["m"] = m
+        f["n"] = n
+        f["x_basic"] = tuple(labels[:n].tolist())  # sorted by the kernel
+        f["y_basic"] = tuple(labels[n:].tolist())
+        return b
+
+
+@dataclass(frozen=True)
+class BimatrixResult:
+    """The outcome of :func:`solve_bimatrix`.
+
+    Attributes
+    ----------
+    x, y : ndarray (float) or tuple of Fraction (``exact=True``)
+        The row and the column player's mixed strategies.
+    payoffs : tuple
+        ``(x'A y, x'B y)``, the players' expected payoffs.
+    status : Status
+        ``SOLVED`` only when (x, y) passed the check on the caller's payoffs: both are
+        probability vectors and each player's regret (best payoff against the other's
+        strategy minus the payoff obtained) is at most ``options.tol`` times the range of
+        that player's payoffs (plus rounding); with ``exact=True``, exactly 0.
+    pivots : int
+        Pivots made (of every run, restarts and the exact continuation included).
+    regret : float or Fraction
+        The larger of the two players' regrets, on the caller's payoffs.
+    basis : GameBasis or None
+        The final vertex pair (a warm start for another path); None after an exact
+        continuation.
+    init_label : int
+        The label dropped (Lemke-Howson).
+    method : str
+    exact : bool
+        Whether x, y, payoffs and regret are exact rationals.
+    restarts : int
+        Restarts after a cycle or a breakdown (0 on almost every game), plus one for a
+        re-solve of the final support system in floating point.
+    """
+
+    x: object
+    y: object
+    payoffs: tuple
+    status: Status
+    pivots: int
+    regret: object
+    basis: GameBasis | None
+    init_label: int
+    method: str
+    exact: bool = False
+    restarts: int = 0
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SOLVED
+
+    @classmethod
+    def _make(cls, *values) -> "BimatrixResult":
+        """Build from the solver's own values in field order, skipping the frozen dataclass'
+        ``__init__`` (it sets every field through ``object.__setattr__``)."""
+        res = object.__new__(cls)
+        res.__dict__.update(zip(_RESULT_FIELDS, values))
+        return res
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+    def __repr__(self) -> str:
+        return (f"BimatrixResult(status={self.status.name}, method={self.method!r}, "
+                f"pivots={self.pivots}, regret={float(self.regret):.3g}, exact={self.exact})")
+
+
+_RESULT_FIELDS = tuple(f.name for f in dataclasses.fields(BimatrixResult))
+
+
+def _as_payoffs(A, B):
+    """Validate the payoffs: two finite, non-empty real m x n arrays."""
+    out = []
+    for name, P in (("A", A), ("B", B)):
+        try:
+            P = np.asarray(P, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"payoff matrix {name} must be a 2-D array of real numbers") from None
+        if P.ndim != 2:
+            raise ValueError(f"payoff matrix {name} must be 2-D (m x n), got {P.ndim} dimension(s)")
+        if P.shape[0] == 0 or P.shape[1] == 0:
+            raise ValueError(f"payoff matrix {name} is {P.shape[0]} x {P.shape[1]}: "
+                             "each player needs at least one action (empty strategy set)")
+        bad = np.argwhere(~np.isfinite(P))
+        if bad.size:
+            i, j = bad[0]
+            raise ValueError(f"payoff matrix {name} has a non-finite entry {P[i, j]} at ({i}, {j})")
+        out.append(np.ascontiguousarray(P))
+    A, B = out
+    if A.shape != B.shape:
+        raise ValueError(f"payoff matrices A and B must have the same shape (m x n), got "
+                         f"{A.shape[0]} x {A.shape[1]} and {B.shape[0]} x {B.shape[1]}")
+    return A, B
+
+
+def _label(init_label, m, n):
+    if isinstance(init_label, bool) or not isinstance(init_label, (int, np.integer)):
+        raise ValueError(f"init_label must be an integer in [0, {m + n}), got {init_label!r}")
+    if not 0 <= init_label < m + n:
+        raise ValueError(f"init_label {init_label} is out of range: labels are 0..{m - 1} "
+                         f"(row actions) and {m}..{m + n - 1} (column actions)")
+    return int(init_label)
+
+
+def _prior(v, size, who):
+    if v is None:
+        return np.full(size, 1.0 / size)
+    v = np.asarray(v, dtype=np.float64).reshape(-1)
+    if v.size != size or not np.all(np.isfinite(v)) or np.any(v < 0) or not v.sum() > 0:
+        raise ValueError(f"the prior of the {who} must be {size} finite non-negative numbers "
+                         f"with a positive sum, got {v!r}")
+    return v / v.sum()
+
+
+def _max_pivots(opts: Options) -> int:
+    return DEFAULT_MAX_PIVOTS if opts.max_pivots is None else opts.max_pivots
+
+
+def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, warm_start=None,
+                   exact=False, options=None) -> BimatrixResult:
+    r"""One Nash equilibrium of the bimatrix game (A, B).
+
+    Find mixed strategies x (of the row player, length m) and y (of the column player,
+    length n) with
+
+    .. math::  x^\top A y \ge e_i^\top A y \ \forall i, \qquad
+               x^\top B y \ge x^\top B e_j \ \forall j .
+
+    Parameters
+    ----------
+    A, B : (m, n) array_like
+        The row player's and the column player's payoffs (see the module docstring for how
+        this relates to quantecon's and nashpy's conventions).
+    init_label : int
+        Lemke-Howson's dropped label: ``0..m-1`` a row action, ``m..m+n-1`` a column action.
+        Different labels can lead to different equilibria.
+    method : {"lemke-howson", "tracing"}
+        ``"lemke-howson"``: the Lemke-Howson method (from the artificial equilibrium, or
+        from ``warm_start``).  ``"tracing"``: the van den Elzen-Talman tracing procedure
+        from the prior ``(p, q)``; it finds the equilibrium that the prior selects
+        (Harsanyi-Selten's linear tracing), which Lemke-Howson may not reach.
+    prior : (p, q), optional
+        The starting profile of the tracing procedure (default: uniform).
+    warm_start : GameBasis, optional
+        Start the Lemke-Howson path at this vertex pair (e.g. ``result.basis`` of an
+        equilibrium) instead of the artificial equilibrium.
+    exact : bool
+        Certify the answer in rational arithmetic: after the floating-point path, the
+        support system of the final basis is solved exactly and the equilibrium checked
+        exactly (regret 0); if that fails, Lemke-Howson (dropping ``init_label``, from the
+        artificial equilibrium) is run in exact integer arithmetic, and the result says
+        ``method="lemke-howson"`` and ``basis=None``.  x, y, payoffs and regret are then
+        :class:`fractions.Fraction` (x and y as tuples).
+    options : Options or dict, optional
+        ``max_pivots`` (default 10**6), ``pivot_tol``, ``tie_tol`` (the shared pivoting
+        rule) and ``tol`` (the accepted regret, relative to each player's payoff range).
+
+    Returns
+    -------
+    BimatrixResult
+
+    Examples
+    --------
+    >>> import lemke
+    >>> A = [[3, 3], [2, 5], [0, 6]]
+    >>> B = [[3, 2], [2, 6], [3, 1]]
+    >>> r = lemke.solve_bimatrix(A, B, exact=True)
+    >>> r.status.name, [str(v) for v in r.x], [str(v) for v in r.y]
+    ('SOLVED', ['1', '0', '0'], ['1', '0'])
+
+    References
+    ----------
+    C. E. Lemke, J. T. Howson, "Equilibrium points of bimatrix games", SIAM J. Appl. Math. 12
+    (1964).  B. von Stengel, "Computing equilibria for two-person games", Handbook of Game
+    Theory vol. 3 (2002).  A. H. van den Elzen, A. J. J. Talman, "A procedure for finding Nash
+    equilibria in bi-matrix games", ZOR 35 (1991).
+    """
+    if not (type(A) is np.ndarray and type(B) is np.ndarray and A.dtype is _F64
+            and B.dtype is _F64 and A.ndim == 2 and A.shape == B.shape and A.size
+            and A.flags.c_contiguous and B.flags.c_contiguous) or method != "lemke-howson":
+        A, B = _as_payoffs(A, B)  # the common case skips this: the kernel checks finiteness
+    m, n = A.shape
+    k = init_label if type(init_label) is int and 0 <= init_label < m + n else _label(init_label, m, n)
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    opts = _DEFAULT if options is None else as_options(options)
+    if method == "tracing":
+        if warm_start is not None:
+            raise ValueError("warm_start is for method='lemke-howson'")
+        return _trace(A, B, prior, opts, exact)
+    fbuf = np.empty(m + n + 3)
+    ibuf = np.empty(m + n, dtype=np.int64)
+    code, pivots, restarts = kg.lemke_howson(
+        A, B, k, _slack_start(m, n) if warm_start is None else _start(warm_start, m, n),
+        _params(opts), fbuf, ibuf)
+    if code == kg.NOT_FINITE:
+        _as_payoffs(A, B)  # raises, naming the entry
+    basis = GameBasis._trusted(m, n, ibuf)
+    if code == SOLVED and not exact:  # the common case, without _finish's detours
+        fbuf.flags.writeable = False
+        return BimatrixResult._make(fbuf[:m], fbuf[m : m + n], (fbuf[m + n + 1], fbuf[m + n + 2]),
+                                    Status.SOLVED, pivots, fbuf[m + n], basis, k,
+                                    "lemke-howson", False, restarts)
+    return _finish(A, B, k, basis, code, pivots, restarts, "lemke-howson", fbuf, opts, exact,
+                   warm_start is None)
+
+
+def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, cold):
+    """The result from a kernel's output: re-solve a basis whose point fails the check, the
+    exact certificate when asked, the exact method as the last resort of a cold float solve."""
+    m, n = A.shape
+    if code != SOLVED and basis is not None and not exact:
+        # The path ended with every label present (or broke down) at a point that fails the
+        # check: re-solve the final basis' support system afresh (rounding of a long path).
+        fixed = _resolve_float(A, B, basis, opts.tol)
+        if fixed is not None:
+            fbuf[:m], fbuf[m : m + n], fbuf[m + n :] = fixed
+            code = SOLVED
+            restarts += 1
+    if exact:
+        return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts))
+    status = _STATUSES.get(code, Status.NUMERICAL_FAILURE)
+    if status != Status.SOLVED and method == "lemke-howson" and cold:
+        # Last resort, never needed in the tests: the exact method cannot fail.
+        res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts))
+        if res.success:
+            return _as_float(res)
+    fbuf.flags.writeable = False
+    return BimatrixResult._make(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
+                                status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
+                                int(restarts))
+
+
+def _trace(A, B, prior, opts, exact):
+    m, n = A.shape
+    p, q = (None, None) if prior is None else prior
+    p, q = _prior(p, m, "row player"), _prior(q, n, "column player")
+    labels = np.empty(m + n + 2, dtype=np.int64)
+    fbuf = np.empty(m + n + 3)
+    code, pivots = kg.trace(A, B, p, q, _max_pivots(opts), opts.pivot_tol, opts.tie_tol,
+                            opts.tol, fbuf[:m], fbuf[m : m + n], labels, fbuf[m + n :])
+    return _finish(A, B, 0, _trace_basis(labels, m, n), code, pivots, 0, "tracing", fbuf,
+                   opts, exact, False)
+
+
+@functools.lru_cache(maxsize=64)
+def _params(opts: Options) -> np.ndarray:
+    """The kernel's packed parameters ``(max_pivots, pivot_tol, tie_tol, tol)``."""
+    out = np.array([float(_max_pivots(opts)), opts.pivot_tol, opts.tie_tol, opts.tol])
+    out.flags.writeable = False
+    return out
+
+
+@functools.lru_cache(maxsize=64)
+def _slack_start(m, n) -> np.ndarray:
+    out = np.concatenate([np.arange(m, m + n), np.arange(m)])
+    out.flags.writeable = False
+    return out
+
+
+def _start(warm_start, m, n):
+    """The start labels (those of P, then those of Q) for the kernel."""
+    if warm_start is None:
+        return _slack_start(m, n)
+    if not isinstance(warm_start, GameBasis) or (warm_start.m, warm_start.n) != (m, n):
+        raise ValueError(f"warm_start must be a GameBasis of an {m} x {n} game")
+    xs, ys = list(warm_start.x_basic), list(warm_start.y_basic)
+    if (len(xs) != n or len(ys) != m or len(set(xs)) != n or len(set(ys)) != m
+            or min(xs + ys) < 0 or max(xs + ys) >= m + n):
+        raise ValueError("warm_start holds labels out of range or repeated")
+    return np.array(xs + ys, dtype=np.int64)
+
+
+def _trace_basis(labels, m, n):
+    """The tracing procedure's final basis as a GameBasis (x_i, y_j basic; a_i, b_j basic
+    means the slack of row i / column j is basic), or None if it is not a vertex pair."""
+    L = m + n
+    xb = [int(v) for v in labels if v < m] + [m + int(v) - L - m for v in labels if L + m <= v < 2 * L]
+    yb = [int(v) - L for v in labels if L <= v < L + m] + [int(v) for v in labels if m <= v < L]
+    if len(xb) != n or len(yb) != m:
+        return None
+    return GameBasis(m, n, tuple(sorted(xb)), tuple(sorted(yb)))
+
+
+def _supports(basis: GameBasis):
+    """(S, J, T, I): the row actions in x's support and the column actions that must be best
+    responses (non-basic slacks), and the same for y."""
+    m, n = basis.m, basis.n
+    S = [i for i in basis.x_basic if i < m]
+    J = sorted(set(range(n)) - {lab - m for lab in basis.x_basic if lab >= m})
+    T = [lab - m for lab in basis.y_basic if lab >= m]
+    I = sorted(set(range(m)) - {lab for lab in basis.y_basic if lab < m})
+    return S, J, T, I
+
+
+def _resolve_float(A, B, basis, tol):
+    """Solve the support system of ``basis`` in floating point; the checked point or None."""
+    if basis is None:
+        return None
+    m, n = basis.m, basis.n
+    S, J, T, I = _supports(basis)
+    if len(S) != len(J) or len(T) != len(I) or not S or not T:
+        return None
+    x = np.zeros(m)
+    y = np.zeros(n)
+    try:
+        for P, sup, tight, v in ((B, S, J, x), (A.T, T, I, y)):
+            k = len(sup)
+            M = np.zeros((k + 1, k + 1))
+            M[:k, :k] = P[np.ix_(sup, tight)].T
+            M[:k, k] = -1.0
+            M[k, :k] = 1.0
+            rhs = np.zeros(k + 1)
+            rhs[k] = 1.0
+            v[sup] = np.linalg.solve(M, rhs)[:k]
+    except np.linalg.LinAlgError:
+        return None
+    if x.min() < -1e-12 or y.min() < -1e-12:
+        return None
+    x = np.maximum(x, 0.0)
+    y = np.maximum(y, 0.0)
+    x /= x.sum()
+    y /= y.sum()
+    out = np.empty(3)
+    return (x, y, out) if kg.check(A, B, x, y, tol, out) else None
+
+
+def _certify(A, B, k, basis, pivots, restarts, method, cap):
+    """The exact answer: the support system of ``basis`` solved and checked in rational
+    arithmetic; if that is not an equilibrium, exact Lemke-Howson dropping label k."""
+    m, n = A.shape
+    found = None
+    if basis is not None:
+        S, J, T, I = _supports(basis)
+        if len(S) == len(J) and len(T) == len(I) and S and T:
+            found = ex.certify_support(A, B, S, J, T, I)
+    if found is not None:
+        xs, ys, ra, rb, pa, pb = found
+        if ra != 0 or rb != 0:
+            found = None
+    if found is None:
+        # Exact Lemke-Howson from the artificial equilibrium (see solve_bimatrix).
+        Aint, ea = ex.dyadic(A)
+        Bint, eb = ex.dyadic(B)
+        run = ex.lemke_howson(Aint, Bint, k, cap - pivots)
+        if run is None:
+            return BimatrixResult(tuple(Fraction(0) for _ in range(m)), tuple(Fraction(0) for _ in range(n)),
+                                  (Fraction(0), Fraction(0)), Status.MAX_PIVOTS, cap, Fraction(0),
+                                  None, k, method, True, restarts)
+        xs, ys, p = run
+        pivots += p
+        basis = None
+        method = "lemke-howson"  # (a tracing basis that failed is replaced by this path)
+        ra, rb, pa, pb = ex.regret(Aint[:, ys[0]], Bint[xs[0], :], ea, eb, xs, ys)
+    (S, xn, dx), (T, yn, dy) = xs, ys
+    ok = ra == 0 and rb == 0
+    return BimatrixResult(ex.strategy(m, S, xn, dx), ex.strategy(n, T, yn, dy), (pa, pb),
+                          Status.SOLVED if ok else Status.NUMERICAL_FAILURE, int(pivots),
+                          max(ra, rb), basis, k, method, True, int(restarts))
+
+
+def _as_float(res: BimatrixResult) -> BimatrixResult:
+    x = np.array([float(v) for v in res.x])
+    y = np.array([float(v) for v in res.y])
+    x.flags.writeable = False
+    y.flags.writeable = False
+    return BimatrixResult(x, y, tuple(float(v) for v in res.payoffs), res.status, res.pivots,
+                          float(res.regret), res.basis, res.init_label, res.method, False,
+                          res.restarts + 1)
+
+
+def lemke_paths(A, B, *, exact=False, options=None) -> tuple[BimatrixResult, ...]:
+    """Every equilibrium that Lemke-Howson paths reach: from the artificial equilibrium
+    dropping each label in turn, then from each equilibrium found dropping each label, until
+    no new one appears (the "all Lemke paths" search of Gambit's ``gambit-lcp``).  The
+    equilibria are de-duplicated (by their strategies; a degenerate game can have several
+    bases for one) and returned in the order found.  With ``exact=True`` each is certified
+    as in :func:`solve_bimatrix`.
+
+    Not every equilibrium is reachable this way in general (Wilson's example in
+    Shapley 1974 and von Stengel 2002, section 3.6); it is a search, not an enumeration.
+    """
+    A, B = _as_payoffs(A, B)
+    m, n = A.shape
+    seen_bases = set()
+    found = []
+    keys = set()
+    queue = []
+
+    def visit(res):
+        if not res.success or res.basis is None or res.basis in seen_bases:
+            return
+        seen_bases.add(res.basis)
+        queue.append(res)
+        key = (tuple(np.round(np.asarray(res.x, dtype=float), 9)),
+               tuple(np.round(np.asarray(res.y, dtype=float), 9)))
+        if key not in keys:
+            keys.add(key)
+            found.append(res)
+
+    for k in range(m + n):
+        visit(solve_bimatrix(A, B, init_label=k, options=options))
+    while queue:
+        start = queue.pop(0)
+        for k in range(m + n):
+            res = solve_bimatrix(A, B, init_label=k, warm_start=start.basis, options=options)
+            if res.basis is not None and res.basis.x_basic == tuple(range(m, m + n)):
+                continue  # back at the artificial equilibrium
+            visit(res)
+    if exact:
+        found = [_certify(A, B, r.init_label, r.basis, r.pivots, r.restarts, r.method,
+                          _max_pivots(as_options(options))) for r in found]
+    return tuple(found)

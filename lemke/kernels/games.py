@@ -1,0 +1,655 @@
+"""Bimatrix games: the Lemke-Howson method and the van den Elzen-Talman tracing procedure,
+both on condensed tableaux with the shared pivoting rule of :mod:`lemke.kernels.pivoting`.
+
+**Convention.**  ``A`` and ``B`` (both m x n) are the payoffs of the row player and of the
+column player.  The labels are ``0..m-1`` for the row player's actions and ``m..m+n-1`` for
+the column player's.
+
+**Lemke-Howson.**  With payoffs made positive (``A' = 1 + (A - min A) f``, f a power of two
+near 1 / (max A - min A), so integer payoffs stay exact; a positive affine change of a
+player's payoffs changes no equilibrium) the two best-response polytopes are
+
+    P = {x >= 0 : B'^T x <= 1}   (n rows, slack s_j with label m + j; x_i has label i)
+    Q = {y >= 0 : A' y <= 1}     (m rows, slack r_i with label i; y_j has label m + j)
+
+held as two condensed tableaux in the form of :mod:`lemke.kernels.tableau`,
+``basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j]``, with the slacks basic at the start (the
+artificial equilibrium x = y = 0).  A label is *present* in a tableau when its variable is
+non-basic there.  Dropping label k makes its variable enter in the tableau where it is
+non-basic; the variable that leaves has a label l that is now present in both tableaux, so
+the variable with label l enters in the other tableau, and so on until the label that leaves
+is k: then every label is present once, and (x / sum x, y / sum y) is an equilibrium.
+
+The leaving row is chosen by the shared rule (``pivoting.min_ratio``, then the lexicographic
+keys of the basis inverse relative to the slack basis, read off the tableau as in
+``tableau.ratio_test``), so the paths are those of the lexicographically perturbed game: in
+exact arithmetic no basis repeats and every path ends.  The basis (both tableaux together)
+is fingerprinted for Brent's cycle detector; a run that detects a repeated basis stops with
+``CYCLING``, and :func:`lemke_howson` restarts it with exact ties, then with a slightly
+perturbed right-hand side (whose final basis the front re-solves with the true one).
+
+**The tracing procedure** (van den Elzen & Talman 1991; von Stengel, van den Elzen & Talman
+2002): from a prior (p, q), with z0 going from 1 to 0, x and y (of mass 1 - z0 each) are best
+responses to y + z0 q and x + z0 p.  This is Lemke's method on
+
+    a = u 1 - A' y - (A' q) z0 >= 0  _|_  x >= 0
+    b = v 1 - B'^T x - (B'^T p) z0 >= 0  _|_  y >= 0
+    1^T x + z0 = 1,  1^T y + z0 = 1,     u, v free,
+
+started at z0 = 1 from the best responses i*, j* to the prior (see :func:`trace`).
+
+Every kernel checks its answer on the caller's payoffs (the largest regret of either player,
+:func:`regrets`) before it reports ``SOLVED``.
+"""
+import math
+
+import numpy as np
+
+from . import kernel, pivoting
+from .linalg import pow2_scale
+from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
+
+PERTURBATION = 1e-7  # relative perturbation of the right-hand side in the last restart
+NOT_FINITE = -1  # a payoff is NaN or infinite: the front says which
+UNCHECKED = 7  # a path ended with every label present, at a point that fails the check
+ROUNDING_SLACK = 64.0  # regret allowance for rounding, in units of eps * (n + m) * max|payoff|
+
+
+# --- the condensed tableau: shared by both methods -------------------------------------------
+
+@kernel
+def positive_payoffs(A):
+    """``1 + (A - min A) f`` with f the power of two nearest 1 / (max A - min A) (1 when all
+    payoffs are equal): entries in [1, 2.5), exact for integer payoffs."""
+    lo = np.inf
+    hi = -np.inf
+    for v in A.ravel():
+        lo = min(lo, v)
+        hi = max(hi, v)
+    f = pow2_scale(hi - lo) if hi > lo else 0.0
+    out = np.empty_like(A)
+    for i in range(A.shape[0]):
+        for j in range(A.shape[1]):
+            out[i, j] = 1.0 + (A[i, j] - lo) * f
+    return out
+
+
+@kernel
+def exchange(T, rhs, magb, r, s, col, prow):
+    """Pivot: the non-basic variable of column s (its current column in ``col``) replaces the
+    basic variable of row r.  ``magb`` is a running upper bound on the size |B^-1| |q| of the
+    terms behind each value (see :func:`leaving_row`).  ``prow``: scratch of length
+    T.shape[1]."""
+    n, k = T.shape
+    inv = 1.0 / col[r]
+    for j in range(k):
+        prow[j] = -T[r, j] * inv
+    prow[s] = inv
+    for j in range(k):
+        T[r, j] = prow[j]
+    rr = -rhs[r] * inv
+    rhs[r] = rr
+    magb[r] *= abs(inv)
+    mr = magb[r]
+    for i in range(n):
+        f = col[i]
+        if i != r and f != 0.0:
+            rhs[i] += f * rr
+            magb[i] += abs(f) * mr
+            for j in range(k):  # indexed directly: a row view per row costs refcounting
+                T[i, j] += f * prow[j]
+            T[i, s] = f * inv
+
+
+@kernel
+def binv(T, pos, is_basic, lab, i):
+    """Entry i of the basis inverse's column for the label ``lab`` basic at the start: the
+    unit vector of its row while basic, minus its tableau column when not."""
+    if is_basic[lab]:
+        return 1.0 if pos[lab] == i else 0.0
+    return -T[i, pos[lab]]
+
+
+@kernel
+def row_size(T, i, basis, wlab, wcol):
+    """The size |B^-1| |q0| of the terms behind row i's value: ``wlab[lab]`` is |q0| of the
+    row where label ``lab`` was basic at the start (0 for the other labels) and ``wcol`` the
+    same per non-basic column, so the row of B^-1 is read off the tableau row in one
+    contiguous pass."""
+    size = wlab[basis[i]]
+    for c in range(T.shape[1]):
+        size += abs(T[i, c]) * wcol[c]
+    return size
+
+
+@kernel
+def column_weights(nonbasic, wlab, wcol):
+    """``wcol[c] = wlab[nonbasic[c]]`` (see :func:`row_size`)."""
+    for c in range(nonbasic.shape[0]):
+        wcol[c] = wlab[nonbasic[c]]
+
+
+@kernel
+def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, has_free, free, art, z0_max,
+                pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags):
+    """The row that blocks the entering column (current entries ``col``) by the shared rule:
+    ``pivoting.min_ratio`` (the artificial variable's row ``art`` first on a tie), then the
+    lexicographic keys of the basis inverse relative to ``start_basis`` (the labels basic at
+    the start, row by row).  With ``has_free``, rows whose basic variable is ``free`` never
+    block.  -1 when
+    nothing blocks.
+
+    A value counts as zero when it is rounding of an exact zero: below
+    ``pivoting.VALUE_ROUNDING`` times the size |B^-1| |q0| of its terms (:func:`row_size`).
+    That size is computed only for the blocking rows whose value is below that fraction of
+    the running bound ``magb`` (which it then replaces); the others pass their value as
+    their size."""
+    n = T.shape[0]
+    c = col
+    if has_free:  # free rows never block: their entries count as 0
+        for i in range(n):
+            scratch[i] = 0.0 if free[basis[i]] else col[i]
+        c = scratch
+    exact_sizes = False  # mags holds the sizes (else the values stand for their sizes)
+    for i in range(n):
+        v = rhs[i]
+        if c[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
+            if not exact_sizes:
+                exact_sizes = True
+                for j in range(n):
+                    mags[j] = rhs[j]
+            size = row_size(T, i, basis, wlab, wcol)
+            mags[i] = size
+            magb[i] = size  # the bound of this row is exact again
+    nc = pivoting.min_ratio(rhs, mags if exact_sizes else rhs, c, n, pivot_tol, tie_tol, cand,
+                            art, z0_max)
+    if nc <= 1:
+        return cand[0] if nc == 1 else -1
+    for t in range(nc):
+        if cand[t] == art:
+            return art
+    # Column j of the basis inverse is the current column of the variable basic in row j at
+    # the start: the unit vector of its row while basic, minus its tableau column when not.
+    for j in range(n):
+        lab = start_basis[j]
+        for t in range(nc):
+            i = cand[t]
+            keys[t] = pivoting.lex_key(binv(T, pos, is_basic, lab, i), c[i], pivot_tol)
+        nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
+        if nc == 1:
+            return cand[0]
+    return pivoting.largest_pivot(cand, c, nc) if nc > 0 else -1
+
+
+@kernel
+def place(T, rhs, magb, basis, nonbasic, pos, is_basic, target, col, prow):
+    """Pivot until the labels ``target`` (one per row, any order) are the basic ones: each
+    missing label enters in the row, among those whose basic label is not wanted, with the
+    largest entry.  Returns False if the target basis is singular."""
+    n = T.shape[0]
+    want = np.zeros(is_basic.shape[0], dtype=np.bool_)
+    for lab in target:
+        want[lab] = True
+    for lab in target:
+        if is_basic[lab]:
+            continue
+        s = pos[lab]
+        best = -1
+        big = 0.0
+        for i in range(n):
+            if not want[basis[i]] and abs(T[i, s]) > big:
+                big = abs(T[i, s])
+                best = i
+        if best < 0 or big < 1e-12:
+            return False
+        for i in range(n):
+            col[i] = T[i, s]
+        swap(T, rhs, magb, basis, nonbasic, pos, is_basic, best, s, col, prow)
+    return True
+
+
+@kernel
+def swap(T, rhs, magb, basis, nonbasic, pos, is_basic, r, s, col, prow):
+    """:func:`exchange` and the bookkeeping of the labels; returns the label that left."""
+    leaving = basis[r]
+    entering = nonbasic[s]
+    exchange(T, rhs, magb, r, s, col, prow)
+    basis[r] = entering
+    nonbasic[s] = leaving
+    pos[entering] = r
+    is_basic[entering] = True
+    pos[leaving] = s
+    is_basic[leaving] = False
+    return leaving
+
+
+# --- the check on the caller's payoffs --------------------------------------------------------
+
+@kernel
+def reply(P, v, w, by_columns):
+    """``(best, paid)`` for the player whose payoffs are the rows of P (the columns when
+    ``by_columns``) against the opponent's strategy v, playing w: best = max_k (P v)_k,
+    paid = w'P v (with P' for ``by_columns``)."""
+    outer = P.shape[1] if by_columns else P.shape[0]
+    best = -np.inf
+    paid = 0.0
+    for a in range(outer):
+        t = 0.0
+        for b in range(v.shape[0]):
+            t += (P[b, a] if by_columns else P[a, b]) * v[b]
+        best = max(best, t)
+        paid += w[a] * t
+    return best, paid
+
+
+@kernel
+def regrets(A, B, x, y):
+    """``(row regret, column regret, row payoff, column payoff)`` of the profile (x, y):
+    max_i (A y)_i - x'A y and max_j (B'x)_j - x'B y, on the caller's payoffs."""
+    best_a, pay_a = reply(A, y, x, False)
+    best_b, pay_b = reply(B, x, y, True)
+    return best_a - pay_a, best_b - pay_b, pay_a, pay_b
+
+
+@kernel
+def allowance(A, tol):
+    """The regret accepted for payoffs A: tol times their range plus rounding."""
+    lo = np.inf
+    hi = -np.inf
+    for v in A.ravel():
+        lo = min(lo, v)
+        hi = max(hi, v)
+    big = max(abs(lo), abs(hi))
+    return tol * (hi - lo) + ROUNDING_SLACK * 2.2e-16 * (A.shape[0] + A.shape[1]) * big
+
+
+@kernel
+def check(A, B, x, y, tol, out):
+    """Is (x, y) an equilibrium of (A, B)?  x, y must be probability vectors (checked here
+    too); ``out`` gets (regret, row payoff, column payoff).  Returns the verdict."""
+    ok = True
+    sx = 0.0
+    for v in x:
+        ok &= v >= 0.0
+        sx += v
+    sy = 0.0
+    for v in y:
+        ok &= v >= 0.0
+        sy += v
+    ok &= abs(sx - 1.0) <= 1e-12 * x.shape[0] and abs(sy - 1.0) <= 1e-12 * y.shape[0]
+    ra, rb, pa, pb = regrets(A, B, x, y)
+    out[0] = max(ra, rb)
+    out[1] = pa
+    out[2] = pb
+    return ok and ra <= allowance(A, tol) and rb <= allowance(B, tol)
+
+
+@kernel
+def normalize(v):
+    """v / sum(v) with negative rounding clamped to 0; False when nothing is left."""
+    t = 0.0
+    for i in range(v.shape[0]):
+        v[i] = max(v[i], 0.0)
+        t += v[i]
+    if not t > 0.0 or not t < np.inf:
+        return False
+    for i in range(v.shape[0]):
+        v[i] /= t
+    return True
+
+
+# --- Lemke-Howson -----------------------------------------------------------------------------
+
+@kernel
+def step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering, has_free,
+         free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys, scratch, mags):
+    """One pivot in one tableau: the variable with label ``entering`` enters, the row of
+    :func:`leaving_row` leaves.  Returns the label that left, -1 when nothing blocks (a
+    ray) or -2 when the pivot entry is not finite."""
+    s = pos[entering]
+    rows = T.shape[0]
+    for i in range(rows):
+        col[i] = T[i, s]
+    r = leaving_row(T, rhs, col, basis, pos, inb, start, has_free, free, art, z0_max,
+                    pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
+    if r < 0:
+        return -1
+    if not abs(col[r]) < np.inf:
+        return -2
+    magb[r] = row_size(T, r, basis, wlab, wcol)  # a loose bound here would spread to all rows
+    leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
+    wcol[s] = wlab[leaving]
+    return leaving
+
+
+@kernel
+def lh_setup(Ap, Bp):
+    """The two tableaux at the artificial equilibrium: P (n x m, rows s_j, columns x_i) and
+    Q (m x n, rows r_i, columns y_j), with their label bookkeeping."""
+    m, n = Ap.shape
+    L = m + n
+    TP = np.empty((n, m))
+    TQ = np.empty((m, n))
+    for i in range(m):
+        for j in range(n):
+            TP[j, i] = -Bp[i, j]
+            TQ[i, j] = -Ap[i, j]
+    rP = np.ones(n)
+    rQ = np.ones(m)
+    bP = np.arange(m, L)  # s_j basic in row j
+    nP = np.arange(0, m)  # x_i non-basic in column i
+    bQ = np.arange(0, m)
+    nQ = np.arange(m, L)
+    posP = np.empty(L, dtype=np.int64)
+    posQ = np.empty(L, dtype=np.int64)
+    inP = np.zeros(L, dtype=np.bool_)
+    inQ = np.zeros(L, dtype=np.bool_)
+    for j in range(n):
+        posP[m + j] = j
+        inP[m + j] = True
+        posQ[m + j] = j
+    for i in range(m):
+        posP[i] = i
+        posQ[i] = i
+        inQ[i] = True
+    return TP, rP, bP, nP, posP, inP, TQ, rQ, bQ, nQ, posQ, inQ
+
+
+@kernel
+def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, x, y,
+            basisP, basisQ):
+    """One Lemke-Howson path on the positive payoffs (Ap, Bp), dropping label k, from the
+    basis whose basic labels are ``startP`` (n) and ``startQ`` (m) (the slack labels: the
+    artificial equilibrium).  ``perturb``: multiply the right-hand sides by fixed
+    pseudo-random factors 1 + PERTURBATION [0, 1).
+
+    Returns ``(status, pivots)``; x, y get the final (unnormalized) strategies, ``basisP``,
+    ``basisQ`` the final basic labels row by row.
+    """
+    m, n = Ap.shape
+    L = m + n
+    TP, rP, bP, nP, posP, inP, TQ, rQ, bQ, nQ, posQ, inQ = lh_setup(Ap, Bp)
+    slackP = bP.copy()
+    slackQ = bQ.copy()
+    if perturb:
+        keys = pivoting.label_keys(L)
+        for j in range(n):
+            rP[j] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, m + j)
+        for i in range(m):
+            rQ[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
+    mbP = np.abs(rP)  # bounds on the size of each value (leaving_row)
+    mbQ = np.abs(rQ)
+    mags = np.empty(max(m, n))
+    wlabP = np.zeros(L)
+    wlabQ = np.zeros(L)
+    for j in range(n):
+        wlabP[m + j] = abs(rP[j])
+    for i in range(m):
+        wlabQ[i] = abs(rQ[i])
+    wcolP = np.empty(m)
+    wcolQ = np.empty(n)
+    big = max(m, n)
+    col = np.empty(big)
+    prow = np.empty(big)
+    scratch = np.empty(big)
+    keys_ = np.empty(big)
+    cand = np.empty(big, dtype=np.int64)
+    free = np.zeros(L, dtype=np.bool_)
+    status = MAX_PIVOTS
+    pivots = 0
+    if not (place(TP, rP, mbP, bP, nP, posP, inP, startP, col, prow)
+            and place(TQ, rQ, mbQ, bQ, nQ, posQ, inQ, startQ, col, prow)):
+        status = NUMERICAL_FAILURE
+        max_pivots = 0
+    column_weights(nP, wlabP, wcolP)
+    column_weights(nQ, wlabQ, wcolQ)
+    hkeys = pivoting.label_keys(2 * L)
+    h = pivoting.fingerprint(hkeys, bP, n) ^ pivoting.fingerprint(hkeys, bQ + L, m)
+    detector = pivoting.new_detector()
+    entering = k
+    side = 0 if not inP[k] else 1  # the tableau where label k is present (non-basic)
+    while pivots < max_pivots:
+        # Two calls rather than one call on arrays chosen by side: numba reference-counts
+        # every array variable that is reassigned, which costs more than a small pivot.
+        if side == 0:
+            leaving = step(TP, rP, mbP, bP, nP, posP, inP, slackP, wlabP, wcolP, entering,
+                           False, free, -1, 0.0, pivot_tol, tie_tol, col, prow, cand, keys_,
+                           scratch, mags)
+        else:
+            leaving = step(TQ, rQ, mbQ, bQ, nQ, posQ, inQ, slackQ, wlabQ, wcolQ, entering,
+                           False, free, -1, 0.0, pivot_tol, tie_tol, col, prow, cand, keys_,
+                           scratch, mags)
+        if leaving < 0:
+            status = NUMERICAL_FAILURE  # P and Q are bounded: a ray is rounding
+            break
+        pivots += 1
+        shift = 0 if side == 0 else L
+        h ^= hkeys[leaving + shift] ^ hkeys[entering + shift]
+        if leaving == k:
+            status = SOLVED
+            break
+        if pivoting.repeats(detector, h):
+            status = CYCLING
+            break
+        entering = leaving
+        side = 1 - side
+    x[:] = 0.0
+    y[:] = 0.0
+    for j in range(n):
+        if bP[j] < m:
+            x[bP[j]] = rP[j]
+    for i in range(m):
+        if bQ[i] >= m:
+            y[bQ[i] - m] = rQ[i]
+    basisP[:] = bP
+    basisQ[:] = bQ
+    return status, pivots
+
+
+@kernel
+def finite(A):
+    """Whether every entry of A is finite."""
+    for v in A.ravel():
+        if not abs(v) < np.inf:
+            return False
+    return True
+
+
+@kernel
+def lemke_howson(A, B, k, start, params, fbuf, ibuf):
+    """Lemke-Howson dropping label k, checked on the caller's (A, B); one kernel call per
+    solve, its arguments packed (numba's dispatch costs per argument):
+
+    - ``start`` (n + m): the basic labels to start from, those of P then those of Q (the
+      slack labels ``m..m+n-1, 0..m-1``: the artificial equilibrium);
+    - ``params``: ``(max_pivots, pivot_tol, tie_tol, tol)``;
+    - ``fbuf`` (m + n + 3) receives ``[x | y | regret, row payoff, column payoff]``,
+      ``ibuf`` (n + m) the final basic labels of P then Q (each part sorted).
+
+    A path that cycles or breaks down is restarted with exact ties, then with a perturbed
+    right-hand side.  Returns ``(status, pivots, restarts)``: ``SOLVED`` (checked),
+    ``UNCHECKED`` (the path ended, every label present, but the point fails the check: the
+    front re-solves that basis), ``NOT_FINITE`` (nothing done), or the status of the last
+    run."""
+    m, n = A.shape
+    if not (finite(A) and finite(B)):
+        return NOT_FINITE, 0, 0
+    max_pivots = int(params[0])
+    pivot_tol, tie_tol, tol = params[1], params[2], params[3]
+    x = fbuf[:m]
+    y = fbuf[m : m + n]
+    out = fbuf[m + n :]
+    startP, startQ = start[:n], start[n:]
+    basisP, basisQ = ibuf[:n], ibuf[n:]
+    Ap = positive_payoffs(A)
+    Bp = positive_payoffs(B)
+    pivots = 0
+    restarts = 0
+    status = NUMERICAL_FAILURE
+    for attempt in range(3):
+        if attempt == 1 and tie_tol == 0.0:
+            continue  # the first run had exact ties already
+        if attempt > 0:
+            restarts += 1
+        tt = tie_tol if attempt == 0 else 0.0
+        status, p = lh_path(Ap, Bp, k, startP, startQ, attempt == 2, max_pivots - pivots,
+                            pivot_tol, tt, x, y, basisP, basisQ)
+        pivots += p
+        if status == SOLVED or status == MAX_PIVOTS or pivots >= max_pivots:
+            break
+    basisP.sort()  # the labels as sets: sorted, as GameBasis holds them
+    basisQ.sort()
+    good = normalize(x) and normalize(y)
+    if not good:
+        out[0] = np.inf
+        return (NUMERICAL_FAILURE if status == SOLVED else status), pivots, restarts
+    ok = check(A, B, x, y, tol, out)
+    if status == SOLVED and not ok:
+        status = UNCHECKED
+    return status, pivots, restarts
+
+
+# --- the tracing procedure --------------------------------------------------------------------
+
+@kernel
+def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out):
+    """The van den Elzen-Talman tracing procedure from the prior (p, q), as Lemke's method on
+    the system of the module docstring.  Returns ``(status, pivots)``; x, y get the
+    strategies, ``basis_out`` (m + n + 2) the final basic labels, ``out`` as in
+    :func:`lemke_howson`.
+
+    Variables (labels): x_i -> i, y_j -> m + j, a_i -> L + i, b_j -> L + m + j (L = m + n),
+    u -> 2L, v -> 2L + 1, z0 -> 2L + 2, and the slacks of the two equations 2L + 3, 2L + 4
+    (they start basic, leave in the setup pivots and, having no complement, never return).
+    Rows: a (m), b (n), then the two equations.
+    """
+    m, n = A.shape
+    L = m + n
+    N = L + 2
+    U, V, Z0, E1, E2 = 2 * L, 2 * L + 1, 2 * L + 2, 2 * L + 3, 2 * L + 4
+    Ap = positive_payoffs(A)
+    Bp = positive_payoffs(B)
+    # Non-basic columns at the start: x (m), y (n), u, v, z0.
+    T = np.zeros((N, L + 3))
+    rhs = np.zeros(N)
+    for i in range(m):
+        aq = 0.0
+        for j in range(n):
+            T[i, m + j] = -Ap[i, j]
+            aq += Ap[i, j] * q[j]
+        T[i, L] = 1.0
+        T[i, L + 2] = -aq
+    for j in range(n):
+        bp = 0.0
+        for i in range(m):
+            T[m + j, i] = -Bp[i, j]
+            bp += Bp[i, j] * p[i]
+        T[m + j, L + 1] = 1.0
+        T[m + j, L + 2] = -bp
+    for i in range(m):
+        T[L, i] = -1.0
+    for j in range(n):
+        T[L + 1, m + j] = -1.0
+    T[L, L + 2] = -1.0
+    T[L + 1, L + 2] = -1.0
+    rhs[L] = 1.0
+    rhs[L + 1] = 1.0
+    labels = 2 * L + 5
+    basis = np.empty(N, dtype=np.int64)
+    nonbasic = np.empty(L + 3, dtype=np.int64)
+    pos = np.empty(labels, dtype=np.int64)
+    inb = np.zeros(labels, dtype=np.bool_)
+    for r in range(L):
+        basis[r] = L + r
+    basis[L] = E1
+    basis[L + 1] = E2
+    for c in range(L):
+        nonbasic[c] = c
+    nonbasic[L] = U
+    nonbasic[L + 1] = V
+    nonbasic[L + 2] = Z0
+    for r in range(N):
+        pos[basis[r]] = r
+        inb[basis[r]] = True
+    for c in range(L + 3):
+        pos[nonbasic[c]] = c
+    # The best responses to the prior (the first on ties): their slacks are 0 at z0 = 1.
+    istar = 0
+    best = -np.inf
+    for i in range(m):
+        if -T[i, L + 2] > best:
+            best = -T[i, L + 2]
+            istar = i
+    jstar = 0
+    best = -np.inf
+    for j in range(n):
+        if -T[m + j, L + 2] > best:
+            best = -T[m + j, L + 2]
+            jstar = j
+    col = np.empty(N)
+    prow = np.empty(L + 3)
+    magb = np.abs(rhs)
+    # Setup: u for a_i*, v for b_j*, z0 for the first equation's slack, y_j* (at 0) for the
+    # second's; the path then starts with x_i* entering.
+    target = np.array([U, V, Z0, m + jstar])
+    rows = np.array([istar, m + jstar, L, L + 1])
+    for t in range(4):
+        s = pos[target[t]]
+        for i in range(N):
+            col[i] = T[i, s]
+        swap(T, rhs, magb, basis, nonbasic, pos, inb, rows[t], s, col, prow)
+    start = basis.copy()
+    # The system is relative to this basis from here on.
+    magb[:] = np.abs(rhs)
+    mags = np.empty(N)
+    wlab = np.zeros(labels)
+    for r in range(N):
+        wlab[basis[r]] = abs(rhs[r])
+    wcol = np.empty(L + 3)
+    column_weights(nonbasic, wlab, wcol)
+    free = np.zeros(labels, dtype=np.bool_)
+    free[U] = True
+    free[V] = True
+    cand = np.empty(N, dtype=np.int64)
+    keys = np.empty(N)
+    scratch = np.empty(N)
+    hkeys = pivoting.label_keys(labels)
+    h = pivoting.fingerprint(hkeys, basis, N)
+    detector = pivoting.new_detector()
+    status = MAX_PIVOTS
+    pivots = 0
+    entering = istar
+    z0_max = 1.0
+    while pivots < max_pivots:
+        art = pos[Z0] if inb[Z0] else -1
+        leaving = step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering,
+                       True, free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys,
+                       scratch, mags)
+        if leaving < 0:
+            status = RAY_TERMINATION if leaving == -1 else NUMERICAL_FAILURE
+            break
+        pivots += 1
+        h ^= hkeys[leaving] ^ hkeys[entering]
+        if leaving == Z0:
+            status = SOLVED
+            break
+        if pivoting.repeats(detector, h):
+            status = CYCLING
+            break
+        entering = leaving + L if leaving < L else leaving - L  # the complement
+    x[:] = 0.0
+    y[:] = 0.0
+    for r in range(N):
+        lab = basis[r]
+        if lab < m:
+            x[lab] = rhs[r]
+        elif lab < L:
+            y[lab - m] = rhs[r]
+    basis_out[:] = basis
+    if not (normalize(x) and normalize(y)):
+        out[0] = np.inf
+        return (NUMERICAL_FAILURE if status == SOLVED else status), pivots
+    ok = check(A, B, x, y, tol, out)
+    if ok:
+        return SOLVED, pivots
+    return (UNCHECKED if status == SOLVED else status), pivots

@@ -1,0 +1,386 @@
+"""Bimatrix games: lemke.solve_bimatrix, lemke.lemke_paths and the .nfg reader.
+
+Every answer is judged by the regret computed here in plain numpy (or exactly with
+fractions), never by lemke's own check.  Convention: A is the row player's payoffs, B the
+column player's, both m x n.
+"""
+from fractions import Fraction
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from scipy.optimize import linprog
+
+import lemke
+from lemke import _games_exact
+from lemke._io import ProblemFormatError
+from lemke._io.nfg import read_nfg
+
+
+def regret(A, B, x, y):
+    """The larger of the two players' regrets (best reply payoff minus payoff obtained)."""
+    A, B, x, y = (np.asarray(v, dtype=float) for v in (A, B, x, y))
+    return max((A @ y).max() - x @ A @ y, (B.T @ x).max() - x @ B @ y)
+
+
+def assert_equilibrium(A, B, res, rtol=1e-9):
+    A, B = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    x, y = np.asarray(res.x, dtype=float), np.asarray(res.y, dtype=float)
+    assert res.status == lemke.Status.SOLVED, res
+    assert x.shape == (A.shape[0],) and y.shape == (A.shape[1],)
+    assert x.min() >= 0 and y.min() >= 0
+    assert abs(x.sum() - 1) <= 1e-12 * x.size and abs(y.sum() - 1) <= 1e-12 * y.size
+    span = max(np.ptp(A), np.ptp(B), 1e-300)
+    assert regret(A, B, x, y) <= rtol * span + 1e-15 * np.abs(A).max(initial=1)
+
+
+def exact_regret(A, B, x, y):
+    """Both players' regrets in rational arithmetic (A, B as exact Fractions of the floats)."""
+    Af = [[Fraction(v) for v in row] for row in np.asarray(A, dtype=float)]
+    Bf = [[Fraction(v) for v in row] for row in np.asarray(B, dtype=float)]
+    m, n = len(Af), len(Af[0])
+    Ay = [sum(Af[i][j] * y[j] for j in range(n)) for i in range(m)]
+    Bx = [sum(Bf[i][j] * x[i] for i in range(m)) for j in range(n)]
+    return (max(Ay) - sum(x[i] * Ay[i] for i in range(m)),
+            max(Bx) - sum(y[j] * Bx[j] for j in range(n)))
+
+
+def assert_exact_equilibrium(A, B, res):
+    assert res.status == lemke.Status.SOLVED and res.exact
+    assert all(isinstance(v, Fraction) for v in res.x + res.y)
+    assert sum(res.x) == 1 and sum(res.y) == 1 and min(res.x) >= 0 and min(res.y) >= 0
+    assert exact_regret(A, B, res.x, res.y) == (0, 0)
+    assert res.regret == 0
+
+
+# --- known games and their published equilibria -----------------------------------------------
+
+# von Stengel (2002), "Computing equilibria for two-person games", Handbook of Game Theory
+# vol. 3, the 3 x 2 example game (also the example of quantecon's lemke_howson docstring,
+# BSD-3-Clause): three equilibria, the third (4/5, 1/5, 0) not reachable from the artificial
+# equilibrium.
+STENGEL_A = [[3, 3], [2, 5], [0, 6]]
+STENGEL_B = [[3, 2], [2, 6], [3, 1]]
+STENGEL_EQ = {((1, 0, 0), (1, 0)),
+              ((0, Fraction(1, 3), Fraction(2, 3)), (Fraction(1, 3), Fraction(2, 3))),
+              ((Fraction(4, 5), Fraction(1, 5), 0), (Fraction(2, 3), Fraction(1, 3)))}
+
+# Textbook games (Osborne & Rubinstein 1994, "A Course in Game Theory", chapter 2-3;
+# matching pennies is also the example of nashpy's documentation, MIT License).
+KNOWN = {
+    "matching pennies": ([[1, -1], [-1, 1]], [[-1, 1], [1, -1]],
+                         {((Fraction(1, 2), Fraction(1, 2)), (Fraction(1, 2), Fraction(1, 2)))}),
+    "battle of the sexes": ([[3, 0], [0, 2]], [[2, 0], [0, 3]],
+                            {((1, 0), (1, 0)), ((0, 1), (0, 1)),
+                             ((Fraction(3, 5), Fraction(2, 5)), (Fraction(2, 5), Fraction(3, 5)))}),
+    "prisoner's dilemma": ([[3, 0], [5, 1]], [[3, 5], [0, 1]], {((0, 1), (0, 1))}),
+    "rock paper scissors": ([[0, -1, 1], [1, 0, -1], [-1, 1, 0]], [[0, 1, -1], [-1, 0, 1], [1, -1, 0]],
+                            {((Fraction(1, 3),) * 3, (Fraction(1, 3),) * 3)}),
+    "von Stengel 3x2": (STENGEL_A, STENGEL_B, STENGEL_EQ),
+}
+
+
+def as_key(res):
+    return (tuple(Fraction(v) for v in res.x), tuple(Fraction(v) for v in res.y))
+
+
+@pytest.mark.parametrize("name", sorted(KNOWN))
+def test_known_games_every_label(name):
+    A, B, equilibria = KNOWN[name]
+    m, n = np.shape(A)
+    for k in range(m + n):
+        res = lemke.solve_bimatrix(A, B, init_label=k)
+        assert_equilibrium(A, B, res)
+        exact = lemke.solve_bimatrix(A, B, init_label=k, exact=True)
+        assert_exact_equilibrium(A, B, exact)
+        assert as_key(exact) in equilibria
+        np.testing.assert_allclose(res.x, [float(v) for v in exact.x], atol=1e-12)
+
+
+@pytest.mark.parametrize("name", sorted(KNOWN))
+def test_lemke_paths_finds_the_published_equilibria(name):
+    A, B, equilibria = KNOWN[name]
+    found = lemke.lemke_paths(A, B, exact=True)
+    for res in found:
+        assert_exact_equilibrium(A, B, res)
+    # In all these games every equilibrium is reachable by Lemke paths.
+    assert {as_key(r) for r in found} == equilibria
+
+
+def test_stengel_labels_and_quantecon_convention():
+    """The dropped label decides the equilibrium; labels as quantecon's init_pivot."""
+    r0 = lemke.solve_bimatrix(STENGEL_A, STENGEL_B, init_label=0, exact=True)
+    r1 = lemke.solve_bimatrix(STENGEL_A, STENGEL_B, init_label=1, exact=True)
+    assert as_key(r0) == ((1, 0, 0), (1, 0))
+    assert as_key(r1) == ((0, Fraction(1, 3), Fraction(2, 3)), (Fraction(1, 3), Fraction(2, 3)))
+    assert r1.payoffs == (4, Fraction(8, 3))
+
+
+def test_tracing_selects_the_equilibrium_of_the_prior():
+    A, B, _ = KNOWN["battle of the sexes"]
+    r = lemke.solve_bimatrix(A, B, method="tracing", prior=([1, 0], [1, 0]), exact=True)
+    assert as_key(r) == ((1, 0), (1, 0))
+    r = lemke.solve_bimatrix(A, B, method="tracing", prior=([0, 1], [0, 1]), exact=True)
+    assert as_key(r) == ((0, 1), (0, 1))
+    # The uniform prior: the column player (3 vs 2 on the diagonal) prefers the second
+    # action, the row player the first; the linear tracing procedure ends at a pure one.
+    r = lemke.solve_bimatrix(A, B, method="tracing")
+    assert_equilibrium(A, B, r)
+
+
+def test_tracing_on_random_games():
+    rng = np.random.default_rng(7)
+    for _ in range(20):
+        m, n = rng.integers(1, 12, 2)
+        A, B = rng.integers(0, 5, (m, n)), rng.integers(0, 5, (m, n))
+        p, q = rng.random(m), rng.random(n)
+        assert_equilibrium(A, B, lemke.solve_bimatrix(A, B, method="tracing", prior=(p, q)))
+        assert_exact_equilibrium(A, B, lemke.solve_bimatrix(A, B, method="tracing", prior=(p, q), exact=True))
+
+
+def test_selten_degenerate_game():
+    """Selten (1975), Figure 2 in strategic form (Gambit's e02 example): a component of
+    equilibria (x = e1, y2 <= 1/2); every label must still end at an equilibrium."""
+    A = [[1, 1], [0, 0], [0, 2]]
+    B = [[1, 1], [2, 3], [2, 0]]
+    for k in range(5):
+        assert_equilibrium(A, B, lemke.solve_bimatrix(A, B, init_label=k))
+        assert_exact_equilibrium(A, B, lemke.solve_bimatrix(A, B, init_label=k, exact=True))
+    for r in lemke.lemke_paths(A, B):
+        assert_equilibrium(A, B, r)
+
+
+def lp_value(A):
+    """The value of the zero-sum game A (row player maximizes) from an LP."""
+    m, n = A.shape
+    c = np.r_[np.zeros(m), -1.0]
+    A_ub = np.c_[-A.T, np.ones(n)]  # v - (A'x)_j <= 0
+    res = linprog(c, A_ub=A_ub, b_ub=np.zeros(n), A_eq=np.r_[np.ones(m), 0.0][None],
+                  b_eq=[1.0], bounds=[(0, None)] * m + [(None, None)], method="highs")
+    assert res.status == 0
+    return -res.fun
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_zero_sum_value_matches_lp(seed):
+    rng = np.random.default_rng(seed)
+    m, n = rng.integers(2, 25, 2)
+    A = rng.standard_normal((m, n))
+    res = lemke.solve_bimatrix(A, -A, init_label=int(seed) % (m + n))
+    assert_equilibrium(A, -A, res)
+    assert res.payoffs[0] == pytest.approx(lp_value(A), abs=1e-9 * np.ptp(A))
+    assert res.payoffs[1] == pytest.approx(-res.payoffs[0], abs=1e-12 * np.ptp(A))
+
+
+def test_warm_start_from_an_equilibrium_reaches_another():
+    A, B = STENGEL_A, STENGEL_B
+    r = lemke.solve_bimatrix(A, B, init_label=0)
+    seen = set()
+    for k in range(5):
+        s = lemke.solve_bimatrix(A, B, init_label=k, warm_start=r.basis)
+        if s.success:
+            seen.add(tuple(np.round(s.x, 9)))
+    assert (0.8, 0.2, 0.0) in seen  # the equilibrium Lemke-Howson cannot reach from 0
+
+
+def test_degenerate_float_path_is_the_exact_lexicographic_path():
+    """An int3 50 x 50 game on which quantecon's lemke_howson cycles to its pivot cap: the
+    float path follows the exact (integer) lexicographic path pivot for pivot, no restart."""
+    rng = np.random.default_rng(1)
+    A, B = rng.integers(0, 3, (50, 50)).astype(float), rng.integers(0, 3, (50, 50)).astype(float)
+    res = lemke.solve_bimatrix(A, B)
+    assert_equilibrium(A, B, res)
+    assert res.restarts == 0
+    Ai, _ = _games_exact.dyadic(A)
+    Bi, _ = _games_exact.dyadic(B)
+    assert _games_exact.lemke_howson(Ai, Bi, 0, 10**5)[2] == res.pivots
+
+
+def test_result_is_immutable_and_scale_invariant():
+    rng = np.random.default_rng(3)
+    A, B = rng.random((6, 4)), rng.random((6, 4))
+    r = lemke.solve_bimatrix(A, B)
+    with pytest.raises(Exception):
+        r.x[0] = 1.0
+    with pytest.raises(Exception):
+        r.status = lemke.Status.MAX_PIVOTS
+    s = lemke.solve_bimatrix(1e6 * A + 3, 1e-6 * B - 7)
+    np.testing.assert_allclose(s.x, r.x, atol=1e-9)
+    np.testing.assert_allclose(s.y, r.y, atol=1e-9)
+
+
+def test_one_action_and_constant_games():
+    assert_equilibrium([[1.0, 2.0, 0.5]], [[0.0, 0.0, 1.0]], lemke.solve_bimatrix([[1.0, 2.0, 0.5]], [[0.0, 0.0, 1.0]]))
+    A = np.zeros((3, 4))
+    for k in range(7):
+        assert_equilibrium(A, A, lemke.solve_bimatrix(A, A, init_label=k))
+        assert_exact_equilibrium(A, A, lemke.solve_bimatrix(A, A, init_label=k, exact=True))
+
+
+# --- random games: the three families of the issue --------------------------------------------
+
+def family(kind, m, n, seed):
+    rng = np.random.default_rng(seed)
+    if kind == "unif":
+        return rng.random((m, n)), rng.random((m, n))
+    top = 100 if kind == "int100" else 3
+    return rng.integers(0, top, (m, n)).astype(float), rng.integers(0, top, (m, n)).astype(float)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(kind=st.sampled_from(["unif", "int100", "int3"]), m=st.integers(1, 30), n=st.integers(1, 30),
+       seed=st.integers(0, 2**32 - 1), label=st.integers(0, 59))
+def test_random_games_always_solved(kind, m, n, seed, label):
+    A, B = family(kind, m, n, seed)
+    res = lemke.solve_bimatrix(A, B, init_label=label % (m + n))
+    assert_equilibrium(A, B, res)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(kind=st.sampled_from(["unif", "int100", "int3"]), m=st.integers(1, 12), n=st.integers(1, 12),
+       seed=st.integers(0, 2**32 - 1), label=st.integers(0, 23))
+def test_random_games_exact_regret_zero(kind, m, n, seed, label):
+    A, B = family(kind, m, n, seed)
+    assert_exact_equilibrium(A, B, lemke.solve_bimatrix(A, B, init_label=label % (m + n), exact=True))
+
+
+@pytest.mark.parametrize("kind", ["int3", "int100", "unif"])
+def test_random_games_100(kind):
+    for seed in range(3):
+        A, B = family(kind, 100, 100, seed)
+        assert_equilibrium(A, B, lemke.solve_bimatrix(A, B))
+
+
+def test_exact_continuation_when_the_float_basis_is_wrong(monkeypatch):
+    """If the float path's basis is not exactly an equilibrium, exact Lemke-Howson takes
+    over: simulated by a kernel that reports the artificial basis."""
+    from lemke import _games
+
+    def lying(A, B, k, start, params, fbuf, ibuf):
+        m, n = A.shape
+        ibuf[:] = np.r_[np.arange(m, m + n), np.arange(m)]
+        fbuf[:] = 0.0
+        return 0, 1, 0
+
+    monkeypatch.setattr(_games.kg, "lemke_howson", lying)
+    A, B = STENGEL_A, STENGEL_B
+    res = lemke.solve_bimatrix(A, B, init_label=1, exact=True)
+    assert_exact_equilibrium(A, B, res)
+    assert res.basis is None
+
+
+# --- bad input ----------------------------------------------------------------------------
+
+@pytest.mark.parametrize("A, B, words", [
+    ([[1.0, np.nan]], [[1.0, 2.0]], "non-finite"),
+    ([[1.0, 2.0]], [[1.0, np.inf]], "non-finite"),
+    ([[1.0, 2.0]], [[1.0], [2.0]], "same shape"),
+    (np.zeros((0, 3)), np.zeros((0, 3)), "empty strategy set"),
+    (np.zeros((2, 0)), np.zeros((2, 0)), "empty strategy set"),
+    ([1.0, 2.0], [1.0, 2.0], "2-D"),
+    ([["a", "b"]], [[1, 2]], "real numbers"),
+])
+def test_bad_payoffs(A, B, words):
+    with pytest.raises(ValueError, match=words):
+        lemke.solve_bimatrix(A, B)
+
+
+def test_bad_arguments():
+    A, B = STENGEL_A, STENGEL_B
+    with pytest.raises(ValueError, match="out of range"):
+        lemke.solve_bimatrix(A, B, init_label=5)
+    with pytest.raises(ValueError, match="out of range"):
+        lemke.solve_bimatrix(A, B, init_label=-1)
+    with pytest.raises(ValueError, match="init_label"):
+        lemke.solve_bimatrix(A, B, init_label=True)
+    with pytest.raises(ValueError, match="unknown method"):
+        lemke.solve_bimatrix(A, B, method="simplex")
+    with pytest.raises(ValueError, match="prior"):
+        lemke.solve_bimatrix(A, B, method="tracing", prior=([1, 0], [1, 0]))
+    with pytest.raises(ValueError, match="warm_start"):
+        lemke.solve_bimatrix(A, B, warm_start=lemke.GameBasis(2, 2, (2, 3), (0, 1)))
+    with pytest.raises(ValueError, match="non-finite"):
+        lemke.solve_bimatrix(np.array([[np.nan, 1.0]]), np.array([[0.0, 1.0]]))  # the fast path
+
+
+# --- Gambit .nfg files ----------------------------------------------------------------------
+
+PAYOFF_NFG = """NFG 1 R "von Stengel's 3 x 2 example" { "Row" "Column" } { 3 2 }
+"a comment"
+
+3 3 2 2 0 3 3 2 5 6 6 1
+"""
+
+OUTCOME_NFG = """NFG 1 R "the same game, outcome version" { "Row" "Column" }
+
+{ { "T" "M" "B" }
+{ "L" "R" }
+}
+""
+
+{
+{ "" 3, 3 }
+{ "" 2, 2 }
+{ "" 0, 3 }
+{ "a \\"quoted\\" name" 3, 2 }
+{ "" 5, 6 }
+{ "" 6, 1 }
+}
+1 2 3 4 5 6
+"""
+
+
+def test_read_nfg_both_versions(tmp_path):
+    for text in (PAYOFF_NFG, OUTCOME_NFG):
+        path = tmp_path / "game.nfg"
+        path.write_text(text)
+        A, B = read_nfg(path)
+        np.testing.assert_array_equal(A, STENGEL_A)
+        np.testing.assert_array_equal(B, STENGEL_B)
+    path.write_text('NFG 1 R "" { "1" "2" } { { "a" "b" } { "c" } } 1/2 -1 .25 3e2')
+    A, B = read_nfg(path)
+    np.testing.assert_array_equal(A, [[0.5], [0.25]])
+    np.testing.assert_array_equal(B, [[-1.0], [300.0]])
+    path.write_text('NFG 1 R "" { "1" "2" } { { "a" } { "c" "d" } } "" { { "o" 1 2 } } 0 1')
+    A, B = read_nfg(path)
+    np.testing.assert_array_equal(A, [[0.0, 1.0]])
+    np.testing.assert_array_equal(B, [[0.0, 2.0]])
+
+
+@pytest.mark.parametrize("text, words", [
+    ("", "does not start with 'NFG'"),
+    ("EFG 2 R", "does not start"),
+    ('NFG 1 R "t" { "1" "2" "3" } { 2 2 2 }', "3 players"),
+    ('NFG 1 R "t" { "1" "2" } { 2 2 } 1 2 3', "ends where a payoff"),
+    ('NFG 1 R "t" { "1" "2" } { 1 1 } 1 x', "not a number"),
+    ('NFG 1 R "t" { "1" "2" } { 1 1 } 1 2 3', "unexpected"),
+    ('NFG 1 R "t" { "1" "2" } { 0 1 }', "positive integer"),
+    ('NFG 1 R "t { "1" "2" }', "not closed"),
+    ('NFG 1 R "t" { "1" "2" } { { "a" } { "b" } } "" { { "" 1 2 } } 2', "outcome number"),
+    ('NFG 1 R "t" { "1" "2" } { 1 1 } 1/0 2', "not a number"),
+])
+def test_read_nfg_malformed(tmp_path, text, words):
+    path = tmp_path / "bad.nfg"
+    path.write_text(text)
+    with pytest.raises(ProblemFormatError, match=words) as err:
+        read_nfg(path)
+    assert str(path) in str(err.value) and "\n" not in str(err.value)
+
+
+def test_read_nfg_missing_file(tmp_path):
+    with pytest.raises(ProblemFormatError, match="cannot read"):
+        read_nfg(tmp_path / "absent.nfg")
+
+
+def test_lemke_paths_on_degenerate_random_games():
+    """Every equilibrium found is one (checked exactly), none twice."""
+    rng = np.random.default_rng(11)
+    for _ in range(8):
+        m, n = rng.integers(2, 7, 2)
+        A, B = rng.integers(0, 3, (m, n)), rng.integers(0, 3, (m, n))
+        found = lemke.lemke_paths(A, B, exact=True)
+        assert found
+        for r in found:
+            assert_exact_equilibrium(A, B, r)
+        assert len({as_key(r) for r in found}) == len(found)
