@@ -8,6 +8,7 @@ import json
 import os
 import sys
 import time
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -15,7 +16,6 @@ import numpy as np
 from . import problems
 from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
 from ._kinds import KINDS
-from ._lcp import METHODS
 from ._options import Options
 from ._problem import Problem
 from ._version import __version__
@@ -64,7 +64,9 @@ def _parser() -> argparse.ArgumentParser:
                        "problem files, sorted) or a built-in problem (`lemke problems`).  With no "
                        f"SOURCE, the built-in example {DEFAULT_PROBLEM}.")
     s.add_argument("source", nargs="*", metavar="SOURCE", help="file, directory or built-in name")
-    s.add_argument("--method", default="tableau", choices=METHODS, help="pivoting method (default: tableau)")
+    methods = list(dict.fromkeys(m for k in KINDS.values() for m in k.methods))
+    s.add_argument("--method", default=None, choices=methods,
+                   help="method (default: tableau; lemke-howson for a game)")
     s.add_argument("--format", choices=FORMATS, help="read every file in this format (default: by extension and content)")
     s.add_argument("--max-pivots", type=_count, metavar="N", help="pivot limit (default: 100 (n + 1))")
     s.add_argument("--tol", type=_tolerance, metavar="X", help="acceptance tolerance, relative (default: 1e-9)")
@@ -115,7 +117,11 @@ def _sources(names: list[str]) -> list:
 
 # --------------------------------------------------------------------------- output
 
-def _show(vec: np.ndarray) -> str:
+def _show(vec) -> str:
+    if not isinstance(vec, np.ndarray):  # a tuple: exact fractions, or a game's payoffs
+        items = [str(v) if isinstance(v, Fraction) else f"{float(v):.6g}" for v in vec]
+        more = f", ...] ({len(items)} entries)" if len(items) > _SHOWN else "]"
+        return "[" + ", ".join(items[:_SHOWN]) + more
     head = np.array2string(vec[:_SHOWN], precision=6, suppress_small=True, separator=", ",
                            max_line_width=10**6)
     return head if vec.size <= _SHOWN else f"{head[:-1]}, ...] ({vec.size} entries)"
@@ -130,16 +136,12 @@ def _solution(prob, res) -> list[tuple[str, str]]:
     return rows
 
 
-def _residual(res) -> float:
-    if hasattr(res, "residual"):
-        return float(res.residual)
-    return float(max(res.primal_residual, res.dual_residual))  # a QP
 
 
 def _report(prob, res, seconds: float) -> str:
     lines = [f"{prob.name} ({prob.kind.upper()}, {prob.size_text()})", f"  from       {prob.source}",
              f"  status     {res.status.name}: {res.message}", f"  pivots     {res.pivots}",
-             f"  residual   {_residual(res):.3g}", f"  time       {_ms(seconds)}"]
+             f"  residual   {KINDS[prob.kind].residual(res):.3g}", f"  time       {_ms(seconds)}"]
     lines += [f"  {key:10s} {text}" for key, text in _solution(prob, res)]
     return "\n".join(lines)
 
@@ -306,12 +308,17 @@ def _run_one(src, args, options) -> dict:
         prob, name, where = src, src.name, src.name
     row = {"name": name, "kind": prob.kind, "size": _size(prob), "problem": prob}
     try:
-        _warm_up(prob.kind, args.method)
+        kind = KINDS[prob.kind]
+        method = args.method
+        if method is not None and method not in kind.methods:
+            raise ValueError(f"--method {method} does not apply to a {prob.kind} problem "
+                             f"(its methods: {', '.join(kind.methods)})")
+        _warm_up(prob.kind, method)
         t0 = time.perf_counter()
-        res = prob.solve(method=args.method, options=options)
+        res = prob.solve(method=method, options=options)
     except (NotImplementedError, ValueError, TypeError) as exc:  # the solver refused the data
         return dict(row, error=f"{where}: {' '.join(str(exc).split())}")
-    row.update(status=res.status.name, pivots=res.pivots, residual_=_residual(res),
+    row.update(status=res.status.name, pivots=res.pivots, residual_=kind.residual(res),
                time_s=time.perf_counter() - t0, result=res)
     return row
 

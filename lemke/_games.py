@@ -23,7 +23,9 @@ from fractions import Fraction
 import numpy as np
 
 from . import _games_exact as ex
+from . import _validate
 from ._options import _DEFAULT, Options, as_options
+from ._result import Outcome
 from ._status import Status
 from .kernels import games as kg
 from .kernels.pivoting import SOLVED
@@ -60,8 +62,8 @@ class GameBasis:
         return b
 
 
-@dataclass(frozen=True)
-class BimatrixResult:
+@dataclass(frozen=True, eq=False)
+class BimatrixResult(Outcome):
     """The outcome of :func:`solve_bimatrix`.
 
     Attributes
@@ -104,10 +106,6 @@ class BimatrixResult:
     exact: bool = False
     restarts: int = 0
 
-    @property
-    def success(self) -> bool:
-        return self.status == Status.SOLVED
-
     @classmethod
     def _make(cls, *values) -> "BimatrixResult":
         """Build from the solver's own values in field order, skipping the frozen dataclass'
@@ -115,10 +113,6 @@ class BimatrixResult:
         res = object.__new__(cls)
         res.__dict__.update(zip(_RESULT_FIELDS, values))
         return res
-
-    @property
-    def message(self) -> str:
-        return self.status.message
 
     def __repr__(self) -> str:
         return (f"BimatrixResult(status={self.status.name}, method={self.method!r}, "
@@ -129,28 +123,9 @@ _RESULT_FIELDS = tuple(f.name for f in dataclasses.fields(BimatrixResult))
 
 
 def _as_payoffs(A, B):
-    """Validate the payoffs: two finite, non-empty real m x n arrays."""
-    out = []
-    for name, P in (("A", A), ("B", B)):
-        try:
-            P = np.asarray(P, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError(f"payoff matrix {name} must be a 2-D array of real numbers") from None
-        if P.ndim != 2:
-            raise ValueError(f"payoff matrix {name} must be 2-D (m x n), got {P.ndim} dimension(s)")
-        if P.shape[0] == 0 or P.shape[1] == 0:
-            raise ValueError(f"payoff matrix {name} is {P.shape[0]} x {P.shape[1]}: "
-                             "each player needs at least one action (empty strategy set)")
-        bad = np.argwhere(~np.isfinite(P))
-        if bad.size:
-            i, j = bad[0]
-            raise ValueError(f"payoff matrix {name} has a non-finite entry {P[i, j]} at ({i}, {j})")
-        out.append(np.ascontiguousarray(P))
-    A, B = out
-    if A.shape != B.shape:
-        raise ValueError(f"payoff matrices A and B must have the same shape (m x n), got "
-                         f"{A.shape[0]} x {A.shape[1]} and {B.shape[0]} x {B.shape[1]}")
-    return A, B
+    """The validated payoffs ``(A, B)`` (``_validate.bimatrix``)."""
+    d = _validate.bimatrix(A, B)
+    return d["A"], d["B"]
 
 
 def _label(init_label, m, n):

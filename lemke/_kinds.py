@@ -13,7 +13,8 @@ from dataclasses import dataclass
 from typing import Callable
 
 from . import _validate
-from ._lcp import solve_lcp
+from ._games import solve_bimatrix
+from ._lcp import METHODS, solve_lcp
 from ._mlcp import solve_mlcp
 from ._qp import solve_qp
 
@@ -47,6 +48,11 @@ class Kind:
         What ``size_short`` means, for the command line's table.
     answer : tuple of str
         The result's fields that hold the answer, shown by the command line.
+    methods : tuple of str
+        The solver's ``method`` values (the first is its default).
+    residual : callable
+        ``residual(result) -> float``: the one number the command line reports as the
+        answer's error (an LCP's residual, a QP's largest KKT residual, a game's regret).
     has_objective : bool
         Whether the problem has an objective (and ``objective_constant``).
     example : dict
@@ -64,6 +70,8 @@ class Kind:
     size_short: Callable
     size_legend: str
     answer: tuple
+    methods: tuple = METHODS
+    residual: Callable = lambda res: float(res.residual)
     has_objective: bool = False
     example: dict | None = None
 
@@ -115,12 +123,30 @@ QP = Kind(
     size_short=lambda s: f"{s[0]}x{s[1] + s[2]}",
     size_legend="variables x constraint rows (QP)",
     answer=("x",),
+    residual=lambda res: float(max(res.primal_residual, res.dual_residual)),
     has_objective=True,
     example={"P": [[2.0, 0.0], [0.0, 2.0]], "q": [-2.0, -5.0], "G": [[1.0, 1.0]], "h": [1.0]},
 )
 
+BIMATRIX = Kind(
+    name="bimatrix",
+    fields=("A", "B"),
+    required=("A", "B"),
+    signature=frozenset({"A", "B"}),
+    validate=_validate.bimatrix,
+    solve=solve_bimatrix,
+    shape=lambda a: a["A"].shape,
+    size_text=lambda s: f"{s[0]} x {s[1]} actions",
+    size_short=lambda s: f"{s[0]}x{s[1]}",
+    size_legend="actions of the two players (game)",
+    answer=("x", "y", "payoffs"),
+    methods=("lemke-howson", "tracing"),
+    residual=lambda res: float(res.regret),
+    example={"A": [[3.0, 3.0], [2.0, 5.0], [0.0, 6.0]], "B": [[3.0, 2.0], [2.0, 6.0], [3.0, 1.0]]},
+)
+
 #: Every kind, by name, in the order the documentation lists them.
-KINDS: dict[str, Kind] = {k.name: k for k in (LCP, MLCP, QP)}
+KINDS: dict[str, Kind] = {k.name: k for k in (LCP, MLCP, QP, BIMATRIX)}
 
 
 def kind(name: str) -> Kind:
@@ -133,7 +159,7 @@ def kind(name: str) -> Kind:
 
 #: The order in which a file's arrays are matched against the signatures (a QP also has
 #: an ``A``; an LCP file has no ``P``).
-_INFER_ORDER = (QP, LCP, MLCP)
+_INFER_ORDER = (QP, LCP, MLCP, BIMATRIX)
 
 
 def infer(keys) -> Kind | None:

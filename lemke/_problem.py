@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _validate
-from ._kinds import KINDS, LCP, MLCP, QP, kind as _kind
+from ._kinds import BIMATRIX, KINDS, LCP, MLCP, QP, kind as _kind
 
 #: The arrays of each kind of problem, in the order of its solver's arguments.
 FIELDS = {name: k.fields for name, k in KINDS.items()}
@@ -31,6 +31,9 @@ class Problem:
     * ``kind == "qp"``: ``P, q, G, h, A, b, lb, ub`` (qpsolvers' form; the last six may be
       None) -- minimize 1/2 x'P x + q'x + ``objective_constant`` subject to G x <= h,
       A x = b, lb <= x <= ub (``lb`` may hold -inf, ``ub`` +inf).
+
+    * ``kind == "bimatrix"``: ``A, B`` (both m x n) -- a Nash equilibrium (x, y) of the game
+      where A pays the row player and B the column player.
 
     ``name`` and ``source`` (where the problem comes from) are free text;
     ``objective_constant`` is the constant term of a QP's objective (0 otherwise).
@@ -83,6 +86,11 @@ class Problem:
         return cls(QP.name, {k: v for k, v in arrays.items() if v is not None}, name=name,
                    source=source, objective_constant=objective_constant)
 
+    @classmethod
+    def bimatrix(cls, A, B, *, name: str = "", source: str = "") -> "Problem":
+        """The bimatrix game with payoffs A (row player) and B (column player), both m x n."""
+        return cls(BIMATRIX.name, {"A": A, "B": B}, name=name, source=source)
+
     def __getattr__(self, key):
         # Only reached when normal lookup fails: the arrays of this kind (None when absent).
         if not key.startswith("_") and key in KINDS[object.__getattribute__(self, "kind")].fields:
@@ -117,11 +125,13 @@ class Problem:
         x = _stored(_validate.block(x, "x", (self.q.size,)))
         return float(0.5 * x @ self.P @ x + self.q @ x + self.objective_constant)
 
-    def solve(self, *, method: str = "tableau", options=None, **kwargs):
+    def solve(self, *, method: str | None = None, options=None, **kwargs):
         """Solve with the solver for the kind (:func:`lemke.solve_lcp`,
-        :func:`lemke.solve_mlcp`, :func:`lemke.solve_qp`, ...); keyword arguments pass
-        through."""
-        return KINDS[self.kind].solve(*self.arrays_in_order(), method=method, options=options, **kwargs)
+        :func:`lemke.solve_mlcp`, :func:`lemke.solve_qp`, :func:`lemke.solve_bimatrix`);
+        ``method`` (default: the solver's) and the other keyword arguments pass through."""
+        if method is not None:
+            kwargs["method"] = method
+        return KINDS[self.kind].solve(*self.arrays_in_order(), options=options, **kwargs)
 
     def arrays_in_order(self) -> list:
         """The solver's positional arguments: every field of the kind, None where absent."""

@@ -29,7 +29,8 @@ class Status(IntEnum):
 _MESSAGES = {
     Status.SOLVED: (
         "Solved, and checked on the caller's data within the tolerance: z >= 0, w = Mz + q >= 0 "
-        "and z'w = 0 (for an MLCP also its equations; for a QP its KKT conditions)."
+        "and z'w = 0 (for an MLCP also its equations; for a QP its KKT conditions; for a game, no "
+        "player gains by deviating, up to the tolerance relative to the payoffs)."
     ),
     Status.MAX_PIVOTS: (
         "Stopped at the pivot limit before reaching a solution. Raise options.max_pivots "

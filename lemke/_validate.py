@@ -182,6 +182,32 @@ def _bound(v, n, name, sign):
     return a
 
 
+def bimatrix(A, B) -> dict:
+    """The payoffs of a bimatrix game by name: two finite, non-empty real m x n arrays
+    (A the row player's, B the column player's)."""
+    out = []
+    for name, P in (("A", A), ("B", B)):
+        try:
+            P = np.asarray(P, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"payoff matrix {name} must be a 2-D array of real numbers") from None
+        if P.ndim != 2:
+            raise ValueError(f"payoff matrix {name} must be 2-D (m x n), got {P.ndim} dimension(s)")
+        if P.shape[0] == 0 or P.shape[1] == 0:
+            raise ValueError(f"payoff matrix {name} is {P.shape[0]} x {P.shape[1]}: "
+                             "each player needs at least one action (empty strategy set)")
+        bad = np.argwhere(~np.isfinite(P))
+        if bad.size:
+            i, j = bad[0]
+            raise ValueError(f"payoff matrix {name} has a non-finite entry {P[i, j]} at ({i}, {j})")
+        out.append(np.ascontiguousarray(P))
+    A, B = out
+    if A.shape != B.shape:
+        raise ValueError(f"payoff matrices A and B must have the same shape (m x n), got "
+                         f"{A.shape[0]} x {A.shape[1]} and {B.shape[0]} x {B.shape[1]}")
+    return {"A": A, "B": B}
+
+
 SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
 CONVEXITY_TOL = 1e-10  # relative: P + CONVEXITY_TOL max|P| I must have a Cholesky factor
 

@@ -7,7 +7,7 @@ import numpy as np
 
 from ._problem import Problem
 
-__all__ = ["NAMED", "Problem", "bimatrix", "contact_box", "contact_like", "cps_447", "degenerate",
+__all__ = ["NAMED", "Problem", "bimatrix", "bimatrix_lcp", "contact_box", "contact_like", "cps_447", "degenerate",
            "hs21", "murty", "random_p_matrix", "random_psd"]
 
 
@@ -34,19 +34,32 @@ def degenerate() -> Problem:
     return Problem.lcp(M, q, name="degenerate", source="lemke's issue tracker (a plain ratio test ends on a false ray); a solution is z = (0, 0.5)")
 
 
+_GAME_A = [[3.0, 3.0], [2.0, 5.0], [0.0, 6.0]]
+_GAME_B = [[3.0, 2.0], [2.0, 6.0], [3.0, 1.0]]
+
+
 def bimatrix() -> Problem:
-    """The 3 x 2 example game of von Stengel (2002) (payoffs A to the row player,
-    B to the column player), as the LCP of Lemke & Howson (1964): with the costs
+    """The 3 x 2 example game of von Stengel (2002), payoffs A to the row player and B to
+    the column player: a ``bimatrix`` problem, solved by Lemke-Howson
+    (:func:`lemke.solve_bimatrix`).  It has three equilibria: x = (1, 0, 0), y = (1, 0)
+    (Lemke-Howson dropping label 0 finds it), x = (0, 1/3, 2/3), y = (1/3, 2/3) and
+    x = (4/5, 1/5, 0), y = (2/3, 1/3) (only :func:`lemke.lemke_paths` reaches it)."""
+    return Problem.bimatrix(_GAME_A, _GAME_B, name="bimatrix", source=(
+        "von Stengel (2002), Computing equilibria for two-person games, 3 x 2 example; "
+        "equilibria x = (1, 0, 0), y = (1, 0); (0, 1/3, 2/3), (1/3, 2/3); (4/5, 1/5, 0), (2/3, 1/3)"))
+
+
+def bimatrix_lcp() -> Problem:
+    """The same game as the LCP of Lemke & Howson (1964): with the costs
     A' = 7 - A > 0 and B' = 7 - B > 0, find x, y >= 0 with A' y - 1 >= 0 _|_ x and
     B'^T x - 1 >= 0 _|_ y; x / sum(x), y / sum(y) is then an equilibrium.  Lemke's method with
     a covering vector ends on a secondary ray here (this M is not copositive-plus; the
     Lemke-Howson start from the artificial equilibrium is needed), although the game has
     three equilibria, e.g. the pure one x = (1, 0, 0), y = (1, 0)."""
-    A = np.array([[3.0, 3.0], [2.0, 5.0], [0.0, 6.0]])
-    B = np.array([[3.0, 2.0], [2.0, 6.0], [3.0, 1.0]])
+    A, B = np.array(_GAME_A), np.array(_GAME_B)
     m, k = A.shape
     M = np.block([[np.zeros((m, m)), 7.0 - A], [(7.0 - B).T, np.zeros((k, k))]])
-    return Problem.lcp(M, -np.ones(m + k), name="bimatrix", source=(
+    return Problem.lcp(M, -np.ones(m + k), name="bimatrix-lcp", source=(
         "von Stengel (2002), Computing equilibria for two-person games, 3 x 2 example, as the "
         "Lemke-Howson LCP; Lemke with d = 1 ends on a ray (equilibria exist, e.g. x = (1, 0, 0), y = (1, 0))"))
 
@@ -82,7 +95,7 @@ def hs21() -> Problem:
 
 
 NAMED = {"cps-4.4.7": cps_447, "murty": murty, "degenerate": degenerate, "bimatrix": bimatrix,
-         "contact-box": contact_box, "hs21": hs21}
+         "bimatrix-lcp": bimatrix_lcp, "contact-box": contact_box, "hs21": hs21}
 
 
 def random_psd(n: int, rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray]:

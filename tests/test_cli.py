@@ -41,7 +41,7 @@ def test_no_source_solves_the_default_example(capsys):
 @pytest.mark.parametrize("name", list(problems.NAMED))
 def test_every_builtin_problem(capsys, name):
     code, out, err = run(capsys, "solve", name)
-    expected = 1 if name == "bimatrix" else 0  # Lemke with d = 1 ends on a ray on the game
+    expected = 1 if name == "bimatrix-lcp" else 0  # Lemke with d = 1 ends on a ray on the game
     assert code == expected, out + err
     assert ("RAY_TERMINATION" if expected else "SOLVED") in out
 
@@ -254,3 +254,18 @@ def test_python_dash_m_in_a_subprocess(tmp_path):
     done = _lemke("solve", "--max-pivots", "-3")
     assert done.returncode == 2
     one_error_line(done.stderr, "--max-pivots")
+
+
+def test_solve_a_gambit_game_file(capsys, tmp_path):
+    # von Stengel's 3 x 2 game in Gambit's payoff version (row player's strategy fastest)
+    path = tmp_path / "game.nfg"
+    path.write_text('NFG 1 R "3x2" { "P1" "P2" } { 3 2 }\n3 3 2 2 0 3 3 2 5 6 6 1\n')
+    code, out, err = run(capsys, "solve", str(path))
+    assert code == 0, out + err
+    assert "BIMATRIX" in out and "x          [1., 0., 0.]" in out and "y          [1., 0.]" in out
+    code, out, err = run(capsys, "solve", str(path), "--method", "tracing")
+    assert code == 0 and "SOLVED" in out
+    bad = tmp_path / "bad.nfg"
+    bad.write_text('NFG 1 R "x" { "P1" "P2" } { 2 2 }\n1 2 3\n')
+    code, out, err = run(capsys, "solve", str(bad))
+    assert code == 2 and err.count("\n") == 1 and str(bad) in err

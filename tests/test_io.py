@@ -19,8 +19,8 @@ DATA = Path(__file__).parent / "data"
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"  # ../shared/data from the repo root
 SICONOS_LCP = sorted((DATA / "siconos" / "lcp").glob("*.dat"))
 SICONOS_MLCP = sorted((DATA / "siconos" / "mlcp").glob("*.dat"))
-HOLDS = {"json": ("lcp", "mlcp", "qp"), "npz": ("lcp", "mlcp", "qp"), "dat": ("lcp", "mlcp"),
-         "mat": ("lcp", "mlcp", "qp"), "qps": ("qp",)}
+HOLDS = {"json": ("lcp", "mlcp", "qp", "bimatrix"), "npz": ("lcp", "mlcp", "qp", "bimatrix"),
+         "dat": ("lcp", "mlcp"), "mat": ("lcp", "mlcp", "qp"), "qps": ("qp",), "nfg": ("bimatrix",)}
 
 
 def _qp_with_everything():
@@ -45,7 +45,7 @@ def _examples():
 def same_problem(a: Problem, b: Problem):
     """Equal kinds and arrays; an absent bound counts as an infinite one."""
     assert a.kind == b.kind
-    n = a.q.size if a.kind != "mlcp" else 0
+    n = a.q.size if a.kind in ("lcp", "qp") else 0
     fill = {"lb": np.full(n, -np.inf), "ub": np.full(n, np.inf)}
     for key in set(a.arrays) | set(b.arrays):
         x, y = a.arrays.get(key, fill.get(key)), b.arrays.get(key, fill.get(key))
@@ -73,7 +73,7 @@ def test_round_trip(prob, fmt, tmp_path):
 
 def test_format_is_told_by_content_without_extension(tmp_path):
     for fmt in FORMATS:
-        prob = problems.hs21() if fmt == "qps" else problems.cps_447()
+        prob = {"qps": problems.hs21, "nfg": problems.bimatrix}.get(fmt, problems.cps_447)()
         path = tmp_path / f"problem-{fmt}"
         lemke.write_problem(prob, path, format=fmt)
         same_problem(prob, lemke.read_problem(path))
@@ -521,8 +521,8 @@ def test_result_writer(tmp_path):
 
 
 def test_result_dict_is_plain_json():
-    res = problems.bimatrix().solve()
-    doc = lemke.result_to_dict(res, problems.bimatrix())
+    res = problems.bimatrix_lcp().solve()
+    doc = lemke.result_to_dict(res, problems.bimatrix_lcp())
     assert doc["status"] == "RAY_TERMINATION" and isinstance(doc["ray"], list)
     json.dumps(doc, allow_nan=False)
     assert io.StringIO(json.dumps(doc)).read()

@@ -2,7 +2,7 @@
 :func:`write_result`, :func:`result_to_dict` and :class:`ProblemFormatError`.
 
 Formats (``format=``): ``"json"``, ``"npz"``, ``"dat"`` (Siconos LCP/MLCP), ``"mat"``
-(Maros-Meszaros QP) and ``"qps"`` (free MPS with QUADOBJ); each module's docstring gives its
+(Maros-Meszaros QP), ``"qps"`` (free MPS with QUADOBJ) and ``"nfg"`` (Gambit games); each module's docstring gives its
 layout.  Reading never executes data (no pickle: ``np.load(allow_pickle=False)``), never writes
 to the file, and refuses dense matrices over ``MAX_ENTRIES`` entries before allocating them.
 Writing is atomic: a temporary file in the same directory, then ``os.replace``.
@@ -13,22 +13,23 @@ import dataclasses
 import enum
 import json
 import math
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
 
 from .._kinds import KINDS
 from .._problem import Problem
-from . import jsonfile, matfile, npzfile, qps, siconos
+from . import jsonfile, matfile, nfg, npzfile, qps, siconos
 from .common import MAX_ENTRIES, BadFile, ProblemFormatError, atomic_write, same_file
 
 __all__ = ["FORMATS", "MAX_ENTRIES", "ProblemFormatError", "read_problem", "result_to_dict",
            "write_problem", "write_result"]
 
-_MODULES = {"json": jsonfile, "npz": npzfile, "dat": siconos, "mat": matfile, "qps": qps}
+_MODULES = {"json": jsonfile, "npz": npzfile, "dat": siconos, "mat": matfile, "qps": qps, "nfg": nfg}
 FORMATS = tuple(_MODULES)
 #: File name extensions of each format (lower case).
-EXTENSIONS = {".json": "json", ".npz": "npz", ".dat": "dat", ".mat": "mat", ".qps": "qps", ".mps": "qps"}
+EXTENSIONS = {".json": "json", ".npz": "npz", ".dat": "dat", ".mat": "mat", ".qps": "qps", ".mps": "qps", ".nfg": "nfg"}
 
 _ZIP = (b"PK\x03\x04", b"PK\x05\x06")
 
@@ -44,6 +45,8 @@ def _sniff(data: bytes) -> str | None:
     stripped = text.lstrip("\ufeff \t\r\n")
     if stripped.startswith("{"):
         return "json"
+    if stripped.startswith("NFG"):
+        return "nfg"
     first = stripped.split(None, 1)[:1]
     if first and first[0].upper() in ("NAME", "ROWS") and text[:1] not in (" ", "\t"):
         return "qps"
@@ -135,6 +138,8 @@ def _plain(value):
     """A result's field as JSON: arrays as lists, non-finite floats as None."""
     if isinstance(value, enum.Enum):
         return value.name
+    if isinstance(value, Fraction):  # exact answers (games): "p/q", read back by Fraction()
+        return str(value)
     if isinstance(value, np.ndarray):
         return [_plain(x) for x in value] if value.ndim > 1 else _plain(value.tolist())
     if isinstance(value, (list, tuple)):
@@ -180,6 +185,8 @@ def _result_arrays(result, problem, extra) -> dict:
                 put(f"{key}_{f.name}", getattr(value, f.name))
         elif isinstance(value, enum.Enum):
             out[key] = int(value)
+        elif isinstance(value, Fraction) or (isinstance(value, tuple) and any(isinstance(v, Fraction) for v in value)):
+            out[key] = np.array(_plain(value), dtype=str)  # exact answers as "p/q" strings
         else:
             out[key] = value
 

@@ -28,7 +28,7 @@ from .common import BadFile, check_size, infer_kind, make_problem
 _META = ("kind", "name", "source", "objective_constant")
 _VECTORS = {"q", "a", "b", "h", "lb", "ub"}
 
-KINDS = ("lcp", "mlcp", "qp")  # the kinds of problem this format holds
+KINDS = ("lcp", "mlcp", "qp", "bimatrix")  # the kinds of problem this format holds
 
 
 def _number(x, where: str, none=None) -> float:

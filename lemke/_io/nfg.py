@@ -25,9 +25,26 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import MAX_ENTRIES, BadFile, ProblemFormatError
+from .common import MAX_ENTRIES, BadFile, ProblemFormatError, make_problem
 
 __all__ = ["read_nfg"]
+
+KINDS = ("bimatrix",)  # the kinds of problem this format holds (read only)
+(BIMATRIX,) = KINDS
+
+
+def read(data: bytes, path):
+    """The game in an ``.nfg`` file's bytes as a Problem (for :func:`lemke.read_problem`)."""
+    A, B = parse_nfg(data.decode("utf-8", errors="replace"))
+    return make_problem(BIMATRIX, {"A": A, "B": B}, path, "Gambit .nfg")
+
+
+def write(problem, fh) -> None:
+    """Write a game in the payoff version (the first player's strategy changing fastest)."""
+    m, n = problem.A.shape
+    pay = " ".join(f"{float(problem.A[i, j])!r} {float(problem.B[i, j])!r}" for j in range(n) for i in range(m))
+    name = problem.name.replace("\\", "\\\\").replace('"', '\\"')
+    fh.write(f'NFG 1 R "{name}" {{ "Player 1" "Player 2" }} {{ {m} {n} }}\n\n{pay}\n'.encode("utf-8"))
 
 
 def read_nfg(path) -> tuple[np.ndarray, np.ndarray]:

@@ -211,16 +211,8 @@ def place(T, rhs, magb, basis, nonbasic, pos, is_basic, target, col, prow):
 @kernel
 def swap(T, rhs, magb, basis, nonbasic, pos, is_basic, r, s, col, prow):
     """:func:`exchange` and the bookkeeping of the labels; returns the label that left."""
-    leaving = basis[r]
-    entering = nonbasic[s]
     exchange(T, rhs, magb, r, s, col, prow)
-    basis[r] = entering
-    nonbasic[s] = leaving
-    pos[entering] = r
-    is_basic[entering] = True
-    pos[leaving] = s
-    is_basic[leaving] = False
-    return leaving
+    return pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
 
 
 # --- the check on the caller's payoffs --------------------------------------------------------
@@ -424,12 +416,9 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
             break
         pivots += 1
         shift = 0 if side == 0 else L
-        h ^= hkeys[leaving + shift] ^ hkeys[entering + shift]
-        if leaving == k:
-            status = SOLVED
-            break
-        if pivoting.repeats(detector, h):
-            status = CYCLING
+        h, stop = pivoting.after_pivot(leaving + shift, entering + shift, k + shift, h, hkeys, detector)
+        if stop >= 0:
+            status = stop
             break
         entering = leaving
         side = 1 - side
@@ -629,12 +618,9 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
             status = RAY_TERMINATION if leaving == -1 else NUMERICAL_FAILURE
             break
         pivots += 1
-        h ^= hkeys[leaving] ^ hkeys[entering]
-        if leaving == Z0:
-            status = SOLVED
-            break
-        if pivoting.repeats(detector, h):
-            status = CYCLING
+        h, stop = pivoting.after_pivot(leaving, entering, Z0, h, hkeys, detector)
+        if stop >= 0:
+            status = stop
             break
         entering = leaving + L if leaving < L else leaving - L  # the complement
     x[:] = 0.0

@@ -233,3 +233,18 @@ def after_pivot(leaving, entering, artificial, h, hkeys, detector):
     if repeats(detector, h):
         return h, CYCLING
     return h, -1
+
+
+@kernel
+def swap_labels(basis, nonbasic, pos, is_basic, r, s):
+    """The bookkeeping of a pivot on row r and column s: the label of column s enters the
+    basis at row r, the label of row r leaves for column s.  Returns the leaving label."""
+    leaving = basis[r]
+    entering = nonbasic[s]
+    basis[r] = entering
+    nonbasic[s] = leaving
+    pos[entering] = r
+    is_basic[entering] = True
+    pos[leaving] = s
+    is_basic[leaving] = False
+    return leaving

@@ -232,12 +232,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
             break
         k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
         pivots += 1
-        basis[r] = entering
-        nonbasic[s] = leaving
-        pos[entering] = r
-        is_basic[entering] = True
-        pos[leaving] = s
-        is_basic[leaving] = False
+        pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
         h, stop = pivoting.after_pivot(leaving, entering, artificial, h, hkeys, detector)
         if stop >= 0:
             status = stop
