@@ -10,6 +10,7 @@ method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as 
 :func:`write_result`, :class:`ProblemFormatError`).
 """
 from ._batch import solve_lcp_batch
+from ._blcp import BLCPResult, BoxWarmStart, solve_blcp
 from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
 from ._lcp import METHODS, solve_lcp
