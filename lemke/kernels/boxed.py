@@ -28,6 +28,11 @@ starting row was on); a bound flip has key 0 beyond its ratio (its slack's row o
 inverse has no entry in the starting columns).  The cycle detector fingerprints the basis
 and the set of non-basic variables at their upper bounds.
 
+**The start.**  Each z starts non-basic at a bound: a cold start puts a variable with two
+finite bounds at hi_i when q_i < 0 and at lo_i otherwise (where the diagonal of M would push
+it), a one-sided one at its finite bound; a warm start puts them where the previous final
+basis had them.
+
 **Equilibration.**  Ruiz's scaling of [M | q + M z_start] (z_start: every z at the bound it
 starts on), powers of two; the bounds are scaled with the columns.
 
@@ -55,11 +60,16 @@ EXCHANGE_TOL = 1e-9  # an exchange pivot below this (equilibrated units) counts 
 
 
 @kernel
-def start_point(lo, hi, at_hi, n):
+def start_point(lo, hi, at_hi, q, guess, n):
     """Where each z starts, non-basic: at hi_i when ``at_hi[i]`` (and hi_i finite), else at
-    lo_i when finite, else at hi_i when finite, else 0 (a free variable, made basic)."""
+    lo_i when finite, else at hi_i when finite, else 0 (a free variable, made basic).  With
+    ``guess`` (a cold start), a variable with both bounds finite starts at hi_i when
+    q_i < 0 (it is pushed up there when M is diagonally dominant) and at lo_i otherwise;
+    ``at_hi`` is set accordingly."""
     z = np.empty(n)
     for i in range(n):
+        if guess and q[i] < 0.0 and lo[i] > -np.inf and hi[i] < np.inf:
+            at_hi[i] = True
         if at_hi[i] and hi[i] < np.inf:
             z[i] = hi[i]
         elif lo[i] > -np.inf:
@@ -410,7 +420,10 @@ def solve(M, q, lo, hi, warm_basic, warm_hi, cov_mode, max_pivots, pivot_tol, ti
     if code < 0:
         return code, 0, 0.0, False, np.inf
     z_hi[:] = warm_hi
-    z0s = start_point(lo, hi, z_hi, n)
+    cold = True
+    for i in range(n):
+        cold = cold and not (warm_hi[i] or warm_basic[i])
+    z0s = start_point(lo, hi, z_hi, q, cold, n)
     for i in range(n):
         z_hi[i] = z_hi[i] and hi[i] < np.inf or (lo[i] == -np.inf and hi[i] < np.inf)
     qs = np.empty(n)
