@@ -75,6 +75,13 @@ class BoxWarmStart:
             raise ValueError("BoxWarmStart: an index cannot be basic and at its upper bound")
         object.__setattr__(self, "n", int(n))
 
+    @classmethod
+    def _trusted(cls, n, z_basic, at_upper) -> "BoxWarmStart":
+        """Build from values the solver made itself (sorted, in range): no checks."""
+        ws = object.__new__(cls)
+        ws.__dict__.update(n=n, z_basic=z_basic, at_upper=at_upper)
+        return ws
+
 
 @dataclass(frozen=True)
 class BLCPResult(Outcome):
@@ -126,32 +133,62 @@ class BLCPResult(Outcome):
     col_scale: np.ndarray
     recoveries: int = 0
 
+    @classmethod
+    def _make(cls, *values) -> "BLCPResult":
+        """Build from the solver's own values (in field order), skipping the frozen
+        dataclass ``__init__``: this is on the hot path of small problems."""
+        res = object.__new__(cls)
+        res.__dict__.update(zip(_RESULT_FIELDS, values))
+        return res
+
     def __repr__(self) -> str:
         return (f"BLCPResult(status={self.status.name}, pivots={self.pivots}, "
                 f"residual={self.residual:.3g}, n={self.z.size})")
 
 
+_RESULT_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
+                  "lo", "hi", "row_scale", "col_scale", "recoveries")
+
+
 class _Run:
     """The output arrays of one kernel run and what it returned."""
 
-    __slots__ = ("z", "w", "ray", "d", "R", "C", "zb", "zh", "code", "pivots", "z0", "ok",
-                 "residual")
+    __slots__ = ("z", "w", "ray", "d", "R", "C", "buf", "final", "code", "pivots", "z0",
+                 "ok", "residual", "k", "m")
 
     def __init__(self, n):
-        self.z, self.w, self.d, self.R, self.C = (np.empty(n) for _ in range(5))
-        self.ray = np.empty(n + 1)
-        self.zb = np.zeros(n, dtype=np.bool_)
-        self.zh = np.zeros(n, dtype=np.bool_)
+        # One buffer, sliced as kernels.boxed.layout slices it.
+        buf = np.empty(6 * n + 1)
+        self.z, self.w, self.d = buf[:n], buf[n:2 * n], buf[2 * n:3 * n]
+        self.R, self.C, self.ray = buf[3 * n:4 * n], buf[4 * n:5 * n], buf[5 * n:]
+        self.buf = buf
+        self.final = np.empty(n, dtype=np.int64)
+        self.k = self.m = 0
 
-    def go(self, M, q, lo, hi, wb, wh, mode, opts, max_pivots, tie_tol):
-        (self.code, self.pivots, self.z0, self.ok, self.residual) = boxed.solve(
-            M, q, lo, hi, wb, wh, mode, max_pivots, opts.pivot_tol, tie_tol, opts.tol,
-            self.z, self.w, self.ray, self.d, self.R, self.C, self.zb, self.zh)
+    def go(self, M, q, lo, hi, warm, mode, opts, max_pivots, tie_tol):
+        """Run ``kernels.boxed.solve``; ``warm`` (2n flags): the basic z's, then the
+        non-basic z's at hi."""
+        (self.code, self.pivots, self.z0, self.ok, self.residual, self.k, self.m) = boxed.solve(
+            M, q, lo, hi, warm, mode, max_pivots, opts.pivot_tol, tie_tol, opts.tol,
+            self.buf, self.final)
         return self
 
+    def set_basis(self, zb, zh):
+        """Record the final basis from flags (a point computed outside the kernel)."""
+        b, h = np.flatnonzero(zb), np.flatnonzero(zh & ~zb)
+        self.k, self.m = b.size, b.size + h.size
+        self.final[: self.m] = np.concatenate([b, h])
+
+    def basis_flags(self, n):
+        zb = np.zeros(n, dtype=np.bool_)
+        zh = np.zeros(n, dtype=np.bool_)
+        zb[self.final[: self.k]] = True
+        zh[self.final[self.k: self.m]] = True
+        return zb, zh
+
     def warm(self, n):
-        return BoxWarmStart(n, tuple(np.flatnonzero(self.zb).tolist()),
-                            tuple(np.flatnonzero(self.zh).tolist()))
+        idx = self.final.tolist()
+        return BoxWarmStart._trusted(n, tuple(idx[: self.k]), tuple(idx[self.k: self.m]))
 
 
 def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
@@ -201,7 +238,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         # The common case: no copies, one kernel call that also validates the data.
         opts = _DEFAULT if options is None else as_options(options)
         n = q.shape[0]
-        run = _Run(n).go(M, q, lo, hi, _NO[n][0], _NO[n][1], 0, opts, opts.pivot_limit(n),
+        run = _Run(n).go(M, q, lo, hi, _NO[n], 0, opts, opts.pivot_limit(n),
                          opts.tie_tol) if n < len(_NO) else None
         if run is not None and run.code == 0 and run.ok:
             return _solved(run, n, lo, hi, 0)
@@ -216,7 +253,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     return _solve_friction(M, q, lo, hi, findex, opts, warm_start)
 
 
-_NO = [(np.zeros(n, dtype=np.bool_), np.zeros(n, dtype=np.bool_)) for n in range(257)]
+_NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size
 
 
 def as_blcp(M, q, lo, hi, findex=None):
@@ -290,8 +327,7 @@ def _solve(M, q, lo, hi, opts, warm_start):
         if res.status == Status.SOLVED:
             return res
         extra, rec = res.pivots, 1
-    no = np.zeros(n, dtype=np.bool_)
-    run = _Run(n).go(M, q, lo, hi, no, no, 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+    run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
     if run.code == boxed.NOT_FINITE:
         raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
     return _finish(M, q, lo, hi, opts, run, extra, rec)
@@ -320,10 +356,9 @@ def _warm(M, q, lo, hi, opts, ws):
         if ok:
             run.z, run.code, run.pivots, run.z0, run.ok, run.residual = z, 0, 0, 0.0, True, residual
             run.d[:] = 0.0
-            run.zb[:] = zb
-            run.zh[:] = zh & ~zb
+            run.set_basis(zb, zh)
             return _solved(run, n, lo, hi, 0)
-    run = _Run(n).go(M, q, lo, hi, zb, zh, 1, opts, opts.pivot_limit(n), opts.tie_tol)
+    run = _Run(n).go(M, q, lo, hi, np.concatenate([zb, zh & ~zb]), 1, opts, opts.pivot_limit(n), opts.tie_tol)
     return _finish(M, q, lo, hi, opts, run, ladder=False)
 
 
@@ -341,7 +376,7 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
                 left = opts.pivot_limit(n) - pivots
                 if left <= 0:
                     break
-                nxt = _Run(n).go(M, q, lo, hi, _NO_N(n), _NO_N(n), mode, opts, left, tie)
+                nxt = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), mode, opts, left, tie)
                 pivots += max(nxt.pivots, 0)
                 rec += 1
                 if nxt.code == 0 and nxt.ok:
@@ -354,7 +389,7 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
     status = Status(run.code) if run.code >= 0 else Status.NUMERICAL_FAILURE
     z, w, residual = run.z, run.w, run.residual
     if status == Status.SOLVED or not run.ok:
-        zr = _basis_point(M, q, lo, hi, run.zb, run.zh)
+        zr = _basis_point(M, q, lo, hi, *run.basis_flags(n))
         if zr is not None:
             wr = np.empty(n)
             ok, rr = boxed.box_check(M, q, lo, hi, zr, opts.tol, wr, run.R)
@@ -373,15 +408,12 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
                       run.warm(n), lo, hi, run.R, run.C, rec)
 
 
-def _NO_N(n):
-    return np.zeros(n, dtype=np.bool_)
-
-
 def _solved(run, n, lo, hi, rec, pivots=None):
-    for a in (run.z, run.w, run.d):
-        a.setflags(write=False)
-    return BLCPResult(run.z, run.w, Status.SOLVED, int(run.pivots if pivots is None else pivots),
-                      float(run.residual), None, 0.0, run.d, run.warm(n), lo, hi, run.R, run.C, rec)
+    run.z.setflags(write=False)
+    run.w.setflags(write=False)
+    run.d.setflags(write=False)
+    return BLCPResult._make(run.z, run.w, Status.SOLVED, run.pivots if pivots is None else pivots,
+                            run.residual, None, 0.0, run.d, run.warm(n), lo, hi, run.R, run.C, rec)
 
 
 def _basis_point(M, q, lo, hi, zb, zh):

@@ -82,6 +82,29 @@ def start_point(lo, hi, at_hi, q, guess, n):
 
 
 @kernel
+def nonzero(x, n):
+    """Whether x[:n] has a non-zero entry (a NaN counts)."""
+    for i in range(n):
+        if x[i] != 0.0:
+            return True
+    return False
+
+
+@kernel
+def trivial_start(lo, hi, at_hi, w, n):
+    """Whether the start point (no free variable; w = M z_start + q) already solves it:
+    every w_i has the sign its z_i's bound needs."""
+    for i in range(n):
+        if lo[i] == hi[i]:
+            continue
+        if lo[i] == -np.inf and hi[i] == np.inf:
+            return False
+        if (w[i] < 0.0 and not at_hi[i]) or (w[i] > 0.0 and at_hi[i]):
+            return False
+    return True
+
+
+@kernel
 def bounds_of(lab, n, lo, hi, at_hi):
     """The bounds of variable ``lab`` while basic (scaled units): a z its box; a w, while its
     z is non-basic, [0, inf) at lo, (-inf, 0] at hi, free for a fixed z; z0 [0, inf)."""
@@ -347,20 +370,23 @@ def box_check(M, q, lo, hi, z, tol, w, R):
     rows = np.empty(n)
     floors = np.empty(n)
     p = np.empty(n)
+    p_zero = True  # the box holds 0 (the common case): no pass over M for the data
     for i in range(n):
         p[i] = min(max(0.0, lo[i]), hi[i])
+        p_zero = p_zero and p[i] == 0.0
     q_top = 0.0
     for i in range(n):
         q_top = max(q_top, R[i] * abs(q[i]))
     big = 0.0
     data = 1.0
+    z_zero = not nonzero(z, n)
     for i in range(n):
-        mz, size = dot_and_size(M[i], z, n)
+        mz, size = (0.0, 0.0) if z_zero else dot_and_size(M[i], z, n)
         w[i] = q[i] + mz
         rows[i] = size + abs(q[i])
         floors[i] = (n + 2) * EPS * q_top / R[i]
         big = max(big, R[i] * size)
-        psize = dot_and_size(M[i], p, n)[1]
+        psize = 0.0 if p_zero else dot_and_size(M[i], p, n)[1]
         data = max(data, R[i] * (abs(q[i]) + psize))
     ok = EPS * big <= CERTIFIABLE * t * data
     residual = 0.0
@@ -377,12 +403,14 @@ def box_check(M, q, lo, hi, z, tol, w, R):
                 ok = False
             continue
         s_w = t * rows[i] + floors[i]
-        zs = zero_size(M, rows, i, t, floors)
-        if zi < lo[i] - zs or zi > hi[i] + zs:
-            ok = False
-        if wi > s_w and zi - lo[i] > zs:
-            ok = False
-        if wi < -s_w and hi[i] - zi > zs:
+        # How far z_i may be from a bound and still count as at it: only computed (O(n))
+        # for a row that needs it.
+        off = max(lo[i] - zi, zi - hi[i])
+        if wi > s_w:
+            off = max(off, zi - lo[i])
+        if wi < -s_w:
+            off = max(off, hi[i] - zi)
+        if off > 0.0 and off > zero_size(M, rows, i, t, floors):
             ok = False
     return ok, residual
 
@@ -403,22 +431,34 @@ def prologue(M, q, lo, hi):
 
 
 @kernel
-def solve(M, q, lo, hi, warm_basic, warm_hi, cov_mode, max_pivots, pivot_tol, tie_tol, tol,
-          z, w, ray, d, R, C, z_basic, z_hi):
+def layout(n, buf):
+    """The views ``(z, w, d, R, C, ray)`` of the output buffer (length 6n + 1)."""
+    return (buf[:n], buf[n:2 * n], buf[2 * n:3 * n], buf[3 * n:4 * n], buf[4 * n:5 * n],
+            buf[5 * n:])
+
+
+@kernel
+def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf, final):
     """One run, checked: validate the data, equilibrate, exchange pivots (the free z's and
-    the warm basis ``warm_basic``, with non-basic z's at hi where ``warm_hi``), Lemke with
+    the warm basis ``warm[:n]``, with non-basic z's at hi where ``warm[n:]``), Lemke with
     covering vector ``cov_mode`` (0: ones in the caller's coordinates, 1: ones in the
     equilibrated ones, 2: fixed pseudo-random factors in [1, 2) there), and the check of
     the point on (M, q, lo, hi).
 
-    Returns ``(code, pivots, z0, ok, residual)``.  code: a pivoting status, or NOT_FINITE,
-    BAD_BOUNDS, SINGULAR (nothing else done); the outputs are described in the module
-    docstring.  A run that stops other than SOLVED at a point that passes the check is
+    Returns ``(code, pivots, z0, ok, residual, k, m)``.  code: a pivoting status, or
+    NOT_FINITE, BAD_BOUNDS, SINGULAR (nothing else done); the outputs (views of ``buf``, see
+    :func:`layout`) are described in the module docstring; ``final[:k]`` lists the basic
+    z's and ``final[k:m]`` the non-basic z's at their upper bounds.  A run that stops other than SOLVED at a point that passes the check is
     SOLVED (the check decides, as in ``kernels.cold``)."""
     n = q.shape[0]
+    z, w, d, R, C, ray = layout(n, buf)
+    z_basic = np.zeros(n, dtype=np.bool_)
+    z_hi = np.zeros(n, dtype=np.bool_)
+    warm_basic = warm[:n]
+    warm_hi = warm[n:]
     code = prologue(M, q, lo, hi)
     if code < 0:
-        return code, 0, 0.0, False, np.inf
+        return code, 0, 0.0, False, np.inf, 0, 0
     z_hi[:] = warm_hi
     cold = True
     for i in range(n):
@@ -426,9 +466,24 @@ def solve(M, q, lo, hi, warm_basic, warm_hi, cov_mode, max_pivots, pivot_tol, ti
     z0s = start_point(lo, hi, z_hi, q, cold, n)
     for i in range(n):
         z_hi[i] = z_hi[i] and hi[i] < np.inf or (lo[i] == -np.inf and hi[i] < np.inf)
-    qs = np.empty(n)
-    for i in range(n):
-        qs[i] = q[i] + dot_and_size(M[i], z0s, n)[0]
+    qs = q.copy()
+    if nonzero(z0s, n):
+        for i in range(n):
+            qs[i] = q[i] + dot_and_size(M[i], z0s, n)[0]
+    if cold and trivial_start(lo, hi, z_hi, qs, n):
+        for i in range(n):  # every w has its sign already: the start solves it
+            z[i] = z0s[i]
+            d[i] = 0.0
+            z_basic[i] = False
+        ray[:] = 0.0
+        equilibrate(M, qs, R, C)
+        ok, residual = box_check(M, q, lo, hi, z, tol, w, R)
+        k = 0
+        for i in range(n):
+            if z_hi[i]:
+                final[k] = i
+                k += 1
+        return SOLVED if ok else NUMERICAL_FAILURE, 0, 0.0, ok, residual, 0, k
     equilibrate(M, qs, R, C)
     # The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C.
     T = np.empty((n, n + 1))
@@ -465,7 +520,7 @@ def solve(M, q, lo, hi, warm_basic, warm_hi, cov_mode, max_pivots, pivot_tol, ti
             want[i] = False
     pivots = exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch)
     if pivots < 0:
-        return SINGULAR, 0, 0.0, False, np.inf
+        return SINGULAR, 0, 0.0, False, np.inf, 0, 0
     # The covering column, set in the current basis: each row needs z0 on the side its
     # variable must stay (w >= 0 at lo: +; w <= 0 at hi: -; a basic z outside its box: back
     # towards it; a basic z inside, a fixed variable's w: 0).
@@ -526,4 +581,14 @@ def solve(M, q, lo, hi, warm_basic, warm_hi, cov_mode, max_pivots, pivot_tol, ti
     ok, residual = box_check(M, q, lo, hi, z, tol, w, R)
     if ok:
         code = SOLVED
-    return code, pivots, z0, ok, residual
+    k = 0  # the final basis: the basic z's, then the non-basic z's at hi
+    for i in range(n):
+        if z_basic[i]:
+            final[k] = i
+            k += 1
+    m = k
+    for i in range(n):
+        if z_hi[i]:
+            final[m] = i
+            m += 1
+    return code, pivots, z0, ok, residual, k, m
