@@ -526,15 +526,38 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start):
     R, C = np.empty(n), np.empty(n)
     boxed.equilibrate(M, q + M @ np.clip(0.0, lo, hi), R, C)
     w = np.empty(n)
+    # The check on the caller's data decides, whatever the extended problem's own check said
+    # (its rows λ ± w_i are sums of larger terms, and can miss that check by rounding where
+    # the caller's rows pass).
     status = inner.status
-    if status == Status.SOLVED:
-        z = np.clip(z, lo_in, hi_in)
-        ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R)
-        if not ok:
-            status = Status.NUMERICAL_FAILURE
+    zc = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
+    ok, residual = boxed.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
+    if not ok and inner.warm_start is not None:
+        # The point of the final basis, from the extended data by one dense solve (more
+        # accurate than the tableau after many pivots), judged again.
+        zb = np.zeros(Mx.shape[0], dtype=np.bool_)
+        zh = np.zeros(Mx.shape[0], dtype=np.bool_)
+        zb[list(inner.warm_start.z_basic)] = True
+        zh[list(inner.warm_start.at_upper)] = True
+        zx2 = _basis_point(Mx, qx, lox, hix, zb, zh)
+        if zx2 is not None:
+            z2 = zx2[:n].copy()
+            z2[F] = zx2[F] - zx2[n:n + k]
+            lo2, hi2 = lo.copy(), hi.copy()
+            lo2[F], hi2[F] = -mu * z2[normal], mu * z2[normal]
+            z2 = np.clip(z2, np.minimum(lo2, hi2), hi2)
+            w2 = np.empty(n)
+            ok2, res2 = boxed.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
+            if ok2:
+                ok, residual, zc, w, lo_in, hi_in = ok2, res2, z2, w2, lo2, hi2
+    if ok:
+        status, z = Status.SOLVED, zc
     else:
-        ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R)
+        if status == Status.SOLVED:
+            status = Status.NUMERICAL_FAILURE
+        boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, qx.size)  # w of the point returned
     for a in (z, w, lo_in, hi_in):
         a.setflags(write=False)
-    return BLCPResult(z, w, status, inner.pivots, float(residual), inner.ray, inner.z0,
-                      inner.covering, inner.warm_start, lo_in, hi_in, R, C, inner.recoveries)
+    return BLCPResult(z, w, status, inner.pivots, float(residual),
+                      inner.ray if status != Status.SOLVED else None, inner.z0, inner.covering,
+                      inner.warm_start, lo_in, hi_in, R, C, inner.recoveries)

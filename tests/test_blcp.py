@@ -14,14 +14,15 @@ RELAY = Path(__file__).parent / "data" / "siconos" / "relay"
 
 def assert_box_solution(M, q, lo, hi, z, rtol=1e-8):
     """Plain-numpy check (not lemke's): lo <= z <= hi and w = Mz + q with w_i >= 0 off hi,
-    w_i <= 0 off lo, each row against its own size s_i = |M_i.||z| + |q_i|; a z_i counts as
-    at a bound when moving it there changes no row by more than that row's tolerance."""
+    w_i <= 0 off lo, each row against its own size s_i = |M_i.||z| + |q_i| (plus the
+    rounding of q's largest entry); a z_i counts as at a bound when moving it there changes
+    no row by more than that row's tolerance."""
     M, q, lo, hi, z = (np.asarray(a, dtype=float) for a in (M, q, lo, hi, z))
     assert np.all(np.isfinite(z))
     w = M @ z + q
-    s = np.abs(M) @ np.abs(z) + np.abs(q) + 1e-300
-    col = np.abs(M).max(axis=0)
-    slack = np.where(col > 0, rtol * s.min() / np.maximum(col, 1e-300), np.inf)
+    # Each row's size, plus the rounding of q's largest entry (a row whose terms are all
+    # rounding noise, as an idle contact's friction row, is held to that).
+    s = np.abs(M) @ np.abs(z) + np.abs(q) + 10 * q.size * np.finfo(float).eps * np.abs(q).max(initial=0) / rtol + 1e-300
     slack = np.array([np.min(rtol * s[M[:, j] != 0] / np.abs(M[M[:, j] != 0, j]), initial=np.inf)
                       for j in range(q.size)])
     assert np.all(z >= lo - slack) and np.all(z <= hi + slack), "z is outside its box"
@@ -339,3 +340,31 @@ def test_resting_pile_balances_gravity():
     weight = hist["world"].mass.sum() * bp.G * hist["h"]
     assert np.allclose(hist["env_vertical"][-10:], weight, rtol=1e-4)
     assert np.all(np.diff(hist["energy"]) <= 1e-9 * abs(hist["energy"][0]))  # never gains energy
+
+
+def test_contact_scenes_with_friction_index():
+    """The step LCPs of tests/contact_sim.py (disks and boxes in a bin, redundant contacts,
+    duplicated rows) posed as box LCPs with a friction index: every one solved and checked
+    on the coupled bounds."""
+    import contact_sim  # tests/ is on sys.path under pytest, as for helpers
+
+    count = 0
+    for seed in (1, 2, 3):
+        for M, q in contact_sim.step_lcps(seed, n_bodies=20, steps=40, boxes=True):
+            if q.size == 0:
+                continue
+            m = q.size // 4
+            rows = np.concatenate([np.arange(m), m + 2 * np.arange(m)])  # normals, +t rows
+            A = M[np.ix_(rows, rows)]
+            b = q[rows]
+            mu = M[3 * m + np.arange(m), np.arange(m)]
+            lo = np.concatenate([np.zeros(m), -mu])
+            hi = np.concatenate([np.full(m, np.inf), mu])
+            findex = np.concatenate([-np.ones(m, dtype=int), np.arange(m)])
+            r = lemke.solve_blcp(A, b, lo, hi, findex=findex)
+            assert r.success, (seed, m, r)
+            lo_c, hi_c = lo.copy(), hi.copy()
+            lo_c[m:], hi_c[m:] = -mu * r.z[:m], mu * r.z[:m]
+            assert_box_solution(A, b, lo_c, hi_c, r.z, rtol=1e-7)
+            count += 1
+    assert count > 100

@@ -353,7 +353,7 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
 
 
 @kernel
-def box_check(M, q, lo, hi, z, tol, w, R):
+def box_check(M, q, lo, hi, z, tol, w, R, n_round=0):
     """Fill ``w = M z + q`` and judge z on the caller's data, row by row: returns
     ``(ok, residual)`` with residual ``max_i |z_i - mid(lo_i, hi_i, z_i - w_i)|``.
 
@@ -361,12 +361,15 @@ def box_check(M, q, lo, hi, z, tol, w, R):
     of q's largest row (as in ``certify.lcp_check_sized``), row i passes when z_i is in
     [lo_i, hi_i] and: w_i >= -(t r_i + f_i) unless z_i is at hi_i, w_i <= t r_i + f_i unless
     z_i is at lo_i, where "at a bound" means within the distance that moves no w_j beyond
-    its allowance (``certify.zero_size``).  A fixed variable (lo_i = hi_i) passes with any
+    its allowance (``certify.zero_size``).  ``n_round`` (default n) is the size of the
+    problem whose rounding is allowed for, in t and the floor: a friction-index answer comes
+    from a larger problem than the caller's.  A fixed variable (lo_i = hi_i) passes with any
     w_i.  A point whose terms dwarf the data (the rounding of M z beyond CERTIFIABLE times
     the tolerance, in the row-equilibrated units) is refused, as in the LCP check; the data
     here are q + M p with p the point of the box nearest 0."""
     n = q.shape[0]
-    t = tol + (n + 2) * EPS
+    nr = max(n, n_round)
+    t = tol + (nr + 2) * EPS
     rows = np.empty(n)
     floors = np.empty(n)
     p = np.empty(n)
@@ -384,7 +387,7 @@ def box_check(M, q, lo, hi, z, tol, w, R):
         mz, size = (0.0, 0.0) if z_zero else dot_and_size(M[i], z, n)
         w[i] = q[i] + mz
         rows[i] = size + abs(q[i])
-        floors[i] = (n + 2) * EPS * q_top / R[i]
+        floors[i] = (nr + 2) * EPS * q_top / R[i]
         big = max(big, R[i] * size)
         psize = 0.0 if p_zero else dot_and_size(M[i], p, n)[1]
         data = max(data, R[i] * (abs(q[i]) + psize))
