@@ -49,8 +49,11 @@ class World:
     width: float | None = None
     gravity: np.ndarray = field(default_factory=lambda: np.array([0.0, -G]))
     margin: float = 0.02  # contacts are kept while closer than this
-    beta: float = 0.2  # Baumgarte: the fraction of a penetration removed per step
-    cfm: float = 1e-9  # constraint force mixing, relative to the diagonal of A
+    # Constraint force mixing: A + cfm diag(A), as ODE's CFM (default 1e-5 there).  A pile
+    # with redundant contacts has a singular A; at cfm = 1e-9 some steps' bases have condition
+    # numbers near 1e10 and their answers cannot be certified to 1e-9 (the solver then says
+    # NUMERICAL_FAILURE rather than return a wrong answer).
+    cfm: float = 1e-6
 
 
 def contacts(world: World):
@@ -103,8 +106,10 @@ def _jac_row(world, a, b, p, dirn):
     return row
 
 
-def step(world: World, h: float, warm=None):
-    """Advance one step of length h; returns (impulses, contacts, result, seconds)."""
+def step(world: World, h: float, warm=None, cold=None):
+    """Advance one step of length h; returns (impulses, contacts, result, seconds).  With
+    ``cold`` (a list), the step's LCP is also solved cold, for comparison, and
+    ``(pivots, seconds)`` of that solve appended to it."""
     N = world.pos.shape[0]
     cs = contacts(world)
     u = np.column_stack([world.vel, world.omega]).reshape(-1)
@@ -115,6 +120,8 @@ def step(world: World, h: float, warm=None):
     if k == 0:
         lam, res, secs = np.zeros(0), None, 0.0
         u_new = u_free
+        if cold is not None:
+            cold.append((0, 0.0))
     else:
         J = np.zeros((2 * k, 3 * N))
         stab = np.zeros(2 * k)
@@ -125,7 +132,10 @@ def step(world: World, h: float, warm=None):
             t = np.array([-n[1], n[0]])
             J[2 * c] = _jac_row(world, a, b, p, n)
             J[2 * c + 1] = _jac_row(world, a, b, p, t)
-            stab[2 * c] = gap / h if gap > 0 else world.beta * gap / h
+            # An open contact may close during the step but not overlap; an overlap (from
+            # linearizing curved contacts) is kept from growing, not pushed out: a
+            # Baumgarte term (negative b) can make a squeezed body's LCP infeasible.
+            stab[2 * c] = max(gap, 0.0) / h
             lo[2 * c + 1], hi[2 * c + 1] = -world.mu, world.mu
             findex[2 * c + 1] = 2 * c
         A = (J * winv) @ J.T
@@ -136,6 +146,10 @@ def step(world: World, h: float, warm=None):
         t0 = time.perf_counter()
         res = lemke.solve_blcp(A, bvec, lo, hi, findex=findex, warm_start=warm)
         secs = time.perf_counter() - t0
+        if cold is not None:
+            t1 = time.perf_counter()
+            rc = lemke.solve_blcp(A, bvec, lo, hi, findex=findex)
+            cold.append((rc.pivots, time.perf_counter() - t1))
         if not res.success:
             raise RuntimeError(f"contact LCP not solved: {res}")
         lam = np.asarray(res.z)
@@ -176,7 +190,7 @@ def simulate(n_disks=12, steps=300, h=0.01, mu=0.5, seed=0, warm=True, snapshots
     # Compile the kernels before the clock matters (the first call of a fresh process).
     lemke.solve_blcp(np.eye(2), -np.ones(2), [0.0, -1.0], [np.inf, 1.0], findex=[-1, 0])
     hist = {k: [] for k in ("t", "energy", "normal", "friction", "rows", "pivots", "secs",
-                            "env_vertical")}
+                            "env_vertical", "cold")}
     hist["snap"] = []
     snap_at = set(np.linspace(0, steps, snapshots).astype(int).tolist())
     ws = None
@@ -185,7 +199,7 @@ def simulate(n_disks=12, steps=300, h=0.01, mu=0.5, seed=0, warm=True, snapshots
             hist["snap"].append((s * h, world.pos.copy()))
         if s == steps:
             break
-        lam, cs, res, secs = step(world, h, ws if warm else None)
+        lam, cs, res, secs = step(world, h, ws if warm else None, hist["cold"])
         ws = res.warm_start if res is not None else None
         hist["t"].append((s + 1) * h)
         hist["energy"].append(energy(world))
@@ -254,10 +268,15 @@ def plot(hist, path):
     axes[0, 2].legend(fontsize=7)
     axes[1, 0].plot(t, hist["rows"])
     axes[1, 0].set_title("LCP rows per step (2 per contact)")
-    axes[1, 1].plot(t, hist["pivots"])
-    axes[1, 1].set_title("pivots per step (warm-started)")
-    axes[1, 2].plot(t, np.array(hist["secs"]) * 1e3)
+    cold = np.array(hist["cold"])
+    axes[1, 1].plot(t, cold[:, 0], color="0.6", lw=1, label="cold")
+    axes[1, 1].plot(t, hist["pivots"], label="warm-started")
+    axes[1, 1].set_title("pivots per step")
+    axes[1, 1].legend(fontsize=7)
+    axes[1, 2].plot(t, cold[:, 1] * 1e3, color="0.6", lw=1, label="cold")
+    axes[1, 2].plot(t, np.array(hist["secs"]) * 1e3, label="warm-started")
     axes[1, 2].set_title("solve_blcp time per step [ms]")
+    axes[1, 2].legend(fontsize=7)
     for a in axes.flat[1:]:
         a.set_xlabel("t [s]")
     fig.tight_layout()
@@ -274,8 +293,10 @@ def main(argv=None):
     args = ap.parse_args(argv)
     hist = simulate(args.disks, args.steps, mu=args.mu)
     plot(hist, args.out)
-    print(f"{args.steps} steps, {sum(hist['pivots'])} pivots, "
-          f"{1e3 * sum(hist['secs']):.1f} ms in the LCPs; wrote {args.out}")
+    cold = np.array(hist["cold"]).sum(axis=0)
+    print(f"{args.steps} steps: warm-started {sum(hist['pivots'])} pivots, "
+          f"{1e3 * sum(hist['secs']):.1f} ms in the LCPs (cold: {int(cold[0])} pivots, "
+          f"{1e3 * cold[1]:.1f} ms); wrote {args.out}")
 
 
 if __name__ == "__main__":
