@@ -243,14 +243,18 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         if run is not None and run.code == 0 and run.ok:
             return _solved(run, n, lo, hi, 0)
         if run is not None and run.code >= 0:
-            return _finish(M, q, lo, hi, opts, run)
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                return _finish(M, q, lo, hi, opts, run)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
     opts = as_options(options)
-    if findex is None:
-        return _solve(M, q, lo, hi, opts, warm_start)
-    return _solve_friction(M, q, lo, hi, findex, opts, warm_start)
+    # The numpy parts (a basis point recomputed, a ray checked) may overflow on data near
+    # the float range; they judge their results themselves.
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        if findex is None:
+            return _solve(M, q, lo, hi, opts, warm_start)
+        return _solve_friction(M, q, lo, hi, findex, opts, warm_start)
 
 
 _NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size

@@ -368,3 +368,43 @@ def test_contact_scenes_with_friction_index():
             assert_box_solution(A, b, lo_c, hi_c, r.z, rtol=1e-7)
             count += 1
     assert count > 100
+
+
+def test_fuzz_small_integer_problems():
+    """Arbitrary small integer M (not monotone: Lemke may end on a ray or fail), bounds from
+    {-inf, -2, -1, 0} x {0, 1, 2, +inf}: never an exception, never NaN, never a false
+    success; the monotone ones with finite bounds always solved."""
+    rng = np.random.default_rng(12)
+    statuses = set()
+    for _ in range(600):
+        n = int(rng.integers(1, 7))
+        M = rng.integers(-2, 3, (n, n)).astype(float)
+        monotone = rng.random() < 0.5
+        if monotone:
+            M = M @ M.T
+        q = rng.integers(-2, 3, n).astype(float)
+        lo = rng.choice([-np.inf, -2.0, -1.0, 0.0], n)
+        hi = np.maximum(rng.choice([0.0, 1.0, 2.0, np.inf], n), lo)
+        r = lemke.solve_blcp(M, q, lo, hi)
+        statuses.add(r.status)
+        assert np.all(np.isfinite(r.z)) and np.all(np.isfinite(r.w))
+        if r.success:
+            assert_box_solution(M, q, lo, hi, r.z)
+        elif monotone and np.all(np.isfinite(lo) & np.isfinite(hi)):
+            raise AssertionError(f"a monotone box LCP with finite bounds was not solved: {r}")
+        if r.status == lemke.Status.RAY_TERMINATION:
+            assert is_box_ray(M, q, lo, hi, r.covering, r.z, r.z0, r.ray)
+    assert lemke.Status.SOLVED in statuses and lemke.Status.RAY_TERMINATION in statuses
+
+
+def test_extreme_values_do_not_crash():
+    for M, q, lo, hi in (
+        ([[1.0]], [1.0], [-1e308], [1e308]),
+        ([[1e-300]], [-1.0], [-1e308], [1e308]),
+        ([[1e300, -1e300], [1e300, 1e300]], [-1.0, 1.0], [-np.inf, 0.0], [np.inf, 5e-324]),
+        ([[0.0]], [1.0], [-np.inf], [np.inf]),
+    ):
+        r = lemke.solve_blcp(M, q, lo, hi)
+        assert r.status in tuple(lemke.Status) and np.all(np.isfinite(r.z))
+        if r.success:
+            assert_box_solution(M, q, lo, hi, r.z)
