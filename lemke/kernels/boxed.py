@@ -180,32 +180,28 @@ def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
 
 
 @kernel
-def ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo, hi, at_hi,
-               pivot_tol, tie_tol, gaps, cc, low, cand, keys, z0_max):
+def ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo, hi, rlo,
+               rhi, pivot_tol, tie_tol, gaps, cc, low, cand, keys, z0_max):
     """The row that blocks the entering variable e (moving in direction ``sigma``, its
-    column in ``col``), n for a bound flip of e, or -1 (a ray).  ``low[r]`` tells whether
-    row r's variable stops at its lower bound (else its upper)."""
+    column in ``col``), n for a bound flip of e, or -1 (a ray).  ``rlo``, ``rhi``: the
+    bounds of each row's basic variable.  ``low[r]`` tells whether row r's variable stops
+    at its lower bound (else its upper)."""
     art_lab = 2 * n
     art = pos[art_lab] if is_basic[art_lab] else -1
-    for i in range(n):
-        b = basis[i]
+    for i in range(n):  # written to compile to selects: this loop runs every pivot
         c = sigma * col[i]
-        lb, ub = bounds_of(b, n, lo, hi, at_hi)
-        v = x[b]
-        if c < 0.0 and lb > -np.inf:
-            gaps[i] = v - lb
-            cc[i] = c
-            low[i] = True
-        elif c > 0.0 and ub < np.inf:
-            gaps[i] = ub - v
-            cc[i] = -c
-            low[i] = False
-        else:  # never blocks, but its size counts in the pivot tolerance
-            gaps[i] = np.inf
-            cc[i] = abs(c)
-            low[i] = True
-        if i == art:
-            gaps[i] = v  # z0's value, for the rule's "z0 zero to rounding"
+        v = x[basis[i]]
+        neg = c < 0.0
+        bnd = rlo[i] if neg else rhi[i]
+        fin = abs(bnd) < np.inf
+        a = abs(c)
+        # The distance to the bound it moves towards, and the (negative) rate; a row that
+        # never blocks keeps a positive entry, which still counts in the pivot tolerance.
+        gaps[i] = ((v - bnd) if neg else (bnd - v)) if fin else np.inf
+        cc[i] = -a if fin else a
+        low[i] = neg or not fin
+    if art >= 0:
+        gaps[art] = x[art_lab]  # z0's value, for the rule's "z0 zero to rounding"
     gaps[n] = np.inf
     cc[n] = 0.0
     low[n] = False
@@ -255,6 +251,10 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
     gaps = np.empty(n + 1)
     cc = np.empty(n + 1)
     low = np.empty(n + 1, dtype=np.bool_)
+    rlo = np.empty(n)  # the bounds of each row's basic variable
+    rhi = np.empty(n)
+    for i in range(n):
+        rlo[i], rhi[i] = bounds_of(basis[i], n, lo, hi, at_hi)
     hkeys = pivoting.label_keys(3 * n + 1)  # 0..2n: the labels; 2n+1+i: z_i at hi
     h = pivoting.fingerprint(hkeys, basis, n)
     for i in range(n):
@@ -308,6 +308,7 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
             lb, ub = bounds_of(leaving, n, lo, hi, at_hi)
             x[leaving] = lb if low_r else ub
             exchange_labels(T, r, s, col, e, leaving, basis, nonbasic, pos, is_basic, scratch)
+            rlo[r], rhi[r] = bounds_of(e, n, lo, hi, at_hi)
             pivots += 1
             h ^= hkeys[leaving] ^ hkeys[e]
             if e >= n and e < 2 * n and at_hi[e - n]:
@@ -335,7 +336,7 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
         if is_basic[art_lab]:
             z0_max = max(z0_max, x[art_lab])
         r = ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo, hi,
-                       at_hi, pivot_tol, tie_tol, gaps, cc, low, cand, keys, z0_max)
+                       rlo, rhi, pivot_tol, tie_tol, gaps, cc, low, cand, keys, z0_max)
         if r < 0:
             status = RAY_TERMINATION
             for i in range(n):
