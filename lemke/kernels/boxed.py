@@ -266,8 +266,8 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
     s = pos[art_lab]
     for i in range(n):
         col[i] = T[i, s]
-    need = np.empty(n)
-    sc = np.empty(n)
+    need = gaps  # scratch until the main loop
+    sc = cc
     for i in range(n):
         b = basis[i]
         lb, ub = bounds_of(b, n, lo, hi, at_hi)
@@ -546,7 +546,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     # The covering column, set in the current basis: each row needs z0 on the side its
     # variable must stay (w >= 0 at lo: +; w <= 0 at hi: -; a basic z outside its box: back
     # towards it; a basic z inside, a fixed variable's w: 0).
-    keys = pivoting.label_keys(n)
+    keys = pivoting.label_keys(n if cov_mode == 2 else 0)
     rmax = 0.0
     for i in range(n):
         rmax = max(rmax, R[i])
