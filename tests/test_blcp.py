@@ -408,3 +408,14 @@ def test_extreme_values_do_not_crash():
         assert r.status in tuple(lemke.Status) and np.all(np.isfinite(r.z))
         if r.success:
             assert_box_solution(M, q, lo, hi, r.z)
+
+
+def test_docstring_example_runs():
+    import doctest
+
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    tests = doctest.DocTestFinder().find(lemke.solve_blcp, "solve_blcp", globs={})
+    assert tests and tests[0].examples
+    for t in tests:
+        runner.run(t)
+    assert runner.failures == 0
