@@ -419,3 +419,9 @@ def test_docstring_example_runs():
     for t in tests:
         runner.run(t)
     assert runner.failures == 0
+
+
+def test_huge_finite_bounds_count_as_far():
+    for lo, hi, z in (([-1e308], [1e308], [-1.0]), ([-np.inf], [1e300], [-1.0]), ([-1e300], [0.5], [-1.0])):
+        r = lemke.solve_blcp([[1.0]], [1.0], lo, hi)
+        assert r.success and r.z.tolist() == z

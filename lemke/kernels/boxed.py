@@ -31,7 +31,9 @@ and the set of non-basic variables at their upper bounds.
 
 **The start.**  Each z starts non-basic at a bound: a cold start puts a variable with two
 finite bounds at hi_i when q_i < 0 and at lo_i otherwise (where the diagonal of M would push
-it), a one-sided one at its finite bound; a warm start puts them where the previous final
+it), a one-sided one at its finite bound; a bound beyond FAR = 1e20 counts as far away
+(a variable starts at its other bound, or, with both far, as a free one: starting at a bound
+of 1e300 would drown the data in M z); a warm start puts them where the previous final
 basis had them.
 
 **Equilibration.**  Ruiz's scaling of [M | q + M z_start] (z_start: every z at the bound it
@@ -60,17 +62,37 @@ SINGULAR = -4  # a warm start's basis cannot be made basic
 EXCHANGE_TOL = 1e-9  # an exchange pivot below this (equilibrated units) counts as singular
 
 
+FAR = 1e20  # a bound this large counts as far away when choosing where to start
+
+
+@kernel
+def far_both(lo, hi, i):
+    """Whether z_i starts as a free variable (made basic, from 0): both bounds infinite, or
+    (a cold start) both at least FAR from 0 on either side of it."""
+    return lo[i] <= -FAR and hi[i] >= FAR
+
+
 @kernel
 def start_point(lo, hi, at_hi, q, guess, n):
     """Where each z starts, non-basic: at hi_i when ``at_hi[i]`` (and hi_i finite), else at
     lo_i when finite, else at hi_i when finite, else 0 (a free variable, made basic).  With
-    ``guess`` (a cold start), a variable with both bounds finite starts at hi_i when
-    q_i < 0 (it is pushed up there when M is diagonally dominant) and at lo_i otherwise;
-    ``at_hi`` is set accordingly."""
+    ``guess`` (a cold start): a variable with both bounds FAR away starts at 0, made basic
+    as a free one; one with a single bound FAR away starts at the other; one with both
+    bounds near starts at hi_i when q_i < 0 (it is pushed up there when M is diagonally
+    dominant) and at lo_i otherwise; ``at_hi`` is set accordingly."""
     z = np.empty(n)
     for i in range(n):
-        if guess and q[i] < 0.0 and lo[i] > -np.inf and hi[i] < np.inf:
-            at_hi[i] = True
+        if far_both(lo, hi, i) and (guess or lo[i] == -np.inf and hi[i] == np.inf):
+            z[i] = 0.0
+            at_hi[i] = False
+            continue
+        if guess and lo[i] > -np.inf and hi[i] < np.inf:
+            if lo[i] <= -FAR:
+                at_hi[i] = True
+            elif hi[i] >= FAR:
+                at_hi[i] = False
+            else:
+                at_hi[i] = q[i] < 0.0
         if at_hi[i] and hi[i] < np.inf:
             z[i] = hi[i]
         elif lo[i] > -np.inf:
@@ -98,7 +120,7 @@ def trivial_start(lo, hi, at_hi, w, n):
     for i in range(n):
         if lo[i] == hi[i]:
             continue
-        if lo[i] == -np.inf and hi[i] == np.inf:
+        if far_both(lo, hi, i):
             return False
         if (w[i] < 0.0 and not at_hi[i]) or (w[i] > 0.0 and at_hi[i]):
             return False
@@ -468,7 +490,8 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
         cold = cold and not (warm_hi[i] or warm_basic[i])
     z0s = start_point(lo, hi, z_hi, q, cold, n)
     for i in range(n):
-        z_hi[i] = z_hi[i] and hi[i] < np.inf or (lo[i] == -np.inf and hi[i] < np.inf)
+        z_hi[i] = ((z_hi[i] and hi[i] < np.inf or (lo[i] == -np.inf and hi[i] < np.inf))
+                   and not (cold and far_both(lo, hi, i)))
     qs = q.copy()
     if nonzero(z0s, n):
         for i in range(n):
@@ -517,7 +540,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
                np.empty(1, dtype=np.int64), np.empty(n + 1), np.empty(n))
     want = warm_basic.copy()
     for i in range(n):
-        if lo[i] == -np.inf and hi[i] == np.inf:
+        if far_both(lo, hi, i) and (cold or lo[i] == -np.inf and hi[i] == np.inf):
             want[i] = True
         elif lo[i] == hi[i]:
             want[i] = False
@@ -525,7 +548,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     singular = False
     for i in range(n):
         if want[i] and not is_basic[n + i]:
-            if lo[i] == -np.inf and hi[i] == np.inf:
+            if far_both(lo, hi, i) and (cold or lo[i] == -np.inf and hi[i] == np.inf):
                 # A free z that the singular free block leaves non-basic: it rests at 0
                 # as if at a lower bound there (its w held to >= 0, covered by z0), and
                 # enters when that w reaches 0, free from then on; the check decides.
