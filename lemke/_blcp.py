@@ -156,13 +156,13 @@ class _Run:
     __slots__ = ("z", "w", "ray", "d", "R", "C", "buf", "final", "code", "pivots", "z0",
                  "ok", "residual", "k", "m")
 
-    def __init__(self, n):
+    def __init__(self, n, buf=None, final=None):
         # One buffer, sliced as kernels.boxed.layout slices it.
-        buf = np.empty(6 * n + 1)
+        buf = np.empty(6 * n + 1) if buf is None else buf
         self.z, self.w, self.d = buf[:n], buf[n:2 * n], buf[2 * n:3 * n]
         self.R, self.C, self.ray = buf[3 * n:4 * n], buf[4 * n:5 * n], buf[5 * n:]
         self.buf = buf
-        self.final = np.empty(n, dtype=np.int64)
+        self.final = np.empty(n, dtype=np.int64) if final is None else final
         self.k = self.m = 0
 
     def go(self, M, q, lo, hi, warm, mode, opts, max_pivots, tie_tol):
@@ -238,13 +238,24 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         # The common case: no copies, one kernel call that also validates the data.
         opts = _DEFAULT if options is None else as_options(options)
         n = q.shape[0]
-        run = _Run(n).go(M, q, lo, hi, _NO[n], 0, opts, opts.pivot_limit(n),
-                         opts.tie_tol) if n < len(_NO) else None
-        if run is not None and run.code == 0 and run.ok:
-            return _solved(run, n, lo, hi, 0)
-        if run is not None and run.code >= 0:
-            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                return _finish(M, q, lo, hi, opts, run)
+        if n < len(_NO):
+            buf = np.empty(6 * n + 1)
+            final = np.empty(n, dtype=np.int64)
+            out = boxed.solve(M, q, lo, hi, _NO[n], 0, opts.pivot_limit(n), opts.pivot_tol,
+                              opts.tie_tol, opts.tol, buf, final)
+            if out[0] == 0 and out[3]:  # solved and checked: the result at once
+                buf.setflags(write=False)
+                idx = final.tolist()
+                k = out[5]
+                return BLCPResult._make(
+                    buf[:n], buf[n:2 * n], Status.SOLVED, out[1], out[4], None, 0.0,
+                    buf[2 * n:3 * n], BoxWarmStart._trusted(n, tuple(idx[:k]), tuple(idx[k:out[6]])),
+                    lo, hi, buf[3 * n:4 * n], buf[4 * n:5 * n], 0)
+            if out[0] >= 0:
+                run = _Run(n, buf, final)
+                run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out
+                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                    return _finish(M, q, lo, hi, opts, run)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
