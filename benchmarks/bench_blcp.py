@@ -164,9 +164,10 @@ def main(argv=None):
         out.append(f"- {kind}, n = {n}: box/LCP {rl:.2f} (**{'met' if rl <= 1.2 else 'missed'}**), "
                    f"box/2n {r2:.2f} (**{'met' if r2 <= 0.5 else 'missed'}**)")
     out += ["", "## Engines", "",
-            "pybullet and dartpy are not installed here and have no wheel that installs "
-            "without a source build on this machine, and neither exposes its MLCP/box-LCP "
-            "solver to Python except through a whole scene; they were not timed.", ""]
+            "pybullet and dartpy are not installed in this environment and were not "
+            "installed for this run (neither is a trivial install here; their box-LCP "
+            "solvers are reached from Python only through a whole scene), so they were "
+            "not timed.", ""]
     Path(args.out).write_text("\n".join(out))
     print("\n".join(out))
 
