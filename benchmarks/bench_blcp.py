@@ -165,9 +165,8 @@ def main(argv=None):
                    f"box/2n {r2:.2f} (**{'met' if r2 <= 0.5 else 'missed'}**)")
     out += ["", "## Engines", "",
             "pybullet and dartpy are not installed in this environment and were not "
-            "installed for this run (neither is a trivial install here; their box-LCP "
-            "solvers are reached from Python only through a whole scene), so they were "
-            "not timed.", ""]
+            "installed for this run (not attempted; their box-LCP solvers are reached "
+            "from Python only through a whole scene), so they were not timed.", ""]
     Path(args.out).write_text("\n".join(out))
     print("\n".join(out))
 
