@@ -10,6 +10,7 @@ method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as 
 :func:`write_result`, :class:`ProblemFormatError`).
 """
 from ._batch import solve_lcp_batch, solve_lcp_many
+from ._blcp import BLCPResult, BoxWarmStart, solve_blcp
 from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
 from ._games import BimatrixResult, GameBasis, lemke_paths, solve_bimatrix
 from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
@@ -26,6 +27,8 @@ from ._version import __version__
 
 __all__ = [
     "METHODS",
+    "BLCPResult",
+    "BoxWarmStart",
     "BimatrixResult",
     "GameBasis",
     "Certificate",
@@ -46,6 +49,7 @@ __all__ = [
     "read_problem",
     "result_to_dict",
     "solve_bimatrix",
+    "solve_blcp",
     "solve_lcp",
     "solve_lcp_batch",
     "solve_lcp_many",

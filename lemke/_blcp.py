@@ -1,0 +1,578 @@
+r"""solve_blcp: box-constrained LCPs (lo <= z <= hi), with an optional friction index.
+
+The box LCP: find z with lo <= z <= hi and w = M z + q such that w_i >= 0 where z_i = lo_i,
+w_i <= 0 where z_i = hi_i, and w_i = 0 where lo_i < z_i < hi_i; equivalently the natural
+map z - mid(lo, hi, z - w) is zero.  It is solved by Lemke's method with bounded variables
+(``lemke.kernels.boxed``): n pairs, each z_i at a bound or basic.
+
+**Friction index** (``findex``, the convention of ODE and Bullet).  Row i with
+``f = findex[i] >= 0`` is a friction row of the contact whose normal impulse is z_f; its
+given bounds are the friction coefficient folded in, ``lo_i = -mu_i``, ``hi_i = mu_i``, and
+the bounds in force are ``-mu_i z_f <= z_i <= mu_i z_f``: they move with the answer.  They
+are solved exactly, not by freezing them at a first guess: each friction row becomes the
+three complementarity rows of Stewart and Trinkle's LCP (one λ per friction row, as the
+engines' box is per row),
+
+.. math::
+
+    z_i = \beta^+_i - \beta^-_i, \qquad
+    0 \le \beta^+_i \perp \lambda_i + w_i \ge 0, \qquad
+    0 \le \beta^-_i \perp \lambda_i - w_i \ge 0, \qquad
+    0 \le \lambda_i \perp \mu_i z_f - \beta^+_i - \beta^-_i \ge 0 .
+
+λ_i = 0 gives w_i = 0 with |z_i| <= mu_i z_f (sticking); λ_i > 0 gives |z_i| = mu_i z_f
+with w_i = -λ_i sign(z_i) (sliding against the motion); z_f = 0 gives z_i = 0 with any
+w_i: exactly the box [-mu_i z_f, mu_i z_f] at the final z_f.  Every other row keeps its box,
+so the problem stays a box LCP, of size n + 2 n_friction, that the same kernel solves; its
+matrix is M with the friction columns and rows doubled (+, -) and the λ coupling, built
+once (no other densification).  When M is positive semidefinite its β block is too, and
+the coupling is the one of Anitescu and Potra's analysis, under which Lemke's method ends
+at a solution.  The answer is then checked on the caller's data with the coupled bounds
+evaluated at the final z.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._options import _DEFAULT, as_options
+from ._problem import _to_float_array, as_matrix, as_vector
+from ._result import Outcome
+from ._status import Status
+from .kernels import boxed
+
+METHODS = ("bounded",)
+_F64 = np.dtype(np.float64)
+_COLD = (0, 1, 2)  # covering vectors of the cold runs (kernels.boxed.solve's cov_mode)
+
+
+@dataclass(frozen=True)
+class BoxWarmStart:
+    """A final basis of a box LCP, as a plain value: which z are basic (``z_basic``) and
+    which non-basic z sit at their upper bounds (``at_upper``; the others at their lower
+    bounds), sorted 0-based indices, for a problem of size n.  With a friction index the
+    basis is that of the extended problem (see the module docstring), so n is larger than
+    the caller's n; pass it back for the same structure."""
+
+    n: int
+    z_basic: tuple[int, ...]
+    at_upper: tuple[int, ...]
+
+    def __post_init__(self):
+        n = self.n
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+            raise ValueError(f"BoxWarmStart.n must be a non-negative integer, got {n!r}")
+        for name in ("z_basic", "at_upper"):
+            try:
+                idx = tuple(sorted(int(i) for i in getattr(self, name)))
+            except (TypeError, ValueError):
+                raise TypeError(f"BoxWarmStart.{name} must be a sequence of integers") from None
+            if len(set(idx)) != len(idx) or (idx and (idx[0] < 0 or idx[-1] >= n)):
+                raise ValueError(f"BoxWarmStart.{name} must hold distinct indices in [0, {n}), got {idx}")
+            object.__setattr__(self, name, idx)
+        if set(self.z_basic) & set(self.at_upper):
+            raise ValueError("BoxWarmStart: an index cannot be basic and at its upper bound")
+        object.__setattr__(self, "n", int(n))
+
+    @classmethod
+    def _trusted(cls, n, z_basic, at_upper) -> "BoxWarmStart":
+        """Build from values the solver made itself (sorted, in range): no checks."""
+        ws = object.__new__(cls)
+        ws.__dict__.update(n=n, z_basic=z_basic, at_upper=at_upper)
+        return ws
+
+
+@dataclass(frozen=True)
+class BLCPResult(Outcome):
+    """The outcome of :func:`lemke.solve_blcp`.
+
+    Attributes
+    ----------
+    z, w : ndarray
+        The final point and ``w = M z + q`` recomputed from the caller's data.
+    status : Status
+        ``SOLVED`` only when the point passed the check on the caller's data (with a
+        friction index: on the coupled bounds at the final z).
+    pivots : int
+        Pivots made, bound flips and exchange pivots included.
+    residual : float
+        ``max_i |z_i - mid(lo_i, hi_i, z_i - w_i)|`` on the caller's data (bounds in force).
+    ray : ndarray or None
+        On ``RAY_TERMINATION`` (checked), the direction (dz, dz0) of the secondary ray of
+        the augmented problem ``w + covering * z0``: along it the point stays feasible and
+        complementary for every step, which for a positive semidefinite M proves that the
+        problem has no solution.  With a friction index, of the extended problem.
+    z0 : float
+        The artificial variable's final value.
+    covering : ndarray
+        The covering vector in the caller's rows (the augmented rows read w + covering z0).
+    warm_start : BoxWarmStart or None
+    lo, hi : ndarray
+        The bounds in force at z: the caller's, or with a friction index the coupled
+        bounds -mu_i z_f, mu_i z_f of the friction rows.
+    row_scale, col_scale : ndarray
+        The equilibration the kernel pivoted on (powers of two).
+    recoveries : int
+        Runs after the first (other covering vectors, exact ties, a cold start after a
+        warm one that failed).
+    """
+
+    z: np.ndarray
+    w: np.ndarray
+    status: Status
+    pivots: int
+    residual: float
+    ray: np.ndarray | None
+    z0: float
+    covering: np.ndarray
+    warm_start: BoxWarmStart | None
+    lo: np.ndarray
+    hi: np.ndarray
+    row_scale: np.ndarray
+    col_scale: np.ndarray
+    recoveries: int = 0
+
+    @classmethod
+    def _make(cls, *values) -> "BLCPResult":
+        """Build from the solver's own values (in field order), skipping the frozen
+        dataclass ``__init__``: this is on the hot path of small problems."""
+        res = object.__new__(cls)
+        res.__dict__.update(zip(_RESULT_FIELDS, values))
+        return res
+
+    def __repr__(self) -> str:
+        return (f"BLCPResult(status={self.status.name}, pivots={self.pivots}, "
+                f"residual={self.residual:.3g}, n={self.z.size})")
+
+
+_RESULT_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
+                  "lo", "hi", "row_scale", "col_scale", "recoveries")
+
+
+class _Run:
+    """The output arrays of one kernel run and what it returned."""
+
+    __slots__ = ("z", "w", "ray", "d", "R", "C", "buf", "final", "code", "pivots", "z0",
+                 "ok", "residual", "k", "m")
+
+    def __init__(self, n, buf=None, final=None):
+        # One buffer, sliced as kernels.boxed.layout slices it.
+        buf = np.empty(6 * n + 1) if buf is None else buf
+        self.z, self.w, self.d = buf[:n], buf[n:2 * n], buf[2 * n:3 * n]
+        self.R, self.C, self.ray = buf[3 * n:4 * n], buf[4 * n:5 * n], buf[5 * n:]
+        self.buf = buf
+        self.final = np.empty(n, dtype=np.int64) if final is None else final
+        self.k = self.m = 0
+
+    def go(self, M, q, lo, hi, warm, mode, opts, max_pivots, tie_tol):
+        """Run ``kernels.boxed.solve``; ``warm`` (2n flags): the basic z's, then the
+        non-basic z's at hi."""
+        (self.code, self.pivots, self.z0, self.ok, self.residual, self.k, self.m) = boxed.solve(
+            M, q, lo, hi, warm, mode, max_pivots, opts.pivot_tol, tie_tol, opts.tol,
+            self.buf, self.final)
+        return self
+
+    def set_basis(self, zb, zh):
+        """Record the final basis from flags (a point computed outside the kernel)."""
+        b, h = np.flatnonzero(zb), np.flatnonzero(zh & ~zb)
+        self.k, self.m = b.size, b.size + h.size
+        self.final[: self.m] = np.concatenate([b, h])
+
+    def basis_flags(self, n):
+        zb = np.zeros(n, dtype=np.bool_)
+        zh = np.zeros(n, dtype=np.bool_)
+        zb[self.final[: self.k]] = True
+        zh[self.final[self.k: self.m]] = True
+        return zb, zh
+
+    def warm(self, n):
+        idx = self.final.tolist()
+        return BoxWarmStart._trusted(n, tuple(idx[: self.k]), tuple(idx[self.k: self.m]))
+
+
+def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
+               options=None) -> BLCPResult:
+    r"""Solve the box LCP: lo <= z <= hi, w = M z + q, w_i >= 0 where z_i = lo_i, w_i <= 0
+    where z_i = hi_i, w_i = 0 in between.
+
+    Parameters
+    ----------
+    M : (n, n) array_like
+    q : (n,) array_like
+    lo, hi : (n,) array_like or scalars
+        The bounds; lo may hold -inf and hi +inf (one-sided and free variables); lo_i = hi_i
+        fixes z_i.  No NaN; lo <= hi.
+    findex : (n,) array_like of int, optional
+        Friction index, as in ODE and Bullet: -1 for an ordinary row; ``f = findex[i] >= 0``
+        makes row i a friction row of the contact whose normal impulse is z_f, with
+        ``lo_i = -mu_i``, ``hi_i = mu_i`` (mu_i >= 0) and the bounds in force
+        ``-mu_i z_f <= z_i <= mu_i z_f`` at the answer (see the module docstring for how
+        they are solved exactly).  f must not be i nor a friction row, and lo_f >= 0.
+    method : {"bounded"}
+        Lemke's method with bounded variables (``lemke.kernels.boxed``).
+    warm_start : BoxWarmStart, optional
+        The ``warm_start`` of an earlier result of the same size (and friction structure):
+        if its basis still solves this problem the answer comes with 0 pivots; otherwise
+        Lemke restarts from it, and then cold if that fails.
+    options : Options or dict, optional
+        As for :func:`lemke.solve_lcp`.
+
+    Returns
+    -------
+    BLCPResult
+
+    Examples
+    --------
+    >>> import lemke
+    >>> r = lemke.solve_blcp([[2.0, 1.0], [1.0, 2.0]], [-5.0, 1.0], [0.0, -1.0], [2.0, 1.0])
+    >>> r.status.name, r.z.tolist()
+    ('SOLVED', [2.0, -1.0])
+    """
+    if (findex is None and warm_start is None and type(M) is np.ndarray
+            and type(q) is np.ndarray and type(lo) is np.ndarray and type(hi) is np.ndarray
+            and M.dtype is _F64 and q.dtype is _F64 and lo.dtype is _F64 and hi.dtype is _F64
+            and M.ndim == 2 and q.ndim == 1 and M.shape[0] == M.shape[1] == q.shape[0]
+            == lo.shape[0] == hi.shape[0] and lo.ndim == 1 and hi.ndim == 1
+            and method == "bounded" and M.flags.c_contiguous):
+        # The common case: no copies, one kernel call that also validates the data.
+        opts = _DEFAULT if options is None else as_options(options)
+        n = q.shape[0]
+        if n < len(_NO):
+            buf = np.empty(6 * n + 1)
+            final = np.empty(n, dtype=np.int64)
+            out = boxed.solve(M, q, lo, hi, _NO[n], 0, opts.pivot_limit(n), opts.pivot_tol,
+                              opts.tie_tol, opts.tol, buf, final)
+            if out[0] == 0 and out[3]:  # solved and checked: the result at once
+                buf.setflags(write=False)
+                idx = final.tolist()
+                k = out[5]
+                return BLCPResult._make(
+                    buf[:n], buf[n:2 * n], Status.SOLVED, out[1], out[4], None, 0.0,
+                    buf[2 * n:3 * n], BoxWarmStart._trusted(n, tuple(idx[:k]), tuple(idx[k:out[6]])),
+                    lo, hi, buf[3 * n:4 * n], buf[4 * n:5 * n], 0)
+            if out[0] >= 0:
+                run = _Run(n, buf, final)
+                run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out
+                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                    return _finish(M, q, lo, hi, opts, run)
+    if method not in METHODS:
+        raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
+    M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
+    opts = as_options(options)
+    # The numpy parts (a basis point recomputed, a ray checked) may overflow on data near
+    # the float range; they judge their results themselves.
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        if findex is None:
+            return _solve(M, q, lo, hi, opts, warm_start)
+        return _solve_friction(M, q, lo, hi, findex, opts, warm_start)
+
+
+_NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size
+
+
+def as_blcp(M, q, lo, hi, findex=None):
+    """Validate a box LCP: float64 ``(M, q, lo, hi, findex)`` (findex int64 or None).
+    ValueError naming the entry for a NaN, lo > hi, lo = +inf or hi = -inf, and for a
+    friction index out of range, pointing at its own row or at another friction row, with
+    mu < 0, with lo_i != -hi_i, or whose normal row has lo_f < 0."""
+    M = as_matrix(M)
+    n = M.shape[0]
+    q = as_vector(q, n, "q")
+    lo = _bound(lo, n, "lo", -1)
+    hi = _bound(hi, n, "hi", +1)
+    if findex is not None:
+        findex = _findex(findex, n, lo, hi)
+    above = np.flatnonzero(lo > hi)
+    if above.size:
+        i = int(above[0])
+        raise ValueError(f"lo[{i}] = {lo[i]} > hi[{i}] = {hi[i]}: every lower bound must be <= its upper bound")
+    return M, q, lo, hi, findex
+
+
+def _findex(findex, n, lo, hi):
+    """The friction index as int64, checked (see :func:`as_blcp`)."""
+    f = np.asarray(findex)
+    if f.shape != (n,):
+        raise ValueError(f"findex must have shape ({n},) to match M, got shape {f.shape}")
+    if f.dtype.kind not in "iu":
+        if f.dtype.kind != "f" or not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
+            bad = np.flatnonzero(~np.isfinite(f) | (f != np.round(f))) if f.dtype.kind == "f" else [0]
+            raise ValueError(f"findex must hold integers; findex[{int(bad[0])}] = {f.flat[int(bad[0])]!r}")
+    f = f.astype(np.int64)
+    for i in np.flatnonzero(f != -1):
+        fi = int(f[i])
+        if not 0 <= fi < n:
+            raise ValueError(f"findex[{i}] = {fi} is out of range: -1 (no friction) or a row in [0, {n})")
+        if fi == i:
+            raise ValueError(f"findex[{i}] = {i} points at its own row")
+        if f[fi] != -1:
+            raise ValueError(f"findex[{i}] = {fi} points at another friction row (findex[{fi}] = {int(f[fi])})")
+        if hi[i] < 0:
+            raise ValueError(f"friction row {i}: mu = hi[{i}] = {hi[i]} < 0")
+        if not np.isfinite(hi[i]):
+            raise ValueError(f"friction row {i}: mu = hi[{i}] must be finite")
+        if lo[i] != -hi[i]:
+            raise ValueError(f"friction row {i}: lo[{i}] = {lo[i]} must be -mu = -hi[{i}] = {-hi[i]} "
+                             "(the ODE/Bullet convention)")
+        if lo[fi] < 0:
+            raise ValueError(f"findex[{i}] = {fi}: the normal row's lower bound lo[{fi}] = {lo[fi]} must be >= 0")
+    return f
+
+
+def _bound(x, n, name, side):
+    a = _to_float_array(x, name, allow_inf=side)
+    if a.ndim == 0:
+        a = np.full(n, float(a))
+    if a.shape != (n,):
+        raise ValueError(f"{name} must be a scalar or have shape ({n},) to match M, got shape {a.shape}")
+    return np.ascontiguousarray(a)
+
+
+def _solve(M, q, lo, hi, opts, warm_start):
+    """A validated box LCP: a warm start if given, then the cold runs."""
+    n = q.size
+    extra, rec = 0, 0
+    if warm_start is not None:
+        if not isinstance(warm_start, BoxWarmStart):
+            raise TypeError(f"warm_start must be a lemke.BoxWarmStart, got {type(warm_start).__name__}")
+        if warm_start.n != n:
+            raise ValueError(f"warm_start is for a problem of size {warm_start.n}, this one has n = {n}")
+        res = _warm(M, q, lo, hi, opts, warm_start)
+        if res.status == Status.SOLVED:
+            return res
+        extra, rec = res.pivots, 1
+    run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+    if run.code == boxed.NOT_FINITE:
+        raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
+    return _finish(M, q, lo, hi, opts, run, extra, rec)
+
+
+def _warm(M, q, lo, hi, opts, ws):
+    """The warm start's basis: its point if it still solves the problem (0 pivots), else a
+    kernel run from it (exchange pivots, then Lemke)."""
+    n = q.size
+    zb = np.zeros(n, dtype=np.bool_)
+    zb[list(ws.z_basic)] = True
+    zh = np.zeros(n, dtype=np.bool_)
+    zh[list(ws.at_upper)] = True
+    z = np.where(zh & np.isfinite(hi), hi, np.where(np.isfinite(lo), lo, np.where(np.isfinite(hi), hi, 0.0)))
+    b = np.flatnonzero(zb | (~np.isfinite(lo) & ~np.isfinite(hi)))
+    nb = np.setdiff1d(np.arange(n), b)
+    try:
+        z[b] = np.linalg.solve(M[np.ix_(b, b)], -(q[b] + M[np.ix_(b, nb)] @ z[nb])) if b.size else z[b]
+        fine = bool(np.all(np.isfinite(z)))
+    except np.linalg.LinAlgError:
+        fine = False
+    if fine:
+        run = _Run(n)
+        boxed.equilibrate(M, q + M @ np.clip(0.0, lo, hi), run.R, run.C)
+        ok, residual = boxed.box_check(M, q, lo, hi, z, opts.tol, run.w, run.R)
+        if ok:
+            run.z, run.code, run.pivots, run.z0, run.ok, run.residual = z, 0, 0, 0.0, True, residual
+            run.d[:] = 0.0
+            run.set_basis(zb, zh)
+            return _solved(run, n, lo, hi, 0)
+    run = _Run(n).go(M, q, lo, hi, np.concatenate([zb, zh & ~zb]), 1, opts, opts.pivot_limit(n), opts.tie_tol)
+    return _finish(M, q, lo, hi, opts, run, ladder=False)
+
+
+def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
+    """The result of a run that did not end solved and checked: the other covering vectors
+    and exact ties (``ladder``), the point of the final basis recomputed, a ray checked."""
+    n = q.size
+    if run.code == boxed.BAD_BOUNDS or run.code == boxed.NOT_FINITE:
+        as_blcp(M, q, lo, hi)  # raises, naming the entry
+        raise ValueError("M and q must be finite")
+    pivots = extra + max(run.pivots, 0)
+    if ladder and not (run.code == 0 and run.ok):
+        if not (run.code == Status.RAY_TERMINATION and is_box_ray(M, q, lo, hi, run.d, run.z, run.z0, run.ray, opts.tol)):
+            for mode, tie in ((1, opts.tie_tol), (2, 0.0)):
+                left = opts.pivot_limit(n) - pivots
+                if left <= 0:
+                    break
+                nxt = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), mode, opts, left, tie)
+                pivots += max(nxt.pivots, 0)
+                rec += 1
+                if nxt.code == 0 and nxt.ok:
+                    run = nxt
+                    break
+                if nxt.code == Status.RAY_TERMINATION and run.code != Status.RAY_TERMINATION:
+                    run = nxt
+    if run.code == 0 and run.ok:
+        return _solved(run, n, lo, hi, rec, pivots)
+    status = Status(run.code) if run.code >= 0 else Status.NUMERICAL_FAILURE
+    z, w, residual = run.z, run.w, run.residual
+    if status == Status.SOLVED or not run.ok:
+        zr = _basis_point(M, q, lo, hi, *run.basis_flags(n))
+        if zr is not None:
+            wr = np.empty(n)
+            ok, rr = boxed.box_check(M, q, lo, hi, zr, opts.tol, wr, run.R)
+            if ok:
+                run.z, run.w, run.residual, run.ok, run.code = zr, wr, rr, True, 0
+                return _solved(run, n, lo, hi, rec, pivots)
+        if status == Status.SOLVED:
+            status = Status.NUMERICAL_FAILURE
+    ray = None
+    if status == Status.RAY_TERMINATION:
+        if is_box_ray(M, q, lo, hi, run.d, run.z, run.z0, run.ray, opts.tol):
+            ray = run.ray
+        else:
+            status = Status.NUMERICAL_FAILURE
+    return BLCPResult(z, w, status, int(pivots), float(residual), ray, float(run.z0), run.d,
+                      run.warm(n), lo, hi, run.R, run.C, rec)
+
+
+def _solved(run, n, lo, hi, rec, pivots=None):
+    run.z.setflags(write=False)
+    run.w.setflags(write=False)
+    run.d.setflags(write=False)
+    return BLCPResult._make(run.z, run.w, Status.SOLVED, run.pivots if pivots is None else pivots,
+                            run.residual, None, 0.0, run.d, run.warm(n), lo, hi, run.R, run.C, rec)
+
+
+def _basis_point(M, q, lo, hi, zb, zh):
+    """The point of the basis (z basic where ``zb``, the others at lo, or hi where ``zh``)
+    from the caller's data by one dense solve, clamped into the box; None if singular."""
+    z = np.where(zh, hi, lo)
+    z = np.where(np.isfinite(z), z, 0.0)
+    b = np.flatnonzero(zb)
+    nb = np.flatnonzero(~zb)
+    if b.size:
+        try:
+            z[b] = np.linalg.solve(M[np.ix_(b, b)], -(q[b] + M[np.ix_(b, nb)] @ z[nb]))
+        except np.linalg.LinAlgError:
+            return None
+    if not np.all(np.isfinite(z)):
+        return None
+    return np.clip(z, lo, hi)
+
+
+def is_box_ray(M, q, lo, hi, d, z, z0, ray, tol=1e-9) -> bool:
+    """Whether ``(z, z0) + t ray`` (t >= 0) stays a solution of the augmented box problem
+    (w + d z0 in place of w) for every t: judged row by row, each against its own size, as
+    the check of a point.  Rows of a moving z_i must have u_i = du_i = 0 and an infinite
+    bound on the side it moves to; a resting z_i at its lower bound needs u_i, du_i >= 0, at
+    its upper bound <= 0, in between = 0."""
+    M = np.asarray(M, dtype=float)
+    n = q.size
+    ray = np.asarray(ray, dtype=float)
+    if not (np.all(np.isfinite(ray)) and np.isfinite(z0) and z0 >= 0.0):
+        return False
+    g = (n + 3) * np.finfo(float).eps
+    t = tol + g
+    dz = ray[:n].copy()
+    top = np.abs(dz).max(initial=0.0)
+    dz[np.abs(dz) <= g * top] = 0.0
+    dz0 = ray[n] if abs(ray[n]) > g * max(top, 1.0) else 0.0
+    if dz0 < 0.0 or (top == 0.0 and dz0 == 0.0):
+        return False
+    u = M @ z + q + d * z0
+    du = M @ dz + d * dz0
+    su = t * (np.abs(M) @ np.abs(z) + np.abs(q) + np.abs(d * z0)) + g * np.abs(q).max(initial=0.0)
+    sdu = t * (np.abs(M) @ np.abs(dz) + np.abs(d * dz0)) + g * top * np.abs(M).max(initial=0.0)
+    with np.errstate(invalid="ignore"):
+        at_lo = np.isfinite(lo) & (np.abs(z - lo) <= t * np.maximum(np.abs(lo), 1.0) * 10)
+        at_hi = np.isfinite(hi) & (np.abs(z - hi) <= t * np.maximum(np.abs(hi), 1.0) * 10)
+    for i in range(n):
+        if lo[i] == hi[i]:
+            if dz[i] != 0.0:
+                return False
+            continue
+        if dz[i] != 0.0:
+            if (dz[i] > 0.0 and hi[i] < np.inf) or (dz[i] < 0.0 and lo[i] > -np.inf):
+                return False
+            if abs(u[i]) > su[i] or abs(du[i]) > sdu[i]:
+                return False
+        elif at_lo[i]:
+            if u[i] < -su[i] or du[i] < -sdu[i]:
+                return False
+        elif at_hi[i]:
+            if u[i] > su[i] or du[i] > sdu[i]:
+                return False
+        elif abs(u[i]) > su[i] or abs(du[i]) > sdu[i]:
+            return False
+    return True
+
+
+# --------------------------------------------------------------------------- friction
+
+
+def friction_lcp(M, q, lo, hi, findex):
+    """The box LCP that solves the friction index exactly (module docstring): returns
+    ``(Mx, qx, lox, hix, F, normal)``, where F lists the friction rows and ``normal`` their
+    normal rows.  Variables: the caller's z with beta+ in place of each friction z_i, then
+    beta- and lambda per friction row."""
+    n = q.size
+    F = np.flatnonzero(findex >= 0)
+    k = F.size
+    N = n + 2 * k
+    Mx = np.zeros((N, N))
+    Mx[:n, :n] = M
+    Mx[:n, n:n + k] = -M[:, F]
+    Mx[n:n + k, :n] = -M[F, :]
+    Mx[n:n + k, n:n + k] = M[np.ix_(F, F)]
+    lam = n + k + np.arange(k)
+    Mx[F, lam] = 1.0
+    Mx[n + np.arange(k), lam] = 1.0
+    Mx[lam, findex[F]] = hi[F]
+    Mx[lam, F] = -1.0
+    Mx[lam, n + np.arange(k)] = -1.0
+    qx = np.concatenate([q, -q[F], np.zeros(k)])
+    lox = np.concatenate([lo, np.zeros(2 * k)])
+    hix = np.concatenate([hi, np.full(2 * k, np.inf)])
+    lox[F] = 0.0
+    hix[F] = np.inf
+    return Mx, qx, lox, hix, F, findex[F]
+
+
+def _solve_friction(M, q, lo, hi, findex, opts, warm_start):
+    n = q.size
+    Mx, qx, lox, hix, F, normal = friction_lcp(M, q, lo, hi, findex)
+    inner = _solve(Mx, qx, lox, hix, opts, warm_start)
+    k = F.size
+    zx = inner.z
+    z = zx[:n].copy()
+    z[F] = zx[F] - zx[n:n + k]
+    mu = hi[F]
+    lo_in, hi_in = lo.copy(), hi.copy()
+    lo_in[F] = -mu * z[normal]
+    hi_in[F] = mu * z[normal]
+    R, C = np.empty(n), np.empty(n)
+    boxed.equilibrate(M, q + M @ np.clip(0.0, lo, hi), R, C)
+    w = np.empty(n)
+    # The check on the caller's data decides, whatever the extended problem's own check said
+    # (its rows λ ± w_i are sums of larger terms, and can miss that check by rounding where
+    # the caller's rows pass).
+    status = inner.status
+    zc = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
+    ok, residual = boxed.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
+    if not ok and inner.warm_start is not None:
+        # The point of the final basis, from the extended data by one dense solve (more
+        # accurate than the tableau after many pivots), judged again.
+        zb = np.zeros(Mx.shape[0], dtype=np.bool_)
+        zh = np.zeros(Mx.shape[0], dtype=np.bool_)
+        zb[list(inner.warm_start.z_basic)] = True
+        zh[list(inner.warm_start.at_upper)] = True
+        zx2 = _basis_point(Mx, qx, lox, hix, zb, zh)
+        if zx2 is not None:
+            z2 = zx2[:n].copy()
+            z2[F] = zx2[F] - zx2[n:n + k]
+            lo2, hi2 = lo.copy(), hi.copy()
+            lo2[F], hi2[F] = -mu * z2[normal], mu * z2[normal]
+            z2 = np.clip(z2, np.minimum(lo2, hi2), hi2)
+            w2 = np.empty(n)
+            ok2, res2 = boxed.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
+            if ok2:
+                ok, residual, zc, w, lo_in, hi_in = ok2, res2, z2, w2, lo2, hi2
+    if ok:
+        status, z = Status.SOLVED, zc
+    else:
+        if status == Status.SOLVED:
+            status = Status.NUMERICAL_FAILURE
+        boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, qx.size)  # w of the point returned
+    for a in (z, w, lo_in, hi_in):
+        a.setflags(write=False)
+    return BLCPResult(z, w, status, inner.pivots, float(residual),
+                      inner.ray if status != Status.SOLVED else None, inner.z0, inner.covering,
+                      inner.warm_start, lo_in, hi_in, R, C, inner.recoveries)

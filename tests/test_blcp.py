@@ -1,0 +1,427 @@
+"""Box LCPs (lemke.solve_blcp): Siconos relay files, a seeded family checked on the caller's
+data by an independent check and against the 2n reformulation, bad input, warm starts and
+the friction index."""
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lemke
+from lemke._blcp import is_box_ray
+
+RELAY = Path(__file__).parent / "data" / "siconos" / "relay"
+
+
+def assert_box_solution(M, q, lo, hi, z, rtol=1e-8):
+    """Plain-numpy check (not lemke's): lo <= z <= hi and w = Mz + q with w_i >= 0 off hi,
+    w_i <= 0 off lo, each row against its own size s_i = |M_i.||z| + |q_i| (plus the
+    rounding of q's largest entry); a z_i counts as at a bound when moving it there changes
+    no row by more than that row's tolerance."""
+    M, q, lo, hi, z = (np.asarray(a, dtype=float) for a in (M, q, lo, hi, z))
+    assert np.all(np.isfinite(z))
+    w = M @ z + q
+    # Each row's size, plus the rounding of q's largest entry (a row whose terms are all
+    # rounding noise, as an idle contact's friction row, is held to that).
+    s = np.abs(M) @ np.abs(z) + np.abs(q) + 10 * q.size * np.finfo(float).eps * np.abs(q).max(initial=0) / rtol + 1e-300
+    slack = np.array([np.min(rtol * s[M[:, j] != 0] / np.abs(M[M[:, j] != 0, j]), initial=np.inf)
+                      for j in range(q.size)])
+    assert np.all(z >= lo - slack) and np.all(z <= hi + slack), "z is outside its box"
+    off_lo = (z - lo) > slack
+    off_hi = (hi - z) > slack
+    fixed = lo == hi
+    bad_hi = off_lo & (w > rtol * s) & ~fixed
+    bad_lo = off_hi & (w < -rtol * s) & ~fixed
+    assert not bad_hi.any(), f"w > 0 off the lower bound in rows {np.flatnonzero(bad_hi)[:5]}"
+    assert not bad_lo.any(), f"w < 0 off the upper bound in rows {np.flatnonzero(bad_lo)[:5]}"
+
+
+def read_relay(path):
+    """A Siconos relay file (tests/data/siconos/README.md): n, a dense column-major
+    NumericsMatrix block, q, lb, ub."""
+    tok = Path(path).read_text().split()
+    n = int(tok[0])
+    assert int(tok[1]) == 0, "dense storage only"
+    vals = [float(t) for t in tok[6:6 + n * n + 3 * n]]
+    M = np.array(vals[: n * n]).reshape(n, n, order="F")
+    q, lo, hi = (np.array(vals[n * n + k * n: n * n + (k + 1) * n]) for k in range(3))
+    return M, q, lo, hi
+
+
+def reformulated(M, q, lo, hi):
+    """The 2n LCP of a box LCP with finite bounds: z = lo + x, x >= 0 complementary to
+    M x + v + q + M lo >= 0, v >= 0 complementary to hi - lo - x >= 0."""
+    n = q.size
+    Mp = np.block([[M, np.eye(n)], [-np.eye(n), np.zeros((n, n))]])
+    qp = np.concatenate([q + M @ lo, hi - lo])
+    return Mp, qp
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in RELAY.glob("*.dat")))
+def test_siconos_relay(name):
+    M, q, lo, hi = read_relay(RELAY / name)
+    r = lemke.solve_blcp(M, q, lo, hi)
+    assert r.status == lemke.Status.SOLVED, r
+    assert_box_solution(M, q, lo, hi, r.z)
+    ref = lemke.solve_lcp(*reformulated(M, q, lo, hi))
+    assert ref.success
+    z_ref = lo + ref.z[: q.size]
+    # Symmetric positive definite M in every file: the solution is unique.
+    assert np.allclose(r.z, z_ref, rtol=1e-6, atol=1e-6 * np.abs(hi - lo).max())
+
+
+def test_relay_known_answers():
+    M, q, lo, hi = read_relay(RELAY / "relay_2x2.dat")
+    assert np.allclose(lemke.solve_blcp(M, q, lo, hi).z, [0.5, -0.5])
+    M, q, lo, hi = read_relay(RELAY / "relay_4x4.dat")
+    assert np.allclose(lemke.solve_blcp(M, q, lo, hi).z, [1.0, 0.5, -0.5, -1.0])
+
+
+def family(seed):
+    """One seeded box LCP: symmetric PSD M (sometimes rank-deficient, sometimes integer with
+    ties), bounds mixing finite, -inf, +inf and fixed entries."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 14))
+    kind = seed % 4
+    if kind == 0:  # positive definite
+        A = rng.standard_normal((n, n))
+        M = A @ A.T + 0.1 * np.eye(n)
+    elif kind == 1:  # rank-deficient PSD
+        A = rng.standard_normal((n, max(1, n // 2)))
+        M = A @ A.T
+    elif kind == 2:  # integer data, ties in q and in the ratios
+        A = rng.integers(-2, 3, (n, n)).astype(float)
+        M = A @ A.T + np.eye(n)
+    else:  # PSD plus skew part (monotone, non-symmetric)
+        A = rng.standard_normal((n, n))
+        B = rng.standard_normal((n, n))
+        M = A @ A.T + (B - B.T)
+    q = rng.integers(-3, 4, n).astype(float) if kind == 2 else 3 * rng.standard_normal(n)
+    lo = np.where(rng.random(n) < 0.5, -rng.integers(0, 3, n).astype(float), -rng.random(n))
+    hi = np.where(rng.random(n) < 0.5, rng.integers(0, 3, n).astype(float), rng.random(n))
+    finite = seed % 3 != 0
+    if not finite:
+        lo = np.where(rng.random(n) < 0.3, -np.inf, lo)
+        hi = np.where(rng.random(n) < 0.3, np.inf, hi)
+    fix = rng.random(n) < 0.1
+    hi = np.where(fix & np.isfinite(lo), lo, hi)
+    return M, q, lo, hi
+
+
+def test_seeded_family():
+    solved = rays = 0
+    for seed in range(240):
+        M, q, lo, hi = family(seed)
+        r = lemke.solve_blcp(M, q, lo, hi)
+        if r.status == lemke.Status.SOLVED:
+            solved += 1
+            assert_box_solution(M, q, lo, hi, r.z)  # 0 false successes
+            assert np.allclose(r.w, M @ r.z + q)
+            mid = np.clip(r.z - r.w, lo, hi)
+            assert r.residual == pytest.approx(np.abs(r.z - mid).max(), abs=1e-12)
+            if np.all(np.isfinite(lo) & np.isfinite(hi)):
+                ref = lemke.solve_lcp(*reformulated(M, q, lo, hi))
+                assert ref.success
+                z_ref = lo + ref.z[: q.size]
+                # w is unique on a monotone problem; z too when M is definite.
+                scale = 1 + np.abs(M).max() * np.abs(z_ref).max() + np.abs(q).max()
+                assert np.allclose(M @ r.z + q, M @ z_ref + q, atol=1e-7 * scale), seed
+        else:
+            # Only unbounded boxes may lack a solution; the ray is checked independently.
+            assert r.status == lemke.Status.RAY_TERMINATION, (seed, r)
+            assert not np.all(np.isfinite(lo) & np.isfinite(hi))
+            assert is_box_ray(M, q, lo, hi, r.covering, r.z, r.z0, r.ray)
+            rays += 1
+            # Clipping the infinite bounds far away: the answer runs to the clip.
+            big = 1e5
+            r2 = lemke.solve_blcp(M, q, np.maximum(lo, -big), np.minimum(hi, big))
+            assert r2.success and np.abs(r2.z).max() >= big / 10
+    assert solved >= 200
+
+
+def test_degenerate_ties():
+    n = 8
+    M = np.eye(n) + np.ones((n, n))
+    q = -np.ones(n)
+    for lo, hi in ((np.zeros(n), np.ones(n)), (-np.ones(n), np.zeros(n) + 0.1), (np.zeros(n), np.full(n, 1 / 9))):
+        r = lemke.solve_blcp(M, q, lo, hi)
+        assert r.success
+        assert_box_solution(M, q, lo, hi, r.z)
+    M = np.zeros((3, 3))
+    r = lemke.solve_blcp(M, [1.0, -1.0, 0.0], [-1, -1, -1], [1, 1, 1])
+    assert r.success and np.allclose(r.z, [-1, 1, r.z[2]])
+
+
+def test_lcp_is_a_box_lcp():
+    rng = np.random.default_rng(3)
+    A = rng.standard_normal((10, 10))
+    M = A @ A.T + np.eye(10)
+    q = rng.standard_normal(10)
+    r = lemke.solve_blcp(M, q, np.zeros(10), np.full(10, np.inf))
+    ref = lemke.solve_lcp(M, q)
+    assert r.success and np.allclose(r.z, ref.z)
+    assert r.pivots == ref.pivots
+
+
+def test_free_and_fixed_variables():
+    M = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]])
+    q = np.array([-1.0, 3.0, -2.0])
+    lo = np.array([-np.inf, 0.5, 0.0])
+    hi = np.array([np.inf, 0.5, np.inf])
+    r = lemke.solve_blcp(M, q, lo, hi)
+    assert r.success
+    assert r.z[1] == 0.5
+    assert_box_solution(M, q, lo, hi, r.z)
+    assert abs(r.w[0]) < 1e-12
+
+
+def test_scalar_bounds_and_infeasible():
+    r = lemke.solve_blcp([[1.0]], [-2.0], 0.0, 1.0)
+    assert r.success and r.z.tolist() == [1.0]
+    # -z + q with z >= 0: w = -z - 1 < 0 wherever z >= 0 -- no solution, and a checked ray.
+    r = lemke.solve_blcp([[0.0, 0.0], [0.0, 0.0]], [-1.0, 1.0], 0.0, np.inf)
+    assert r.status == lemke.Status.RAY_TERMINATION
+    assert r.ray is not None and np.all(np.isfinite(r.z))
+    assert is_box_ray(np.zeros((2, 2)), np.array([-1.0, 1.0]), np.zeros(2), np.full(2, np.inf),
+                      r.covering, r.z, r.z0, r.ray)
+
+
+@pytest.mark.parametrize("args, match", [
+    (([[1.0]], [0.0], [1.0], [0.0]), r"lo\[0\] = 1.0 > hi\[0\] = 0.0"),
+    (([[1.0]], [0.0], [np.nan], [0.0]), r"lo has a NaN"),
+    (([[1.0]], [0.0], [0.0], [np.nan]), r"hi has a NaN"),
+    (([[1.0]], [0.0], [np.inf], [np.inf]), r"lo has a NaN or \+inf"),
+    (([[1.0]], [0.0], [-np.inf], [-np.inf]), r"hi has a NaN or -inf"),
+    (([[1.0]], [np.nan], [0.0], [1.0]), r"q has a NaN"),
+    (([[1.0, 0], [0, 1]], [0.0, 0], [0.0], [1.0]), r"lo must be a scalar or have shape"),
+])
+def test_bad_input(args, match):
+    with pytest.raises(ValueError, match=match):
+        lemke.solve_blcp(*args)
+    # the same through the fast path (float64 arrays)
+    a = [np.asarray(x, dtype=float) for x in args]
+    with pytest.raises(ValueError, match=match):
+        lemke.solve_blcp(*a)
+
+
+@pytest.mark.parametrize("findex, lo, hi, match", [
+    ([-1, 2], [0, -1], [np.inf, 1], r"findex\[1\] = 2 is out of range"),
+    ([-1, 1], [0, -1], [np.inf, 1], r"findex\[1\] = 1 points at its own row"),
+    ([1, 0], [-1, -1], [1, 1], r"findex\[0\] = 1 points at another friction row"),
+    ([-1, 0], [0, 1], [np.inf, -1], r"mu = hi\[1\] = -1.0 < 0"),
+    ([-1, 0], [0, -np.nan], [np.inf, np.nan], r"NaN"),
+    ([-1, 0], [0, -0.5], [np.inf, 1.0], r"lo\[1\] = -0.5 must be -mu"),
+    ([-1, 0], [-1, -1], [np.inf, 1.0], r"lo\[0\] = -1.0 must be >= 0"),
+    ([-1, 0.5], [0, -1], [np.inf, 1.0], r"findex must hold integers"),
+])
+def test_bad_findex(findex, lo, hi, match):
+    with pytest.raises(ValueError, match=match):
+        lemke.solve_blcp(np.eye(2), [0.0, 0.0], lo, hi, findex=findex)
+
+
+def test_warm_start():
+    rng = np.random.default_rng(7)
+    n = 30
+    A = rng.standard_normal((n, n))
+    M = A @ A.T / n + np.eye(n)
+    q = rng.standard_normal(n)
+    lo, hi = -np.ones(n) * 0.3, np.ones(n) * 0.3
+    hi[::5] = np.inf
+    r = lemke.solve_blcp(M, q, lo, hi)
+    assert r.success and r.pivots > 0
+    same = lemke.solve_blcp(M, q, lo, hi, warm_start=r.warm_start)
+    assert same.success and same.pivots == 0 and np.allclose(same.z, r.z)
+    q2 = q + 0.05 * rng.standard_normal(n)
+    cold = lemke.solve_blcp(M, q2, lo, hi)
+    warm = lemke.solve_blcp(M, q2, lo, hi, warm_start=r.warm_start)
+    assert warm.success and cold.success
+    assert_box_solution(M, q2, lo, hi, warm.z)
+    assert np.allclose(warm.z, cold.z, atol=1e-9)
+    assert warm.pivots < cold.pivots
+    # a bad warm start still ends solved (cold)
+    bad = lemke.BoxWarmStart(n, tuple(range(n)), ())
+    r3 = lemke.solve_blcp(M, q2, lo, hi, warm_start=bad)
+    assert r3.success and np.allclose(r3.z, cold.z, atol=1e-9)
+    with pytest.raises(ValueError, match="size"):
+        lemke.solve_blcp(M, q2, lo, hi, warm_start=lemke.BoxWarmStart(3, (), ()))
+    with pytest.raises(TypeError):
+        lemke.solve_blcp(M, q2, lo, hi, warm_start=r)
+
+
+def contacts(seed, k):
+    """k 2-D contacts (normal and tangent rows), Delassus M = J W J' + eps I, findex."""
+    rng = np.random.default_rng(seed)
+    nb = max(1, k // 2)
+    J = rng.standard_normal((2 * k, 3 * nb))
+    M = J @ J.T + 1e-6 * np.eye(2 * k)
+    q = rng.standard_normal(2 * k)
+    mu = rng.uniform(0.0, 1.0, k)
+    lo = np.zeros(2 * k)
+    hi = np.full(2 * k, np.inf)
+    findex = -np.ones(2 * k, dtype=int)
+    for c in range(k):
+        findex[2 * c + 1] = 2 * c
+        lo[2 * c + 1], hi[2 * c + 1] = -mu[c], mu[c]
+    return M, q, lo, hi, findex, mu
+
+
+def test_friction_index_coupled():
+    for seed in range(40):
+        k = 1 + seed % 6
+        M, q, lo, hi, findex, mu = contacts(seed, k)
+        r = lemke.solve_blcp(M, q, lo, hi, findex=findex)
+        assert r.status == lemke.Status.SOLVED, (seed, r)
+        z, w = r.z, M @ r.z + q
+        zn, zt = z[0::2], z[1::2]
+        lo_c, hi_c = lo.copy(), hi.copy()
+        lo_c[1::2], hi_c[1::2] = -mu * zn, mu * zn
+        assert np.allclose(r.lo, lo_c) and np.allclose(r.hi, hi_c)
+        assert_box_solution(M, q, lo_c, hi_c, z, rtol=1e-7)
+        assert np.all(np.abs(zt) <= mu * zn * (1 + 1e-9) + 1e-12)
+
+
+def test_friction_stick_and_slide():
+    # One contact: a unit mass, normal and tangent rows decoupled; q = -v (desired change).
+    M = np.eye(2)
+    for vt, mu, slides in ((0.3, 0.5, False), (2.0, 0.5, True)):
+        q = np.array([-1.0, -vt])  # pressed with 1, pushed sideways by vt
+        r = lemke.solve_blcp(M, q, [0.0, -mu], [np.inf, mu], findex=[-1, 0])
+        assert r.success
+        assert r.z[0] == pytest.approx(1.0)
+        assert r.z[1] == pytest.approx(mu if slides else vt)
+        assert (r.w[1] < 0) == slides
+
+
+def test_friction_warm_start():
+    M, q, lo, hi, findex, mu = contacts(5, 6)
+    r = lemke.solve_blcp(M, q, lo, hi, findex=findex)
+    again = lemke.solve_blcp(M, q, lo, hi, findex=findex, warm_start=r.warm_start)
+    assert again.success and again.pivots == 0 and np.allclose(again.z, r.z, atol=1e-9)
+
+
+# --------------------------------------------------------------------------- the example
+
+def _example():
+    """examples/box_pile.py as a module (examples/ is not a package)."""
+    import importlib.util
+    import sys
+
+    if "box_pile" not in sys.modules:
+        path = Path(__file__).parent.parent / "examples" / "box_pile.py"
+        spec = importlib.util.spec_from_file_location("box_pile", path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules["box_pile"] = mod  # dataclasses look their module up there
+        spec.loader.exec_module(mod)
+    return sys.modules["box_pile"]
+
+
+def test_example_writes_png(tmp_path):
+    pytest.importorskip("matplotlib")
+    bp = _example()
+    out = tmp_path / "pile.png"
+    bp.main(["--steps", "40", "--disks", "6", "--out", str(out)])
+    assert out.stat().st_size > 10_000
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("angle, mu", [(0.3, 0.5), (0.5, 0.3), (0.2, 0.1), (0.6, 0.7)])
+def test_box_on_slope(angle, mu):
+    bp = _example()
+    v = bp.slope(angle, mu, steps=30, h=0.01)
+    if mu > np.tan(angle):  # sticks
+        assert np.abs(v).max() < 1e-8
+    else:  # slides with g (sin a - mu cos a)
+        acc = np.diff(v) / 0.01
+        assert np.allclose(acc, bp.G * (np.sin(angle) - mu * np.cos(angle)), rtol=1e-6)
+
+
+def test_resting_pile_balances_gravity():
+    bp = _example()
+    hist = bp.simulate(n_disks=6, steps=150, h=0.01, mu=0.5, snapshots=2)
+    weight = hist["world"].mass.sum() * bp.G * hist["h"]
+    assert np.allclose(hist["env_vertical"][-10:], weight, rtol=1e-4)
+    assert np.all(np.diff(hist["energy"]) <= 1e-9 * abs(hist["energy"][0]))  # never gains energy
+
+
+def test_contact_scenes_with_friction_index():
+    """The step LCPs of tests/contact_sim.py (disks and boxes in a bin, redundant contacts,
+    duplicated rows) posed as box LCPs with a friction index: every one solved and checked
+    on the coupled bounds."""
+    import contact_sim  # tests/ is on sys.path under pytest, as for helpers
+
+    count = 0
+    for seed in (1, 2, 3):
+        for M, q in contact_sim.step_lcps(seed, n_bodies=20, steps=40, boxes=True):
+            if q.size == 0:
+                continue
+            m = q.size // 4
+            rows = np.concatenate([np.arange(m), m + 2 * np.arange(m)])  # normals, +t rows
+            A = M[np.ix_(rows, rows)]
+            b = q[rows]
+            mu = M[3 * m + np.arange(m), np.arange(m)]
+            lo = np.concatenate([np.zeros(m), -mu])
+            hi = np.concatenate([np.full(m, np.inf), mu])
+            findex = np.concatenate([-np.ones(m, dtype=int), np.arange(m)])
+            r = lemke.solve_blcp(A, b, lo, hi, findex=findex)
+            assert r.success, (seed, m, r)
+            lo_c, hi_c = lo.copy(), hi.copy()
+            lo_c[m:], hi_c[m:] = -mu * r.z[:m], mu * r.z[:m]
+            assert_box_solution(A, b, lo_c, hi_c, r.z, rtol=1e-7)
+            count += 1
+    assert count > 100
+
+
+def test_fuzz_small_integer_problems():
+    """Arbitrary small integer M (not monotone: Lemke may end on a ray or fail), bounds from
+    {-inf, -2, -1, 0} x {0, 1, 2, +inf}: never an exception, never NaN, never a false
+    success; the monotone ones with finite bounds always solved."""
+    rng = np.random.default_rng(12)
+    statuses = set()
+    for _ in range(600):
+        n = int(rng.integers(1, 7))
+        M = rng.integers(-2, 3, (n, n)).astype(float)
+        monotone = rng.random() < 0.5
+        if monotone:
+            M = M @ M.T
+        q = rng.integers(-2, 3, n).astype(float)
+        lo = rng.choice([-np.inf, -2.0, -1.0, 0.0], n)
+        hi = np.maximum(rng.choice([0.0, 1.0, 2.0, np.inf], n), lo)
+        r = lemke.solve_blcp(M, q, lo, hi)
+        statuses.add(r.status)
+        assert np.all(np.isfinite(r.z)) and np.all(np.isfinite(r.w))
+        if r.success:
+            assert_box_solution(M, q, lo, hi, r.z)
+        elif monotone and np.all(np.isfinite(lo) & np.isfinite(hi)):
+            raise AssertionError(f"a monotone box LCP with finite bounds was not solved: {r}")
+        if r.status == lemke.Status.RAY_TERMINATION:
+            assert is_box_ray(M, q, lo, hi, r.covering, r.z, r.z0, r.ray)
+    assert lemke.Status.SOLVED in statuses and lemke.Status.RAY_TERMINATION in statuses
+
+
+def test_extreme_values_do_not_crash():
+    for M, q, lo, hi in (
+        ([[1.0]], [1.0], [-1e308], [1e308]),
+        ([[1e-300]], [-1.0], [-1e308], [1e308]),
+        ([[1e300, -1e300], [1e300, 1e300]], [-1.0, 1.0], [-np.inf, 0.0], [np.inf, 5e-324]),
+        ([[0.0]], [1.0], [-np.inf], [np.inf]),
+    ):
+        r = lemke.solve_blcp(M, q, lo, hi)
+        assert r.status in tuple(lemke.Status) and np.all(np.isfinite(r.z))
+        if r.success:
+            assert_box_solution(M, q, lo, hi, r.z)
+
+
+def test_docstring_example_runs():
+    import doctest
+
+    runner = doctest.DocTestRunner(optionflags=doctest.NORMALIZE_WHITESPACE)
+    tests = doctest.DocTestFinder().find(lemke.solve_blcp, "solve_blcp", globs={})
+    assert tests and tests[0].examples
+    for t in tests:
+        runner.run(t)
+    assert runner.failures == 0
+
+
+def test_huge_finite_bounds_count_as_far():
+    for lo, hi, z in (([-1e308], [1e308], [-1.0]), ([-np.inf], [1e300], [-1.0]), ([-1e300], [0.5], [-1.0])):
+        r = lemke.solve_blcp([[1.0]], [1.0], lo, hi)
+        assert r.success and r.z.tolist() == z
