@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._options import _DEFAULT, as_options
-from ._problem import _to_float_array, as_matrix, as_vector
+from . import _validate
 from ._result import Outcome
 from ._status import Status
 from .kernels import boxed
@@ -83,7 +83,7 @@ class BoxWarmStart:
         return ws
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class BLCPResult(Outcome):
     """The outcome of :func:`lemke.solve_blcp`.
 
@@ -133,21 +133,10 @@ class BLCPResult(Outcome):
     col_scale: np.ndarray
     recoveries: int = 0
 
-    @classmethod
-    def _make(cls, *values) -> "BLCPResult":
-        """Build from the solver's own values (in field order), skipping the frozen
-        dataclass ``__init__``: this is on the hot path of small problems."""
-        res = object.__new__(cls)
-        res.__dict__.update(zip(_RESULT_FIELDS, values))
-        return res
-
     def __repr__(self) -> str:
         return (f"BLCPResult(status={self.status.name}, pivots={self.pivots}, "
                 f"residual={self.residual:.3g}, n={self.z.size})")
 
-
-_RESULT_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
-                  "lo", "hi", "row_scale", "col_scale", "recoveries")
 
 
 class _Run:
@@ -247,7 +236,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
                 buf.setflags(write=False)
                 idx = final.tolist()
                 k = out[5]
-                return BLCPResult._make(
+                return BLCPResult._make_from(
                     buf[:n], buf[n:2 * n], Status.SOLVED, out[1], out[4], None, 0.0,
                     buf[2 * n:3 * n], BoxWarmStart._trusted(n, tuple(idx[:k]), tuple(idx[k:out[6]])),
                     lo, hi, buf[3 * n:4 * n], buf[4 * n:5 * n], 0)
@@ -272,61 +261,9 @@ _NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, pe
 
 
 def as_blcp(M, q, lo, hi, findex=None):
-    """Validate a box LCP: float64 ``(M, q, lo, hi, findex)`` (findex int64 or None).
-    ValueError naming the entry for a NaN, lo > hi, lo = +inf or hi = -inf, and for a
-    friction index out of range, pointing at its own row or at another friction row, with
-    mu < 0, with lo_i != -hi_i, or whose normal row has lo_f < 0."""
-    M = as_matrix(M)
-    n = M.shape[0]
-    q = as_vector(q, n, "q")
-    lo = _bound(lo, n, "lo", -1)
-    hi = _bound(hi, n, "hi", +1)
-    if findex is not None:
-        findex = _findex(findex, n, lo, hi)
-    above = np.flatnonzero(lo > hi)
-    if above.size:
-        i = int(above[0])
-        raise ValueError(f"lo[{i}] = {lo[i]} > hi[{i}] = {hi[i]}: every lower bound must be <= its upper bound")
-    return M, q, lo, hi, findex
-
-
-def _findex(findex, n, lo, hi):
-    """The friction index as int64, checked (see :func:`as_blcp`)."""
-    f = np.asarray(findex)
-    if f.shape != (n,):
-        raise ValueError(f"findex must have shape ({n},) to match M, got shape {f.shape}")
-    if f.dtype.kind not in "iu":
-        if f.dtype.kind != "f" or not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
-            bad = np.flatnonzero(~np.isfinite(f) | (f != np.round(f))) if f.dtype.kind == "f" else [0]
-            raise ValueError(f"findex must hold integers; findex[{int(bad[0])}] = {f.flat[int(bad[0])]!r}")
-    f = f.astype(np.int64)
-    for i in np.flatnonzero(f != -1):
-        fi = int(f[i])
-        if not 0 <= fi < n:
-            raise ValueError(f"findex[{i}] = {fi} is out of range: -1 (no friction) or a row in [0, {n})")
-        if fi == i:
-            raise ValueError(f"findex[{i}] = {i} points at its own row")
-        if f[fi] != -1:
-            raise ValueError(f"findex[{i}] = {fi} points at another friction row (findex[{fi}] = {int(f[fi])})")
-        if hi[i] < 0:
-            raise ValueError(f"friction row {i}: mu = hi[{i}] = {hi[i]} < 0")
-        if not np.isfinite(hi[i]):
-            raise ValueError(f"friction row {i}: mu = hi[{i}] must be finite")
-        if lo[i] != -hi[i]:
-            raise ValueError(f"friction row {i}: lo[{i}] = {lo[i]} must be -mu = -hi[{i}] = {-hi[i]} "
-                             "(the ODE/Bullet convention)")
-        if lo[fi] < 0:
-            raise ValueError(f"findex[{i}] = {fi}: the normal row's lower bound lo[{fi}] = {lo[fi]} must be >= 0")
-    return f
-
-
-def _bound(x, n, name, side):
-    a = _to_float_array(x, name, allow_inf=side)
-    if a.ndim == 0:
-        a = np.full(n, float(a))
-    if a.shape != (n,):
-        raise ValueError(f"{name} must be a scalar or have shape ({n},) to match M, got shape {a.shape}")
-    return np.ascontiguousarray(a)
+    """The validated box LCP ``(M, q, lo, hi, findex)`` (``_validate.blcp``)."""
+    d = _validate.blcp(M, q, lo, hi, findex)
+    return d["M"], d["q"], d["lo"], d["hi"], d.get("findex")
 
 
 def _solve(M, q, lo, hi, opts, warm_start):
@@ -427,7 +364,7 @@ def _solved(run, n, lo, hi, rec, pivots=None):
     run.z.setflags(write=False)
     run.w.setflags(write=False)
     run.d.setflags(write=False)
-    return BLCPResult._make(run.z, run.w, Status.SOLVED, run.pivots if pivots is None else pivots,
+    return BLCPResult._make_from(run.z, run.w, Status.SOLVED, run.pivots if pivots is None else pivots,
                             run.residual, None, 0.0, run.d, run.warm(n), lo, hi, run.R, run.C, rec)
 
 

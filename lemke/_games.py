@@ -15,7 +15,6 @@ The kernels are in :mod:`lemke.kernels.games`, the exact arithmetic in
 """
 from __future__ import annotations
 
-import dataclasses
 import functools
 from dataclasses import dataclass
 from fractions import Fraction
@@ -106,20 +105,10 @@ class BimatrixResult(Outcome):
     exact: bool = False
     restarts: int = 0
 
-    @classmethod
-    def _make(cls, *values) -> "BimatrixResult":
-        """Build from the solver's own values in field order, skipping the frozen dataclass'
-        ``__init__`` (it sets every field through ``object.__setattr__``)."""
-        res = object.__new__(cls)
-        res.__dict__.update(zip(_RESULT_FIELDS, values))
-        return res
-
     def __repr__(self) -> str:
         return (f"BimatrixResult(status={self.status.name}, method={self.method!r}, "
                 f"pivots={self.pivots}, regret={float(self.regret):.3g}, exact={self.exact})")
 
-
-_RESULT_FIELDS = tuple(f.name for f in dataclasses.fields(BimatrixResult))
 
 
 def _as_payoffs(A, B):
@@ -233,7 +222,7 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     basis = GameBasis._trusted(m, n, ibuf)
     if code == SOLVED and not exact:  # the common case, without _finish's detours
         fbuf.flags.writeable = False
-        return BimatrixResult._make(fbuf[:m], fbuf[m : m + n], (fbuf[m + n + 1], fbuf[m + n + 2]),
+        return BimatrixResult._make_from(fbuf[:m], fbuf[m : m + n], (fbuf[m + n + 1], fbuf[m + n + 2]),
                                     Status.SOLVED, pivots, fbuf[m + n], basis, k,
                                     "lemke-howson", False, restarts)
     return _finish(A, B, k, basis, code, pivots, restarts, "lemke-howson", fbuf, opts, exact,
@@ -261,7 +250,7 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
         if res.success:
             return _as_float(res)
     fbuf.flags.writeable = False
-    return BimatrixResult._make(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
+    return BimatrixResult._make_from(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
                                 status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
                                 int(restarts))
 

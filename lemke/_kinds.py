@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from . import _validate
+from ._blcp import solve_blcp
 from ._games import solve_bimatrix
 from ._lcp import METHODS, solve_lcp
 from ._mlcp import solve_mlcp
@@ -128,6 +129,22 @@ QP = Kind(
     example={"P": [[2.0, 0.0], [0.0, 2.0]], "q": [-2.0, -5.0], "G": [[1.0, 1.0]], "h": [1.0]},
 )
 
+BLCP = Kind(
+    name="blcp",
+    fields=("M", "q", "lo", "hi", "findex"),
+    required=("M", "q", "lo", "hi"),
+    signature=frozenset({"M", "lo", "hi"}),
+    validate=_validate.blcp,
+    solve=lambda M, q, lo, hi, findex=None, **kw: solve_blcp(M, q, lo, hi, findex=findex, **kw),
+    shape=lambda a: (a["q"].size,),
+    size_text=lambda s: f"n = {s[0]}, lo <= z <= hi",
+    size_short=lambda s: str(s[0]),
+    size_legend="n (box LCP)",
+    answer=("z",),
+    methods=("bounded",),
+    example={"M": [[2.0, 1.0], [1.0, 2.0]], "q": [-5.0, 6.0], "lo": [-1.0, -1.0], "hi": [1.0, 1.0]},
+)
+
 BIMATRIX = Kind(
     name="bimatrix",
     fields=("A", "B"),
@@ -146,7 +163,7 @@ BIMATRIX = Kind(
 )
 
 #: Every kind, by name, in the order the documentation lists them.
-KINDS: dict[str, Kind] = {k.name: k for k in (LCP, MLCP, QP, BIMATRIX)}
+KINDS: dict[str, Kind] = {k.name: k for k in (LCP, BLCP, MLCP, QP, BIMATRIX)}
 
 
 def kind(name: str) -> Kind:
@@ -159,7 +176,7 @@ def kind(name: str) -> Kind:
 
 #: The order in which a file's arrays are matched against the signatures (a QP also has
 #: an ``A``; an LCP file has no ``P``).
-_INFER_ORDER = (QP, LCP, MLCP, BIMATRIX)
+_INFER_ORDER = (QP, BLCP, LCP, MLCP, BIMATRIX)
 
 
 def infer(keys) -> Kind | None:

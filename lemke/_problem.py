@@ -4,15 +4,16 @@ from __future__ import annotations
 import numpy as np
 
 from . import _validate
-from ._kinds import BIMATRIX, KINDS, LCP, MLCP, QP, kind as _kind
+from ._kinds import BIMATRIX, BLCP, KINDS, LCP, MLCP, QP, kind as _kind
 
 #: The arrays of each kind of problem, in the order of its solver's arguments.
 FIELDS = {name: k.fields for name, k in KINDS.items()}
 
 
 def _stored(a: np.ndarray) -> np.ndarray:
-    """A read-only, C-ordered float64 copy."""
-    a = np.array(a, dtype=np.float64, order="C", copy=True)
+    """A read-only, C-ordered copy: float64, or int64 for an index array (a box LCP's
+    friction index)."""
+    a = np.array(a, dtype=np.int64 if a.dtype.kind in "iu" else np.float64, order="C", copy=True)
     a.flags.writeable = False
     return a
 
@@ -32,6 +33,9 @@ class Problem:
       None) -- minimize 1/2 x'P x + q'x + ``objective_constant`` subject to G x <= h,
       A x = b, lb <= x <= ub (``lb`` may hold -inf, ``ub`` +inf).
 
+    * ``kind == "blcp"``: ``M, q, lo, hi, findex`` (findex may be None) -- the box LCP
+      lo <= z <= hi, w = M z + q, w >= 0 where z_i = lo_i, w <= 0 where z_i = hi_i, w = 0
+      between (``lo`` may hold -inf, ``hi`` +inf);
     * ``kind == "bimatrix"``: ``A, B`` (both m x n) -- a Nash equilibrium (x, y) of the game
       where A pays the row player and B the column player.
 
@@ -85,6 +89,15 @@ class Problem:
         arrays = dict(P=P, q=q, G=G, h=h, A=A, b=b, lb=lb, ub=ub)
         return cls(QP.name, {k: v for k, v in arrays.items() if v is not None}, name=name,
                    source=source, objective_constant=objective_constant)
+
+    @classmethod
+    def blcp(cls, M, q, lo, hi, findex=None, *, name: str = "", source: str = "") -> "Problem":
+        """The box LCP lo <= z <= hi, w = M z + q (w >= 0 where z = lo, w <= 0 where z = hi,
+        w = 0 between); ``findex`` couples friction rows to their normal rows."""
+        arrays = {"M": M, "q": q, "lo": lo, "hi": hi}
+        if findex is not None:
+            arrays["findex"] = findex
+        return cls(BLCP.name, arrays, name=name, source=source)
 
     @classmethod
     def bimatrix(cls, A, B, *, name: str = "", source: str = "") -> "Problem":

@@ -109,6 +109,21 @@ class Value:
     def __hash__(self) -> int:
         return hash(self._keys())
 
+    @classmethod
+    def _make_from(cls, *values):
+        """Build from the solver's own values in field order, skipping the frozen dataclass'
+        ``__init__`` (it sets every field through ``object.__setattr__``): the hot path of
+        small problems."""
+        names = _FIELD_NAMES.get(cls)
+        if names is None:
+            names = _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls))
+        res = object.__new__(cls)
+        res.__dict__.update(zip(names, values))
+        return res
+
+
+_FIELD_NAMES: dict = {}
+
 
 class Outcome(Value):
     """What every result derives from its ``status``: ``success`` and ``message``."""

@@ -208,6 +208,68 @@ def bimatrix(A, B) -> dict:
     return {"A": A, "B": B}
 
 
+def blcp(M, q, lo, hi, findex=None) -> dict:
+    """A box LCP by name: float64 ``M, q, lo, hi`` (a scalar bound applies to every row) and,
+    when given, ``findex`` as int64 (-1: no friction).
+    ValueError naming the entry for a NaN, lo > hi, lo = +inf or hi = -inf, and for a
+    friction index out of range, pointing at its own row or at another friction row, with
+    mu < 0, with lo_i != -hi_i, or whose normal row has lo_f < 0."""
+    M = square_matrix(M)
+    n = M.shape[0]
+    q = vector(q, n, "q")
+    lo = _box_bound(lo, n, "lo", -1)
+    hi = _box_bound(hi, n, "hi", +1)
+    if findex is not None:
+        findex = _findex(findex, n, lo, hi)
+    above = np.flatnonzero(lo > hi)
+    if above.size:
+        i = int(above[0])
+        raise ValueError(f"lo[{i}] = {lo[i]} > hi[{i}] = {hi[i]}: every lower bound must be <= its upper bound")
+    out = {"M": M, "q": q, "lo": lo, "hi": hi}
+    if findex is not None:
+        out["findex"] = findex
+    return out
+
+
+def _findex(findex, n, lo, hi):
+    """The friction index as int64, checked (see :func:`as_blcp`)."""
+    f = np.asarray(findex)
+    if f.shape != (n,):
+        raise ValueError(f"findex must have shape ({n},) to match M, got shape {f.shape}")
+    if f.dtype.kind not in "iu":
+        if f.dtype.kind != "f" or not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
+            bad = np.flatnonzero(~np.isfinite(f) | (f != np.round(f))) if f.dtype.kind == "f" else [0]
+            raise ValueError(f"findex must hold integers; findex[{int(bad[0])}] = {f.flat[int(bad[0])]!r}")
+    f = f.astype(np.int64)
+    for i in np.flatnonzero(f != -1):
+        fi = int(f[i])
+        if not 0 <= fi < n:
+            raise ValueError(f"findex[{i}] = {fi} is out of range: -1 (no friction) or a row in [0, {n})")
+        if fi == i:
+            raise ValueError(f"findex[{i}] = {i} points at its own row")
+        if f[fi] != -1:
+            raise ValueError(f"findex[{i}] = {fi} points at another friction row (findex[{fi}] = {int(f[fi])})")
+        if hi[i] < 0:
+            raise ValueError(f"friction row {i}: mu = hi[{i}] = {hi[i]} < 0")
+        if not np.isfinite(hi[i]):
+            raise ValueError(f"friction row {i}: mu = hi[{i}] must be finite")
+        if lo[i] != -hi[i]:
+            raise ValueError(f"friction row {i}: lo[{i}] = {lo[i]} must be -mu = -hi[{i}] = {-hi[i]} "
+                             "(the ODE/Bullet convention)")
+        if lo[fi] < 0:
+            raise ValueError(f"findex[{i}] = {fi}: the normal row's lower bound lo[{fi}] = {lo[fi]} must be >= 0")
+    return f
+
+
+def _box_bound(x, n, name, side):
+    a = real_array(x, name, allow_inf=side)
+    if a.ndim == 0:
+        a = np.full(n, float(a))
+    if a.shape != (n,):
+        raise ValueError(f"{name} must be a scalar or have shape ({n},) to match M, got shape {a.shape}")
+    return np.ascontiguousarray(a)
+
+
 SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
 CONVEXITY_TOL = 1e-10  # relative: P + CONVEXITY_TOL max|P| I must have a Cholesky factor
 

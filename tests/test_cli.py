@@ -269,3 +269,13 @@ def test_solve_a_gambit_game_file(capsys, tmp_path):
     bad.write_text('NFG 1 R "x" { "P1" "P2" } { 2 2 }\n1 2 3\n')
     code, out, err = run(capsys, "solve", str(bad))
     assert code == 2 and err.count("\n") == 1 and str(bad) in err
+
+
+@pytest.mark.parametrize("name, z", [("relay_2x2.dat", [0.5, -0.5]), ("relay_4x4.dat", [1.0, 0.5, -0.5, -1.0])])
+def test_siconos_relay_files_solve_as_box_lcps(capsys, name, z):
+    """Siconos' relay files (n, M, q, lb, ub) are box LCPs; their answers are Siconos' own."""
+    code, out, err = run(capsys, "solve", DATA / "siconos" / "relay" / name, "--json")
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["kind"] == "blcp" and doc["status"] == "SOLVED"
+    assert np.allclose(doc["z"], z, atol=1e-12)

@@ -19,8 +19,8 @@ DATA = Path(__file__).parent / "data"
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"  # ../shared/data from the repo root
 SICONOS_LCP = sorted((DATA / "siconos" / "lcp").glob("*.dat"))
 SICONOS_MLCP = sorted((DATA / "siconos" / "mlcp").glob("*.dat"))
-HOLDS = {"json": ("lcp", "mlcp", "qp", "bimatrix"), "npz": ("lcp", "mlcp", "qp", "bimatrix"),
-         "dat": ("lcp", "mlcp"), "mat": ("lcp", "mlcp", "qp"), "qps": ("qp",), "nfg": ("bimatrix",)}
+HOLDS = {"json": ("lcp", "mlcp", "qp", "bimatrix", "blcp"), "npz": ("lcp", "mlcp", "qp", "bimatrix", "blcp"),
+         "dat": ("lcp", "mlcp", "blcp"), "mat": ("lcp", "mlcp", "qp"), "qps": ("qp",), "nfg": ("bimatrix",)}
 
 
 def _qp_with_everything():
@@ -39,6 +39,8 @@ def _examples():
     out.append(_qp_with_everything())
     out.append(Problem.qp(np.eye(2), [1.0, -1.0], name="no constraints", source="tests"))
     out.append(Problem.lcp(np.zeros((0, 0)), np.zeros(0), name="empty", source="tests"))
+    out.append(Problem.blcp([[2.0, 1.0, 0.0], [1.0, 2.0, 0.5], [0.0, 0.5, 1.0]], [-1.0, 3.0, 0.5],
+                            [0.0, -np.inf, -2.0], [1.5, 4.0, np.inf], name="box", source="tests"))
     return out
 
 

@@ -22,7 +22,7 @@ LAYERS = [
     {"_result"},
     {"_certify"},
     {"_reductions", "_games_exact"},
-    {"_lcp", "_pivot_column", "_games"},
+    {"_lcp", "_pivot_column", "_games", "_blcp"},
     {"_batch", "_mlcp"},
     {"_qp"},
     {"_kinds"},

@@ -1,17 +1,20 @@
 """JSON problems.
 
-One object; ``kind`` is ``"lcp"``, ``"mlcp"`` or ``"qp"`` (inferred from the arrays when left
-out), the arrays are named as the solver's arguments::
+One object; ``kind`` is ``"lcp"``, ``"mlcp"``, ``"qp"``, ``"blcp"`` or ``"bimatrix"``
+(inferred from the arrays when left out), the arrays are named as the solver's arguments::
 
     {"kind": "lcp", "name": "cps-4.4.7", "source": "free text",
      "M": [[0, -1, 2], [2, 0, -2], [-1, 1, 0]], "q": [-3, 6, -1]}
     {"kind": "mlcp", "A": [[...]], "B": [[...]], "C": [[...]], "D": [[...]], "a": [...], "b": [...]}
     {"kind": "qp", "P": [[...]], "q": [...], "G": [[...]], "h": [...], "A": [[...]], "b": [...],
      "lb": [0, null], "ub": [null, 5], "objective_constant": -100}
+    {"kind": "blcp", "M": [[...]], "q": [...], "lo": [0, -1], "hi": [null, 1], "findex": [-1, 0]}
+    {"kind": "bimatrix", "A": [[...]], "B": [[...]]}
 
 A matrix is a list of rows, or a sparse matrix in coordinates,
 ``{"shape": [rows, cols], "rows": [...], "cols": [...], "values": [...]}`` (0-based; repeated
-positions add up).  In ``lb``/``ub``, ``null`` means no bound (-inf / +inf).  Every number must
+positions add up).  In ``lb``/``ub`` (a box LCP's ``lo``/``hi``), ``null`` means no bound
+(-inf / +inf); a box LCP's ``findex`` is a list of integers (-1: no friction).  Every number must
 be finite (NaN and Infinity are refused).  Unknown keys are refused, so a typo is not ignored.
 """
 from __future__ import annotations
@@ -26,9 +29,9 @@ from .._problem import FIELDS, Problem
 from .common import BadFile, check_size, infer_kind, make_problem
 
 _META = ("kind", "name", "source", "objective_constant")
-_VECTORS = {"q", "a", "b", "h", "lb", "ub"}
+_VECTORS = {"q", "a", "b", "h", "lb", "ub", "lo", "hi", "findex"}
 
-KINDS = ("lcp", "mlcp", "qp", "bimatrix")  # the kinds of problem this format holds
+KINDS = ("lcp", "mlcp", "qp", "bimatrix", "blcp")  # the kinds of problem this format holds
 
 
 def _number(x, where: str, none=None) -> float:
@@ -45,7 +48,7 @@ def _number(x, where: str, none=None) -> float:
 def _vector(value, key: str) -> np.ndarray:
     if not isinstance(value, list):
         raise BadFile(f"'{key}' must be a list of numbers")
-    none = {"lb": -math.inf, "ub": math.inf}.get(key)
+    none = {"lb": -math.inf, "ub": math.inf, "lo": -math.inf, "hi": math.inf}.get(key)
     return np.array([_number(x, f"'{key}'", none) for x in value], dtype=float)
 
 

@@ -15,7 +15,7 @@ from .common import MAX_ENTRIES, BadFile, infer_kind, make_problem
 
 _TEXT = ("kind", "name", "source")
 
-KINDS = ("lcp", "mlcp", "qp", "bimatrix")  # the kinds of problem this format holds
+KINDS = ("lcp", "mlcp", "qp", "bimatrix", "blcp")  # the kinds of problem this format holds
 
 
 def _text(archive, key: str) -> str:

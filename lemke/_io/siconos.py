@@ -34,8 +34,8 @@ import numpy as np
 from .._problem import Problem
 from .common import BadFile, check_size, make_problem
 
-KINDS = ("lcp", "mlcp")  # the kinds of problem this format holds
-LCP, MLCP = KINDS
+KINDS = ("lcp", "mlcp", "blcp")  # the kinds of problem this format holds
+LCP, MLCP, BLCP = KINDS
 
 
 class _Tokens:
@@ -172,6 +172,10 @@ def read(data: bytes, path) -> Problem:
     if M.shape != (n, n):
         raise BadFile(f"M is {M.shape[0]} x {M.shape[1]}, expected {n} x {n}")
     q = tok.numbers(n, "q")
+    rest = tok.items[tok.at:]
+    if n and len(rest) == 2 * n and all(map(_is_float, rest)):  # a relay (box) file: lb, ub follow q
+        lo, hi = tok.numbers(n, "lb"), tok.numbers(n, "ub")
+        return make_problem(BLCP, {"M": M, "q": q, "lo": lo, "hi": hi}, path, "Siconos relay .dat")
     return make_problem(LCP, {"M": M, "q": q}, path, "Siconos LCP .dat")
 
 
@@ -215,8 +219,12 @@ def _dense_text(M: np.ndarray) -> list[str]:
 
 
 def write(problem: Problem, fh) -> None:
-    if problem.kind == LCP:
+    if problem.kind == BLCP and problem.findex is not None:
+        raise ValueError("a Siconos relay file has no friction index; write .json or .npz")
+    if problem.kind in (LCP, BLCP):
         lines = [str(problem.q.size)] + _dense_text(problem.M) + [_fmt(problem.q)]
+        if problem.kind == BLCP:
+            lines += [_fmt(problem.lo), _fmt(problem.hi)]
     else:
         n, m = problem.shape
         M = np.block([[problem.A, problem.C], [problem.D, problem.B]])
