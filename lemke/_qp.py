@@ -30,12 +30,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._lcp import METHODS
+from ._lcp import _KERNELS, METHODS
 from ._mlcp import _size, solve_stacked
 from ._options import as_options
 from ._problem import _to_float_array
 from ._result import Outcome, WarmStart
 from ._status import Status
+from .kernels import qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
 INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
@@ -174,17 +175,49 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     """
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
-    qp = _QP(P, q, G, h, A, b, lb, ub)
+    qp = _QP(P, q, G, h, A, b, lb, ub, stack=False)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
+    if warm_start is None:
+        res = _solve_definite(qp, method, opts)
+        if res is not None:
+            return res
+    qp.stack()
     return _solve(qp, method, opts, warm_start, certify=True)
+
+
+def _solve_definite(qp, method, opts):
+    """The fused cold path for a positive definite P (``kernels.qp``): one kernel call that
+    factors P, solves the LCP of the inequality multipliers and checks the KKT point on the
+    data.  None when it does not apply (P semidefinite, dependent equalities, no
+    variables) or did not end solved and checked: the caller then takes the KKT-MLCP path,
+    which also finds the certificates of infeasible and unbounded QPs."""
+    n = qp.n
+    if n == 0:
+        return None
+    m0, p0 = qp.G.shape[0], qp.A.shape[0]
+    x, y, z, z_box = np.empty(n), np.empty(p0), np.empty(m0), np.empty(n)
+    stats = np.empty(4)
+    basic = np.empty(m0 + 2 * n, dtype=np.int64)
+    c = np.ascontiguousarray
+    code, pivots, k, pairs = kqp.solve(
+        c(qp.P), c(qp.q), c(qp.G), c(qp.h), c(qp.A), c(qp.b), qp.lb, qp.ub, _KERNELS[method],
+        -1 if opts.max_pivots is None else opts.max_pivots, opts.pivot_tol, opts.tie_tol,
+        opts.tol, x, y, z, z_box, stats, basic)
+    if code != kqp.OK:
+        return None
+    for a in (x, y, z, z_box):
+        a.setflags(write=False)
+    primal, dual, gap, obj = stats.tolist()
+    return QPResult(x, y, z, z_box, obj, Status.SOLVED, int(pivots), primal, dual, gap, None,
+                    WarmStart._trusted(int(pairs), tuple(basic[:k].tolist())))
 
 
 class _QP:
     """The validated data, the variables' kinds and the KKT system as a stacked MLCP."""
 
-    def __init__(self, P, q, G, h, A, b, lb, ub):
+    def __init__(self, P, q, G, h, A, b, lb, ub, stack=True):
         q = _to_float_array(q, "q")
         if q.ndim != 1:
             raise ValueError(f"q must be a vector, got shape {q.shape}")
@@ -195,7 +228,7 @@ class _QP:
         if P.shape != (n, n):
             raise ValueError(f"P must have shape ({n}, {n}) to match q, got {P.shape}")
         self.n, self.q = n, q
-        self.P = _symmetric_psd(P)
+        self.P = _symmetric(P)
         self.G, self.h = _rows(G, h, n, "G", "h")
         self.A, self.b = _rows(A, b, n, "A", "b")
         self.lb = _bound(lb, n, "lb", -np.inf)
@@ -204,6 +237,14 @@ class _QP:
         if bad.size:
             j = int(bad[0])
             raise ValueError(f"lb[{j}] = {self.lb[j]} exceeds ub[{j}] = {self.ub[j]}: no x satisfies the bounds")
+        if stack:
+            self.stack()
+
+    def stack(self):
+        """Check that P is positive semidefinite (raise if not), then build the KKT-MLCP
+        (deferred so that the fused path, whose Cholesky factor proves P definite, skips
+        both)."""
+        _check_psd(self.P)
         self._kinds()
         self._stack()
 
@@ -288,7 +329,8 @@ def _constant_rows(M, v, x0, fixed):
     return c
 
 
-def _symmetric_psd(P):
+def _symmetric(P):
+    """(P + P')/2, or an error naming the largest asymmetry beyond rounding."""
     scale = float(np.max(np.abs(P))) if P.size else 0.0
     if scale == 0.0:
         return np.zeros_like(P)
@@ -299,9 +341,16 @@ def _symmetric_psd(P):
             f"P is not symmetric: P[{i}, {j}] = {P[i, j]:.6g} but P[{j}, {i}] = {P[j, i]:.6g} "
             "(pass the full symmetric matrix, not one triangle)"
         )
-    Ps = 0.5 * (P + P.T)
+    return 0.5 * (P + P.T)
+
+
+def _check_psd(Ps):
+    """Raise unless the symmetric Ps is positive semidefinite (to CONVEXITY_TOL)."""
+    scale = float(np.max(np.abs(Ps))) if Ps.size else 0.0
+    if scale == 0.0:
+        return
     try:
-        np.linalg.cholesky(Ps + (CONVEXITY_TOL * scale) * np.eye(P.shape[0]))
+        np.linalg.cholesky(Ps + (CONVEXITY_TOL * scale) * np.eye(Ps.shape[0]))
     except np.linalg.LinAlgError:
         lam = np.linalg.eigvalsh(Ps)
         raise ValueError(
@@ -309,7 +358,6 @@ def _symmetric_psd(P):
             f"{lam[-1]:.3g}); solve_qp solves convex QPs only, a KKT point of a non-convex one "
             "need not be a minimum"
         ) from None
-    return Ps
 
 
 def _rows(M, v, n, mname, vname):
