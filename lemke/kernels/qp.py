@@ -47,10 +47,64 @@ DEPENDENT_EQUALITIES = 2  # the equalities are (nearly) dependent, or more than 
 NOT_SOLVED = 3  # the LCP ended otherwise than solved (infeasible QP, or a numerical failure)
 CHECK_FAILED = 4  # the KKT check on the caller's data failed
 
+BAD_INPUT = 5  # the data needs the front's validation (which raises, naming the entry)
+
+INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
+SYMMETRY_TOL = 1e-10  # relative, as the front's: a larger asymmetry of P is an error
 DEFINITE_TOL = 1e-12  # a Cholesky pivot d_j must have d_j^2 > DEFINITE_TOL * max_k P_kk
 RANK_TOL = 1e-10  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
 EPS = np.finfo(np.float64).eps
 SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
+
+
+# ----------------------------------------------------------------------------- screening
+
+@kernel
+def screen(P, q, G, h, A, b, lb, ub):
+    """``(ok, Ps, lo, up)``: whether the data is plainly valid (every entry of P, q, G, A, b
+    finite, h finite or +inf (no constraint), no NaN in the bounds, lb < +inf, ub > -inf,
+    lb <= ub, P symmetric to ``SYMMETRY_TOL`` of its largest entry), the symmetric part
+    ``Ps = (P + P')/2``, and the bounds with entries beyond ``INFINITY`` made infinite.
+    Data that is not plainly valid goes to the front's validation, which raises (naming the
+    entry) or accepts it; this is only the fast way through for the common case."""
+    n = q.shape[0]
+    Ps = np.empty((n, n))
+    lo = np.empty(n)
+    up = np.empty(n)
+    top = 0.0
+    probe = 0.0
+    for i in range(n):
+        for j in range(n):
+            top = max(top, abs(P[i, j]))
+            probe += 0.0 * P[i, j]
+        probe += 0.0 * q[i]
+    asym = 0.0
+    for i in range(n):
+        for j in range(i + 1):
+            a = P[i, j]
+            c = P[j, i]
+            asym = max(asym, abs(a - c))
+            Ps[i, j] = 0.5 * (a + c)
+            Ps[j, i] = Ps[i, j]
+    for i in range(G.shape[0]):
+        for j in range(n):
+            probe += 0.0 * G[i, j]
+        if not (h[i] > -np.inf):  # NaN or -inf
+            return False, Ps, lo, up
+    for i in range(A.shape[0]):
+        for j in range(n):
+            probe += 0.0 * A[i, j]
+        probe += 0.0 * b[i]
+    if probe != 0.0 or asym > SYMMETRY_TOL * top:
+        return False, Ps, lo, up
+    for j in range(n):
+        a = lb[j]
+        c = ub[j]
+        if not (a < np.inf and c > -np.inf and a <= c):  # also catches NaN
+            return False, Ps, lo, up
+        lo[j] = a if a > -INFINITY else -np.inf
+        up[j] = c if c < INFINITY else np.inf
+    return True, Ps, lo, up
 
 
 # ----------------------------------------------------------------------------- factors
@@ -248,6 +302,8 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         if not abs(r) <= t * sz:
             ok = False
     for i in range(G.shape[0]):
+        if not h[i] < np.inf:
+            continue  # no constraint (its z_i is 0)
         r, sz = dot2(G[i], x, -h[i])
         primal = max(primal, r)
         gap += h[i] * z[i]
@@ -304,8 +360,9 @@ def rows_of(G, h, A, b, lb, ub):
     """``(E, f, ekind, C, d, ckind)``: the equalities ``E x = f`` (A's rows, then a unit row
     per fixed variable) and the inequalities ``C x <= d`` (G's rows, then ``x_j <= ub_j``
     for each finite upper bound, then ``-x_j <= -lb_j`` for each finite lower bound) as
-    dense rows.  ``ekind[k]`` is -1 for a row of A and j for fixed x_j; ``ckind[i]`` is -1
-    for a row of G, j for an upper bound of x_j and n + j for a lower bound."""
+    dense rows; a row of G with h_i = +inf is no constraint and left out.  ``ekind[k]`` is -1
+    for a row of A and j for fixed x_j; ``ckind[k]`` is ``-1 - i`` for row i of G, j for an
+    upper bound of x_j and n + j for a lower bound."""
     n = lb.shape[0]
     p0 = A.shape[0]
     m0 = G.shape[0]
@@ -332,13 +389,21 @@ def rows_of(G, h, A, b, lb, ub):
             f[k] = lb[j]
             ekind[k] = j
             k += 1
-    m = m0 + n_up + n_lo
+    m_g = 0
+    for i in range(m0):
+        if h[i] < np.inf:
+            m_g += 1
+    m = m_g + n_up + n_lo
     C = np.zeros((m, n))
     d = np.empty(m)
     ckind = np.full(m, -1, dtype=np.int64)
-    C[:m0] = G
-    d[:m0] = h
-    k = m0
+    k = 0
+    for i in range(m0):
+        if h[i] < np.inf:  # h_i = +inf: no constraint
+            C[k] = G[i]
+            d[k] = h[i]
+            ckind[k] = -1 - i
+            k += 1
     for j in range(n):
         if lb[j] != ub[j] and ub[j] < np.inf:
             C[k, j] = 1.0
@@ -355,7 +420,7 @@ def rows_of(G, h, A, b, lb, ub):
 
 
 @kernel
-def mlcp_basis(lb, ub, m0, ckind, lcp_basic, out):
+def mlcp_basis(lb, ub, m_g, ckind, lcp_basic, out):
     """The final basis as ``solve_qp``'s KKT-MLCP numbers it (its ``WarmStart``): pairs
     ``(x'_j, z_i, z_ub_j)`` for the variables with a finite bound (not fixed), the rows of
     G and the boxed variables, in that order.  ``x'_j`` (the distance from the bound it is
@@ -369,7 +434,7 @@ def mlcp_basis(lb, ub, m0, ckind, lcp_basic, out):
         on[lcp_basic[i]] = True
     lo_on = np.zeros(n, dtype=np.bool_)
     up_on = np.zeros(n, dtype=np.bool_)
-    for i in range(m0, m):
+    for i in range(m_g, m):
         j = ckind[i]
         if j < n:
             up_on[j] = on[i]
@@ -385,7 +450,7 @@ def mlcp_basis(lb, ub, m0, ckind, lcp_basic, out):
                 out[k] = pos
                 k += 1
             pos += 1
-    for i in range(m0):
+    for i in range(m_g):
         if on[i]:
             out[k] = pos
             k += 1
@@ -400,13 +465,39 @@ def mlcp_basis(lb, ub, m0, ckind, lcp_basic, out):
 
 
 @kernel
-def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-          x, y, z, zb, stats, basic):
-    """The fused cold path of the module docstring.  Writes x, y, z, zb (the QP's point and
-    multipliers, qpsolvers' signs), ``stats = (primal, dual, gap, obj)`` and in ``basic``
-    the final basis as :func:`mlcp_basis` numbers it (length at least m + n).  ``max_pivots < 0`` means the default cap ``100 (m + 1)``.  Returns
-    ``(code, pivots, k)``: code OK, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or
-    CHECK_FAILED; k the number of entries of ``basic``."""
+def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol):
+    """The fused cold path of the module docstring, on the caller's arrays (float64, of
+    matching shapes; :func:`screen` decides whether their values are plainly valid).
+
+    Returns ``(code, pivots, x, y, z, zb, basic, pairs, stats)``: code OK, BAD_INPUT,
+    NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; the QP's point and
+    multipliers (qpsolvers' signs: ``P x + q + A'y + G'z + zb = 0``); the final basis as
+    :func:`mlcp_basis` numbers it, of ``pairs`` pairs; ``stats = (primal, dual, gap, obj)``
+    (qpsolvers' residuals, see :func:`kkt_check`).  ``max_pivots < 0`` means the default
+    cap ``100 (m + 1)``, m the number of inequalities the LCP has."""
+    n = q.shape[0]
+    m0 = G.shape[0]
+    p0 = A.shape[0]
+    x = np.zeros(n)
+    y = np.zeros(p0)
+    z = np.zeros(m0)
+    zb = np.zeros(n)
+    stats = np.zeros(4)
+    ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
+    if not ok:
+        return BAD_INPUT, 0, x, y, z, zb, np.empty(0, dtype=np.int64), 0, stats
+    basic = np.empty(m0 + 2 * n, dtype=np.int64)
+    code, pivots, k, pairs = _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol,
+                                    tie_tol, tol, x, y, z, zb, stats, basic)
+    return code, pivots, x, y, z, zb, basic[:k], pairs, stats
+
+
+@kernel
+def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
+           x, y, z, zb, stats, basic):
+    """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
+    outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
+    the basis written in ``basic``."""
     n = q.shape[0]
     L = np.empty((n, n))
     if not cholesky(P, L):
@@ -414,6 +505,9 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
     E, f, ekind, C, d, ckind = rows_of(G, h, A, b, lb, ub)
     p = E.shape[0]
     m = C.shape[0]
+    m_g = 0
+    while m_g < m and ckind[m_g] < 0:
+        m_g += 1
     if p > n:
         return DEPENDENT_EQUALITIES, 0, 0, 0
     # W' = rows L^-1 e_i, L^-1 c_i
@@ -463,7 +557,7 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
         lcp_basic = lcp_basic[:k_basic].copy()
     else:
         lcp_basic = np.empty(0, dtype=np.int64)
-    k_basic, pairs = mlcp_basis(lb, ub, G.shape[0], ckind, lcp_basic, basic)
+    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, lcp_basic, basic)
     # v2 = -c2 - F2' z;  x = L'^-1 Q v
     for t in range(p, n):
         v[t] = -c[t]
@@ -502,7 +596,7 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
         zb[ekind[k]] = yy[k]
     for i in range(m0):
         z[i] = zz[i]
-    for i in range(m0, m):
+    for i in range(m_g, m):
         j = ckind[i]
         if j < n:
             zb[j] += zz[i]
