@@ -310,16 +310,21 @@ def _solve_definite(args, method, opts):
     validation, P only semidefinite, dependent equalities) or did not end solved and
     checked: the caller then takes the KKT-MLCP path, which also finds the certificates of
     infeasible and unbounded QPs."""
-    code, pivots, x, y, z, z_box, basic, pairs, stats = kqp.solve(
-        *args, _KERNELS[method], -1 if opts.max_pivots is None else opts.max_pivots,
-        opts.pivot_tol, opts.tie_tol, opts.tol)
+    P, q, G, h, A, b, lb, ub = args
+    n, p, m = q.shape[0], A.shape[0], G.shape[0]
+    out = np.empty(2 * n + p + m + 4)  # kqp.out_size
+    basic = np.empty(m + 2 * n, dtype=np.int64)
+    code, pivots, k, pairs = kqp.solve(
+        P, q, G, h, A, b, lb, ub, _KERNELS[method],
+        -1 if opts.max_pivots is None else opts.max_pivots, opts.pivot_tol, opts.tie_tol,
+        opts.tol, out, basic)
     if code != kqp.OK:
         return None
-    for a in (x, y, z, z_box):
-        a.setflags(write=False)
-    primal, dual, gap, obj = stats.tolist()
-    return QPResult._make(x, y, z, z_box, obj, Status.SOLVED, pivots, primal, dual, gap, None,
-                          WarmStart._trusted(pairs, tuple(basic.tolist())))
+    out.setflags(write=False)  # the views below are read-only too
+    primal, dual, gap, obj = out[-4:].tolist()
+    return QPResult._make(out[:n], out[n:n + p], out[n + p:n + p + m],
+                          out[n + p + m:2 * n + p + m], obj, Status.SOLVED, pivots, primal, dual,
+                          gap, None, WarmStart._trusted(pairs, tuple(basic[:k].tolist())))
 
 
 class _QP:

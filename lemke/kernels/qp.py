@@ -465,31 +465,35 @@ def mlcp_basis(lb, ub, m_g, ckind, lcp_basic, out):
 
 
 @kernel
-def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol):
+def out_size(n, p, m):
+    """The length of :func:`solve`'s output buffer: ``[x (n) | y (p) | z (m) | zb (n) |
+    primal, dual, gap, obj]``."""
+    return 2 * n + p + m + 4
+
+
+@kernel
+def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, basic):
     """The fused cold path of the module docstring, on the caller's arrays (float64, of
     matching shapes; :func:`screen` decides whether their values are plainly valid).
 
-    Returns ``(code, pivots, x, y, z, zb, basic, pairs, stats)``: code OK, BAD_INPUT,
-    NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; the QP's point and
-    multipliers (qpsolvers' signs: ``P x + q + A'y + G'z + zb = 0``); the final basis as
-    :func:`mlcp_basis` numbers it, of ``pairs`` pairs; ``stats = (primal, dual, gap, obj)``
-    (qpsolvers' residuals, see :func:`kkt_check`).  ``max_pivots < 0`` means the default
-    cap ``100 (m + 1)``, m the number of inequalities the LCP has."""
+    Writes in ``out`` (see :func:`out_size`) the QP's point and multipliers (qpsolvers'
+    signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
+    residuals, see :func:`kkt_check`), and in ``basic`` (length at least m + 2n) the final
+    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``: code OK,
+    BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; k the length
+    of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
+    the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
+    caller-made buffers only: boxing returned arrays costs more than a small solve."""
     n = q.shape[0]
     m0 = G.shape[0]
     p0 = A.shape[0]
-    x = np.zeros(n)
-    y = np.zeros(p0)
-    z = np.zeros(m0)
-    zb = np.zeros(n)
-    stats = np.zeros(4)
+    out[:] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
-        return BAD_INPUT, 0, x, y, z, zb, np.empty(0, dtype=np.int64), 0, stats
-    basic = np.empty(m0 + 2 * n, dtype=np.int64)
-    code, pivots, k, pairs = _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol,
-                                    tie_tol, tol, x, y, z, zb, stats, basic)
-    return code, pivots, x, y, z, zb, basic[:k], pairs, stats
+        return BAD_INPUT, 0, 0, 0
+    return _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
+                  out[:n], out[n:n + p0], out[n + p0:n + p0 + m0],
+                  out[n + p0 + m0:2 * n + p0 + m0], out[2 * n + p0 + m0:], basic)
 
 
 @kernel
