@@ -135,10 +135,15 @@ def cholesky(P, L):
 
 @kernel
 def forward(L, r):
-    """r := L^-1 r in place (L lower triangular, row-major: dot products over rows)."""
+    """r := L^-1 r in place (L lower triangular, row-major: dot products over rows).  The
+    leading zeros of r stay zero and are skipped (a bound's row e_j costs (n - j)^2 / 2)."""
     n = L.shape[0]
-    for j in range(n):
-        r[j] = (r[j] - dot(L[j], r, j)) / L[j, j]
+    s = 0
+    while s < n and r[s] == 0.0:
+        s += 1
+    for j in range(s, n):
+        Lj = L[j]
+        r[j] = (r[j] - dot(Lj[s:], r[s:], j - s)) / Lj[j]
 
 
 @kernel
@@ -517,7 +522,17 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     # W' = rows L^-1 e_i, L^-1 c_i
     for i in range(p):
         forward(L, E[i])
+    up_row = np.full(n, -1, dtype=np.int64)
     for i in range(m):
+        j = ckind[i]
+        if j >= n and up_row[j - n] >= 0:  # -e_j: minus the row of the upper bound
+            Ci = C[i]
+            Cu = C[up_row[j - n]]
+            for t in range(n):
+                Ci[t] = -Cu[t]
+            continue
+        if 0 <= j < n:
+            up_row[j] = i
         forward(L, C[i])
     c = q.copy()
     forward(L, c)
@@ -591,15 +606,15 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     backward_transposed(L, v)
     x[:] = v
     # the multipliers in qpsolvers' form
-    m0 = G.shape[0]
     p0 = A.shape[0]
+    z[:] = 0.0
     zb[:] = 0.0
     for i in range(p0):
         y[i] = yy[i]
     for k in range(p0, p):
         zb[ekind[k]] = yy[k]
-    for i in range(m0):
-        z[i] = zz[i]
+    for i in range(m_g):
+        z[-1 - ckind[i]] = zz[i]
     for i in range(m_g, m):
         j = ckind[i]
         if j < n:
