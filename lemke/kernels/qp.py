@@ -23,9 +23,12 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    F1'v1 + F2'c2``, solved by ``cold.checked``: the same equilibration, pivoting rule,
    recoveries and row-wise check as ``solve_lcp``.
 5. The point and the multipliers come from the factors already at hand: ``v2 = -c2 - F2 z``,
-   ``x = L'^-1 Q v``, and the equality multipliers ``y = -R^-1 (v1 + c1 + F1 z)``.
+   ``x = L'^-1 Q v``, and the equality multipliers ``y = -R^-1 (v1 + c1 + F1 z)``; a
+   variable whose bound has a positive multiplier is set to that bound exactly.
 6. The KKT conditions are checked once, row by row, on the caller's data with compensated
-   (double-double) sums (:func:`kkt_check`).
+   (double-double) sums (:func:`kkt_check`), at the tolerance ``min(tol, STRICT_TOL)``:
+   there is no refinement step, so an ill-conditioned problem whose point is only accurate
+   to the tolerance is left to the KKT-MLCP path, which refines in extended precision.
 
 No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
 The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
@@ -52,7 +55,8 @@ BAD_INPUT = 5  # the data needs the front's validation (which raises, naming the
 INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
 SYMMETRY_TOL = 1e-10  # relative, as the front's: a larger asymmetry of P is an error
 DEFINITE_TOL = 1e-12  # a Cholesky pivot d_j must have d_j^2 > DEFINITE_TOL * max_k P_kk
-RANK_TOL = 1e-10  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
+RANK_TOL = 1e-10
+STRICT_TOL = 1e-12  # the fused path answers only when its point passes at this tolerance  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
 EPS = np.finfo(np.float64).eps
 SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
 
@@ -228,17 +232,19 @@ def two_sum(a, b):
 
 @kernel
 def dot2(x, y, c):
-    """``(sum, size)``: c + x'y summed in twice the working precision (Ogita, Rump and
-    Oishi's Dot2) and ``|c| + |x|'|y|``."""
+    """``(sum, size, norm)``: c + x'y summed in twice the working precision (Ogita, Rump and
+    Oishi's Dot2), ``|c| + |x|'|y|`` and ``sum |x|``."""
     s = c
     err = 0.0
     size = abs(c)
+    norm = 0.0
     for j in range(x.shape[0]):
         p, e = two_product(x[j], y[j])
         s, f = two_sum(s, p)
         err += e + f
-        size += abs(x[j] * y[j])
-    return s + err, size
+        size += abs(p)
+        norm += abs(x[j])
+    return s + err, size, norm
 
 
 @kernel
@@ -262,8 +268,9 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
 
     - stationarity ``|P_j x + q_j + A_j'y + G_j'z + zb_j| <= t s_j`` (s_j the sum of the
       sizes of the terms);
-    - equalities ``|A_i x - b_i| <= t s_i``, inequalities ``G_i x - h_i <= t s_i``, bounds
-      ``lb_j - x_j <= t (|lb_j| + |x_j|)`` and ``x_j - ub_j <= t (...)``;
+    - equalities ``|A_i x - b_i| <= t s_i + f |A_i|_1``, inequalities ``G_i x - h_i <= t s_i
+      + f |G_i|_1``, bounds ``lb_j - x_j <= t (|lb_j| + |x_j|) + f`` and ``x_j - ub_j <= t
+      (...) + f``, with f the rounding floor ``4 (n + 2) eps max|x|`` of computing x;
     - signs: ``z >= 0``, ``zb_j < 0`` only at a finite lb, ``> 0`` only at a finite ub;
     - complementarity: a non-zero multiplier's row is active to within its allowance, or
       the multiplier is small enough to count as zero (removing it moves no stationarity
@@ -300,22 +307,29 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     gap = xPx_s
     for j in range(n):
         gap += q[j] * x[j]
+    # Every primal row also has the rounding floor of computing x: x is exact only to about
+    # f = 4 (n + 2) eps max|x|, which moves row i by f sum_j |a_ij|.
+    x_top = 0.0
+    for j in range(n):
+        x_top = max(x_top, abs(x[j]))
+    floor = 4.0 * (n + 2) * EPS * x_top
     for i in range(A.shape[0]):
-        r, sz = dot2(A[i], x, -b[i])
+        r, sz, norm = dot2(A[i], x, -b[i])
         primal = max(primal, abs(r))
         gap += b[i] * y[i]
-        if not abs(r) <= t * sz:
+        if not abs(r) <= t * sz + floor * norm:
             ok = False
     for i in range(G.shape[0]):
         if not h[i] < np.inf:
             continue  # no constraint (its z_i is 0)
-        r, sz = dot2(G[i], x, -h[i])
+        r, sz, norm = dot2(G[i], x, -h[i])
+        sz = t * sz + floor * norm
         primal = max(primal, r)
         gap += h[i] * z[i]
         zi = z[i]
-        if not (r <= t * sz and zi >= 0.0):
+        if not (r <= sz and zi >= 0.0):
             ok = False
-        elif zi > 0.0 and -r > t * sz:  # inactive row with a non-zero multiplier
+        elif zi > 0.0 and -r > sz:  # inactive row with a non-zero multiplier
             for j in range(n):
                 if abs(zi * G[i, j]) > allow[j]:
                     ok = False
@@ -324,24 +338,28 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         zj = zb[j]
         lo = lb[j] > -np.inf
         up = ub[j] < np.inf
+        s_lo = t * (abs(lb[j]) + abs(x[j])) + floor
+        s_up = t * (abs(ub[j]) + abs(x[j])) + floor
         if lo:
             r = lb[j] - x[j]
             primal = max(primal, r)
             if zj < 0.0:
                 gap += lb[j] * zj
-            if r > t * (abs(lb[j]) + abs(x[j])):
+            if r > s_lo:
                 ok = False
         if up:
             r = x[j] - ub[j]
             primal = max(primal, r)
             if zj > 0.0:
                 gap += ub[j] * zj
-            if r > t * (abs(ub[j]) + abs(x[j])):
+            if r > s_up:
                 ok = False
-        if zj < 0.0:
-            active = lo and x[j] - lb[j] <= t * (abs(lb[j]) + abs(x[j]))
+        if lb[j] == ub[j]:
+            active = True  # a fixed variable: its multiplier has either sign
+        elif zj < 0.0:
+            active = lo and x[j] - lb[j] <= s_lo
         elif zj > 0.0:
-            active = up and ub[j] - x[j] <= t * (abs(ub[j]) + abs(x[j]))
+            active = up and ub[j] - x[j] <= s_up
         else:
             active = True
         if not active and abs(zj) > allow[j]:
@@ -605,6 +623,12 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         householder_apply(V, beta, k, v)
     backward_transposed(L, v)
     x[:] = v
+    # A bound whose multiplier is positive holds with equality: x_j is set to it exactly
+    # (it came out of the substitutions within their rounding of it).
+    for i in range(m_g, m):
+        if zz[i] > 0.0:
+            j = ckind[i]
+            x[j if j < n else j - n] = d[i] if j < n else -d[i]
     # the multipliers in qpsolvers' form
     p0 = A.shape[0]
     z[:] = 0.0
@@ -621,6 +645,8 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             zb[j] += zz[i]
         else:
             zb[j - n] -= zz[i]
-    if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
+    # No refinement step here: the point is kept only when it is accurate far beyond the
+    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+    if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
         return CHECK_FAILED, pivots, k_basic, pairs
     return OK, pivots, k_basic, pairs
