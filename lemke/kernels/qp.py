@@ -40,9 +40,10 @@ as forming it costs ``(n - p) m^2 / 2`` and a pivot ``m^2``, and only a handful 
 (at most about n) are taken.
 """
 import numpy as np
+from numba import njit
 
 from . import cold, kernel, pivoting
-from .linalg import dot
+from .linalg import absmax, dot, nan_probe
 
 OK = 0
 NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
@@ -76,29 +77,28 @@ def screen(P, q, G, h, A, b, lb, ub):
     lo = np.empty(n)
     up = np.empty(n)
     top = 0.0
-    probe = 0.0
+    probe = nan_probe(q, n)
     for i in range(n):
-        for j in range(n):
-            top = max(top, abs(P[i, j]))
-            probe += 0.0 * P[i, j]
-        probe += 0.0 * q[i]
+        probe += nan_probe(P[i], n)
+        top = max(top, absmax(P[i], n))
     asym = 0.0
-    for i in range(n):
-        for j in range(i + 1):
-            a = P[i, j]
-            c = P[j, i]
-            asym = max(asym, abs(a - c))
-            Ps[i, j] = 0.5 * (a + c)
-            Ps[j, i] = Ps[i, j]
+    B = 32  # in square tiles: P[j, i] is read down a column
+    for i0 in range(0, n, B):
+        for j0 in range(0, i0 + 1, B):
+            for i in range(i0, min(i0 + B, n)):
+                for j in range(j0, min(j0 + B, i + 1)):
+                    a = P[i, j]
+                    c = P[j, i]
+                    asym = max(asym, abs(a - c))
+                    Ps[i, j] = 0.5 * (a + c)
+                    Ps[j, i] = Ps[i, j]
     for i in range(G.shape[0]):
-        for j in range(n):
-            probe += 0.0 * G[i, j]
+        probe += nan_probe(G[i], n)
         if not (h[i] > -np.inf):  # NaN or -inf
             return False, Ps, lo, up
     for i in range(A.shape[0]):
-        for j in range(n):
-            probe += 0.0 * A[i, j]
-        probe += 0.0 * b[i]
+        probe += nan_probe(A[i], n)
+    probe += nan_probe(b, b.shape[0])
     if probe != 0.0 or asym > SYMMETRY_TOL * top:
         return False, Ps, lo, up
     for j in range(n):
@@ -150,6 +150,53 @@ def forward(L, r):
         r[j] = (r[j] - dot(Lj[s:], r[s:], j - s)) / Lj[j]
 
 
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def _dot4(a, r0, r1, r2, r3):
+    """The four sums ``a' r_k`` in one pass over a (fastmath, as ``linalg.dot``; slices
+    indexed from 0, so that no negative-index wraparound stops vectorization)."""
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    s3 = 0.0
+    for t in range(a.shape[0]):
+        at = a[t]
+        s0 += at * r0[t]
+        s1 += at * r1[t]
+        s2 += at * r2[t]
+        s3 += at * r3[t]
+    return s0, s1, s2, s3
+
+
+@kernel
+def forward_rows(L, R):
+    """Every row r of R := L^-1 r, four rows at a time: each row of L is read once per four
+    right-hand sides (the substitutions are bound by reading L).  Leading zeros common to
+    the four are skipped, as in :func:`forward`."""
+    n = L.shape[0]
+    k = R.shape[0]
+    i = 0
+    while i + 4 <= k:
+        r0 = R[i]
+        r1 = R[i + 1]
+        r2 = R[i + 2]
+        r3 = R[i + 3]
+        s = 0
+        while s < n and r0[s] == 0.0 and r1[s] == 0.0 and r2[s] == 0.0 and r3[s] == 0.0:
+            s += 1
+        for j in range(s, n):
+            Lj = L[j]
+            d0, d1, d2, d3 = _dot4(Lj[s:j], r0[s:j], r1[s:j], r2[s:j], r3[s:j])
+            inv = 1.0 / Lj[j]
+            r0[j] = (r0[j] - d0) * inv
+            r1[j] = (r1[j] - d1) * inv
+            r2[j] = (r2[j] - d2) * inv
+            r3[j] = (r3[j] - d3) * inv
+        i += 4
+    while i < k:
+        forward(L, R[i])
+        i += 1
+
+
 @kernel
 def backward_transposed(L, r):
     """r := L'^-1 r in place: column j of L' is row j of L, so each step is an axpy over a
@@ -166,12 +213,13 @@ def backward_transposed(L, r):
 @kernel
 def householder_apply(V, beta, k, row):
     """row := H_k row with ``H_k = I - beta_k v_k v_k'`` (v_k = V[k], zero before entry k)."""
-    v = V[k]
     n = row.shape[0]
-    s = beta[k] * dot(v[k:], row[k:], n - k)
+    v = V[k][k:]
+    r = row[k:]
+    s = beta[k] * dot(v, r, n - k)
     if s != 0.0:
-        for t in range(k, n):
-            row[t] -= s * v[t]
+        for t in range(n - k):  # over slices from 0: vectorized (see linalg._row_update)
+            r[t] -= s * v[t]
 
 
 @kernel
@@ -538,20 +586,25 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     if p > n:
         return DEPENDENT_EQUALITIES, 0, 0, 0
     # W' = rows L^-1 e_i, L^-1 c_i
-    for i in range(p):
-        forward(L, E[i])
+    forward_rows(L, E)
+    # The rows of G and of the upper bounds; a lower bound's row -e_j is then minus the
+    # row of x_j's upper bound when it has one.
+    m_u = m_g
+    while m_u < m and ckind[m_u] < n:
+        m_u += 1
+    forward_rows(L, C[:m_u])
     up_row = np.full(n, -1, dtype=np.int64)
-    for i in range(m):
-        j = ckind[i]
-        if j >= n and up_row[j - n] >= 0:  # -e_j: minus the row of the upper bound
+    for i in range(m_g, m_u):
+        up_row[ckind[i]] = i
+    for i in range(m_u, m):
+        j = ckind[i] - n
+        if up_row[j] >= 0:
             Ci = C[i]
-            Cu = C[up_row[j - n]]
+            Cu = C[up_row[j]]
             for t in range(n):
                 Ci[t] = -Cu[t]
-            continue
-        if 0 <= j < n:
-            up_row[j] = i
-        forward(L, C[i])
+        else:
+            forward(L, C[i])
     c = q.copy()
     forward(L, c)
     V = np.empty((p, n))
