@@ -200,6 +200,29 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     return _restore_rows(_solve(qp, method, opts, warm_start, certify=True), keep)
 
 
+def solve_qpsolvers_problem(problem, *, method="tableau", options=None):
+    """qpsolvers' ``solve_problem`` with lemke: a ``qpsolvers.Problem`` in, a
+    ``qpsolvers.Solution`` out (qpsolvers must be installed), so that code written for
+    qpsolvers switches by one call.  ``found`` is ``result.success``; x, y, z, z_box and
+    obj are set only when found, as qpsolvers does; ``extras["lemke"]`` holds the
+    :class:`QPResult` (status, certificate, pivots, warm start); ``solve_time`` is the
+    call's time.  The Solution's residual methods recompute qpsolvers' formulas."""
+    import time
+
+    import qpsolvers
+
+    t0 = time.perf_counter()
+    res = solve_qp(problem.P, problem.q, problem.G, problem.h, problem.A, problem.b,
+                   problem.lb, problem.ub, method=method, options=options)
+    sol = qpsolvers.Solution(problem)
+    sol.solve_time = time.perf_counter() - t0
+    sol.found = res.success
+    sol.extras = {"lemke": res}
+    if res.success:
+        sol.x, sol.y, sol.z, sol.z_box, sol.obj = res.x, res.y, res.z, res.z_box, res.obj
+    return sol
+
+
 def qpsolvers_form(P, q, G, h, A, b, lb, ub):
     """qpsolvers' conventions, applied before the validation: column vectors of shape
     (k, 1) for q, h, b, lb and ub are flattened, a 1-D P of one entry is the 1 x 1 matrix

@@ -118,6 +118,21 @@ def test_multiplier_signs_are_qpsolvers():
     assert np.allclose(r.z_box, sol.z_box, atol=1e-8)
 
 
+def test_qpsolvers_problem_in_solution_out():
+    qpsolvers = pytest.importorskip("qpsolvers")
+    P, q, G, h, A, b, lb, ub = _qp_problem(seed=8)
+    problem = qpsolvers.Problem(P, q, G, h, A, b, lb, ub)
+    sol = lemke.solve_qpsolvers_problem(problem)
+    assert isinstance(sol, qpsolvers.Solution) and sol.found and sol.is_optimal(1e-9)
+    assert sol.extras["lemke"].status == lemke.Status.SOLVED
+    assert np.allclose(sol.x, lemke.solve_qp(P, q, G, h, A, b, lb, ub).x)
+    bad = qpsolvers.Problem(P, q, G=np.array([[1.0] + [0.0] * 5, [-1.0] + [0.0] * 5]),
+                            h=np.array([-1.0, -1.0]))
+    none = lemke.solve_qpsolvers_problem(bad)
+    assert not none.found and none.x is None
+    assert none.extras["lemke"].status == lemke.Status.PRIMAL_INFEASIBLE
+
+
 # ---------------------------------------------------------------- the fused path
 
 def _mlcp_path(*args):
