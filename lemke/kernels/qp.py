@@ -24,7 +24,8 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    recoveries and row-wise check as ``solve_lcp``.
 5. The point and the multipliers come from the factors already at hand: ``v2 = -c2 - F2 z``,
    ``x = L'^-1 Q v``, and the equality multipliers ``y = -R^-1 (v1 + c1 + F1 z)``; a
-   variable whose bound has a positive multiplier is set to that bound exactly.
+   variable whose bound has a positive multiplier, or that is fixed (lb = ub), is set to
+   that bound exactly.
 6. The KKT conditions are checked once, row by row, on the caller's data with compensated
    (double-double) sums (:func:`kkt_check`), at the tolerance ``min(tol, STRICT_TOL)``:
    there is no refinement step, so an ill-conditioned problem whose point is only accurate
@@ -682,6 +683,8 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         if zz[i] > 0.0:
             j = ckind[i]
             x[j if j < n else j - n] = d[i] if j < n else -d[i]
+    for k in range(A.shape[0], p):  # a fixed variable is its bound, exactly
+        x[ekind[k]] = f[k]
     # the multipliers in qpsolvers' form
     p0 = A.shape[0]
     z[:] = 0.0
