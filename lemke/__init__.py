@@ -19,7 +19,7 @@ from ._mlcp import MLCPResult, solve_mlcp
 from ._options import Options
 from ._pivot_column import pivot_column
 from ._problem import Problem
-from ._qp import Certificate, QPResult, solve_qp
+from ._qp import Certificate, QPResult, solve_qp, solve_qpsolvers_problem
 from ._result import LCPBatchResult, LCPResult, WarmStart
 from ._status import Status
 from ._version import __version__
@@ -55,6 +55,7 @@ __all__ = [
     "solve_lcp_many",
     "solve_mlcp",
     "solve_qp",
+    "solve_qpsolvers_problem",
     "write_problem",
     "write_result",
     "__version__",

@@ -27,6 +27,7 @@ from ._options import as_options
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
+from .kernels import cold, qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
 
@@ -132,11 +133,168 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
     _validate.method(method, METHODS)
-    qp = _QP(P, q, G, h, A, b, lb, ub)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
-    return _solve(qp, method, opts, warm_start, certify=True)
+    if warm_start is None:
+        plain = _plain_args(P, q, G, h, A, b, lb, ub)
+        if plain is not None:
+            res = _solve_definite(plain, method, opts)
+            if res is not None:
+                return res
+    (P, q, G, h, A, b, lb, ub), keep = qpsolvers_form(P, q, G, h, A, b, lb, ub)
+    qp = _QP(P, q, G, h, A, b, lb, ub)
+    return _restore_rows(_solve(qp, method, opts, warm_start, certify=True), keep)
+
+
+def solve_qpsolvers_problem(problem, *, method="tableau", options=None):
+    """qpsolvers' ``solve_problem`` with lemke: a ``qpsolvers.Problem`` in, a
+    ``qpsolvers.Solution`` out (qpsolvers must be installed), so that code written for
+    qpsolvers switches by one call.  ``found`` is ``result.success``; x, y, z, z_box and
+    obj are set only when found, as qpsolvers does; ``extras["lemke"]`` holds the
+    :class:`QPResult` (status, certificate, pivots, warm start); ``solve_time`` is the
+    call's time.  The Solution's residual methods recompute qpsolvers' formulas."""
+    import time
+
+    import qpsolvers
+
+    t0 = time.perf_counter()
+    res = solve_qp(problem.P, problem.q, problem.G, problem.h, problem.A, problem.b,
+                   problem.lb, problem.ub, method=method, options=options)
+    sol = qpsolvers.Solution(problem)
+    sol.solve_time = time.perf_counter() - t0
+    sol.found = res.success
+    sol.extras = {"lemke": res}
+    if res.success:
+        sol.x, sol.y, sol.z, sol.z_box, sol.obj = res.x, res.y, res.z, res.z_box, res.obj
+    return sol
+
+
+def qpsolvers_form(P, q, G, h, A, b, lb, ub):
+    """qpsolvers' conventions, applied before the validation: column vectors of shape
+    (k, 1) for q, h, b, lb and ub are flattened, a 1-D P of one entry is the 1 x 1 matrix
+    (n = 1), and a row of G whose h_i is +inf is no constraint and is dropped (infinite
+    bounds already mean no bound).  A NaN or -inf in h is an error naming the entry.
+
+    Returns the arguments and ``keep``: None when no row was dropped, else ``(rows, m)``:
+    the indices of the rows of G kept and the number of rows given (see
+    :func:`_restore_rows`)."""
+    def flat(v):
+        return v.reshape(-1) if isinstance(v, np.ndarray) and v.ndim == 2 and v.shape[1] == 1 else v
+
+    q, h, b, lb, ub = (flat(np.asarray(v)) if v is not None and np.ndim(v) == 2 else v
+                       for v in (q, h, b, lb, ub))
+    if P is not None and np.ndim(P) <= 1 and np.size(P) == 1 and np.size(q) == 1:
+        P = np.reshape(_validate.real_array(P, "P"), (1, 1))
+    keep = None
+    if G is not None and h is not None:
+        h = np.asarray(h)
+        if h.dtype.kind not in "fiub":
+            return (P, q, G, h, A, b, lb, ub), None  # the validation raises TypeError
+        h = h.astype(np.float64, copy=False)
+        bad = np.argwhere(np.isnan(h) | np.isneginf(h))
+        if len(bad):
+            i = tuple(int(k) for k in bad[0])
+            what = "a NaN" if np.isnan(h[i]) else "an entry -inf (an infinite right-hand side below every row value)"
+            raise ValueError(f"h has {what} at index {i if len(i) > 1 else i[0]}")
+        if h.ndim == 1 and np.isposinf(h).any():
+            G = _validate.real_array(G, "G")
+            if G.ndim == 1 and G.size:
+                G = G.reshape(1, -1)  # one row
+            rows = np.flatnonzero(~np.isposinf(h))
+            if G.ndim == 2 and G.shape[0] == h.size:
+                G, h, keep = G[rows], h[rows], (rows, h.size)
+            else:
+                keep = None  # the shapes do not match: the validation says so
+    return (P, q, G, h, A, b, lb, ub), keep
+
+
+def _restore_rows(res, keep):
+    """The result on the caller's rows of G: z (and a certificate's z) back to their full
+    length, 0 for the rows dropped by :func:`qpsolvers_form`."""
+    if keep is None:
+        return res
+    rows, m = keep
+
+    def full(v):
+        out = np.zeros(m)
+        out[rows] = v
+        out.setflags(write=False)
+        return out
+
+    cert = res.certificate
+    if cert is not None and cert.z is not None:
+        cert = replace(cert, z=full(cert.z))
+    return replace(res, z=full(res.z), certificate=cert)
+
+
+def _plain_args(P, q, G, h, A, b, lb, ub):
+    """The arguments as float64 C-contiguous arrays of exactly the shapes the fused kernel
+    takes (column vectors flattened and absent constraints empty, as in
+    :func:`qpsolvers_form`), or None when any is in another form: the full validation then
+    converts it or raises.  Values are not looked at (``kernels.qp.screen`` does that)."""
+    try:
+        f64 = np.float64
+        q = np.ascontiguousarray(q, dtype=f64)
+        if q.ndim == 2 and q.shape[1] == 1:
+            q = q.reshape(-1)
+        n = q.shape[0] if q.ndim == 1 else 0
+        if n == 0:
+            return None
+        P = np.ascontiguousarray(P, dtype=f64)
+        if P.shape != (n, n):
+            if not (n == 1 and P.size == 1 and P.ndim <= 1):
+                return None
+            P = P.reshape(1, 1)
+        out = [P, q]
+        for M, v in ((G, h), (A, b)):
+            if M is None and v is None:
+                out += [np.zeros((0, n)), np.zeros(0)]
+                continue
+            M = np.ascontiguousarray(M, dtype=f64)
+            v = np.ascontiguousarray(v, dtype=f64)
+            if v.ndim == 2 and v.shape[1] == 1:
+                v = v.reshape(-1)
+            if M.ndim != 2 or v.ndim != 1 or M.shape != (v.shape[0], n):
+                return None
+            out += [M, v]
+        for v, inf in ((lb, -np.inf), (ub, np.inf)):
+            if v is None:
+                out.append(np.full(n, inf))
+                continue
+            v = np.ascontiguousarray(v, dtype=f64)
+            if v.ndim == 2 and v.shape[1] == 1:
+                v = v.reshape(-1)
+            if v.shape != (n,):
+                return None
+            out.append(v)
+    except (TypeError, ValueError):
+        return None
+    return out
+
+
+def _solve_definite(args, method, opts):
+    """The fused cold path for a positive definite P (``kernels.qp``): one kernel call that
+    screens the data, factors P, solves the LCP of the inequality multipliers and checks
+    the KKT point on the data.  None when it does not apply (data that needs the full
+    validation, P only semidefinite, dependent equalities) or did not end solved and
+    checked: the caller then takes the KKT-MLCP path, which also finds the certificates of
+    infeasible and unbounded QPs."""
+    P, q, G, h, A, b, lb, ub = args
+    n, p, m = q.shape[0], A.shape[0], G.shape[0]
+    out = np.empty(2 * n + p + m + 4)  # kqp.out_size
+    basic = np.empty(m + 2 * n, dtype=np.int64)
+    code, pivots, k, pairs = kqp.solve(
+        P, q, G, h, A, b, lb, ub, cold.METHODS[method],
+        -1 if opts.max_pivots is None else opts.max_pivots, opts.pivot_tol, opts.tie_tol,
+        opts.tol, out, basic)
+    if code != kqp.OK:
+        return None
+    out.setflags(write=False)  # the views below are read-only too
+    primal, dual, gap, obj = out[-4:].tolist()
+    return QPResult._make_from(out[:n], out[n:n + p], out[n + p:n + p + m],
+                          out[n + p + m:2 * n + p + m], obj, Status.SOLVED, pivots, primal, dual,
+                          gap, None, WarmStart._trusted(pairs, tuple(basic[:k].tolist())))
 
 
 def _QP(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> QPToMLCP:

@@ -254,7 +254,7 @@ def test_property_infeasible_qps_get_a_farkas_vector(n, m, seed):
     (dict(P=np.eye(2), q=[1.0, 1.0], A=[[1.0, 0.0]]), "without"),
     (dict(P=np.eye(2), q=[1.0, 1.0], G=[[1.0, 0.0, 0.0]], h=[1.0]), "columns"),
     (dict(P=np.eye(2), q=[1.0, 1.0], G=[[1.0, 0.0]], h=[1.0, 2.0]), "shape"),
-    (dict(P=np.eye(2), q=[1.0, 1.0], G=[[1.0, 0.0]], h=[np.inf]), "infinite"),
+    (dict(P=np.eye(2), q=[1.0, 1.0], G=[[1.0, 0.0]], h=[-np.inf]), "infinite"),  # +inf: no constraint (issue 15)
     (dict(P=np.eye(2), q=[1.0, 1.0], A=[[1.0, 0.0]], b=[np.inf]), "infinite"),
     (dict(P=[[1.0, 1.0], [0.0, 1.0]], q=[1.0, 1.0]), "not symmetric"),
     (dict(P=[[1.0, 0.0], [0.0, -1.0]], q=[1.0, 1.0]), "not positive semidefinite"),

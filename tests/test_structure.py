@@ -125,6 +125,7 @@ def test_kind_strings_only_in_the_registry_and_the_formats_declarations():
 
 @pytest.mark.parametrize("n", [0, 1, 5])
 def test_one_buffer_layout(n):
+    assert cold.buffer_size(n) == cold.buffer_length(n)
     buf = np.arange(cold.buffer_length(n), dtype=float)
     x, ray, w, cov, R, C = cold.layout(n, buf)
     f = cold.fields(n)

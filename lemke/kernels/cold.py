@@ -91,6 +91,12 @@ def buffer_length(n):
 
 
 @kernel
+def buffer_size(n):
+    """:func:`buffer_length` for the kernels (the same count; a test checks it)."""
+    return 6 * n + 2
+
+
+@kernel
 def layout(n, buf):
     """The views ``(x, ray, w, cov, R, C)`` of the output buffer (x = z followed by z0), as
     :data:`BUFFER` lays it out."""

@@ -1,0 +1,708 @@
+r"""The fused cold path of a strictly convex QP: one kernel call from the caller's data to a
+checked KKT point.
+
+The QP (qpsolvers' form) ``min 1/2 x'Px + q'x  s.t.  G x <= h, A x = b, lb <= x <= ub``
+with P positive definite is solved on its dual, an LCP in the inequality multipliers only:
+
+1. ``P = L L'`` (Cholesky, one thread).  A pivot that is not clearly positive stops here
+   with NOT_DEFINITE: P is only semidefinite (or not even that), and the caller falls back
+   to the KKT-MLCP path, which handles every convex QP.
+2. The constraints are gathered as rows: equalities ``E x = f`` (A's rows, then a unit row
+   per fixed variable, lb = ub) and inequalities ``C x <= d`` (G's rows, then ``x_j <=
+   ub_j`` and ``-x_j <= -lb_j`` for every finite bound).  With ``u = L'x`` the QP reads
+   ``min 1/2 |u + c|^2`` with ``c = L^-1 q``, subject to ``W_E' u = f`` and ``W_C' u <= d``,
+   where ``W = L^-1 [E; C]'`` (forward substitutions, one per row).
+3. The equalities are eliminated by a Householder QR ``W_E = Q [R; 0]``: with ``v = Q'u``
+   the first p entries are fixed, ``v1 = R'^-1 f``, and the rest, v2, is free.  Writing
+   ``F = Q'W_C`` (rows F1 and F2 of sizes p and n - p), the problem in v2 is
+   ``min 1/2 |v2 + c2|^2  s.t.  F2'v2 <= d - F1'v1``.  A diagonal entry of R that is not
+   clearly non-zero (dependent equalities, or more equalities than variables) stops with
+   DEPENDENT_EQUALITIES: the MLCP path deals with those.
+4. Its KKT conditions are the LCP ``w = M z + g >= 0, z >= 0, z'w = 0`` with
+   ``M = F2'F2`` (positive semidefinite, of the size of the inequalities) and ``g = d -
+   F1'v1 + F2'c2``, solved by ``cold.checked``: the same equilibration, pivoting rule,
+   recoveries and row-wise check as ``solve_lcp``.
+5. The point and the multipliers come from the factors already at hand: ``v2 = -c2 - F2 z``,
+   ``x = L'^-1 Q v``, and the equality multipliers ``y = -R^-1 (v1 + c1 + F1 z)``; a
+   variable whose bound has a positive multiplier, or that is fixed (lb = ub), is set to
+   that bound exactly.
+6. The KKT conditions are checked once, row by row, on the caller's data with compensated
+   (double-double) sums (:func:`kkt_check`), at the tolerance ``min(tol, STRICT_TOL)``:
+   there is no refinement step, so an ill-conditioned problem whose point is only accurate
+   to the tolerance is left to the KKT-MLCP path, which refines in extended precision.
+
+No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
+The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
+
+Cost: ``n^3/6`` (Cholesky) ``+ n^2 (p + m) / 2`` (substitutions) ``+ 2 n p (p + m)`` (QR)
+``+ (n - p) m^2 / 2`` (M) plus Lemke's pivots on an m x (m + 1) tableau.  When m >> n (the
+DUALC problems) M has rank n - p; it is still the cheapest form that keeps the pivoting rule,
+as forming it costs ``(n - p) m^2 / 2`` and a pivot ``m^2``, and only a handful of pivots
+(at most about n) are taken.
+"""
+import numpy as np
+from numba import njit
+
+from . import cold, kernel, pivoting
+from .linalg import absmax, dot, nan_probe
+
+OK = 0
+NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
+DEPENDENT_EQUALITIES = 2  # the equalities are (nearly) dependent, or more than n of them
+NOT_SOLVED = 3  # the LCP ended otherwise than solved (infeasible QP, or a numerical failure)
+CHECK_FAILED = 4  # the KKT check on the caller's data failed
+
+BAD_INPUT = 5  # the data needs the front's validation (which raises, naming the entry)
+
+INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
+SYMMETRY_TOL = 1e-10  # relative, as the front's: a larger asymmetry of P is an error
+DEFINITE_TOL = 1e-12  # a Cholesky pivot d_j must have d_j^2 > DEFINITE_TOL * max_k P_kk
+RANK_TOL = 1e-10
+STRICT_TOL = 1e-12  # the fused path answers only when its point passes at this tolerance  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
+EPS = np.finfo(np.float64).eps
+SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
+
+
+# ----------------------------------------------------------------------------- screening
+
+@kernel
+def screen(P, q, G, h, A, b, lb, ub):
+    """``(ok, Ps, lo, up)``: whether the data is plainly valid (every entry of P, q, G, A, b
+    finite, h finite or +inf (no constraint), no NaN in the bounds, lb < +inf, ub > -inf,
+    lb <= ub, P symmetric to ``SYMMETRY_TOL`` of its largest entry), the symmetric part
+    ``Ps = (P + P')/2``, and the bounds with entries beyond ``INFINITY`` made infinite.
+    Data that is not plainly valid goes to the front's validation, which raises (naming the
+    entry) or accepts it; this is only the fast way through for the common case."""
+    n = q.shape[0]
+    Ps = np.empty((n, n))
+    lo = np.empty(n)
+    up = np.empty(n)
+    top = 0.0
+    probe = nan_probe(q, n)
+    for i in range(n):
+        probe += nan_probe(P[i], n)
+        top = max(top, absmax(P[i], n))
+    asym = 0.0
+    B = 32  # in square tiles: P[j, i] is read down a column
+    for i0 in range(0, n, B):
+        for j0 in range(0, i0 + 1, B):
+            for i in range(i0, min(i0 + B, n)):
+                for j in range(j0, min(j0 + B, i + 1)):
+                    a = P[i, j]
+                    c = P[j, i]
+                    asym = max(asym, abs(a - c))
+                    Ps[i, j] = 0.5 * (a + c)
+                    Ps[j, i] = Ps[i, j]
+    for i in range(G.shape[0]):
+        probe += nan_probe(G[i], n)
+        if not (h[i] > -np.inf):  # NaN or -inf
+            return False, Ps, lo, up
+    for i in range(A.shape[0]):
+        probe += nan_probe(A[i], n)
+    probe += nan_probe(b, b.shape[0])
+    if probe != 0.0 or asym > SYMMETRY_TOL * top:
+        return False, Ps, lo, up
+    for j in range(n):
+        a = lb[j]
+        c = ub[j]
+        if not (a < np.inf and c > -np.inf and a <= c):  # also catches NaN
+            return False, Ps, lo, up
+        lo[j] = a if a > -INFINITY else -np.inf
+        up[j] = c if c < INFINITY else np.inf
+    return True, Ps, lo, up
+
+
+# ----------------------------------------------------------------------------- factors
+
+@kernel
+def cholesky(P, L):
+    """L (lower triangular, n x n) with ``L L' = P``, row by row; returns False when a
+    pivot is not clearly positive (``d^2 <= DEFINITE_TOL max_k P_kk``) or not finite."""
+    n = P.shape[0]
+    top = 0.0
+    for j in range(n):
+        top = max(top, P[j, j])
+    floor = DEFINITE_TOL * top
+    if not top > 0.0:
+        return False
+    for i in range(n):
+        Li = L[i]
+        for j in range(i):
+            Li[j] = (P[i, j] - dot(Li, L[j], j)) / L[j, j]
+        d = P[i, i] - dot(Li, Li, i)
+        if not d > floor:
+            return False
+        Li[i] = np.sqrt(d)
+        for j in range(i + 1, n):
+            Li[j] = 0.0
+    return True
+
+
+@kernel
+def forward(L, r):
+    """r := L^-1 r in place (L lower triangular, row-major: dot products over rows).  The
+    leading zeros of r stay zero and are skipped (a bound's row e_j costs (n - j)^2 / 2)."""
+    n = L.shape[0]
+    s = 0
+    while s < n and r[s] == 0.0:
+        s += 1
+    for j in range(s, n):
+        Lj = L[j]
+        r[j] = (r[j] - dot(Lj[s:], r[s:], j - s)) / Lj[j]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def _dot4(a, r0, r1, r2, r3):
+    """The four sums ``a' r_k`` in one pass over a (fastmath, as ``linalg.dot``; slices
+    indexed from 0, so that no negative-index wraparound stops vectorization)."""
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    s3 = 0.0
+    for t in range(a.shape[0]):
+        at = a[t]
+        s0 += at * r0[t]
+        s1 += at * r1[t]
+        s2 += at * r2[t]
+        s3 += at * r3[t]
+    return s0, s1, s2, s3
+
+
+@kernel
+def forward_rows(L, R):
+    """Every row r of R := L^-1 r, four rows at a time: each row of L is read once per four
+    right-hand sides (the substitutions are bound by reading L).  Leading zeros common to
+    the four are skipped, as in :func:`forward`."""
+    n = L.shape[0]
+    k = R.shape[0]
+    i = 0
+    while i + 4 <= k:
+        r0 = R[i]
+        r1 = R[i + 1]
+        r2 = R[i + 2]
+        r3 = R[i + 3]
+        s = 0
+        while s < n and r0[s] == 0.0 and r1[s] == 0.0 and r2[s] == 0.0 and r3[s] == 0.0:
+            s += 1
+        for j in range(s, n):
+            Lj = L[j]
+            d0, d1, d2, d3 = _dot4(Lj[s:j], r0[s:j], r1[s:j], r2[s:j], r3[s:j])
+            inv = 1.0 / Lj[j]
+            r0[j] = (r0[j] - d0) * inv
+            r1[j] = (r1[j] - d1) * inv
+            r2[j] = (r2[j] - d2) * inv
+            r3[j] = (r3[j] - d3) * inv
+        i += 4
+    while i < k:
+        forward(L, R[i])
+        i += 1
+
+
+@kernel
+def backward_transposed(L, r):
+    """r := L'^-1 r in place: column j of L' is row j of L, so each step is an axpy over a
+    contiguous row."""
+    n = L.shape[0]
+    for j in range(n - 1, -1, -1):
+        xj = r[j] / L[j, j]
+        r[j] = xj
+        Lj = L[j]
+        for k in range(j):
+            r[k] -= xj * Lj[k]
+
+
+@kernel
+def householder_apply(V, beta, k, row):
+    """row := H_k row with ``H_k = I - beta_k v_k v_k'`` (v_k = V[k], zero before entry k)."""
+    n = row.shape[0]
+    v = V[k][k:]
+    r = row[k:]
+    s = beta[k] * dot(v, r, n - k)
+    if s != 0.0:
+        for t in range(n - k):  # over slices from 0: vectorized (see linalg._row_update)
+            r[t] -= s * v[t]
+
+
+@kernel
+def qr_rows(WE, V, beta):
+    """Householder QR of ``WE'`` (n x p, its columns the rows of WE): on return row k of
+    WE holds column k of ``R`` in its first k + 1 entries (the rest is overwritten), V and
+    beta the reflectors (``Q' = H_{p-1} ... H_0``).  Returns the smallest ``|R_kk|``
+    relative to the largest row norm of WE (0 when p > n)."""
+    p, n = WE.shape
+    if p > n:
+        return 0.0
+    top = 0.0
+    for k in range(p):
+        top = max(top, np.sqrt(dot(WE[k], WE[k], n)))
+    worst = np.inf
+    for k in range(p):
+        x = WE[k]
+        for i in range(k):  # the earlier reflectors, in order
+            householder_apply(V, beta, i, x)
+        sigma = dot(x[k:], x[k:], n - k)
+        norm = np.sqrt(sigma)
+        v = V[k]
+        v[:k] = 0.0
+        v[k:] = x[k:]
+        alpha = -norm if x[k] >= 0.0 else norm
+        v[k] -= alpha
+        vv = dot(v[k:], v[k:], n - k)
+        beta[k] = 2.0 / vv if vv > 0.0 else 0.0
+        x[k] = alpha
+        for t in range(k + 1, n):
+            x[t] = 0.0
+        worst = min(worst, norm / top if top > 0.0 else 0.0)
+    return worst if p else np.inf
+
+
+# ----------------------------------------------------------------------------- compensated sums
+
+@kernel
+def two_product(a, b):
+    """``(p, e)`` with p = fl(a b) and a b = p + e exactly (Dekker)."""
+    p = a * b
+    t = SPLITTER * a
+    ah = t - (t - a)
+    al = a - ah
+    t = SPLITTER * b
+    bh = t - (t - b)
+    bl = b - bh
+    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+@kernel
+def two_sum(a, b):
+    """``(s, e)`` with s = fl(a + b) and a + b = s + e exactly (Knuth)."""
+    s = a + b
+    z = s - a
+    return s, (a - (s - z)) + (b - z)
+
+
+@kernel
+def dot2(x, y, c):
+    """``(sum, size, norm)``: c + x'y summed in twice the working precision (Ogita, Rump and
+    Oishi's Dot2), ``|c| + |x|'|y|`` and ``sum |x|``."""
+    s = c
+    err = 0.0
+    size = abs(c)
+    norm = 0.0
+    for j in range(x.shape[0]):
+        p, e = two_product(x[j], y[j])
+        s, f = two_sum(s, p)
+        err += e + f
+        size += abs(p)
+        norm += abs(x[j])
+    return s + err, size, norm
+
+
+@kernel
+def axpy2(s, err, size, a, x):
+    """``s + err += a x`` compensated, elementwise, and ``size += |a x|``."""
+    for j in range(s.shape[0]):
+        p, e = two_product(a, x[j])
+        t, f = two_sum(s[j], p)
+        s[j] = t
+        err[j] += e + f
+        size[j] += abs(p)
+
+
+# ----------------------------------------------------------------------------- the check
+
+@kernel
+def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
+    """Whether ``(x, y, z, zb)`` is a KKT point of the QP, judged row by row on the caller's
+    data with compensated sums, each row against its own size (as ``certify`` judges an
+    LCP): with ``t = tol + 4 eps``,
+
+    - stationarity ``|P_j x + q_j + A_j'y + G_j'z + zb_j| <= t s_j`` (s_j the sum of the
+      sizes of the terms);
+    - equalities ``|A_i x - b_i| <= t s_i + f |A_i|_1``, inequalities ``G_i x - h_i <= t s_i
+      + f |G_i|_1``, bounds ``lb_j - x_j <= t (|lb_j| + |x_j|) + f`` and ``x_j - ub_j <= t
+      (...) + f``, with f the rounding floor ``4 (n + 2) eps max|x|`` of computing x;
+    - signs: ``z >= 0``, ``zb_j < 0`` only at a finite lb, ``> 0`` only at a finite ub;
+    - complementarity: a non-zero multiplier's row is active to within its allowance, or
+      the multiplier is small enough to count as zero (removing it moves no stationarity
+      row by more than that row's allowance).
+
+    ``stats`` gets qpsolvers' primal residual, dual residual, duality gap and the objective.
+    """
+    n = q.shape[0]
+    t = tol + 4.0 * EPS
+    # stationarity: P x + q + A'y + G'z + zb, accumulated over rows (P is symmetric)
+    s = q.copy()
+    err = np.zeros(n)
+    size = np.abs(q)
+    for i in range(n):
+        axpy2(s, err, size, x[i], P[i])
+    xPx_s = 0.0
+    for j in range(n):
+        xPx_s += x[j] * ((s[j] + err[j]) - q[j])  # x'Px, for the gap and the objective
+    for i in range(A.shape[0]):
+        axpy2(s, err, size, y[i], A[i])
+    for i in range(G.shape[0]):
+        axpy2(s, err, size, z[i], G[i])
+    ok = True
+    dual = 0.0
+    allow = np.empty(n)
+    for j in range(n):
+        r, e = two_sum(s[j], zb[j])
+        r += e + err[j]
+        allow[j] = t * (size[j] + abs(zb[j]))
+        dual = max(dual, abs(r))
+        if not abs(r) <= allow[j]:
+            ok = False
+    primal = 0.0
+    gap = xPx_s
+    for j in range(n):
+        gap += q[j] * x[j]
+    # Every primal row also has the rounding floor of computing x: x is exact only to about
+    # f = 4 (n + 2) eps max|x|, which moves row i by f sum_j |a_ij|.
+    x_top = 0.0
+    for j in range(n):
+        x_top = max(x_top, abs(x[j]))
+    floor = 4.0 * (n + 2) * EPS * x_top
+    for i in range(A.shape[0]):
+        r, sz, norm = dot2(A[i], x, -b[i])
+        primal = max(primal, abs(r))
+        gap += b[i] * y[i]
+        if not abs(r) <= t * sz + floor * norm:
+            ok = False
+    for i in range(G.shape[0]):
+        if not h[i] < np.inf:
+            continue  # no constraint (its z_i is 0)
+        r, sz, norm = dot2(G[i], x, -h[i])
+        sz = t * sz + floor * norm
+        primal = max(primal, r)
+        gap += h[i] * z[i]
+        zi = z[i]
+        if not (r <= sz and zi >= 0.0):
+            ok = False
+        elif zi > 0.0 and -r > sz:  # inactive row with a non-zero multiplier
+            for j in range(n):
+                if abs(zi * G[i, j]) > allow[j]:
+                    ok = False
+                    break
+    for j in range(n):
+        zj = zb[j]
+        lo = lb[j] > -np.inf
+        up = ub[j] < np.inf
+        s_lo = t * (abs(lb[j]) + abs(x[j])) + floor
+        s_up = t * (abs(ub[j]) + abs(x[j])) + floor
+        if lo:
+            r = lb[j] - x[j]
+            primal = max(primal, r)
+            if zj < 0.0:
+                gap += lb[j] * zj
+            if r > s_lo:
+                ok = False
+        if up:
+            r = x[j] - ub[j]
+            primal = max(primal, r)
+            if zj > 0.0:
+                gap += ub[j] * zj
+            if r > s_up:
+                ok = False
+        if lb[j] == ub[j]:
+            active = True  # a fixed variable: its multiplier has either sign
+        elif zj < 0.0:
+            active = lo and x[j] - lb[j] <= s_lo
+        elif zj > 0.0:
+            active = up and ub[j] - x[j] <= s_up
+        else:
+            active = True
+        if not active and abs(zj) > allow[j]:
+            ok = False
+        if not (x[j] == x[j]):
+            ok = False
+    obj = 0.5 * xPx_s
+    for j in range(n):
+        obj += q[j] * x[j]
+    stats[0] = primal
+    stats[1] = dual
+    stats[2] = abs(gap)
+    stats[3] = obj
+    return ok
+
+
+# ----------------------------------------------------------------------------- the solve
+
+@kernel
+def rows_of(G, h, A, b, lb, ub):
+    """``(E, f, ekind, C, d, ckind)``: the equalities ``E x = f`` (A's rows, then a unit row
+    per fixed variable) and the inequalities ``C x <= d`` (G's rows, then ``x_j <= ub_j``
+    for each finite upper bound, then ``-x_j <= -lb_j`` for each finite lower bound) as
+    dense rows; a row of G with h_i = +inf is no constraint and left out.  ``ekind[k]`` is -1
+    for a row of A and j for fixed x_j; ``ckind[k]`` is ``-1 - i`` for row i of G, j for an
+    upper bound of x_j and n + j for a lower bound."""
+    n = lb.shape[0]
+    p0 = A.shape[0]
+    m0 = G.shape[0]
+    n_fix = 0
+    n_up = 0
+    n_lo = 0
+    for j in range(n):
+        if lb[j] == ub[j]:
+            n_fix += 1
+        else:
+            if ub[j] < np.inf:
+                n_up += 1
+            if lb[j] > -np.inf:
+                n_lo += 1
+    E = np.zeros((p0 + n_fix, n))
+    f = np.empty(p0 + n_fix)
+    ekind = np.full(p0 + n_fix, -1, dtype=np.int64)
+    E[:p0] = A
+    f[:p0] = b
+    k = p0
+    for j in range(n):
+        if lb[j] == ub[j]:
+            E[k, j] = 1.0
+            f[k] = lb[j]
+            ekind[k] = j
+            k += 1
+    m_g = 0
+    for i in range(m0):
+        if h[i] < np.inf:
+            m_g += 1
+    m = m_g + n_up + n_lo
+    C = np.zeros((m, n))
+    d = np.empty(m)
+    ckind = np.full(m, -1, dtype=np.int64)
+    k = 0
+    for i in range(m0):
+        if h[i] < np.inf:  # h_i = +inf: no constraint
+            C[k] = G[i]
+            d[k] = h[i]
+            ckind[k] = -1 - i
+            k += 1
+    for j in range(n):
+        if lb[j] != ub[j] and ub[j] < np.inf:
+            C[k, j] = 1.0
+            d[k] = ub[j]
+            ckind[k] = j
+            k += 1
+    for j in range(n):
+        if lb[j] != ub[j] and lb[j] > -np.inf:
+            C[k, j] = -1.0
+            d[k] = -lb[j]
+            ckind[k] = n + j
+            k += 1
+    return E, f, ekind, C, d, ckind
+
+
+@kernel
+def mlcp_basis(lb, ub, m_g, ckind, lcp_basic, out):
+    """The final basis as ``solve_qp``'s KKT-MLCP numbers it (its ``WarmStart``): pairs
+    ``(x'_j, z_i, z_ub_j)`` for the variables with a finite bound (not fixed), the rows of
+    G and the boxed variables, in that order.  ``x'_j`` (the distance from the bound it is
+    shifted by: lb when finite, else ub) is basic unless that bound's multiplier is; z_i and
+    z_ub_j are basic with theirs.  Writes the sorted basic pairs in ``out``; returns their
+    number and the number of pairs."""
+    n = lb.shape[0]
+    m = ckind.shape[0]
+    on = np.zeros(m, dtype=np.bool_)
+    for i in range(lcp_basic.shape[0]):
+        on[lcp_basic[i]] = True
+    lo_on = np.zeros(n, dtype=np.bool_)
+    up_on = np.zeros(n, dtype=np.bool_)
+    for i in range(m_g, m):
+        j = ckind[i]
+        if j < n:
+            up_on[j] = on[i]
+        else:
+            lo_on[j - n] = on[i]
+    k = 0
+    pos = 0
+    for j in range(n):
+        lo = lb[j] > -np.inf
+        up = ub[j] < np.inf
+        if (lo or up) and lb[j] != ub[j]:
+            if not (lo_on[j] if lo else up_on[j]):
+                out[k] = pos
+                k += 1
+            pos += 1
+    for i in range(m_g):
+        if on[i]:
+            out[k] = pos
+            k += 1
+        pos += 1
+    for j in range(n):
+        if lb[j] > -np.inf and ub[j] < np.inf and lb[j] != ub[j]:
+            if up_on[j]:
+                out[k] = pos
+                k += 1
+            pos += 1
+    return k, pos
+
+
+@kernel
+def out_size(n, p, m):
+    """The length of :func:`solve`'s output buffer: ``[x (n) | y (p) | z (m) | zb (n) |
+    primal, dual, gap, obj]``."""
+    return 2 * n + p + m + 4
+
+
+@kernel
+def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, basic):
+    """The fused cold path of the module docstring, on the caller's arrays (float64, of
+    matching shapes; :func:`screen` decides whether their values are plainly valid).
+
+    Writes in ``out`` (see :func:`out_size`) the QP's point and multipliers (qpsolvers'
+    signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
+    residuals, see :func:`kkt_check`), and in ``basic`` (length at least m + 2n) the final
+    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``: code OK,
+    BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; k the length
+    of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
+    the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
+    caller-made buffers only: boxing returned arrays costs more than a small solve."""
+    n = q.shape[0]
+    m0 = G.shape[0]
+    p0 = A.shape[0]
+    out[:] = 0.0
+    ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
+    if not ok:
+        return BAD_INPUT, 0, 0, 0
+    return _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
+                  out[:n], out[n:n + p0], out[n + p0:n + p0 + m0],
+                  out[n + p0 + m0:2 * n + p0 + m0], out[2 * n + p0 + m0:], basic)
+
+
+@kernel
+def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
+           x, y, z, zb, stats, basic):
+    """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
+    outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
+    the basis written in ``basic``."""
+    n = q.shape[0]
+    L = np.empty((n, n))
+    if not cholesky(P, L):
+        return NOT_DEFINITE, 0, 0, 0
+    E, f, ekind, C, d, ckind = rows_of(G, h, A, b, lb, ub)
+    p = E.shape[0]
+    m = C.shape[0]
+    m_g = 0
+    while m_g < m and ckind[m_g] < 0:
+        m_g += 1
+    if p > n:
+        return DEPENDENT_EQUALITIES, 0, 0, 0
+    # W' = rows L^-1 e_i, L^-1 c_i
+    forward_rows(L, E)
+    # The rows of G and of the upper bounds; a lower bound's row -e_j is then minus the
+    # row of x_j's upper bound when it has one.
+    m_u = m_g
+    while m_u < m and ckind[m_u] < n:
+        m_u += 1
+    forward_rows(L, C[:m_u])
+    up_row = np.full(n, -1, dtype=np.int64)
+    for i in range(m_g, m_u):
+        up_row[ckind[i]] = i
+    for i in range(m_u, m):
+        j = ckind[i] - n
+        if up_row[j] >= 0:
+            Ci = C[i]
+            Cu = C[up_row[j]]
+            for t in range(n):
+                Ci[t] = -Cu[t]
+        else:
+            forward(L, C[i])
+    c = q.copy()
+    forward(L, c)
+    V = np.empty((p, n))
+    beta = np.empty(p)
+    if qr_rows(E, V, beta) <= RANK_TOL:
+        return DEPENDENT_EQUALITIES, 0, 0, 0
+    for k in range(p):
+        householder_apply(V, beta, k, c)
+        for i in range(m):
+            householder_apply(V, beta, k, C[i])
+    # v1 = R'^-1 f, R[k, j] = E[j, k] (j >= k): R' is lower triangular with rows E[k, :k+1]
+    v = np.empty(n)
+    for k in range(p):
+        v[k] = (f[k] - dot(E[k], v, k)) / E[k, k]
+    # the LCP on the inequality multipliers: M = F2 F2', g = d - F1 v1 + F2 c2
+    M = np.empty((m, m))
+    g = np.empty(m)
+    r = n - p
+    c2 = c[p:]
+    for i in range(m):
+        Fi = C[i]
+        F2i = Fi[p:]
+        for j in range(i + 1):
+            M[i, j] = dot(F2i, C[j][p:], r)
+            M[j, i] = M[i, j]
+        g[i] = d[i] - dot(Fi, v, p) + dot(F2i, c2, r)
+    zz = np.zeros(m)
+    pivots = 0
+    k_basic = 0
+    if m > 0:
+        buf = np.empty(cold.buffer_size(m))
+        lcp_basic = np.empty(m, dtype=np.int64)
+        cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
+        code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked(
+            method, M, g, np.empty(0), cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
+        if not (code == pivoting.SOLVED or code == cold.TRIVIAL) or not lcp_ok:
+            return NOT_SOLVED, pivots, 0, 0
+        for i in range(m):
+            zz[i] = max(buf[i], 0.0)
+        lcp_basic = lcp_basic[:k_basic].copy()
+    else:
+        lcp_basic = np.empty(0, dtype=np.int64)
+    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, lcp_basic, basic)
+    # v2 = -c2 - F2' z;  x = L'^-1 Q v
+    for t in range(p, n):
+        v[t] = -c[t]
+    for i in range(m):
+        zi = zz[i]
+        if zi != 0.0:
+            Ci = C[i]
+            for t in range(p, n):
+                v[t] -= zi * Ci[t]
+    # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k])
+    rhs = np.empty(p)
+    for k in range(p):
+        acc = v[k] + c[k]
+        for i in range(m):
+            acc += C[i, k] * zz[i]
+        rhs[k] = acc
+    yy = np.empty(p)
+    for k in range(p - 1, -1, -1):
+        acc = rhs[k]
+        for j in range(k + 1, p):
+            acc -= E[j, k] * yy[j]
+        yy[k] = acc / E[k, k]
+    for k in range(p):
+        yy[k] = -yy[k]
+    for k in range(p - 1, -1, -1):
+        householder_apply(V, beta, k, v)
+    backward_transposed(L, v)
+    x[:] = v
+    # A bound whose multiplier is positive holds with equality: x_j is set to it exactly
+    # (it came out of the substitutions within their rounding of it).
+    for i in range(m_g, m):
+        if zz[i] > 0.0:
+            j = ckind[i]
+            x[j if j < n else j - n] = d[i] if j < n else -d[i]
+    for k in range(A.shape[0], p):  # a fixed variable is its bound, exactly
+        x[ekind[k]] = f[k]
+    # the multipliers in qpsolvers' form
+    p0 = A.shape[0]
+    z[:] = 0.0
+    zb[:] = 0.0
+    for i in range(p0):
+        y[i] = yy[i]
+    for k in range(p0, p):
+        zb[ekind[k]] = yy[k]
+    for i in range(m_g):
+        z[-1 - ckind[i]] = zz[i]
+    for i in range(m_g, m):
+        j = ckind[i]
+        if j < n:
+            zb[j] += zz[i]
+        else:
+            zb[j - n] -= zz[i]
+    # No refinement step here: the point is kept only when it is accurate far beyond the
+    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+    if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
+        return CHECK_FAILED, pivots, k_basic, pairs
+    return OK, pivots, k_basic, pairs
