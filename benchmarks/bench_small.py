@@ -47,6 +47,24 @@ def _ok(M, q, z, tol=1e-8):
     return bool(np.all(z >= -s) and np.all(w >= -s) and np.all(np.abs(np.minimum(z, w)) <= s))
 
 
+def _interleaved(calls, reps, rng):
+    """``{name: [seconds, ...]}``: every call timed ``reps`` times, in a fresh random order
+    each round, with the garbage collector off."""
+    times = {k: [] for k in calls}
+    names = list(calls)
+    gc.disable()
+    try:
+        for _ in range(reps):
+            rng.shuffle(names)
+            for k in names:
+                t = time.perf_counter()
+                calls[k]()
+                times[k].append(time.perf_counter() - t)
+    finally:
+        gc.enable()
+    return times
+
+
 def part1(sizes, reps, rng):
     rows = []
     for n in sizes:
@@ -66,16 +84,7 @@ def part1(sizes, reps, rng):
             calls["quantecon"] = lambda: lcp_lemke(M, q_same)
         for f in calls.values():
             f()
-        times = {k: [] for k in calls}
-        names = list(calls)
-        gc.disable()
-        for _ in range(reps):
-            rng.shuffle(names)
-            for k in names:
-                t = time.perf_counter()
-                calls[k]()
-                times[k].append(time.perf_counter() - t)
-        gc.enable()
+        times = _interleaved(calls, reps, rng)
         checks = [_ok(M, q_same, calls["cold"]().z), _ok(M, q_same, calls["warm, basis unchanged"]().z),
                   _ok(M, q_far, calls["warm, wrong basis"]().z)]
         pivots = (calls["cold"]().pivots, calls["warm, basis unchanged"]().pivots, calls["warm, wrong basis"]().pivots)
@@ -106,14 +115,7 @@ def part2(count, rounds, rng):
     for k, res in results.items():
         zs = [x.z for x in res]
         solved[k] = sum(_ok(M, q, z) for M, q, z in zip(Ms, qs2, zs))
-    times = {k: [] for k in calls}
-    names = list(calls)
-    for _ in range(rounds):
-        rng.shuffle(names)
-        for k in names:
-            t = time.perf_counter()
-            calls[k]()
-            times[k].append(time.perf_counter() - t)
+    times = _interleaved(calls, rounds, rng)
     return {k: np.median(v) * 1e3 for k, v in times.items()}, solved
 
 
