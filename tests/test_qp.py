@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lemke
+from lemke import Status
 from lemke.problems import random_convex_qp
 from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
 
@@ -324,3 +325,37 @@ def test_fuzz_regressions(case, expected, method):
         assert_qp_kkt(P, q, G, h, A, b, lb, ub, res, rtol=1e-7)
     else:
         assert_unbounded_direction(P, q, G, A, lb, ub, res.certificate)
+
+
+# --- box-only QPs go to the bounded-variable kernel (solve_blcp) --------------------------
+
+@pytest.mark.parametrize("seed", range(12))
+def test_box_only_qps_through_the_box_kernel(seed):
+    """A QP whose only constraints are bounds is the box LCP (P, q, lb, ub); the answer is
+    checked here by the KKT conditions (helpers, plain numpy), and its warm start re-solves
+    the same QP through the KKT-MLCP path in 0 pivots."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 25))
+    B = rng.standard_normal((n, n if seed % 3 else max(1, n // 2)))  # every third: singular P
+    P = B @ B.T / n + (1e-2 * np.eye(n) if seed % 3 else 0.0)
+    q = 3.0 * rng.standard_normal(n)
+    lb = np.where(rng.random(n) < 0.8, -rng.uniform(0, 1, n), -np.inf)
+    ub = np.where(rng.random(n) < 0.8, rng.uniform(0, 1, n), np.inf)
+    lb[rng.random(n) < 0.1] = 0.0
+    ub[lb == 0.0] = 0.0  # a few fixed variables
+    if seed % 3 == 0:  # singular P: keep it bounded in every direction
+        lb[~np.isfinite(lb)] = -2.0
+        ub[~np.isfinite(ub)] = 2.0
+    res = lemke.solve_qp(P, q, lb=lb, ub=ub)
+    assert res.status == Status.SOLVED, res
+    assert_qp_kkt(P, q, None, None, None, None, lb, ub, res)
+    again = lemke.solve_qp(P, q, lb=lb, ub=ub, warm_start=res.warm_start)
+    assert again.success and again.pivots == 0
+    np.testing.assert_allclose(again.x, res.x, atol=1e-9 * (1 + np.abs(res.x).max()))
+
+
+def test_box_only_qp_without_optimum_keeps_its_certificate():
+    # min -x0 with x0 >= 0 unbounded above: the box LCP ends on a ray, the KKT-MLCP path
+    # then proves it (a direction of unbounded descent)
+    res = lemke.solve_qp(np.zeros((2, 2)), [-1.0, 0.0], lb=[0.0, -1.0], ub=[np.inf, 1.0])
+    assert res.status == Status.DUAL_INFEASIBLE and res.certificate.dx[0] > 0
