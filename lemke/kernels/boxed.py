@@ -151,17 +151,12 @@ def step_values(x, basis, col, n, e, delta):
 
 
 @kernel
-def exchange_labels(T, r, s, col, e, leaving, basis, nonbasic, pos, is_basic, scratch):
+def exchange_labels(T, r, s, col, basis, nonbasic, pos, is_basic, scratch):
     """Pivot the tableau on (r, s) (``tableau.pivot``, nothing pending) and swap the
-    labels: e enters in row r, ``leaving`` goes to column s."""
+    labels: the label of column s enters in row r, the label of row r goes to column s."""
     rhs, magb, U, V, act, prow, _ = scratch
     tableau.pivot(T, rhs, magb, r, s, col, U, V, 0, prow, act)
-    basis[r] = e
-    nonbasic[s] = leaving
-    pos[e] = r
-    pos[leaving] = s
-    is_basic[e] = True
-    is_basic[leaving] = False
+    pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
 
 
 @kernel
@@ -197,7 +192,7 @@ def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
         leaving = basis[br]
         step_values(x, basis, col, n, e, -x[leaving] / col[br])
         x[leaving] = 0.0
-        exchange_labels(T, br, bs, col, e, leaving, basis, nonbasic, pos, is_basic, scratch)
+        exchange_labels(T, br, bs, col, basis, nonbasic, pos, is_basic, scratch)
         done += 1
 
 
@@ -329,7 +324,7 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
                 break
             lb, ub = bounds_of(leaving, n, lo, hi, at_hi)
             x[leaving] = lb if low_r else ub
-            exchange_labels(T, r, s, col, e, leaving, basis, nonbasic, pos, is_basic, scratch)
+            exchange_labels(T, r, s, col, basis, nonbasic, pos, is_basic, scratch)
             rlo[r], rhi[r] = bounds_of(e, n, lo, hi, at_hi)
             pivots += 1
             h ^= hkeys[leaving] ^ hkeys[e]
