@@ -12,6 +12,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
+from numba.core import event as numba_event
 
 from . import problems
 from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
@@ -264,9 +265,29 @@ def _solve(args) -> int:
 _WARM = set()
 
 
+COMPILE_NOTICE = ("lemke: compiling the numba kernels for their first use (they are cached on "
+                  "disk: this happens once) ...")
+
+
+class _CompileNotice(numba_event.Listener):
+    """Says on stderr, once per process, that numba is compiling.  numba raises its
+    "numba:compile" event only on a cache miss, so a run whose kernels are all cached on
+    disk says nothing."""
+
+    said = False
+
+    def on_start(self, event):
+        if not _CompileNotice.said:
+            _CompileNotice.said = True
+            print(COMPILE_NOTICE, file=sys.stderr, flush=True)
+
+    def on_end(self, event):
+        pass
+
+
 def _warm_up(kind: str, method: str) -> None:
     """Load the kernels for a kind of problem (from numba's cache, or compile them, once per
-    run) before timing one: the times shown are those of the solves."""
+    install) before timing one: the times shown are those of the solves."""
     if (kind, method) not in _WARM:
         _WARM.add((kind, method))
         Problem(kind, KINDS[kind].example).solve(method=method)
@@ -344,7 +365,8 @@ def main(argv=None) -> int:
         if args.command == "problems":
             return _list_problems()
         if args.command == "solve":
-            return _solve(args)
+            with numba_event.install_listener("numba:compile", _CompileNotice()):
+                return _solve(args)
         raise _UsageError("no command given; try `lemke solve` or `lemke problems` (or --help)")
     except _UsageError as exc:
         print(f"lemke: error: {exc}", file=sys.stderr)

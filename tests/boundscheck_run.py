@@ -9,7 +9,9 @@ reported with the problem that raised it.  The last line of stdout is a JSON sum
 every lemke kernel, so that the caller can check that nothing came from a cache).  Exit
 status 1 when a solve raised.
 """
+import contextlib
 import importlib
+import io
 import json
 import os
 import pkgutil
@@ -66,9 +68,20 @@ def probe():
     return False
 
 
+def cli_stderr():
+    """What ``lemke solve`` writes on stderr: on this empty cache, the notice that it compiles."""
+    from lemke import _cli
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        attempt("lemke solve", lambda: _cli.main(["solve"]))
+    return err.getvalue()
+
+
 def main():
     t0 = time.perf_counter()
     on = probe()
+    said = cli_stderr()
     dart = {c.name: tuple(map(np.array, stress_cases.problem(c.key)))
             for c in stress_cases.BASE_CASES if c.family == "dart"}
     M12, q12 = dart["Lemke_12D"]
@@ -105,6 +118,32 @@ def main():
         attempt(f"solve_qp (hs21) [{method}]", lambda m=method: lemke.solve_qp(
             hs21.P, hs21.q, hs21.G, hs21.h, lb=hs21.lb, ub=hs21.ub, method=m))
 
+    # Box LCPs (bounded kernel, friction index) and games (Lemke-Howson, tracing, exact).
+    Mr, qr = np.array(M12), np.array(q12)
+    n = len(qr)
+    attempt("solve_blcp(Lemke_12D, -1 <= z <= 1)", lambda: lemke.solve_blcp(Mr, qr, -np.ones(n), np.ones(n)))
+    attempt("solve_blcp(Lemke_12D, mixed infinite bounds)", lambda: lemke.solve_blcp(
+        Mr, qr, np.where(np.arange(n) % 3 == 0, -np.inf, 0.0), np.where(np.arange(n) % 2 == 0, np.inf, 2.0)))
+    for key in ("int/n9-s1", "int/n12-s2"):
+        Mi, qi = map(np.array, stress_cases.problem(key))
+        k = len(qi)
+        attempt(f"solve_blcp({key}, box)", lambda Mi=Mi, qi=qi, k=k: lemke.solve_blcp(
+            Mi, qi, -np.ones(k), np.ones(k)))
+    A = np.array([[2.0, 0.5, -0.3], [0.5, 1.0, 0.2], [-0.3, 0.2, 1.5]])
+    for qf in ([-1.0, 0.5, -0.3], [-1.0, 3.0, -2.0], [1.0, 0.5, 0.0]):  # stick, slide, no contact
+        attempt(f"solve_blcp(friction, findex, q={qf})", lambda qf=qf: lemke.solve_blcp(
+            A, np.array(qf), [0.0, -0.5, -0.5], [np.inf, 0.5, 0.5], findex=[-1, 0, 0]))
+    rng = np.random.default_rng(0)
+    for label, A, B in (("int3 12x12", rng.integers(0, 3, (12, 12)), rng.integers(0, 3, (12, 12))),
+                        ("unif 7x9", rng.random((7, 9)), rng.random((7, 9)))):
+        A, B = A.astype(float), B.astype(float)
+        for lab in (0, 3):
+            attempt(f"solve_bimatrix({label}, label {lab})", lambda A=A, B=B, lab=lab: lemke.solve_bimatrix(
+                A, B, init_label=lab))
+        attempt(f"solve_bimatrix({label}, tracing)", lambda A=A, B=B: lemke.solve_bimatrix(A, B, method="tracing"))
+        attempt(f"solve_bimatrix({label}, exact)", lambda A=A, B=B: lemke.solve_bimatrix(A, B, exact=True))
+        attempt(f"lemke_paths({label})", lambda A=A, B=B: lemke.lemke_paths(A, B))
+
     # Compile statistics of every lemke kernel that was used.
     dispatchers = {}
     for info in pkgutil.iter_modules(lemke.kernels.__path__):
@@ -117,7 +156,7 @@ def main():
                     "misses": sum(stats.cache_misses.values())}
     summary = {"errors": errors, "solves": solves, "boundscheck_probe": on, "dispatchers": dispatchers,
                "kernels_dir": str(Path(lemke.kernels.__file__).parent), "seconds": time.perf_counter() - t0,
-               "cache_dir": os.environ.get("NUMBA_CACHE_DIR", "")}
+               "cache_dir": os.environ.get("NUMBA_CACHE_DIR", ""), "cli_stderr": said}
     print(json.dumps(summary))
     return 1 if errors else 0
 
