@@ -1,7 +1,8 @@
 """lemke: linear complementarity problems by Lemke's complementary pivoting method.
 
 Public API: :func:`solve_lcp` (methods in ``METHODS``), :func:`solve_lcp_batch` (many LCPs
-of one size in parallel threads), :func:`solve_lcp_many` (many of different sizes),
+of one size in parallel threads), :func:`solve_lcp_many` (many of different sizes), :func:`solve_lcp_batch_dask` (a batch over a
+Dask cluster),
 :func:`solve_mlcp` (mixed LCPs), :func:`solve_qp` (convex QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
 :class:`LCPBatchResult`, :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
 :class:`Options`, :class:`WarmStart`, :func:`pivot_column` (one step of the unrevised
@@ -10,6 +11,7 @@ method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as 
 :func:`write_result`, :class:`ProblemFormatError`).
 """
 from ._batch import solve_lcp_batch, solve_lcp_many
+from ._dask import solve_lcp_batch_dask
 from ._blcp import BLCPResult, BoxWarmStart, solve_blcp
 from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
 from ._games import BimatrixResult, GameBasis, lemke_paths, solve_bimatrix
@@ -52,6 +54,7 @@ __all__ = [
     "solve_blcp",
     "solve_lcp",
     "solve_lcp_batch",
+    "solve_lcp_batch_dask",
     "solve_lcp_many",
     "solve_mlcp",
     "solve_qp",

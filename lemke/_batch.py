@@ -114,21 +114,8 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     """
     _validate.method(method, METHODS)
     opts = as_options(options)
-    M = real_array(M, "M")
-    q = real_array(q, "q")
-    if q.ndim != 2:
-        raise ValueError(f"q must have shape (B, n), got shape {q.shape}")
+    M, q = batch_arrays(M, q)
     B, n = q.shape
-    if n == 0 and M.size == 0 and M.ndim < 3:
-        M = np.zeros((0, 0))  # [] is the empty matrix, shared
-    if M.ndim == 2:
-        if M.shape != (n, n):
-            raise ValueError(f"a shared M must have shape ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
-        M = M[None]
-    elif M.ndim != 3 or M.shape != (B, n, n):
-        raise ValueError(f"M must have shape ({B}, {n}, {n}) or ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
-    M = np.ascontiguousarray(M)  # never a view the kernels could write through: they only read
-    q = np.ascontiguousarray(q)
     workers = _workers(workers)
     beta, boff = _bases(warm_start, B, [n] * B)
 
@@ -155,6 +142,26 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     for a in (z, w, status, pivots, residual):
         a.setflags(write=False)
     return LCPBatchResult(z, w, status, pivots, residual)
+
+
+def batch_arrays(M, q):
+    """``(M, q)`` of a batch as float64 C-contiguous arrays of shapes (1 or B, n, n) and
+    (B, n) (a shared M gets a leading axis of 1), or a ``ValueError`` naming the shape."""
+    M = real_array(M, "M")
+    q = real_array(q, "q")
+    if q.ndim != 2:
+        raise ValueError(f"q must have shape (B, n), got shape {q.shape}")
+    B, n = q.shape
+    if n == 0 and M.size == 0 and M.ndim < 3:
+        M = np.zeros((0, 0))  # [] is the empty matrix, shared
+    if M.ndim == 2:
+        if M.shape != (n, n):
+            raise ValueError(f"a shared M must have shape ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
+        M = M[None]
+    elif M.ndim != 3 or M.shape != (B, n, n):
+        raise ValueError(f"M must have shape ({B}, {n}, {n}) or ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
+    # Never a view the kernels could write through: they only read.
+    return np.ascontiguousarray(M), np.ascontiguousarray(q)
 
 
 def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> list:

@@ -24,7 +24,7 @@ LAYERS = [
     {"_reductions", "_games_exact"},
     {"_lcp", "_pivot_column", "_games", "_blcp"},
     {"_batch", "_mlcp"},
-    {"_qp"},
+    {"_qp", "_dask"},
     {"_kinds"},
     {"_problem"},
     {"problems", "_io"},
