@@ -119,12 +119,19 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     workers = _workers(workers)
     beta, boff = _bases(warm_start, B, [n] * B)
 
-    bufs = np.empty((B, cold.buffer_length(n)))
+    L = cold.buffer_length(n)
+    bufs = np.empty((B, L))
     basics = np.empty((B, n), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
-    _run(cold.batch, (cold.METHODS[method], M, q, beta, boff),
-         (opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol, opts.tol, bufs, basics, out_i, out_f), B, workers)
+    # The kernel of solve_lcp_many, with the problems laid end to end in the arrays as they
+    # are (row-major views, no copies); a shared M starts every problem at offset 0.
+    mstart = np.zeros(B, dtype=np.int64) if M.shape[0] == 1 else np.arange(B, dtype=np.int64) * (n * n)
+    qoff = np.arange(B + 1, dtype=np.int64) * n
+    limits = np.full(B, opts.pivot_limit(n), dtype=np.int64)
+    _run(cold.batch, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
+         (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs.reshape(-1),
+          np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers)
 
     f = cold.fields(n)
     z = np.ascontiguousarray(bufs[:, f["z"]])
@@ -204,8 +211,8 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     beta, boff = _bases(warm_start, B, sizes)
     qoff = np.zeros(B + 1, dtype=np.int64)
     np.cumsum(sizes, out=qoff[1:])
-    moff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum(np.square(np.array(sizes, dtype=np.int64)), out=moff[1:])
+    mstart = np.zeros(B, dtype=np.int64)
+    np.cumsum(np.square(np.array(sizes[:-1], dtype=np.int64)), out=mstart[1:])
     buff = np.zeros(B + 1, dtype=np.int64)
     np.cumsum([cold.buffer_length(n) for n in sizes], out=buff[1:])
     Mflat = np.concatenate([Mb.ravel() for Mb, _ in probs]) if B else np.zeros(0)
@@ -215,7 +222,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
-    _run(cold.batch_ragged, (cold.METHODS[method], Mflat, moff, qflat, qoff, beta, boff),
+    _run(cold.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
     for b in np.flatnonzero(out_i[:, 0] == cold.NOT_FINITE):
         _checked(int(b), *probs[b])  # raises, naming the problem and the entry

@@ -11,8 +11,7 @@ from ._status import Status
 from .kernels import cold, linalg
 
 METHODS = tuple(cold.METHODS)
-_CHECKED = cold.checked  # module attributes, so that a test can stand a lying kernel in
-_WARM = cold.warm
+_SOLVE_ONE = cold.solve_one  # a module attribute, so that a test can stand a lying kernel in
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
 
@@ -97,38 +96,36 @@ def _views(buf, n):
     return tuple(buf[f[name]] for name, _ in cold.BUFFER)
 
 
+_NO_BASIS = np.zeros(0, dtype=np.int64)
+
+
 def _cold(method, M, q, d, opts):
     """A cold solve (float64, C-contiguous, validated shapes): one kernel call that also
     checks the answer on the caller's data.  None when M or q is not finite."""
-    n = q.shape[0]
-    buf = np.empty(cold.buffer_length(n))
-    basic = np.empty(n, dtype=np.int64)
-    code, pivots, k, ok, residual, recoveries = _CHECKED(
-        cold.METHODS[method], M, q, d, opts.pivot_limit(n), opts.pivot_tol, opts.tie_tol,
-        opts.tol, buf, basic
-    )
-    if code == 0 and ok:  # solved and checked: the common case, built lazily
-        return LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries)
-    if code == cold.NOT_FINITE:
-        return None
-    return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
+    return _solve(method, M, q, d, _NO_BASIS, None, opts)
 
 
 def _warm(method, M, q, d, warm_start, opts):
-    """A warm solve in one kernel call (``kernels.cold.warm``): the old basis's point if it
-    still solves the problem (0 pivots), else Lemke restarted from that basis, else a cold
-    solve.  None when M or q is not finite."""
-    n = q.shape[0]
+    """A warm solve in one kernel call: the old basis's point if it still solves the problem
+    (0 pivots), else Lemke restarted from that basis, else a cold solve.  None when M or q
+    is not finite."""
     beta = warm_start.__dict__.get("_beta")
     if beta is None:  # the basis as an index array, kept with the (immutable) WarmStart
         beta = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=np.int64)
+    return _solve(method, M, q, d, beta, warm_start, opts)
+
+
+def _solve(method, M, q, d, beta, warm_start, opts):
+    """``kernels.cold.solve_one``, the one kernel of every LCP solve, cold (``beta`` empty) or
+    warm, and its result: built lazily when solved and checked."""
+    n = q.shape[0]
     buf = np.empty(cold.buffer_length(n))
     basic = np.empty(n, dtype=np.int64)
-    code, pivots, k, ok, residual, recoveries, stage = _WARM(
+    code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
         cold.METHODS[method], M, q, d, beta, beta.shape[0], opts.pivot_limit(n), opts.pivot_tol,
         opts.tie_tol, opts.tol, buf, basic
     )
-    if code == 0 and ok:
+    if code == 0 and ok:  # solved and checked: the common case, built lazily
         return LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries,
                                warm_start if stage == 0 else None)
     if code == cold.NOT_FINITE:

@@ -202,8 +202,8 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     from lemke.kernels import certify
 
     def with_solve(solve):
-        """cold.checked with its pivoting replaced by ``solve`` (the same check)."""
-        def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+        """cold.solve_one, cold, with its pivoting replaced by ``solve`` (the same check)."""
+        def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
             assert cold.prologue(M, q, d, buf) == 0
             x, ray, w, cov, R, C = cold.layout(n, buf)
@@ -212,8 +212,8 @@ def test_kernel_answer_is_rechecked(monkeypatch):
             ok, residual = certify.lcp_check_sized(M, q, x[:n], tol, w, R)
             basic_z = np.flatnonzero(z_basic)
             basic[: basic_z.size] = basic_z
-            return code, pivots, basic_z.size, ok, residual, 0
-        return checked
+            return code, pivots, basic_z.size, ok, residual, 0, 2
+        return solve_one
 
     def lying_kernel(x, ray, z_basic):
         x[:] = 1.0
@@ -221,7 +221,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         z_basic[:] = False  # all w basic: the basis point is z = 0, wrong too
         return 0, 7
 
-    monkeypatch.setattr(_lcp, "_CHECKED", with_solve(lying_kernel))
+    monkeypatch.setattr(_lcp, "_SOLVE_ONE", with_solve(lying_kernel))
     p = problems.cps_447()
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and not res.success
@@ -233,7 +233,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         z_basic[:] = False
         return 2, 3
 
-    monkeypatch.setattr(_lcp, "_CHECKED", with_solve(lying_ray))
+    monkeypatch.setattr(_lcp, "_SOLVE_ONE", with_solve(lying_ray))
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
 

@@ -4,7 +4,14 @@ Every kernel is ``njit(cache=True, nogil=True)``: compiled lazily on first call 
 ``lemke`` compiles nothing), cached on disk, and run without the GIL.  NumPy's error model
 makes a division by zero give inf or nan instead of raising.  With ``NUMBA_DISABLE_JIT=1``
 they run as plain Python, for debugging.
+
+``inline_kernel`` is the same with ``inline="always"``: the glue between the entry kernels
+and the methods is inlined into its callers at numba's IR level.  A ``kernel`` is compiled
+into an LLVM module of its own, and every kernel that calls it links that module into its
+own and optimizes and generates machine code for all of it again, so each level of plain
+kernels between an entry point and the methods would compile the methods once more.
 """
 from numba import njit
 
 kernel = njit(cache=True, nogil=True, error_model="numpy")
+inline_kernel = njit(cache=True, nogil=True, error_model="numpy", inline="always")

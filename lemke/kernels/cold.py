@@ -53,7 +53,7 @@ import functools
 
 import numpy as np
 
-from . import kernel, pivoting, tableau, unrevised
+from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check
 from .linalg import equilibrate, finite_absmax, nan_probe, principal_block, solve as lu_solve
 
@@ -104,7 +104,7 @@ def layout(n, buf):
             buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 :])
 
 
-@kernel
+@inline_kernel
 def prologue(M, q, d, buf):
     """Check that M and q are finite, fill the equilibration scales and the covering vector
     (an empty d stands for all ones).  Returns code NOT_FINITE, TRIVIAL (q >= 0: z = 0
@@ -128,7 +128,7 @@ def prologue(M, q, d, buf):
     return 0
 
 
-@kernel
+@inline_kernel
 def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful):
     """One run of the chosen method from the all-w basis; returns ``(status, pivots)``."""
     n = q.shape[0]
@@ -140,7 +140,7 @@ def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, caref
                            max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
 
 
-@kernel
+@inline_kernel
 def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful):
     """:func:`pivot_once`, then the recoveries of the module docstring while it cycles.
     Returns ``(status, pivots, recoveries)``; the pivots of every run are counted."""
@@ -190,7 +190,7 @@ def retry_covering(step, q, R, cov):
     return False
 
 
-@kernel
+@inline_kernel
 def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
     (empty: all ones), then check the answer on (M, q).
@@ -278,72 +278,77 @@ def basis_point(M, q, beta, k, z):
     return True
 
 
-@kernel
-def warm(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
-    """A warm solve in one call: the point of the old basis (z_i basic for i in beta[:k]),
-    checked on (M, q); if it fails, Lemke's method restarted from that basis (the unrevised
-    method on the principal pivoting transform, with a constant covering vector there:
-    ``c e_alpha - M[:, beta] 1``, c = max|M|, so z rows and w rows get the same constant),
-    checked; if that fails too, :func:`checked` cold with the pivots left.
+@inline_kernel
+def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """The first two stages of a warm start: the point of the old basis (z_i basic for i in
+    beta[:k]), checked on (M, q); if it fails, Lemke's method restarted from that basis (the
+    unrevised method on the principal pivoting transform, with a constant covering vector
+    there: ``c e_alpha - M[:, beta] 1``, c = max|M|, so z rows and w rows get the same
+    constant), checked.
 
-    Returns ``(code, pivots, k, ok, residual, recoveries, stage)`` as :func:`checked`, and
-    stage 0 (the old basis solved it: 0 pivots), 1 (the restart solved it) or 2 (cold).
-    code NOT_FINITE: M or q has a NaN or an infinity."""
+    Returns ``(stage, code, pivots, k, ok, residual)``: stage 0 (the old basis solved it: 0
+    pivots) or 1 (the restart solved it) with code SOLVED; stage 2 when neither did (then
+    only ``pivots``, those spent, counts: :func:`solve_one` goes on cold); stage -1 with
+    code NOT_FINITE when M or q has a NaN or an infinity."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
     finite, m_max = finite_absmax(M)
     if not finite or nan_probe(q, n) != 0.0:
-        return NOT_FINITE, 0, 0, False, 0.0, 0, 2
+        return -1, NOT_FINITE, 0, 0, False, 0.0
     equilibrate(M, q, R, C)
     x[n] = 0.0
-    if basis_point(M, q, beta, k, x[:n]):
+    if not basis_point(M, q, beta, k, x[:n]):
+        return 2, 0, 0, 0, False, 0.0
+    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    if ok:
+        for i in range(n):
+            cov[i] = d[i] if d.shape[0] else 1.0
+        ray[:] = 0.0
+        for i in range(k):
+            basic[i] = beta[i]
+        return 0, pivoting.SOLVED, 0, k, True, residual
+    # the restart from the old basis
+    z_start = np.zeros(n, dtype=np.bool_)
+    for i in range(k):
+        z_start[beta[i]] = True
+    m_scale = m_max if m_max > 0.0 else 1.0
+    for i in range(n):
+        acc = 0.0 if z_start[i] else m_scale
+        for j in range(k):
+            acc -= M[i, beta[j]]
+        cov[i] = acc
+    z_basic = np.empty(n, dtype=np.bool_)
+    code, pivots = unrevised.solve(M, q, cov, R, C, z_start, np.empty((0, 0)), max_pivots,
+                                   pivot_tol, tie_tol, x, ray, z_basic)
+    if not (code == pivoting.NUMERICAL_FAILURE and pivots == 0):  # a singular start
         ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
         if ok:
+            kk = 0
             for i in range(n):
-                cov[i] = d[i] if d.shape[0] else 1.0
-            ray[:] = 0.0
-            for i in range(k):
-                basic[i] = beta[i]
-            return pivoting.SOLVED, 0, k, True, residual, 0, 0
-        # the restart from the old basis
-        z_start = np.zeros(n, dtype=np.bool_)
-        for i in range(k):
-            z_start[beta[i]] = True
-        m_scale = m_max if m_max > 0.0 else 1.0
-        for i in range(n):
-            acc = 0.0 if z_start[i] else m_scale
-            for j in range(k):
-                acc -= M[i, beta[j]]
-            cov[i] = acc
-        z_basic = np.empty(n, dtype=np.bool_)
-        code, pivots = unrevised.solve(M, q, cov, R, C, z_start, np.empty((0, 0)), max_pivots,
-                                       pivot_tol, tie_tol, x, ray, z_basic)
-        if not (code == pivoting.NUMERICAL_FAILURE and pivots == 0):  # a singular start
-            ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
-            if ok:
-                kk = 0
-                for i in range(n):
-                    if z_basic[i]:
-                        basic[kk] = i
-                        kk += 1
-                return pivoting.SOLVED, pivots, kk, True, residual, 0, 1
-    else:
-        pivots = 0
-    code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
-                                                   pivot_tol, tie_tol, tol, buf, basic)
-    return code, p + pivots, kk, ok, residual, recoveries, 2
+                if z_basic[i]:
+                    basic[kk] = i
+                    kk += 1
+            return 1, pivoting.SOLVED, pivots, kk, True, residual
+    return 2, 0, pivots, 0, False, 0.0
 
 
 @kernel
-def solve_one(method, M, q, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
-    """What ``solve_lcp`` runs for one problem: :func:`warm` from the basis ``beta[:k]``
-    when k > 0, else :func:`checked` cold.  Returns :func:`warm`'s tuple (stage 2 cold)."""
+def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """What ``solve_lcp`` runs for one problem, warm or cold, and what every batch runs per
+    problem: :func:`warm_stages` from the basis ``beta[:k]`` when k > 0, then, unless they
+    solved it, :func:`checked` cold with the pivots left (d: the covering vector, empty for
+    all ones).  Returns ``(code, pivots, k, ok, residual, recoveries, stage)`` as
+    :func:`checked` with the stage (0, 1 warm; 2 cold); code NOT_FINITE: M or q has a NaN or
+    an infinity."""
+    pivots = 0
     if k > 0:
-        return warm(method, M, q, np.empty(0), beta, k, max_pivots, pivot_tol, tie_tol, tol,
-                    buf, basic)
-    code, pivots, kk, ok, residual, recoveries = checked(method, M, q, np.empty(0), max_pivots,
-                                                         pivot_tol, tie_tol, tol, buf, basic)
-    return code, pivots, kk, ok, residual, recoveries, 2
+        stage, code, pivots, kk, ok, residual = warm_stages(M, q, d, beta, k, max_pivots, pivot_tol,
+                                                            tie_tol, tol, buf, basic)
+        if stage < 2:
+            return code, pivots, kk, ok, residual, 0, stage if stage >= 0 else 2
+    code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
+                                                   pivot_tol, tie_tol, tol, buf, basic)
+    return code, p + pivots, kk, ok, residual, recoveries, 2
 
 
 @kernel
@@ -358,31 +363,20 @@ def _record(b, out_i, out_f, code, pivots, k, ok, residual, recoveries, stage):
 
 
 @kernel
-def batch(method, M, q, beta, boff, lo, hi, max_pivots, pivot_tol, tie_tol, tol, bufs, basics,
-          out_i, out_f):
-    """:func:`solve_one` on problems ``lo..hi-1`` of a batch of one size: M (B, n, n), or
-    (1, n, n) shared by all, and q (B, n); problem b's warm start is ``beta[boff[b]:boff[b +
-    1]]`` (empty: cold).  Row b of ``out_i`` gets (code, pivots, k, recoveries, stage), of
+def batch(method, Ms, mstart, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_tol, tie_tol, tol,
+          bufs, buff, basics, out_i, out_f):
+    """:func:`solve_one` on problems ``lo..hi-1`` laid end to end, of one size or of
+    different sizes: problem b has n = ``qoff[b + 1] - qoff[b]``, q = ``qs[qoff[b]:qoff[b +
+    1]]``, M = the n x n row-major block of ``Ms`` from ``mstart[b]`` (so that problems can
+    share one M), warm start ``beta[boff[b]:boff[b + 1]]`` (empty: cold), output buffer
+    ``bufs[buff[b]:buff[b + 1]]``, basic indices ``basics[qoff[b]:qoff[b + 1]]`` and pivot
+    cap ``max_pivots[b]``.  Row b of ``out_i`` gets (code, pivots, k, recoveries, stage), of
     ``out_f`` (ok, residual)."""
-    shared = M.shape[0] == 1
-    for b in range(lo, hi):
-        r = solve_one(method, M[0 if shared else b], q[b], beta[boff[b]:boff[b + 1]],
-                      boff[b + 1] - boff[b], max_pivots, pivot_tol, tie_tol, tol, bufs[b],
-                      basics[b])
-        _record(b, out_i, out_f, *r)
-
-
-@kernel
-def batch_ragged(method, Ms, moff, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_tol,
-                 tie_tol, tol, bufs, buff, basics, out_i, out_f):
-    """:func:`solve_one` on problems ``lo..hi-1`` of different sizes, laid end to end: problem
-    b is ``Ms[moff[b]:moff[b + 1]]`` (n x n, row-major), ``qs[qoff[b]:qoff[b + 1]]``, warm
-    start ``beta[boff[b]:boff[b + 1]]``, output buffer ``bufs[buff[b]:buff[b + 1]]``, basic
-    indices ``basics[qoff[b]:qoff[b + 1]]``, its pivot cap ``max_pivots[b]``."""
+    d = np.empty(0)
     for b in range(lo, hi):
         n = qoff[b + 1] - qoff[b]
-        M = Ms[moff[b]:moff[b + 1]].reshape((n, n))
-        r = solve_one(method, M, qs[qoff[b]:qoff[b + 1]], beta[boff[b]:boff[b + 1]],
+        M = Ms[mstart[b]:mstart[b] + n * n].reshape((n, n))
+        r = solve_one(method, M, qs[qoff[b]:qoff[b + 1]], d, beta[boff[b]:boff[b + 1]],
                       boff[b + 1] - boff[b], max_pivots[b], pivot_tol, tie_tol, tol,
                       bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]])
         _record(b, out_i, out_f, *r)

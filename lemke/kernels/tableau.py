@@ -25,7 +25,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 """
 import numpy as np
 
-from . import kernel, pivoting
+from . import inline_kernel, kernel, pivoting
 from .linalg import axpy, equilibrate, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
@@ -265,7 +265,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     return status, pivots
 
 
-@kernel
+@inline_kernel
 def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
           careful=False):
     """A cold solve from (M, q, d) with q not >= 0: set up the tableau and pivot.

@@ -22,7 +22,7 @@ holds the basic variable of pair j).
 """
 import numpy as np
 
-from . import kernel, pivoting
+from . import inline_kernel, kernel, pivoting
 from .linalg import axpy, dot, dot_and_size, invert_in_place, matvec, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
@@ -217,7 +217,7 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     return status, pivots
 
 
-@kernel
+@inline_kernel
 def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
           z_basic_out):
     """Lemke's method from the basis ``z_start`` on (M, q) with covering vector d, on the
