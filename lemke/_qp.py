@@ -25,6 +25,7 @@ from ._certify import check_direction as _check_direction, check_farkas as _chec
 from ._lcp import METHODS
 from ._mlcp import solve_stacked
 from ._options import as_options
+from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
@@ -313,13 +314,8 @@ def _solve_box(P, q, lb, ub, opts):
     empty = np.zeros(0)
     empty.setflags(write=False)
     z_box.setflags(write=False)
-    lo_f, up_f = np.isfinite(lo), np.isfinite(up)
-    primal = max(0.0, float(np.max(lo - x, initial=0.0)), float(np.max(x - up, initial=0.0)))
-    Px = P @ x
-    dual = _size(Px + q + z_box)
-    gap = abs(float(x @ Px + q @ x) + float(lo[lo_f] @ np.minimum(z_box[lo_f], 0.0))
-              + float(up[up_f] @ np.maximum(z_box[up_f], 0.0)))
-    obj = float(0.5 * x @ Px + q @ x)
+    _, primal, dual, gap, obj = kkt((P, q, np.zeros((0, n)), empty, np.zeros((0, n)), empty, lo, up),
+                                    x, empty, empty, z_box, 0.0)
     return QPResult._make_from(x, empty, empty, z_box, obj, Status.SOLVED, r.pivots, primal,
                                dual, gap, None, _box_basis(lo, up, r.warm_start))
 
@@ -377,6 +373,8 @@ def _solve(qp, method, opts, warm_start, certify):
     r = solve_stacked(qp.E, qp.e, qp.n_free, method, opts, warm_start)
     x, y, z, z_box = qp.recover(np.concatenate([r.u, r.v]), r.w)
     status, certificate = r.status, None
+    if certify and status == Status.SOLVED:
+        x, y, z, z_box = _polished(qp, (x, y, z, z_box), r.warm_start, opts.tol)
     if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS:
         status, certificate = _verdict(qp, r, method, opts)
     elif status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
@@ -384,34 +382,88 @@ def _solve(qp, method, opts, warm_start, certify):
     return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start)
 
 
-def residuals(qp, x, y, z, z_box):
-    """qpsolvers' primal residual, dual residual and duality gap on the validated data."""
-    P, q, G, h, A, b, lb, ub = qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
-    Px = P @ x
-    primal = max(
-        0.0,
-        float(np.max(G @ x - h, initial=0.0)),
-        _size(A @ x - b),
-        float(np.max(lb - x, initial=0.0)),
-        float(np.max(x - ub, initial=0.0)),
-    )
-    dual = _size(Px + q + A.T @ y + G.T @ z + z_box)
-    lo, up = np.isfinite(lb), np.isfinite(ub)
-    gap = abs(
-        float(x @ Px + q @ x + h @ z + b @ y)
-        + float(lb[lo] @ np.minimum(z_box[lo], 0.0))
-        + float(ub[up] @ np.maximum(z_box[up], 0.0))
-    )
-    return primal, dual, gap
+def kkt(data, x, y, z, z_box, tol):
+    """``(ok, primal, dual, gap, obj)`` on the validated data ``(P, q, G, h, A, b, lb, ub)``
+    (absent rows empty, absent bounds infinite): whether the point passes the fused path's
+    row-wise KKT check (``kernels.qp.kkt_check``) at ``tol``, and qpsolvers' residuals and
+    the objective, each summed there in double-double (their values at the point as given,
+    not the rounding of evaluating them)."""
+    stats = np.empty(4)
+    c = np.ascontiguousarray
+    P, q, G, h, A, b, lb, ub = data
+    ok = kqp.kkt_check(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol, stats)
+    return (bool(ok), *stats.tolist())
+
+
+def _data(qp):
+    return qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
 
 
 def _result(qp, x, y, z, z_box, status, pivots, certificate, warm_start):
     y, z = y.copy(), z.copy()
-    primal, dual, gap = residuals(qp, x, y, z, z_box)
-    obj = float(0.5 * x @ (qp.P @ x) + qp.q @ x)
+    _, primal, dual, gap, obj = kkt(_data(qp), x, y, z, z_box, 0.0)
     for a in (x, y, z, z_box):
         a.setflags(write=False)
     return QPResult(x, y, z, z_box, obj, status, int(pivots), primal, dual, gap, certificate, warm_start)
+
+
+def _polished(qp, point, basis, tol):
+    """Final-basis polishing: the KKT point of the final basis's active set, solved afresh
+    on the validated data, kept when it is better.
+
+    The basis (the KKT-MLCP's, see ``_reductions.qp_mlcp``) says which constraints hold
+    with equality: a row of G whose multiplier is basic, a bound whose shifted variable is
+    non-basic (or whose upper multiplier is basic), every fixed variable.  Their KKT system
+
+        P x + A'y + G_S'z_S + I_B'zb_B = -q,   A x = b,   G_S x = h_S,   x_B = bound_B
+
+    is solved once (LAPACK) and refined with residuals in extended precision
+    (``refined_solve``): the point the MLCP path recovers has been through the shift of
+    the bounds (``x = lb + x'``) and the MLCP's own rounding, this one only through the
+    rounding of the answer (multipliers at the rounding level of the solve made zero).  It replaces ``point`` only when it passes the row-wise KKT
+    check at ``tol`` and its largest residual (primal, dual, gap, summed in double-double)
+    is smaller; a singular system (dependent active rows) leaves ``point`` as it is."""
+    n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
+    nn, nb = qp.shifted.size, qp.boxed.size
+    v = np.zeros(nn + mg + nb, dtype=bool)
+    v[list(basis.z_basic)] = True
+    bound = np.full(n, np.nan)  # the bound x_j is held at, NaN where it is free
+    lower = qp.shifted[~v[:nn]]
+    bound[lower] = qp.x0[lower]
+    upper = qp.shifted[qp.boxed[v[nn + mg:]]]
+    bound[upper] = qp.ub[upper]
+    bound[qp.fixed] = qp.lb[qp.fixed]
+    S = np.flatnonzero(v[nn:nn + mg])
+    B = np.flatnonzero(~np.isnan(bound))
+    k, s = n + p, n + p + S.size
+    N = s + B.size
+    K = np.zeros((N, N))
+    K[:n, :n] = qp.P
+    K[:n, n:k] = qp.A.T
+    K[n:k, :n] = qp.A
+    K[:n, k:s] = qp.G[S].T
+    K[k:s, :n] = qp.G[S]
+    K[B, s + np.arange(B.size)] = 1.0
+    K[s + np.arange(B.size), B] = 1.0
+    sol = refined_solve(K, np.concatenate([-qp.q, qp.b, qp.h[S], bound[B]]), steps=3)
+    if sol is None:
+        return point
+    # A multiplier at the solve's rounding level (eps times the largest) is zero: left in,
+    # it would fail the row-wise test in a stationarity row whose terms are all that small.
+    mult = sol[n:]
+    mult[np.abs(mult) <= EPS * _size(mult)] = 0.0
+    x = sol[:n].copy()
+    x[B] = bound[B]
+    z = np.zeros(mg)
+    z[S] = sol[k:s]
+    z_box = np.zeros(n)
+    z_box[B] = sol[s:]
+    new = (x, sol[n:k].copy(), z, z_box)
+    ok, *res = kkt(_data(qp), *new, tol)
+    if not ok:
+        return point
+    res0 = kkt(_data(qp), *point, tol)[1:]
+    return new if max(res[:3]) < max(res0[:3]) else point
 
 
 # ----------------------------------------------------------------------------- certificates
