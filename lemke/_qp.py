@@ -14,6 +14,7 @@ certificate is checked (``_certify``) before it is returned.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -77,6 +78,32 @@ class QPResult(Outcome):
     duality_gap: float
     certificate: Certificate | None
     warm_start: WarmStart | None
+
+    @classmethod
+    def _deferred(cls, eager, resolve, args):
+        """A result with the fields in ``eager`` set now and the others made by
+        ``resolve(*args)`` (a dict of them) when one of them is first read; until then the
+        result holds ``args``.  Equality, hashing, ``repr``, ``replace`` and pickling read
+        the fields, so they resolve it first: it is the same value as one built eagerly."""
+        res = object.__new__(cls)
+        d = res.__dict__
+        d.update(eager)
+        d["_resolve"] = (resolve, args)
+        return res
+
+    def __getattr__(self, name):  # only for names not (yet) in __dict__
+        d = self.__dict__
+        deferred = d.pop("_resolve", None)
+        if deferred is None:
+            raise AttributeError(f"'QPResult' object has no attribute {name!r}")
+        resolve, args = deferred
+        d.update(resolve(*args))
+        return getattr(self, name)
+
+    def __getstate__(self):
+        if "_resolve" in self.__dict__:
+            self.__getattr__("x")  # resolve
+        return self.__dict__
 
     def __repr__(self) -> str:
         return (
@@ -245,6 +272,14 @@ def _restore_rows(res, keep):
     return replace(res, z=full(res.z), certificate=cert)
 
 
+@functools.lru_cache(maxsize=64)
+def _absent(n):
+    """``(G or A, h or b, lb, ub)`` of a QP of n variables without them: empty rows and
+    infinite bounds, made once per n (a fresh ``np.full`` costs about 1 us, a fifth of a
+    small solve).  Private to the fused path, whose kernel only reads them."""
+    return np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+
+
 def _plain_args(P, q, G, h, A, b, lb, ub):
     """The arguments as float64 C-contiguous arrays of exactly the shapes the fused kernel
     takes (column vectors flattened and absent constraints empty, as in
@@ -263,10 +298,11 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
             if not (n == 1 and P.size == 1 and P.ndim <= 1):
                 return None
             P = P.reshape(1, 1)
+        no_rows, no_rhs, no_lb, no_ub = _absent(n)
         out = [P, q]
         for M, v in ((G, h), (A, b)):
             if M is None and v is None:
-                out += [np.zeros((0, n)), np.zeros(0)]
+                out += [no_rows, no_rhs]
                 continue
             M = np.ascontiguousarray(M, dtype=f64)
             v = np.ascontiguousarray(v, dtype=f64)
@@ -275,9 +311,9 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
             if M.ndim != 2 or v.ndim != 1 or M.shape != (v.shape[0], n):
                 return None
             out += [M, v]
-        for v, inf in ((lb, -np.inf), (ub, np.inf)):
+        for v, absent in ((lb, no_lb), (ub, no_ub)):
             if v is None:
-                out.append(np.full(n, inf))
+                out.append(absent)
                 continue
             v = np.ascontiguousarray(v, dtype=f64)
             if v.ndim == 2 and v.shape[1] == 1:
@@ -353,10 +389,19 @@ def _solve_definite(args, method, opts):
     if code != kqp.OK:
         return None
     out.setflags(write=False)  # the views below are read-only too
+    # x and the status now; the multipliers, residuals and the basis when first read
+    # (QPResult._deferred): building them costs as much as a small solve's LCP.
+    return QPResult._deferred(
+        {"x": out[:n], "status": Status.SOLVED, "pivots": pivots, "certificate": None},
+        _fused_fields, (out, n, p, m, basic, k, pairs))
+
+
+def _fused_fields(out, n, p, m, basic, k, pairs):
+    """The deferred fields of a result of the fused path (see :func:`_solve_definite`)."""
     primal, dual, gap, obj = out[-4:].tolist()
-    return QPResult._make_from(out[:n], out[n:n + p], out[n + p:n + p + m],
-                          out[n + p + m:2 * n + p + m], obj, Status.SOLVED, pivots, primal, dual,
-                          gap, None, WarmStart._trusted(pairs, tuple(basic[:k].tolist())))
+    return {"y": out[n:n + p], "z": out[n + p:n + p + m], "z_box": out[n + p + m:2 * n + p + m],
+            "obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
+            "warm_start": WarmStart._trusted(pairs, tuple(basic[:k].tolist()))}
 
 
 def _QP(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> QPToMLCP:
