@@ -14,6 +14,7 @@ certificate is checked (``_certify``) before it is returned.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -25,6 +26,7 @@ from ._certify import check_direction as _check_direction, check_farkas as _chec
 from ._lcp import METHODS
 from ._mlcp import solve_stacked
 from ._options import as_options
+from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
@@ -76,6 +78,32 @@ class QPResult(Outcome):
     duality_gap: float
     certificate: Certificate | None
     warm_start: WarmStart | None
+
+    @classmethod
+    def _deferred(cls, eager, resolve, args):
+        """A result with the fields in ``eager`` set now and the others made by
+        ``resolve(*args)`` (a dict of them) when one of them is first read; until then the
+        result holds ``args``.  Equality, hashing, ``repr``, ``replace`` and pickling read
+        the fields, so they resolve it first: it is the same value as one built eagerly."""
+        res = object.__new__(cls)
+        d = res.__dict__
+        d.update(eager)
+        d["_resolve"] = (resolve, args)
+        return res
+
+    def __getattr__(self, name):  # only for names not (yet) in __dict__
+        d = self.__dict__
+        deferred = d.pop("_resolve", None)
+        if deferred is None:
+            raise AttributeError(f"'QPResult' object has no attribute {name!r}")
+        resolve, args = deferred
+        d.update(resolve(*args))
+        return getattr(self, name)
+
+    def __getstate__(self):
+        if "_resolve" in self.__dict__:
+            self.__getattr__("x")  # resolve
+        return self.__dict__
 
     def __repr__(self) -> str:
         return (
@@ -244,6 +272,14 @@ def _restore_rows(res, keep):
     return replace(res, z=full(res.z), certificate=cert)
 
 
+@functools.lru_cache(maxsize=64)
+def _absent(n):
+    """``(G or A, h or b, lb, ub)`` of a QP of n variables without them: empty rows and
+    infinite bounds, made once per n (a fresh ``np.full`` costs about 1 us, a fifth of a
+    small solve).  Private to the fused path, whose kernel only reads them."""
+    return np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+
+
 def _plain_args(P, q, G, h, A, b, lb, ub):
     """The arguments as float64 C-contiguous arrays of exactly the shapes the fused kernel
     takes (column vectors flattened and absent constraints empty, as in
@@ -262,10 +298,11 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
             if not (n == 1 and P.size == 1 and P.ndim <= 1):
                 return None
             P = P.reshape(1, 1)
+        no_rows, no_rhs, no_lb, no_ub = _absent(n)
         out = [P, q]
         for M, v in ((G, h), (A, b)):
             if M is None and v is None:
-                out += [np.zeros((0, n)), np.zeros(0)]
+                out += [no_rows, no_rhs]
                 continue
             M = np.ascontiguousarray(M, dtype=f64)
             v = np.ascontiguousarray(v, dtype=f64)
@@ -274,9 +311,9 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
             if M.ndim != 2 or v.ndim != 1 or M.shape != (v.shape[0], n):
                 return None
             out += [M, v]
-        for v, inf in ((lb, -np.inf), (ub, np.inf)):
+        for v, absent in ((lb, no_lb), (ub, no_ub)):
             if v is None:
-                out.append(np.full(n, inf))
+                out.append(absent)
                 continue
             v = np.ascontiguousarray(v, dtype=f64)
             if v.ndim == 2 and v.shape[1] == 1:
@@ -313,13 +350,8 @@ def _solve_box(P, q, lb, ub, opts):
     empty = np.zeros(0)
     empty.setflags(write=False)
     z_box.setflags(write=False)
-    lo_f, up_f = np.isfinite(lo), np.isfinite(up)
-    primal = max(0.0, float(np.max(lo - x, initial=0.0)), float(np.max(x - up, initial=0.0)))
-    Px = P @ x
-    dual = _size(Px + q + z_box)
-    gap = abs(float(x @ Px + q @ x) + float(lo[lo_f] @ np.minimum(z_box[lo_f], 0.0))
-              + float(up[up_f] @ np.maximum(z_box[up_f], 0.0)))
-    obj = float(0.5 * x @ Px + q @ x)
+    _, primal, dual, gap, obj = kkt((P, q, np.zeros((0, n)), empty, np.zeros((0, n)), empty, lo, up),
+                                    x, empty, empty, z_box, 0.0)
     return QPResult._make_from(x, empty, empty, z_box, obj, Status.SOLVED, r.pivots, primal,
                                dual, gap, None, _box_basis(lo, up, r.warm_start))
 
@@ -357,10 +389,19 @@ def _solve_definite(args, method, opts):
     if code != kqp.OK:
         return None
     out.setflags(write=False)  # the views below are read-only too
+    # x and the status now; the multipliers, residuals and the basis when first read
+    # (QPResult._deferred): building them costs as much as a small solve's LCP.
+    return QPResult._deferred(
+        {"x": out[:n], "status": Status.SOLVED, "pivots": pivots, "certificate": None},
+        _fused_fields, (out, n, p, m, basic, k, pairs))
+
+
+def _fused_fields(out, n, p, m, basic, k, pairs):
+    """The deferred fields of a result of the fused path (see :func:`_solve_definite`)."""
     primal, dual, gap, obj = out[-4:].tolist()
-    return QPResult._make_from(out[:n], out[n:n + p], out[n + p:n + p + m],
-                          out[n + p + m:2 * n + p + m], obj, Status.SOLVED, pivots, primal, dual,
-                          gap, None, WarmStart._trusted(pairs, tuple(basic[:k].tolist())))
+    return {"y": out[n:n + p], "z": out[n + p:n + p + m], "z_box": out[n + p + m:2 * n + p + m],
+            "obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
+            "warm_start": WarmStart._trusted(pairs, tuple(basic[:k].tolist()))}
 
 
 def _QP(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> QPToMLCP:
@@ -377,6 +418,8 @@ def _solve(qp, method, opts, warm_start, certify):
     r = solve_stacked(qp.E, qp.e, qp.n_free, method, opts, warm_start)
     x, y, z, z_box = qp.recover(np.concatenate([r.u, r.v]), r.w)
     status, certificate = r.status, None
+    if certify and status == Status.SOLVED:
+        x, y, z, z_box = _polished(qp, (x, y, z, z_box), r.warm_start, opts.tol)
     if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS:
         status, certificate = _verdict(qp, r, method, opts)
     elif status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
@@ -384,34 +427,88 @@ def _solve(qp, method, opts, warm_start, certify):
     return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start)
 
 
-def residuals(qp, x, y, z, z_box):
-    """qpsolvers' primal residual, dual residual and duality gap on the validated data."""
-    P, q, G, h, A, b, lb, ub = qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
-    Px = P @ x
-    primal = max(
-        0.0,
-        float(np.max(G @ x - h, initial=0.0)),
-        _size(A @ x - b),
-        float(np.max(lb - x, initial=0.0)),
-        float(np.max(x - ub, initial=0.0)),
-    )
-    dual = _size(Px + q + A.T @ y + G.T @ z + z_box)
-    lo, up = np.isfinite(lb), np.isfinite(ub)
-    gap = abs(
-        float(x @ Px + q @ x + h @ z + b @ y)
-        + float(lb[lo] @ np.minimum(z_box[lo], 0.0))
-        + float(ub[up] @ np.maximum(z_box[up], 0.0))
-    )
-    return primal, dual, gap
+def kkt(data, x, y, z, z_box, tol):
+    """``(ok, primal, dual, gap, obj)`` on the validated data ``(P, q, G, h, A, b, lb, ub)``
+    (absent rows empty, absent bounds infinite): whether the point passes the fused path's
+    row-wise KKT check (``kernels.qp.kkt_check``) at ``tol``, and qpsolvers' residuals and
+    the objective, each summed there in double-double (their values at the point as given,
+    not the rounding of evaluating them)."""
+    stats = np.empty(4)
+    c = np.ascontiguousarray
+    P, q, G, h, A, b, lb, ub = data
+    ok = kqp.kkt_check(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol, stats)
+    return (bool(ok), *stats.tolist())
+
+
+def _data(qp):
+    return qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
 
 
 def _result(qp, x, y, z, z_box, status, pivots, certificate, warm_start):
     y, z = y.copy(), z.copy()
-    primal, dual, gap = residuals(qp, x, y, z, z_box)
-    obj = float(0.5 * x @ (qp.P @ x) + qp.q @ x)
+    _, primal, dual, gap, obj = kkt(_data(qp), x, y, z, z_box, 0.0)
     for a in (x, y, z, z_box):
         a.setflags(write=False)
     return QPResult(x, y, z, z_box, obj, status, int(pivots), primal, dual, gap, certificate, warm_start)
+
+
+def _polished(qp, point, basis, tol):
+    """Final-basis polishing: the KKT point of the final basis's active set, solved afresh
+    on the validated data, kept when it is better.
+
+    The basis (the KKT-MLCP's, see ``_reductions.qp_mlcp``) says which constraints hold
+    with equality: a row of G whose multiplier is basic, a bound whose shifted variable is
+    non-basic (or whose upper multiplier is basic), every fixed variable.  Their KKT system
+
+        P x + A'y + G_S'z_S + I_B'zb_B = -q,   A x = b,   G_S x = h_S,   x_B = bound_B
+
+    is solved once (LAPACK) and refined with residuals in extended precision
+    (``refined_solve``): the point the MLCP path recovers has been through the shift of
+    the bounds (``x = lb + x'``) and the MLCP's own rounding, this one only through the
+    rounding of the answer (multipliers at the rounding level of the solve made zero).  It replaces ``point`` only when it passes the row-wise KKT
+    check at ``tol`` and its largest residual (primal, dual, gap, summed in double-double)
+    is smaller; a singular system (dependent active rows) leaves ``point`` as it is."""
+    n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
+    nn, nb = qp.shifted.size, qp.boxed.size
+    v = np.zeros(nn + mg + nb, dtype=bool)
+    v[list(basis.z_basic)] = True
+    bound = np.full(n, np.nan)  # the bound x_j is held at, NaN where it is free
+    lower = qp.shifted[~v[:nn]]
+    bound[lower] = qp.x0[lower]
+    upper = qp.shifted[qp.boxed[v[nn + mg:]]]
+    bound[upper] = qp.ub[upper]
+    bound[qp.fixed] = qp.lb[qp.fixed]
+    S = np.flatnonzero(v[nn:nn + mg])
+    B = np.flatnonzero(~np.isnan(bound))
+    k, s = n + p, n + p + S.size
+    N = s + B.size
+    K = np.zeros((N, N))
+    K[:n, :n] = qp.P
+    K[:n, n:k] = qp.A.T
+    K[n:k, :n] = qp.A
+    K[:n, k:s] = qp.G[S].T
+    K[k:s, :n] = qp.G[S]
+    K[B, s + np.arange(B.size)] = 1.0
+    K[s + np.arange(B.size), B] = 1.0
+    sol = refined_solve(K, np.concatenate([-qp.q, qp.b, qp.h[S], bound[B]]), steps=3)
+    if sol is None:
+        return point
+    # A multiplier at the solve's rounding level (eps times the largest) is zero: left in,
+    # it would fail the row-wise test in a stationarity row whose terms are all that small.
+    mult = sol[n:]
+    mult[np.abs(mult) <= EPS * _size(mult)] = 0.0
+    x = sol[:n].copy()
+    x[B] = bound[B]
+    z = np.zeros(mg)
+    z[S] = sol[k:s]
+    z_box = np.zeros(n)
+    z_box[B] = sol[s:]
+    new = (x, sol[n:k].copy(), z, z_box)
+    ok, *res = kkt(_data(qp), *new, tol)
+    if not ok:
+        return point
+    res0 = kkt(_data(qp), *point, tol)[1:]
+    return new if max(res[:3]) < max(res0[:3]) else point
 
 
 # ----------------------------------------------------------------------------- certificates

@@ -177,3 +177,50 @@ def test_fused_path_falls_back():
     assert_qp_kkt(P, q, G, h, A2, b2, lb, ub, r)
     bad = lemke.solve_qp(P, q, G=[[1.0] + [0.0] * 5, [-1.0] + [0.0] * 5], h=[-1.0, -1.0])
     assert bad.status == lemke.Status.PRIMAL_INFEASIBLE and bad.certificate is not None
+
+
+def test_fused_result_is_a_value_when_deferred():
+    """The fused path builds y, z, z_box, the residuals and the basis when first read: the
+    result is still a value (equal, hashed, copied, pickled and replaced as if built at
+    once), and the deferred fields are those of the kernel's output."""
+    import copy
+    import dataclasses
+    import pickle
+
+    args = _qp_problem(seed=3)
+    r1, r2 = lemke.solve_qp(*args), lemke.solve_qp(*args)
+    assert "_resolve" in r1.__dict__
+    assert r1 == r2 and hash(r1) == hash(r2)  # reading the fields resolves both
+    assert "_resolve" not in r1.__dict__
+    r3 = lemke.solve_qp(*args)
+    assert pickle.loads(pickle.dumps(r3)) == r1
+    assert copy.copy(lemke.solve_qp(*args)) == r1
+    assert "QPResult(status=SOLVED" in repr(lemke.solve_qp(*args))
+    r4 = dataclasses.replace(lemke.solve_qp(*args), pivots=-1)
+    assert r4.pivots == -1 and np.array_equal(r4.z, r1.z) and r4.warm_start == r1.warm_start
+    assert not r1.z.flags.writeable and not r1.x.flags.writeable
+    with pytest.raises(AttributeError):
+        lemke.solve_qp(*args).no_such_field
+
+
+def test_residuals_are_their_values_at_the_point():
+    """The duality gap of a point whose gap terms are 1e8 is summed in double-double: it is
+    the exact value of qpsolvers' formula at the point returned (in fractions), not the 1e-8 rounding of a float64 sum."""
+    from fractions import Fraction
+
+    rng = np.random.default_rng(4)
+    n = 8
+    B = rng.standard_normal((n, n))
+    P = 1e6 * (B @ B.T / n + 0.1 * np.eye(n))
+    q = 1e7 * rng.standard_normal(n)
+    G = rng.standard_normal((4, n))
+    h = rng.uniform(0.0, 1.0, 4)
+    r = lemke.solve_qp(P, q, G, h)
+    assert r.status == lemke.Status.SOLVED
+    x, z = r.x, r.z
+    F = Fraction
+    exact = abs(sum(F(x[i]) * F(P[i, j]) * F(x[j]) for i in range(n) for j in range(n))
+                + sum(F(q[j]) * F(x[j]) for j in range(n)) + sum(F(h[i]) * F(z[i]) for i in range(4)))
+    size = float(np.abs(x) @ np.abs(P) @ np.abs(x) + np.abs(q) @ np.abs(x) + np.abs(h) @ z)
+    # double-double: exact to far below a float64 sum's rounding (eps * size, about 1e-8 here)
+    assert abs(F(r.duality_gap) - exact) <= F(1e-6) * F(np.finfo(float).eps) * F(size)

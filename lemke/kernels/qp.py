@@ -280,6 +280,15 @@ def two_sum(a, b):
 
 
 @kernel
+def acc2(hi, lo, a, b):
+    """``(hi, lo) += a b`` in double-double: the sum ``hi + lo`` carries the error terms of
+    every product and addition (as in :func:`dot2`)."""
+    p, e = two_product(a, b)
+    s, f = two_sum(hi, p)
+    return s, lo + (e + f)
+
+
+@kernel
 def dot2(x, y, c):
     """``(sum, size, norm)``: c + x'y summed in twice the working precision (Ogita, Rump and
     Oishi's Dot2), ``|c| + |x|'|y|`` and ``sum |x|``."""
@@ -288,10 +297,8 @@ def dot2(x, y, c):
     size = abs(c)
     norm = 0.0
     for j in range(x.shape[0]):
-        p, e = two_product(x[j], y[j])
-        s, f = two_sum(s, p)
-        err += e + f
-        size += abs(p)
+        s, err = acc2(s, err, x[j], y[j])
+        size += abs(x[j] * y[j])
         norm += abs(x[j])
     return s + err, size, norm
 
@@ -325,7 +332,11 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
       the multiplier is small enough to count as zero (removing it moves no stationarity
       row by more than that row's allowance).
 
-    ``stats`` gets qpsolvers' primal residual, dual residual, duality gap and the objective.
+    ``stats`` gets qpsolvers' primal residual, dual residual, duality gap and the objective,
+    each summed in double-double (:func:`dot2`, :func:`axpy2`, :func:`acc2`): their values on
+    the point as given, not the rounding noise of evaluating them (the gap's terms can be
+    1e8 times larger than the gap; summed in double, the gap's own rounding would then be
+    1e-8 whatever the point).
     """
     n = q.shape[0]
     t = tol + 4.0 * EPS
@@ -335,9 +346,14 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     size = np.abs(q)
     for i in range(n):
         axpy2(s, err, size, x[i], P[i])
-    xPx_s = 0.0
+    # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
+    gap_hi = 0.0
+    gap_lo = 0.0
     for j in range(n):
-        xPx_s += x[j] * ((s[j] + err[j]) - q[j])  # x'Px, for the gap and the objective
+        gap_hi, gap_lo = acc2(gap_hi, gap_lo, x[j], s[j])
+        gap_lo += x[j] * err[j]
+    xPq_hi = gap_hi
+    xPq_lo = gap_lo
     for i in range(A.shape[0]):
         axpy2(s, err, size, y[i], A[i])
     for i in range(G.shape[0]):
@@ -352,20 +368,17 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         dual = max(dual, abs(r))
         if not abs(r) <= allow[j]:
             ok = False
-    primal = 0.0
-    gap = xPx_s
-    for j in range(n):
-        gap += q[j] * x[j]
     # Every primal row also has the rounding floor of computing x: x is exact only to about
     # f = 4 (n + 2) eps max|x|, which moves row i by f sum_j |a_ij|.
     x_top = 0.0
     for j in range(n):
         x_top = max(x_top, abs(x[j]))
     floor = 4.0 * (n + 2) * EPS * x_top
+    primal = 0.0
     for i in range(A.shape[0]):
         r, sz, norm = dot2(A[i], x, -b[i])
         primal = max(primal, abs(r))
-        gap += b[i] * y[i]
+        gap_hi, gap_lo = acc2(gap_hi, gap_lo, b[i], y[i])
         if not abs(r) <= t * sz + floor * norm:
             ok = False
     for i in range(G.shape[0]):
@@ -374,7 +387,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         r, sz, norm = dot2(G[i], x, -h[i])
         sz = t * sz + floor * norm
         primal = max(primal, r)
-        gap += h[i] * z[i]
+        gap_hi, gap_lo = acc2(gap_hi, gap_lo, h[i], z[i])
         zi = z[i]
         if not (r <= sz and zi >= 0.0):
             ok = False
@@ -393,14 +406,14 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
             r = lb[j] - x[j]
             primal = max(primal, r)
             if zj < 0.0:
-                gap += lb[j] * zj
+                gap_hi, gap_lo = acc2(gap_hi, gap_lo, lb[j], zj)
             if r > s_lo:
                 ok = False
         if up:
             r = x[j] - ub[j]
             primal = max(primal, r)
             if zj > 0.0:
-                gap += ub[j] * zj
+                gap_hi, gap_lo = acc2(gap_hi, gap_lo, ub[j], zj)
             if r > s_up:
                 ok = False
         if lb[j] == ub[j]:
@@ -415,13 +428,15 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
             ok = False
         if not (x[j] == x[j]):
             ok = False
-    obj = 0.5 * xPx_s
+    # obj = (x'(P x + q) + q'x) / 2
+    obj_hi = xPq_hi
+    obj_lo = xPq_lo
     for j in range(n):
-        obj += q[j] * x[j]
+        obj_hi, obj_lo = acc2(obj_hi, obj_lo, q[j], x[j])
     stats[0] = primal
     stats[1] = dual
-    stats[2] = abs(gap)
-    stats[3] = obj
+    stats[2] = abs(gap_hi + gap_lo)
+    stats[3] = 0.5 * (obj_hi + obj_lo)
     return ok
 
 
