@@ -226,10 +226,17 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     exact : bool
         Certify the answer in rational arithmetic: after the floating-point path, the
         support system of the final basis is solved exactly and the equilibrium checked
-        exactly (regret 0); if that fails, Lemke-Howson (dropping ``init_label``, from the
-        artificial equilibrium) is run in exact integer arithmetic, and the result says
-        ``method="lemke-howson"`` and ``basis=None``.  x, y, payoffs and regret are then
-        :class:`fractions.Fraction` (x and y as tuples).
+        exactly (regret 0).  If that fails (or the path stopped before its end),
+        Lemke-Howson dropping ``init_label`` goes on in integer arithmetic from the state
+        where the floating-point path stopped, with the same lexicographic rule; when that
+        state is not a vertex pair in exact arithmetic (a pivot chose a wrong row), its last
+        pivots are undone one by one (up to 64) until one is, and only when none is does the
+        exact path restart from the artificial equilibrium.  ``result.exact_from`` says which
+        (``"float basis"``, ``"continuation"``, ``"restart"``; the last two with
+        ``method="lemke-howson"``; a tracing path that fails is not continued but replaced
+        by a restart), ``walked_back`` how
+        many pivots were undone, and ``basis`` is the exact path's final basis.  x, y,
+        payoffs and regret are then :class:`fractions.Fraction` (x and y as tuples).
     options : Options or dict, optional
         ``max_pivots`` (default 10**6), ``pivot_tol``, ``tie_tol`` (the shared pivoting
         rule) and ``tol`` (the accepted regret, relative to each player's payoff range).

@@ -1,5 +1,7 @@
 """Exact arithmetic for bimatrix games: payoffs as integers, the support system solved
-without rounding, the exact regret, and Lemke-Howson by integer pivoting.
+without rounding, the exact regret, and Lemke-Howson by integer pivoting (:class:`Tableau`),
+from the artificial equilibrium or continued from the state where a floating-point path
+stopped (:func:`continuation`).
 
 Every float is a dyadic rational, so a payoff matrix is ``Aint * 2**e`` with ``Aint``
 integers (:func:`dyadic`); scaling a player's payoffs by 2**-e changes no equilibrium, so
