@@ -154,12 +154,18 @@ class _FromKernel:
         d = res.__dict__
         buf, m, n = d["_lazy"]
         L = m + n
-        if self.name == "basis":
-            d["basis"] = GameBasis._trusted(m, n, buf[L + 3 : 2 * L + 3].view(np.int64))
+        name = self.name
+        if name == "x" or name == "y":
+            if "x" not in d and "y" not in d:
+                buf.flags.writeable = False  # before the first view: views copy the flag
+            v = d[name] = buf[:m] if name == "x" else buf[m:L]
+        elif name == "regret":
+            v = d[name] = buf[L]
+        elif name == "payoffs":
+            v = d[name] = (buf[L + 1], buf[L + 2])
         else:
-            buf.flags.writeable = False
-            d.update(x=buf[:m], y=buf[m:L], regret=buf[L], payoffs=(buf[L + 1], buf[L + 2]))
-        return d[self.name]
+            v = d[name] = GameBasis._trusted(m, n, buf[L + 3 : 2 * L + 3].view(np.int64))
+        return v
 
 
 for _name in ("x", "y", "payoffs", "regret", "basis"):
