@@ -60,12 +60,13 @@ ROUNDING_SLACK = 64.0  # regret allowance for rounding, in units of eps * (n + m
 @kernel
 def payoff_range(A):
     """``(lo, hi, finite)``: the smallest and the largest payoff and whether all are finite,
-    in one pass.  Four independent running minima and maxima: one chain of comparisons
-    waits a few cycles on each element (the order cannot change lo and hi, except for the
-    sign of a zero, which no use of them sees)."""
+    in one pass.  Four independent running minima, maxima and sums of ``v * 0`` (0, or NaN
+    for an infinite or NaN payoff): one chain of comparisons waits a few cycles on each
+    element (the order cannot change lo and hi, except for the sign of a zero, which no
+    use of them sees)."""
     lo0 = lo1 = lo2 = lo3 = np.inf
     hi0 = hi1 = hi2 = hi3 = -np.inf
-    ok = True
+    z0 = z1 = z2 = z3 = 0.0
     m, n = A.shape
     for i in range(m):
         j = 0
@@ -73,15 +74,16 @@ def payoff_range(A):
             v0, v1, v2, v3 = A[i, j], A[i, j + 1], A[i, j + 2], A[i, j + 3]
             lo0, lo1, lo2, lo3 = min(lo0, v0), min(lo1, v1), min(lo2, v2), min(lo3, v3)
             hi0, hi1, hi2, hi3 = max(hi0, v0), max(hi1, v1), max(hi2, v2), max(hi3, v3)
-            ok &= (abs(v0) < np.inf) & (abs(v1) < np.inf) & (abs(v2) < np.inf) & (abs(v3) < np.inf)
+            z0, z1, z2, z3 = z0 + v0 * 0.0, z1 + v1 * 0.0, z2 + v2 * 0.0, z3 + v3 * 0.0
             j += 4
         while j < n:
             v = A[i, j]
             lo0 = min(lo0, v)
             hi0 = max(hi0, v)
-            ok &= abs(v) < np.inf
+            z0 += v * 0.0
             j += 1
-    return min(min(lo0, lo1), min(lo2, lo3)), max(max(hi0, hi1), max(hi2, hi3)), ok
+    finite = (z0 + z1) + (z2 + z3) == 0.0
+    return min(min(lo0, lo1), min(lo2, lo3)), max(max(hi0, hi1), max(hi2, hi3)), finite
 
 
 @kernel
