@@ -236,7 +236,7 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
         Lemke-Howson dropping ``init_label`` goes on in integer arithmetic from the state
         where the floating-point path stopped, with the same lexicographic rule; when that
         state is not a vertex pair in exact arithmetic (a pivot chose a wrong row), its last
-        pivots are undone one by one (up to 64) until one is, and only when none is does the
+        pivots are undone one by one (up to 63) until one is, and only when none is does the
         exact path restart from the artificial equilibrium.  ``result.exact_from`` says which
         (``"float basis"``, ``"continuation"``, ``"restart"``; the last two with
         ``method="lemke-howson"``; a tracing path that fails is not continued but replaced
