@@ -33,6 +33,7 @@ METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
 _F64 = np.dtype(np.float64)
 _STATUSES = {int(s): s for s in Status}
+_STATE = kg.STATE  # the length of the kernel's path state, after the labels
 
 
 @dataclass(frozen=True)
@@ -50,14 +51,15 @@ class GameBasis:
 
     @classmethod
     def _trusted(cls, m: int, n: int, labels: np.ndarray) -> "GameBasis":
-        """From a kernel's final labels (those of P, then those of Q, each part sorted),
+        """From a kernel's final labels (those of P, then those of Q; anything after them
+        is ignored),
         skipping the dataclass ``__init__`` (on the hot path of small games)."""
         b = object.__new__(cls)
         f = b.__dict__
         f["m"] = m
         f["n"] = n
-        f["x_basic"] = tuple(labels[:n].tolist())  # sorted by the kernel
-        f["y_basic"] = tuple(labels[n:].tolist())
+        f["x_basic"] = tuple(sorted(labels[:n].tolist()))
+        f["y_basic"] = tuple(sorted(labels[n : n + m].tolist()))
         return b
 
 
@@ -81,8 +83,9 @@ class BimatrixResult(Outcome):
     regret : float or Fraction
         The larger of the two players' regrets, on the caller's payoffs.
     basis : GameBasis or None
-        The final vertex pair (a warm start for another path); None after an exact
-        continuation.
+        The final vertex pair (a warm start for another path); None when the answer is not
+        at a vertex pair (the tracing procedure's may not be) or after an exact run that
+        failed.
     init_label : int
         The label dropped (Lemke-Howson).
     method : str
@@ -91,6 +94,15 @@ class BimatrixResult(Outcome):
     restarts : int
         Restarts after a cycle or a breakdown (0 on almost every game), plus one for a
         re-solve of the final support system in floating point.
+    exact_from : str
+        With ``exact=True``, where the exact answer comes from: ``"float basis"`` (the
+        floating-point path's final basis, certified), ``"continuation"`` (exact
+        Lemke-Howson continued from where the floating-point path stopped, or from a state
+        ``walked_back`` pivots before it) or ``"restart"`` (exact Lemke-Howson from the
+        artificial equilibrium); ``""`` without ``exact``.
+    walked_back : int
+        With ``exact_from="continuation"``: how many of the floating-point path's last
+        pivots were undone to reach a state that is a vertex pair in exact arithmetic.
     """
 
     x: object
@@ -104,11 +116,60 @@ class BimatrixResult(Outcome):
     method: str
     exact: bool = False
     restarts: int = 0
+    exact_from: str = ""
+    walked_back: int = 0
+
+    @classmethod
+    def _lazy(cls, buf, m, n, pivots, init_label, restarts) -> "BimatrixResult":
+        """A solved floating-point result whose x, y, payoffs, regret and basis are read
+        from the kernel's buffer on first access (``_FromKernel``; see
+        ``kernels.games.lemke_howson`` for its layout; ``exact``, ``exact_from`` and
+        ``walked_back`` are the class defaults): a small solve pays only for what is
+        read."""
+        res = object.__new__(cls)
+        res.__dict__.update(status=Status.SOLVED, pivots=pivots, init_label=init_label,
+                            method="lemke-howson", restarts=restarts, _lazy=(buf, m, n))
+        return res
 
     def __repr__(self) -> str:
         return (f"BimatrixResult(status={self.status.name}, method={self.method!r}, "
                 f"pivots={self.pivots}, regret={float(self.regret):.3g}, exact={self.exact})")
 
+
+
+class _FromKernel:
+    """A field of a result of ``BimatrixResult._lazy``, read from the kernel's buffer on
+    first access and then kept in the instance (which a non-data descriptor defers to: the
+    results built field by field never reach it).  A descriptor rather than
+    ``__getattr__``, which Python reaches only after raising an AttributeError (~1.5 us)."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name):
+        self.name = name
+
+    def __get__(self, res, cls=None):
+        if res is None:
+            return self
+        d = res.__dict__
+        buf, m, n = d["_lazy"]
+        L = m + n
+        name = self.name
+        if name == "x" or name == "y":
+            if "x" not in d and "y" not in d:
+                buf.flags.writeable = False  # before the first view: views copy the flag
+            v = d[name] = buf[:m] if name == "x" else buf[m:L]
+        elif name == "regret":
+            v = d[name] = buf[L]
+        elif name == "payoffs":
+            v = d[name] = (buf[L + 1], buf[L + 2])
+        else:
+            v = d[name] = GameBasis._trusted(m, n, buf[L + 3 : 2 * L + 3].view(np.int64))
+        return v
+
+
+for _name in ("x", "y", "payoffs", "regret", "basis"):
+    setattr(BimatrixResult, _name, _FromKernel(_name))
 
 
 def _as_payoffs(A, B):
@@ -171,10 +232,17 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     exact : bool
         Certify the answer in rational arithmetic: after the floating-point path, the
         support system of the final basis is solved exactly and the equilibrium checked
-        exactly (regret 0); if that fails, Lemke-Howson (dropping ``init_label``, from the
-        artificial equilibrium) is run in exact integer arithmetic, and the result says
-        ``method="lemke-howson"`` and ``basis=None``.  x, y, payoffs and regret are then
-        :class:`fractions.Fraction` (x and y as tuples).
+        exactly (regret 0).  If that fails (or the path stopped before its end),
+        Lemke-Howson dropping ``init_label`` goes on in integer arithmetic from the state
+        where the floating-point path stopped, with the same lexicographic rule; when that
+        state is not a vertex pair in exact arithmetic (a pivot chose a wrong row), its last
+        pivots are undone one by one (up to 63) until one is, and only when none is does the
+        exact path restart from the artificial equilibrium.  ``result.exact_from`` says which
+        (``"float basis"``, ``"continuation"``, ``"restart"``; the last two with
+        ``method="lemke-howson"``; a tracing path that fails is not continued but replaced
+        by a restart), ``walked_back`` how
+        many pivots were undone, and ``basis`` is the exact path's final basis.  x, y,
+        payoffs and regret are then :class:`fractions.Fraction` (x and y as tuples).
     options : Options or dict, optional
         ``max_pivots`` (default 10**6), ``pivot_tol``, ``tie_tol`` (the shared pivoting
         rule) and ``tol`` (the accepted regret, relative to each player's payoff range).
@@ -207,52 +275,69 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     k = init_label if type(init_label) is int and 0 <= init_label < m + n else _label(init_label, m, n)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
-    opts = _DEFAULT if options is None else as_options(options)
+    if options is None:
+        opts, params = _DEFAULT, _DEFAULT_PARAMS
+    else:
+        opts = as_options(options)
+        params = _params(opts)
     if method == "tracing":
         if warm_start is not None:
             raise ValueError("warm_start is for method='lemke-howson'")
         return _trace(A, B, prior, opts, exact)
-    fbuf = np.empty(m + n + 3)
-    ibuf = np.empty(m + n, dtype=np.int64)
+    buf = np.empty(2 * (m + n) + 3 + _STATE)  # see kg.lemke_howson
     code, pivots, restarts = kg.lemke_howson(
         A, B, k, _slack_start(m, n) if warm_start is None else _start(warm_start, m, n),
-        _params(opts), fbuf, ibuf)
+        params, buf)
+    if code == SOLVED and not exact:  # the common case, without _finish's detours
+        return BimatrixResult._lazy(buf, m, n, pivots, k, restarts)
     if code == kg.NOT_FINITE:
         _as_payoffs(A, B)  # raises, naming the entry
-    basis = GameBasis._trusted(m, n, ibuf)
-    if code == SOLVED and not exact:  # the common case, without _finish's detours
-        fbuf.flags.writeable = False
-        return BimatrixResult._make_from(fbuf[:m], fbuf[m : m + n], (fbuf[m + n + 1], fbuf[m + n + 2]),
-                                    Status.SOLVED, pivots, fbuf[m + n], basis, k,
-                                    "lemke-howson", False, restarts)
-    return _finish(A, B, k, basis, code, pivots, restarts, "lemke-howson", fbuf, opts, exact,
-                   warm_start is None)
+    ibuf = buf[m + n + 3 :].view(np.int64)
+    return _finish(A, B, k, GameBasis._trusted(m, n, ibuf), code, pivots, restarts,
+                   "lemke-howson", buf[: m + n + 3], opts, exact, warm_start is None, ibuf)
 
 
-def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, cold):
+def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, cold, ibuf=None):
     """The result from a kernel's output: re-solve a basis whose point fails the check, the
-    exact certificate when asked, the exact method as the last resort of a cold float solve."""
+    exact certificate when asked, the exact method as the last resort of a cold float solve.
+    ``ibuf``: the Lemke-Howson kernel's labels and path state (for the exact continuation)."""
     m, n = A.shape
     if code != SOLVED and basis is not None and not exact:
         # The path ended with every label present (or broke down) at a point that fails the
         # check: re-solve the final basis' support system afresh (rounding of a long path).
         fixed = _resolve_float(A, B, basis, opts.tol)
         if fixed is not None:
-            fbuf[:m], fbuf[m : m + n], fbuf[m + n :] = fixed
+            fbuf[:m], fbuf[m : m + n], fbuf[m + n : m + n + 3] = fixed
             code = SOLVED
             restarts += 1
+    path = None if ibuf is None else _path_state(ibuf, m, n, k)
     if exact:
-        return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts))
+        return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts), path)
     status = _STATUSES.get(code, Status.NUMERICAL_FAILURE)
     if status != Status.SOLVED and method == "lemke-howson" and cold:
         # Last resort, never needed in the tests: the exact method cannot fail.
-        res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts))
+        res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts), path)
         if res.success:
             return _as_float(res)
     fbuf.flags.writeable = False
     return BimatrixResult._make_from(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
                                 status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
-                                int(restarts))
+                                int(restarts), "", 0)
+
+
+def _path_state(ibuf, m, n, k):
+    """Where the kernel's last Lemke-Howson run stopped (``ibuf``: its labels and path
+    state), for :func:`_games_exact.continuation`:
+    ``(P labels, Q labels, side of the next pivot, labels that left)``, the labels that left
+    in its last pivots oldest first, preceded by k when they reach back to its start."""
+    L = m + n
+    side, run = int(ibuf[L + 1]), int(ibuf[L + 2])
+    hist = ibuf[L + 3 :]
+    H = hist.shape[0]
+    left = [int(hist[t % H]) for t in range(max(0, run - H), run)]
+    if run <= H:
+        left.insert(0, k)
+    return tuple(ibuf[:n].tolist()), tuple(ibuf[n:L].tolist()), side, left
 
 
 def _trace(A, B, prior, opts, exact):
@@ -273,6 +358,9 @@ def _params(opts: Options) -> np.ndarray:
     out = np.array([float(_max_pivots(opts)), opts.pivot_tol, opts.tie_tol, opts.tol])
     out.flags.writeable = False
     return out
+
+
+_DEFAULT_PARAMS = _params(_DEFAULT)
 
 
 @functools.lru_cache(maxsize=64)
@@ -349,9 +437,12 @@ def _resolve_float(A, B, basis, tol):
     return (x, y, out) if kg.check(A, B, x, y, tol, out) else None
 
 
-def _certify(A, B, k, basis, pivots, restarts, method, cap):
+def _certify(A, B, k, basis, pivots, restarts, method, cap, path=None):
     """The exact answer: the support system of ``basis`` solved and checked in rational
-    arithmetic; if that is not an equilibrium, exact Lemke-Howson dropping label k."""
+    arithmetic; if that is not an equilibrium, exact Lemke-Howson dropping label k,
+    continued from the float path's state ``path`` (see :func:`_path_state`) when one is
+    given and a state in reach is a vertex pair in exact arithmetic, else from the
+    artificial equilibrium."""
     m, n = A.shape
     found = None
     if basis is not None:
@@ -360,27 +451,41 @@ def _certify(A, B, k, basis, pivots, restarts, method, cap):
             found = ex.certify_support(A, B, S, J, T, I)
     if found is not None:
         xs, ys, ra, rb, pa, pb = found
-        if ra != 0 or rb != 0:
-            found = None
-    if found is None:
-        # Exact Lemke-Howson from the artificial equilibrium (see solve_bimatrix).
-        Aint, ea = ex.dyadic(A)
-        Bint, eb = ex.dyadic(B)
+        if ra == 0 and rb == 0:
+            return _exact_result(m, n, xs, ys, ra, rb, pa, pb, pivots, basis, k, method,
+                                 restarts, "float basis", 0)
+    Aint, ea = ex.dyadic(A)
+    Bint, eb = ex.dyadic(B)
+    run, source, walked = None, "restart", 0
+    if path is not None:
+        labP, labQ, side, left = path
+        run, walked = ex.continuation(Aint, Bint, k, labP, labQ, side, left, cap - pivots)
+        if run.status in ("solved", "max_pivots"):
+            source = "continuation"
+        else:  # no vertex pair in reach, or the run went back to the artificial equilibrium
+            pivots += run.pivots
+            run, walked = None, 0
+    if run is None:
         run = ex.lemke_howson(Aint, Bint, k, cap - pivots)
-        if run is None:
-            return BimatrixResult(tuple(Fraction(0) for _ in range(m)), tuple(Fraction(0) for _ in range(n)),
-                                  (Fraction(0), Fraction(0)), Status.MAX_PIVOTS, cap, Fraction(0),
-                                  None, k, method, True, restarts)
-        xs, ys, p = run
-        pivots += p
-        basis = None
-        method = "lemke-howson"  # (a tracing basis that failed is replaced by this path)
-        ra, rb, pa, pb = ex.regret(Aint[:, ys[0]], Bint[xs[0], :], ea, eb, xs, ys)
+    pivots += run.pivots
+    if run.status != "solved":
+        zero = Fraction(0)
+        return BimatrixResult(tuple(zero for _ in range(m)), tuple(zero for _ in range(n)),
+                              (zero, zero), Status.MAX_PIVOTS, cap, zero, None, k,
+                              "lemke-howson", True, restarts, source, walked)
+    xs, ys = run.xs, run.ys
+    ra, rb, pa, pb = ex.regret(Aint[:, ys[0]], Bint[xs[0], :], ea, eb, xs, ys)
+    # (a tracing basis that failed is replaced by this Lemke-Howson path)
+    return _exact_result(m, n, xs, ys, ra, rb, pa, pb, pivots, GameBasis(m, n, *run.labels), k,
+                         "lemke-howson", restarts, source, walked)
+
+
+def _exact_result(m, n, xs, ys, ra, rb, pa, pb, pivots, basis, k, method, restarts, source, walked):
     (S, xn, dx), (T, yn, dy) = xs, ys
     ok = ra == 0 and rb == 0
     return BimatrixResult(ex.strategy(m, S, xn, dx), ex.strategy(n, T, yn, dy), (pa, pb),
                           Status.SOLVED if ok else Status.NUMERICAL_FAILURE, int(pivots),
-                          max(ra, rb), basis, k, method, True, int(restarts))
+                          max(ra, rb), basis, k, method, True, int(restarts), source, walked)
 
 
 def _as_float(res: BimatrixResult) -> BimatrixResult:
@@ -390,7 +495,7 @@ def _as_float(res: BimatrixResult) -> BimatrixResult:
     y.flags.writeable = False
     return BimatrixResult(x, y, tuple(float(v) for v in res.payoffs), res.status, res.pivots,
                           float(res.regret), res.basis, res.init_label, res.method, False,
-                          res.restarts + 1)
+                          res.restarts + 1, res.exact_from, res.walked_back)
 
 
 def lemke_paths(A, B, *, exact=False, options=None) -> tuple[BimatrixResult, ...]:

@@ -1,5 +1,7 @@
 """Exact arithmetic for bimatrix games: payoffs as integers, the support system solved
-without rounding, the exact regret, and Lemke-Howson by integer pivoting.
+without rounding, the exact regret, and Lemke-Howson by integer pivoting (:class:`Tableau`),
+from the artificial equilibrium or continued from the state where a floating-point path
+stopped (:func:`continuation`).
 
 Every float is a dyadic rational, so a payoff matrix is ``Aint * 2**e`` with ``Aint``
 integers (:func:`dyadic`); scaling a player's payoffs by 2**-e changes no equilibrium, so
@@ -123,33 +125,73 @@ def strategy(size, support, num, den) -> tuple[Fraction, ...]:
     return tuple(out)
 
 
-def lemke_howson(Aint, Bint, k, max_pivots):
-    """Lemke-Howson dropping label k from the artificial equilibrium, in integer arithmetic
-    (integer pivoting: each tableau row is ``det`` times its true row, and a pivot divides
-    exactly by the previous pivot), with the lexicographic rule relative to the slack basis.
-    Returns ``(xs, ys, pivots)`` with xs = (support, numerators, denominator), or None at the
-    pivot cap."""
-    m, n = Aint.shape
-    Ap = Aint - min(Aint.ravel()) + 1  # positive payoffs
-    Bp = Bint - min(Bint.ravel()) + 1
-    # P: rows s_j, columns [x (m) | s (n) | rhs]; Q: rows r_i, columns [y (n) | r (m) | rhs].
-    DP = np.concatenate([Bp.T, np.eye(n, dtype=np.int64).astype(object), np.ones((n, 1), dtype=object)], axis=1)
-    DQ = np.concatenate([Ap, np.eye(m, dtype=np.int64).astype(object), np.ones((m, 1), dtype=object)], axis=1)
-    sides = [
-        {"D": DP, "det": 1, "basis": list(range(m, m + n)), "col": lambda lab: lab, "slack": m},
-        {"D": DQ, "det": 1, "basis": list(range(m)), "col": lambda lab: lab - m if lab >= m else n + lab, "slack": n},
-    ]
-    side = 0 if k < m else 1
-    entering = k
-    pivots = 0
-    while pivots < max_pivots:
-        t = sides[side]
-        D = t["D"]
-        s = t["col"](entering)
+class Tableau:
+    """One best-response polytope in integer arithmetic: ``D`` is ``det`` times the tableau
+    ``B^-1 [M | I | 1]`` of the current basis (integer pivoting: every entry is a minor, and
+    a pivot divides exactly by the previous pivot), ``det > 0`` once :meth:`place` is done.
+    ``basis[r]`` is the label basic in row r; ``column(label)`` its column in D; the identity
+    columns (``slack`` onwards) are those of the slack basis, so ``D[:, slack:-1]`` is
+    ``det`` times the basis inverse in the order of the lexicographic rule."""
+
+    def __init__(self, payT, first, L):
+        rows, cols = payT.shape
+        self.D = np.concatenate([payT, np.eye(rows, dtype=np.int64).astype(object),
+                                 np.ones((rows, 1), dtype=object)], axis=1)
+        self.det = 1
+        self.first = first  # the label of column 0 (x_0 in P, y_0 in Q)
+        self.L = L
+        self.slack = cols
+        self.basis = [(first + cols + r) % L for r in range(rows)]
+
+    def column(self, label):
+        return (label - self.first) % self.L
+
+    def pivot(self, r, s):
+        """The variable of column s replaces row r's; returns the label that left."""
+        D = self.D
+        p = D[r, s]
+        row = D[r].copy()
+        D = (D * p - np.outer(D[:, s], row)) // self.det
+        D[r] = row
+        self.D, self.det = D, p
+        leaving = self.basis[r]
+        self.basis[r] = (self.first + s) % self.L
+        return leaving
+
+    def place(self, labels) -> bool:
+        """Pivot until ``labels`` are the basic ones (False if that basis is singular),
+        then make ``det`` positive."""
+        want = set(labels)
+        for lab in labels:
+            if lab in self.basis:
+                continue
+            s = self.column(lab)
+            rows = [i for i, b in enumerate(self.basis) if b not in want and self.D[i, s] != 0]
+            if not rows:
+                return False
+            self.pivot(rows[0], s)
+        if self.det < 0:
+            self.D, self.det = -self.D, -self.det
+        return True
+
+    def lex_feasible(self) -> bool:
+        """Every row of ``[rhs | basis inverse]`` lexicographically positive: the basis is
+        a vertex of the lexicographically perturbed polytope (so the rule keeps it one)."""
+        for i in range(self.D.shape[0]):
+            for c in [-1, *range(self.slack, self.D.shape[1] - 1)]:
+                v = self.D[i, c]
+                if v != 0:
+                    if v < 0:
+                        return False
+                    break
+        return True
+
+    def leaving_row(self, s):
+        """The lexicographic minimum ratio test for column s (all candidates ``D[i, s] >
+        0``): the right-hand side, then the basis inverse's columns in slack order."""
+        D = self.D
         rows = [i for i in range(D.shape[0]) if D[i, s] > 0]
-        # Lexicographic minimum of [rhs | slack columns] / D[i, s] (all D[i, s] > 0).
-        keys = [-1] + list(range(t["slack"], t["slack"] + D.shape[0]))
-        for c in keys:
+        for c in [-1, *range(self.slack, D.shape[1] - 1)]:
             best = []
             for i in rows:
                 if not best:
@@ -162,29 +204,138 @@ def lemke_howson(Aint, Bint, k, max_pivots):
                 elif lhs == rhs:
                     best.append(i)
             rows = best
-            if len(rows) == 1:
+            if len(rows) <= 1:
                 break
-        r = rows[0]
-        p = D[r, s]
-        row = D[r].copy()
-        D = (D * p - np.outer(D[:, s], row)) // t["det"]
-        D[r] = row
-        t["D"], t["det"] = D, p
-        leaving = t["basis"][r]
-        t["basis"][r] = entering
+        return rows[0] if rows else -1
+
+    def strategy(self, labels):
+        """``(support, numerators, denominator)`` of the basic ``labels`` (in order),
+        normalized to sum 1; the denominator is 0 when they are all 0."""
+        num = [self.D[self.basis.index(lab), -1] for lab in labels]
+        return _normalized(num)
+
+
+def tableaux(Aint, Bint):
+    """P (rows s_j, columns [x | s | rhs]) and Q (rows r_i, columns [y | r | rhs]) at the
+    artificial equilibrium, on payoffs made positive (an integer shift)."""
+    m, n = Aint.shape
+    Ap = Aint - min(Aint.ravel()) + 1
+    Bp = Bint - min(Bint.ravel()) + 1
+    return Tableau(Bp.T, 0, m + n), Tableau(Ap, m, m + n)
+
+
+class Path:
+    """How an exact Lemke-Howson run ended: ``status`` is ``"solved"`` (every label present
+    at a vertex pair other than the artificial one; xs, ys its strategies, ``labels`` the
+    basic labels of P and of Q), ``"artificial"`` (it ended at the artificial equilibrium: a
+    continuation that ran backward), ``"cycle"`` (it came back to its start: a start on a
+    cycle of the graph), ``"max_pivots"``, or ``"infeasible"`` (the start basis is singular
+    or not lexicographically feasible in exact arithmetic; no pivot made)."""
+
+    def __init__(self, status, pivots, xs=None, ys=None, labels=None):
+        self.status, self.pivots, self.xs, self.ys, self.labels = status, pivots, xs, ys, labels
+
+
+def lemke_howson(Aint, Bint, k, max_pivots, start=None) -> Path:
+    """Lemke-Howson dropping label k in integer arithmetic with the lexicographic rule
+    relative to the slack basis (the rule of the float kernels), from the artificial
+    equilibrium, or with ``start = (P labels, Q labels, entering, side)`` from that vertex
+    pair, where the label ``entering`` is about to enter in tableau ``side`` (0: P, 1: Q):
+    the state a float path reports (``kernels.games.lh_path``).  Such a start must be a
+    vertex pair of the perturbed polytopes (non-singular, lexicographically feasible, which
+    is checked: else ``"infeasible"``) whose label ``entering`` is non-basic in ``side``."""
+    m, n = Aint.shape
+    P, Q = tableaux(Aint, Bint)
+    if start is None:
+        return _run(P, Q, k, k, 0 if k < m else 1, max_pivots, m, False)
+    labP, labQ, entering, side = start
+    if not (P.place(list(labP)) and Q.place(list(labQ))):
+        return Path("infeasible", 0)
+    return _run(P, Q, k, entering, side, max_pivots, m, True)
+
+
+def _run(P, Q, k, entering, side, max_pivots, m, check_start):
+    """The path from the state (P, Q, ``entering`` about to enter in ``side``); with
+    ``check_start``, the state is first checked to be a vertex pair of the perturbed
+    polytopes, and a return to it is reported as a cycle."""
+    sides = (P, Q)
+    if check_start:
+        if not (almost_complementary(P, Q, k, entering) and P.lex_feasible() and Q.lex_feasible()):
+            return Path("infeasible", 0)
+        begin = (frozenset(P.basis), frozenset(Q.basis))
+    pivots = 0
+    while True:
+        if pivots >= max_pivots:
+            return Path("max_pivots", pivots)
+        t = sides[side]
+        s = t.column(entering)
+        r = t.leaving_row(s)
+        if r < 0:  # impossible from a vertex pair (the polytopes are bounded)
+            return Path("infeasible", pivots)
+        leaving = t.pivot(r, s)
         pivots += 1
+        entering, side = leaving, 1 - side
         if leaving == k:
             break
-        entering = leaving
+        if check_start and (frozenset(P.basis), frozenset(Q.basis)) == begin:
+            return Path("cycle", pivots)
+    S = [lab for lab in P.basis if lab < m]
+    if not S:
+        return Path("artificial", pivots)
+    T = [lab for lab in Q.basis if lab >= m]
+    return Path("solved", pivots, (S, *P.strategy(S)), ([lab - m for lab in T], *Q.strategy(T)),
+                (tuple(sorted(P.basis)), tuple(sorted(Q.basis))))
+
+
+def almost_complementary(P, Q, k, entering) -> bool:
+    """Is (P, Q) a state of a path dropping k with ``entering`` next: k basic in both
+    tableaux, ``entering`` in neither, every other label in exactly one?"""
+    basic = [0] * P.L
+    for lab in P.basis + Q.basis:
+        basic[lab] += 1
+    return all(b == (2 if lab == k else 0 if lab == entering else 1)
+               for lab, b in enumerate(basic))
+
+
+def continuation(Aint, Bint, k, labP, labQ, side, left, max_pivots):
+    """Exact Lemke-Howson from where a float path stopped: the vertex pair ``(labP, labQ)``
+    with the label ``left[-1]`` about to enter in ``side``, or, when that state is not a
+    vertex pair in exact arithmetic (or is the path's end, ``left[-1] == k``, whose basis
+    failed the exact check), from the latest earlier state that is, found by undoing the
+    float path's pivots one by one (exactly, on the tableaux of the final basis).
+    ``left``: the labels that left the path's last pivots, oldest first, preceded by k
+    when they go back to the path's start (the label that left a pivot entered in the
+    next, the first entering label being k).  Returns ``(Path, pivots undone)``; the Path is
+    ``"infeasible"`` when no state in reach is a vertex pair."""
+    m = Aint.shape[0]
+    P, Q = tableaux(Aint, Bint)
+    if not (P.place(list(labP)) and Q.place(list(labQ))):
+        return Path("infeasible", 0), 0
+    sides = (P, Q)
+    left = list(left)
+    walked = 0
+    while True:
+        entering = left[-1]
+        if (entering != k and almost_complementary(P, Q, k, entering) and P.lex_feasible()
+                and Q.lex_feasible()):
+            return _run(P, Q, k, entering, side, max_pivots, m, True), walked
+        if len(left) < 2:
+            return Path("infeasible", 0), walked
+        # Undo the last pivot: it was made in the other tableau, where ``entering`` left and
+        # the label before it entered.
+        gone = left.pop()
         side = 1 - side
-    else:
-        return None
-    P, Q = sides
-    S = [lab for lab in P["basis"] if lab < m]
-    xn = [P["D"][P["basis"].index(lab), -1] for lab in S]
-    T = [lab - m for lab in Q["basis"] if lab >= m]
-    yn = [Q["D"][Q["basis"].index(lab + m), -1] for lab in T]
-    return (S, *_normalized(xn)), (T, *_normalized(yn)), pivots
+        t = sides[side]
+        came = left[-1]
+        if gone in t.basis or came not in t.basis:
+            return Path("infeasible", 0), walked  # not the state of a path
+        s, r = t.column(gone), t.basis.index(came)
+        if t.D[r, s] == 0:
+            return Path("infeasible", 0), walked
+        t.pivot(r, s)
+        if t.det < 0:
+            t.D, t.det = -t.D, -t.det
+        walked += 1
 
 
 def _normalized(num):

@@ -132,7 +132,8 @@ class Outcome(Value):
 
     @property
     def success(self) -> bool:
-        return self.status == Status.SOLVED
+        s = self.status
+        return s is Status.SOLVED or s == Status.SOLVED  # (`is`: IntEnum's == costs ~0.3 us)
 
     @property
     def message(self) -> str:

@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 import lemke
-from lemke import _games_exact
+from lemke import _games, _games_exact
+from lemke.kernels import games as kernels_games
 from lemke._io import ProblemFormatError
 from lemke._io.nfg import read_nfg
 
@@ -194,7 +195,7 @@ def test_degenerate_float_path_is_the_exact_lexicographic_path():
     assert res.restarts == 0
     Ai, _ = _games_exact.dyadic(A)
     Bi, _ = _games_exact.dyadic(B)
-    assert _games_exact.lemke_howson(Ai, Bi, 0, 10**5)[2] == res.pivots
+    assert _games_exact.lemke_howson(Ai, Bi, 0, 10**5).pivots == res.pivots
 
 
 def test_result_is_immutable_and_scale_invariant():
@@ -257,17 +258,136 @@ def test_exact_continuation_when_the_float_basis_is_wrong(monkeypatch):
     over: simulated by a kernel that reports the artificial basis."""
     from lemke import _games
 
-    def lying(A, B, k, start, params, fbuf, ibuf):
+    def lying(A, B, k, start, params, buf):
         m, n = A.shape
-        ibuf[:] = np.r_[np.arange(m, m + n), np.arange(m)]
-        fbuf[:] = 0.0
+        buf[:] = 0.0
+        ibuf = buf[m + n + 3 :].view(np.int64)
+        ibuf[: m + n] = np.r_[np.arange(m, m + n), np.arange(m)]
+        ibuf[m + n : m + n + 3] = (k, 0, 1)  # one pivot made: no state to continue from
         return 0, 1, 0
 
     monkeypatch.setattr(_games.kg, "lemke_howson", lying)
     A, B = STENGEL_A, STENGEL_B
     res = lemke.solve_bimatrix(A, B, init_label=1, exact=True)
     assert_exact_equilibrium(A, B, res)
-    assert res.basis is None
+    # The reported state is no state of a path dropping label 1: nothing to continue from.
+    assert res.exact_from == "restart" and res.walked_back == 0
+    assert res.basis == lemke.GameBasis(3, 2, (1, 2), (0, 3, 4))  # the exact path's end
+
+
+def long_path_game(k=0):
+    """A 7 x 7 game (integer payoffs) whose Lemke-Howson path dropping k has at least 8
+    pivots, and that path's length in exact arithmetic."""
+    for seed in range(100):
+        A, B = family("int100", 7, 7, seed)
+        P = _games_exact.lemke_howson(_games_exact.dyadic(A)[0], _games_exact.dyadic(B)[0], k, 10**4).pivots
+        if P >= 8:
+            return A, B, P
+    raise AssertionError("no game with a long path")
+
+
+def stopped_float_path(A, B, k, pivots):
+    """The float kernel's path dropping k stopped after ``pivots`` pivots: its status and
+    the state it reports (``_games._path_state``)."""
+    m, n = A.shape
+    buf = np.empty(2 * (m + n) + 3 + kernels_games.STATE)
+    params = np.array([float(pivots), 1e-9, 1e-11, 1e-9])
+    code, done, _ = kernels_games.lemke_howson(A, B, k, np.r_[np.arange(m, m + n), np.arange(m)],
+                                               params, buf)
+    assert done == pivots
+    return code, buf, _games._path_state(buf[m + n + 3 :].view(np.int64), m, n, k)
+
+
+def exact_strategies(path, m, n):
+    (S, xn, dx), (T, yn, dy) = path.xs, path.ys
+    x, y = [Fraction(0)] * m, [Fraction(0)] * n
+    for i, v in zip(S, xn):
+        x[i] = Fraction(int(v), dx)
+    for j, v in zip(T, yn):
+        y[j] = Fraction(int(v), dy)
+    return x, y
+
+
+@pytest.mark.parametrize("before_end", [1, 3, 5])
+def test_exact_continuation_from_a_state_on_the_path(before_end):
+    """The float path stopped a few pivots before its end: exact Lemke-Howson continues
+    from its state and needs only the pivots that were left (a restart needs them all)."""
+    A, B, P = long_path_game()
+    code, _, (labP, labQ, side, left) = stopped_float_path(A, B, 0, P - before_end)
+    assert code == kernels_games.MAX_PIVOTS
+    Aint, Bint = _games_exact.dyadic(A)[0], _games_exact.dyadic(B)[0]
+    run, walked = _games_exact.continuation(Aint, Bint, 0, labP, labQ, side, left, 10**4)
+    assert run.status == "solved" and walked == 0
+    assert run.pivots == before_end < P
+    x, y = exact_strategies(run, 7, 7)
+    assert sum(x) == 1 and sum(y) == 1 and min(x) >= 0 and min(y) >= 0
+    assert exact_regret(A, B, x, y) == (0, 0)
+    # The same through the front: the float path capped, the exact one takes over.
+    res = lemke.solve_bimatrix(A, B, exact=True, options={"max_pivots": P})
+    assert res.exact_from == "float basis" and res.pivots == P
+    capped = lemke.solve_bimatrix(A, B, exact=True, options={"max_pivots": P - before_end})
+    assert capped.status == lemke.Status.MAX_PIVOTS  # no pivot left for the exact path
+
+
+def test_exact_continuation_through_the_front(monkeypatch):
+    """solve_bimatrix(exact=True) after a float path that stopped early (a breakdown,
+    simulated): the exact path continues from the stopped state, to the same equilibrium
+    as a restart, with fewer exact pivots."""
+    A, B, P = long_path_game()
+    real = kernels_games.lemke_howson
+    stop = P - 3
+
+    def stopped(A, B, k, start, params, buf):
+        short = params.copy()
+        short[0] = stop
+        code, pivots, restarts = real(A, B, k, start, short, buf)
+        return kernels_games.NUMERICAL_FAILURE, pivots, restarts
+
+    monkeypatch.setattr(_games.kg, "lemke_howson", stopped)
+    res = lemke.solve_bimatrix(A, B, exact=True)
+    assert_exact_equilibrium(A, B, res)
+    assert res.exact_from == "continuation" and res.walked_back == 0
+    assert res.pivots == stop + 3  # 3 exact pivots: the rest of the path
+    monkeypatch.undo()
+    restart = _games_exact.lemke_howson(_games_exact.dyadic(A)[0], _games_exact.dyadic(B)[0], 0, 10**4)
+    assert restart.pivots == P > 3
+    assert as_key(res) == as_key(lemke.solve_bimatrix(A, B, exact=True))
+
+
+def test_exact_continuation_walks_back_from_a_wrong_pivot(monkeypatch):
+    """A float path whose last pivot chose a wrong row (what rounding can do): its state is
+    not a vertex pair in exact arithmetic, so the exact path undoes that pivot and continues
+    from the state before it."""
+    A, B, P = long_path_game()
+    m, n = A.shape
+    k = 0
+    code, buf, (labP, labQ, side, left) = stopped_float_path(A, B, k, P - 1)
+    entering = left[-1]
+    # A wrong pivot in that state: ``entering`` replaces a basic label other than k, one
+    # that leaves a non-singular basis (the right one, k, would end the path).
+    P_, Q_ = _games_exact.tableaux(_games_exact.dyadic(A)[0], _games_exact.dyadic(B)[0])
+    assert P_.place(list(labP)) and Q_.place(list(labQ))
+    t = (P_, Q_)[side]
+    s = t.column(entering)
+    wrong = [lab for r, lab in enumerate(t.basis) if lab != k and t.D[r, s] != 0]
+    assert wrong
+    labels = [list(labP), list(labQ)]
+    labels[side][labels[side].index(wrong[0])] = entering
+    ibuf = buf[m + n + 3 :].view(np.int64)
+    ibuf[:n], ibuf[n : m + n] = labels[0], labels[1]
+    run = int(ibuf[m + n + 2])
+    ibuf[m + n : m + n + 3] = (wrong[0], 1 - side, run + 1)
+    ibuf[m + n + 3 + run % kernels_games.HISTORY] = wrong[0]
+
+    def wrong_pivot(A, B, k, start, params, out):
+        out[:] = buf
+        return kernels_games.NUMERICAL_FAILURE, P, 0
+
+    monkeypatch.setattr(_games.kg, "lemke_howson", wrong_pivot)
+    res = lemke.solve_bimatrix(A, B, exact=True)
+    assert_exact_equilibrium(A, B, res)
+    assert res.exact_from == "continuation" and res.walked_back == 1
+    assert res.pivots == P + 1  # the float path's P, then the one exact pivot that was left
 
 
 # --- bad input ----------------------------------------------------------------------------

@@ -58,15 +58,46 @@ ROUNDING_SLACK = 64.0  # regret allowance for rounding, in units of eps * (n + m
 # --- the condensed tableau: shared by both methods -------------------------------------------
 
 @kernel
+def payoff_range(A):
+    """``(lo, hi, finite)``: the smallest and the largest payoff and whether all are finite,
+    in one pass.  Four independent running minima, maxima and sums of ``v * 0`` (0, or NaN
+    for an infinite or NaN payoff): one chain of comparisons waits a few cycles on each
+    element (the order cannot change lo and hi, except for the sign of a zero, which no
+    use of them sees)."""
+    lo0 = lo1 = lo2 = lo3 = np.inf
+    hi0 = hi1 = hi2 = hi3 = -np.inf
+    z0 = z1 = z2 = z3 = 0.0
+    m, n = A.shape
+    for i in range(m):
+        j = 0
+        while j + 4 <= n:
+            v0, v1, v2, v3 = A[i, j], A[i, j + 1], A[i, j + 2], A[i, j + 3]
+            lo0, lo1, lo2, lo3 = min(lo0, v0), min(lo1, v1), min(lo2, v2), min(lo3, v3)
+            hi0, hi1, hi2, hi3 = max(hi0, v0), max(hi1, v1), max(hi2, v2), max(hi3, v3)
+            z0, z1, z2, z3 = z0 + v0 * 0.0, z1 + v1 * 0.0, z2 + v2 * 0.0, z3 + v3 * 0.0
+            j += 4
+        while j < n:
+            v = A[i, j]
+            lo0 = min(lo0, v)
+            hi0 = max(hi0, v)
+            z0 += v * 0.0
+            j += 1
+    finite = (z0 + z1) + (z2 + z3) == 0.0
+    return min(min(lo0, lo1), min(lo2, lo3)), max(max(hi0, hi1), max(hi2, hi3)), finite
+
+
+@kernel
+def positive_scale(lo, hi):
+    """The factor f of :func:`positive_payoffs`."""
+    return pow2_scale(hi - lo) if hi > lo else 0.0
+
+
+@kernel
 def positive_payoffs(A):
     """``1 + (A - min A) f`` with f the power of two nearest 1 / (max A - min A) (1 when all
     payoffs are equal): entries in [1, 2.5), exact for integer payoffs."""
-    lo = np.inf
-    hi = -np.inf
-    for v in A.ravel():
-        lo = min(lo, v)
-        hi = max(hi, v)
-    f = pow2_scale(hi - lo) if hi > lo else 0.0
+    lo, hi, _ = payoff_range(A)
+    f = positive_scale(lo, hi)
     out = np.empty_like(A)
     for i in range(A.shape[0]):
         for j in range(A.shape[1]):
@@ -163,6 +194,14 @@ def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, has_free, free, 
             magb[i] = size  # the bound of this row is exact again
     nc = pivoting.min_ratio(rhs, mags if exact_sizes else rhs, c, n, pivot_tol, tie_tol, cand,
                             art, z0_max)
+    return lex_break(T, c, pos, is_basic, start_basis, art, pivot_tol, tie_tol, cand, keys, nc)
+
+
+@kernel
+def lex_break(T, c, pos, is_basic, start_basis, art, pivot_tol, tie_tol, cand, keys, nc):
+    """The row among the ``nc`` candidates tied at the minimum ratio (``cand``): the
+    artificial variable's row ``art`` if tied, else the lexicographic minimum of the basis
+    inverse's rows relative to ``start_basis``; -1 when nothing blocks."""
     if nc <= 1:
         return cand[0] if nc == 1 else -1
     for t in range(nc):
@@ -170,7 +209,7 @@ def leaving_row(T, rhs, col, basis, pos, is_basic, start_basis, has_free, free, 
             return art
     # Column j of the basis inverse is the current column of the variable basic in row j at
     # the start: the unit vector of its row while basic, minus its tableau column when not.
-    for j in range(n):
+    for j in range(T.shape[0]):
         lab = start_basis[j]
         for t in range(nc):
             i = cand[t]
@@ -187,6 +226,11 @@ def place(T, rhs, magb, basis, nonbasic, pos, is_basic, target, col, prow):
     missing label enters in the row, among those whose basic label is not wanted, with the
     largest entry.  Returns False if the target basis is singular."""
     n = T.shape[0]
+    done = True
+    for lab in target:
+        done &= is_basic[lab]
+    if done:
+        return True
     want = np.zeros(is_basic.shape[0], dtype=np.bool_)
     for lab in target:
         want[lab] = True
@@ -218,47 +262,72 @@ def swap(T, rhs, magb, basis, nonbasic, pos, is_basic, r, s, col, prow):
 # --- the check on the caller's payoffs --------------------------------------------------------
 
 @kernel
-def reply(P, v, w, by_columns):
-    """``(best, paid)`` for the player whose payoffs are the rows of P (the columns when
-    ``by_columns``) against the opponent's strategy v, playing w: best = max_k (P v)_k,
-    paid = w'P v (with P' for ``by_columns``)."""
-    outer = P.shape[1] if by_columns else P.shape[0]
-    best = -np.inf
-    paid = 0.0
-    for a in range(outer):
-        t = 0.0
-        for b in range(v.shape[0]):
-            t += (P[b, a] if by_columns else P[a, b]) * v[b]
-        best = max(best, t)
-        paid += w[a] * t
-    return best, paid
+def support(v, idx):
+    """The indices of v's non-zero entries, in order, in ``idx``; returns how many."""
+    k = 0
+    for i in range(v.shape[0]):
+        if v[i] != 0.0:
+            idx[k] = i
+            k += 1
+    return k
 
 
 @kernel
-def regrets(A, B, x, y):
+def regrets(A, B, x, y, acc, idx):
     """``(row regret, column regret, row payoff, column payoff)`` of the profile (x, y):
-    max_i (A y)_i - x'A y and max_j (B'x)_j - x'B y, on the caller's payoffs."""
-    best_a, pay_a = reply(A, y, x, False)
-    best_b, pay_b = reply(B, x, y, True)
+    max_i (A y)_i - x'A y and max_j (B'x)_j - x'B y, on the caller's payoffs.  Only the
+    support of the opponent's strategy is summed over, in increasing order, so each
+    (A y)_i is the sum over all j bit for bit (a zero term leaves a sum unchanged: the
+    payoffs are finite); ``(B'x)_j`` is accumulated row by row of B in ``acc`` (n), which
+    reads B contiguously.  ``idx``: scratch of length max(m, n)."""
+    m, n = A.shape
+    k = support(y, idx)
+    best_a = -np.inf
+    pay_a = 0.0
+    for i in range(m):
+        t = 0.0
+        for q in range(k):
+            j = idx[q]
+            t += A[i, j] * y[j]
+        best_a = max(best_a, t)
+        pay_a += x[i] * t
+    acc[:n] = 0.0
+    k = support(x, idx)
+    for q in range(k):
+        i = idx[q]
+        xi = x[i]
+        for j in range(n):
+            acc[j] += B[i, j] * xi
+    best_b = -np.inf
+    pay_b = 0.0
+    for j in range(n):
+        best_b = max(best_b, acc[j])
+        pay_b += y[j] * acc[j]
     return best_a - pay_a, best_b - pay_b, pay_a, pay_b
 
 
 @kernel
-def allowance(A, tol):
-    """The regret accepted for payoffs A: tol times their range plus rounding."""
-    lo = np.inf
-    hi = -np.inf
-    for v in A.ravel():
-        lo = min(lo, v)
-        hi = max(hi, v)
+def allowance(lo, hi, m, n, tol):
+    """The regret accepted for payoffs in [lo, hi] (m x n): tol times their range plus
+    rounding."""
     big = max(abs(lo), abs(hi))
-    return tol * (hi - lo) + ROUNDING_SLACK * 2.2e-16 * (A.shape[0] + A.shape[1]) * big
+    return tol * (hi - lo) + ROUNDING_SLACK * 2.2e-16 * (m + n) * big
 
 
 @kernel
 def check(A, B, x, y, tol, out):
     """Is (x, y) an equilibrium of (A, B)?  x, y must be probability vectors (checked here
     too); ``out`` gets (regret, row payoff, column payoff).  Returns the verdict."""
+    m, n = A.shape
+    loA, hiA, _ = payoff_range(A)
+    loB, hiB, _ = payoff_range(B)
+    return verdict(A, B, x, y, allowance(loA, hiA, m, n, tol), allowance(loB, hiB, m, n, tol),
+                   out, np.empty(n), np.empty(max(m, n), dtype=np.int64))
+
+
+@kernel
+def verdict(A, B, x, y, allow_a, allow_b, out, acc, idx):
+    """:func:`check` given the allowances; ``acc``, ``idx``: scratch (see :func:`regrets`)."""
     ok = True
     sx = 0.0
     for v in x:
@@ -269,11 +338,11 @@ def check(A, B, x, y, tol, out):
         ok &= v >= 0.0
         sy += v
     ok &= abs(sx - 1.0) <= 1e-12 * x.shape[0] and abs(sy - 1.0) <= 1e-12 * y.shape[0]
-    ra, rb, pa, pb = regrets(A, B, x, y)
+    ra, rb, pa, pb = regrets(A, B, x, y, acc, idx)
     out[0] = max(ra, rb)
     out[1] = pa
     out[2] = pb
-    return ok and ra <= allowance(A, tol) and rb <= allowance(B, tol)
+    return ok and ra <= allow_a and rb <= allow_b
 
 
 @kernel
@@ -297,96 +366,125 @@ def step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering, h
          free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys, scratch, mags):
     """One pivot in one tableau: the variable with label ``entering`` enters, the row of
     :func:`leaving_row` leaves.  Returns the label that left, -1 when nothing blocks (a
-    ray) or -2 when the pivot entry is not finite."""
+    ray) or -2 when the pivot entry is not finite.
+
+    The common case takes a shortcut to the same row: while the column is read, its
+    largest entry and whether any blocking row's value needs its exact size (see
+    :func:`leaving_row`) are found; with no free rows, no artificial variable and no such
+    value, :func:`leaving_row` would pass the values as their own sizes to the shared rule,
+    which is then called directly (``pivoting.blocking_rows``, one pass over the rows)."""
     s = pos[entering]
     rows = T.shape[0]
+    cmax = 0.0
+    sized = False  # some blocking row's value may be rounding of a zero
     for i in range(rows):
-        col[i] = T[i, s]
-    r = leaving_row(T, rhs, col, basis, pos, inb, start, has_free, free, art, z0_max,
-                    pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
-    if r < 0:
-        return -1
-    if not abs(col[r]) < np.inf:
-        return -2
-    magb[r] = row_size(T, r, basis, wlab, wcol)  # a loose bound here would spread to all rows
-    leaving = swap(T, rhs, magb, basis, nonbasic, pos, inb, r, s, col, prow)
-    wcol[s] = wlab[leaving]
+        v = T[i, s]
+        col[i] = v
+        cmax = max(cmax, abs(v))
+        b = rhs[i]  # (no branch on the sign of v: it would be mispredicted half the time)
+        sized |= (v < 0.0) & (b > 0.0) & (b <= pivoting.VALUE_ROUNDING * magb[i])
+    if has_free or art >= 0 or sized:
+        r = leaving_row(T, rhs, col, basis, pos, inb, start, has_free, free, art, z0_max,
+                        pivot_tol, tie_tol, cand, keys, scratch, wlab, wcol, magb, mags)
+    else:
+        nc = pivoting.blocking_rows(rhs, rhs, col, rows, -pivot_tol * cmax, tie_tol, cand, art,
+                                    z0_max)
+        r = cand[0] if nc == 1 else lex_break(T, col, pos, inb, start, art, pivot_tol, tie_tol,
+                                              cand, keys, nc)
+    leaving = -1
+    if r >= 0 and not abs(col[r]) < np.inf:
+        leaving = -2
+    elif r >= 0:
+        magb[r] = row_size(T, r, basis, wlab, wcol)  # a loose bound would spread to all rows
+        exchange(T, rhs, magb, r, s, col, prow)
+        leaving = pivoting.swap_labels(basis, nonbasic, pos, inb, r, s)
+        wcol[s] = wlab[leaving]
     return leaving
 
 
 @kernel
-def lh_setup(Ap, Bp):
-    """The two tableaux at the artificial equilibrium: P (n x m, rows s_j, columns x_i) and
-    Q (m x n, rows r_i, columns y_j), with their label bookkeeping."""
-    m, n = Ap.shape
-    L = m + n
-    TP = np.empty((n, m))
-    TQ = np.empty((m, n))
-    for i in range(m):
-        for j in range(n):
-            TP[j, i] = -Bp[i, j]
-            TQ[i, j] = -Ap[i, j]
-    rP = np.ones(n)
-    rQ = np.ones(m)
-    bP = np.arange(m, L)  # s_j basic in row j
-    nP = np.arange(0, m)  # x_i non-basic in column i
-    bQ = np.arange(0, m)
-    nQ = np.arange(m, L)
-    posP = np.empty(L, dtype=np.int64)
-    posQ = np.empty(L, dtype=np.int64)
-    inP = np.zeros(L, dtype=np.bool_)
-    inQ = np.zeros(L, dtype=np.bool_)
-    for j in range(n):
-        posP[m + j] = j
-        inP[m + j] = True
-        posQ[m + j] = j
-    for i in range(m):
-        posP[i] = i
-        posQ[i] = i
-        inQ[i] = True
-    return TP, rP, bP, nP, posP, inP, TQ, rQ, bQ, nQ, posQ, inQ
+def tableau_setup(P, lo, f, T, rhs, basis, nonbasic, pos, is_basic, first):
+    """One tableau at the artificial equilibrium, in place: ``T[r, c] = -(1 + (P[c, r] - lo)
+    f)`` (the positive payoffs of :func:`positive_payoffs`, transposed: rows are P's columns),
+    ``rhs = 1``; the slacks (labels ``first``, ``first + 1``, ... modulo m + n) basic row by
+    row, the other labels non-basic column by column."""
+    rows, cols = T.shape
+    L = rows + cols
+    for r in range(rows):
+        for c in range(cols):
+            T[r, c] = -(1.0 + (P[c, r] - lo) * f)
+        rhs[r] = 1.0
+        lab = (first + r) % L
+        basis[r] = lab
+        pos[lab] = r
+        is_basic[lab] = True
+    for c in range(cols):
+        lab = (first + rows + c) % L
+        nonbasic[c] = lab
+        pos[lab] = c
+        is_basic[lab] = False
+
+
+HISTORY = 64  # the leaving labels of the last HISTORY pivots of a path are kept (a power of 2)
+STATE = 3 + HISTORY  # the path's state after the labels in ibuf (see lemke_howson)
 
 
 @kernel
-def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, x, y,
-            basisP, basisQ):
-    """One Lemke-Howson path on the positive payoffs (Ap, Bp), dropping label k, from the
-    basis whose basic labels are ``startP`` (n) and ``startQ`` (m) (the slack labels: the
-    artificial equilibrium).  ``perturb``: multiply the right-hand sides by fixed
-    pseudo-random factors 1 + PERTURBATION [0, 1).
+def lh_path(A, B, scale, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, x, y,
+            basisP, basisQ, state, F, I, Z, U):
+    """One Lemke-Howson path on the positive payoffs of (A, B) (``scale`` = lo and f of A,
+    then of B, see :func:`positive_payoffs`), dropping label k, from the basis whose basic
+    labels are ``startP`` (n) and ``startQ`` (m) (the slack labels: the artificial
+    equilibrium).  ``perturb``: multiply the right-hand sides by fixed pseudo-random factors
+    1 + PERTURBATION [0, 1).  F, I, Z, U: work space (float, int, bool, uint64; see
+    :func:`lemke_howson`), so that a solve allocates four arrays.
 
     Returns ``(status, pivots)``; x, y get the final (unnormalized) strategies, ``basisP``,
-    ``basisQ`` the final basic labels row by row.
+    ``basisQ`` the final basic labels row by row, ``state`` (STATE) where the path stands:
+    the label that enters next and its side (0: P, 1: Q; after the last pivot, the label
+    that left and the other side), the pivots of this run, then the labels that left in
+    its last HISTORY pivots (pivot t's at ``3 + t % HISTORY``).
     """
-    m, n = Ap.shape
+    m, n = A.shape
     L = m + n
-    TP, rP, bP, nP, posP, inP, TQ, rQ, bQ, nQ, posQ, inQ = lh_setup(Ap, Bp)
-    slackP = bP.copy()
-    slackQ = bQ.copy()
+    big = max(m, n)
+    o = 0
+    TP = F[o : o + n * m].reshape((n, m))
+    o += n * m
+    TQ = F[o : o + m * n].reshape((m, n))
+    o += m * n
+    rP, mbP, rQ, mbQ = F[o : o + n], F[o + n : o + 2 * n], F[o + 2 * n : o + 2 * n + m], F[o + 2 * n + m : o + 2 * L]
+    o += 2 * L
+    wlabP, wlabQ, wcolP, wcolQ = F[o : o + L], F[o + L : o + 2 * L], F[o + 2 * L : o + 2 * L + m], F[o + 2 * L + m : o + 3 * L]
+    o += 3 * L
+    col, prow, scratch, keys_, mags = (F[o : o + big], F[o + big : o + 2 * big], F[o + 2 * big : o + 3 * big],
+                                       F[o + 3 * big : o + 4 * big], F[o + 4 * big : o + 5 * big])
+    bP, nP, bQ, nQ = I[:n], I[n:L], I[L : L + m], I[L + m : 2 * L]
+    posP, posQ, slackP, slackQ = I[2 * L : 3 * L], I[3 * L : 4 * L], I[4 * L : 4 * L + n], I[4 * L + n : 5 * L]
+    cand = I[5 * L : 5 * L + big]
+    inP, inQ, free = Z[:L], Z[L : 2 * L], Z[2 * L : 3 * L]
+    hkeys, detector = U[: 2 * L], U[2 * L : 2 * L + 3]
+    tableau_setup(B, scale[2], scale[3], TP, rP, bP, nP, posP, inP, m)
+    tableau_setup(A.T, scale[0], scale[1], TQ, rQ, bQ, nQ, posQ, inQ, 0)
+    slackP[:] = bP
+    slackQ[:] = bQ
     if perturb:
-        keys = pivoting.label_keys(L)
+        pivoting.fill_label_keys(hkeys[:L])
         for j in range(n):
-            rP[j] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, m + j)
+            rP[j] *= 1.0 + PERTURBATION * pivoting.unit_random(hkeys, m + j)
         for i in range(m):
-            rQ[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
-    mbP = np.abs(rP)  # bounds on the size of each value (leaving_row)
-    mbQ = np.abs(rQ)
-    mags = np.empty(max(m, n))
-    wlabP = np.zeros(L)
-    wlabQ = np.zeros(L)
+            rQ[i] *= 1.0 + PERTURBATION * pivoting.unit_random(hkeys, i)
+    for j in range(n):  # bounds on the size of each value (leaving_row)
+        mbP[j] = abs(rP[j])
+    for i in range(m):
+        mbQ[i] = abs(rQ[i])
+    wlabP[:] = 0.0
+    wlabQ[:] = 0.0
     for j in range(n):
         wlabP[m + j] = abs(rP[j])
     for i in range(m):
         wlabQ[i] = abs(rQ[i])
-    wcolP = np.empty(m)
-    wcolQ = np.empty(n)
-    big = max(m, n)
-    col = np.empty(big)
-    prow = np.empty(big)
-    scratch = np.empty(big)
-    keys_ = np.empty(big)
-    cand = np.empty(big, dtype=np.int64)
-    free = np.zeros(L, dtype=np.bool_)
+    free[:] = False
     status = MAX_PIVOTS
     pivots = 0
     if not (place(TP, rP, mbP, bP, nP, posP, inP, startP, col, prow)
@@ -395,9 +493,10 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
         max_pivots = 0
     column_weights(nP, wlabP, wcolP)
     column_weights(nQ, wlabQ, wcolQ)
-    hkeys = pivoting.label_keys(2 * L)
+    pivoting.fill_label_keys(hkeys)
     h = pivoting.fingerprint(hkeys, bP, n) ^ pivoting.fingerprint(hkeys, bQ + L, m)
-    detector = pivoting.new_detector()
+    detector[:] = 0
+    hist = state[3:]
     entering = k
     side = 0 if not inP[k] else 1  # the tableau where label k is present (non-basic)
     while pivots < max_pivots:
@@ -414,14 +513,18 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
         if leaving < 0:
             status = NUMERICAL_FAILURE  # P and Q are bounded: a ray is rounding
             break
+        hist[pivots & (HISTORY - 1)] = leaving
         pivots += 1
         shift = 0 if side == 0 else L
         h, stop = pivoting.after_pivot(leaving + shift, entering + shift, k + shift, h, hkeys, detector)
+        entering = leaving
+        side = 1 - side
         if stop >= 0:
             status = stop
             break
-        entering = leaving
-        side = 1 - side
+    state[0] = entering
+    state[1] = side
+    state[2] = pivots
     x[:] = 0.0
     y[:] = 0.0
     for j in range(n):
@@ -436,24 +539,17 @@ def lh_path(Ap, Bp, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_tol, 
 
 
 @kernel
-def finite(A):
-    """Whether every entry of A is finite."""
-    for v in A.ravel():
-        if not abs(v) < np.inf:
-            return False
-    return True
-
-
-@kernel
-def lemke_howson(A, B, k, start, params, fbuf, ibuf):
+def lemke_howson(A, B, k, start, params, buf):
     """Lemke-Howson dropping label k, checked on the caller's (A, B); one kernel call per
     solve, its arguments packed (numba's dispatch costs per argument):
 
     - ``start`` (n + m): the basic labels to start from, those of P then those of Q (the
       slack labels ``m..m+n-1, 0..m-1``: the artificial equilibrium);
     - ``params``: ``(max_pivots, pivot_tol, tie_tol, tol)``;
-    - ``fbuf`` (m + n + 3) receives ``[x | y | regret, row payoff, column payoff]``,
-      ``ibuf`` (n + m) the final basic labels of P then Q (each part sorted).
+    - ``buf`` (2 (m + n) + 3 + STATE, one array: numpy allocates once) receives ``[x | y |
+      regret, row payoff, column payoff]``, then, as int64 (``buf[m + n + 3:].view``), the
+      final basic labels of P then Q, then the state of the last run (see
+      :func:`lh_path`: the exact continuation of the front starts from it).
 
     A path that cycles or breaks down is restarted with exact ties, then with a perturbed
     right-hand side.  Returns ``(status, pivots, restarts)``: ``SOLVED`` (checked),
@@ -461,17 +557,25 @@ def lemke_howson(A, B, k, start, params, fbuf, ibuf):
     front re-solves that basis), ``NOT_FINITE`` (nothing done), or the status of the last
     run."""
     m, n = A.shape
-    if not (finite(A) and finite(B)):
+    loA, hiA, okA = payoff_range(A)
+    loB, hiB, okB = payoff_range(B)
+    if not (okA and okB):
         return NOT_FINITE, 0, 0
+    L = m + n
+    big = max(m, n)
     max_pivots = int(params[0])
     pivot_tol, tie_tol, tol = params[1], params[2], params[3]
-    x = fbuf[:m]
-    y = fbuf[m : m + n]
-    out = fbuf[m + n :]
+    x = buf[:m]
+    y = buf[m:L]
+    out = buf[L : L + 3]
+    ibuf = buf[L + 3 :].view(np.int64)
     startP, startQ = start[:n], start[n:]
-    basisP, basisQ = ibuf[:n], ibuf[n:]
-    Ap = positive_payoffs(A)
-    Bp = positive_payoffs(B)
+    basisP, basisQ, state = ibuf[:n], ibuf[n:L], ibuf[L : L + STATE]
+    scale = np.array([loA, positive_scale(loA, hiA), loB, positive_scale(loB, hiB)])
+    F = np.empty(2 * m * n + 5 * L + 5 * big)
+    I = np.empty(5 * L + big, dtype=np.int64)
+    Z = np.empty(3 * L, dtype=np.bool_)
+    U = np.empty(2 * L + 3, dtype=np.uint64)
     pivots = 0
     restarts = 0
     status = NUMERICAL_FAILURE
@@ -481,18 +585,17 @@ def lemke_howson(A, B, k, start, params, fbuf, ibuf):
         if attempt > 0:
             restarts += 1
         tt = tie_tol if attempt == 0 else 0.0
-        status, p = lh_path(Ap, Bp, k, startP, startQ, attempt == 2, max_pivots - pivots,
-                            pivot_tol, tt, x, y, basisP, basisQ)
+        status, p = lh_path(A, B, scale, k, startP, startQ, attempt == 2, max_pivots - pivots,
+                            pivot_tol, tt, x, y, basisP, basisQ, state, F, I, Z, U)
         pivots += p
         if status == SOLVED or status == MAX_PIVOTS or pivots >= max_pivots:
             break
-    basisP.sort()  # the labels as sets: sorted, as GameBasis holds them
-    basisQ.sort()
     good = normalize(x) and normalize(y)
     if not good:
         out[0] = np.inf
         return (NUMERICAL_FAILURE if status == SOLVED else status), pivots, restarts
-    ok = check(A, B, x, y, tol, out)
+    ok = verdict(A, B, x, y, allowance(loA, hiA, m, n, tol), allowance(loB, hiB, m, n, tol),
+                 out, F[:n], I[:big])
     if status == SOLVED and not ok:
         status = UNCHECKED
     return status, pivots, restarts

@@ -98,34 +98,58 @@ def min_ratio(vals, mags, col, m, pivot_tol, tie_tol, cand, art, z0_max):
 
     ``art`` is the artificial variable's row (-1 when it is not basic) and ``z0_max`` the
     largest value it has had.  z0 is formed from terms of that size, so after many pivots
-    its rounding error is some 1e4 eps of z0_max (VALUE_ROUNDING = 1e-12  # a basic value is zero below this fraction of its terms' size
-Z0_ROUNDING = 1e-11, whatever tie_tol
+    its rounding error is some 1e4 eps of z0_max (Z0_ROUNDING = 1e-11, whatever tie_tol
     is); when it blocks within that of the minimum ratio it is tied, and then leaves: a z0
     that is zero to rounding ends the method instead of driving on through pivots whose
     ratios are all rounding."""
     cmax = 0.0
     for i in range(m):
         cmax = max(cmax, abs(col[i]))
-    thr = -pivot_tol * cmax
+    return blocking_rows(vals, mags, col, m, -pivot_tol * cmax, tie_tol, cand, art, z0_max)
+
+
+@kernel
+def blocking_rows(vals, mags, col, m, thr, tie_tol, cand, art, z0_max):
+    """:func:`min_ratio` given ``thr = -pivot_tol * max|col|`` (a method that has just read
+    the column computes it on the way), in one pass over the rows: the candidates tied with
+    the running minimum are kept and filtered when the minimum drops, which gives the same
+    rows in the same order as a pass for the minimum followed by a pass for the ties (a
+    row rejected against the running minimum is rejected against the final one; the
+    ratios are the same quotients, recomputed bit for bit)."""
+    # One return at the end: numba's reference-count pruning then removes the array
+    # arguments' increments (an early return with a loop defeats it: 8 atomic operations a call).
+    theta = np.inf
+    lim = np.inf
+    nc = 0
     if art >= 0 and vals[art] <= Z0_ROUNDING * z0_max and abs(col[art]) > -thr:
         # z0 is zero to rounding: the current point already solves the LCP; z0 leaves by a
         # degenerate pivot whatever the sign of its entry (the entering variable moves by
         # rounding only).
         cand[0] = art
-        return 1
-    theta = np.inf
+        theta = 0.0
+        nc = 1
+        m = 0  # skip the ratio test
     for i in range(m):
-        if col[i] < thr:
-            theta = min(theta, row_value(vals, mags, i, art, z0_max) / -col[i])
-    if not theta < np.inf:
-        return 0
-    lim = theta + tie_tol * theta
-    nc = 0
-    for i in range(m):
-        if col[i] < thr and row_value(vals, mags, i, art, z0_max) / -col[i] <= lim:
-            cand[nc] = i
+        # Every row's quotient is formed and the blocking test folded into one branch that
+        # is almost never taken (only by a new minimum or a tie): a branch on the sign of
+        # each entry would be mispredicted half the time.  A row that does not block gives
+        # any quotient (inf or NaN too), never used.
+        c = col[i]
+        t = row_value(vals, mags, i, art, z0_max) / -c
+        if (c < thr) & (t <= lim):
+            if t < theta:
+                theta = t
+                lim = theta + tie_tol * theta
+                kept = 0
+                for q in range(nc):
+                    j = cand[q]
+                    if row_value(vals, mags, j, art, z0_max) / -col[j] <= lim:
+                        cand[kept] = j
+                        kept += 1
+                nc = kept
+            cand[nc] = i  # t <= lim still: t is the new minimum, or it was not one
             nc += 1
-    return nc
+    return nc if theta < np.inf else 0
 
 
 @kernel
@@ -180,12 +204,18 @@ def label_keys(n_labels):
     """A fixed pseudo-random 64-bit key per label (splitmix64 of the label), for the basis
     fingerprint."""
     keys = np.empty(n_labels, dtype=np.uint64)
-    for lab in range(n_labels):
+    fill_label_keys(keys)
+    return keys
+
+
+@kernel
+def fill_label_keys(keys):
+    """:func:`label_keys` into ``keys`` (one per label)."""
+    for lab in range(keys.shape[0]):
         x = np.uint64(lab + 1) * np.uint64(0x9E3779B97F4A7C15)
         x = (x ^ (x >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
         x = (x ^ (x >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
         keys[lab] = x ^ (x >> np.uint64(31))
-    return keys
 
 
 @kernel
