@@ -1,23 +1,4 @@
 #!/usr/bin/env python
-"""What the first call costs: numba's compile, per entry point, in fresh processes.
-
-Usage::
-
-    python benchmarks/bench_compile.py [--runs 1] [--out benchmarks/RESULTS-compile.md]
-
-Every entry point (``solve_lcp`` with each method, a warm start, ``solve_lcp_batch``,
-``solve_lcp_many``, ``solve_mlcp``, ``solve_qp`` on its fused and its KKT-MLCP path,
-``solve_blcp``, ``solve_bimatrix``, the command line, and everything in one process) is
-run in a new Python process with an empty ``NUMBA_CACHE_DIR`` ("cold": what the first call
-after ``pip install`` costs), then again in a new process on the cache the first one filled
-("cached": every later first call).  Each child reports the seconds of ``import lemke`` and
-of its first call, and how many kernel signatures numba compiled (cache misses) and loaded
-(cache hits).
-
-"Shared" rows check that entry points share compiled kernels: the command line runs first
-on an empty cache, then the Python API in another process on that cache; a shared kernel
-is loaded there, not compiled again.
-"""
 from __future__ import annotations
 
 import json
@@ -47,9 +28,9 @@ def _stats():
 """
 
 _CALLS = {
-    "solve_lcp (tableau)": "lemke.solve_lcp(M, q)",
-    "solve_lcp (unrevised)": "lemke.solve_lcp(M, q, method='unrevised')",
+    "solve_lcp": "lemke.solve_lcp(M, q)",
     "warm start": "r = lemke.solve_lcp(M, q); lemke.solve_lcp(M, q + 1e-9, warm_start=r.warm_start)",
+    "solve_lcp (unrevised)": "lemke.solve_lcp(M, q, method='unrevised')",
     "solve_lcp_batch": "lemke.solve_lcp_batch(np.stack([M, M]), np.stack([q, q]))",
     "solve_lcp_many": "lemke.solve_lcp_many([M, M[:2, :2]], [q, q[:2]])",
     "solve_mlcp": ("lemke.solve_mlcp(np.array([[2.0]]), M, np.ones((1, 3)), np.ones((3, 1)), "
@@ -59,20 +40,22 @@ _CALLS = {
     "solve_blcp": "lemke.solve_blcp(M, q, -np.ones(3), np.ones(3))",
     "solve_bimatrix": "lemke.solve_bimatrix(M + 5, M.T + 5)",
 }
-_CALLS["everything"] = "; ".join(_CALLS.values())
 
 _CHILD = _STATS + r"""
 import time
 t0 = time.perf_counter()
+c0 = time.process_time()
 import numpy as np
 import lemke
 t1 = time.perf_counter()
+c1 = time.process_time()
 M = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]])
 q = np.array([-1.0, -2.0, 1.0])
 exec(sys.argv[1])
 t2 = time.perf_counter()
 hits, misses = _stats()
-print(json.dumps(dict(import_s=t1 - t0, call_s=t2 - t1, hits=hits, misses=misses)))
+print(json.dumps(dict(import_s=t1 - t0, call_s=t2 - t1, cpu_s=time.process_time() - c1, hits=hits,
+                      misses=misses)))
 """
 
 
@@ -93,56 +76,42 @@ def _cli(cache):
 
 def main(argv=None):
     parser, argv = report_parser(__doc__, "RESULTS-compile.md", argv)
-    parser.add_argument("--runs", type=int, default=1)
     args = parser.parse_args(argv)
     args.argv = argv
     info = machine_info()
     t_start = time.perf_counter()
-    rows = []
-    with tempfile.TemporaryDirectory(prefix="lemke-compile-") as root:
-        for run in range(args.runs):
+    first, again = [], []
+    with tempfile.TemporaryDirectory(prefix="lemke-compile-") as cache:
+        for rows in (first, again):
+            cli = _cli(cache)
+            rows.append(("command line `lemke solve`", cli))
+            print(f"CLI {cli['call_s']:.2f} s, stderr {cli['stderr']!r}", flush=True)
             for name, code in _CALLS.items():
-                cache = os.path.join(root, f"{run}-{len(rows)}")
-                os.mkdir(cache)
-                cold, cached = _child(code, cache), _child(code, cache)
-                rows.append((name, cold, cached))
-                print(f"{name:24s} cold {cold['call_s']:6.1f} s ({cold['misses']} compiled)  "
-                      f"cached {cached['call_s']:5.2f} s ({cached['misses']} compiled, "
-                      f"{cached['hits']} loaded)", flush=True)
-            cache = os.path.join(root, f"{run}-cli")
-            os.mkdir(cache)
-            cli_cold, cli_cached = _cli(cache), _cli(cache)
-            api = _child(_CALLS["solve_lcp (tableau)"], cache)
-            rows.append(("command line `lemke solve`", cli_cold, cli_cached))
-            rows.append(("solve_lcp after the CLI", api, None))
-            print(f"CLI cold {cli_cold['call_s']:.1f} s, stderr: {cli_cold['stderr']!r}; cached "
-                  f"{cli_cached['call_s']:.2f} s, stderr: {cli_cached['stderr']!r}; API after CLI: "
-                  f"{api['misses']} compiled, {api['hits']} loaded", flush=True)
+                r = _child(code, cache)
+                rows.append((name, r))
+                print(f"{name:24s} {r['call_s']:6.2f} s wall, {r['cpu_s']:6.2f} s CPU, "
+                      f"{r['misses']} compiled, {r['hits']} loaded", flush=True)
     mark_end(info)
     L = report_head("First calls: numba's compile per entry point", "bench_compile.py", args,
                     time.perf_counter() - t_start, info)
-    L += ["", "## First call per entry point", "",
-          "Each row is a new process; *cold* with an empty `NUMBA_CACHE_DIR` (the first call after "
-          "install), *cached* in a second new process on the cache the first one filled. "
-          "Seconds of the first call (after `import lemke`); *compiled* / *loaded* count kernel "
-          "signatures that numba compiled or took from the cache.", "",
-          "| entry point | cold: first call | compiled | cached: first call | compiled | loaded |",
-          "|---|---:|---:|---:|---:|---:|"]
-    for name, cold, cached in rows:
-        if cached is None:
-            L.append(f"| {name} (same cache) | {cold['call_s']:.2f} s | {cold['misses']} | | | "
-                     f"{cold['hits']} |")
-        elif "misses" not in cold:
-            L.append(f"| {name} (whole process) | {cold['call_s']:.1f} s | | {cached['call_s']:.2f} s | | |")
+    L += ["", "## Each entry point's first call, in this order, on one cache that starts empty", "",
+          "Every row is a new process.  *compiled*: kernel signatures numba compiled there (what "
+          "the entry points above did not already leave in the cache); *loaded*: taken from the "
+          "cache.  The second column group is a second pass on the filled cache.", "",
+          "| entry point | first call (wall) | CPU | compiled | loaded | cached: first call | compiled |",
+          "|---|---:|---:|---:|---:|---:|---:|"]
+    for (name, r), (_, r2) in zip(first, again):
+        if "misses" in r:
+            L.append(f"| {name} | {r['call_s']:.1f} s | {r['cpu_s']:.1f} s | {r['misses']} | {r['hits']} | "
+                     f"{r2['call_s']:.2f} s | {r2['misses']} |")
         else:
-            L.append(f"| {name} | {cold['call_s']:.1f} s | {cold['misses']} | {cached['call_s']:.3f} s | "
-                     f"{cached['misses']} | {cached['hits']} |")
-    imports = sorted(c["import_s"] for _, c, _ in rows if "import_s" in c)
-    L += ["", f"`import lemke`: median {imports[len(imports) // 2]:.2f} s over {len(imports)} processes "
-          "(nothing is compiled at import).", ""]
-    cli = [r for r in rows if r[0].startswith("command line")][-1]
-    L += [f"The command line's stderr on the cold run: `{cli[1]['stderr']}`; on the cached run: "
-          f"`{cli[2]['stderr'] or '(nothing)'}`.", ""]
+            L.append(f"| {name} (whole process) | {r['call_s']:.1f} s | | | | {r2['call_s']:.2f} s | |")
+    total = sum(r.get("cpu_s", 0.0) for _, r in first)
+    imports = sorted(r["import_s"] for _, r in first + again if "import_s" in r)
+    L += ["", f"CPU seconds of all the first calls together: {total:.0f} s.  `import lemke`: median "
+          f"{imports[len(imports) // 2]:.2f} s (nothing is compiled at import).", "",
+          f"The command line's stderr on the empty cache: `{first[0][1]['stderr'] or '(nothing)'}`; "
+          f"on the filled cache: `{again[0][1]['stderr'] or '(nothing)'}`.", ""]
     with open(args.out, "w") as f:
         f.write("\n".join(L) + "\n")
     print(f"wrote {args.out}")
