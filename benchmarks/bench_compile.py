@@ -1,4 +1,20 @@
 #!/usr/bin/env python
+"""What the first call costs: numba's compile, per entry point, in fresh processes.
+
+Usage::
+
+    python benchmarks/bench_compile.py [--out benchmarks/RESULTS-compile.md]
+
+The entry points run one after another, each in a new Python process, on one numba cache
+directory that starts empty (``NUMBA_CACHE_DIR``): the command line ``lemke solve`` first
+(README's install-and-run command: the first call after ``pip install``), then
+``solve_lcp``, a warm start, the unrevised method, ``solve_lcp_batch``, ``solve_lcp_many``,
+``solve_mlcp``, ``solve_qp`` on its fused and its KKT-MLCP path, ``solve_blcp`` and
+``solve_bimatrix``.  Each process reports the seconds of ``import lemke`` and of its first
+call (wall and CPU), and how many kernel signatures numba compiled (cache misses: what it
+did not share with the entry points before it) and loaded (cache hits).  A second pass runs
+every entry point again on the filled cache.
+"""
 from __future__ import annotations
 
 import json

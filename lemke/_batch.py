@@ -168,7 +168,7 @@ def batch_arrays(M, q):
     elif M.ndim != 3 or M.shape != (B, n, n):
         raise ValueError(f"M must have shape ({B}, {n}, {n}) or ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
     # Never a view the kernels could write through: they only read.
-    return np.ascontiguousarray(M), np.ascontiguousarray(q)
+    return _validate.kernel_array(M), _validate.kernel_array(q)
 
 
 def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> list:

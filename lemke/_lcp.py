@@ -66,7 +66,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     if (d is None and type(M) is np.ndarray and type(q) is np.ndarray
             and M.dtype is _F64 and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
             and M.shape[0] == M.shape[1] == q.shape[0] and method in cold.METHODS
-            and M.flags.c_contiguous
+            and M.flags.c_contiguous and q.flags.c_contiguous and M.flags.writeable and q.flags.writeable
             and (warm_start is None or (type(warm_start) is WarmStart and warm_start.n == q.shape[0]))):
         # The common case in one kernel call (which checks that M and q are finite); no
         # copies: the data are float64 already, and the kernels never write to them.
@@ -79,6 +79,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             return res  # else M or q is not finite: the validation below says where
     _validate.method(method, METHODS)
     M, q, d = _validate.lcp(M, q, d)
+    M, q = _validate.kernel_array(M), _validate.kernel_array(q)
     opts = as_options(options)
     _validate.warm_start(warm_start, WarmStart, q.size,
                          "warm_start is for a problem of size {ws}, this one has n = {n}")

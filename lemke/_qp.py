@@ -280,20 +280,24 @@ def _absent(n):
     return np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
 
 
+def _kernel_array(x):
+    """float64, C-contiguous and writable (see ``_validate.kernel_array``)."""
+    return _validate.kernel_array(np.asarray(x, dtype=np.float64))
+
+
 def _plain_args(P, q, G, h, A, b, lb, ub):
     """The arguments as float64 C-contiguous arrays of exactly the shapes the fused kernel
     takes (column vectors flattened and absent constraints empty, as in
     :func:`qpsolvers_form`), or None when any is in another form: the full validation then
     converts it or raises.  Values are not looked at (``kernels.qp.screen`` does that)."""
     try:
-        f64 = np.float64
-        q = np.ascontiguousarray(q, dtype=f64)
+        q = _kernel_array(q)
         if q.ndim == 2 and q.shape[1] == 1:
             q = q.reshape(-1)
         n = q.shape[0] if q.ndim == 1 else 0
         if n == 0:
             return None
-        P = np.ascontiguousarray(P, dtype=f64)
+        P = _kernel_array(P)
         if P.shape != (n, n):
             if not (n == 1 and P.size == 1 and P.ndim <= 1):
                 return None
@@ -304,8 +308,8 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
             if M is None and v is None:
                 out += [no_rows, no_rhs]
                 continue
-            M = np.ascontiguousarray(M, dtype=f64)
-            v = np.ascontiguousarray(v, dtype=f64)
+            M = _kernel_array(M)
+            v = _kernel_array(v)
             if v.ndim == 2 and v.shape[1] == 1:
                 v = v.reshape(-1)
             if M.ndim != 2 or v.ndim != 1 or M.shape != (v.shape[0], n):
@@ -315,7 +319,7 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
             if v is None:
                 out.append(absent)
                 continue
-            v = np.ascontiguousarray(v, dtype=f64)
+            v = _kernel_array(v)
             if v.ndim == 2 and v.shape[1] == 1:
                 v = v.reshape(-1)
             if v.shape != (n,):

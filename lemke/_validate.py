@@ -34,6 +34,14 @@ def real_array(x, name: str, allow_inf: int = 0) -> np.ndarray:
     return a
 
 
+def kernel_array(a: np.ndarray) -> np.ndarray:
+    """``a`` as the kernels take it: C-contiguous and writable (a copy only when it is not).
+    numba compiles a kernel once per array type, and a read-only or strided array is
+    another type: normalizing here keeps one compiled kernel for every entry point (the
+    kernels never write to their input)."""
+    return a if a.flags.c_contiguous and a.flags.writeable else np.array(a, order="C")
+
+
 def square_matrix(M, name: str = "M") -> np.ndarray:
     """A square, C-contiguous float64 ``M`` (dense or scipy.sparse)."""
     a = real_array(M, name)
