@@ -14,7 +14,8 @@ that a task holds about 1 ms ... 1 s of solving (measured on one thread first). 
 ``--rounds`` interleaved rounds; every Dask result is compared bit for bit with the
 one-machine result.  On one machine Dask can only add cost (the same cores, plus
 scheduling, pickling and the copies between processes); the table shows that cost per
-task, which a cluster's extra machines must repay.
+task, which a cluster's extra machines must repay.  Each problem here has its own M
+(n x n doubles), so the chunks' data are shipped to the worker processes too.
 """
 from __future__ import annotations
 

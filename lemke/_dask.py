@@ -78,19 +78,20 @@ def solve_lcp_batch_dask(M, q, *, method="tableau", options=None, warm_start=Non
             client = distributed.get_client()
         except ValueError:
             raise ValueError("no Dask client: pass client= or create a distributed.Client first") from None
+    shared = M.shape[0] == 1
+    if B == 0:
+        return solve_lcp_batch(M[0] if shared else M, q, method=method, options=opts, workers=1)
     if chunk_size is None:
         threads = max(1, sum(client.nthreads().values()))
         chunk_size = max(1, math.ceil(B / (4 * threads)))
-    shared = M.shape[0] == 1
-    M_all = client.scatter(M[0], broadcast=True) if shared and B else None
-    futures = []
-    for lo in range(0, B, chunk_size):
-        hi = min(B, lo + chunk_size)
-        futures.append(client.submit(_chunk, M_all if shared else M[lo:hi], q[lo:hi], method, opts,
-                                     None if ws is None else ws[lo:hi], pure=False))
+    M_all = client.scatter(M[0], broadcast=True) if shared else None
+    bounds = [(lo, min(B, lo + chunk_size)) for lo in range(0, B, chunk_size)]
+    # The chunks' data go to the workers as data (scatter), not inside the task graph.
+    qs = client.scatter([q[lo:hi] for lo, hi in bounds])
+    Ms = [M_all] * len(bounds) if shared else client.scatter([M[lo:hi] for lo, hi in bounds])
+    futures = [client.submit(_chunk, Mc, qc, method, opts, None if ws is None else ws[lo:hi], pure=False)
+               for (lo, hi), Mc, qc in zip(bounds, Ms, qs)]
     parts = client.gather(futures)
-    if not parts:
-        return solve_lcp_batch(M if not shared else M[0], q, method=method, options=opts, workers=1)
     arrays = [np.concatenate([getattr(p, f) for p in parts]) for f in ("z", "w", "status", "pivots", "residual")]
     for a in arrays:
         a.setflags(write=False)
