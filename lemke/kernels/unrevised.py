@@ -101,17 +101,14 @@ def direction(A, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
 
 
 @kernel
-def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
-          refactor_every=REFACTOR_EVERY):
+def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """Lemke's method from the complementary basis with z_i basic where z_start[i].
 
     ``A`` = [M | d] (n x (n + 1)) and q, in the scaled units of tableau.solve; the
     artificial variable's column must be positive in the coordinates of that basis.  ``G0``
     is the inverse of the starting block A[z_start, z_start] when the caller has it, else
     an empty array.  Returns ``(status, pivots)``; x_out gets z and z0, ray_out the ray on
-    RAY_TERMINATION and z_basic_out the final set of basic z's.  G is refactored every
-    ``refactor_every`` pivots (1: the basis is re-derived from the index sets at every
-    pivot, the accurate run of kernels.cold's last recovery).
+    RAY_TERMINATION and z_basic_out the final set of basic z's.
     """
     n = q.shape[0]
     art = 2 * n
@@ -197,7 +194,7 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
             k -= 1  # the block lost a row and a column
         pivots += 1
         since_refactor += 1
-        if not ok or since_refactor >= refactor_every:
+        if not ok or since_refactor >= REFACTOR_EVERY:
             since_refactor = 0
             if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
@@ -222,14 +219,14 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
 
 @kernel
 def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
-          z_basic_out, refactor_every=REFACTOR_EVERY):
+          z_basic_out):
     """Lemke's method from the basis ``z_start`` on (M, q) with covering vector d, on the
     equilibrated system of ``linalg.scaled_system`` (R, C: the row and column scales;
     ``G0``: the inverse of the starting block in those units, or an empty array).  Outputs
     as ``lemke``, in the caller's units."""
     A, qs, d_scale = scaled_system(M, q, d, R, C)
     status, pivots = lemke(A, qs, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
-                           z_basic_out, refactor_every)
+                           z_basic_out)
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
