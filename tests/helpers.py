@@ -65,6 +65,15 @@ def assert_ray(M, q, d, z, z0, ray, rtol=1e-8):
     dz, dz0 = ray[:n], ray[n]
     scale = np.abs(ray).max()
     assert scale > 0, "the ray direction is zero"
+    # dz = 0 is the primary ray (z = 0, z0 growing), which every LCP has: no certificate.
+    # Measured where dz acts, on du = M dz + d dz0, row by row (so that no scaling of the
+    # rows or columns changes the verdict): in some row |M_i.| |dz| must not be negligible
+    # next to d_i dz0.  (A genuine ray with dz0 > 0 has du_i = 0 where dz_i > 0, so there
+    # |M_i.| |dz| >= d_i dz0.)
+    assert np.abs(dz).max() > 0, "the ray only moves z0 (dz = 0: the primary ray)"
+    if dz0 > 0:
+        reach = np.abs(M) @ np.abs(dz)
+        assert np.any(reach > rtol * np.abs(d) * dz0), "the ray only moves z0 (dz is rounding next to dz0: the primary ray)"
     assert dz.min() >= -rtol * scale and dz0 >= -rtol * scale, "the ray leaves z >= 0"
     u = M @ z + q + d * z0
     du = M @ dz + d * dz0

@@ -116,6 +116,24 @@ def test_infeasible_problems_end_on_a_checked_ray(M, q, method):
     assert lemke.is_lcp_ray(M, q, res.covering, res.z, res.z0, res.ray)
 
 
+@pytest.mark.parametrize("dz", [0.0, 1e-17], ids=["zero", "rounding"])
+def test_the_primary_ray_is_no_certificate(dz):
+    # (z, z0) = (0, 1) + t (dz, 1) with dz = 0 is the primary ray of LCP(1, -1): every LCP
+    # has one, and it proves nothing (z = 1 solves this one).  A dz that is rounding next to
+    # dz0 is the same ray.
+    M, q, d = np.array([[1.0]]), np.array([-1.0]), np.ones(1)
+    assert not lemke.is_lcp_ray(M, q, d, np.zeros(1), 1.0, np.array([dz, 1.0]))
+    with pytest.raises(AssertionError, match="primary ray"):
+        assert_ray(M, q, d, np.zeros(1), 1.0, np.array([dz, 1.0]))
+
+
+def test_a_ray_in_a_zero_column_is_a_certificate():
+    # LCP(0, -1) has no feasible point; z grows along the ray with w = -1 + z0 fixed.
+    M, q, d = np.array([[0.0]]), np.array([-1.0]), np.ones(1)
+    assert lemke.is_lcp_ray(M, q, d, np.zeros(1), 1.0, np.array([1.0, 0.0]))
+    assert_ray(M, q, d, np.zeros(1), 1.0, np.array([1.0, 0.0]))
+
+
 def test_psd_ray_is_a_farkas_certificate(method):
     # For PSD M a secondary ray proves infeasibility: y = dz >= 0 with M'y <= 0, q'y < 0.
     M = np.array([[1.0, -1.0], [-1.0, 1.0]])
