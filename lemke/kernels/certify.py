@@ -113,6 +113,16 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     primary ray too.  (On a contact pile of issue 11 rounding brought the unrevised method
     back to the primary ray after 80 pivots: dz = 0 exactly, z = 0.)
 
+    **z0 must not be rounding where the ray moves.**  Along a secondary ray u_i = 0 in every
+    row with dz_i > 0, so there ``w_i = (M z + q)_i = -d_i z0 < 0``: z0 is what keeps the
+    start from being a solution, and ``dz'q + dz'M z = -z0 dz'd < 0`` is the separation the
+    infeasibility proof rests on.  So in each such row w_i must be negative beyond the
+    row's allowance, ``w_i < -s_u``; if it is not, z0 was read as zero in the very rows
+    that carry the proof, and the ray certifies nothing.  (Measured on two contact steps
+    with solutions: z0 = 1.6e-14 and 6e-14 on rows whose q is itself rounding, -2e-14; the
+    ray moved a z_j with w_j = 0, u_j = d_j z0 within its allowance; every other condition
+    held.)
+
     As for a point, the rounding of the data is allowed for: entries of the direction below
     that bound are read as zero, so is dz0 when d dz0 is below g times the size of M dz,
     and u may miss by the rounding floor of q (in the row-equilibrated units, as there)."""
@@ -163,10 +173,12 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     ru = np.empty(n)
     rdu = np.empty(n)
     u = np.empty(n)
+    w = np.empty(n)
     du = np.empty(n)
     for i in range(n):
         mz, sz = dot_and_size(M[i], z, n)
-        u[i] = q[i] + mz + d[i] * z0
+        w[i] = q[i] + mz
+        u[i] = w[i] + d[i] * z0
         ru[i] = abs(q[i]) + sz + abs(d[i] * z0)
         md, sd = dot_and_size(M[i], dz, n)
         du[i] = md + d[i] * dz0
@@ -183,4 +195,6 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
             return False
         if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t, no_floor):
             return False
+        if di > 0.0 and not w[i] < -s_u and abs(di) > zero_size(M, rdu, i, t, no_floor):
+            return False  # z0 is rounding in a row the ray moves: no certificate (docstring)
     return True
