@@ -24,7 +24,9 @@ formed from, plus the rounding of forming it:
   vector (``check_farkas``) and a direction of unbounded descent (``check_direction``):
   normalized to largest entry 1, each condition against ``tol`` times the data's size,
   times ``RAY_SLACK`` (a direction is formed by subtracting two points, each accepted with
-  the point allowance).
+  the point allowance).  The LCP ray is judged row by row like an LCP point instead
+  (``kernels/certify.py``), and its z part must be non-zero next to the whole direction:
+  a direction that only moves z0 is the primary ray, which every LCP has.
 """
 from __future__ import annotations
 
@@ -71,10 +73,11 @@ def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
 
     With ``u = M z + q + d z0`` and ``du = M dz + d dz0`` this asks, row by row (each row
     against the size of its own terms, as :func:`is_lcp_solution` does): the direction is
-    non-zero and non-negative, u and du are non-negative, and every pair stays
-    complementary along the ray (z_i and dz_i are zero, or u_i and du_i are).  For
-    copositive-plus M (positive semidefinite M included) such a ray proves that the LCP has
-    no feasible point.
+    non-negative and its z part dz is non-zero (not rounding next to the rest of the
+    direction, dz0 included: dz = 0 is the primary ray, which every LCP has), u and du are
+    non-negative, and every pair stays complementary along the ray (z_i and dz_i are zero,
+    or u_i and du_i are).  For copositive-plus M (positive semidefinite M included) such a
+    ray proves that the LCP has no feasible point.
     """
     M = square_matrix(M)
     n = M.shape[0]

@@ -60,11 +60,21 @@ def assert_lcp_solution_rowwise(M, q, z, rtol=1e-8):
 def assert_ray(M, q, d, z, z0, ray, rtol=1e-8):
     """Assert that (z, z0) + t * ray stays almost complementary and feasible for all t >= 0."""
     M = np.asarray(M, dtype=float)
+    q, d, z = (np.asarray(a, dtype=float) for a in (q, d, z))
     n = len(q)
     ray = np.asarray(ray, dtype=float)
     dz, dz0 = ray[:n], ray[n]
     scale = np.abs(ray).max()
     assert scale > 0, "the ray direction is zero"
+    # dz = 0 is the primary ray (z = 0, z0 growing), which every LCP has: no certificate.
+    # Measured where dz acts, on du = M dz + d dz0, row by row (so that no scaling of the
+    # rows or columns changes the verdict): in some row |M_i.| |dz| must not be negligible
+    # next to d_i dz0.  (A genuine ray with dz0 > 0 has du_i = 0 where dz_i > 0, so there
+    # |M_i.| |dz| >= d_i dz0.)
+    assert np.abs(dz).max() > 0, "the ray only moves z0 (dz = 0: the primary ray)"
+    if dz0 > 0:
+        reach = np.abs(M) @ np.abs(dz)
+        assert np.any(reach > rtol * np.abs(d) * dz0), "the ray only moves z0 (dz is rounding next to dz0: the primary ray)"
     assert dz.min() >= -rtol * scale and dz0 >= -rtol * scale, "the ray leaves z >= 0"
     u = M @ z + q + d * z0
     du = M @ dz + d * dz0
@@ -74,6 +84,14 @@ def assert_ray(M, q, d, z, z0, ray, rtol=1e-8):
     assert du.min() >= -rtol * du_scale, "w decreases along the ray"
     for a, b, sa, sb in ((z, u, 1.0, u_scale), (z, du, 1.0, du_scale), (dz, u, scale, u_scale), (dz, du, scale, du_scale)):
         assert np.max(np.abs(a * b)) <= rtol * max(sa, np.abs(z).max()) * sb, "complementarity fails along the ray"
+    # Where the ray moves z (dz_i > 0), u_i = 0, so w_i = (M z + q)_i = -d_i z0 < 0: z0 is
+    # what keeps the start from being a solution there, and the infeasibility proof rests
+    # on it (dz'q + dz'M z = -z0 dz'd).  A w_i that is not clearly negative (z0 rounding in
+    # that row) certifies nothing.
+    w = M @ z + q
+    moved = np.flatnonzero(dz > rtol * np.abs(dz).max())
+    size = np.abs(M[moved]) @ np.abs(z) + np.abs(q[moved]) + np.abs(d[moved]) * z0
+    assert np.all(w[moved] < -rtol * size), f"z0 is rounding in rows {moved[w[moved] >= -rtol * size][:5]} that the ray moves"
 
 
 def _bounds(n, lb, ub):

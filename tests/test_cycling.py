@@ -39,7 +39,6 @@ not the end of the test session.
 from __future__ import annotations
 
 import atexit
-import contextlib
 import functools
 import json
 import os
@@ -119,21 +118,6 @@ DART = [c for c in BASE_CASES if c.family == "dart"]
 SWEPT = [c for c in BASE_CASES if c.family in ("murty", "siconos", "drake")]
 
 
-@contextlib.contextmanager
-def open_on_piles(key):
-    """Known open in issue 11 (measured in its note): the "pile" scene of contact_sim (20
-    bodies fallen into each other, deep overlaps, up to ~600 redundant contact rows) has
-    steps where every run of the recovery ladder ends NUMERICAL_FAILURE or on an unchecked
-    ray.  A failure on those steps (and their scaled copies) is reported as xfail; on every
-    other case the assertions stand."""
-    try:
-        yield
-    except (AssertionError, pytest.fail.Exception) as e:
-        if "contact/pile-" in key:
-            pytest.xfail(f"open in issue 11 (contact pile step): {str(e)[:200]}")
-        raise
-
-
 @pytest.mark.parametrize("tie_tol", SWEEP, ids=_tie_id)
 @pytest.mark.parametrize("case", DART, ids=_ids(DART))
 def test_dart(case, tie_tol, method):
@@ -179,8 +163,7 @@ def test_integer_matrices(case, method):
 
 @pytest.mark.parametrize("case", SCALED_CASES, ids=_ids(SCALED_CASES))
 def test_scaled_copies(case, method):
-    with open_on_piles(case.key):
-        _scaled_copy(case, method)
+    _scaled_copy(case, method)
 
 
 def _scaled_copy(case, method):
@@ -219,8 +202,7 @@ CONTACT = [c for c in BASE_CASES if c.family == "contact"]
 def test_contact_steps(case, method):
     # Copositive, with z'q >= 0 on SOL(0, M) (contact_sim's docstring): Lemke with a
     # lexicographic rule cannot end on a ray, so every step must be SOLVED.
-    with open_on_piles(case.key):
-        check(case, solve(case.key, method, _options(case)))
+    check(case, solve(case.key, method, _options(case)))
 
 
 def test_contact_generator_is_deterministic_and_varied():
@@ -257,8 +239,7 @@ def _may_diverge(key):
 
 @pytest.mark.parametrize("key, options", SAME_PATH)
 def test_methods_follow_the_same_path(key, options):
-    with open_on_piles(key):
-        _same_path(key, options)
+    _same_path(key, options)
 
 
 def _same_path(key, options):

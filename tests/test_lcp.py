@@ -116,6 +116,37 @@ def test_infeasible_problems_end_on_a_checked_ray(M, q, method):
     assert lemke.is_lcp_ray(M, q, res.covering, res.z, res.z0, res.ray)
 
 
+@pytest.mark.parametrize("dz", [0.0, 1e-17], ids=["zero", "rounding"])
+def test_the_primary_ray_is_no_certificate(dz):
+    # (z, z0) = (0, 1) + t (dz, 1) with dz = 0 is the primary ray of LCP(1, -1): every LCP
+    # has one, and it proves nothing (z = 1 solves this one).  A dz that is rounding next to
+    # dz0 is the same ray.
+    M, q, d = np.array([[1.0]]), np.array([-1.0]), np.ones(1)
+    assert not lemke.is_lcp_ray(M, q, d, np.zeros(1), 1.0, np.array([dz, 1.0]))
+    with pytest.raises(AssertionError, match="primary ray"):
+        assert_ray(M, q, d, np.zeros(1), 1.0, np.array([dz, 1.0]))
+
+
+def test_a_ray_with_z0_rounding_where_it_moves_is_no_certificate():
+    # z = (1, 0) solves LCP(M, q); (z, z0) + t e_2 with z0 = 5e-16 satisfies every
+    # condition of a ray within rounding, but in the row the ray moves w_2 = 0 (u_2 = z0 is
+    # read as zero there): z0 is rounding where the infeasibility proof needs it.  On two
+    # contact steps (issue 11) such a ray was accepted on problems with solutions.
+    M, q, d = np.array([[1.0, 0.0], [0.0, 0.0]]), np.array([-1.0, 0.0]), np.ones(2)
+    z, z0, ray = np.array([1.0, 0.0]), 5e-16, np.array([0.0, 1.0, 0.0])
+    assert lemke.is_lcp_solution(M, q, z)
+    assert not lemke.is_lcp_ray(M, q, d, z, z0, ray)
+    with pytest.raises(AssertionError, match="z0 is rounding"):
+        assert_ray(M, q, d, z, z0, ray)
+
+
+def test_a_ray_in_a_zero_column_is_a_certificate():
+    # LCP(0, -1) has no feasible point; z grows along the ray with w = -1 + z0 fixed.
+    M, q, d = np.array([[0.0]]), np.array([-1.0]), np.ones(1)
+    assert lemke.is_lcp_ray(M, q, d, np.zeros(1), 1.0, np.array([1.0, 0.0]))
+    assert_ray(M, q, d, np.zeros(1), 1.0, np.array([1.0, 0.0]))
+
+
 def test_psd_ray_is_a_farkas_certificate(method):
     # For PSD M a secondary ray proves infeasibility: y = dz >= 0 with M'y <= 0, q'y < 0.
     M = np.array([[1.0, -1.0], [-1.0, 1.0]])

@@ -97,11 +97,35 @@ def lcp_check_sized(M, q, z, tol, w, R):
 def lcp_ray_check(M, q, d, z, z0, ray, tol):
     """Whether ``(z, z0) + t ray`` (t >= 0) is a secondary ray of the augmented system
     ``u = M z + q + d z0``, judged row by row as :func:`lcp_check_sized` judges a solution:
-    the direction is non-zero and non-negative, u and du = M dz + d dz0 stay non-negative,
-    and in every pair either z_i and dz_i are zero or u_i and du_i are.  As there, the
-    rounding of the data is allowed for: entries of the direction below
-    ``(n + 3) eps max|ray|`` are read as zero, and u may miss by the rounding floor of q (in
-the row-equilibrated units, as there)."""
+    the direction is non-negative and its z part dz is non-zero, u and du = M dz + d dz0
+    stay non-negative, and in every pair either z_i and dz_i are zero or u_i and du_i are.
+
+    **dz must not be zero.**  A direction with dz = 0 is the *primary* ray (z = 0, z0
+    growing from its start; complementarity with du = d dz0 > 0 forces z = 0 there), which
+    every LCP has and which proves nothing.  Lemke's method leaves it at its first pivot and
+    never comes back in exact arithmetic; the proof that a secondary ray certifies
+    infeasibility (copositive-plus M: dz' M dz = -dz0 dz'd <= 0 gives dz0 = 0, then
+    (M + M') dz = 0 and dz'q < 0 separates q from the feasible set) needs dz >= 0, dz != 0.
+    In floating point "non-zero" is measured against the whole direction: in the
+    equilibrated units (z = C z~, and z0 in the units where the covering column R d has
+    largest entry 1) an entry of dz below ``g = (n + 3) eps`` times the largest entry of
+    the direction, dz0 included, is rounding, so a dz that is rounding next to dz0 is the
+    primary ray too.  (On a contact pile of issue 11 rounding brought the unrevised method
+    back to the primary ray after 80 pivots: dz = 0 exactly, z = 0.)
+
+    **z0 must not be rounding where the ray moves.**  Along a secondary ray u_i = 0 in every
+    row with dz_i > 0, so there ``w_i = (M z + q)_i = -d_i z0 < 0``: z0 is what keeps the
+    start from being a solution, and ``dz'q + dz'M z = -z0 dz'd < 0`` is the separation the
+    infeasibility proof rests on.  So in each such row w_i must be negative beyond the
+    row's allowance, ``w_i < -s_u``; if it is not, z0 was read as zero in the very rows
+    that carry the proof, and the ray certifies nothing.  (Measured on two contact steps
+    with solutions: z0 = 1.6e-14 and 6e-14 on rows whose q is itself rounding, -2e-14; the
+    ray moved a z_j with w_j = 0, u_j = d_j z0 within its allowance; every other condition
+    held.)
+
+    As for a point, the rounding of the data is allowed for: entries of the direction below
+    that bound are read as zero, so is dz0 when d dz0 is below g times the size of M dz,
+    and u may miss by the rounding floor of q (in the row-equilibrated units, as there)."""
     n = q.shape[0]
     g = (n + 3) * EPS
     t = tol + g
@@ -113,23 +137,31 @@ the row-equilibrated units, as there)."""
     R = np.empty(n)
     C = np.empty(n)
     equilibrate(M, q, R, C)
-    # Rounding in the direction: an entry of dz below g times the largest (in the
-    # equilibrated units of the columns) is zero; so is dz0 when its contribution d dz0 is
-    # below g times the size of M dz (dz0 has the units of z0, not of z).
-    top = 0.0
+    # Rounding in the direction: an entry of dz below g times the largest entry of the
+    # direction (in the equilibrated units of the columns, dz0 included in the units where
+    # the covering column R d has largest entry 1) is zero; so is dz0 when its contribution
+    # d dz0 is below g times the size of M dz (dz0 has the units of z0, not of z).
+    d_max = 0.0
+    d_top = 0.0
+    for i in range(n):
+        d_max = max(d_max, abs(d[i]))
+        d_top = max(d_top, R[i] * abs(d[i]))
+    top = abs(ray[n]) * d_top
     for j in range(n):
         top = max(top, abs(ray[j]) / C[j])
     dz = np.empty(n + 1)
+    nonzero = False
     for j in range(n):
         dz[j] = ray[j] if abs(ray[j]) / C[j] > g * top else 0.0
+        nonzero |= dz[j] != 0.0
+    if not nonzero:
+        return False  # dz = 0 (to rounding): the primary ray, no certificate (docstring)
     mdz = 0.0
-    d_max = 0.0
     for i in range(n):
         mdz = max(mdz, dot_and_size(M[i], dz, n)[1])
-        d_max = max(d_max, abs(d[i]))
     dz[n] = ray[n] if abs(ray[n]) * d_max > g * mdz else 0.0
     dz0 = dz[n]
-    if dz0 < 0.0 or (top == 0.0 and dz0 == 0.0):
+    if dz0 < 0.0:
         return False
     q_top = 0.0
     for i in range(n):
@@ -141,10 +173,12 @@ the row-equilibrated units, as there)."""
     ru = np.empty(n)
     rdu = np.empty(n)
     u = np.empty(n)
+    w = np.empty(n)
     du = np.empty(n)
     for i in range(n):
         mz, sz = dot_and_size(M[i], z, n)
-        u[i] = q[i] + mz + d[i] * z0
+        w[i] = q[i] + mz
+        u[i] = w[i] + d[i] * z0
         ru[i] = abs(q[i]) + sz + abs(d[i] * z0)
         md, sd = dot_and_size(M[i], dz, n)
         du[i] = md + d[i] * dz0
@@ -161,4 +195,6 @@ the row-equilibrated units, as there)."""
             return False
         if (di < 0.0 or (di > 0.0 and not flat)) and abs(di) > zero_size(M, rdu, i, t, no_floor):
             return False
+        if di > 0.0 and not w[i] < -s_u and abs(di) > zero_size(M, rdu, i, t, no_floor):
+            return False  # z0 is rounding in a row the ray moves: no certificate (docstring)
     return True

@@ -41,7 +41,11 @@ until one ends solved and checked.  Recovery runs of the tableau are *careful*: 
    defeats both on one problem.
 
 A run that ends solved replaces one that did not even when its check fails (the front then
-recomputes the point from its final basis); a run that ends on a checked ray replaces a
+recomputes the point from its final basis); it also replaces one that ended solved and
+failed the check when only its own final basis gives a point that passes (the recomputation
+the front would do, :func:`basis_point`, tried here on both: on a scaled copy of a contact
+pile step, issue 11, the first run's basis was wrong and the first recovery run's right,
+and the later one was thrown away); a run that ends on a checked ray replaces a
 failed one (with its covering vector, which the result reports), but the ladder goes on in
 case a later run solves.  A checked ray of the first run stops the ladder: it is the
 verdict on the default covering vector.  A run that stops otherwise (a ray, the pivot cap, a cycle) at a point that passes
@@ -190,6 +194,25 @@ def retry_covering(step, q, R, cov):
     return False
 
 
+@kernel
+def basis_checks(M, q, z_basic, tol, R):
+    """Whether the point of the complementary basis with z_i basic where ``z_basic[i]``
+    (:func:`basis_point`, one LU solve on the caller's data) passes the check: what the
+    front does with a run that ends SOLVED on a point that fails it."""
+    n = q.shape[0]
+    beta = np.empty(n, dtype=np.int64)
+    k = 0
+    for i in range(n):
+        if z_basic[i]:
+            beta[k] = i
+            k += 1
+    z = np.empty(n)
+    w = np.empty(n)
+    if not basis_point(M, q, beta, k, z):
+        return False
+    return lcp_check_sized(M, q, z, tol, w, R)[0]
+
+
 @inline_kernel
 def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
@@ -239,6 +262,10 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             if ok2:
                 code2 = pivoting.SOLVED
             take = code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)
+            if (not take and code2 == pivoting.SOLVED and code == pivoting.SOLVED and not ok
+                    and not basis_checks(M, q, z_basic, tol, R)
+                    and basis_checks(M, q, z_basic2, tol, R)):
+                take = True  # both failed the check, only this one's basis gives a point
             if (not take and not have_ray and code2 == pivoting.RAY_TERMINATION
                     and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
                 take = have_ray = True  # kept while no later run solves

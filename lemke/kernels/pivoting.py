@@ -101,7 +101,9 @@ def min_ratio(vals, mags, col, m, pivot_tol, tie_tol, cand, art, z0_max):
     its rounding error is some 1e4 eps of z0_max (Z0_ROUNDING = 1e-11, whatever tie_tol
     is); when it blocks within that of the minimum ratio it is tied, and then leaves: a z0
     that is zero to rounding ends the method instead of driving on through pivots whose
-    ratios are all rounding."""
+    ratios are all rounding.  Only if the basis it leaves behind is still feasible to
+    rounding (:func:`z0_leaves_harmlessly`): otherwise z0's value is read as it is, not as
+    zero, and the ratio test takes its row like any other (the plain minimum ratio rule)."""
     cmax = 0.0
     for i in range(m):
         cmax = max(cmax, abs(col[i]))
@@ -122,13 +124,16 @@ def blocking_rows(vals, mags, col, m, thr, tie_tol, cand, art, z0_max):
     lim = np.inf
     nc = 0
     if art >= 0 and vals[art] <= Z0_ROUNDING * z0_max and abs(col[art]) > -thr:
-        # z0 is zero to rounding: the current point already solves the LCP; z0 leaves by a
-        # degenerate pivot whatever the sign of its entry (the entering variable moves by
-        # rounding only).
-        cand[0] = art
-        theta = 0.0
-        nc = 1
-        m = 0  # skip the ratio test
+        if z0_leaves_harmlessly(vals, mags, col, m, art, z0_max):
+            # z0 is zero to rounding: the current point already solves the LCP; z0 leaves
+            # by a degenerate pivot whatever the sign of its entry (the entering variable
+            # moves by rounding only).
+            cand[0] = art
+            theta = 0.0
+            nc = 1
+            m = 0  # skip the ratio test
+        else:
+            z0_max = 0.0  # not rounding after all: z0's own value takes part in the test
     for i in range(m):
         # Every row's quotient is formed and the blocking test folded into one branch that
         # is almost never taken (only by a new minimum or a tie): a branch on the sign of
@@ -150,6 +155,30 @@ def blocking_rows(vals, mags, col, m, thr, tie_tol, cand, art, z0_max):
             cand[nc] = i  # t <= lim still: t is the new minimum, or it was not one
             nc += 1
     return nc if theta < np.inf else 0
+
+
+@kernel
+def z0_leaves_harmlessly(vals, mags, col, m, art, z0_max):
+    """Whether z0, small enough to be rounding (below ``Z0_ROUNDING z0_max``), may leave at
+    once.  Pivoting it out moves the entering variable by ``t = z0 / -col[art]``, and the
+    basis it leaves behind is feasible only if that moves no other basic variable below
+    zero by more than rounding: by more than its own (``VALUE_ROUNDING mags_i``) or than
+    z0's (``Z0_ROUNDING z0_max``, the level at which z0 itself was read as zero; the
+    kernels' units are equilibrated, so every row has the same scale).  Then
+    ``max(v_i, 0) + t col_i >= -(VALUE_ROUNDING mags_i + Z0_ROUNDING z0_max)`` for every
+    row.  It fails when col[art] is tiny next to the other rows' entries: on the contact
+    piles (issue 11) z0 = 3e-11 with col[art] = -3e-10 moved the entering variable by 0.1
+    and drove a degenerate row to -0.1; the final basis was then singular to working
+    precision (cond 2e11) and its point failed the check.  Then z0 is not read as rounding
+    (see min_ratio) and the ratio test decides as for any other row."""
+    t = vals[art] / -col[art]
+    slack = Z0_ROUNDING * z0_max
+    for i in range(m):
+        if i != art:
+            change = t * col[i]
+            if change < 0.0 and max(vals[i], 0.0) + VALUE_ROUNDING * max(mags[i], 0.0) + slack < -change:
+                return False
+    return True
 
 
 @kernel
