@@ -37,11 +37,8 @@ def _executor():
 
 
 def _workers(workers) -> int:
-    if workers is None:
-        return usable_cores()
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ValueError(f"workers must be a positive integer or None, got {workers!r}")
-    return int(workers)
+    workers = _validate.positive_int_or_none(workers, "workers")
+    return usable_cores() if workers is None else workers
 
 
 def _run(kernel, args, tail, B, workers):
@@ -167,7 +164,6 @@ def batch_arrays(M, q):
         M = M[None]
     elif M.ndim != 3 or M.shape != (B, n, n):
         raise ValueError(f"M must have shape ({B}, {n}, {n}) or ({n}, {n}) to match q of shape {q.shape}, got {M.shape}")
-    # Never a view the kernels could write through: they only read.
     return _validate.kernel_array(M), _validate.kernel_array(q)
 
 

@@ -70,9 +70,7 @@ def solve_lcp_batch_dask(M, q, *, method="tableau", options=None, warm_start=Non
     B, n = q.shape
     _bases(warm_start, B, [n] * B)  # bad warm starts raise here, naming the problem
     ws = None if warm_start is None else list(warm_start)
-    if chunk_size is not None and (isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer))
-                                   or chunk_size < 1):
-        raise ValueError(f"chunk_size must be a positive integer or None, got {chunk_size!r}")
+    chunk_size = _validate.positive_int_or_none(chunk_size, "chunk_size")
     if client is None:
         try:
             client = distributed.get_client()

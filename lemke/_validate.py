@@ -309,6 +309,15 @@ def symmetric_psd(P):
     return Ps
 
 
+def positive_int_or_none(value, name: str):
+    """``value`` as an int, or None; anything else (a bool, a float, zero) is a ValueError."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"{name} must be a positive integer or None, got {value!r}")
+    return int(value)
+
+
 def method(name, methods) -> None:
     """``name`` must be one of ``methods``."""
     if name not in methods:
