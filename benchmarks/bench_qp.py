@@ -1,5 +1,5 @@
-"""Random dense strictly convex QPs: lemke.solve_qp against quadprog, daqp, proxsuite (ProxQP)
-and piqp through qpsolvers, interleaved in one run.
+"""Random dense strictly convex QPs: lemke.solve_qp against quadprog, daqp, proxsuite (ProxQP),
+piqp, Clarabel and OSQP through qpsolvers (their default settings), interleaved in one run.
 
 Each problem (n = 10, 50, 200 by default): P = B B'/n + 1e-3 I, m = n inequalities and
 n/5 equalities that a random point satisfies, and a box around that point (qpsolvers'
@@ -24,7 +24,7 @@ from bench_lcp import mark_end, machine_info, publish, report_head, report_parse
 import lemke  # noqa: E402
 from lemke.problems import random_convex_qp  # noqa: E402
 
-PEERS = ("quadprog", "daqp", "proxqp", "piqp")
+PEERS = ("quadprog", "daqp", "proxqp", "piqp", "clarabel", "osqp")
 
 
 def main(argv=None):
@@ -44,6 +44,7 @@ def main(argv=None):
         qpsolvers, peers = None, []
     missing = [s for s in PEERS if s not in peers]
     rng = np.random.default_rng(2026)
+    order_rng = np.random.default_rng(2027)  # the call orders: the problems do not depend on the peers installed
     lemke.solve_qp(*random_convex_qp(5, rng))  # compile / load the kernels outside the timing
     rows = []
     for n in args.sizes:
@@ -54,7 +55,7 @@ def main(argv=None):
             prob = random_convex_qp(n, rng)
             calls = [lambda: lemke.solve_qp(*prob)]
             calls += [lambda s=s: qpsolvers.solve_qp(*prob, solver=s) for s in peers]
-            times, results = time_interleaved(calls, args.reps, rng=rng)
+            times, results = time_interleaved(calls, args.reps, rng=order_rng)
             res = results[0][0]
             pivots.append(res.pivots)
             if not res.success:
