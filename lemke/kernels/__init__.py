@@ -10,6 +10,13 @@ and the methods is inlined into its callers at numba's IR level.  A ``kernel`` i
 into an LLVM module of its own, and every kernel that calls it links that module into its
 own and optimizes and generates machine code for all of it again, so each level of plain
 kernels between an entry point and the methods would compile the methods once more.
+
+**No literal constants as arguments of kernels.**  numba types a constant argument (``0``,
+``False``, and a variable that holds one at the call, such as ``k = 0`` before a loop) as a
+literal type and compiles the callee, and everything it calls, once more for that value: an
+``invert_in_place(G, 0)`` beside ``invert_in_place(G, k)`` doubled the compile of the
+unrevised method's whole tree.  Pass ``np.int64(0)``, ``np.False_`` or ``np.True_``
+instead (typed int64 and bool).
 """
 from numba import njit
 

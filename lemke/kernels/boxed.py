@@ -155,7 +155,7 @@ def exchange_labels(T, r, s, col, basis, nonbasic, pos, is_basic, scratch):
     """Pivot the tableau on (r, s) (``tableau.pivot``, nothing pending) and swap the
     labels: the label of column s enters in row r, the label of row r goes to column s."""
     rhs, magb, U, V, act, prow, _ = scratch
-    tableau.pivot(T, rhs, magb, r, s, col, U, V, 0, prow, act)
+    tableau.pivot(T, rhs, magb, r, s, col, U, V, np.int64(0), prow, act)
     pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
 
 

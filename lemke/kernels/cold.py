@@ -147,21 +147,26 @@ def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, caref
 @inline_kernel
 def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful):
     """:func:`pivot_once`, then the recoveries of the module docstring while it cycles.
-    Returns ``(status, pivots, recoveries)``; the pivots of every run are counted."""
-    code, pivots = pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, careful)
-    recoveries = 0
-    if code == pivoting.CYCLING and tie_tol > 0.0:
+    Returns ``(status, pivots, recoveries)``; the pivots of every run are counted.  One
+    call site of :func:`pivot_once` in a loop over the attempts: each site inlines both
+    methods' set-up, and three of them made this the largest part of the compile."""
+    code = pivoting.CYCLING
+    pivots = 0
+    recoveries = -1
+    tt = tie_tol
+    for attempt in range(3):
+        if attempt > 0:
+            if code != pivoting.CYCLING or (attempt == 1 and tie_tol <= 0.0):
+                continue  # attempt 1 only with a tie tolerance to drop; 2 while it cycles
+            tt = 0.0
+            if attempt == 2:
+                n = q.shape[0]
+                cov = layout(n, buf)[3]
+                keys = pivoting.label_keys(n)
+                for i in range(n):
+                    cov[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
         recoveries += 1
-        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
-        pivots += p
-    if code == pivoting.CYCLING:
-        recoveries += 1
-        n = q.shape[0]
-        cov = layout(n, buf)[3]
-        keys = pivoting.label_keys(n)
-        for i in range(n):
-            cov[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
-        code, p = pivot_once(method, M, q, 0.0, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
+        code, p = pivot_once(method, M, q, tt, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
         pivots += p
     return code, pivots, recoveries
 
@@ -201,7 +206,7 @@ def basis_checks(M, q, z_basic, tol, R):
     front does with a run that ends SOLVED on a point that fails it."""
     n = q.shape[0]
     beta = np.empty(n, dtype=np.int64)
-    k = 0
+    k = np.int64(0)  # not a literal 0: see kernels/__init__.py
     for i in range(n):
         if z_basic[i]:
             beta[k] = i
@@ -231,50 +236,61 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     if code < 0:
         return code, 0, 0, code == TRIVIAL, 0.0, 0
     z_basic = np.empty(n, dtype=np.bool_)
-    code, pivots, recoveries = pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol,
-                                                buf, z_basic, False)
     x, ray, w, cov, R, C = layout(n, buf)
-    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
-    if ok and code != pivoting.SOLVED:
-        # The point where the method stopped (a "ray" or a cap reached with z0 zero to
-        # rounding) passes the check on the caller's data: it is a solution.
-        code = pivoting.SOLVED
-    if d.shape[0] == 0 and not (code == pivoting.SOLVED and ok) and pivots < max_pivots:
-        buf2 = np.empty_like(buf)  # only on the failure path: no allocation when solved
-        z_basic2 = np.empty(n, dtype=np.bool_)
-        other = UNREVISED if method == TABLEAU else TABLEAU
-        have_ray = False  # buf holds a checked ray of a retry
-        for step in range(RETRIES):
-            if (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
-                break
+    code, ok, residual = pivoting.MAX_PIVOTS, False, 0.0
+    pivots = 0
+    recoveries = 0
+    other = UNREVISED if method == TABLEAU else TABLEAU
+    buf2, z_basic2 = buf, z_basic  # the recovery runs' own, allocated only when one runs
+    have_ray = False  # buf holds a checked ray of a retry
+    # The first run (step -1) and the recovery runs (steps 0 .. RETRIES - 1) share one call
+    # of pivot_recovering: every call site inlines both methods' set-up.
+    for step in range(-1, RETRIES):
+        if step == -1:
+            run_method, run_buf, run_basic, ptol, ttol, careful = (
+                method, buf, z_basic, pivot_tol, tie_tol, np.False_)
+        else:
+            if d.shape[0] != 0 or (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
+                break  # a caller's covering vector gets no recovery runs
             if step == 0 and code == pivoting.RAY_TERMINATION and lcp_ray_check(
                     M, q, cov, x[:n], x[n], ray, tol):
                 break  # a checked ray of the first run: a verdict, not a failure
+            if step == 0:
+                buf2 = np.empty_like(buf)  # only on the failure path: no allocation when solved
+                z_basic2 = np.empty(n, dtype=np.bool_)
             buf2[:] = buf
-            x2, ray2, w2, cov2, R2, C2 = layout(n, buf2)
-            exact = retry_covering(step, q, R, cov2)
-            code2, pivots2, rec2 = pivot_recovering(
-                other if step == RETRIES - 1 else method, M, q, max_pivots - pivots,
-                0.0 if exact else pivot_tol, 0.0 if exact else tie_tol, buf2, z_basic2, True)
-            pivots += pivots2
-            recoveries += rec2 + 1
-            ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
-            if ok2:
-                code2 = pivoting.SOLVED
-            take = code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)
-            if (not take and code2 == pivoting.SOLVED and code == pivoting.SOLVED and not ok
-                    and not basis_checks(M, q, z_basic, tol, R)
-                    and basis_checks(M, q, z_basic2, tol, R)):
-                take = True  # both failed the check, only this one's basis gives a point
-            if (not take and not have_ray and code2 == pivoting.RAY_TERMINATION
-                    and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
-                take = have_ray = True  # kept while no later run solves
-            elif take:
-                have_ray = False
-            if take:
-                buf[:] = buf2
-                z_basic[:] = z_basic2
-                code, ok, residual = code2, ok2, residual2
+            exact = retry_covering(step, q, R, layout(n, buf2)[3])
+            run_method = other if step == RETRIES - 1 else method
+            ptol = 0.0 if exact else pivot_tol
+            ttol = 0.0 if exact else tie_tol
+            run_buf, run_basic, careful = buf2, z_basic2, np.True_
+        code2, pivots2, rec2 = pivot_recovering(run_method, M, q, max_pivots - pivots, ptol,
+                                                ttol, run_buf, run_basic, careful)
+        pivots += pivots2
+        x2, ray2, w2, cov2, R2, C2 = layout(n, run_buf)
+        ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
+        if ok2:
+            # The point where the method stopped (a "ray" or a cap reached with z0 zero to
+            # rounding) passes the check on the caller's data: it is a solution.
+            code2 = pivoting.SOLVED
+        if step == -1:
+            code, ok, residual, recoveries = code2, ok2, residual2, rec2
+            continue
+        recoveries += rec2 + 1
+        take = code2 == pivoting.SOLVED and (ok2 or code != pivoting.SOLVED)
+        if (not take and code2 == pivoting.SOLVED and code == pivoting.SOLVED and not ok
+                and not basis_checks(M, q, z_basic, tol, R)
+                and basis_checks(M, q, z_basic2, tol, R)):
+            take = True  # both failed the check, only this one's basis gives a point
+        if (not take and not have_ray and code2 == pivoting.RAY_TERMINATION
+                and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
+            take = have_ray = True  # kept while no later run solves
+        elif take:
+            have_ray = False
+        if take:
+            buf[:] = buf2
+            z_basic[:] = z_basic2
+            code, ok, residual = code2, ok2, residual2
     if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
         ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)
     k = 0

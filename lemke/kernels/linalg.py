@@ -264,7 +264,8 @@ def invert_in_place(G, k):
     if _block_probe(G, k) != 0.0:
         return False
     piv = np.empty(k, dtype=np.int64)
-    j = 0
+    j = np.int64(0)  # not a literal 0: see kernels/__init__.py
+    start = np.int64(0)
     while j < k:
         # Pivot j: the largest entry of column j (up to date) in rows j..k-1.
         p = _pivot_row(G, j, k, 0.0)
@@ -283,7 +284,7 @@ def invert_in_place(G, k):
                 f = rowr[j]
                 if f != 0.0:
                     rowr[j] = 0.0
-                    _row_update(rowr, f, rowj, 0, k)
+                    _row_update(rowr, f, rowj, start, k)
             break
         # Pivot j + 1 from column j + 1 as pivot j will leave it: G[r, j + 1] - G[r, j] h.
         h = rowj[j + 1]
@@ -295,7 +296,7 @@ def invert_in_place(G, k):
         row1 = G[j + 1]  # eliminate pivot j from it, then scale it
         f1 = row1[j]
         row1[j] = 0.0
-        _row_update(row1, f1, rowj, 0, k)
+        _row_update(row1, f1, rowj, start, k)
         d1 = 1.0 / row1[j + 1]
         row1[j + 1] = 1.0
         for c in range(k):
@@ -309,12 +310,12 @@ def invert_in_place(G, k):
             f = rowr[j]
             g = rowr[j + 1] - f * h
             if f != 0.0 or g != 0.0:
-                _row_update2(rowr, f, rowj, g, row1, 0, k)
+                _row_update2(rowr, f, rowj, g, row1, start, k)
                 rowr[j] = -f * rowj[j] - g * row1[j]
                 rowr[j + 1] = -g * row1[j + 1]
         # Row j last (the pass above read it as pivot j left it).
         rowj[j + 1] = 0.0
-        _row_update(rowj, h, row1, 0, k)
+        _row_update(rowj, h, row1, start, k)
         j += 2
     # The rows were swapped on the way: swap the inverse's columns back, in reverse order.
     for j in range(k - 1, -1, -1):
@@ -341,11 +342,12 @@ def solve(H, b):
     A = np.empty((k, k))
     y = np.empty(k)
     for r in range(k):
-        A[r, :] = H[r, :]
+        for c in range(k):
+            A[r, c] = H[r, c]
         y[r] = b[r]
     if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
         return False, x
-    j = 0
+    j = np.int64(0)
     while j < k:
         p = _pivot_row(A, j, k, 0.0)
         if p < 0:

@@ -55,7 +55,7 @@ def current_column(T, U, V, k, s, col):
         col[i] = entry(T, U, V, k, i, s)
 
 
-@kernel
+@inline_kernel
 def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
     """Exchange the basic variable of row r with the non-basic variable of column s (whose
     current values are in ``col``), with k pivots pending; returns the new number pending.
@@ -98,7 +98,7 @@ def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
     return k
 
 
-@kernel
+@inline_kernel
 def flush(T, U, V, k, act):
     """Apply the k pending pivots, row by row, four at a time (the terms of a row with a
     zero factor are skipped, as an immediate update would skip them).  ``act``: scratch of
@@ -126,7 +126,7 @@ def flush(T, U, V, k, act):
             c += 1
 
 
-@kernel
+@inline_kernel
 def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
                artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags, careful):
     """The row that blocks the entering column (current values in ``col``), or -1 when
@@ -205,7 +205,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     U = np.empty((n, block))
     V = np.empty((block, n + 1))
     act = np.empty(block, dtype=np.int64)
-    k = 0  # pivots pending
+    k = np.int64(0)  # pivots pending (not a literal 0: see kernels/__init__.py)
     ray_out[:] = 0.0
 
     status = MAX_PIVOTS

@@ -114,10 +114,12 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     art = 2 * n
     alist = np.empty(n, dtype=np.int64)  # H's rows: the non-basic w's
     blist = np.empty(n, dtype=np.int64)  # H's columns: the basic z's (n stands for z0)
-    apos = np.full(n, -1, dtype=np.int64)
-    bpos = np.full(n + 1, -1, dtype=np.int64)
+    apos = np.empty(n, dtype=np.int64)
+    apos[:] = -1
+    bpos = np.empty(n + 1, dtype=np.int64)
+    bpos[:] = -1
     AB = np.empty((n, n))  # AB[:, c] = A[:, blist[c]]
-    k = 0
+    k = np.int64(0)  # not a literal 0: see kernels/__init__.py
     for i in range(n):
         if z_start[i]:
             alist[k] = i
@@ -253,7 +255,7 @@ def gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm):
     return m
 
 
-@kernel
+@inline_kernel
 def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, tie_tol,
                rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, z0_max):
     """The leaving variable's label, or -1 when nothing blocks: pivoting's rule over the
@@ -288,7 +290,7 @@ def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, t
     return rlab[pivoting.largest_pivot(cand, rc, nc)] if nc > 0 else -1
 
 
-@kernel
+@inline_kernel
 def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
     """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``.
     Returns False when the update's pivot is too small to trust (then refactor)."""
