@@ -169,8 +169,8 @@ def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
     done = 0
     while True:
         best = 0.0
-        br = -1
-        bs = -1
+        br = np.int64(-1)  # not literals: see kernels/__init__.py
+        bs = np.int64(-1)
         for j in range(n):
             if want[j] and not is_basic[n + j] and is_basic[j]:
                 a = abs(T[pos[j], pos[n + j]])
@@ -204,7 +204,7 @@ def ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo
     bounds of each row's basic variable.  ``low[r]`` tells whether row r's variable stops
     at its lower bound (else its upper)."""
     art_lab = 2 * n
-    art = pos[art_lab] if is_basic[art_lab] else -1
+    art = pos[art_lab] if is_basic[art_lab] else np.int64(-1)  # not a literal: kernels/__init__.py
     for i in range(n):  # written to compile to selects: this loop runs every pivot
         c = sigma * col[i]
         v = x[basis[i]]
@@ -480,7 +480,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     if code < 0:
         return code, 0, 0.0, False, np.inf, 0, 0
     z_hi[:] = warm_hi
-    cold = True
+    cold = np.True_  # not a literal: see kernels/__init__.py
     for i in range(n):
         cold = cold and not (warm_hi[i] or warm_basic[i])
     z0s = start_point(lo, hi, z_hi, q, cold, n)

@@ -238,7 +238,7 @@ def place(T, rhs, magb, basis, nonbasic, pos, is_basic, target, col, prow):
         if is_basic[lab]:
             continue
         s = pos[lab]
-        best = -1
+        best = np.int64(-1)  # not a literal: see kernels/__init__.py
         big = 0.0
         for i in range(n):
             if not want[basis[i]] and abs(T[i, s]) > big:
@@ -465,7 +465,7 @@ def lh_path(A, B, scale, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_
     inP, inQ, free = Z[:L], Z[L : 2 * L], Z[2 * L : 3 * L]
     hkeys, detector = U[: 2 * L], U[2 * L : 2 * L + 3]
     tableau_setup(B, scale[2], scale[3], TP, rP, bP, nP, posP, inP, m)
-    tableau_setup(A.T, scale[0], scale[1], TQ, rQ, bQ, nQ, posQ, inQ, 0)
+    tableau_setup(A.T, scale[0], scale[1], TQ, rQ, bQ, nQ, posQ, inQ, np.int64(0))
     slackP[:] = bP
     slackQ[:] = bQ
     if perturb:
@@ -504,12 +504,12 @@ def lh_path(A, B, scale, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_
         # every array variable that is reassigned, which costs more than a small pivot.
         if side == 0:
             leaving = step(TP, rP, mbP, bP, nP, posP, inP, slackP, wlabP, wcolP, entering,
-                           False, free, -1, 0.0, pivot_tol, tie_tol, col, prow, cand, keys_,
-                           scratch, mags)
+                           np.False_, free, np.int64(-1), 0.0, pivot_tol, tie_tol, col, prow,
+                           cand, keys_, scratch, mags)
         else:
             leaving = step(TQ, rQ, mbQ, bQ, nQ, posQ, inQ, slackQ, wlabQ, wcolQ, entering,
-                           False, free, -1, 0.0, pivot_tol, tie_tol, col, prow, cand, keys_,
-                           scratch, mags)
+                           np.False_, free, np.int64(-1), 0.0, pivot_tol, tie_tol, col, prow,
+                           cand, keys_, scratch, mags)
         if leaving < 0:
             status = NUMERICAL_FAILURE  # P and Q are bounded: a ray is rounding
             break
@@ -713,9 +713,9 @@ def trace(A, B, p, q, max_pivots, pivot_tol, tie_tol, tol, x, y, basis_out, out)
     entering = istar
     z0_max = 1.0
     while pivots < max_pivots:
-        art = pos[Z0] if inb[Z0] else -1
+        art = pos[Z0] if inb[Z0] else np.int64(-1)  # not a literal: kernels/__init__.py
         leaving = step(T, rhs, magb, basis, nonbasic, pos, inb, start, wlab, wcol, entering,
-                       True, free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys,
+                       np.True_, free, art, z0_max, pivot_tol, tie_tol, col, prow, cand, keys,
                        scratch, mags)
         if leaving < 0:
             status = RAY_TERMINATION if leaving == -1 else NUMERICAL_FAILURE

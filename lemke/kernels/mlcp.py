@@ -59,7 +59,7 @@ def exchange(T, r, c, row_label, col_label, prow):
 def enter_free(T, c, n, rank_tol, row_label, col_label, prow):
     """The free variable of column c enters in place of the slack of an equation, the one
     with the largest entry in that column, if that entry exceeds rank_tol."""
-    best, r_best = 0.0, -1
+    best, r_best = 0.0, np.int64(-1)  # not a literal: see kernels/__init__.py
     for r in range(T.shape[0]):
         if row_label[r] < n and abs(T[r, c]) > best:
             best, r_best = abs(T[r, c]), r
@@ -87,7 +87,7 @@ def reduce(T, n, rank_tol, e_size, row_label, col_label):
         # Free columns still non-basic and rows of pair variables: for each such row, its
         # largest entry over those columns.
         best = 0.0
-        r_best, k_col, k_row = -1, -1, -1
+        r_best, k_col, k_row = np.int64(-1), np.int64(-1), np.int64(-1)  # see kernels/__init__.py
         for i in range(N):
             li = row_label[i]
             if li < n or (N <= li < N + n):
@@ -100,7 +100,7 @@ def reduce(T, n, rank_tol, e_size, row_label, col_label):
                 continue
             # This row's pair partner is non-basic in some column j.
             partner = li - N if li >= N else li + N
-            j = -1
+            j = np.int64(-1)  # not a literal: see kernels/__init__.py
             for c in range(N):
                 if col_label[c] == partner:
                     j = c
@@ -113,7 +113,7 @@ def reduce(T, n, rank_tol, e_size, row_label, col_label):
         if r_best < 0:
             break
         exchange(T, r_best, k_col, row_label, col_label, prow)
-        c_best, cbest = -1, 0.0
+        c_best, cbest = np.int64(-1), 0.0  # not a literal: see kernels/__init__.py
         for c in range(N):
             if N <= col_label[c] < N + n and abs(T[k_row, c]) > cbest:
                 cbest, c_best = abs(T[k_row, c]), c

@@ -133,7 +133,7 @@ def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
     nothing blocks (a ray): the rule of :mod:`lemke.kernels.pivoting`, with the columns of
     the basis inverse read off the tableau."""
     n = T.shape[0]
-    art = pos[artificial] if is_basic[artificial] else -1
+    art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
     # The size of the terms behind each value, |B^-1| |q|, for the rule's test of "zero to
     # rounding".  Only when ``careful`` (the recovery runs of kernels.cold): magb bounds it
     # from above (updated with every pivot), so only a row whose value is below

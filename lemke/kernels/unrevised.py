@@ -261,7 +261,7 @@ def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, t
     """The leaving variable's label, or -1 when nothing blocks: pivoting's rule over the
     basic variables gathered in (rlab, rv, rc)."""
     art = 2 * n
-    r_art = m - 1 if m > 0 and rlab[m - 1] == art else -1
+    r_art = m - 1 if m > 0 and rlab[m - 1] == art else np.int64(-1)  # see kernels/__init__.py
     if r_art >= 0:
         z0_max[0] = max(z0_max[0], rv[r_art])
     nc = pivoting.min_ratio(rv, rm, rc, m, pivot_tol, tie_tol, cand, r_art, z0_max[0])
