@@ -157,3 +157,36 @@ def test_status_prints_its_name():
     assert lemke.Status.SOLVED == 0 and int(lemke.Status.CYCLING) == 6
     r = lemke.solve_lcp([[1.0]], [-1.0])
     assert len(repr(r)) < 120
+
+
+def _kernel_names():
+    """The names of every function decorated ``@kernel`` or ``@inline_kernel`` (or an
+    ``@njit(...)``) in lemke/kernels."""
+    names = set()
+    for path in (PACKAGE / "kernels").glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.FunctionDef) and node.decorator_list:
+                names.add(node.name)
+    return names
+
+
+def _is_literal_number(node):
+    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+        node = node.operand
+    return isinstance(node, ast.Constant) and isinstance(node.value, (bool, int))
+
+
+def test_no_kernel_gets_a_literal_constant_argument():
+    """numba compiles a kernel, and all it calls, once more for every literal constant it
+    is passed (kernels/__init__.py): kernels pass np.int64(0), np.False_, np.True_."""
+    kernels = _kernel_names()
+    bad = []
+    for path in (PACKAGE / "kernels").glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if not isinstance(node, ast.Call):
+                continue
+            f = node.func
+            name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else None
+            if name in kernels and any(_is_literal_number(a) for a in node.args):
+                bad.append(f"{path.name}:{node.lineno} {name}")
+    assert not bad, "literal constants passed to kernels: " + ", ".join(bad)
