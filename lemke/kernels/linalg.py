@@ -137,8 +137,8 @@ def equilibrate(M, q, R, C):
     R[:] = 1.0
     C[:] = 1.0
     cq = pow2_scale(absmax(q, n))  # q's own size never unbalances anything
-    rmax = np.empty(n)
-    cmax = np.empty(n)
+    work = np.empty(2 * n)  # one allocation (it costs about as much as a sweep at small n)
+    rmax, cmax = work[:n], work[n:]
     for sweep in range(EQUILIBRATE_SWEEPS):
         rmax[:] = 0.0
         cmax[:] = 0.0
@@ -180,8 +180,9 @@ def scaled_system(M, q, d, R, C):
     for i in range(n):
         d_scale = max(d_scale, abs(d[i]) * R[i])
     inv_d = 1.0 / d_scale
-    A = np.empty((n, n + 1))
-    qs = np.empty(n)
+    work = np.empty(n * (n + 2))  # one allocation for both
+    A = work[: n * (n + 1)].reshape((n, n + 1))
+    qs = work[n * (n + 1) :]
     for i in range(n):
         r = R[i]
         for j in range(n):

@@ -54,7 +54,7 @@ pivot.  A kernel that detects a cycle stops with ``CYCLING``; the driver
 """
 import numpy as np
 
-from . import kernel
+from . import inline_kernel, kernel
 
 SOLVED = 0
 MAX_PIVOTS = 1
@@ -181,7 +181,7 @@ def z0_leaves_harmlessly(vals, mags, col, m, art, z0_max):
     return True
 
 
-@kernel
+@inline_kernel
 def row_value(vals, mags, i, art, z0_max):
     """Row i's value for the ratio test: 0 when negative or zero to rounding (below
     VALUE_ROUNDING of its terms' size; for the artificial variable's row ``art``, below
@@ -268,7 +268,7 @@ def new_detector():
     return np.zeros(3, dtype=np.uint64)
 
 
-@kernel
+@inline_kernel
 def repeats(state, h):
     """Feed the fingerprint h of the basis after a pivot; True when a basis repeated."""
     if state[1] > 0 and h == state[0]:
@@ -281,7 +281,7 @@ def repeats(state, h):
     return False
 
 
-@kernel
+@inline_kernel
 def after_pivot(leaving, entering, artificial, h, hkeys, detector):
     """The end of every pivot, in both methods: ``(h, stop)`` with the basis fingerprint h
     updated for ``entering`` replacing ``leaving``, and stop SOLVED when the artificial
@@ -294,7 +294,7 @@ def after_pivot(leaving, entering, artificial, h, hkeys, detector):
     return h, -1
 
 
-@kernel
+@inline_kernel
 def swap_labels(basis, nonbasic, pos, is_basic, r, s):
     """The bookkeeping of a pivot on row r and column s: the label of column s enters the
     basis at row r, the label of row r leaves for column s.  Returns the leaving label."""

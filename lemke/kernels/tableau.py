@@ -37,7 +37,7 @@ def block_size(n):
     return 1 if n < 400 else 8
 
 
-@kernel
+@inline_kernel
 def entry(T, U, V, k, i, j):
     """The current T[i, j]: T[i, j] plus the k pending terms, in pivot order."""
     t = T[i, j]
@@ -48,7 +48,7 @@ def entry(T, U, V, k, i, j):
     return t
 
 
-@kernel
+@inline_kernel
 def current_column(T, U, V, k, s, col):
     """col = the current column s."""
     for i in range(T.shape[0]):
@@ -190,21 +190,24 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     """
     n = T.shape[0]
     artificial = 2 * n
-    pos = np.empty(2 * n + 1, dtype=np.int64)
+    # Four allocations for the whole run (each one costs about as much as a small pivot):
+    # the float, int, bool and key work arrays are views of one array each.
+    F = np.empty(6 * n + 1 + block * (2 * n + 1))
+    keys, col, q0, magb, mags = F[:n], F[n : 2 * n], F[2 * n : 3 * n], F[3 * n : 4 * n], F[4 * n : 5 * n]
+    prow = F[5 * n : 6 * n + 1]
+    U = F[6 * n + 1 : 6 * n + 1 + n * block].reshape((n, block))
+    V = F[6 * n + 1 + n * block :].reshape((block, n + 1))
+    I = np.empty(4 * n + 1 + block, dtype=np.int64)
+    pos, start_basis, cand, act = I[: 2 * n + 1], I[2 * n + 1 : 3 * n + 1], I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 :]
     is_basic = np.zeros(2 * n + 1, dtype=np.bool_)
-    start_basis = basis.copy()
+    H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
+    hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]
+    start_basis[:] = basis
     for i in range(n):
         pos[basis[i]] = i
         is_basic[basis[i]] = True
     for j in range(n + 1):
         pos[nonbasic[j]] = j
-    cand = np.empty(n, dtype=np.int64)
-    keys = np.empty(n, dtype=np.float64)
-    prow = np.empty(n + 1, dtype=np.float64)
-    col = np.empty(n, dtype=np.float64)
-    U = np.empty((n, block))
-    V = np.empty((block, n + 1))
-    act = np.empty(block, dtype=np.int64)
     k = np.int64(0)  # pivots pending (not a literal 0: see kernels/__init__.py)
     ray_out[:] = 0.0
 
@@ -217,13 +220,13 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     if r < 0:
         max_pivots = 0
         status = NUMERICAL_FAILURE
-    hkeys = pivoting.label_keys(2 * n + 1)
+    pivoting.fill_label_keys(hkeys)
     h = pivoting.fingerprint(hkeys, basis, n)
-    detector = pivoting.new_detector()
+    detector[:] = 0
     z0_max = 0.0
-    q0 = rhs.copy()  # the right-hand side of the starting basis
-    magb = np.abs(rhs)
-    mags = np.empty(n)
+    for i in range(n):
+        q0[i] = rhs[i]  # the right-hand side of the starting basis
+        magb[i] = abs(rhs[i])
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
@@ -276,8 +279,8 @@ def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic
     """
     n = q.shape[0]
     T, rhs, d_scale = scaled_system(M, q, d, R, C)
-    basis = np.empty(n, dtype=np.int64)
-    nonbasic = np.empty(n + 1, dtype=np.int64)
+    labels = np.empty(2 * n + 1, dtype=np.int64)  # one allocation for both
+    basis, nonbasic = labels[:n], labels[n:]
     for i in range(n):
         basis[i] = i
         nonbasic[i] = n + i
