@@ -5,6 +5,8 @@ from __future__ import annotations
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from itertools import chain, repeat
+from operator import attrgetter
 
 import numpy as np
 
@@ -57,21 +59,48 @@ def _run(kernel, args, tail, B, workers):
 
 
 def _bases(warm_start, B, sizes):
-    """The warm starts as one index array and offsets (an empty basis: cold)."""
+    """The warm starts as one index array and offsets (an empty basis: cold), and the list of
+    them (None when not given).  ``sizes``: the problems' sizes, a list."""
     if warm_start is None:
-        return np.zeros(0, dtype=np.int64), np.zeros(B + 1, dtype=np.int64)
+        return np.zeros(0, dtype=np.int64), np.zeros(B + 1, dtype=np.int64), None
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")
+    kinds = set(map(type, ws))
+    if kinds == {WarmStart}:  # the common case, checked at C speed
+        if list(map(_n_of, ws)) != sizes:
+            _check_bases(ws, sizes)
+        try:  # the index arrays that results' warm starts carry (see _result._FromBuffer)
+            bases = list(map(_beta_of, ws))
+        except AttributeError:
+            bases = list(map(_z_basic_of, ws))
+    else:
+        if not kinds <= {WarmStart, type(None)} or [n if w is None else w.n for w, n in zip(ws, sizes)] != sizes:
+            _check_bases(ws, sizes)
+        bases = [() if w is None else w.z_basic for w in ws]
     lengths = np.zeros(B + 1, dtype=np.int64)
+    lengths[1:] = list(map(len, bases))
+    np.cumsum(lengths, out=lengths)
+    if bases and type(bases[0]) is np.ndarray:
+        flat = np.frombuffer(bytearray().join(bases), np.int64)
+        if not flat.flags.aligned:
+            flat = flat.copy()
+    else:
+        flat = np.fromiter(chain.from_iterable(bases), np.int64, int(lengths[-1]))
+    return flat, lengths, ws
+
+
+_n_of = attrgetter("n")
+_z_basic_of = attrgetter("z_basic")
+_beta_of = attrgetter("_beta")
+
+
+def _check_bases(ws, sizes):
+    """Each warm start checked (``_validate.warm_start``): raises naming the first bad one."""
     for b, w in enumerate(ws):
         if w is not None:
             _validate.warm_start(w, WarmStart, sizes[b],
                                  f"warm_start[{b}] is for a problem of size {{ws}}, problem {b} has n = {{n}}")
-            lengths[b + 1] = len(w.z_basic)
-    flat = np.fromiter((i for w in ws if w is not None for i in w.z_basic), dtype=np.int64,
-                       count=int(lengths.sum()))
-    return flat, np.cumsum(lengths)
 
 
 def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> LCPBatchResult:
@@ -114,7 +143,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     M, q = batch_arrays(M, q)
     B, n = q.shape
     workers = _workers(workers)
-    beta, boff = _bases(warm_start, B, [n] * B)
+    beta, boff, _ = _bases(warm_start, B, [n] * B)
 
     L = cold.buffer_length(n)
     bufs = np.empty((B, L))
@@ -199,21 +228,31 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     opts = as_options(options)
     workers = _workers(workers)
     Ms, qs = list(M), list(q)
-    if len(Ms) != len(qs):
-        raise ValueError(f"M and q must hold the same number of problems, got {len(Ms)} and {len(qs)}")
     B = len(Ms)
-    probs = [(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb) for b, (Mb, qb) in enumerate(zip(Ms, qs))]
-    sizes = [qb.shape[0] for _, qb in probs]
-    beta, boff = _bases(warm_start, B, sizes)
-    qoff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum(sizes, out=qoff[1:])
-    mstart = np.zeros(B, dtype=np.int64)
-    np.cumsum(np.square(np.array(sizes[:-1], dtype=np.int64)), out=mstart[1:])
-    buff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum([cold.buffer_length(n) for n in sizes], out=buff[1:])
-    Mflat = np.concatenate([Mb.ravel() for Mb, _ in probs]) if B else np.zeros(0)
-    qflat = np.concatenate([qb for _, qb in probs]) if B else np.zeros(0)
-    limits = np.array([opts.pivot_limit(n) for n in sizes], dtype=np.int64)
+    if B != len(qs):
+        raise ValueError(f"M and q must hold the same number of problems, got {B} and {len(qs)}")
+    # Every problem ready for the kernels (float64 ndarrays, M square of q's size) is the
+    # common case, checked in one pass; else each problem is checked and converted.
+    if len([None for Mb, qb in zip(Ms, qs)
+            if type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
+            and qb.ndim == 1 and Mb.shape == qb.shape * 2]) != B:
+        Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
+                       for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
+    sizes = list(map(len, qs))
+    beta, boff, ws = _bases(warm_start, B, sizes)
+    if not B:
+        return []
+    # offsets: of q and the basic z's, of M, of the output buffers (cold.buffer_length)
+    off = np.zeros((3, B + 1), dtype=np.int64)
+    n_b = off[0, 1:]
+    n_b[:] = sizes
+    off[1, 1:] = n_b * n_b
+    off[2, 1:] = sum(length(n_b) for _, length in cold.BUFFER)
+    limits = np.empty(B, dtype=np.int64)
+    limits[:] = opts.pivot_limit(n_b)
+    np.cumsum(off, axis=1, out=off)
+    qoff, mstart, buff = off[0], off[1, :-1], off[2]
+    Mflat, qflat = _flat(Ms), _flat(qs)
     bufs = np.empty(int(buff[-1]))
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
@@ -221,20 +260,53 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     _run(cold.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
     for b in np.flatnonzero(out_i[:, 0] == cold.NOT_FINITE):
-        _checked(int(b), *probs[b])  # raises, naming the problem and the entry
-    ws = [None] * B if warm_start is None else list(warm_start)
-    out = []
-    bo, qo = buff.tolist(), qoff.tolist()
-    for b, ((code, pivots, k, recoveries, stage), (ok, residual)) in enumerate(zip(out_i.tolist(), out_f.tolist())):
-        buf, basic = bufs[bo[b]:bo[b + 1]], basics[qo[b]:qo[b + 1]]
-        if code == 0 and ok:
-            out.append(LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries,
-                                       ws[b] if stage == 0 else None))
+        _checked(int(b), Ms[b], qs[b])  # raises, naming the problem and the entry
+    return _results(B, sizes, ws, opts, out_i, out_f, bufs, basics, off, Mflat, qflat)
+
+
+def _results(B, sizes, ws, opts, out_i, out_f, bufs, basics, off, Mflat, qflat, _new=object.__new__,
+             _SOLVED=Status.SOLVED, _RAY_TERMINATION=Status.RAY_TERMINATION,
+             _TRIVIAL=cold.TRIVIAL, _RAY=int(Status.RAY_TERMINATION)):
+    """The results of solve_lcp_many, as solve_lcp builds them.  They share the output
+    buffers (read-only from now on), and each makes its views when a field is first read
+    (LCPResult._lazy, inlined: this loop is most of the Python time per problem).  The
+    others (neither solved and checked, nor q >= 0, nor a checked ray) are built from
+    problem b's own copy of (M, q) in the flat arrays."""
+    bufs.setflags(write=False)
+    qo, ms, bo = off[0].tolist(), off[1].tolist(), off[2].tolist()
+    out = list(map(_new, repeat(LCPResult, B)))
+    srcs = zip(repeat(bufs), bo, repeat(basics), qo, sizes, out_i[:, 2].tolist())
+    for b, res, (code, pivots, k, recoveries, stage), (ok, residual), src, w in zip(
+            range(B), out, out_i.tolist(), out_f.tolist(), srcs, repeat(None) if ws is None else ws):
+        if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
+            f = res.__dict__
+            f["status"] = _SOLVED if code != _RAY else _RAY_TERMINATION
+            f["pivots"] = pivots
+            f["residual"] = residual
+            if recoveries:
+                f["recoveries"] = recoveries
+            f["_src"] = src
+            if stage == 0:
+                f["warm_start"] = w
         else:
-            out.append(_outcome(*probs[b], opts, code, pivots, basic[:k], bool(ok), residual, buf, recoveries))
+            n, m, o = sizes[b], ms[b], qo[b]
+            out[b] = _outcome(Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n], opts, code, pivots,
+                              basics[o : o + k], bool(ok), residual, bufs[bo[b] : bo[b + 1]], recoveries)
     return out
 
 
+def _flat(arrays):
+    """The arrays (float64) end to end in one writable, aligned float64 vector: their bytes
+    joined (a tenth of a microsecond per array; np.concatenate takes four), or
+    np.concatenate when one is not C-contiguous."""
+    try:
+        flat = np.frombuffer(bytearray().join(arrays), np.float64)
+    except (BufferError, ValueError, TypeError):
+        return np.concatenate([a.ravel() for a in arrays])
+    return flat if flat.flags.aligned else flat.copy()
+
+
+_ND = np.ndarray
 _F64 = np.dtype(np.float64)
 
 

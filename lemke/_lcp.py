@@ -14,6 +14,17 @@ METHODS = tuple(cold.METHODS)
 _SOLVE_ONE = cold.solve_one  # a module attribute, so that a test can stand a lying kernel in
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
+_NO_BASIS = np.zeros(0, dtype=np.int64)
+_CODES = cold.METHODS
+_ND = np.ndarray
+_I64 = np.dtype(np.int64)
+_SOLVED = Status.SOLVED
+_TRIVIAL = cold.TRIVIAL
+_RAY = int(Status.RAY_TERMINATION)
+_new = object.__new__
+_buffer_length = cold.buffer_length
+#: {kernel: its compiled entry point for the fast path's argument types}
+_ENTRY: dict = {}
 
 
 def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) -> LCPResult:
@@ -63,30 +74,76 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
-    if (d is None and type(M) is np.ndarray and type(q) is np.ndarray
-            and M.dtype is _F64 and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
-            and M.shape[0] == M.shape[1] == q.shape[0] and method in cold.METHODS
-            and M.flags.c_contiguous and q.flags.c_contiguous and M.flags.writeable and q.flags.writeable
-            and (warm_start is None or (type(warm_start) is WarmStart and warm_start.n == q.shape[0]))):
-        # The common case in one kernel call (which checks that M and q are finite); no
-        # copies: the data are float64 already, and the kernels never write to them.
+    ws = warm_start
+    if (type(M) is _ND and type(q) is _ND and d is None and q.ndim == 1 and M.dtype is _F64
+            and q.dtype is _F64 and M.shape == q.shape * 2 and M.flags.carray and q.flags.carray
+            and method in _CODES and (ws is None or (type(ws) is WarmStart and ws.n == q.shape[0]))):
+        # The common case: float64, square, C-contiguous, aligned and writable already (the
+        # kernels never write to M and q, and check that they are finite), so no copies, and
+        # the kernel called through its compiled entry point for exactly these types.
         opts = _DEFAULT if options is None else as_options(options)
-        if warm_start is None or not warm_start.z_basic:
-            res = _cold(method, M, q, _NO_D, opts)
-        else:
-            res = _warm(method, M, q, _NO_D, warm_start, opts)
-        if res is not None:
-            return res  # else M or q is not finite: the validation below says where
-    _validate.method(method, METHODS)
-    M, q, d = _validate.lcp(M, q, d)
-    M, q = _validate.kernel_array(M), _validate.kernel_array(q)
-    opts = as_options(options)
-    _validate.warm_start(warm_start, WarmStart, q.size,
-                         "warm_start is for a problem of size {ws}, this one has n = {n}")
-    d = _NO_D if d is None else d
-    if warm_start is not None and warm_start.z_basic:
-        return _warm(method, M, q, d, warm_start, opts)
-    return _cold(method, M, q, d, opts)
+        run = _ENTRY.get(_SOLVE_ONE) or _entry_point()
+        d = _NO_D
+    else:
+        _validate.method(method, METHODS)
+        M, q, d = _validate.lcp(M, q, d)
+        M, q = _validate.kernel_array(M), _validate.kernel_array(q)
+        opts = as_options(options)
+        _validate.warm_start(ws, WarmStart, q.size,
+                             "warm_start is for a problem of size {ws}, this one has n = {n}")
+        d = _NO_D if d is None else d
+        run = _SOLVE_ONE
+    n = q.shape[0]
+    if ws is None:
+        beta = _NO_BASIS
+    else:  # the basis as an index array, kept with the (immutable) WarmStart
+        beta = ws.__dict__.get("_beta")
+        if beta is None:
+            beta = ws.__dict__["_beta"] = np.array(ws.z_basic, dtype=np.int64)
+    mp = opts.max_pivots
+    buf = np.empty(_buffer_length(n))
+    basic = np.empty(n, _I64)
+    code, pivots, k, ok, residual, recoveries, stage = run(
+        _CODES[method], M, q, d, beta, beta.shape[0], 100 * (n + 1) if mp is None else mp,
+        opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic)  # (Options.pivot_limit inlined)
+    if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
+        # Solved and checked (or q >= 0: z = 0), or a checked ray: the common cases, built
+        # lazily (LCPResult._lazy, inlined).
+        res = _new(LCPResult)
+        f = res.__dict__
+        f["status"] = _SOLVED if code != _RAY else Status.RAY_TERMINATION
+        f["pivots"] = pivots
+        f["residual"] = residual
+        if recoveries:
+            f["recoveries"] = recoveries
+        f["_src"] = (buf, 0, basic, 0, n, k)
+        if stage == 0:
+            f["warm_start"] = ws
+        return res
+    if code == cold.NOT_FINITE:
+        _validate.lcp(M, q)  # raises, saying where
+        raise AssertionError("the kernel found a NaN or an infinity that validation did not")
+    return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
+
+
+def _entry_point():
+    """``_SOLVE_ONE``'s compiled entry point for the argument types of ``solve_lcp``'s fast
+    path (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
+    floats), once compiled: calling it skips numba's dispatch (typing the 12 arguments, 0.3
+    us).  Until then (the first call compiles it) and for a stand-in kernel (tests), the
+    kernel itself."""
+    kernel = _SOLVE_ONE
+    overloads = getattr(kernel, "overloads", None)
+    if overloads is None:
+        return kernel
+    a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
+    signature = tuple(kernel.typeof_pyval(v) for v in (
+        0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1))
+    compiled = overloads.get(signature)
+    if compiled is None:
+        return kernel
+    _ENTRY[kernel] = compiled.entry_point
+    return compiled.entry_point
 
 
 def _views(buf, n):
@@ -97,45 +154,10 @@ def _views(buf, n):
     return tuple(buf[f[name]] for name, _ in cold.BUFFER)
 
 
-_NO_BASIS = np.zeros(0, dtype=np.int64)
-
-
-def _cold(method, M, q, d, opts):
-    """A cold solve (float64, C-contiguous, validated shapes): one kernel call that also
-    checks the answer on the caller's data.  None when M or q is not finite."""
-    return _solve(method, M, q, d, _NO_BASIS, None, opts)
-
-
-def _warm(method, M, q, d, warm_start, opts):
-    """A warm solve in one kernel call: the old basis's point if it still solves the problem
-    (0 pivots), else Lemke restarted from that basis, else a cold solve.  None when M or q
-    is not finite."""
-    beta = warm_start.__dict__.get("_beta")
-    if beta is None:  # the basis as an index array, kept with the (immutable) WarmStart
-        beta = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=np.int64)
-    return _solve(method, M, q, d, beta, warm_start, opts)
-
-
-def _solve(method, M, q, d, beta, warm_start, opts):
-    """``kernels.cold.solve_one``, the one kernel of every LCP solve, cold (``beta`` empty) or
-    warm, and its result: built lazily when solved and checked."""
-    n = q.shape[0]
-    buf = np.empty(cold.buffer_length(n))
-    basic = np.empty(n, dtype=np.int64)
-    code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
-        cold.METHODS[method], M, q, d, beta, beta.shape[0], opts.pivot_limit(n), opts.pivot_tol,
-        opts.tie_tol, opts.tol, buf, basic
-    )
-    if code == 0 and ok:  # solved and checked: the common case, built lazily
-        return LCPResult._lazy(buf, basic, k, Status.SOLVED, pivots, residual, recoveries,
-                               warm_start if stage == 0 else None)
-    if code == cold.NOT_FINITE:
-        return None
-    return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
-
 
 def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
-    """The result of a kernel's run, from its output buffer (see ``kernels.cold``), the
+    """The result of a kernel's run that is not built lazily (neither solved and checked,
+    nor q >= 0, nor a checked ray), from its output buffer (see ``kernels.cold``), the
     basic z's and the kernel's check of the point on the caller's data.
 
     A solved point that failed the check is recomputed from the final basis (one dense
@@ -144,13 +166,7 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
     failed."""
     n = q.shape[0]
     z, z0, ray, w, cov, rs, cs = _views(buf, n)
-    if code == cold.TRIVIAL:
-        return LCPResult._make(z, w, Status.SOLVED, 0, 0.0, None, 0.0, cov,
-                               WarmStart._trusted(n, ()), rs, cs, 0)
     final_basis = WarmStart._trusted(n, tuple(basic.tolist()))
-    if code == 0 and ok:  # Status.SOLVED
-        return LCPResult._make(z, w, Status.SOLVED, pivots, residual, None, 0.0, cov,
-                               final_basis, rs, cs, recoveries)
     status = Status(code)
     extra = (rs, cs, recoveries)
     if status == Status.SOLVED:

@@ -12,6 +12,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ._status import Status
+from .kernels import cold
 
 
 @dataclass(frozen=True)
@@ -71,6 +72,11 @@ class WarmStart:
         if len(where) != len(old):
             raise ValueError("old_labels holds a label twice")
         return self.take(np.array([where.get(label, -1) for label in new_labels], dtype=np.int64))
+
+    def __getstate__(self):
+        # the fields only: not the index array that solve_lcp keeps with it (``_beta``, its
+        # own C-contiguous, aligned int64 array, which the kernels' fast path trusts)
+        return {"n": self.n, "z_basic": self.z_basic}
 
     @classmethod
     def _trusted(cls, n: int, z_basic: tuple) -> "WarmStart":
@@ -201,45 +207,111 @@ class LCPResult(Outcome):
         return res
 
     @classmethod
-    def _lazy(cls, buf, basic, k, status, pivots, residual, recoveries, warm_start=None) -> "LCPResult":
-        """A solved result whose arrays are read from the kernel's output buffer ``buf``
-        (``kernels.cold.fields``) on first access, and whose ``warm_start`` is built from the
-        first k entries of ``basic`` (unless given): a small solve that only reads ``z``
-        pays for no other view."""
+    def _lazy(cls, status, pivots, residual, recoveries, src, warm_start=None) -> "LCPResult":
+        """A result whose arrays are views of a kernel's output buffer, each made when first
+        read (see :meth:`__getattr__`); ``src = (buf, o, basic, bo, n, k)``: the buffer of
+        problem size n starts at ``buf[o]`` (``kernels.cold.fields``), its basic z's are
+        ``basic[bo:bo + k]``.  ``solve_lcp`` gives each result a buffer of its own,
+        ``solve_lcp_many`` one buffer for all.  ``status`` is SOLVED (``ray`` None, ``z0``
+        0) or a checked RAY_TERMINATION (both read from the buffer).  ``warm_start``, when
+        given, is the result's (the one the caller passed, when it still solved); else it is
+        made from the basic z's.  The fronts inline this (it is on the hot path of small
+        problems); it states what they put in ``__dict__``.  The other fields are
+        :class:`_FromBuffer` descriptors of the class, which put the field in the result's
+        ``__dict__`` when first read."""
         res = object.__new__(cls)
-        res.__dict__.update(status=status, pivots=pivots, residual=residual, ray=None, z0=0.0,
-                            recoveries=recoveries, _buf=buf, _basic=basic, _k=k)
+        d = res.__dict__
+        d["status"] = status
+        d["pivots"] = pivots
+        d["residual"] = residual
+        if recoveries:  # else the class default, 0
+            d["recoveries"] = recoveries
+        d["_src"] = src
         if warm_start is not None:
-            res.__dict__["warm_start"] = warm_start
+            d["warm_start"] = warm_start
         return res
 
-    def __getattr__(self, name):
-        # Only reached for a field not yet read from the buffer (see _lazy).  Safe when two
-        # threads read a new result at once: both fill the same views, and the one that
-        # comes second finds the fields already there.
+    def __getstate__(self):
+        # every field made, and the shared buffer left behind (pickle, copy)
         d = self.__dict__
-        buf = None if name.startswith("_") else d.get("_buf")
-        if buf is None:
-            if name in d:
-                return d[name]
-            raise AttributeError(name)
-        basic, k = d["_basic"], d["_k"]
-        buf.setflags(write=False)
-        n = basic.shape[0]
-        # kernels.cold.fields: [z | z0 | ray | w | covering | row_scale | col_scale]
-        d.update(z=buf[:n], w=buf[2 * n + 2 : 3 * n + 2], covering=buf[3 * n + 2 : 4 * n + 2],
-                 row_scale=buf[4 * n + 2 : 5 * n + 2], col_scale=buf[5 * n + 2 :])
-        if "warm_start" not in d:
-            d["warm_start"] = WarmStart._trusted(n, tuple(basic[:k].tolist()))
-        for key in ("_buf", "_basic", "_k"):
-            d.pop(key, None)
-        return d[name]
+        if "_src" in d:
+            for name in _LAZY_FIELDS:
+                getattr(self, name)
+            d = {key: v for key, v in d.items() if key != "_src"}
+        return d
 
     def __repr__(self) -> str:
         return (
             f"LCPResult(status={self.status.name}, pivots={self.pivots}, "
             f"residual={self.residual:.3g}, n={self.z.size})"
         )
+
+
+class _FromBuffer:
+    """A field of a :meth:`LCPResult._lazy` result, made from its ``_src`` when first read
+    and then kept in the result's ``__dict__``, which comes first from then on (a non-data
+    descriptor: a lookup that finds the field costs nothing more, and one that does not
+    raises no AttributeError on the way, unlike ``__getattr__``, whose fallback costs a
+    microsecond).  Results built with every field (``_make``, ``__init__``) never reach it.
+    Safe when two threads read a new result at once: both make equal values."""
+
+    __slots__ = ("name", "a", "c", "l", "l0")
+
+    def __init__(self, name):
+        self.name = name
+        if name in _SPANS:
+            self.a, self.c, self.l, self.l0 = _SPANS[name]
+
+    def __get__(self, res, cls=None):
+        if res is None:
+            return self
+        d = res.__dict__
+        name = self.name
+        src = d.get("_src")
+        if src is None:
+            raise AttributeError(f"'LCPResult' object has no attribute {name!r}")
+        buf, o, basic, bo, n, k = src
+        if name == "warm_start":
+            beta = basic[bo : bo + k]
+            v = _new(WarmStart)  # WarmStart._trusted, inlined
+            f = v.__dict__
+            f["n"] = n
+            f["z_basic"] = tuple(beta.tolist())
+            f["_beta"] = beta  # the index array that solve_lcp's warm path takes
+        elif name == "z0":
+            v = 0.0 if d["status"] is Status.SOLVED else float(buf[o + n])
+        elif name == "ray" and d["status"] is Status.SOLVED:
+            v = None
+        else:
+            if buf.flags.writeable:  # the result's arrays are read-only, as the others'
+                buf.setflags(write=False)
+            start = o + self.a * n + self.c
+            v = buf[start : start + self.l * n + self.l0]
+        d[name] = v
+        return v
+
+
+def _spans():
+    """``{field: (a, c, l, l0)}``: in the output buffer of size n (``kernels.cold.fields``,
+    whose offsets and lengths are linear in n) the field starts at ``a n + c`` and holds
+    ``l n + l0`` entries."""
+    f0, f1 = cold.fields(0), cold.fields(1)
+    out = {}
+    for name in ("z", "ray", "w", "covering", "row_scale", "col_scale"):
+        s0, s1 = f0[name], f1[name]
+        l0 = s0.stop - s0.start
+        out[name] = (s1.start - s0.start, s0.start, (s1.stop - s1.start) - l0, l0)
+    return out
+
+
+_SPANS = _spans()
+_new = object.__new__
+#: The fields a _lazy result makes when first read (set on the class after the dataclass
+#: decorator, so that they are no defaults of its __init__).
+_LAZY_FIELDS = ("z", "z0", "ray", "w", "covering", "row_scale", "col_scale", "warm_start")
+for _name in _LAZY_FIELDS:
+    setattr(LCPResult, _name, _FromBuffer(_name))
+del _name
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,0 +1,217 @@
+"""The Python front of the LCP solvers on its fast paths: results read lazily from the kernels'
+buffers are the values an eager build gives (q >= 0, rays, solved), their arrays are read-only
+and alias nothing writable, and ``solve_lcp_many`` gives every problem exactly what
+``solve_lcp`` gives it, whatever the outcome and the form of the input."""
+import copy
+import pickle
+
+import numpy as np
+import pytest
+from helpers import assert_lcp_solution, assert_ray
+
+import lemke
+from lemke import LCPResult, Status, WarmStart, _lcp, problems
+from lemke.kernels import cold
+
+FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
+          "row_scale", "col_scale", "recoveries")
+
+
+def _eager(M, q, method="tableau"):
+    """What the front built before results were lazy: the kernel run on (M, q), every field
+    taken from its buffer at once (the former q >= 0 and solved branches of _lcp._outcome)."""
+    n = len(q)
+    buf, basic = np.empty(cold.buffer_length(n)), np.empty(n, dtype=np.int64)
+    code, pivots, k, ok, residual, recoveries, stage = cold.solve_one(
+        cold.METHODS[method], M, q, np.empty(0), np.zeros(0, dtype=np.int64), 0, 100 * (n + 1),
+        1e-11, 1e-11, 1e-9, buf, basic)
+    f = cold.fields(n)
+    z, w, cov, rs, cs = (buf[f[name]] for name in ("z", "w", "covering", "row_scale", "col_scale"))
+    if code == cold.TRIVIAL:
+        return LCPResult(z, w, Status.SOLVED, 0, 0.0, None, 0.0, cov, WarmStart(n, ()), rs, cs, 0)
+    assert ok and code in (0, int(Status.RAY_TERMINATION))
+    ray, z0 = (None, 0.0) if code == 0 else (buf[f["ray"]], float(buf[f["z0"]]))
+    return LCPResult(z, w, Status(code), pivots, residual, ray, z0, cov,
+                     WarmStart(n, tuple(basic[:k].tolist())), rs, cs, recoveries)
+
+
+def _same(a, b):
+    """Every field bit for bit, type included (a float is a float, an int an int)."""
+    assert a == b
+    for name in FIELDS:
+        x, y = getattr(a, name), getattr(b, name)
+        assert type(x) is type(y), name
+        if isinstance(x, np.ndarray):
+            assert x.dtype == y.dtype and x.shape == y.shape and x.tobytes() == y.tobytes(), name
+
+
+TRIVIAL = [(np.array([[2.0, 1.0], [1.0, 2.0]]), np.array([1.0, 0.0])),
+           (np.array([[1e-8, 3.0, 0.0], [2.0, 1e8, 1.0], [0.0, 1.0, 5.0]]), np.array([0.0, 4.0, 1e-3])),
+           (np.zeros((0, 0)), np.zeros(0))]
+RAYS = [(np.array([[-1.0]]), np.array([-1.0])),
+        (np.array([[-1.0, -2.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 2.0]]), np.array([-1.0, 2.0, -3.0]))]
+
+
+@pytest.mark.parametrize("M, q", TRIVIAL)
+def test_q_nonnegative_is_the_eager_value(M, q, method):
+    res = lemke.solve_lcp(M, q, method=method)
+    _same(res, _eager(M, q, method))
+    assert res.success and res.pivots == 0 and res.residual == 0.0 and res.ray is None
+    assert not res.z.any() and np.array_equal(res.w, q) and res.warm_start == WarmStart(len(q), ())
+
+
+@pytest.mark.parametrize("M, q", RAYS)
+def test_a_checked_ray_is_the_eager_value(M, q, method):
+    res = lemke.solve_lcp(M, q, method=method)
+    assert res.status == Status.RAY_TERMINATION
+    _same(res, _eager(M, q, method))
+    assert_ray(M, q, res.covering, res.z, res.z0, res.ray)
+
+
+def test_solved_is_the_eager_value(method):
+    M, q = problems.contact_like(9, np.random.default_rng(3))
+    _same(lemke.solve_lcp(M, q, method=method), _eager(M, q, method))
+
+
+def _arrays(res):
+    return [a for a in (getattr(res, name) for name in FIELDS) if isinstance(a, np.ndarray)]
+
+
+def _assert_read_only(res):
+    for a in _arrays(res):
+        assert not a.flags.writeable
+        with pytest.raises(ValueError):
+            a[...] = 0.0
+        with pytest.raises(ValueError):
+            a.setflags(write=True)
+
+
+@pytest.mark.parametrize("M, q", TRIVIAL[:2] + RAYS + [(np.eye(2), -np.ones(2))])
+def test_lazy_arrays_are_read_only(M, q):
+    res = lemke.solve_lcp(M, q)
+    _assert_read_only(res)
+    many = lemke.solve_lcp_many([M, M], [q, q])
+    for r in many:
+        _assert_read_only(r)
+        _same(r, res)
+    assert not any(np.shares_memory(a, b) for a in _arrays(many[0]) for b in _arrays(many[1]))
+
+
+def test_fields_read_one_at_a_time_or_all_at_once_agree():
+    M, q = problems.contact_like(6, np.random.default_rng(4))
+    a, b = lemke.solve_lcp(M, q), lemke.solve_lcp(M, q)
+    assert a.warm_start == b.warm_start  # read first on one, last on the other
+    assert [getattr(a, name) is None for name in FIELDS] == [getattr(b, name) is None for name in FIELDS]
+    _same(a, b)
+    with pytest.raises(AttributeError):
+        a.nonsense  # noqa: B018
+    assert not hasattr(lemke.solve_lcp(M, q), "_nonsense")
+    built = LCPResult(*(getattr(a, name) for name in FIELDS))  # the dataclass __init__: eager
+    _same(built, a)
+    assert "_src" not in built.__dict__
+
+
+def test_a_lazy_result_pickles_and_copies_as_a_value():
+    Ms, qs = [np.eye(2), np.array([[-1.0]]), np.eye(3)], [-np.ones(2), -np.ones(1), np.ones(3)]
+    for res in lemke.solve_lcp_many(Ms, qs) + [lemke.solve_lcp(Ms[0], qs[0])]:
+        state = res.__getstate__()
+        assert "_src" not in state  # the shared buffer stays behind
+        back = pickle.loads(pickle.dumps(res))
+        _same(back, res)
+        _same(copy.copy(res), res)
+        assert hash(back) == hash(res)
+
+
+def _islands(seed, count=60):
+    """Islands of 0..12 rows with every outcome: solved, q >= 0, rays."""
+    rng = np.random.default_rng(seed)
+    Ms, qs = [], []
+    for b in range(count):
+        n = int(rng.integers(0, 13))
+        M, q = problems.contact_like(n, rng) if n >= 2 else (2.0 * np.eye(n), -np.ones(n))
+        if b % 7 == 3:
+            q = np.abs(q)  # q >= 0
+        if b % 11 == 5:
+            M, q = RAYS[b % 2]
+        Ms.append(np.ascontiguousarray(M))
+        qs.append(np.asarray(q, float))
+    return Ms, qs
+
+
+def test_many_is_each_one_for_every_outcome_and_warm_starts_carry_over(method):
+    Ms, qs = _islands(5)
+    first = lemke.solve_lcp_many(Ms, qs, method=method)
+    kinds = {r.status for r in first} | {"trivial" for r in first if r.success and r.pivots == 0}
+    assert kinds >= {Status.SOLVED, Status.RAY_TERMINATION, "trivial"}
+    for a, M, q in zip(first, Ms, qs):
+        _same(a, lemke.solve_lcp(M, q, method=method))
+        if a.success:
+            assert_lcp_solution(M, q, a.z)
+    rng = np.random.default_rng(6)
+    qs2 = [q + 1e-3 * rng.standard_normal(q.shape) for q in qs]
+    ws = [r.warm_start for r in first]  # carrying their index arrays
+    ws[1] = None
+    ws[2] = WarmStart(ws[2].n, ws[2].z_basic)  # a user-made one, without
+    second = lemke.solve_lcp_many(Ms, qs2, method=method, warm_start=ws)
+    for b, (r, M, q, w) in enumerate(zip(second, Ms, qs2, ws)):
+        one = lemke.solve_lcp(M, q, method=method, warm_start=w)
+        _same(r, one)
+        assert r.warm_start is w or w is None or r.pivots > 0 or r.warm_start == w
+    assert any(r.pivots == 0 and r.warm_start is w for r, w in zip(second, ws))
+    third = lemke.solve_lcp_many(Ms, qs2, method=method, warm_start=[r.warm_start for r in second])
+    for r, M, q, w in zip(third, Ms, qs2, [r.warm_start for r in second]):
+        _same(r, lemke.solve_lcp(M, q, method=method, warm_start=w))
+
+
+def test_many_takes_any_form_of_input():
+    """Non-contiguous, Fortran-ordered, read-only, integer and list input, side by side with
+    the fast kind: the same bits as the float64 C-contiguous copies."""
+    Ms, qs = _islands(7, count=12)
+    odd = [np.asfortranarray(Ms[0]), Ms[1].T.copy().T, Ms[2].tolist(), Ms[3]]
+    ro = Ms[4].copy()
+    ro.setflags(write=False)
+    odd.append(ro)
+    q_odd = [qs[0], np.repeat(qs[1], 2)[::2], qs[2].tolist(), qs[3], qs[4]]
+    ints = (np.array([[2, 1], [1, 2]]), np.array([-5, -6]))
+    got = lemke.solve_lcp_many(odd + Ms[5:] + [ints[0]], q_odd + qs[5:] + [ints[1]])
+    for r, M, q in zip(got, Ms + [ints[0].astype(float)], qs + [ints[1].astype(float)]):
+        _same(r, lemke.solve_lcp(M, q))
+    with pytest.raises(ValueError, match="problem 2"):
+        lemke.solve_lcp_many(Ms[:2] + [np.eye(3)], qs[:2] + [np.ones(2)])
+    with pytest.raises(ValueError, match="problem 1"):
+        lemke.solve_lcp_many([np.eye(2), np.array([[np.nan]])], [np.ones(2), np.ones(1)])
+    with pytest.raises(ValueError, match=r"warm_start\[1\]"):
+        lemke.solve_lcp_many([np.eye(2), np.eye(1)], [-np.ones(2), -np.ones(1)],
+                             warm_start=[None, WarmStart(2, ())])
+    with pytest.raises(TypeError, match="WarmStart"):
+        lemke.solve_lcp_many([np.eye(1)], [-np.ones(1)], warm_start=[(0,)])
+
+
+def test_solve_lcp_fast_path_and_its_edges():
+    """The fast path calls the kernel's compiled entry point; an unaligned, byte-swapped,
+    read-only or strided M goes the validated way and gets the same bits."""
+    M, q = problems.contact_like(5, np.random.default_rng(8))
+    ref = lemke.solve_lcp(M, q)
+    assert _lcp._ENTRY.get(cold.solve_one) is not None
+    raw = np.zeros(M.size * 8 + 1, dtype=np.uint8)
+    unaligned = raw[1:].view(np.float64).reshape(M.shape)
+    unaligned[...] = M
+    assert not unaligned.flags.aligned
+    ro = M.copy()
+    ro.setflags(write=False)
+    for M2 in (unaligned, M.astype(">f8"), ro, np.asfortranarray(M)):
+        _same(lemke.solve_lcp(M2, q), ref)
+    with pytest.raises(ValueError, match="NaN"):
+        lemke.solve_lcp(np.array([[np.nan]]), np.ones(1))
+    with pytest.raises(ValueError, match="unknown method"):
+        lemke.solve_lcp(M, q, method="simplex")
+    with pytest.raises(ValueError, match="size"):
+        lemke.solve_lcp(M, q, warm_start=WarmStart(2, ()))
+    ws = ref.warm_start
+    assert ws.__dict__["_beta"].tolist() == list(ws.z_basic)  # the index array, carried
+    warm = lemke.solve_lcp(M, q, warm_start=ws)
+    assert warm.pivots == 0 and warm.warm_start is ws
+    back = pickle.loads(pickle.dumps(ws))  # a value: its fields only, no cached index array
+    assert back == ws and "_beta" not in back.__dict__ and "_beta" not in copy.copy(ws).__dict__
+    _same(lemke.solve_lcp(M, q, warm_start=back), warm)
+    assert lemke.solve_lcp(M, q, options={"max_pivots": 1}).pivots <= 1
