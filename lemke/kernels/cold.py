@@ -59,7 +59,7 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check
-from .linalg import equilibrate, finite_absmax, nan_probe, principal_block, solve as lu_solve
+from .linalg import equilibrate, finite_absmax, nan_probe, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -166,7 +166,8 @@ def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic,
                 for i in range(n):
                     cov[i] *= 1.0 + PERTURBATION * pivoting.unit_random(keys, i)
         recoveries += 1
-        code, p = pivot_once(method, M, q, tt, max_pivots - pivots, pivot_tol, buf, z_basic, careful)
+        code, p = pivot_once(method, M, q, tt, max_pivots - pivots, pivot_tol, buf, z_basic,
+                             careful)
         pivots += p
     return code, pivots, recoveries
 
@@ -304,8 +305,8 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
 @kernel
 def basis_point(M, q, beta, k, z):
     """z of the complementary basis with z_i basic for i in beta[:k]: ``z_beta = -M_bb^-1
-    q_beta`` by LU (``linalg.solve``), negative entries clipped to 0, the others 0.  False
-    when M_bb is singular or the point is not finite."""
+    q_beta`` by LU (``linalg.solve_principal``), negative entries clipped to 0, the others
+    0.  False when M_bb is singular or the point is not finite."""
     z[:] = 0.0
     if k == 0:
         return True
@@ -313,7 +314,7 @@ def basis_point(M, q, beta, k, z):
     rhs = np.empty(k)
     for i in range(k):
         rhs[i] = -q[idx[i]]
-    ok, zb = lu_solve(principal_block(M, idx), rhs)
+    ok, zb = solve_principal(M, idx, rhs)
     if not ok:
         return False
     for i in range(k):
@@ -351,7 +352,8 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
             basic[i] = beta[i]
         return 0, pivoting.SOLVED, 0, k, True, residual
     # the restart from the old basis
-    z_start = np.zeros(n, dtype=np.bool_)
+    flags = np.zeros(2 * n, dtype=np.bool_)  # one allocation for both
+    z_start, z_basic = flags[:n], flags[n:]
     for i in range(k):
         z_start[beta[i]] = True
     m_scale = m_max if m_max > 0.0 else 1.0
@@ -360,7 +362,6 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
         for j in range(k):
             acc -= M[i, beta[j]]
         cov[i] = acc
-    z_basic = np.empty(n, dtype=np.bool_)
     code, pivots = unrevised.solve(M, q, cov, R, C, z_start, np.empty((0, 0)), max_pivots,
                                    pivot_tol, tie_tol, x, ray, z_basic)
     if not (code == pivoting.NUMERICAL_FAILURE and pivots == 0):  # a singular start

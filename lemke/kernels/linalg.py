@@ -11,7 +11,7 @@ import math
 import numpy as np
 from numba import njit
 
-from . import kernel
+from . import inline_kernel, kernel
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
@@ -337,22 +337,51 @@ def solve(H, b):
     is exactly zero (H is singular in floating point), the shapes do not match or x is not
     finite.  Never raises."""
     k = b.shape[0]
-    x = np.zeros(k)
+    A, y, x = _solve_work(k)
     if H.shape[0] != k or H.shape[1] != k:
         return False, x
-    A = np.empty((k, k))
-    y = np.empty(k)
     for r in range(k):
         for c in range(k):
             A[r, c] = H[r, c]
         y[r] = b[r]
-    if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
+    return _eliminate(A, y, x, k), x
+
+
+@kernel
+def solve_principal(M, idx, b):
+    """:func:`solve` on the principal block ``M[idx][:, idx]``, read straight from M."""
+    k = b.shape[0]
+    A, y, x = _solve_work(k)
+    if idx.shape[0] != k:
         return False, x
+    for r in range(k):
+        row = M[idx[r]]
+        for c in range(k):
+            A[r, c] = row[idx[c]]
+        y[r] = b[r]
+    return _eliminate(A, y, x, k), x
+
+
+@inline_kernel
+def _solve_work(k):
+    """The work arrays of :func:`solve` in one allocation: A (k x k), y, and x = 0."""
+    work = np.empty(k * (k + 2))
+    x = work[k * (k + 1) :]
+    x[:] = 0.0
+    return work[: k * k].reshape((k, k)), work[k * k : k * (k + 1)], x
+
+
+@inline_kernel
+def _eliminate(A, y, x, k):
+    """Solve A x = y in place (A and y are overwritten; x starts at 0): the elimination of
+    :func:`solve`.  Returns ok."""
+    if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
+        return False
     j = np.int64(0)
     while j < k:
         p = _pivot_row(A, j, k, 0.0)
         if p < 0:
-            return False, x
+            return False
         _swap_rows(A, j, p, k)
         t = y[j]
         y[j] = y[p]
@@ -367,7 +396,7 @@ def solve(H, b):
         h = rowj[j + 1]
         p = _pivot_row(A, j + 1, k, h)
         if p < 0:
-            return False, x
+            return False
         _swap_rows(A, j + 1, p, k)
         t = y[j + 1]
         y[j + 1] = y[p]
@@ -391,4 +420,4 @@ def solve(H, b):
         for c in range(r + 1, k):
             acc -= rowr[c] * x[c]
         x[r] = acc / rowr[r]
-    return nan_probe(x, k) == 0.0, x
+    return nan_probe(x, k) == 0.0

@@ -193,12 +193,14 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     # Four allocations for the whole run (each one costs about as much as a small pivot):
     # the float, int, bool and key work arrays are views of one array each.
     F = np.empty(6 * n + 1 + block * (2 * n + 1))
-    keys, col, q0, magb, mags = F[:n], F[n : 2 * n], F[2 * n : 3 * n], F[3 * n : 4 * n], F[4 * n : 5 * n]
+    keys, col, q0 = F[:n], F[n : 2 * n], F[2 * n : 3 * n]
+    magb, mags = F[3 * n : 4 * n], F[4 * n : 5 * n]
     prow = F[5 * n : 6 * n + 1]
     U = F[6 * n + 1 : 6 * n + 1 + n * block].reshape((n, block))
     V = F[6 * n + 1 + n * block :].reshape((block, n + 1))
     I = np.empty(4 * n + 1 + block, dtype=np.int64)
-    pos, start_basis, cand, act = I[: 2 * n + 1], I[2 * n + 1 : 3 * n + 1], I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 :]
+    pos, start_basis = I[: 2 * n + 1], I[2 * n + 1 : 3 * n + 1]
+    cand, act = I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 :]
     is_basic = np.zeros(2 * n + 1, dtype=np.bool_)
     H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
     hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]

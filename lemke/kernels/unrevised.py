@@ -112,13 +112,41 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     """
     n = q.shape[0]
     art = 2 * n
-    alist = np.empty(n, dtype=np.int64)  # H's rows: the non-basic w's
-    blist = np.empty(n, dtype=np.int64)  # H's columns: the basic z's (n stands for z0)
-    apos = np.empty(n, dtype=np.int64)
+    # Three allocations for the whole run (each one costs about as much as a small pivot):
+    # the float, int and key work arrays are views of one array each.
+    I = np.empty(7 * n + 1, dtype=np.int64)
+    alist = I[:n]  # H's rows: the non-basic w's
+    blist = I[n : 2 * n]  # H's columns: the basic z's (n stands for z0)
+    apos, bpos = I[2 * n : 3 * n], I[3 * n : 4 * n + 1]
     apos[:] = -1
-    bpos = np.empty(n + 1, dtype=np.int64)
     bpos[:] = -1
-    AB = np.empty((n, n))  # AB[:, c] = A[:, blist[c]]
+    F = np.empty(2 * n * n + 15 * n + 1)
+    AB = F[: n * n].reshape((n, n))  # AB[:, c] = A[:, blist[c]]
+    G = F[n * n : 2 * n * n].reshape((n, n))
+    o = 2 * n * n
+    zb = F[o : o + n]
+    wv = F[o + 1 * n : o + 2 * n]
+    dzb = F[o + 2 * n : o + 3 * n]
+    dw = F[o + 3 * n : o + 4 * n]
+    lz = F[o + 4 * n : o + 5 * n]
+    lw = F[o + 5 * n : o + 6 * n]
+    tmp = F[o + 6 * n : o + 7 * n]
+    tmp2 = F[o + 7 * n : o + 8 * n]
+    row = F[o + 8 * n : o + 9 * n]
+    keys = F[o + 9 * n : o + 10 * n]
+    zmag = F[o + 10 * n : o + 11 * n]
+    wmag = F[o + 11 * n : o + 12 * n]
+    rv = F[o + 12 * n : o + 13 * n]  # the basic variables' values (pair order, z0 last)
+    rc = F[o + 13 * n : o + 14 * n]  # and their changes per unit of the entering variable
+    rm = F[o + 14 * n : o + 15 * n]  # and the sizes of the terms that formed the values
+    z0_max = F[o + 15 * n :]  # the largest value z0 has had (ratio_test keeps it)
+    z0_max[0] = 0.0
+    cand = I[4 * n + 1 : 5 * n + 1]  # tied candidates, as positions in rlab
+    rlab = I[5 * n + 1 : 6 * n + 1]  # the basic variables in pair order, z0 last
+    H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
+    hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]
+    pivoting.fill_label_keys(hkeys)
+    detector[:] = 0
     k = np.int64(0)  # not a literal 0: see kernels/__init__.py
     for i in range(n):
         if z_start[i]:
@@ -128,24 +156,6 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
             bpos[i] = k
             AB[:, k] = A[:, i]
             k += 1
-    G = np.empty((n, n))
-    zb = np.empty(n)
-    wv = np.empty(n)
-    dzb = np.empty(n)
-    dw = np.empty(n)
-    lz = np.empty(n)
-    lw = np.empty(n)
-    tmp = np.empty(n)
-    tmp2 = np.empty(n)
-    row = np.empty(n)
-    cand = np.empty(n, dtype=np.int64)  # tied candidates, as positions in rlab
-    keys = np.empty(n)
-    rlab = np.empty(n, dtype=np.int64)  # the basic variables in pair order, z0 last:
-    rv = np.empty(n)  # their values
-    rc = np.empty(n)  # and their changes per unit of the entering variable
-    rm = np.empty(n)  # and the sizes of the terms that formed the values
-    zmag = np.empty(n)
-    wmag = np.empty(n)
     ray_out[:] = 0.0
     x_out[:] = 0.0
 
@@ -159,12 +169,9 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
     since_refactor = 0
     entering = art
-    hkeys = pivoting.label_keys(2 * n + 1)
     h = np.uint64(0)
     for i in range(n):
         h ^= hkeys[n + i] if bpos[i] >= 0 else hkeys[i]
-    detector = pivoting.new_detector()
-    z0_max = np.zeros(1)  # the largest value z0 has had (ratio_test keeps it)
     while pivots < max_pivots:
         direction(A, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
         m = gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm)
