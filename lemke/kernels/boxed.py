@@ -262,22 +262,24 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
     n = T.shape[0]
     col = scratch[6]
     art_lab = 2 * n
-    start_basis = basis.copy()
-    cand = np.empty(n + 1, dtype=np.int64)
-    keys = np.empty(n + 1)
-    gaps = np.empty(n + 1)
-    cc = np.empty(n + 1)
+    # One allocation per kind of work array (each costs about as much as a small pivot).
+    I = np.empty(2 * n + 1, dtype=np.int64)
+    start_basis, cand = I[:n], I[n:]
+    start_basis[:] = basis
+    F = np.empty(5 * n + 3)
+    keys, gaps, cc = F[: n + 1], F[n + 1 : 2 * n + 2], F[2 * n + 2 : 3 * n + 3]
+    rlo, rhi = F[3 * n + 3 : 4 * n + 3], F[4 * n + 3 :]  # the bounds of each row's basic variable
     low = np.empty(n + 1, dtype=np.bool_)
-    rlo = np.empty(n)  # the bounds of each row's basic variable
-    rhi = np.empty(n)
     for i in range(n):
         rlo[i], rhi[i] = bounds_of(basis[i], n, lo, hi, at_hi)
-    hkeys = pivoting.label_keys(3 * n + 1)  # 0..2n: the labels; 2n+1+i: z_i at hi
+    H = np.empty(3 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
+    hkeys, detector = H[: 3 * n + 1], H[3 * n + 1 :]  # keys 0..2n: the labels; 2n+1+i: z_i at hi
+    pivoting.fill_label_keys(hkeys)
     h = pivoting.fingerprint(hkeys, basis, n)
     for i in range(n):
         if at_hi[i] and not is_basic[n + i]:
             h ^= hkeys[2 * n + 1 + i]
-    detector = pivoting.new_detector()
+    detector[:] = 0
     ray[:] = 0.0
     # First pivot: z0 rises until every basic variable is within its bounds.
     s = pos[art_lab]
@@ -387,9 +389,8 @@ def box_check(M, q, lo, hi, z, tol, w, R, n_round=0):
     n = q.shape[0]
     nr = max(n, n_round)
     t = tol + (nr + 2) * EPS
-    rows = np.empty(n)
-    floors = np.empty(n)
-    p = np.empty(n)
+    work = np.empty(3 * n)  # one allocation (it costs about as much as the check at small n)
+    rows, floors, p = work[:n], work[n : 2 * n], work[2 * n :]
     p_zero = True  # the box holds 0 (the common case): no pass over M for the data
     for i in range(n):
         p[i] = min(max(0.0, lo[i]), hi[i])
@@ -472,8 +473,25 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     SOLVED (the check decides, as in ``kernels.cold``)."""
     n = q.shape[0]
     z, w, d, R, C, ray = layout(n, buf)
-    z_basic = np.zeros(n, dtype=np.bool_)
-    z_hi = np.zeros(n, dtype=np.bool_)
+    # Three allocations for the whole solve (each one costs about as much as a small pivot):
+    # the flags, floats and indices of the run are views of one array each.
+    flags = np.zeros(5 * n + 1, dtype=np.bool_)
+    z_basic, z_hi = flags[:n], flags[n : 2 * n]
+    is_basic, want = flags[2 * n : 4 * n + 1], flags[4 * n + 1 :]
+    F = np.empty(n * (n + 1) + 14 * n + 4)
+    T = F[: n * (n + 1)].reshape((n, n + 1))  # the tableau [R M C | cov]
+    o = n * (n + 1)
+    qs, los = F[o : o + n], F[o + n : o + 2 * n]
+    his, s0 = F[o + 2 * n : o + 3 * n], F[o + 3 * n : o + 4 * n]
+    x, ray_lab = F[o + 4 * n : o + 6 * n + 1], F[o + 6 * n + 1 : o + 8 * n + 2]
+    o += 8 * n + 2
+    rhs_s, magb_s = F[o : o + n], F[o + n : o + 2 * n]  # the pivots' scratch
+    U_s = F[o + 2 * n : o + 3 * n].reshape((n, 1))
+    V_s = F[o + 3 * n : o + 4 * n + 1].reshape((1, n + 1))
+    prow_s, col_s = F[o + 4 * n + 1 : o + 5 * n + 2], F[o + 5 * n + 2 :]
+    I = np.empty(4 * n + 3, dtype=np.int64)
+    basis, nonbasic = I[:n], I[n : 2 * n + 1]
+    pos, act_s = I[2 * n + 1 : 4 * n + 2], I[4 * n + 2 :]
     warm_basic = warm[:n]
     warm_hi = warm[n:]
     code = prologue(M, q, lo, hi)
@@ -487,7 +505,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     for i in range(n):
         z_hi[i] = ((z_hi[i] and hi[i] < np.inf or (lo[i] == -np.inf and hi[i] < np.inf))
                    and not (cold and far_both(lo, hi, i)))
-    qs = q.copy()
+    qs[:] = q
     if nonzero(z0s, n):
         for i in range(n):
             qs[i] = q[i] + dot_and_size(M[i], z0s, n)[0]
@@ -507,10 +525,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
         return SOLVED if ok else NUMERICAL_FAILURE, 0, 0.0, ok, residual, 0, k
     equilibrate(M, qs, R, C)
     # The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C.
-    T = np.empty((n, n + 1))
-    x = np.zeros(2 * n + 1)
-    los = np.empty(n)
-    his = np.empty(n)
+    x[:] = 0.0
     for i in range(n):
         r = R[i]
         for j in range(n):
@@ -520,20 +535,18 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
         x[n + i] = z0s[i] / C[i]
         los[i] = lo[i] / C[i]
         his[i] = hi[i] / C[i]
-    basis = np.arange(n)
-    nonbasic = np.empty(n + 1, dtype=np.int64)
-    pos = np.empty(2 * n + 1, dtype=np.int64)
-    is_basic = np.zeros(2 * n + 1, dtype=np.bool_)
     for i in range(n):
+        basis[i] = i
         nonbasic[i] = n + i
         pos[i] = i
         pos[n + i] = i
         is_basic[i] = True
     nonbasic[n] = 2 * n
     pos[2 * n] = n
-    scratch = (np.zeros(n), np.zeros(n), np.empty((n, 1)), np.empty((1, n + 1)),
-               np.empty(1, dtype=np.int64), np.empty(n + 1), np.empty(n))
-    want = warm_basic.copy()
+    rhs_s[:] = 0.0
+    magb_s[:] = 0.0
+    scratch = (rhs_s, magb_s, U_s, V_s, act_s, prow_s, col_s)
+    want[:] = warm_basic
     for i in range(n):
         if far_both(lo, hi, i) and (cold or lo[i] == -np.inf and hi[i] == np.inf):
             want[i] = True
@@ -568,7 +581,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     rmax = 0.0
     for i in range(n):
         rmax = max(rmax, R[i])
-    s0 = np.ones(n)
+    s0[:] = 1.0
     infeasible = False
     for i in range(n):
         b = basis[i]
@@ -600,7 +613,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
             d[basis[i]] = T[i, n] / R[basis[i]]
     code = SOLVED
     z0 = 0.0
-    ray_lab = np.zeros(2 * n + 1)
+    ray_lab[:] = 0.0
     if infeasible:
         code, p = lemke(T, x, los, his, z_hi, basis, nonbasic, pos, is_basic, s0,
                         max_pivots - pivots, pivot_tol, tie_tol, ray_lab, scratch)
