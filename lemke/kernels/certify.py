@@ -134,8 +134,11 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     for j in range(n + 1):
         if not abs(ray[j]) < np.inf:
             return False
-    R = np.empty(n)
-    C = np.empty(n)
+    work = np.empty(10 * n + 1)  # one allocation for the ten work vectors below
+    R, C, dz = work[:n], work[n : 2 * n], work[2 * n : 3 * n + 1]
+    floors, no_floor = work[3 * n + 1 : 4 * n + 1], work[4 * n + 1 : 5 * n + 1]
+    ru, rdu = work[5 * n + 1 : 6 * n + 1], work[6 * n + 1 : 7 * n + 1]
+    u, w, du = work[7 * n + 1 : 8 * n + 1], work[8 * n + 1 : 9 * n + 1], work[9 * n + 1 :]
     equilibrate(M, q, R, C)
     # Rounding in the direction: an entry of dz below g times the largest entry of the
     # direction (in the equilibrated units of the columns, dz0 included in the units where
@@ -149,7 +152,6 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     top = abs(ray[n]) * d_top
     for j in range(n):
         top = max(top, abs(ray[j]) / C[j])
-    dz = np.empty(n + 1)
     nonzero = False
     for j in range(n):
         dz[j] = ray[j] if abs(ray[j]) / C[j] > g * top else 0.0
@@ -166,15 +168,9 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     q_top = 0.0
     for i in range(n):
         q_top = max(q_top, R[i] * abs(q[i]))
-    floors = np.empty(n)
     for i in range(n):
         floors[i] = g * q_top / R[i]
-    no_floor = np.zeros(n)
-    ru = np.empty(n)
-    rdu = np.empty(n)
-    u = np.empty(n)
-    w = np.empty(n)
-    du = np.empty(n)
+    no_floor[:] = 0.0
     for i in range(n):
         mz, sz = dot_and_size(M[i], z, n)
         w[i] = q[i] + mz

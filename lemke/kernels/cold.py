@@ -59,7 +59,7 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check
-from .linalg import equilibrate, finite_absmax, nan_probe, solve_principal
+from .linalg import copy, equilibrate, finite_absmax, nan_probe, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -127,7 +127,7 @@ def prologue(M, q, d, buf):
     if q_min >= 0.0:
         x[:] = 0.0
         ray[:] = 0.0
-        w[:] = q
+        copy(w, q)
         return TRIVIAL
     return 0
 
@@ -259,7 +259,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             if step == 0:
                 buf2 = np.empty_like(buf)  # only on the failure path: no allocation when solved
                 z_basic2 = np.empty(n, dtype=np.bool_)
-            buf2[:] = buf
+            copy(buf2, buf)
             exact = retry_covering(step, q, R, layout(n, buf2)[3])
             run_method = other if step == RETRIES - 1 else method
             ptol = 0.0 if exact else pivot_tol
@@ -289,8 +289,8 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         elif take:
             have_ray = False
         if take:
-            buf[:] = buf2
-            z_basic[:] = z_basic2
+            copy(buf, buf2)
+            copy(z_basic, z_basic2)
             code, ok, residual = code2, ok2, residual2
     if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
         ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)

@@ -86,6 +86,14 @@ def absmax(x, k):
     return max(max(m0, m1), max(m2, m3))
 
 
+@inline_kernel
+def copy(dst, src):
+    """dst[:] = src for vectors of one length, as a loop: an array assignment makes numba
+    compile the formatting of its shape error (a second of the first call's compile)."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
 @kernel
 def principal_block(M, idx):
     """The contiguous copy M[idx][:, idx]."""

@@ -26,7 +26,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, equilibrate, scaled_system
+from .linalg import axpy, copy, equilibrate, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
@@ -64,7 +64,7 @@ def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
     """
     n, m = T.shape
     inv = 1.0 / col[r]
-    prow[:] = T[r]
+    copy(prow, T[r])
     for p in range(k):
         f = U[r, p]
         if f != 0.0:
@@ -72,7 +72,8 @@ def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
     for j in range(m):
         prow[j] = -prow[j] * inv
     prow[s] = inv
-    T[r, :] = prow
+    for j in range(m):  # loops, not row assignments, which compile error formatting
+        T[r, j] = prow[j]
     rhs[r] = -rhs[r] * inv
     rr = rhs[r]
     magb[r] *= abs(inv)  # an upper bound on |B^-1| |q| per row (see ratio_test)
@@ -89,7 +90,8 @@ def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
                 rhs[i] += f * rr
                 magb[i] += abs(f) * mr
     U[r, k] = 0.0
-    V[k, :] = prow
+    for j in range(m):
+        V[k, j] = prow[j]
     V[k, s] = 0.0
     k += 1
     if k == U.shape[1]:
@@ -204,8 +206,8 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     is_basic = np.zeros(2 * n + 1, dtype=np.bool_)
     H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
     hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]
-    start_basis[:] = basis
     for i in range(n):
+        start_basis[i] = basis[i]  # (a loop: see unrevised.copy_column)
         pos[basis[i]] = i
         is_basic[basis[i]] = True
     for j in range(n + 1):

@@ -36,8 +36,19 @@ def invert(AB, alist, k, G):
     """G[:k, :k] = inverse of H = AB[alist[:k], :k], by ``linalg.invert_in_place`` (one
     thread, no LAPACK).  False when H is singular or the inverse is not finite."""
     for r in range(k):
-        G[r, :k] = AB[alist[r], :k]
+        src = AB[alist[r]]
+        for c in range(k):  # a loop, not a slice assignment: see copy_column
+            G[r, c] = src[c]
     return invert_in_place(G, k)
+
+
+@inline_kernel
+def copy_column(dst, j, src, i):
+    """dst[:, j] = src[:, i], as a loop: each slice assignment between arrays makes numba
+    compile an implementation of its own, with the formatting of its error messages (about
+    a second each)."""
+    for r in range(dst.shape[0]):
+        dst[r, j] = src[r, i]
 
 
 @kernel
@@ -154,7 +165,7 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
             blist[k] = i
             apos[i] = k
             bpos[i] = k
-            AB[:, k] = A[:, i]
+            copy_column(AB, k, A, i)
             k += 1
     ray_out[:] = 0.0
     x_out[:] = 0.0
@@ -162,7 +173,9 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     status = MAX_PIVOTS
     pivots = 0
     if G0.shape[0] == k:
-        G[:k, :k] = G0
+        for r in range(k):
+            for c in range(k):
+                G[r, c] = G0[r, c]
     elif not invert(AB, alist, k, G):
         status = NUMERICAL_FAILURE
         max_pivots = 0
@@ -319,7 +332,7 @@ def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dz
         apos[i] = k
         blist[k] = e
         bpos[e] = k
-        AB[:, k] = A[:, e]
+        copy_column(AB, k, A, e)
         return abs(s) > 1e-13
     if entering >= n:
         # z_e replaces z_l as column p of H (Sherman-Morrison): with u = G A[alpha, e],
@@ -337,7 +350,7 @@ def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dz
         blist[p] = e
         bpos[l] = -1
         bpos[e] = p
-        AB[:, p] = A[:, e]
+        copy_column(AB, p, A, e)
         return abs(piv) > 1e-13
     if leaving < n:
         # w_j enters, w_i leaves: row p of H becomes A[i, beta].  With r = A[i, beta] G:
@@ -374,7 +387,7 @@ def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dz
         G[m, c] = G[last, c]
     for r in range(last):
         G[r, p] = G[r, last]
-    AB[:, m] = AB[:, last]
+    copy_column(AB, m, AB, last)
     bl = blist[last]
     blist[m] = bl
     bpos[bl] = m
