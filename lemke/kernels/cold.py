@@ -59,7 +59,7 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check
-from .linalg import copy, equilibrate, finite_absmax, nan_probe, solve_principal
+from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -140,7 +140,7 @@ def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, caref
     if method == TABLEAU:
         return tableau.solve(M, q, cov, R, C, max_pivots, pivot_tol, tie_tol, x, ray, z_basic,
                              careful)
-    return unrevised.solve(M, q, cov, R, C, np.zeros(n, dtype=np.bool_), np.empty((0, 0)),
+    return unrevised.solve(M, q, cov, R, C, false_flags(n), no_matrix(),
                            max_pivots, pivot_tol, tie_tol, x, ray, z_basic)
 
 
@@ -257,7 +257,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
                     M, q, cov, x[:n], x[n], ray, tol):
                 break  # a checked ray of the first run: a verdict, not a failure
             if step == 0:
-                buf2 = np.empty_like(buf)  # only on the failure path: no allocation when solved
+                buf2 = np.empty(buf.shape[0])  # only on the failure path: none when solved
                 z_basic2 = np.empty(n, dtype=np.bool_)
             copy(buf2, buf)
             exact = retry_covering(step, q, R, layout(n, buf2)[3])
@@ -352,7 +352,7 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
             basic[i] = beta[i]
         return 0, pivoting.SOLVED, 0, k, True, residual
     # the restart from the old basis
-    flags = np.zeros(2 * n, dtype=np.bool_)  # one allocation for both
+    flags = false_flags(2 * n)  # one allocation for both
     z_start, z_basic = flags[:n], flags[n:]
     for i in range(k):
         z_start[beta[i]] = True
@@ -362,7 +362,7 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
         for j in range(k):
             acc -= M[i, beta[j]]
         cov[i] = acc
-    code, pivots = unrevised.solve(M, q, cov, R, C, z_start, np.empty((0, 0)), max_pivots,
+    code, pivots = unrevised.solve(M, q, cov, R, C, z_start, no_matrix(), max_pivots,
                                    pivot_tol, tie_tol, x, ray, z_basic)
     if not (code == pivoting.NUMERICAL_FAILURE and pivots == 0):  # a singular start
         ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)

@@ -94,6 +94,23 @@ def copy(dst, src):
         dst[i] = src[i]
 
 
+@inline_kernel
+def false_flags(m):
+    """m booleans, all False.  The LCP kernels allocate their arrays with np.empty only:
+    every other allocating function (np.zeros, np.empty_like, a tuple shape) is one more
+    implementation for numba to compile on the first call."""
+    flags = np.empty(m, dtype=np.bool_)
+    for i in range(m):
+        flags[i] = False
+    return flags
+
+
+@inline_kernel
+def no_matrix():
+    """An empty 2-D array (see :func:`false_flags`)."""
+    return np.empty(0).reshape((0, 0))
+
+
 @kernel
 def principal_block(M, idx):
     """The contiguous copy M[idx][:, idx]."""

@@ -26,7 +26,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, copy, equilibrate, scaled_system
+from .linalg import axpy, copy, equilibrate, false_flags, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
@@ -203,7 +203,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     I = np.empty(4 * n + 1 + block, dtype=np.int64)
     pos, start_basis = I[: 2 * n + 1], I[2 * n + 1 : 3 * n + 1]
     cand, act = I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 :]
-    is_basic = np.zeros(2 * n + 1, dtype=np.bool_)
+    is_basic = false_flags(2 * n + 1)
     H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
     hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]
     for i in range(n):
