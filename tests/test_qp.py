@@ -390,3 +390,27 @@ def test_fused_path_gives_up_after_one_failed_run():
     assert res.status == Status.SOLVED, res
     assert_qp_kkt(*problem, res, rtol=1e-8)
     assert max(res.primal_residual, res.dual_residual) <= 1e-9
+
+
+@pytest.mark.parametrize("n", [16, 40])
+def test_box_path_defers_its_fields(n):
+    """A box-only QP of at least BOX_FIRST variables with plain data takes the box kernel
+    without the front's validation (kernels.qp.screen and cholesky instead, the same
+    arrays); its residuals, objective and basis are built when first read, and are those
+    of the point (KKT checked here; the warm start re-solves it in 0 pivots)."""
+    import pickle
+
+    rng = np.random.default_rng(n)
+    B = rng.standard_normal((n, n))
+    P = B @ B.T / n + 0.1 * np.eye(n)
+    q = 3.0 * rng.standard_normal(n)
+    lb, ub = -rng.uniform(0.1, 1.0, n), rng.uniform(0.1, 1.0, n)
+    res = lemke.solve_qp(P, q, lb=lb, ub=ub)
+    assert "_resolve" in res.__dict__  # deferred until read
+    assert res.status == Status.SOLVED
+    assert_qp_kkt(P, q, None, None, None, None, lb, ub, res)
+    assert max(res.primal_residual, res.dual_residual, res.duality_gap) <= 1e-9 * (1 + np.abs(q).max())
+    assert np.isclose(res.obj, 0.5 * res.x @ P @ res.x + q @ res.x)
+    assert pickle.loads(pickle.dumps(res)) == res
+    again = lemke.solve_qp(P, q, lb=lb, ub=ub, warm_start=res.warm_start)
+    assert again.success and again.pivots == 0
