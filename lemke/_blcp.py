@@ -220,7 +220,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     """
     if (findex is None and warm_start is None and type(M) is np.ndarray
             and type(q) is np.ndarray and type(lo) is np.ndarray and type(hi) is np.ndarray
-            and M.dtype is _F64 and q.dtype is _F64 and lo.dtype is _F64 and hi.dtype is _F64
+            and M.dtype == _F64 and q.dtype == _F64 and lo.dtype == _F64 and hi.dtype == _F64
             and M.ndim == 2 and q.ndim == 1 and M.shape[0] == M.shape[1] == q.shape[0]
             == lo.shape[0] == hi.shape[0] and lo.ndim == 1 and hi.ndim == 1
             and method == "bounded" and M.flags.c_contiguous):

@@ -115,7 +115,7 @@ def check_mlcp(E, e, n, x, tol):
 
 
 def absmax(a) -> float:
-    return float(np.max(np.abs(a))) if a.size else 0.0
+    return float(np.abs(a).max()) if a.size else 0.0
 
 
 def is_mlcp_ray(E, n, direction, tol) -> bool:

@@ -33,7 +33,7 @@ from ._status import Status
 from .kernels import cold, qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
-BOX_FIRST = 32  # box-only QPs of at least this many variables try the bounded kernel first
+BOX_FIRST = 16  # box-only QPs of at least this many variables try the bounded kernel first
 
 
 @dataclass(frozen=True, eq=False)
@@ -280,9 +280,25 @@ def _absent(n):
     return np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
 
 
+_F64 = np.dtype(np.float64)
+
+
 def _kernel_array(x):
-    """float64, C-contiguous and writable (see ``_validate.kernel_array``)."""
+    """float64, C-contiguous and writable (see ``_validate.kernel_array``); a plain float64
+    ndarray that already is goes through without a call into numpy."""
+    if type(x) is np.ndarray and x.dtype == _F64:
+        f = x.flags
+        if f.c_contiguous and f.writeable:
+            return x
     return _validate.kernel_array(np.asarray(x, dtype=np.float64))
+
+
+def _kernel_vector(v):
+    """:func:`_kernel_array`, a column (k, 1) flattened."""
+    v = _kernel_array(v)
+    if v.ndim == 2 and v.shape[1] == 1:
+        v = v.reshape(-1)
+    return v
 
 
 def _plain_args(P, q, G, h, A, b, lb, ub):
@@ -291,43 +307,45 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
     :func:`qpsolvers_form`), or None when any is in another form: the full validation then
     converts it or raises.  Values are not looked at (``kernels.qp.screen`` does that)."""
     try:
-        q = _kernel_array(q)
-        if q.ndim == 2 and q.shape[1] == 1:
-            q = q.reshape(-1)
-        n = q.shape[0] if q.ndim == 1 else 0
-        if n == 0:
+        q = _kernel_vector(q)
+        if q.ndim != 1 or not q.shape[0]:
             return None
+        n = q.shape[0]
         P = _kernel_array(P)
         if P.shape != (n, n):
             if not (n == 1 and P.size == 1 and P.ndim <= 1):
                 return None
             P = P.reshape(1, 1)
-        no_rows, no_rhs, no_lb, no_ub = _absent(n)
-        out = [P, q]
-        for M, v in ((G, h), (A, b)):
-            if M is None and v is None:
-                out += [no_rows, no_rhs]
-                continue
-            M = _kernel_array(M)
-            v = _kernel_array(v)
-            if v.ndim == 2 and v.shape[1] == 1:
-                v = v.reshape(-1)
-            if M.ndim != 2 or v.ndim != 1 or M.shape != (v.shape[0], n):
+        absent = _absent(n)
+        if G is None and h is None:
+            G, h = absent[0], absent[1]
+        else:
+            G = _kernel_array(G)
+            h = _kernel_vector(h)
+            if G.ndim != 2 or h.ndim != 1 or G.shape != (h.shape[0], n):
                 return None
-            out += [M, v]
-        for v, absent in ((lb, no_lb), (ub, no_ub)):
-            if v is None:
-                out.append(absent)
-                continue
-            v = _kernel_array(v)
-            if v.ndim == 2 and v.shape[1] == 1:
-                v = v.reshape(-1)
-            if v.shape != (n,):
+        if A is None and b is None:
+            A, b = absent[0], absent[1]
+        else:
+            A = _kernel_array(A)
+            b = _kernel_vector(b)
+            if A.ndim != 2 or b.ndim != 1 or A.shape != (b.shape[0], n):
                 return None
-            out.append(v)
+        if lb is None:
+            lb = absent[2]
+        else:
+            lb = _kernel_vector(lb)
+            if lb.shape != (n,):
+                return None
+        if ub is None:
+            ub = absent[3]
+        else:
+            ub = _kernel_vector(ub)
+            if ub.shape != (n,):
+                return None
     except (TypeError, ValueError):
         return None
-    return out
+    return [P, q, G, h, A, b, lb, ub]
 
 
 def _solve_box(P, q, lb, ub, opts):
@@ -337,27 +355,61 @@ def _solve_box(P, q, lb, ub, opts):
     bounded-variable kernel (``lemke.solve_blcp``, whatever ``method``): n pairs, where the
     KKT-MLCP pivots on a row per bound.  Its answer is checked on the data (the natural
     map, row by row), which is the KKT check here.  None unless solved: the KKT-MLCP path
-    then runs and finds the certificates."""
-    d = _validate.qp(P, q, None, None, None, None, lb, ub)
-    q = d["q"]
-    n = q.size
-    if n == 0:
-        return None
-    P = _validate.symmetric_psd(d["P"])
-    lo = d.get("lb", np.full(n, -np.inf))
-    up = d.get("ub", np.full(n, np.inf))
+    then runs and finds the certificates.
+
+    Plain data (:func:`_box_screened`: float64 arrays, finite, symmetric, P definite) skips
+    the front's validation and its LAPACK Cholesky (the same arrays, bit for bit); the
+    residuals, objective and basis are built when first read (``QPResult._deferred``)."""
+    fast = _box_screened(P, q, lb, ub)
+    if fast is not None:
+        P, q, lo, up = fast
+        n = q.size
+    else:
+        d = _validate.qp(P, q, None, None, None, None, lb, ub)
+        q = d["q"]
+        n = q.size
+        if n == 0:
+            return None
+        P = _validate.symmetric_psd(d["P"])
+        lo = d.get("lb", np.full(n, -np.inf))
+        up = d.get("ub", np.full(n, np.inf))
     r = solve_blcp(P, q, lo, up, options=opts)
     if r.status != Status.SOLVED:
         return None
-    x = r.z
-    z_box = -r.w
     empty = np.zeros(0)
     empty.setflags(write=False)
+    z_box = -r.w
     z_box.setflags(write=False)
-    _, primal, dual, gap, obj = kkt((P, q, np.zeros((0, n)), empty, np.zeros((0, n)), empty, lo, up),
-                                    x, empty, empty, z_box, 0.0)
-    return QPResult._make_from(x, empty, empty, z_box, obj, Status.SOLVED, r.pivots, primal,
-                               dual, gap, None, _box_basis(lo, up, r.warm_start))
+    return QPResult._deferred(
+        {"x": r.z, "y": empty, "z": empty, "z_box": z_box, "status": Status.SOLVED,
+         "pivots": r.pivots, "certificate": None},
+        _box_fields, (P, q, lo, up, r.z, z_box, r.warm_start))
+
+
+def _box_screened(P, q, lb, ub):
+    """``(Ps, q, lo, up)`` of a box-only QP whose data the fused path's screen passes
+    (``kernels.qp.screen``: finite, symmetric to the front's tolerance, lb <= ub, bounds
+    beyond 1e20 infinite) and whose symmetric part has a Cholesky factor
+    (``kernels.qp.cholesky``: definite, so the front's positive-semidefinite check passes);
+    None otherwise (the full validation then decides).  ``Ps = (P + P')/2`` elementwise,
+    the bits of ``_validate.symmetric_psd``."""
+    plain = _plain_args(P, q, None, None, None, None, lb, ub)
+    if plain is None:
+        return None
+    ok, Ps, lo, up = kqp.screen(*plain)
+    if not ok or not kqp.cholesky(Ps, np.empty_like(Ps)):
+        return None
+    return Ps, plain[1], lo, up
+
+
+def _box_fields(P, q, lo, up, x, z_box, ws):
+    """The deferred fields of a result of :func:`_solve_box`."""
+    n = q.size
+    empty = np.zeros(0)
+    _, primal, dual, gap, obj = kkt((P, q, np.zeros((0, n)), empty, np.zeros((0, n)), empty,
+                                     lo, up), x, empty, empty, z_box, 0.0)
+    return {"obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
+            "warm_start": _box_basis(lo, up, ws)}
 
 
 def _box_basis(lo, up, ws):

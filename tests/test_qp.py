@@ -359,3 +359,58 @@ def test_box_only_qp_without_optimum_keeps_its_certificate():
     # then proves it (a direction of unbounded descent)
     res = lemke.solve_qp(np.zeros((2, 2)), [-1.0, 0.0], lb=[0.0, -1.0], ub=[np.inf, 1.0])
     assert res.status == Status.DUAL_INFEASIBLE and res.certificate.dx[0] > 0
+
+
+def test_fused_path_gives_up_after_one_failed_run():
+    """QPCBOEI1 (P = diag, cond 10; 971 inequalities on 375 free directions): the fused
+    path's dual LCP is rank-deficient, and its first Lemke run stops after 2 pivots on a
+    point that fails the LCP check.  The fused kernel then gives up at once (NOT_SOLVED,
+    no recovery runs: these took 469 more pivots, over a second, only for the point to
+    fail the KKT check), and solve_qp answers by the KKT-MLCP path, checked here."""
+    import sys
+    from pathlib import Path
+
+    from lemke import _qp
+    from lemke._options import as_options
+    from lemke.kernels import cold, qp as kqp
+
+    here = Path(__file__).resolve().parent
+    sys.path.insert(0, str(here.parent / "benchmarks"))
+    from maros_meszaros import load
+
+    problem, _ = load(here / "data" / "maros-meszaros" / "QPCBOEI1.mat")
+    args = _qp._plain_args(*problem)
+    n, p, m = args[1].size, args[4].shape[0], args[2].shape[0]
+    opts = as_options(None)
+    code, pivots, _, _ = kqp.solve(*args, cold.METHODS["tableau"], -1, opts.pivot_tol,
+                                   opts.tie_tol, opts.tol, np.empty(2 * n + p + m + 4),
+                                   np.empty(m + 2 * n, dtype=np.int64))
+    assert code == kqp.NOT_SOLVED and pivots <= 10
+    res = lemke.solve_qp(*problem)
+    assert res.status == Status.SOLVED, res
+    assert_qp_kkt(*problem, res, rtol=1e-8)
+    assert max(res.primal_residual, res.dual_residual) <= 1e-9
+
+
+@pytest.mark.parametrize("n", [16, 40])
+def test_box_path_defers_its_fields(n):
+    """A box-only QP of at least BOX_FIRST variables with plain data takes the box kernel
+    without the front's validation (kernels.qp.screen and cholesky instead, the same
+    arrays); its residuals, objective and basis are built when first read, and are those
+    of the point (KKT checked here; the warm start re-solves it in 0 pivots)."""
+    import pickle
+
+    rng = np.random.default_rng(n)
+    B = rng.standard_normal((n, n))
+    P = B @ B.T / n + 0.1 * np.eye(n)
+    q = 3.0 * rng.standard_normal(n)
+    lb, ub = -rng.uniform(0.1, 1.0, n), rng.uniform(0.1, 1.0, n)
+    res = lemke.solve_qp(P, q, lb=lb, ub=ub)
+    assert "_resolve" in res.__dict__  # deferred until read
+    assert res.status == Status.SOLVED
+    assert_qp_kkt(P, q, None, None, None, None, lb, ub, res)
+    assert max(res.primal_residual, res.dual_residual, res.duality_gap) <= 1e-9 * (1 + np.abs(q).max())
+    assert np.isclose(res.obj, 0.5 * res.x @ P @ res.x + q @ res.x)
+    assert pickle.loads(pickle.dumps(res)) == res
+    again = lemke.solve_qp(P, q, lb=lb, ub=ub, warm_start=res.warm_start)
+    assert again.success and again.pivots == 0

@@ -94,3 +94,21 @@ def test_mlcp_to_lcp_finds_contradictory_equations():
     E = np.array([[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     e = np.array([-1.0, -2.0, 0.0])
     assert MLCPToLCP(E, e, 2).code == kmlcp.INCONSISTENT
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_equilibrate_kernel_matches_numpy_bit_for_bit(seed):
+    """The MLCP reduction's Ruiz scaling runs in a kernel (kernels.mlcp.equilibrate); it
+    must give numpy's bits (the QP goldens depend on them), zero rows and columns, wide
+    ranges of magnitudes and every split of free and paired variables included."""
+    from lemke._reductions.mlcp_lcp import _equilibrate_numpy, equilibrate
+
+    rng = np.random.default_rng(seed)
+    N = int(rng.integers(1, 30))
+    n = int(rng.integers(0, N + 1))
+    E = rng.standard_normal((N, N)) * np.exp(rng.uniform(-10, 10, (N, N)))
+    E[rng.random((N, N)) < 0.4] = 0.0
+    if seed % 4 == 0:
+        E[int(rng.integers(N))] = 0.0  # a zero row
+    for a, b in zip(equilibrate(E, n), _equilibrate_numpy(E, n)):
+        assert np.array_equal(a, b)

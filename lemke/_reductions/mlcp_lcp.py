@@ -27,11 +27,24 @@ EPS = float(np.finfo(np.float64).eps)
 def equilibrate(E, n, iterations=10):
     """Scaling vectors ``(r, s)`` that bring every row and column of ``r E s`` near size 1
     (Ruiz's method): free rows and columns get their own factors, and a pair's row and
-    column the same one, so that v ⊥ w is kept."""
+    column the same one, so that v ⊥ w is kept.  The sweeps run in a kernel
+    (``kernels.mlcp.equilibrate``, numpy's operations in numpy's order: the same bits);
+    ``_equilibrate_numpy`` is the same in numpy, for the tests."""
     N = E.shape[0]
     r = np.ones(N)
     s = np.ones(N)
     if N == 0:  # an empty system: nothing to scale (and max over no entries is undefined)
+        return r, s
+    kmlcp.equilibrate(np.ascontiguousarray(E, dtype=np.float64), n, iterations, r, s)
+    return r, s
+
+
+def _equilibrate_numpy(E, n, iterations=10):
+    """:func:`equilibrate` in numpy (the reference of the kernel's bits)."""
+    N = E.shape[0]
+    r = np.ones(N)
+    s = np.ones(N)
+    if N == 0:
         return r, s
     absE = np.abs(E)
     for _ in range(iterations):
@@ -137,8 +150,8 @@ def basis_point(E, e, n, v_basic, red):
     """The point of the basis (all determined u basic, v_k basic where v_basic[k]) from the
     caller's data: one dense solve and one step of iterative refinement.  None if singular."""
     N = e.size
-    keep_eq = np.setdiff1d(np.arange(n), red.redundant)
-    keep_u = np.setdiff1d(np.arange(n), red.undetermined)
+    keep_eq = _all_but(n, red.redundant)
+    keep_u = _all_but(n, red.undetermined)
     vb = n + np.flatnonzero(v_basic)
     rows = np.concatenate([keep_eq, vb])
     cols = np.concatenate([keep_u, vb])
@@ -152,6 +165,16 @@ def basis_point(E, e, n, v_basic, red):
         x[cols] = xb
     x[n:] = np.maximum(x[n:], 0.0)
     return x
+
+
+def _all_but(n, drop):
+    """``0 .. n-1`` without the indices in ``drop`` (``np.setdiff1d(np.arange(n), drop)``
+    without its sort)."""
+    if not drop.size:
+        return np.arange(n)
+    keep = np.ones(n, dtype=bool)
+    keep[drop] = False
+    return np.flatnonzero(keep)
 
 
 def refined_solve(K, rhs, steps=2):

@@ -141,3 +141,48 @@ def reduce(T, n, rank_tol, e_size, row_label, col_label):
             if lr >= n and not (N <= lr < N + n) and abs(T[r, c]) > rank_tol:
                 return SINGULAR, r  # it moves a pair: it is not free to be set to 0
     return OK, -1
+
+
+@kernel
+def equilibrate(E, n, iterations, r, s):
+    """Ruiz scaling of the stacked E (see ``_reductions.mlcp_lcp.equilibrate``) into r and s
+    (both all ones on entry), the same operations in the same order as numpy's, so the same
+    bits: per sweep the largest entry of each row and column of ``|E| r s``, the free rows
+    and columns divided by its square root, and a pair's row and column both multiplied by
+    one over the square root of the larger of the two.  Stops early once every row and
+    column is within 0.1 of 1."""
+    N = E.shape[0]
+    rows = np.empty(N)
+    cols = np.empty(N)
+    for _ in range(iterations):
+        for i in range(N):
+            rows[i] = -np.inf
+            cols[i] = -np.inf
+        for i in range(N):
+            Ei = E[i]
+            ri = r[i]
+            for j in range(N):
+                v = abs(Ei[j]) * ri * s[j]
+                if v > rows[i] or v != v:
+                    rows[i] = v
+                if v > cols[j] or v != v:
+                    cols[j] = v
+        done = True
+        for i in range(N):
+            if rows[i] == 0.0:
+                rows[i] = 1.0
+            if cols[i] == 0.0:
+                cols[i] = 1.0
+            if not (abs(rows[i] - 1.0) < 0.1 and abs(cols[i] - 1.0) < 0.1):
+                done = False
+        for i in range(n):
+            r[i] /= np.sqrt(rows[i])
+            s[i] /= np.sqrt(cols[i])
+        for i in range(n, N):
+            a = rows[i]
+            b = cols[i]
+            f = 1.0 / np.sqrt(a if (a >= b or a != a) else b)
+            r[i] *= f
+            s[i] *= f
+        if done:
+            break
