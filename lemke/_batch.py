@@ -234,7 +234,8 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     # Every problem ready for the kernels (float64 ndarrays, M square of q's size) is the
     # common case, checked in one pass; else each problem is checked and converted.
     if len([None for Mb, qb in zip(Ms, qs)
-            if type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
+            if type(Mb) is _ND and type(qb) is _ND
+            and (Mb.dtype is _F64 or Mb.dtype == _F64) and (qb.dtype is _F64 or qb.dtype == _F64)
             and qb.ndim == 1 and Mb.shape == qb.shape * 2]) != B:
         Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
                        for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
@@ -313,8 +314,8 @@ _F64 = np.dtype(np.float64)
 def _ready(M, q) -> bool:
     """Whether (M, q) can go to the kernels as it is (float64, C-contiguous, square M and a
     vector q of its size): the kernels check finiteness themselves."""
-    return (type(M) is np.ndarray and type(q) is np.ndarray and M.dtype is _F64
-            and q.dtype is _F64 and M.ndim == 2 and q.ndim == 1
+    return (type(M) is np.ndarray and type(q) is np.ndarray and (M.dtype is _F64 or M.dtype == _F64)
+            and (q.dtype is _F64 or q.dtype == _F64) and M.ndim == 2 and q.ndim == 1
             and M.shape[0] == M.shape[1] == q.shape[0] and M.flags.c_contiguous)
 
 

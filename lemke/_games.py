@@ -267,8 +267,8 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     Theory vol. 3 (2002).  A. H. van den Elzen, A. J. J. Talman, "A procedure for finding Nash
     equilibria in bi-matrix games", ZOR 35 (1991).
     """
-    if not (type(A) is np.ndarray and type(B) is np.ndarray and A.dtype is _F64
-            and B.dtype is _F64 and A.ndim == 2 and A.shape == B.shape and A.size
+    if not (type(A) is np.ndarray and type(B) is np.ndarray and (A.dtype is _F64 or A.dtype == _F64)
+            and (B.dtype is _F64 or B.dtype == _F64) and A.ndim == 2 and A.shape == B.shape and A.size
             and A.flags.c_contiguous and B.flags.c_contiguous) or method != "lemke-howson":
         A, B = _as_payoffs(A, B)  # the common case skips this: the kernel checks finiteness
     m, n = A.shape

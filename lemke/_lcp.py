@@ -75,8 +75,11 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
     ws = warm_start
-    if (type(M) is _ND and type(q) is _ND and d is None and q.ndim == 1 and M.dtype is _F64
-            and q.dtype is _F64 and M.shape == q.shape * 2 and M.flags.carray and q.flags.carray
+    # (``is`` first, for speed; ``==`` for a float64 dtype that is not numpy's own object,
+    # such as that of an array made by a numba kernel.)
+    if (type(M) is _ND and type(q) is _ND and d is None and q.ndim == 1
+            and (M.dtype is _F64 or M.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
+            and M.shape == q.shape * 2 and M.flags.carray and q.flags.carray
             and method in _CODES and (ws is None or (type(ws) is WarmStart and ws.n == q.shape[0]))):
         # The common case: float64, square, C-contiguous, aligned and writable already (the
         # kernels never write to M and q, and check that they are finite), so no copies, and

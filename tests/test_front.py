@@ -215,3 +215,22 @@ def test_solve_lcp_fast_path_and_its_edges():
     assert back == ws and "_beta" not in back.__dict__ and "_beta" not in copy.copy(ws).__dict__
     _same(lemke.solve_lcp(M, q, warm_start=back), warm)
     assert lemke.solve_lcp(M, q, options={"max_pivots": 1}).pivots <= 1
+
+
+def test_arrays_made_by_a_numba_kernel_take_the_fast_path_with_the_same_answer():
+    """An array returned by a numba kernel has a float64 dtype object that is not numpy's
+    own (``is`` fails, ``==`` holds): solve_lcp must accept it as it is and give the bits
+    it gives for numpy's own arrays."""
+    from lemke.kernels.linalg import principal_block
+
+    rng = np.random.default_rng(7)
+    A = rng.standard_normal((5, 5))
+    M = A @ A.T + np.eye(5)
+    q = rng.standard_normal(5)
+    Mk = principal_block(M, np.arange(5))  # a copy of M made by a kernel
+    assert Mk.dtype == np.float64
+    r, rk = lemke.solve_lcp(M, q), lemke.solve_lcp(Mk, q)
+    assert rk.status == lemke.Status.SOLVED
+    assert rk.z.tobytes() == r.z.tobytes() and rk.pivots == r.pivots
+    w = M @ rk.z + q
+    assert rk.z.min() >= 0 and w.min() >= -1e-12 and abs(rk.z @ w) <= 1e-12
