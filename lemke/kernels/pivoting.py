@@ -268,7 +268,7 @@ def new_detector():
     return np.zeros(3, dtype=np.uint64)
 
 
-@inline_kernel
+@kernel
 def repeats(state, h):
     """Feed the fingerprint h of the basis after a pivot; True when a basis repeated."""
     if state[1] > 0 and h == state[0]:
@@ -281,7 +281,7 @@ def repeats(state, h):
     return False
 
 
-@inline_kernel
+@kernel
 def after_pivot(leaving, entering, artificial, h, hkeys, detector):
     """The end of every pivot, in both methods: ``(h, stop)`` with the basis fingerprint h
     updated for ``entering`` replacing ``leaving``, and stop SOLVED when the artificial
@@ -294,7 +294,7 @@ def after_pivot(leaving, entering, artificial, h, hkeys, detector):
     return h, -1
 
 
-@inline_kernel
+@kernel
 def swap_labels(basis, nonbasic, pos, is_basic, r, s):
     """The bookkeeping of a pivot on row r and column s: the label of column s enters the
     basis at row r, the label of row r leaves for column s.  Returns the leaving label."""
