@@ -44,6 +44,8 @@ from .kernels import boxed
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
+_SOLVED = Status.SOLVED
+_new = object.__new__
 _COLD = (0, 1, 2)  # covering vectors of the cold runs (kernels.boxed.solve's cov_mode)
 
 
@@ -136,6 +138,52 @@ class BLCPResult(Outcome):
     def __repr__(self) -> str:
         return (f"BLCPResult(status={self.status.name}, pivots={self.pivots}, "
                 f"residual={self.residual:.3g}, n={self.z.size})")
+
+    def __getstate__(self):
+        # every field made, and the kernel's buffers left behind (pickle, copy)
+        d = self.__dict__
+        if "_src" in d:
+            for name in _BOX_FIELDS:
+                getattr(self, name)
+            d = {key: v for key, v in d.items() if key != "_src"}
+        return d
+
+
+class _BoxField:
+    """A field of a solved box result built by ``solve_blcp``'s fast path: a view of the
+    kernel's buffer (``kernels.boxed.layout``), or its warm start, made when first read and
+    then kept in the result's ``__dict__`` (as ``_result._FromBuffer`` does for LCPs; a
+    small solve that reads only ``z`` pays for no other view)."""
+
+    __slots__ = ("name", "at")
+
+    def __init__(self, name, at):
+        self.name, self.at = name, at
+
+    def __get__(self, res, cls=None):
+        if res is None:
+            return self
+        d = res.__dict__
+        src = d.get("_src")
+        if src is None:
+            raise AttributeError(f"'BLCPResult' object has no attribute {self.name!r}")
+        buf, final, n, k, m = src
+        if self.at < 0:
+            idx = final.tolist()
+            v = BoxWarmStart._trusted(n, tuple(idx[:k]), tuple(idx[k:m]))
+        else:
+            if buf.flags.writeable:  # the result's arrays are read-only, as the others'
+                buf.setflags(write=False)
+            v = buf[self.at * n : (self.at + 1) * n]
+        d[self.name] = v
+        return v
+
+
+#: The lazy fields and where they sit in the buffer, in units of n (-1: the warm start).
+_BOX_FIELDS = {"z": 0, "w": 1, "covering": 2, "row_scale": 3, "col_scale": 4, "warm_start": -1}
+for _name, _at in _BOX_FIELDS.items():
+    setattr(BLCPResult, _name, _BoxField(_name, _at))
+del _name, _at
 
 
 
@@ -232,14 +280,18 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             final = np.empty(n, dtype=np.int64)
             out = boxed.solve(M, q, lo, hi, _NO[n], 0, opts.pivot_limit(n), opts.pivot_tol,
                               opts.tie_tol, opts.tol, buf, final)
-            if out[0] == 0 and out[3]:  # solved and checked: the result at once
-                buf.setflags(write=False)
-                idx = final.tolist()
-                k = out[5]
-                return BLCPResult._make_from(
-                    buf[:n], buf[n:2 * n], Status.SOLVED, out[1], out[4], None, 0.0,
-                    buf[2 * n:3 * n], BoxWarmStart._trusted(n, tuple(idx[:k]), tuple(idx[k:out[6]])),
-                    lo, hi, buf[3 * n:4 * n], buf[4 * n:5 * n], 0)
+            if out[0] == 0 and out[3]:  # solved and checked: the result, built lazily
+                res = _new(BLCPResult)
+                d = res.__dict__
+                d["status"] = _SOLVED
+                d["pivots"] = out[1]
+                d["residual"] = out[4]
+                d["ray"] = None
+                d["z0"] = 0.0
+                d["lo"] = lo
+                d["hi"] = hi
+                d["_src"] = (buf, final, n, out[5], out[6])
+                return res
             if out[0] >= 0:
                 run = _Run(n, buf, final)
                 run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out

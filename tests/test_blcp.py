@@ -425,3 +425,36 @@ def test_huge_finite_bounds_count_as_far():
     for lo, hi, z in (([-1e308], [1e308], [-1.0]), ([-np.inf], [1e300], [-1.0]), ([-1e300], [0.5], [-1.0])):
         r = lemke.solve_blcp([[1.0]], [1.0], lo, hi)
         assert r.success and r.z.tolist() == z
+
+
+def test_fast_path_result_is_lazy_and_equals_the_full_build():
+    """solve_blcp's fast path (float64 arrays) builds its result's arrays and warm start
+    when first read; every field must equal, bit for bit and in type, what the general
+    path (lists in, validated and converted) builds at once, and survive pickling."""
+    import pickle
+
+    rng = np.random.default_rng(11)
+    n = 9
+    A = rng.standard_normal((n, n))
+    M = A @ A.T + 0.5 * np.eye(n)
+    q = rng.standard_normal(n)
+    lo, hi = -np.ones(n), np.ones(n)
+    fast = lemke.solve_blcp(M, q, lo, hi)
+    full = lemke.solve_blcp(M.tolist(), q.tolist(), lo.tolist(), hi.tolist())
+    assert "_src" in fast.__dict__ and "z" not in fast.__dict__  # nothing made yet
+    assert fast.status == full.status == lemke.Status.SOLVED
+    for name in ("z", "w", "covering", "row_scale", "col_scale", "lo", "hi"):
+        a, b = getattr(fast, name), getattr(full, name)
+        assert type(a) is type(b) and a.tobytes() == b.tobytes(), name
+        assert not a.flags.writeable or name in ("lo", "hi"), name
+    for name in ("pivots", "residual", "ray", "z0", "recoveries", "warm_start"):
+        assert getattr(fast, name) == getattr(full, name), name
+    again = pickle.loads(pickle.dumps(lemke.solve_blcp(M, q, lo, hi)))
+    assert again.z.tobytes() == full.z.tobytes() and again.warm_start == full.warm_start
+    # the answer itself, checked here: natural-map conditions on the caller's data
+    z, w = fast.z, M @ fast.z + q
+    assert np.all(z >= lo - 1e-12) and np.all(z <= hi + 1e-12)
+    assert np.all(np.where(z <= lo + 1e-9, w >= -1e-9, True))
+    assert np.all(np.where(z >= hi - 1e-9, w <= 1e-9, True))
+    inner = (z > lo + 1e-9) & (z < hi - 1e-9)
+    assert np.all(np.abs(w[inner]) <= 1e-9)
