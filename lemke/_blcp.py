@@ -38,7 +38,7 @@ import numpy as np
 
 from ._options import _DEFAULT, as_options
 from . import _validate
-from ._result import Outcome
+from ._result import Outcome, lazy_state
 from ._status import Status
 from .kernels import boxed
 
@@ -140,13 +140,7 @@ class BLCPResult(Outcome):
                 f"residual={self.residual:.3g}, n={self.z.size})")
 
     def __getstate__(self):
-        # every field made, and the kernel's buffers left behind (pickle, copy)
-        d = self.__dict__
-        if "_src" in d:
-            for name in _BOX_FIELDS:
-                getattr(self, name)
-            d = {key: v for key, v in d.items() if key != "_src"}
-        return d
+        return lazy_state(self, _BOX_FIELDS)
 
 
 class _BoxField:

@@ -232,19 +232,24 @@ class LCPResult(Outcome):
         return res
 
     def __getstate__(self):
-        # every field made, and the shared buffer left behind (pickle, copy)
-        d = self.__dict__
-        if "_src" in d:
-            for name in _LAZY_FIELDS:
-                getattr(self, name)
-            d = {key: v for key, v in d.items() if key != "_src"}
-        return d
+        return lazy_state(self, _LAZY_FIELDS)
 
     def __repr__(self) -> str:
         return (
             f"LCPResult(status={self.status.name}, pivots={self.pivots}, "
             f"residual={self.residual:.3g}, n={self.z.size})"
         )
+
+
+def lazy_state(res, names):
+    """The state of a result built lazily (``_src`` in its ``__dict__``) for pickling and
+    copying: every field in ``names`` made, and the kernel's buffers left behind."""
+    d = res.__dict__
+    if "_src" in d:
+        for name in names:
+            getattr(res, name)
+        d = {key: v for key, v in d.items() if key != "_src"}
+    return d
 
 
 class _FromBuffer:
