@@ -57,10 +57,11 @@ from __future__ import annotations
 import os
 
 BLAS_THREAD_VARS = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
-for _var in BLAS_THREAD_VARS:
-    # lemke's numpy parts on one BLAS thread, as the engines' solvers are single-threaded (on a
-    # shared 2-core machine OpenBLAS's own threads made lemke's warm solves ~30x slower)
-    os.environ.setdefault(_var, "1")
+if __name__ == "__main__":  # not when imported (by the tests): their environment stays theirs
+    for _var in BLAS_THREAD_VARS:
+        # lemke's numpy parts on one BLAS thread, as the engines' solvers are single-threaded (on
+        # a shared 2-core machine OpenBLAS's own threads made lemke's warm solves ~30x slower)
+        os.environ.setdefault(_var, "1")
 
 import ctypes  # noqa: E402
 import gc  # noqa: E402
