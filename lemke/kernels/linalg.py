@@ -171,14 +171,13 @@ def equilibrate(M, q, R, C):
         for i in range(n):
             r = R[i]
             row = M[i]
+            rm = 0.0  # a local running maximum, branch-free: the loop vectorizes
             for j in range(n):
                 a = abs(row[j]) * r * C[j]
-                if a > rmax[i]:
-                    rmax[i] = a
-                if a > cmax[j]:
-                    cmax[j] = a
+                rm = max(rm, a)
+                cmax[j] = max(cmax[j], a)
             a = abs(q[i]) * r * cq
-            rmax[i] = max(rmax[i], a)
+            rmax[i] = max(rm, a)
             qmax = max(qmax, a)
         balanced = not (qmax > 0.0 and (qmax < 0.5 or qmax > 2.0))
         for i in range(n):
