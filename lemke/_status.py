@@ -29,8 +29,10 @@ class Status(IntEnum):
 _MESSAGES = {
     Status.SOLVED: (
         "Solved, and checked on the caller's data within the tolerance: z >= 0, w = Mz + q >= 0 "
-        "and z'w = 0 (for an MLCP also its equations; for a QP its KKT conditions; for a game, no "
-        "player gains by deviating, up to the tolerance relative to the payoffs)."
+        "and z'w = 0 (for an MLCP also its equations; for a box LCP lo <= z <= hi with w >= 0 where "
+        "z = lo, w <= 0 where z = hi and w = 0 in between, with a friction index at the bounds in "
+        "force at the answer; for a QP its KKT conditions; for a game, no player gains by "
+        "deviating, up to the tolerance relative to the payoffs)."
     ),
     Status.MAX_PIVOTS: (
         "Stopped at the pivot limit before reaching a solution. Raise options.max_pivots "
