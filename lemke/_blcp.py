@@ -84,6 +84,25 @@ class BoxWarmStart:
         ws.__dict__.update(n=n, z_basic=z_basic, at_upper=at_upper)
         return ws
 
+    def _kernel_flags(self):
+        """Its basis as ``kernels.boxed.solve`` and ``front`` take it: 2n flags, the basic
+        z's then the non-basic z's at hi; made once and kept with the (immutable) warm
+        start, as ``WarmStart``'s index array in ``_lcp``."""
+        d = self.__dict__
+        f = d.get("_flags")
+        if f is None:
+            n = self.n
+            f = np.zeros(2 * n, dtype=np.bool_)
+            idx = d.get("_final")  # (final[:m], k) of the kernel run that made it
+            if idx is None:
+                f[list(self.z_basic)] = True
+                f[n:][list(self.at_upper)] = True
+            else:
+                f[idx[0][: idx[1]]] = True
+                f[n:][idx[0][idx[1]:]] = True
+            d["_flags"] = f
+        return f
+
 
 @dataclass(frozen=True, eq=False)
 class BLCPResult(Outcome):
@@ -144,15 +163,17 @@ class BLCPResult(Outcome):
 
 
 class _BoxField:
-    """A field of a solved box result built by ``solve_blcp``'s fast path: a view of the
-    kernel's buffer (``kernels.boxed.layout``), or its warm start, made when first read and
-    then kept in the result's ``__dict__`` (as ``_result._FromBuffer`` does for LCPs; a
-    small solve that reads only ``z`` pays for no other view)."""
+    """A field of a solved box result built by ``solve_blcp``'s one-call paths: a view of
+    the kernel's buffer, or its warm start, made when first read and then kept in the
+    result's ``__dict__`` (as ``_result._FromBuffer`` does for LCPs; a small solve that
+    reads only ``z`` pays for no other view).  ``_src`` is ``(buf, final, N, k, m, spans)``:
+    the buffer, the final basis (``final[:k]`` basic, ``final[k:m]`` at hi) of a problem of
+    size N, and where each field sits in the buffer (:func:`_spans`)."""
 
-    __slots__ = ("name", "at")
+    __slots__ = ("name",)
 
-    def __init__(self, name, at):
-        self.name, self.at = name, at
+    def __init__(self, name):
+        self.name = name
 
     def __get__(self, res, cls=None):
         if res is None:
@@ -161,24 +182,51 @@ class _BoxField:
         src = d.get("_src")
         if src is None:
             raise AttributeError(f"'BLCPResult' object has no attribute {self.name!r}")
-        buf, final, n, k, m = src
-        if self.at < 0:
-            idx = final.tolist()
-            v = BoxWarmStart._trusted(n, tuple(idx[:k]), tuple(idx[k:m]))
+        buf, final, N, k, m, spans = src
+        if self.name == "warm_start":
+            v = BoxWarmStart._trusted(N, *_split(final, k, m))
+            v.__dict__["_final"] = (final[:m], k)  # for its flags, if it is passed back
         else:
             if buf.flags.writeable:  # the result's arrays are read-only, as the others'
                 buf.setflags(write=False)
-            v = buf[self.at * n : (self.at + 1) * n]
+            a, b = spans[self.name]
+            v = buf[a:b]
         d[self.name] = v
         return v
 
 
-#: The lazy fields and where they sit in the buffer, in units of n (-1: the warm start).
-_BOX_FIELDS = {"z": 0, "w": 1, "covering": 2, "row_scale": 3, "col_scale": 4, "warm_start": -1}
-for _name, _at in _BOX_FIELDS.items():
-    setattr(BLCPResult, _name, _BoxField(_name, _at))
-del _name, _at
+def _split(final, k, m):
+    idx = final[:m].tolist()
+    return tuple(idx[:k]), tuple(idx[k:])
 
+
+def _spans(n, N, friction):
+    """Where the fields of a result of size n sit in the buffer of ``kernels.boxed``:
+    without a friction index, :func:`kernels.boxed.layout`'s; with one (an extended problem
+    of size N), that problem's covering vector there, and the caller's arrays after it
+    (``kernels.boxed.front``)."""
+    key = (n, N, friction)
+    s = _SPANS.get(key)
+    if s is None:
+        if not friction:
+            s = {name: (at * n, (at + 1) * n) for name, at in
+                 (("z", 0), ("w", 1), ("covering", 2), ("row_scale", 3), ("col_scale", 4))}
+        else:
+            o = 6 * N + 1
+            s = {name: (o + at * n, o + (at + 1) * n) for name, at in
+                 (("z", 0), ("w", 1), ("lo", 2), ("hi", 3), ("row_scale", 4), ("col_scale", 5))}
+            s["covering"] = (2 * N, 3 * N)
+        s = _SPANS.setdefault(key, s)
+    return s
+
+
+_SPANS = {}
+
+#: The lazy fields (lo and hi only with a friction index: else the caller's arrays).
+_BOX_FIELDS = ("z", "w", "covering", "row_scale", "col_scale", "warm_start", "lo", "hi")
+for _name in _BOX_FIELDS:
+    setattr(BLCPResult, _name, _BoxField(_name))
+del _name
 
 
 class _Run:
@@ -260,37 +308,43 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     >>> r.status.name, r.z.tolist()
     ('SOLVED', [2.0, -1.0])
     """
-    if (findex is None and warm_start is None and type(M) is np.ndarray
-            and type(q) is np.ndarray and type(lo) is np.ndarray and type(hi) is np.ndarray
-            and M.dtype == _F64 and q.dtype == _F64 and lo.dtype == _F64 and hi.dtype == _F64
-            and M.ndim == 2 and q.ndim == 1 and M.shape[0] == M.shape[1] == q.shape[0]
-            == lo.shape[0] == hi.shape[0] and lo.ndim == 1 and hi.ndim == 1
-            and method == "bounded" and M.flags.c_contiguous):
-        # The common case: no copies, one kernel call that also validates the data.
-        opts = _DEFAULT if options is None else as_options(options)
+    if (type(M) is np.ndarray and type(q) is np.ndarray and type(lo) is np.ndarray
+            and type(hi) is np.ndarray and M.dtype == _F64 and q.dtype == _F64
+            and lo.dtype == _F64 and hi.dtype == _F64 and M.ndim == 2 and q.ndim == 1
+            and M.shape[0] == M.shape[1] == q.shape[0] == lo.shape[0] == hi.shape[0]
+            and lo.ndim == 1 and hi.ndim == 1 and method == "bounded" and M.flags.c_contiguous):
         n = q.shape[0]
-        if n < len(_NO):
-            buf = np.empty(6 * n + 1)
-            final = np.empty(n, dtype=np.int64)
-            out = boxed.solve(M, q, lo, hi, _NO[n], 0, opts.pivot_limit(n), opts.pivot_tol,
-                              opts.tie_tol, opts.tol, buf, final)
-            if out[0] == 0 and out[3]:  # solved and checked: the result, built lazily
-                res = _new(BLCPResult)
-                d = res.__dict__
-                d["status"] = _SOLVED
-                d["pivots"] = out[1]
-                d["residual"] = out[4]
-                d["ray"] = None
-                d["z0"] = 0.0
-                d["lo"] = lo
-                d["hi"] = hi
-                d["_src"] = (buf, final, n, out[5], out[6])
+        if findex is None and warm_start is None:
+            # The common case: no copies, one kernel call that also validates the data.
+            opts = _DEFAULT if options is None else as_options(options)
+            if n < len(_NO):
+                buf = np.empty(6 * n + 1)
+                final = np.empty(n, dtype=np.int64)
+                out = boxed.solve(M, q, lo, hi, _NO[n], 0, opts.pivot_limit(n), opts.pivot_tol,
+                                  opts.tie_tol, opts.tol, buf, final)
+                if out[0] == 0 and out[3]:  # solved and checked: the result, built lazily
+                    return _lazy(buf, final, n, out[5], out[6], n, lo, hi, False, out[1], out[4],
+                                 0, None)
+                if out[0] >= 0:
+                    run = _Run(n, buf, final)
+                    run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out
+                    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                        return _finish(M, q, lo, hi, opts, run)
+        elif ((findex is None or (type(findex) is np.ndarray and findex.dtype == _I64
+                                  and findex.shape == q.shape and findex.flags.carray))
+              and (warm_start is None or type(warm_start) is BoxWarmStart)
+              and M.flags.carray and q.flags.carray and lo.flags.carray and hi.flags.carray):
+            # A friction index and/or a warm start on plain data: one kernel call that also
+            # validates the data (the general path below when it says the runs need more).
+            opts = _DEFAULT if options is None else as_options(options)
+            res = _one_call(M, q, lo, hi, findex, warm_start, opts, validated=False)
+            if res is not None:
                 return res
-            if out[0] >= 0:
-                run = _Run(n, buf, final)
-                run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out
-                with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                    return _finish(M, q, lo, hi, opts, run)
+            M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                if findex is None:
+                    return _solve(M, q, lo, hi, opts, warm_start, tried=True)
+                return _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=True)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
@@ -304,6 +358,130 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
 
 
 _NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size
+_I64 = np.dtype(np.int64)
+_NO_FINDEX = np.empty(0, dtype=np.int64)
+_NO_WORK = np.empty(0)
+
+
+def _no_warm(N):
+    return _NO[N] if N < len(_NO) else np.zeros(2 * N, dtype=np.bool_)
+
+
+def _one_call(M, q, lo, hi, findex, ws, opts, validated):
+    """``kernels.boxed.front`` (validation, the extended problem of a friction index, a warm
+    start's own point, the check on the caller's data) around the runs of
+    ``kernels.boxed.solve`` that ``_solve`` and ``_finish`` would make (from the warm start,
+    cold, the ladder): the result, built lazily, when they end solved and checked; None
+    when the general path must decide (a checked ray, a failed ladder, a friction answer
+    that fails the check), or when a warm start of another size comes with data not
+    ``validated`` yet (the general path says which is wrong).  Raises, naming the entry,
+    on data the kernel refuses.  The warm start's own point costs one kernel call."""
+    n = q.shape[0]
+    friction = findex is not None and n > 0
+    nf = int(np.count_nonzero(findex >= 0)) if friction else 0
+    N = n + 2 * nf
+    if ws is None:
+        warm = _no_warm(N)
+    else:
+        if ws.n != N:
+            if validated:
+                raise ValueError(f"warm_start is for a problem of size {ws.n}, this one has n = {N}")
+            return None
+        warm = ws._kernel_flags()
+    buf = np.empty(6 * N + 1 + 6 * n if friction else 6 * N + 1)
+    ints = np.empty(N + 2 * nf, dtype=np.int64)
+    work = np.empty(N * N + 3 * N) if nf else _NO_WORK
+    fi = findex if friction else _NO_FINDEX
+    tol = opts.tol
+    front = boxed.front
+    code, residual = front(boxed.PREPARE, M, q, lo, hi, fi, warm, ws is not None, tol, buf, ints,
+                           work)
+    if code == 0:  # the warm start's own point: 0 pivots
+        return _lazy(buf, ints, N, 0, 0, n, lo, hi, friction, 0, residual, 0, ws)
+    if code != boxed.NEED_RUN:
+        if code == boxed.UNDECIDED:
+            return None
+        as_blcp(M, q, lo, hi, findex)  # raises, naming the entry
+        raise AssertionError("the kernel refused data that validation accepts")
+    if nf:
+        A = work[: N * N].reshape(N, N)
+        qa, la, ha = work[N * N: N * N + N], work[N * N + N: N * N + 2 * N], work[N * N + 2 * N:]
+        final = ints[:N]
+    else:
+        A, qa, la, ha, final = M, q, lo, hi, ints
+    ext = buf[: 6 * N + 1] if friction else buf
+    limit, pt, tt = opts.pivot_limit(N), opts.pivot_tol, opts.tie_tol
+    solve = boxed.solve
+    pivots = rec = 0
+    if ws is not None:  # _warm: a run from the warm start's basis
+        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, 1, limit, pt, tt, tol, ext, final)
+        pivots = max(p, 0)
+        if not (c == 0 and ok):  # _finish: the point of its final basis, recomputed
+            zb, zh = np.zeros(N, dtype=np.bool_), np.zeros(N, dtype=np.bool_)
+            zb[final[:k]] = True
+            zh[final[k:m]] = True
+            zr = _basis_point(A, qa, la, ha, zb, zh)
+            if zr is not None:
+                wr = np.empty(N)
+                ok, rr = boxed.box_check(A, qa, la, ha, zr, tol, wr, ext[3 * N: 4 * N])
+                if ok:
+                    ext[:N], ext[N: 2 * N], residual = zr, wr, rr
+        if ok:
+            if friction:
+                code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, True, tol, buf,
+                                       ints, work)
+                if code != 0:
+                    return None
+            return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, 0, None)
+        rec = 1
+    # _solve's cold run, then _finish's ladder (other covering vectors, exact ties)
+    cold = _no_warm(N)
+    c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, cold, 0, max(0, limit - pivots), pt, tt,
+                                         tol, ext, final)
+    pivots += max(p, 0)
+    if not (c == 0 and ok):
+        if c == Status.RAY_TERMINATION and is_box_ray(A, qa, la, ha, ext[2 * N: 3 * N], ext[:N],
+                                                       z0, ext[5 * N:], tol):
+            return None  # (the general path reports the ray)
+        for mode, tie in ((1, tt), (2, 0.0)):
+            left = limit - pivots
+            if left <= 0:
+                break
+            c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, cold, mode, left, pt, tie, tol,
+                                                 ext, final)
+            pivots += max(p, 0)
+            rec += 1
+            if c == 0 and ok:
+                break
+        if not (c == 0 and ok):
+            return None
+    if friction:
+        code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, False, tol, buf, ints,
+                               work)
+        if code != 0:
+            return None
+    return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, rec, None)
+
+
+def _lazy(buf, final, N, k, m, n, lo, hi, friction, pivots, residual, rec, ws):
+    """A solved result built lazily from the kernels' buffer (``_BoxField``); ``ws``: the
+    warm start whose own basis it is, else None (made from ``final`` when read)."""
+    res = _new(BLCPResult)
+    d = res.__dict__
+    d["status"] = _SOLVED
+    d["pivots"] = pivots
+    d["residual"] = residual
+    d["ray"] = None
+    d["z0"] = 0.0
+    if not friction:
+        d["lo"] = lo
+        d["hi"] = hi
+    if rec:
+        d["recoveries"] = rec
+    if ws is not None:
+        d["warm_start"] = ws
+    d["_src"] = (buf, final, N, k, m, _spans(n, N, friction))
+    return res
 
 
 def as_blcp(M, q, lo, hi, findex=None):
@@ -312,15 +490,25 @@ def as_blcp(M, q, lo, hi, findex=None):
     return d["M"], d["q"], d["lo"], d["hi"], d.get("findex")
 
 
-def _solve(M, q, lo, hi, opts, warm_start):
-    """A validated box LCP: a warm start if given, then the cold runs."""
+def _check_warm(ws, n):
+    if ws is not None:
+        if not isinstance(ws, BoxWarmStart):
+            raise TypeError(f"warm_start must be a lemke.BoxWarmStart, got {type(ws).__name__}")
+        if ws.n != n:
+            raise ValueError(f"warm_start is for a problem of size {ws.n}, this one has n = {n}")
+
+
+def _solve(M, q, lo, hi, opts, warm_start, tried=False):
+    """A validated box LCP: a warm start if given (first in one kernel call, unless
+    ``tried`` already), then the cold runs."""
     n = q.size
     extra, rec = 0, 0
+    _check_warm(warm_start, n)
     if warm_start is not None:
-        if not isinstance(warm_start, BoxWarmStart):
-            raise TypeError(f"warm_start must be a lemke.BoxWarmStart, got {type(warm_start).__name__}")
-        if warm_start.n != n:
-            raise ValueError(f"warm_start is for a problem of size {warm_start.n}, this one has n = {n}")
+        if not tried:
+            res = _one_call(*_kernel_arrays(M, q, lo, hi), None, warm_start, opts, validated=True)
+            if res is not None:
+                return res
         res = _warm(M, q, lo, hi, opts, warm_start)
         if res.status == Status.SOLVED:
             return res
@@ -331,6 +519,11 @@ def _solve(M, q, lo, hi, opts, warm_start):
     return _finish(M, q, lo, hi, opts, run, extra, rec)
 
 
+def _kernel_arrays(M, q, lo, hi):
+    k = _validate.kernel_array
+    return k(M), k(q), k(lo), k(hi)
+
+
 def _warm(M, q, lo, hi, opts, ws):
     """The warm start's basis: its point if it still solves the problem (0 pivots), else a
     kernel run from it (exchange pivots, then Lemke)."""
@@ -339,20 +532,12 @@ def _warm(M, q, lo, hi, opts, ws):
     zb[list(ws.z_basic)] = True
     zh = np.zeros(n, dtype=np.bool_)
     zh[list(ws.at_upper)] = True
-    z = np.where(zh & np.isfinite(hi), hi, np.where(np.isfinite(lo), lo, np.where(np.isfinite(hi), hi, 0.0)))
-    b = np.flatnonzero(zb | (~np.isfinite(lo) & ~np.isfinite(hi)))
-    nb = np.setdiff1d(np.arange(n), b)
-    try:
-        z[b] = np.linalg.solve(M[np.ix_(b, b)], -(q[b] + M[np.ix_(b, nb)] @ z[nb])) if b.size else z[b]
-        fine = bool(np.all(np.isfinite(z)))
-    except np.linalg.LinAlgError:
-        fine = False
-    if fine:
-        run = _Run(n)
-        boxed.equilibrate(M, q + M @ np.clip(0.0, lo, hi), run.R, run.C)
-        ok, residual = boxed.box_check(M, q, lo, hi, z, opts.tol, run.w, run.R)
+    run = _Run(n)
+    if boxed.basis_point(M, q, lo, hi, zb, zh, True, run.z):
+        boxed.check_scales(M, q, lo, hi, run.R, run.C)
+        ok, residual = boxed.box_check(M, q, lo, hi, run.z, opts.tol, run.w, run.R)
         if ok:
-            run.z, run.code, run.pivots, run.z0, run.ok, run.residual = z, 0, 0, 0.0, True, residual
+            run.code, run.pivots, run.z0, run.ok, run.residual = 0, 0, 0.0, True, residual
             run.d[:] = 0.0
             run.set_basis(zb, zh)
             return _solved(run, n, lo, hi, 0)
@@ -416,66 +601,18 @@ def _solved(run, n, lo, hi, rec, pivots=None):
 
 def _basis_point(M, q, lo, hi, zb, zh):
     """The point of the basis (z basic where ``zb``, the others at lo, or hi where ``zh``)
-    from the caller's data by one dense solve, clamped into the box; None if singular."""
-    z = np.where(zh, hi, lo)
-    z = np.where(np.isfinite(z), z, 0.0)
-    b = np.flatnonzero(zb)
-    nb = np.flatnonzero(~zb)
-    if b.size:
-        try:
-            z[b] = np.linalg.solve(M[np.ix_(b, b)], -(q[b] + M[np.ix_(b, nb)] @ z[nb]))
-        except np.linalg.LinAlgError:
-            return None
-    if not np.all(np.isfinite(z)):
-        return None
-    return np.clip(z, lo, hi)
+    from the caller's data by one dense solve (``kernels.boxed.basis_point``: no LAPACK),
+    clamped into the box; None if singular."""
+    z = np.empty(q.size)
+    return z if boxed.basis_point(M, q, lo, hi, zb, zh, False, z) else None
 
 
 def is_box_ray(M, q, lo, hi, d, z, z0, ray, tol=1e-9) -> bool:
     """Whether ``(z, z0) + t ray`` (t >= 0) stays a solution of the augmented box problem
-    (w + d z0 in place of w) for every t: judged row by row, each against its own size, as
-    the check of a point.  Rows of a moving z_i must have u_i = du_i = 0 and an infinite
-    bound on the side it moves to; a resting z_i at its lower bound needs u_i, du_i >= 0, at
-    its upper bound <= 0, in between = 0."""
-    M = np.asarray(M, dtype=float)
-    n = q.size
-    ray = np.asarray(ray, dtype=float)
-    if not (np.all(np.isfinite(ray)) and np.isfinite(z0) and z0 >= 0.0):
-        return False
-    g = (n + 3) * np.finfo(float).eps
-    t = tol + g
-    dz = ray[:n].copy()
-    top = np.abs(dz).max(initial=0.0)
-    dz[np.abs(dz) <= g * top] = 0.0
-    dz0 = ray[n] if abs(ray[n]) > g * max(top, 1.0) else 0.0
-    if dz0 < 0.0 or (top == 0.0 and dz0 == 0.0):
-        return False
-    u = M @ z + q + d * z0
-    du = M @ dz + d * dz0
-    su = t * (np.abs(M) @ np.abs(z) + np.abs(q) + np.abs(d * z0)) + g * np.abs(q).max(initial=0.0)
-    sdu = t * (np.abs(M) @ np.abs(dz) + np.abs(d * dz0)) + g * top * np.abs(M).max(initial=0.0)
-    with np.errstate(invalid="ignore"):
-        at_lo = np.isfinite(lo) & (np.abs(z - lo) <= t * np.maximum(np.abs(lo), 1.0) * 10)
-        at_hi = np.isfinite(hi) & (np.abs(z - hi) <= t * np.maximum(np.abs(hi), 1.0) * 10)
-    for i in range(n):
-        if lo[i] == hi[i]:
-            if dz[i] != 0.0:
-                return False
-            continue
-        if dz[i] != 0.0:
-            if (dz[i] > 0.0 and hi[i] < np.inf) or (dz[i] < 0.0 and lo[i] > -np.inf):
-                return False
-            if abs(u[i]) > su[i] or abs(du[i]) > sdu[i]:
-                return False
-        elif at_lo[i]:
-            if u[i] < -su[i] or du[i] < -sdu[i]:
-                return False
-        elif at_hi[i]:
-            if u[i] > su[i] or du[i] > sdu[i]:
-                return False
-        elif abs(u[i]) > su[i] or abs(du[i]) > sdu[i]:
-            return False
-    return True
+    (w + d z0 in place of w) for every t, judged row by row on the caller's data
+    (``kernels.boxed.is_ray``, which says how)."""
+    a = [_validate.kernel_array(np.asarray(x, dtype=float)) for x in (M, q, lo, hi, d, z, ray)]
+    return bool(boxed.is_ray(*a[:6], float(z0), a[6], float(tol)))
 
 
 # --------------------------------------------------------------------------- friction
@@ -485,34 +622,31 @@ def friction_lcp(M, q, lo, hi, findex):
     """The box LCP that solves the friction index exactly (module docstring): returns
     ``(Mx, qx, lox, hix, F, normal)``, where F lists the friction rows and ``normal`` their
     normal rows.  Variables: the caller's z with beta+ in place of each friction z_i, then
-    beta- and lambda per friction row."""
+    beta- and lambda per friction row.  (Built by ``kernels.boxed.extend``, as
+    ``kernels.boxed.front`` builds it.)"""
+    M, q, lo, hi = _kernel_arrays(M, q, lo, hi)
+    findex = _validate.kernel_array(np.asarray(findex, dtype=np.int64))
     n = q.size
-    F = np.flatnonzero(findex >= 0)
-    k = F.size
+    k = int(np.count_nonzero(findex >= 0))
     N = n + 2 * k
-    Mx = np.zeros((N, N))
-    Mx[:n, :n] = M
-    Mx[:n, n:n + k] = -M[:, F]
-    Mx[n:n + k, :n] = -M[F, :]
-    Mx[n:n + k, n:n + k] = M[np.ix_(F, F)]
-    lam = n + k + np.arange(k)
-    Mx[F, lam] = 1.0
-    Mx[n + np.arange(k), lam] = 1.0
-    Mx[lam, findex[F]] = hi[F]
-    Mx[lam, F] = -1.0
-    Mx[lam, n + np.arange(k)] = -1.0
-    qx = np.concatenate([q, -q[F], np.zeros(k)])
-    lox = np.concatenate([lo, np.zeros(2 * k)])
-    hix = np.concatenate([hi, np.full(2 * k, np.inf)])
-    lox[F] = 0.0
-    hix[F] = np.inf
-    return Mx, qx, lox, hix, F, findex[F]
+    F = np.empty(2 * k, dtype=np.int64)
+    Mx, qx, lox, hix = boxed.extend(M, q, lo, hi, findex, k, np.empty(N * N + 3 * N), F)
+    return Mx, qx, lox, hix, F[:k], F[k:]
 
 
-def _solve_friction(M, q, lo, hi, findex, opts, warm_start):
+def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
+    """A validated box LCP with a friction index: first in one kernel call (unless
+    ``tried`` already), else the extended problem by the general path and the answer
+    judged on the caller's data here."""
     n = q.size
+    if not tried:
+        _check_warm(warm_start, n + 2 * int(np.count_nonzero(findex >= 0)))
+        res = _one_call(*_kernel_arrays(M, q, lo, hi), _validate.kernel_array(findex),
+                        warm_start, opts, validated=True)
+        if res is not None:
+            return res
     Mx, qx, lox, hix, F, normal = friction_lcp(M, q, lo, hi, findex)
-    inner = _solve(Mx, qx, lox, hix, opts, warm_start)
+    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True)
     k = F.size
     zx = inner.z
     z = zx[:n].copy()
@@ -522,7 +656,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start):
     lo_in[F] = -mu * z[normal]
     hi_in[F] = mu * z[normal]
     R, C = np.empty(n), np.empty(n)
-    boxed.equilibrate(M, q + M @ np.clip(0.0, lo, hi), R, C)
+    boxed.check_scales(M, q, lo, hi, R, C)
     w = np.empty(n)
     # The check on the caller's data decides, whatever the extended problem's own check said
     # (its rows λ ± w_i are sums of larger terms, and can miss that check by rounding where
@@ -554,7 +688,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start):
         if status == Status.SOLVED:
             status = Status.NUMERICAL_FAILURE
         boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, qx.size)  # w of the point returned
-    for a in (z, w, lo_in, hi_in):
+    for a in (z, w, lo_in, hi_in, R, C):
         a.setflags(write=False)
     return BLCPResult(z, w, status, inner.pivots, float(residual),
                       inner.ray if status != Status.SOLVED else None, inner.z0, inner.covering,

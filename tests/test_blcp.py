@@ -298,6 +298,195 @@ def test_friction_warm_start():
     assert again.success and again.pivots == 0 and np.allclose(again.z, r.z, atol=1e-9)
 
 
+def assert_friction_solution(M, q, lo, hi, findex, z, rtol=1e-7):
+    """Plain-numpy check of a friction-index answer (not lemke's): the normal impulses of
+    the friction rows are >= 0, |z_i| <= mu_i z_f, and z solves the box LCP whose friction
+    rows have the bounds in force -mu_i z_f, mu_i z_f (``assert_box_solution``)."""
+    M, q, lo, hi, z = (np.asarray(a, dtype=float) for a in (M, q, lo, hi, z))
+    findex = np.asarray(findex)
+    F = np.flatnonzero(findex >= 0)
+    mu, zf = hi[F], z[findex[F]]
+    assert np.all(zf >= 0), "a normal impulse is negative"
+    assert np.all(np.abs(z[F]) <= mu * zf * (1 + 1e-9) + 1e-12), "outside the friction cone"
+    lo_c, hi_c = lo.copy(), hi.copy()
+    lo_c[F], hi_c[F] = -mu * zf, mu * zf
+    assert_box_solution(M, q, lo_c, hi_c, z, rtol=rtol)
+
+
+_PILES = {}
+
+
+def pile_steps(n_disks=6, steps=120, mu=0.5):
+    """The box LCPs ``(A, b, lo, hi, findex)`` of examples/box_pile.py's steps (disks falling
+    into a bin and settling), as the example's warm-started run poses them."""
+    key = (n_disks, steps, mu)
+    if key not in _PILES:
+        bp = _example()
+        out = []
+        real = lemke.solve_blcp
+
+        def record(A, b, lo, hi, findex=None, warm_start=None):
+            out.append(tuple(np.array(a) for a in (A, b, lo, hi, findex)))
+            return real(A, b, lo, hi, findex=findex, warm_start=warm_start)
+
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(bp.lemke, "solve_blcp", record)
+            world = bp.pile_world(n_disks, mu=mu)
+            ws = None
+            for _ in range(steps):
+                res = bp.step(world, 0.01, ws)[2]
+                ws = res.warm_start if res is not None else None
+        _PILES[key] = out
+    return _PILES[key]
+
+
+def test_pile_warm_starts_across_steps():
+    """Every step of a small pile, cold and warm-started from the previous step's answer:
+    both solved and checked independently, equal answers, fewer pivots warm (most steps
+    take none), the caller's arrays untouched."""
+    steps = pile_steps()
+    ws = None
+    pivots = {"cold": 0, "warm": 0}
+    zero = failed = 0
+    for A, b, lo, hi, fi in steps:
+        before = [a.copy() for a in (A, b, lo, hi, fi)]
+        cold = lemke.solve_blcp(A, b, lo, hi, findex=fi)
+        if ws is not None and ws.n != cold.warm_start.n:
+            ws = None
+        warm = lemke.solve_blcp(A, b, lo, hi, findex=fi, warm_start=ws)
+        assert warm.status == lemke.Status.SOLVED, warm
+        assert_friction_solution(A, b, lo, hi, fi, warm.z)
+        if cold.status != lemke.Status.SOLVED:
+            # One step of this pile (an n = 22 basis whose point misses the check by
+            # rounding) ends NUMERICAL_FAILURE cold, as before the one-call path: honest.
+            assert cold.status == lemke.Status.NUMERICAL_FAILURE, cold
+            failed += 1
+        else:
+            assert_friction_solution(A, b, lo, hi, fi, cold.z)
+            scale = np.abs(cold.z).max(initial=0.0)
+            assert np.allclose(warm.z, cold.z, rtol=1e-6, atol=1e-8 * scale)
+        for a, a0 in zip((A, b, lo, hi, fi), before):
+            assert np.array_equal(a, a0)
+        pivots["cold"] += cold.pivots
+        pivots["warm"] += warm.pivots
+        zero += ws is not None and warm.pivots == 0
+        if ws is not None and warm.pivots == 0:
+            assert warm.warm_start is ws  # its own basis, passed on as it came
+        ws = warm.warm_start
+    assert pivots["warm"] < pivots["cold"] / 2 and zero > len(steps) / 2, (pivots, zero)
+    assert failed <= 1
+
+
+@pytest.mark.parametrize("friction", [True, False])
+def test_one_call_equals_the_general_path(friction):
+    """solve_blcp's one-call path (kernels.boxed.front and the runs around it) against the
+    general path that it stands for (_solve_friction / _solve run step by step, with their
+    own basis points, checks and ladder), cold and warm-started across the steps of a pile:
+    the same status, pivots, recoveries, final basis and bounds in force, z to 1e-12; and
+    the same result, field for field, from lists (validated first) as from arrays."""
+    from lemke import _blcp
+    from lemke._options import _DEFAULT
+
+    ws = None
+    for A, b, lo, hi, fi in pile_steps():
+        f = fi if friction else None
+        if ws is not None and ws.n != (b.size + 2 * np.count_nonzero(fi >= 0) if friction else b.size):
+            ws = None
+        for start in (None, ws):
+            fast = lemke.solve_blcp(A, b, lo, hi, findex=f, warm_start=start)
+            with np.errstate(all="ignore"):
+                if friction:
+                    slow = _blcp._solve_friction(A, b, lo, hi, fi, _DEFAULT, start, tried=True)
+                else:
+                    slow = _blcp._solve(A, b, lo, hi, _DEFAULT, start, tried=True)
+            assert (fast.status, fast.pivots, fast.recoveries) == (slow.status, slow.pivots, slow.recoveries)
+            assert fast.warm_start == slow.warm_start
+            assert np.allclose(fast.z, slow.z, rtol=1e-12, atol=1e-12 * np.abs(slow.z).max(initial=0.0))
+            assert np.array_equal(fast.lo, slow.lo) and np.array_equal(fast.hi, slow.hi)
+            lists = lemke.solve_blcp(A.tolist(), b.tolist(), lo.tolist(), hi.tolist(),
+                                     findex=None if f is None else f.tolist(), warm_start=start)
+            assert lists == fast
+        ws = fast.warm_start
+
+
+def test_friction_result_is_lazy_and_equals_the_full_build():
+    """A friction-index result of the one-call path: built lazily, its arrays read-only
+    (the bounds in force too), the caller's arrays neither kept nor modified, equal to the
+    general path's result field for field and after pickling."""
+    import pickle
+
+    M, q, lo, hi, findex, mu = contacts(3, 5)
+    findex = findex.astype(np.int64)
+    args = [a.copy() for a in (M, q, lo, hi, findex)]
+    r = lemke.solve_blcp(M, q, lo, hi, findex=findex)
+    again = lemke.solve_blcp(M, q, lo, hi, findex=findex, warm_start=r.warm_start)
+    for res in (r, again):
+        assert "_src" in res.__dict__ and "z" not in res.__dict__
+        for name in ("z", "w", "lo", "hi", "covering", "row_scale", "col_scale"):
+            a = getattr(res, name)
+            assert not a.flags.writeable, name
+        assert res.lo is not lo and res.hi is not hi
+        assert pickle.loads(pickle.dumps(res)) == res
+        assert_friction_solution(M, q, lo, hi, findex, res.z)
+    assert again.pivots == 0 and again.warm_start is r.warm_start
+    assert r.covering.size == q.size + 2 * 5 and r.row_scale.size == q.size
+    full = lemke.solve_blcp(M.tolist(), q.tolist(), lo.tolist(), hi.tolist(), findex=findex.tolist())
+    assert full == r
+    for a, a0 in zip((M, q, lo, hi, findex), args):
+        assert np.array_equal(a, a0)
+
+
+@pytest.mark.parametrize("findex, lo, hi, match", [
+    ([-1, 2], [0, -1], [np.inf, 1], r"findex\[1\] = 2 is out of range"),
+    ([-1, -2], [0, -1], [np.inf, 1], r"findex\[1\] = -2 is out of range"),
+    ([-1, 1], [0, -1], [np.inf, 1], r"findex\[1\] = 1 points at its own row"),
+    ([1, 0], [-1, -1], [1, 1], r"findex\[0\] = 1 points at another friction row"),
+    ([-1, 0], [0, 1], [np.inf, -1], r"mu = hi\[1\] = -1.0 < 0"),
+    ([-1, 0], [0, -np.inf], [np.inf, np.inf], r"mu = hi\[1\] must be finite"),
+    ([-1, 0], [0, np.nan], [np.inf, np.nan], r"lo has a NaN"),
+    ([-1, 0], [0, -1.0], [np.inf, np.nan], r"hi has a NaN"),
+    ([-1, 0], [np.nan, -1.0], [np.inf, 1.0], r"lo has a NaN"),
+    ([-1, 0], [0, -0.5], [np.inf, 1.0], r"lo\[1\] = -0.5 must be -mu"),
+    ([-1, 0], [-1, -1], [np.inf, 1.0], r"lo\[0\] = -1.0 must be >= 0"),
+])
+def test_bad_findex_fast_path(findex, lo, hi, match):
+    """The same refusals from the one-call path (float64 arrays, int64 findex), with and
+    without a warm start: the kernel says the data are bad, validation says where."""
+    M, q = np.eye(2), np.zeros(2)
+    lo, hi, findex = np.array(lo, dtype=float), np.array(hi, dtype=float), np.array(findex, dtype=np.int64)
+    ws = lemke.BoxWarmStart(4, (), ())
+    for start in (None, ws):
+        with pytest.raises(ValueError, match=match):
+            lemke.solve_blcp(M, q, lo, hi, findex=findex, warm_start=start)
+
+
+def test_bad_data_with_a_warm_start():
+    M, q, lo, hi, findex, mu = contacts(2, 3)
+    findex = findex.astype(np.int64)
+    r = lemke.solve_blcp(M, q, lo, hi, findex=findex)
+    M2 = M.copy()
+    M2[1, 2] = np.nan
+    with pytest.raises(ValueError, match=r"M has a NaN"):
+        lemke.solve_blcp(M2, q, lo, hi, findex=findex, warm_start=r.warm_start)
+    q2 = q.copy()
+    q2[4] = np.inf
+    with pytest.raises(ValueError, match=r"q has"):
+        lemke.solve_blcp(M, q2, lo, hi, findex=findex, warm_start=r.warm_start)
+    with pytest.raises(ValueError, match=r"warm_start is for a problem of size 6, this one has n = 12"):
+        lemke.solve_blcp(M, q, lo, hi, findex=findex, warm_start=lemke.BoxWarmStart(6, (), ()))
+    with pytest.raises(ValueError, match=r"size 12, this one has n = 6"):
+        lemke.solve_blcp(M, q, lo, hi, warm_start=r.warm_start)
+    with pytest.raises(TypeError, match="BoxWarmStart"):
+        lemke.solve_blcp(M, q, lo, hi, findex=findex, warm_start=r)
+    # bad data and a warm start of the wrong size: the data's error comes first
+    lo2 = lo.copy()
+    lo2[0] = np.nan
+    with pytest.raises(ValueError, match=r"lo has a NaN"):
+        lemke.solve_blcp(M, q, lo2, hi, findex=findex, warm_start=lemke.BoxWarmStart(6, (), ()))
+    with pytest.raises(ValueError, match=r"lo has a NaN"):
+        lemke.solve_blcp(M, q, lo2, hi, warm_start=lemke.BoxWarmStart(6, (), ()))
+
+
 # --------------------------------------------------------------------------- the example
 
 def _example():

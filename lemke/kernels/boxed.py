@@ -51,14 +51,17 @@ which z end basic and which non-basic z sit at their upper bounds.
 """
 import numpy as np
 
-from . import kernel, pivoting, tableau
+from . import inline_kernel, kernel, pivoting, tableau
 from .certify import CERTIFIABLE, EPS, zero_size
-from .linalg import dot_and_size, equilibrate, nan_probe, finite_absmax
+from .linalg import dot, dot_and_size, equilibrate, nan_probe, finite_absmax, solve_principal
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity, or lo/hi a NaN: the front says where
 BAD_BOUNDS = -3  # some lo_i > hi_i, or lo_i = +inf, or hi_i = -inf
 SINGULAR = -4  # a warm start's basis cannot be made basic
+BAD_FINDEX = -5  # a friction index the front refuses (see _validate.blcp): the front says where
+UNDECIDED = -6  # front: the friction check failed; the front's general path decides
+NEED_RUN = -7  # front: a run must decide
 EXCHANGE_TOL = 1e-9  # an exchange pivot below this (equilibrated units) counts as singular
 
 
@@ -645,3 +648,298 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
             final[m] = i
             m += 1
     return code, pivots, z0, ok, residual, k, m
+
+
+# --------------------------------------------------------------------------- one call
+
+
+@kernel
+def is_ray(M, q, lo, hi, d, z, z0, ray, tol):
+    """Whether ``(z, z0) + t ray`` (t >= 0) stays a solution of the augmented box problem
+    (w + d z0 in place of w) for every t: judged row by row, each against its own size, as
+    the check of a point.  Rows of a moving z_i must have u_i = du_i = 0 and an infinite
+    bound on the side it moves to; a resting z_i at its lower bound needs u_i, du_i >= 0, at
+    its upper bound <= 0, in between = 0.  (``_blcp.is_box_ray`` is its front.)"""
+    n = q.shape[0]
+    if ray.shape[0] != n + 1 or d.shape[0] != n or z.shape[0] != n:
+        return False
+    if not (nan_probe(ray, n + 1) == 0.0 and abs(z0) < np.inf and z0 >= 0.0):
+        return False
+    g = (n + 3) * EPS
+    t = tol + g
+    dz = np.empty(n)
+    top = 0.0
+    for i in range(n):
+        top = max(top, abs(ray[i]))
+    for i in range(n):
+        dz[i] = ray[i] if abs(ray[i]) > g * top else 0.0
+    dz0 = ray[n] if abs(ray[n]) > g * max(top, 1.0) else 0.0
+    if dz0 < 0.0 or (top == 0.0 and dz0 == 0.0):
+        return False
+    q_top = 0.0
+    for i in range(n):
+        q_top = max(q_top, abs(q[i]))
+    m_top = finite_absmax(M)[1]
+    for i in range(n):
+        mz, size = dot_and_size(M[i], z, n)
+        mdz, dsize = dot_and_size(M[i], dz, n)
+        u = (mz + q[i]) + d[i] * z0
+        du = mdz + d[i] * dz0
+        su = t * ((size + abs(q[i])) + abs(d[i] * z0)) + g * q_top
+        sdu = t * (dsize + abs(d[i] * dz0)) + g * top * m_top
+        if lo[i] == hi[i]:
+            if dz[i] != 0.0:
+                return False
+            continue
+        at_lo = lo[i] > -np.inf and abs(z[i] - lo[i]) <= t * max(abs(lo[i]), 1.0) * 10
+        at_hi = hi[i] < np.inf and abs(z[i] - hi[i]) <= t * max(abs(hi[i]), 1.0) * 10
+        if dz[i] != 0.0:
+            if (dz[i] > 0.0 and hi[i] < np.inf) or (dz[i] < 0.0 and lo[i] > -np.inf):
+                return False
+            if abs(u) > su or abs(du) > sdu:
+                return False
+        elif at_lo:
+            if u < -su or du < -sdu:
+                return False
+        elif at_hi:
+            if u > su or du > sdu:
+                return False
+        elif abs(u) > su or abs(du) > sdu:
+            return False
+    return True
+
+
+
+
+@kernel
+def basis_point(M, q, lo, hi, zb, zh, warm_rule, z):
+    """Write into z the point of a basis: the z_i with ``zb[i]`` basic, from one solve with
+    the principal block ``M[b, b] z_b = -(q_b + M[b, nb] z_nb)`` (``linalg.solve_principal``:
+    single-threaded LU, no LAPACK), the others at a bound.  With ``warm_rule`` (a warm
+    start's point): a non-basic z_i at hi_i where ``zh[i]`` and hi_i is finite, else at its
+    finite bound (lo_i first), a free z_i (both bounds infinite) basic.  Without (a final
+    basis's point recomputed): at hi_i where ``zh[i]``, else lo_i, 0 for an infinite bound,
+    and the point clamped into the box afterwards.  Returns False (z garbage) when the
+    block is singular or the point not finite."""
+    n = q.shape[0]
+    idx = np.empty(n, dtype=np.int64)
+    rhs = np.empty(n)
+    nb = 0
+    for i in range(n):
+        free = warm_rule and lo[i] == -np.inf and hi[i] == np.inf
+        if warm_rule:
+            if zh[i] and hi[i] < np.inf:
+                v = hi[i]
+            elif lo[i] > -np.inf:
+                v = lo[i]
+            elif hi[i] < np.inf:
+                v = hi[i]
+            else:
+                v = 0.0
+        else:
+            v = hi[i] if zh[i] else lo[i]
+            if not abs(v) < np.inf:
+                v = 0.0
+        if zb[i] or free:
+            idx[nb] = i
+            nb += 1
+            v = 0.0  # no part in the right-hand side
+        z[i] = v
+    if nb > 0:
+        for c in range(nb):
+            r = idx[c]
+            rhs[c] = -(q[r] + dot(M[r], z, n))
+        ok, x = solve_principal(M, idx[:nb], rhs[:nb])
+        if not ok:
+            return False
+        for c in range(nb):
+            z[idx[c]] = x[c]
+    if nan_probe(z, n) != 0.0:
+        return False
+    if not warm_rule:
+        for i in range(n):
+            z[i] = min(max(z[i], lo[i]), hi[i])
+    return True
+
+
+@kernel
+def check_scales(M, q, lo, hi, R, C):
+    """The scales :func:`box_check` judges a point with, when no run made them: those of
+    ``equilibrate(M, q + M p)``, p the point of the box nearest 0 (as a cold run's start)."""
+    n = q.shape[0]
+    qs = np.empty(2 * n)
+    p, qs = qs[n:], qs[:n]
+    p_zero = True
+    for i in range(n):
+        p[i] = min(max(0.0, lo[i]), hi[i])
+        p_zero = p_zero and p[i] == 0.0
+    for i in range(n):
+        qs[i] = q[i] if p_zero else q[i] + dot(M[i], p, n)
+    equilibrate(M, qs, R, C)
+
+
+@inline_kernel
+def friction_rows(findex, n):
+    """``nf`` (the number of friction rows), or BAD_FINDEX where ``_validate.blcp`` would
+    refuse the index itself: an entry other than -1 outside [0, n), pointing at its own row
+    or at another friction row."""
+    nf = 0
+    for i in range(n):
+        f = findex[i]
+        if f == -1:
+            continue
+        if f < 0 or f >= n or f == i or findex[f] != -1:
+            return BAD_FINDEX
+        nf += 1
+    return nf
+
+
+@kernel
+def extend(M, q, lo, hi, findex, nf, work, F):
+    """The box LCP that solves the friction index exactly (``_blcp``'s module docstring),
+    built into ``work`` (length N N + 3 N, N = n + 2 nf): returns its views ``(Mx, qx, lox,
+    hix)``; ``F`` (length 2 nf) gets the friction rows, then their normal rows.  Variables:
+    the caller's z with beta+ in place of each friction z_i, then beta- and lambda per
+    friction row."""
+    n = q.shape[0]
+    N = n + 2 * nf
+    Mx = work[: N * N].reshape((N, N))
+    qx, lox, hix = work[N * N : N * N + N], work[N * N + N : N * N + 2 * N], work[N * N + 2 * N :]
+    c = 0
+    for i in range(n):
+        if findex[i] >= 0:
+            F[c] = i
+            F[nf + c] = findex[i]
+            c += 1
+    for r in range(N):
+        for j in range(N):
+            Mx[r, j] = 0.0
+    for i in range(n):
+        row = M[i]
+        for j in range(n):
+            Mx[i, j] = row[j]
+        for c in range(nf):
+            Mx[i, n + c] = -row[F[c]]
+        qx[i] = q[i]
+        lox[i] = lo[i]
+        hix[i] = hi[i]
+    for c in range(nf):
+        i = F[c]
+        lam = n + nf + c
+        row = M[i]
+        for j in range(n):
+            Mx[n + c, j] = -row[j]
+        for d in range(nf):
+            Mx[n + c, n + d] = row[F[d]]
+        Mx[i, lam] = 1.0
+        Mx[n + c, lam] = 1.0
+        Mx[lam, F[nf + c]] = hi[i]
+        Mx[lam, i] = -1.0
+        Mx[lam, n + c] = -1.0
+        qx[n + c] = -q[i]
+        qx[lam] = 0.0
+        lox[n + c] = 0.0
+        lox[lam] = 0.0
+        hix[n + c] = np.inf
+        hix[lam] = np.inf
+        lox[i] = 0.0
+        hix[i] = np.inf
+    return Mx, qx, lox, hix
+
+
+@inline_kernel
+def friction_check(M, q, lo, hi, F, nf, zx, N, tol, out):
+    """The friction index's answer from the extended one zx, judged on the caller's data:
+    z_i = beta+_i - beta-_i on the friction rows, the coupled bounds -mu_i z_f, mu_i z_f at
+    that z, z clamped into them and checked by :func:`box_check` (rounding allowed for at
+    the extended size N), with the scales of :func:`check_scales`.  ``out`` (6n): z, w,
+    lo and hi in force, R, C.  Returns ``(ok, residual)``."""
+    n = q.shape[0]
+    z, w, lo_in, hi_in = out[:n], out[n : 2 * n], out[2 * n : 3 * n], out[3 * n : 4 * n]
+    R, C = out[4 * n : 5 * n], out[5 * n :]
+    for i in range(n):
+        z[i] = zx[i]
+        lo_in[i] = lo[i]
+        hi_in[i] = hi[i]
+    for c in range(nf):
+        z[F[c]] = zx[F[c]] - zx[n + c]
+    for c in range(nf):
+        i = F[c]
+        mu = hi[i]
+        lo_in[i] = -mu * z[F[nf + c]]
+        hi_in[i] = mu * z[F[nf + c]]
+    check_scales(M, q, lo, hi, R, C)
+    for i in range(n):
+        z[i] = min(max(z[i], min(lo_in[i], hi_in[i])), hi_in[i])
+    return box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+
+
+PREPARE = 0  # front's phases: validate, build, a warm start's own point
+SOLVED_RUN = 1  # after a run that ended solved and checked
+
+
+@kernel
+def front(phase, M, q, lo, hi, findex, warm, has_warm, tol, buf, ints, work):
+    """The kernel part of ``solve_blcp`` with a friction index and/or a warm start
+    (``_blcp._one_call`` runs :func:`solve` between its phases).  ``findex`` of length n,
+    or 0 for none; N = n + 2 nf the size of the problem solved (with a friction index, the
+    extended one, :func:`extend`).  ``buf``: that problem's output (6 N + 1,
+    :func:`layout`), then with a friction index (even one without friction rows) the
+    caller's (6 n: z, w, lo and hi in force, R, C); ``ints``: the final basis (N, as
+    :func:`solve` gives it), then the friction rows and their normal rows (2 nf);
+    ``work`` (N N + 3 N with friction rows): the extended problem; ``warm`` (2 N): the
+    warm start's basic z's, then its non-basic z's at hi.
+
+    ``PREPARE``: validate the data (:func:`prologue`, :func:`friction_rows`, and the
+    friction rows' bounds as ``_validate.blcp``: mu = hi_i finite and >= 0, lo_i = -mu,
+    lo_f >= 0), build the extended problem; with a warm start, its basis's point
+    (:func:`basis_point`, as ``_blcp._warm``) judged by :func:`box_check`.
+    ``SOLVED_RUN``: the answer in ``buf``, solved and checked.  Then with a friction index,
+    the answer mapped back and judged on the caller's data (:func:`friction_check`).
+
+    Returns ``(code, residual)``: SOLVED (the answer and its residual in ``buf``),
+    NEED_RUN (PREPARE without a warm start or with one whose point fails: a run must
+    decide), UNDECIDED (the friction check failed: the front's general path decides), or
+    NOT_FINITE, BAD_BOUNDS, BAD_FINDEX (the front says where)."""
+    n = q.shape[0]
+    friction = findex.shape[0] > 0
+    nf = 0
+    if phase == PREPARE:
+        code = prologue(M, q, lo, hi)
+        if code < 0:
+            return code, np.inf
+        nf = friction_rows(findex, findex.shape[0])
+        if nf < 0:
+            return BAD_FINDEX, np.inf
+        for i in range(findex.shape[0]):
+            f = findex[i]
+            if f >= 0 and not (hi[i] >= 0.0 and hi[i] < np.inf and lo[i] == -hi[i] and lo[f] >= 0.0):
+                return BAD_FINDEX, np.inf
+    else:
+        for i in range(findex.shape[0]):
+            nf += findex[i] >= 0
+    N = n + 2 * nf
+    if (buf.shape[0] != 6 * N + 1 + (6 * n if friction else 0) or ints.shape[0] != N + 2 * nf
+            or work.shape[0] != (N * N + 3 * N if nf > 0 else 0) or warm.shape[0] != 2 * N):
+        return BAD_FINDEX, np.inf  # (the front sizes them: never)
+    F = ints[N:]
+    z = buf[:N]
+    residual = np.inf
+    if phase == PREPARE:
+        A, qa, la, ha = M, q, lo, hi
+        if nf > 0:
+            A, qa, la, ha = extend(M, q, lo, hi, findex, nf, work, F)
+        if not has_warm or not basis_point(A, qa, la, ha, warm[:N], warm[N:], np.True_, z):
+            return NEED_RUN, np.inf
+        _, w, d, R, C, _ = layout(N, buf[: 6 * N + 1])
+        check_scales(A, qa, la, ha, R, C)
+        ok, residual = box_check(A, qa, la, ha, z, tol, w, R)
+        if not ok:
+            return NEED_RUN, np.inf
+        for i in range(N):
+            d[i] = 0.0
+    if friction:
+        ok, residual = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf[6 * N + 1 :])
+        if not ok:
+            return UNDECIDED, np.inf
+    return SOLVED, residual
