@@ -32,7 +32,7 @@ evaluated at the final z.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -329,7 +329,8 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
                     run = _Run(n, buf, final)
                     run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out
                     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                        return _finish(M, q, lo, hi, opts, run)
+                        return _from_final(_finish(M, q, lo, hi, opts, run), M, q, lo, hi,
+                                           None, opts)
         elif ((findex is None or (type(findex) is np.ndarray and findex.dtype == _I64
                                   and findex.shape == q.shape and findex.flags.carray))
               and (warm_start is None or type(warm_start) is BoxWarmStart)
@@ -343,8 +344,10 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
             with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
                 if findex is None:
-                    return _solve(M, q, lo, hi, opts, warm_start, tried=True)
-                return _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=True)
+                    res = _solve(M, q, lo, hi, opts, warm_start, tried=True)
+                else:
+                    res = _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=True)
+                return _from_final(res, M, q, lo, hi, findex, opts)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
@@ -353,8 +356,32 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     # the float range; they judge their results themselves.
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         if findex is None:
-            return _solve(M, q, lo, hi, opts, warm_start)
-        return _solve_friction(M, q, lo, hi, findex, opts, warm_start)
+            res = _solve(M, q, lo, hi, opts, warm_start)
+        else:
+            res = _solve_friction(M, q, lo, hi, findex, opts, warm_start)
+        return _from_final(res, M, q, lo, hi, findex, opts)
+
+
+def _from_final(res, M, q, lo, hi, findex, opts):
+    """The last recovery of a box LCP: when every run ended on a point that fails the check
+    on the caller's data (NUMERICAL_FAILURE), Lemke's method once more, warm-started from
+    the final basis of those runs (the restart from the best basis seen, as issue 11's
+    recovery order has it).  A degenerate contact step (a resting contact whose row of the
+    data is all rounding, |q_i| ~ 1e-13) ended with that contact's impulse at 0 and w_i =
+    -6e-13 against terms of 6e-13: wrong in its own row's terms, and the restart from that
+    basis makes the contact's impulse basic and solves it.  Its pivots and one more
+    recovery are added to the result's; its answer is judged by the same check."""
+    ws = res.warm_start
+    if res.status != Status.NUMERICAL_FAILURE or ws is None:
+        return res
+    if findex is None:
+        again = _solve(M, q, lo, hi, opts, ws)
+    else:
+        again = _solve_friction(M, q, lo, hi, findex, opts, ws)
+    if again.status != Status.SOLVED:
+        return res
+    return replace(again, pivots=res.pivots + again.pivots,
+                   recoveries=res.recoveries + again.recoveries + 1)
 
 
 _NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size

@@ -356,15 +356,15 @@ def test_pile_warm_starts_across_steps():
         warm = lemke.solve_blcp(A, b, lo, hi, findex=fi, warm_start=ws)
         assert warm.status == lemke.Status.SOLVED, warm
         assert_friction_solution(A, b, lo, hi, fi, warm.z)
-        if cold.status != lemke.Status.SOLVED:
-            # One step of this pile (an n = 22 basis whose point misses the check by
-            # rounding) ends NUMERICAL_FAILURE cold, as before the one-call path: honest.
-            assert cold.status == lemke.Status.NUMERICAL_FAILURE, cold
-            failed += 1
-        else:
-            assert_friction_solution(A, b, lo, hi, fi, cold.z)
-            scale = np.abs(cold.z).max(initial=0.0)
-            assert np.allclose(warm.z, cold.z, rtol=1e-6, atol=1e-8 * scale)
+        # Every step solves cold too.  Step 90 (n = 22, a resting contact whose row of the
+        # data is all rounding) used to end NUMERICAL_FAILURE: every run stopped with that
+        # contact's impulse at 0 and w_i = -6e-13 against terms of 6e-13; the last
+        # recovery, a restart from the final basis (_blcp._from_final), solves it.
+        assert cold.status == lemke.Status.SOLVED, cold
+        assert_friction_solution(A, b, lo, hi, fi, cold.z)
+        scale = np.abs(cold.z).max(initial=0.0)
+        assert np.allclose(warm.z, cold.z, rtol=1e-6, atol=1e-8 * scale)
+        failed += cold.recoveries > 2  # (the restart from the final basis is recovery 3)
         for a, a0 in zip((A, b, lo, hi, fi), before):
             assert np.array_equal(a, a0)
         pivots["cold"] += cold.pivots
@@ -374,7 +374,7 @@ def test_pile_warm_starts_across_steps():
             assert warm.warm_start is ws  # its own basis, passed on as it came
         ws = warm.warm_start
     assert pivots["warm"] < pivots["cold"] / 2 and zero > len(steps) / 2, (pivots, zero)
-    assert failed <= 1
+    assert failed <= 1  # step 90's restart; more would be news
 
 
 @pytest.mark.parametrize("friction", [True, False])
@@ -399,6 +399,7 @@ def test_one_call_equals_the_general_path(friction):
                     slow = _blcp._solve_friction(A, b, lo, hi, fi, _DEFAULT, start, tried=True)
                 else:
                     slow = _blcp._solve(A, b, lo, hi, _DEFAULT, start, tried=True)
+                slow = _blcp._from_final(slow, A, b, lo, hi, f, _DEFAULT)  # the last recovery
             assert (fast.status, fast.pivots, fast.recoveries) == (slow.status, slow.pivots, slow.recoveries)
             assert fast.warm_start == slow.warm_start
             assert np.allclose(fast.z, slow.z, rtol=1e-12, atol=1e-12 * np.abs(slow.z).max(initial=0.0))
