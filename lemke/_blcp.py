@@ -40,7 +40,7 @@ from ._options import _DEFAULT, as_options
 from . import _validate
 from ._result import Outcome, lazy_state
 from ._status import Status
-from .kernels import boxed
+from .kernels import boxed, entry_point
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
@@ -308,23 +308,40 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     >>> r.status.name, r.z.tolist()
     ('SOLVED', [2.0, -1.0])
     """
-    if (type(M) is np.ndarray and type(q) is np.ndarray and type(lo) is np.ndarray
-            and type(hi) is np.ndarray and M.dtype == _F64 and q.dtype == _F64
-            and lo.dtype == _F64 and hi.dtype == _F64 and M.ndim == 2 and q.ndim == 1
+    if (type(M) is _ND and type(q) is _ND and type(lo) is _ND and type(hi) is _ND
+            and (M.dtype is _F64 or M.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
+            and (lo.dtype is _F64 or lo.dtype == _F64) and (hi.dtype is _F64 or hi.dtype == _F64)
+            and M.ndim == 2 and q.ndim == 1
             and M.shape[0] == M.shape[1] == q.shape[0] == lo.shape[0] == hi.shape[0]
             and lo.ndim == 1 and hi.ndim == 1 and method == "bounded" and M.flags.c_contiguous):
         n = q.shape[0]
         if findex is None and warm_start is None:
-            # The common case: no copies, one kernel call that also validates the data.
+            # The common case: no copies, one kernel call that also validates the data;
+            # through the kernel's compiled entry point when every array is of the types it
+            # was compiled for (C-contiguous, aligned, writable), as solve_lcp's.
             opts = _DEFAULT if options is None else as_options(options)
             if n < len(_NO):
                 buf = np.empty(6 * n + 1)
                 final = np.empty(n, dtype=np.int64)
-                out = boxed.solve(M, q, lo, hi, _NO[n], 0, opts.pivot_limit(n), opts.pivot_tol,
-                                  opts.tie_tol, opts.tol, buf, final)
+                run = boxed.solve
+                if M.flags.carray and q.flags.carray and lo.flags.carray and hi.flags.carray:
+                    run = _ENTRY.get(run) or _entry_point()
+                mp = opts.max_pivots
+                out = run(M, q, lo, hi, _NO[n], 0, 100 * (n + 1) if mp is None else mp,
+                          opts.pivot_tol, opts.tie_tol, opts.tol, buf, final)  # (pivot_limit inlined)
                 if out[0] == 0 and out[3]:  # solved and checked: the result, built lazily
-                    return _lazy(buf, final, n, out[5], out[6], n, lo, hi, False, out[1], out[4],
-                                 0, None)
+                    res = _new(BLCPResult)  # (_lazy, inlined: the common case)
+                    d = res.__dict__
+                    d["status"] = _SOLVED
+                    d["pivots"] = out[1]
+                    d["residual"] = out[4]
+                    d["ray"] = None
+                    d["z0"] = 0.0
+                    d["lo"] = lo
+                    d["hi"] = hi
+                    d["_src"] = (buf, final, n, out[5], out[6],
+                                 _SPANS.get((n, n, False)) or _spans(n, n, False))
+                    return res
                 if out[0] >= 0:
                     run = _Run(n, buf, final)
                     run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = out
@@ -385,6 +402,19 @@ def _from_final(res, M, q, lo, hi, findex, opts):
 
 
 _NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size
+_ND = np.ndarray
+_ENTRY: dict = {}
+
+
+def _entry_point():
+    """``kernels.boxed.solve``'s compiled entry point for the fast path's argument types
+    (``kernels.entry_point``), once compiled; until then the kernel itself."""
+    a1 = np.empty(0)
+    run = entry_point(boxed.solve, np.empty((0, 0)), a1, a1, a1, _NO[0], 0, 0, 0.0, 0.0, 0.0, a1,
+                      np.empty(0, dtype=np.int64))
+    if run is not boxed.solve:
+        _ENTRY[boxed.solve] = run
+    return run
 _I64 = np.dtype(np.int64)
 _NO_FINDEX = np.empty(0, dtype=np.int64)
 _NO_WORK = np.empty(0)

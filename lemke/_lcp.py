@@ -8,7 +8,7 @@ from ._certify import check_lcp
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import cold, linalg
+from .kernels import cold, entry_point, linalg
 
 METHODS = tuple(cold.METHODS)
 _SOLVE_ONE = cold.solve_one  # a module attribute, so that a test can stand a lying kernel in
@@ -132,21 +132,12 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
 def _entry_point():
     """``_SOLVE_ONE``'s compiled entry point for the argument types of ``solve_lcp``'s fast
     path (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
-    floats), once compiled: calling it skips numba's dispatch (typing the 12 arguments, 0.3
-    us).  Until then (the first call compiles it) and for a stand-in kernel (tests), the
-    kernel itself."""
-    kernel = _SOLVE_ONE
-    overloads = getattr(kernel, "overloads", None)
-    if overloads is None:
-        return kernel
+    floats; ``kernels.entry_point``), once compiled; until then the kernel itself."""
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
-    signature = tuple(kernel.typeof_pyval(v) for v in (
-        0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1))
-    compiled = overloads.get(signature)
-    if compiled is None:
-        return kernel
-    _ENTRY[kernel] = compiled.entry_point
-    return compiled.entry_point
+    run = entry_point(_SOLVE_ONE, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
+    if run is not _SOLVE_ONE:
+        _ENTRY[_SOLVE_ONE] = run
+    return run
 
 
 def _views(buf, n):

@@ -228,6 +228,10 @@ def test_arrays_made_by_a_numba_kernel_take_the_fast_path_with_the_same_answer()
     M = A @ A.T + np.eye(5)
     q = rng.standard_normal(5)
     Mk = principal_block(M, np.arange(5))  # a copy of M made by a kernel
+    if Mk.dtype is np.dtype(np.float64):
+        # (Whether a kernel's array carries numpy's own dtype object depends on how the
+        # kernel was loaded, compiled in this process or from the cache: make the case.)
+        Mk = Mk.view(np.dtype(np.float64).newbyteorder("="))
     assert Mk.dtype == np.float64 and Mk.dtype is not np.dtype(np.float64)  # the case at hand
     r, rk = lemke.solve_lcp(M, q), lemke.solve_lcp(Mk, q)
     assert rk.status == lemke.Status.SOLVED
