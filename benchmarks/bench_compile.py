@@ -9,7 +9,8 @@ The entry points run one after another, each in a new Python process, on one num
 directory that starts empty (``NUMBA_CACHE_DIR``): the command line ``lemke solve`` first
 (README's install-and-run command: the first call after ``pip install``), then
 ``solve_lcp``, a warm start, the unrevised method, ``solve_lcp_batch``, ``solve_lcp_many``,
-``solve_mlcp``, ``solve_qp`` on its fused and its KKT-MLCP path, ``solve_blcp`` and
+``solve_mlcp``, ``solve_qp`` on its fused and its KKT-MLCP path, ``solve_blcp`` (plain,
+then with a friction index and a warm start) and
 ``solve_bimatrix``.  Each process reports the seconds of ``import lemke`` and of its first
 call (wall and CPU), and how many kernel signatures numba compiled (cache misses: what it
 did not share with the entry points before it) and loaded (cache hits).  A second pass runs
@@ -54,6 +55,10 @@ _CALLS = {
     "solve_qp (fused)": "lemke.solve_qp(np.eye(3) * 2, -np.ones(3), G=np.ones((1, 3)), h=np.ones(1))",
     "solve_qp (KKT-MLCP)": "lemke.solve_qp(np.zeros((3, 3)), -np.ones(3), G=np.eye(3), h=np.ones(3))",
     "solve_blcp": "lemke.solve_blcp(M, q, -np.ones(3), np.ones(3))",
+    "solve_blcp (findex, warm)": (
+        "fi = np.array([-1, 0, -1]); lo = np.array([0.0, -0.5, 0.0]); hi = np.array([np.inf, 0.5, 1.0]); "
+        "r = lemke.solve_blcp(M, q, lo, hi, findex=fi); "
+        "lemke.solve_blcp(M, q + 1e-9, lo, hi, findex=fi, warm_start=r.warm_start)"),
     "solve_bimatrix": "lemke.solve_bimatrix(M + 5, M.T + 5)",
 }
 
