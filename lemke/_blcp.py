@@ -38,7 +38,7 @@ import numpy as np
 
 from ._options import _DEFAULT, as_options
 from . import _validate
-from ._result import Outcome, lazy_state
+from ._result import LazyField, Outcome, lazy_state
 from ._status import Status
 from .kernels import boxed, entry_point
 
@@ -162,23 +162,16 @@ class BLCPResult(Outcome):
         return lazy_state(self, _BOX_FIELDS)
 
 
-class _BoxField:
+class _BoxField(LazyField):
     """A field of a solved box result built by ``solve_blcp``'s one-call paths: a view of
-    the kernel's buffer, or its warm start, made when first read and then kept in the
-    result's ``__dict__`` (as ``_result._FromBuffer`` does for LCPs; a small solve that
-    reads only ``z`` pays for no other view).  ``_src`` is ``(buf, final, N, k, m, spans)``:
-    the buffer, the final basis (``final[:k]`` basic, ``final[k:m]`` at hi) of a problem of
+    the kernel's buffer, or its warm start (``_result.LazyField``; a small solve that reads
+    only ``z`` pays for no other view).  ``_src`` is ``(buf, final, N, k, m, spans)``: the
+    buffer, the final basis (``final[:k]`` basic, ``final[k:m]`` at hi) of a problem of
     size N, and where each field sits in the buffer (:func:`_spans`)."""
 
-    __slots__ = ("name",)
+    __slots__ = ()
 
-    def __init__(self, name):
-        self.name = name
-
-    def __get__(self, res, cls=None):
-        if res is None:
-            return self
-        d = res.__dict__
+    def make(self, d):
         src = d.get("_src")
         if src is None:
             raise AttributeError(f"'BLCPResult' object has no attribute {self.name!r}")
@@ -186,13 +179,11 @@ class _BoxField:
         if self.name == "warm_start":
             v = BoxWarmStart._trusted(N, *_split(final, k, m))
             v.__dict__["_final"] = (final[:m], k)  # for its flags, if it is passed back
-        else:
-            if buf.flags.writeable:  # the result's arrays are read-only, as the others'
-                buf.setflags(write=False)
-            a, b = spans[self.name]
-            v = buf[a:b]
-        d[self.name] = v
-        return v
+            return v
+        if buf.flags.writeable:  # the result's arrays are read-only, as the others'
+            buf.setflags(write=False)
+        a, b = spans[self.name]
+        return buf[a:b]
 
 
 def _split(final, k, m):

@@ -24,7 +24,7 @@ import numpy as np
 from . import _games_exact as ex
 from . import _validate
 from ._options import _DEFAULT, Options, as_options
-from ._result import Outcome
+from ._result import LazyField, Outcome
 from ._status import Status
 from .kernels import games as kg
 from .kernels.pivoting import SOLVED
@@ -137,35 +137,25 @@ class BimatrixResult(Outcome):
 
 
 
-class _FromKernel:
+class _FromKernel(LazyField):
     """A field of a result of ``BimatrixResult._lazy``, read from the kernel's buffer on
-    first access and then kept in the instance (which a non-data descriptor defers to: the
-    results built field by field never reach it).  A descriptor rather than
-    ``__getattr__``, which Python reaches only after raising an AttributeError (~1.5 us)."""
+    first access (``_result.LazyField``; the results built field by field never reach it)."""
 
-    __slots__ = ("name",)
+    __slots__ = ()
 
-    def __init__(self, name):
-        self.name = name
-
-    def __get__(self, res, cls=None):
-        if res is None:
-            return self
-        d = res.__dict__
+    def make(self, d):
         buf, m, n = d["_lazy"]
         L = m + n
         name = self.name
         if name == "x" or name == "y":
             if "x" not in d and "y" not in d:
                 buf.flags.writeable = False  # before the first view: views copy the flag
-            v = d[name] = buf[:m] if name == "x" else buf[m:L]
-        elif name == "regret":
-            v = d[name] = buf[L]
-        elif name == "payoffs":
-            v = d[name] = (buf[L + 1], buf[L + 2])
-        else:
-            v = d[name] = GameBasis._trusted(m, n, buf[L + 3 : 2 * L + 3].view(np.int64))
-        return v
+            return buf[:m] if name == "x" else buf[m:L]
+        if name == "regret":
+            return buf[L]
+        if name == "payoffs":
+            return (buf[L + 1], buf[L + 2])
+        return GameBasis._trusted(m, n, buf[L + 3 : 2 * L + 3].view(np.int64))
 
 
 for _name in ("x", "y", "payoffs", "regret", "basis"):

@@ -252,6 +252,26 @@ def lazy_state(res, names):
     return d
 
 
+class LazyField:
+    """A field of a result built lazily: ``make(d)`` (``d``: the result's ``__dict__``, which
+    holds what the maker left there) computes it when first read, and it is then kept in
+    ``d``, which comes first from then on (a non-data descriptor; no ``__getattr__``
+    fallback, which costs a microsecond).  ``solve_blcp``'s and ``solve_bimatrix``'s lazy
+    results use it; ``_FromBuffer`` below is the LCP's own, inlined for its hot path."""
+
+    __slots__ = ("name",)
+
+    def __init__(self, name):
+        self.name = name
+
+    def __get__(self, res, cls=None):
+        if res is None:
+            return self
+        d = res.__dict__
+        v = d[self.name] = self.make(d)
+        return v
+
+
 class _FromBuffer:
     """A field of a :meth:`LCPResult._lazy` result, made from its ``_src`` when first read
     and then kept in the result's ``__dict__``, which comes first from then on (a non-data
