@@ -250,11 +250,7 @@ class _Run:
         self.final[: self.m] = np.concatenate([b, h])
 
     def basis_flags(self, n):
-        zb = np.zeros(n, dtype=np.bool_)
-        zh = np.zeros(n, dtype=np.bool_)
-        zb[self.final[: self.k]] = True
-        zh[self.final[self.k: self.m]] = True
-        return zb, zh
+        return _basis_flags(self.final, self.k, self.m, n)
 
     def warm(self, n):
         idx = self.final.tolist()
@@ -465,15 +461,11 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
         c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, 1, limit, pt, tt, tol, ext, final)
         pivots = max(p, 0)
         if not (c == 0 and ok):  # _finish: the point of its final basis, recomputed
-            zb, zh = np.zeros(N, dtype=np.bool_), np.zeros(N, dtype=np.bool_)
-            zb[final[:k]] = True
-            zh[final[k:m]] = True
-            zr = _basis_point(A, qa, la, ha, zb, zh)
-            if zr is not None:
-                wr = np.empty(N)
-                ok, rr = boxed.box_check(A, qa, la, ha, zr, tol, wr, ext[3 * N: 4 * N])
-                if ok:
-                    ext[:N], ext[N: 2 * N], residual = zr, wr, rr
+            point = _checked_point(A, qa, la, ha, *_basis_flags(final, k, m, N), tol,
+                                   ext[3 * N: 4 * N])
+            if point is not None:
+                ok = True
+                ext[:N], ext[N: 2 * N], residual = point
         if ok:
             if friction:
                 code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, True, tol, buf,
@@ -620,13 +612,11 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
     status = Status(run.code) if run.code >= 0 else Status.NUMERICAL_FAILURE
     z, w, residual = run.z, run.w, run.residual
     if status == Status.SOLVED or not run.ok:
-        zr = _basis_point(M, q, lo, hi, *run.basis_flags(n))
-        if zr is not None:
-            wr = np.empty(n)
-            ok, rr = boxed.box_check(M, q, lo, hi, zr, opts.tol, wr, run.R)
-            if ok:
-                run.z, run.w, run.residual, run.ok, run.code = zr, wr, rr, True, 0
-                return _solved(run, n, lo, hi, rec, pivots)
+        point = _checked_point(M, q, lo, hi, *run.basis_flags(n), opts.tol, run.R)
+        if point is not None:
+            run.z, run.w, run.residual = point
+            run.ok, run.code = True, 0
+            return _solved(run, n, lo, hi, rec, pivots)
         if status == Status.SOLVED:
             status = Status.NUMERICAL_FAILURE
     ray = None
@@ -653,6 +643,27 @@ def _basis_point(M, q, lo, hi, zb, zh):
     clamped into the box; None if singular."""
     z = np.empty(q.size)
     return z if boxed.basis_point(M, q, lo, hi, zb, zh, False, z) else None
+
+
+def _basis_flags(final, k, m, n):
+    """The flags ``(zb, zh)`` of a final basis as the kernels give it: ``final[:k]`` basic,
+    ``final[k:m]`` non-basic at hi."""
+    zb = np.zeros(n, dtype=np.bool_)
+    zh = np.zeros(n, dtype=np.bool_)
+    zb[final[:k]] = True
+    zh[final[k:m]] = True
+    return zb, zh
+
+
+def _checked_point(M, q, lo, hi, zb, zh, tol, R):
+    """The point of the basis ``(zb, zh)`` recomputed (:func:`_basis_point`) and judged by
+    ``box_check`` with the row scales R: ``(z, w, residual)`` when it passes, else None."""
+    z = _basis_point(M, q, lo, hi, zb, zh)
+    if z is None:
+        return None
+    w = np.empty(q.size)
+    ok, residual = boxed.box_check(M, q, lo, hi, z, tol, w, R)
+    return (z, w, residual) if ok else None
 
 
 def is_box_ray(M, q, lo, hi, d, z, z0, ray, tol=1e-9) -> bool:
@@ -715,11 +726,8 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     if not ok and inner.warm_start is not None:
         # The point of the final basis, from the extended data by one dense solve (more
         # accurate than the tableau after many pivots), judged again.
-        zb = np.zeros(Mx.shape[0], dtype=np.bool_)
-        zh = np.zeros(Mx.shape[0], dtype=np.bool_)
-        zb[list(inner.warm_start.z_basic)] = True
-        zh[list(inner.warm_start.at_upper)] = True
-        zx2 = _basis_point(Mx, qx, lox, hix, zb, zh)
+        flags = inner.warm_start._kernel_flags()
+        zx2 = _basis_point(Mx, qx, lox, hix, flags[:qx.size], flags[qx.size:])
         if zx2 is not None:
             z2 = zx2[:n].copy()
             z2[F] = zx2[F] - zx2[n:n + k]
