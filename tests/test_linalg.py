@@ -122,3 +122,34 @@ def test_refactorization_keeps_the_methods_together():
         assert max(a.pivots, b.pivots) <= 2 * 301 * min(a.pivots, b.pivots)
         assert_lcp_solution(M, q, a.z)
         assert_lcp_solution(M, q, b.z)
+
+
+def _pow2_scale_reference(x):
+    """The power of two nearest 1 / x by frexp/ldexp, in plain Python (the definition)."""
+    import math
+
+    if not (x > 0.0 and x < math.inf):
+        return 1.0
+    m, e = math.frexp(x)
+    try:
+        return math.ldexp(1.0, 1 - e) if m < 0.7071067811865476 else math.ldexp(1.0, -e)
+    except OverflowError:  # 1 / (a subnormal): C's ldexp, which the kernel calls, gives inf
+        return math.inf
+
+
+def test_pow2_scale_reads_the_bits_as_frexp_would():
+    """pow2_scale reads the exponent and fraction bits of x; it must give the reference's
+    bits everywhere: around 1/sqrt(2) and sqrt(2) within every binade, at the ends of the
+    normal range, subnormals, 0, negatives, inf and NaN."""
+    import struct
+
+    rng = np.random.default_rng(5)
+    xs = np.concatenate([10.0 ** rng.uniform(-320, 308, 20000), rng.uniform(0, 4, 5000),
+                         2.0 ** np.arange(-1074, 1024, dtype=float),
+                         np.sqrt(0.5) * 2.0 ** np.arange(-1070, 1024, 7, dtype=float),
+                         [0.0, -0.0, -1.0, np.inf, -np.inf, np.nan, 5e-324, 2.2250738585072014e-308,
+                          1.7976931348623157e308, 0.7071067811865476, 1.4142135623730951]])
+    xs = np.concatenate([xs, np.nextafter(xs, np.inf), np.nextafter(xs, -np.inf)])
+    for x in xs.tolist():
+        got, want = linalg.pow2_scale(x), _pow2_scale_reference(x)
+        assert struct.pack("<d", got) == struct.pack("<d", want), x
