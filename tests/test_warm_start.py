@@ -9,6 +9,7 @@ from helpers import assert_lcp_solution, assert_ray
 
 import lemke
 from lemke import problems
+from lemke.kernels.cold import RESTART_FROM
 
 
 def test_same_basis_still_solves_gives_zero_pivots(method):
@@ -74,14 +75,38 @@ def test_small_change_restarts_from_the_old_basis(method, kind):
     assert max(restarts) > 0  # the basis did change: the restart path was exercised
 
 
-def test_restart_ray_is_checked_with_its_own_covering_vector(method):
-    """An infeasible problem reached by a warm start ends on a ray valid for the column used."""
-    M = np.array([[1.0, -1.0], [-1.0, 1.0]])
-    first = lemke.solve_lcp(M, [1.0, -1.0], method=method)
+@pytest.mark.parametrize("n", [2, RESTART_FROM])
+def test_restart_ray_is_checked_with_its_own_covering_vector(method, n):
+    """An infeasible problem reached by a warm start ends on a ray valid for the column used
+    (n = 2: below RESTART_FROM the problem goes cold at once; the 2 x 2 block padded with
+    an identity to RESTART_FROM rows: Lemke restarts from the old basis first)."""
+    M = np.eye(n)
+    M[:2, :2] = [[1.0, -1.0], [-1.0, 1.0]]
+    q1, q2 = np.ones(n), np.ones(n)
+    q1[:2], q2[:2] = [1.0, -1.0], [-1.0, -1.0]
+    first = lemke.solve_lcp(M, q1, method=method)
     assert first.success and first.warm_start.z_basic
-    res = lemke.solve_lcp(M, [-1.0, -1.0], method=method, warm_start=first.warm_start)
+    res = lemke.solve_lcp(M, q2, method=method, warm_start=first.warm_start)
     assert res.status == lemke.Status.RAY_TERMINATION
-    assert_ray(M, [-1.0, -1.0], res.covering, res.z, res.z0, res.ray)
+    assert_ray(M, q2, res.covering, res.z, res.z0, res.ray)
+
+
+@pytest.mark.parametrize("n", [3, 8, RESTART_FROM - 1])
+def test_small_problem_whose_warm_basis_fails_goes_cold(method, n):
+    """Below RESTART_FROM rows a warm start whose basis no longer solves the problem is not
+    restarted from (the unrevised restart costs more than a cold solve there): the answer is
+    the cold answer, bit for bit, and it solves the problem."""
+    rng = np.random.default_rng([61, n])
+    for _ in range(20):
+        A = rng.standard_normal((n, n))
+        M, q = A @ A.T + 0.1 * np.eye(n), rng.standard_normal(n)
+        ws = lemke.solve_lcp(M, q, method=method).warm_start
+        q2 = q + 0.5 * rng.standard_normal(n)
+        warm, cold = (lemke.solve_lcp(M, q2, method=method, warm_start=w) for w in (ws, None))
+        assert warm.success
+        assert_lcp_solution(M, q2, warm.z)
+        if warm.pivots:  # the old basis failed
+            assert np.array_equal(warm.z, cold.z) and warm.pivots == cold.pivots
 
 
 @settings(max_examples=60, deadline=None)

@@ -322,6 +322,16 @@ def basis_point(M, q, beta, k, z):
     return True
 
 
+#: The smallest n at which a warm start whose basis fails is restarted from that basis;
+#: below it the problem goes cold at once.  Measured (kernel times, restart / cold, the
+#: warm basis of q and q moved by a relative 1e-3, 1e-2 and 0.3; PD and contact-like M):
+#: at n = 8 the restart took 1.2-1.4x a cold solve, at n = 16 0.9-1.4x, at n = 24 0.75-1.2x,
+#: from n = 32 to 200 0.35-0.8x when q moved by 1e-3 or 1e-2 (fewer pivots win) and
+#: 0.9-1.3x when it moved by 0.3.  The restart runs the unrevised method, whose pivots
+#: cost 2-3x the tableau's at these sizes, so fewer pivots pay only from about n = 24.
+RESTART_FROM = 24
+
+
 @inline_kernel
 def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """The first two stages of a warm start: the point of the old basis (z_i basic for i in
@@ -329,6 +339,8 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
     unrevised method on the principal pivoting transform, with a constant covering vector
     there: ``c e_alpha - M[:, beta] 1``, c = max|M|, so z rows and w rows get the same
     constant), checked.
+
+    The restart only from n = RESTART_FROM on: below, it costs more than a cold solve.
 
     Returns ``(stage, code, pivots, k, ok, residual)``: stage 0 (the old basis solved it: 0
     pivots) or 1 (the restart solved it) with code SOLVED; stage 2 when neither did (then
@@ -351,6 +363,8 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
         for i in range(k):
             basic[i] = beta[i]
         return 0, pivoting.SOLVED, 0, k, True, residual
+    if n < RESTART_FROM:
+        return 2, 0, 0, 0, False, 0.0  # small: a cold solve costs less than the restart
     # the restart from the old basis
     flags = false_flags(2 * n)  # one allocation for both
     z_start, z_basic = flags[:n], flags[n:]
