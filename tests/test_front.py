@@ -24,7 +24,7 @@ def _eager(M, q, method="tableau"):
     buf, basic = np.empty(cold.buffer_length(n)), np.empty(n, dtype=np.int64)
     code, pivots, k, ok, residual, recoveries, stage = cold.solve_one(
         cold.METHODS[method], M, q, np.empty(0), np.zeros(0, dtype=np.int64), 0, 100 * (n + 1),
-        1e-11, 1e-11, 1e-9, buf, basic)
+        1e-11, 1e-11, 1e-9, buf, basic, -1, 0)
     f = cold.fields(n)
     z, w, cov, rs, cs = (buf[f[name]] for name in ("z", "w", "covering", "row_scale", "col_scale"))
     if code == cold.TRIVIAL:
@@ -192,7 +192,7 @@ def test_solve_lcp_fast_path_and_its_edges():
     read-only or strided M goes the validated way and gets the same bits."""
     M, q = problems.contact_like(5, np.random.default_rng(8))
     ref = lemke.solve_lcp(M, q)
-    assert _lcp._ENTRY.get(cold.solve_one) is not None
+    assert _lcp._ENTRY.get("tableau") is not None
     raw = np.zeros(M.size * 8 + 1, dtype=np.uint8)
     unaligned = raw[1:].view(np.float64).reshape(M.shape)
     unaligned[...] = M
