@@ -282,16 +282,11 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
             ttol = 0.0 if exact else tie_tol
             run_buf, run_basic, careful = buf2, z_basic2, np.True_
             run_start, run_code, run_pivots = np.int64(0), np.int64(pivoting.CYCLING), np.int64(0)
-        code2, pivots2, rec2 = pivot_recovering(run_method, M, q, max_pivots - pivots, ptol,
-                                                ttol, run_buf, run_basic, careful, run_start,
-                                                run_code, run_pivots)
+        code2, pivots2, rec2, ok2, residual2 = run_checked(
+            run_method, M, q, max_pivots - pivots, ptol, ttol, tol, run_buf, run_basic, careful,
+            run_start, run_code, run_pivots)
         pivots += pivots2
         x2, ray2, w2, cov2, R2, C2 = layout(n, run_buf)
-        ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
-        if ok2:
-            # The point where the method stopped (a "ray" or a cap reached with z0 zero to
-            # rounding) passes the check on the caller's data: it is a solution.
-            code2 = pivoting.SOLVED
         if step == -1:
             code, ok, residual, recoveries = code2, ok2, residual2, rec2
             continue
@@ -312,6 +307,39 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
             code, ok, residual = code2, ok2, residual2
     if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
         ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)
+    return code, pivots, basic_indices(z_basic, basic), ok, residual, recoveries
+
+
+@inline_kernel
+def run_checked(method, M, q, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic, careful, start,
+                code, pivots):
+    """:func:`pivot_recovering` (its arguments), then the check of the point on (M, q).
+    Returns ``(code, pivots, recoveries, ok, residual)``, code SOLVED when the point
+    passes: where the method stopped (a "ray" or a cap reached with z0 zero to rounding)
+    the check on the caller's data, not the path, decides."""
+    n = q.shape[0]
+    code, pivots, recoveries = pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol,
+                                                buf, z_basic, careful, start, code, pivots)
+    x, ray, w, cov, R, C = layout(n, buf)
+    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    return pivoting.SOLVED if ok else code, pivots, recoveries, ok, residual
+
+
+@inline_kernel
+def checked_once(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """:func:`checked` with a covering vector d given (so no recovery runs) for a caller
+    that takes only a checked solution: the same ``(code, pivots, k, ok, residual,
+    recoveries)`` except that a ray is not judged (ok False), so that none of the recovery
+    runs' code (the ray check, the other covering vectors' runs, the points of final
+    bases) is compiled into it."""
+    n = q.shape[0]
+    code = prologue(M, q, d, buf)
+    if code < 0:
+        return code, 0, 0, code == TRIVIAL, 0.0, 0
+    z_basic = np.empty(n, dtype=np.bool_)
+    code, pivots, recoveries, ok, residual = run_checked(
+        method, M, q, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic, np.False_, np.int64(0),
+        np.int64(pivoting.CYCLING), np.int64(0))
     return code, pivots, basic_indices(z_basic, basic), ok, residual, recoveries
 
 

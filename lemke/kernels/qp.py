@@ -662,10 +662,9 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
         # The covering vector all ones, as solve_lcp's default, but given: cold.checked then
         # makes no recovery runs after a first run whose point fails its check (see the
-        # module docstring, step 4).
-        code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked(
-            method, M, g, np.ones(m), cap, pivot_tol, tie_tol, tol, buf, lcp_basic,
-            np.int64(-1), np.int64(0))
+        # module docstring, step 4); cold.checked_once is that, without their code.
+        code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked_once(
+            method, M, g, np.ones(m), cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
         if not (code == pivoting.SOLVED or code == cold.TRIVIAL) or not lcp_ok:
             return NOT_SOLVED, pivots, 0, 0
         for i in range(m):
