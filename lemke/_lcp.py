@@ -87,8 +87,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         # kernels never write to M and q, and check that they are finite), so no copies, and
         # the kernel called through its compiled entry point for exactly these types.
         opts = _DEFAULT if options is None else as_options(options)
-        key = method if ws is None else None
-        run = _ENTRY.get(key) or _entry_point(key)
+        run = _ENTRY.get(method if ws is None else None) or _entry_point(method, ws)
         d = _NO_D
     else:
         _validate.method(method, METHODS)
@@ -111,13 +110,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     basic = np.empty(n, _I64)
     code, pivots, k, ok, residual, recoveries, stage = run(
         _CODES[method], M, q, d, beta, beta.shape[0], 100 * (n + 1) if mp is None else mp,
-        opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic, -1, 0)  # (Options.pivot_limit inlined)
-    if stage < 0:
-        # A cold solve by the tableau that the lean kernel (cold.first_run) could not
-        # finish (a cycle, a ray to check, recovery runs): the full one goes on from there.
-        code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
-            _CODES[method], M, q, d, beta, 0, 100 * (n + 1) if mp is None else mp,
-            opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic, code, pivots)
+        opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic)  # (Options.pivot_limit inlined)
     if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
         # Solved and checked (or q >= 0: z = 0), or a checked ray: the common cases, built
         # lazily (LCPResult._lazy, inlined).
@@ -132,21 +125,32 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         if stage == 0:
             f["warm_start"] = ws
         return res
+    if stage < 0:
+        # A cold solve by the tableau that the lean kernel (cold.first_run) could not
+        # finish (a cycle, a ray to check, recovery runs): the full one goes on from there.
+        code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
+            _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64), -1,
+            100 * (n + 1) if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, buf,
+            basic)
+        if ok and (code == 0 or code == _RAY):
+            return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
+                                   residual, recoveries, (buf, 0, basic, 0, n, k))
     if code == cold.NOT_FINITE:
         _validate.lcp(M, q)  # raises, saying where
         raise AssertionError("the kernel found a NaN or an infinity that validation did not")
     return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
 
 
-def _entry_point(key):
+def _entry_point(method, ws):
     """The compiled entry point, for the argument types of ``solve_lcp``'s fast path
     (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
-    floats; ``kernels.entry_point``), of the kernel for ``key``: ``_FIRST_RUN`` for a cold
-    solve by the tableau (``key`` "tableau"), else ``_SOLVE_ONE``; once compiled, until
-    then the kernel itself."""
+    floats; ``kernels.entry_point``), of the kernel for a solve by ``method`` from the warm
+    start ``ws``: ``_FIRST_RUN`` for a cold solve by the tableau, else ``_SOLVE_ONE``; once
+    compiled, until then the kernel itself."""
+    key = method if ws is None else None
     kernel = _FIRST_RUN if key == "tableau" else _SOLVE_ONE
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
-    run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1, 0, 0)
+    run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
     if run is not kernel:
         _ENTRY[key] = run
     return run

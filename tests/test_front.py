@@ -24,7 +24,7 @@ def _eager(M, q, method="tableau"):
     buf, basic = np.empty(cold.buffer_length(n)), np.empty(n, dtype=np.int64)
     code, pivots, k, ok, residual, recoveries, stage = cold.solve_one(
         cold.METHODS[method], M, q, np.empty(0), np.zeros(0, dtype=np.int64), 0, 100 * (n + 1),
-        1e-11, 1e-11, 1e-9, buf, basic, -1, 0)
+        1e-11, 1e-11, 1e-9, buf, basic)
     f = cold.fields(n)
     z, w, cov, rs, cs = (buf[f[name]] for name in ("z", "w", "covering", "row_scale", "col_scale"))
     if code == cold.TRIVIAL:

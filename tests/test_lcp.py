@@ -235,8 +235,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     def with_solve(solve):
         """cold.solve_one (and cold.first_run), cold, with its pivoting replaced by ``solve``
         (the same check)."""
-        def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
-                      first_code, first_pivots):
+        def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
             assert cold.prologue(M, q, d, buf) == 0
             x, ray, w, cov, R, C = cold.layout(n, buf)

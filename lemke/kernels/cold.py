@@ -356,19 +356,18 @@ def basic_indices(z_basic, basic):
 
 
 @kernel
-def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
-              first_code, first_pivots):
+def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """The common first call, compiled alone: :func:`solve_one` for a cold start by the
-    tableau (``method``, ``beta``, ``k``, ``first_code`` and ``first_pivots`` are not read:
-    it takes solve_one's arguments, so that the front calls either the same way) as far as
-    one run goes -- the prologue, attempt 0 of :func:`pivot_recovering` and its check.
-    When that decides the solve (solved and checked, q >= 0, a caller's covering vector,
-    the pivots spent: no recovery run follows), it returns what solve_one returns.  When it
-    does not (a cycle, a ray to check, recovery runs to make), it returns stage -1 with
-    that run's code and pivots, and ``basic`` holds its flags of the basic z's: solve_one
-    called with them as ``first_code`` and ``first_pivots`` goes on from there with the
-    same bits.  So the first solve compiles none of the rest (the unrevised method, the
-    recoveries, the ray check, the warm start: about 30 s of numba's compile)."""
+    tableau (``method``, ``beta`` and ``k`` are not read: it takes solve_one's arguments,
+    so that the front calls either the same way) as far as one run goes -- the prologue,
+    attempt 0 of :func:`pivot_recovering` and its check.  When that decides the solve
+    (solved and checked, q >= 0, a caller's covering vector, the pivots spent: no recovery
+    run follows), it returns what solve_one returns.  When it does not (a cycle, a ray to
+    check, recovery runs to make), it returns stage -1 with that run's code and pivots, and
+    ``basic`` holds its flags of the basic z's: solve_one called with ``beta = [code,
+    pivots]`` and ``k = -1`` goes on from there with the same bits.  So the first solve
+    compiles none of the rest (the unrevised method, the recoveries, the ray check, the
+    warm start: about two thirds of the compile of solve_one)."""
     n = q.shape[0]
     code = prologue(M, q, d, buf)
     if code < 0:
@@ -465,15 +464,19 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
 
 
 @kernel
-def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
-              first_code, first_pivots):
+def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """What ``solve_lcp`` runs for one problem, warm or cold, and what every batch runs per
     problem: :func:`warm_stages` from the basis ``beta[:k]`` when k > 0, then, unless they
     solved it, :func:`checked` cold with the pivots left (d: the covering vector, empty for
     all ones).  Returns ``(code, pivots, k, ok, residual, recoveries, stage)`` as
     :func:`checked` with the stage (0, 1 warm; 2 cold); code NOT_FINITE: M or q has a NaN or
-    an infinity."""
+    an infinity.  ``k = -1``: go on after :func:`first_run`, which ended with stage -1, the
+    code ``beta[0]`` and ``beta[1]`` pivots (``checked``'s ``first_code`` and
+    ``first_pivots``)."""
     pivots = 0
+    first_code, first_pivots = np.int64(-1), np.int64(0)
+    if k < 0:
+        first_code, first_pivots = beta[0], beta[1]
     if k > 0:
         stage, code, pivots, kk, ok, residual = warm_stages(M, q, d, beta, k, max_pivots, pivot_tol,
                                                             tie_tol, tol, buf, basic)
@@ -512,6 +515,5 @@ def batch(method, Ms, mstart, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_to
         M = Ms[mstart[b]:mstart[b] + n * n].reshape((n, n))
         r = solve_one(method, M, qs[qoff[b]:qoff[b + 1]], d, beta[boff[b]:boff[b + 1]],
                       boff[b + 1] - boff[b], max_pivots[b], pivot_tol, tie_tol, tol,
-                      bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]], np.int64(-1),
-                      np.int64(0))
+                      bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]])
         _record(b, out_i, out_f, *r)
