@@ -20,7 +20,7 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    DEPENDENT_EQUALITIES: the MLCP path deals with those.
 4. Its KKT conditions are the LCP ``w = M z + g >= 0, z >= 0, z'w = 0`` with
    ``M = F2'F2`` (positive semidefinite, of the size of the inequalities) and ``g = d -
-   F1'v1 + F2'c2``, solved by ``cold.checked``: the same equilibration, pivoting rule,
+   F1'v1 + F2'c2``, solved by ``cold.checked_once``: the same equilibration, pivoting rule,
    cycle recoveries and row-wise check as ``solve_lcp``, but no recovery runs after a first
    run whose point fails the check (the covering vector is passed, all ones): the QP then
    goes to the KKT-MLCP path at once.  M has rank at most n - p, and where m is much
