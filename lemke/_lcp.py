@@ -11,7 +11,8 @@ from ._status import Status
 from .kernels import cold, entry_point, linalg
 
 METHODS = tuple(cold.METHODS)
-_SOLVE_ONE = cold.solve_one  # a module attribute, so that a test can stand a lying kernel in
+_SOLVE_ONE = cold.solve_one  # module attributes, so that a test can stand a lying kernel in
+_FIRST_RUN = cold.first_run
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
 _NO_BASIS = np.zeros(0, dtype=np.int64)
@@ -23,7 +24,8 @@ _TRIVIAL = cold.TRIVIAL
 _RAY = int(Status.RAY_TERMINATION)
 _new = object.__new__
 _buffer_length = cold.buffer_length
-#: {kernel: its compiled entry point for the fast path's argument types}
+#: {method, or None for a warm start: the compiled entry point of its kernel for the fast
+#: path's argument types}
 _ENTRY: dict = {}
 
 
@@ -85,7 +87,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         # kernels never write to M and q, and check that they are finite), so no copies, and
         # the kernel called through its compiled entry point for exactly these types.
         opts = _DEFAULT if options is None else as_options(options)
-        run = _ENTRY.get(_SOLVE_ONE) or _entry_point()
+        run = _ENTRY.get(method if ws is None else None) or _entry_point(method, ws)
         d = _NO_D
     else:
         _validate.method(method, METHODS)
@@ -95,7 +97,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         _validate.warm_start(ws, WarmStart, q.size,
                              "warm_start is for a problem of size {ws}, this one has n = {n}")
         d = _NO_D if d is None else d
-        run = _SOLVE_ONE
+        run = _FIRST_RUN if ws is None and method == "tableau" else _SOLVE_ONE
     n = q.shape[0]
     if ws is None:
         beta = _NO_BASIS
@@ -123,20 +125,34 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         if stage == 0:
             f["warm_start"] = ws
         return res
+    if stage < 0:
+        # A cold solve by the tableau that the lean kernel (cold.first_run) could not
+        # finish (a cycle, a ray to check, recovery runs): the full one goes on from there.
+        code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
+            _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64), -1,
+            100 * (n + 1) if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, buf,
+            basic)
+        if ok and (code == 0 or code == _RAY):
+            return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
+                                   residual, recoveries, (buf, 0, basic, 0, n, k))
     if code == cold.NOT_FINITE:
         _validate.lcp(M, q)  # raises, saying where
         raise AssertionError("the kernel found a NaN or an infinity that validation did not")
     return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
 
 
-def _entry_point():
-    """``_SOLVE_ONE``'s compiled entry point for the argument types of ``solve_lcp``'s fast
-    path (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
-    floats; ``kernels.entry_point``), once compiled; until then the kernel itself."""
+def _entry_point(method, ws):
+    """The compiled entry point, for the argument types of ``solve_lcp``'s fast path
+    (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
+    floats; ``kernels.entry_point``), of the kernel for a solve by ``method`` from the warm
+    start ``ws``: ``_FIRST_RUN`` for a cold solve by the tableau, else ``_SOLVE_ONE``; once
+    compiled, until then the kernel itself."""
+    key = method if ws is None else None
+    kernel = _FIRST_RUN if key == "tableau" else _SOLVE_ONE
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
-    run = entry_point(_SOLVE_ONE, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
-    if run is not _SOLVE_ONE:
-        _ENTRY[_SOLVE_ONE] = run
+    run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
+    if run is not kernel:
+        _ENTRY[key] = run
     return run
 
 

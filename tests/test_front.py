@@ -192,7 +192,7 @@ def test_solve_lcp_fast_path_and_its_edges():
     read-only or strided M goes the validated way and gets the same bits."""
     M, q = problems.contact_like(5, np.random.default_rng(8))
     ref = lemke.solve_lcp(M, q)
-    assert _lcp._ENTRY.get(cold.solve_one) is not None
+    assert _lcp._ENTRY.get("tableau") is not None
     raw = np.zeros(M.size * 8 + 1, dtype=np.uint8)
     unaligned = raw[1:].view(np.float64).reshape(M.shape)
     unaligned[...] = M

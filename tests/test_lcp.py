@@ -233,7 +233,8 @@ def test_kernel_answer_is_rechecked(monkeypatch):
     from lemke.kernels import certify
 
     def with_solve(solve):
-        """cold.solve_one, cold, with its pivoting replaced by ``solve`` (the same check)."""
+        """cold.solve_one (and cold.first_run), cold, with its pivoting replaced by ``solve``
+        (the same check)."""
         def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
             assert cold.prologue(M, q, d, buf) == 0
@@ -253,6 +254,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         return 0, 7
 
     monkeypatch.setattr(_lcp, "_SOLVE_ONE", with_solve(lying_kernel))
+    monkeypatch.setattr(_lcp, "_FIRST_RUN", with_solve(lying_kernel))
     p = problems.cps_447()
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and not res.success
@@ -265,6 +267,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         return 2, 3
 
     monkeypatch.setattr(_lcp, "_SOLVE_ONE", with_solve(lying_ray))
+    monkeypatch.setattr(_lcp, "_FIRST_RUN", with_solve(lying_ray))
     res = lemke.solve_lcp(p.M, p.q)
     assert res.status == Status.NUMERICAL_FAILURE and res.ray is None
 

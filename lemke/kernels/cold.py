@@ -1,6 +1,9 @@
 """A cold solve in one kernel call: check the data, equilibrate, pivot (recovering from a
 cycle), check the answer on the caller's data.  ``solve_lcp`` and ``solve_lcp_batch`` both go
 through these kernels, so a problem in a batch gets exactly the same answer as on its own.
+The common first call, a cold solve by the tableau, goes to the lean :func:`first_run`,
+which compiles in a third of the time of :func:`solve_one` and hands a solve that it cannot
+finish (a cycle, a ray to check, recovery runs) to solve_one, which goes on from there.
 
 Every output goes into one float64 buffer of length 6n + 2 (the front makes read-only views
 of it), laid out as ``[z | z0 | ray (n + 1) | w | covering d | row scales | column scales]``
@@ -145,16 +148,18 @@ def pivot_once(method, M, q, tie_tol, max_pivots, pivot_tol, buf, z_basic, caref
 
 
 @inline_kernel
-def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful):
+def pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol, buf, z_basic, careful,
+                     start, code, pivots):
     """:func:`pivot_once`, then the recoveries of the module docstring while it cycles.
     Returns ``(status, pivots, recoveries)``; the pivots of every run are counted.  One
     call site of :func:`pivot_once` in a loop over the attempts: each site inlines both
-    methods' set-up, and three of them made this the largest part of the compile."""
-    code = pivoting.CYCLING
-    pivots = 0
-    recoveries = -1
+    methods' set-up, and three of them made this the largest part of the compile.
+    ``start`` 0 runs from the start (``code`` and ``pivots`` are not read); 1 goes on after
+    a first run (attempt 0, of :func:`first_run`) that ended with ``code`` after ``pivots``
+    pivots, its output in ``buf`` and ``z_basic``."""
+    recoveries = start - 1
     tt = tie_tol
-    for attempt in range(3):
+    for attempt in range(start, 3):
         if attempt > 0:
             if code != pivoting.CYCLING or (attempt == 1 and tie_tol <= 0.0):
                 continue  # attempt 1 only with a tie tolerance to drop; 2 while it cycles
@@ -220,7 +225,8 @@ def basis_checks(M, q, z_basic, tol, R):
 
 
 @inline_kernel
-def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, first_code,
+            first_pivots):
     """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
     (empty: all ones), then check the answer on (M, q).
 
@@ -231,12 +237,24 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     verdict of ``certify.lcp_ray_check`` on the ray (the point never passes there);
     recoveries counts the restarts (after a cycle or a failed check, see the module
     docstring).
+
+    ``first_code`` < 0 solves from the start.  Otherwise :func:`first_run` has made the
+    first run (the prologue and the attempt 0 of :func:`pivot_recovering`), which ended
+    with ``first_code`` after ``first_pivots`` pivots; ``buf`` holds its output and
+    ``basic`` its flags of the basic z's, and the solve goes on from there, with the same
+    bits as from the start.
     """
     n = q.shape[0]
-    code = prologue(M, q, d, buf)
-    if code < 0:
-        return code, 0, 0, code == TRIVIAL, 0.0, 0
     z_basic = np.empty(n, dtype=np.bool_)
+    start = np.int64(0)  # not a literal 0: see kernels/__init__.py
+    if first_code < 0:
+        code = prologue(M, q, d, buf)
+        if code < 0:
+            return code, 0, 0, code == TRIVIAL, 0.0, 0
+    else:
+        start = np.int64(1)
+        for i in range(n):
+            z_basic[i] = basic[i] != 0
     x, ray, w, cov, R, C = layout(n, buf)
     code, ok, residual = pivoting.MAX_PIVOTS, False, 0.0
     pivots = 0
@@ -250,6 +268,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
         if step == -1:
             run_method, run_buf, run_basic, ptol, ttol, careful = (
                 method, buf, z_basic, pivot_tol, tie_tol, np.False_)
+            run_start, run_code, run_pivots = start, first_code, first_pivots
         else:
             if d.shape[0] != 0 or (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
                 break  # a caller's covering vector gets no recovery runs
@@ -265,15 +284,12 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             ptol = 0.0 if exact else pivot_tol
             ttol = 0.0 if exact else tie_tol
             run_buf, run_basic, careful = buf2, z_basic2, np.True_
-        code2, pivots2, rec2 = pivot_recovering(run_method, M, q, max_pivots - pivots, ptol,
-                                                ttol, run_buf, run_basic, careful)
+            run_start, run_code, run_pivots = np.int64(0), np.int64(pivoting.CYCLING), np.int64(0)
+        code2, pivots2, rec2, ok2, residual2 = run_checked(
+            run_method, M, q, max_pivots - pivots, ptol, ttol, tol, run_buf, run_basic, careful,
+            run_start, run_code, run_pivots)
         pivots += pivots2
         x2, ray2, w2, cov2, R2, C2 = layout(n, run_buf)
-        ok2, residual2 = lcp_check_sized(M, q, x2[:n], tol, w2, R)
-        if ok2:
-            # The point where the method stopped (a "ray" or a cap reached with z0 zero to
-            # rounding) passes the check on the caller's data: it is a solution.
-            code2 = pivoting.SOLVED
         if step == -1:
             code, ok, residual, recoveries = code2, ok2, residual2, rec2
             continue
@@ -294,12 +310,86 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             code, ok, residual = code2, ok2, residual2
     if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
         ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)
+    return code, pivots, basic_indices(z_basic, basic), ok, residual, recoveries
+
+
+@inline_kernel
+def run_checked(method, M, q, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic, careful, start,
+                code, pivots):
+    """:func:`pivot_recovering` (its arguments), then the check of the point on (M, q).
+    Returns ``(code, pivots, recoveries, ok, residual)``, code SOLVED when the point
+    passes: where the method stopped (a "ray" or a cap reached with z0 zero to rounding)
+    the check on the caller's data, not the path, decides."""
+    n = q.shape[0]
+    code, pivots, recoveries = pivot_recovering(method, M, q, max_pivots, pivot_tol, tie_tol,
+                                                buf, z_basic, careful, start, code, pivots)
+    x, ray, w, cov, R, C = layout(n, buf)
+    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    return pivoting.SOLVED if ok else code, pivots, recoveries, ok, residual
+
+
+@inline_kernel
+def checked_once(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """:func:`checked` with a covering vector d given (so no recovery runs) for a caller
+    that takes only a checked solution: the same ``(code, pivots, k, ok, residual,
+    recoveries)`` except that a ray is not judged (ok False), so that none of the recovery
+    runs' code (the ray check, the other covering vectors' runs, the points of final
+    bases) is compiled into it."""
+    n = q.shape[0]
+    code = prologue(M, q, d, buf)
+    if code < 0:
+        return code, 0, 0, code == TRIVIAL, 0.0, 0
+    z_basic = np.empty(n, dtype=np.bool_)
+    code, pivots, recoveries, ok, residual = run_checked(
+        method, M, q, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic, np.False_, np.int64(0),
+        np.int64(pivoting.CYCLING), np.int64(0))
+    return code, pivots, basic_indices(z_basic, basic), ok, residual, recoveries
+
+
+@inline_kernel
+def basic_indices(z_basic, basic):
+    """The indices i with ``z_basic[i]`` into the first entries of ``basic``; returns how
+    many."""
     k = 0
-    for i in range(n):
+    for i in range(z_basic.shape[0]):
         if z_basic[i]:
             basic[k] = i
             k += 1
-    return code, pivots, k, ok, residual, recoveries
+    return k
+
+
+@kernel
+def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+    """The common first call, compiled alone: :func:`solve_one` for a cold start by the
+    tableau (``method``, ``beta`` and ``k`` are not read: it takes solve_one's arguments,
+    so that the front calls either the same way) as far as one run goes -- the prologue,
+    attempt 0 of :func:`pivot_recovering` and its check.  When that decides the solve
+    (solved and checked, q >= 0, a caller's covering vector, the pivots spent: no recovery
+    run follows), it returns what solve_one returns.  When it does not (a cycle, a ray to
+    check, recovery runs to make), it returns stage -1 with that run's code and pivots, and
+    ``basic`` holds its flags of the basic z's: solve_one called with ``beta = [code,
+    pivots]`` and ``k = -1`` goes on from there with the same bits.  So the first solve
+    compiles none of the rest (the unrevised method, the recoveries, the ray check, the
+    warm start: about two thirds of the compile of solve_one)."""
+    n = q.shape[0]
+    code = prologue(M, q, d, buf)
+    if code < 0:
+        return code, 0, 0, code == TRIVIAL, 0.0, 0, 2
+    x, ray, w, cov, R, C = layout(n, buf)
+    z_basic = np.empty(n, dtype=np.bool_)
+    code, pivots = tableau.solve(M, q, cov, R, C, max_pivots, pivot_tol, tie_tol, x, ray,
+                                 z_basic, np.False_)
+    ok, residual = False, 0.0
+    if code != pivoting.CYCLING:
+        ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+        if ok:
+            code = pivoting.SOLVED  # as in checked
+    if code == pivoting.CYCLING or not ok and (
+            code == pivoting.RAY_TERMINATION or (d.shape[0] == 0 and pivots < max_pivots)):
+        for i in range(n):
+            basic[i] = z_basic[i]
+        return code, pivots, 0, False, 0.0, 0, -1
+    return code, pivots, basic_indices(z_basic, basic), ok, residual, 0, 2
 
 
 @kernel
@@ -397,15 +487,21 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     solved it, :func:`checked` cold with the pivots left (d: the covering vector, empty for
     all ones).  Returns ``(code, pivots, k, ok, residual, recoveries, stage)`` as
     :func:`checked` with the stage (0, 1 warm; 2 cold); code NOT_FINITE: M or q has a NaN or
-    an infinity."""
+    an infinity.  ``k = -1``: go on after :func:`first_run`, which ended with stage -1, the
+    code ``beta[0]`` and ``beta[1]`` pivots (``checked``'s ``first_code`` and
+    ``first_pivots``)."""
     pivots = 0
+    first_code, first_pivots = np.int64(-1), np.int64(0)
+    if k < 0:
+        first_code, first_pivots = beta[0], beta[1]
     if k > 0:
         stage, code, pivots, kk, ok, residual = warm_stages(M, q, d, beta, k, max_pivots, pivot_tol,
                                                             tie_tol, tol, buf, basic)
         if stage < 2:
             return code, pivots, kk, ok, residual, 0, stage if stage >= 0 else 2
     code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
-                                                   pivot_tol, tie_tol, tol, buf, basic)
+                                                   pivot_tol, tie_tol, tol, buf, basic,
+                                                   first_code, first_pivots)
     return code, p + pivots, kk, ok, residual, recoveries, 2
 
 

@@ -20,7 +20,7 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    DEPENDENT_EQUALITIES: the MLCP path deals with those.
 4. Its KKT conditions are the LCP ``w = M z + g >= 0, z >= 0, z'w = 0`` with
    ``M = F2'F2`` (positive semidefinite, of the size of the inequalities) and ``g = d -
-   F1'v1 + F2'c2``, solved by ``cold.checked``: the same equilibration, pivoting rule,
+   F1'v1 + F2'c2``, solved by ``cold.checked_once``: the same equilibration, pivoting rule,
    cycle recoveries and row-wise check as ``solve_lcp``, but no recovery runs after a first
    run whose point fails the check (the covering vector is passed, all ones): the QP then
    goes to the KKT-MLCP path at once.  M has rank at most n - p, and where m is much
@@ -662,8 +662,8 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
         # The covering vector all ones, as solve_lcp's default, but given: cold.checked then
         # makes no recovery runs after a first run whose point fails its check (see the
-        # module docstring, step 4).
-        code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked(
+        # module docstring, step 4); cold.checked_once is that, without their code.
+        code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked_once(
             method, M, g, np.ones(m), cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
         if not (code == pivoting.SOLVED or code == cold.TRIVIAL) or not lcp_ok:
             return NOT_SOLVED, pivots, 0, 0
