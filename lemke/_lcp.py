@@ -24,8 +24,7 @@ _TRIVIAL = cold.TRIVIAL
 _RAY = int(Status.RAY_TERMINATION)
 _new = object.__new__
 _buffer_length = cold.buffer_length
-#: {method, or None for a warm start: the compiled entry point of its kernel for the fast
-#: path's argument types}
+#: {method: the compiled entry point of its kernel for the fast path's argument types}
 _ENTRY: dict = {}
 
 
@@ -87,7 +86,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         # kernels never write to M and q, and check that they are finite), so no copies, and
         # the kernel called through its compiled entry point for exactly these types.
         opts = _DEFAULT if options is None else as_options(options)
-        run = _ENTRY.get(method if ws is None else None) or _entry_point(method, ws)
+        run = _ENTRY.get(method) or _entry_point(method)
         d = _NO_D
     else:
         _validate.method(method, METHODS)
@@ -97,7 +96,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         _validate.warm_start(ws, WarmStart, q.size,
                              "warm_start is for a problem of size {ws}, this one has n = {n}")
         d = _NO_D if d is None else d
-        run = _FIRST_RUN if ws is None and method == "tableau" else _SOLVE_ONE
+        run = _FIRST_RUN if method == "tableau" else _SOLVE_ONE
     n = q.shape[0]
     if ws is None:
         beta = _NO_BASIS
@@ -126,12 +125,14 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             f["warm_start"] = ws
         return res
     if stage < 0:
-        # A cold solve by the tableau that the lean kernel (cold.first_run) could not
-        # finish (a cycle, a ray to check, recovery runs): the full one goes on from there.
+        # A solve by the tableau that the lean kernel (cold.first_run) could not finish: a
+        # cold run with a cycle, a ray to check or recovery runs to make (stage -1: the full
+        # kernel goes on from there), or a warm start to restart from its old basis (-2).
+        resume = stage == -1
         code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
-            _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64), -1,
-            100 * (n + 1) if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, buf,
-            basic)
+            _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64) if resume else beta,
+            -1 if resume else beta.shape[0], 100 * (n + 1) if mp is None else mp,
+            opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic)
         if ok and (code == 0 or code == _RAY):
             return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
                                    residual, recoveries, (buf, 0, basic, 0, n, k))
@@ -141,13 +142,13 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
 
 
-def _entry_point(method, ws):
+def _entry_point(method):
     """The compiled entry point, for the argument types of ``solve_lcp``'s fast path
     (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
-    floats; ``kernels.entry_point``), of the kernel for a solve by ``method`` from the warm
-    start ``ws``: ``_FIRST_RUN`` for a cold solve by the tableau, else ``_SOLVE_ONE``; once
-    compiled, until then the kernel itself."""
-    key = method if ws is None else None
+    floats; ``kernels.entry_point``), of the kernel for a solve by ``method``:
+    ``_FIRST_RUN`` for the tableau (cold or warm), else ``_SOLVE_ONE``; once compiled,
+    until then the kernel itself."""
+    key = method
     kernel = _FIRST_RUN if key == "tableau" else _SOLVE_ONE
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
     run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)

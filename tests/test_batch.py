@@ -175,14 +175,17 @@ def test_many_is_bit_identical_to_one_by_one_for_any_workers(method):
 
 
 @pytest.mark.parametrize("method", lemke.METHODS)
-def test_batch_with_warm_starts_is_bit_identical(method):
+@pytest.mark.parametrize("n, move", [(10, 1e-3), (30, 1e-3), (30, 0.3)])
+def test_batch_with_warm_starts_is_bit_identical(method, n, move):
+    """solve_lcp (whose tableau warm starts go through the lean first_run, then solve_one
+    for a restart at n >= RESTART_FROM) gives the batch's bits (solve_one alone)."""
     rng = np.random.default_rng(2)
-    n, B = 10, 30
+    B = 30
     A = rng.standard_normal((n, n))
     M = A @ A.T + 0.1 * np.eye(n)
     Q = rng.standard_normal((B, n))
     ws = [lemke.solve_lcp(M, q, method=method).warm_start for q in Q]
-    Q2 = Q + 1e-3 * rng.standard_normal((B, n))
+    Q2 = Q + move * rng.standard_normal((B, n))
     for workers in (1, 2, 4):
         r = lemke.solve_lcp_batch(M, Q2, method=method, warm_start=ws, workers=workers)
         for b in range(B):

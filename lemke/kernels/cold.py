@@ -360,18 +360,30 @@ def basic_indices(z_basic, basic):
 
 @kernel
 def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
-    """The common first call, compiled alone: :func:`solve_one` for a cold start by the
-    tableau (``method``, ``beta`` and ``k`` are not read: it takes solve_one's arguments,
-    so that the front calls either the same way) as far as one run goes -- the prologue,
-    attempt 0 of :func:`pivot_recovering` and its check.  When that decides the solve
-    (solved and checked, q >= 0, a caller's covering vector, the pivots spent: no recovery
-    run follows), it returns what solve_one returns.  When it does not (a cycle, a ray to
-    check, recovery runs to make), it returns stage -1 with that run's code and pivots, and
-    ``basic`` holds its flags of the basic z's: solve_one called with ``beta = [code,
-    pivots]`` and ``k = -1`` goes on from there with the same bits.  So the first solve
-    compiles none of the rest (the unrevised method, the recoveries, the ray check, the
-    warm start: about two thirds of the compile of solve_one)."""
+    """The common first calls, compiled alone: :func:`solve_one` by the tableau (``method``
+    is not read: it takes solve_one's arguments, so that the front calls either the same
+    way), cold or warm, as far as the first stage of a warm start (:func:`old_basis`) and
+    one cold run go -- the prologue, attempt 0 of :func:`pivot_recovering` and its check.
+    When that decides the solve (the old basis solves it; solved and checked, q >= 0, a
+    caller's covering vector, the pivots spent: no recovery run follows), it returns what
+    solve_one returns.  When it does not (a cycle, a ray to check, recovery runs to make),
+    it returns stage -1 with that run's code and pivots, and ``basic`` holds its flags of
+    the basic z's: solve_one called with ``beta = [code, pivots]`` and ``k = -1`` goes on
+    from there with the same bits.  A warm start whose old basis fails at n >=
+    RESTART_FROM returns stage -2 at once: solve_one from that basis restarts Lemke there
+    (its first stage again, then the restart).  Below RESTART_FROM a failed old basis goes
+    cold here, as in solve_one.  So the first solves compile none of the rest (the
+    unrevised method, the restart, the recoveries, the ray check: about two thirds of the
+    compile of solve_one)."""
     n = q.shape[0]
+    if k > 0:  # a warm start: its first stage here, the restart in solve_one
+        found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
+        if found == 0:
+            return pivoting.SOLVED, 0, k, True, residual, 0, 0
+        if found < 0:
+            return NOT_FINITE, 0, 0, False, 0.0, 0, 2
+        if found == 1 and n >= RESTART_FROM:
+            return 0, 0, 0, False, 0.0, 0, -2
     code = prologue(M, q, d, buf)
     if code < 0:
         return code, 0, 0, code == TRIVIAL, 0.0, 0, 2
@@ -423,6 +435,33 @@ RESTART_FROM = 24
 
 
 @inline_kernel
+def old_basis(M, q, d, beta, k, tol, buf, basic):
+    """The first stage of a warm start: the point of the old basis (z_i basic for i in
+    beta[:k], :func:`basis_point`), checked on (M, q), after the finite check and the
+    equilibration (R and C in ``buf``).  Returns ``(found, m_max, residual)``: found 0 when
+    the point passes (it is in ``buf``, ``basic`` holds beta), 1 when it fails, 2 when the
+    old block is singular, -1 when M or q has a NaN or an infinity; m_max = max |M|."""
+    n = q.shape[0]
+    x, ray, w, cov, R, C = layout(n, buf)
+    finite, m_max = finite_absmax(M)
+    if not finite or nan_probe(q, n) != 0.0:
+        return -1, m_max, 0.0
+    equilibrate(M, q, R, C)
+    x[n] = 0.0
+    if not basis_point(M, q, beta, k, x[:n]):
+        return 2, m_max, 0.0
+    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    if not ok:
+        return 1, m_max, residual
+    for i in range(n):
+        cov[i] = d[i] if d.shape[0] else 1.0
+    ray[:] = 0.0
+    for i in range(k):
+        basic[i] = beta[i]
+    return 0, m_max, residual
+
+
+@inline_kernel
 def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """The first two stages of a warm start: the point of the old basis (z_i basic for i in
     beta[:k]), checked on (M, q); if it fails, Lemke's method restarted from that basis (the
@@ -438,23 +477,13 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
     code NOT_FINITE when M or q has a NaN or an infinity."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    finite, m_max = finite_absmax(M)
-    if not finite or nan_probe(q, n) != 0.0:
-        return -1, NOT_FINITE, 0, 0, False, 0.0
-    equilibrate(M, q, R, C)
-    x[n] = 0.0
-    if not basis_point(M, q, beta, k, x[:n]):
-        return 2, 0, 0, 0, False, 0.0
-    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
-    if ok:
-        for i in range(n):
-            cov[i] = d[i] if d.shape[0] else 1.0
-        ray[:] = 0.0
-        for i in range(k):
-            basic[i] = beta[i]
+    found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
+    if found == 0:
         return 0, pivoting.SOLVED, 0, k, True, residual
-    if n < RESTART_FROM:
-        return 2, 0, 0, 0, False, 0.0  # small: a cold solve costs less than the restart
+    if found < 0:
+        return -1, NOT_FINITE, 0, 0, False, 0.0
+    if found == 2 or n < RESTART_FROM:
+        return 2, 0, 0, 0, False, 0.0  # singular; or small: a cold solve costs less
     # the restart from the old basis
     flags = false_flags(2 * n)  # one allocation for both
     z_start, z_basic = flags[:n], flags[n:]
