@@ -131,7 +131,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         resume = stage == -1
         code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
             _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64) if resume else beta,
-            -1 if resume else beta.shape[0], 100 * (n + 1) if mp is None else mp,
+            -1 if resume else -2 - beta.shape[0], 100 * (n + 1) if mp is None else mp,
             opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic)
         if ok and (code == 0 or code == _RAY):
             return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,

@@ -360,21 +360,21 @@ def basic_indices(z_basic, basic):
 
 @kernel
 def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
-    """The common first calls, compiled alone: :func:`solve_one` by the tableau (``method``
-    is not read: it takes solve_one's arguments, so that the front calls either the same
-    way), cold or warm, as far as the first stage of a warm start (:func:`old_basis`) and
-    one cold run go -- the prologue, attempt 0 of :func:`pivot_recovering` and its check.
-    When that decides the solve (the old basis solves it; solved and checked, q >= 0, a
-    caller's covering vector, the pivots spent: no recovery run follows), it returns what
-    solve_one returns.  When it does not (a cycle, a ray to check, recovery runs to make),
-    it returns stage -1 with that run's code and pivots, and ``basic`` holds its flags of
-    the basic z's: solve_one called with ``beta = [code, pivots]`` and ``k = -1`` goes on
-    from there with the same bits.  A warm start whose old basis fails at n >=
-    RESTART_FROM returns stage -2 at once: solve_one from that basis restarts Lemke there
-    (its first stage again, then the restart).  Below RESTART_FROM a failed old basis goes
-    cold here, as in solve_one.  So the first solves compile none of the rest (the
-    unrevised method, the restart, the recoveries, the ray check: about two thirds of the
-    compile of solve_one)."""
+    """The common first calls, compiled alone: :func:`solve_one` by the tableau (``method`` is
+    not read: it takes solve_one's arguments, so that the front calls either the same way),
+    cold or warm, as far as the first stage of a warm start (:func:`old_basis`) and one cold
+    run go -- the prologue, attempt 0 of :func:`pivot_recovering` and its check. When that
+    decides the solve (the old basis solves it; solved and checked, q >= 0, a caller's
+    covering vector, the pivots spent: no recovery run follows), it returns what solve_one
+    returns.  When it does not (a cycle, a ray to check, recovery runs to make), it returns
+    stage -1 with that run's code and pivots, and ``basic`` holds its flags of the basic
+    z's: solve_one called with ``beta = [code, pivots]`` and ``k = -1`` goes on from there
+    with the same bits.  A warm start whose old basis fails at n >= RESTART_FROM returns
+    stage -2 at once: solve_one from that basis with ``k = -2 - k`` restarts Lemke there
+    (without trying the point again).  Below RESTART_FROM a failed old basis goes cold here,
+    as in solve_one.  So the first solves compile none of the rest (the unrevised method,
+    the restart, the recoveries, the ray check: about two thirds of the compile of
+    solve_one)."""
     n = q.shape[0]
     if k > 0:  # a warm start: its first stage here, the restart in solve_one
         found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
@@ -462,7 +462,7 @@ def old_basis(M, q, d, beta, k, tol, buf, basic):
 
 
 @inline_kernel
-def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
+def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic, tried):
     """The first two stages of a warm start: the point of the old basis (z_i basic for i in
     beta[:k]), checked on (M, q); if it fails, Lemke's method restarted from that basis (the
     unrevised method on the principal pivoting transform, with a constant covering vector
@@ -474,10 +474,14 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
     Returns ``(stage, code, pivots, k, ok, residual)``: stage 0 (the old basis solved it: 0
     pivots) or 1 (the restart solved it) with code SOLVED; stage 2 when neither did (then
     only ``pivots``, those spent, counts: :func:`solve_one` goes on cold); stage -1 with
-    code NOT_FINITE when M or q has a NaN or an infinity."""
+    code NOT_FINITE when M or q has a NaN or an infinity.  ``tried``: :func:`first_run` has
+    made the first stage already, and its point failed (R and C are in ``buf``)."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
+    if tried:
+        found, m_max, residual = 1, finite_absmax(M)[1], 0.0
+    else:
+        found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
     if found == 0:
         return 0, pivoting.SOLVED, 0, k, True, residual
     if found < 0:
@@ -518,14 +522,19 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     :func:`checked` with the stage (0, 1 warm; 2 cold); code NOT_FINITE: M or q has a NaN or
     an infinity.  ``k = -1``: go on after :func:`first_run`, which ended with stage -1, the
     code ``beta[0]`` and ``beta[1]`` pivots (``checked``'s ``first_code`` and
-    ``first_pivots``)."""
+    ``first_pivots``).  ``k < -1``: the warm start ``beta[:-2 - k]`` whose old basis's
+    point :func:`first_run` tried (stage -2, its buffer as first_run left it): the restart
+    from there."""
     pivots = 0
     first_code, first_pivots = np.int64(-1), np.int64(0)
-    if k < 0:
+    if k == -1:
         first_code, first_pivots = beta[0], beta[1]
-    if k > 0:
+    elif k != 0:
+        tried = k < 0  # k = -2 - (the basis's size): first_run tried the old basis's point
+        if tried:
+            k = -2 - k
         stage, code, pivots, kk, ok, residual = warm_stages(M, q, d, beta, k, max_pivots, pivot_tol,
-                                                            tie_tol, tol, buf, basic)
+                                                            tie_tol, tol, buf, basic, tried)
         if stage < 2:
             return code, pivots, kk, ok, residual, 0, stage if stage >= 0 else 2
     code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
