@@ -237,7 +237,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         (the same check)."""
         def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
-            assert cold.prologue(M, q, d, buf) == 0
+            assert cold.prologue(M, q, d, buf, np.False_) == 0
             x, ray, w, cov, R, C = cold.layout(n, buf)
             z_basic = np.empty(n, dtype=np.bool_)
             code, pivots = solve(x, ray, z_basic)

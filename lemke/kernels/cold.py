@@ -112,17 +112,19 @@ def layout(n, buf):
 
 
 @inline_kernel
-def prologue(M, q, d, buf):
+def prologue(M, q, d, buf, scaled):
     """Check that M and q are finite, fill the equilibration scales and the covering vector
     (an empty d stands for all ones).  Returns code NOT_FINITE, TRIVIAL (q >= 0: z = 0
-    and w = q written) or 0."""
+    and w = q written) or 0.  ``scaled``: the check and the scales are done already (by
+    :func:`old_basis`), and are not made again."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    finite, m_max = finite_absmax(M)
-    finite &= nan_probe(q, n) == 0.0
-    if not finite:
-        return NOT_FINITE
-    equilibrate(M, q, R, C)
+    if not scaled:
+        finite, m_max = finite_absmax(M)
+        finite &= nan_probe(q, n) == 0.0
+        if not finite:
+            return NOT_FINITE
+        equilibrate(M, q, R, C)
     q_min = 0.0
     for i in range(n):
         q_min = min(q_min, q[i])
@@ -248,7 +250,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     z_basic = np.empty(n, dtype=np.bool_)
     start = np.int64(0)  # not a literal 0: see kernels/__init__.py
     if first_code < 0:
-        code = prologue(M, q, d, buf)
+        code = prologue(M, q, d, buf, np.False_)
         if code < 0:
             return code, 0, 0, code == TRIVIAL, 0.0, 0
     else:
@@ -336,7 +338,7 @@ def checked_once(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basi
     runs' code (the ray check, the other covering vectors' runs, the points of final
     bases) is compiled into it."""
     n = q.shape[0]
-    code = prologue(M, q, d, buf)
+    code = prologue(M, q, d, buf, np.False_)
     if code < 0:
         return code, 0, 0, code == TRIVIAL, 0.0, 0
     z_basic = np.empty(n, dtype=np.bool_)
@@ -384,7 +386,7 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
             return NOT_FINITE, 0, 0, False, 0.0, 0, 2
         if found == 1 and n >= RESTART_FROM:
             return 0, 0, 0, False, 0.0, 0, -2
-    code = prologue(M, q, d, buf)
+    code = prologue(M, q, d, buf, k > 0)  # k > 0: old_basis scaled
     if code < 0:
         return code, 0, 0, code == TRIVIAL, 0.0, 0, 2
     x, ray, w, cov, R, C = layout(n, buf)
