@@ -442,7 +442,7 @@ def _solve_definite(args, method, opts):
         P, q, G, h, A, b, lb, ub, cold.METHODS[method],
         -1 if opts.max_pivots is None else opts.max_pivots, opts.pivot_tol, opts.tie_tol,
         opts.tol, out, basic)
-    if code != kqp.OK:
+    if code != kqp.OK and code != kqp.OK_GRAM:
         return None
     out.setflags(write=False)  # the views below are read-only too
     # x and the status now; the multipliers, residuals and the basis when first read

@@ -49,8 +49,8 @@ as forming it costs ``(n - p) m^2 / 2`` and a pivot ``m^2``, and only a handful 
 import numpy as np
 from numba import njit
 
-from . import cold, kernel, pivoting
-from .linalg import absmax, dot, nan_probe
+from . import cold, inline_kernel, kernel, pivoting, unrevised
+from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_scale
 
 OK = 0
 NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
@@ -59,6 +59,7 @@ NOT_SOLVED = 3  # the LCP ended otherwise than solved (infeasible QP, or a numer
 CHECK_FAILED = 4  # the KKT check on the caller's data failed
 
 BAD_INPUT = 5  # the data needs the front's validation (which raises, naming the entry)
+OK_GRAM = 6  # as OK, answered by the path for m >> n (step 7)
 
 INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
 SYMMETRY_TOL = 1e-10  # relative, as the front's: a larger asymmetry of P is an error
@@ -66,6 +67,10 @@ DEFINITE_TOL = 1e-12  # a Cholesky pivot d_j must have d_j^2 > DEFINITE_TOL * ma
 RANK_TOL = 1e-10
 STRICT_TOL = 1e-12  # the fused path answers only when its point passes at this tolerance  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
 EPS = np.finfo(np.float64).eps
+GRAM_RATIO = 4  # the LCP is solved in factored form (step 7) when m >= GRAM_RATIO n
+PROXIMAL = 1e-8  # delta of the proximal term, relative to max P_jj (step 7)
+REFINE = 2  # refinement steps of the point of step 7, P definite
+REFINE_PROXIMAL = 3  # and with the proximal term
 SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
 
 
@@ -320,6 +325,13 @@ def axpy2(s, err, size, a, x):
         size[j] += abs(p)
 
 
+@inline_kernel
+def axpy2_rows(s, err, size, coef, rows):
+    """``s + err += rows' coef`` compensated (:func:`axpy2`, row by row)."""
+    for i in range(rows.shape[0]):
+        axpy2(s, err, size, coef[i], rows[i])
+
+
 # ----------------------------------------------------------------------------- the check
 
 @kernel
@@ -350,8 +362,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     s = q.copy()
     err = np.zeros(n)
     size = np.abs(q)
-    for i in range(n):
-        axpy2(s, err, size, x[i], P[i])
+    axpy2_rows(s, err, size, x, P)
     # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
     gap_hi = 0.0
     gap_lo = 0.0
@@ -360,10 +371,8 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         gap_lo += x[j] * err[j]
     xPq_hi = gap_hi
     xPq_lo = gap_lo
-    for i in range(A.shape[0]):
-        axpy2(s, err, size, y[i], A[i])
-    for i in range(G.shape[0]):
-        axpy2(s, err, size, z[i], G[i])
+    axpy2_rows(s, err, size, y, A)
+    axpy2_rows(s, err, size, z, G)
     ok = True
     dual = 0.0
     allow = np.empty(n)
@@ -572,9 +581,10 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
     Writes in ``out`` (see :func:`out_size`) the QP's point and multipliers (qpsolvers'
     signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
     residuals, see :func:`kkt_check`), and in ``basic`` (length at least m + 2n) the final
-    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``: code OK,
-    BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; k the length
-    of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
+    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``:
+    code OK (or OK_GRAM: answered by step 7), BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES,
+    NOT_SOLVED or CHECK_FAILED; k the length of the basis, pairs the number of pairs it is
+    a basis of.  ``max_pivots < 0`` means
     the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
     caller-made buffers only: boxing returned arrays costs more than a small solve."""
     n = q.shape[0]
@@ -596,12 +606,14 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
     the basis written in ``basic``."""
     n = q.shape[0]
-    L = np.empty((n, n))
-    if not cholesky(P, L):
-        return NOT_DEFINITE, 0, 0, 0
     E, f, ekind, C, d, ckind = rows_of(G, h, A, b, lb, ub)
     p = E.shape[0]
     m = C.shape[0]
+    gram = m >= GRAM_RATIO * n
+    L = np.empty((n, n))
+    definite = cholesky(P, L)
+    if not definite and not (gram and proximal_cholesky(P, L)):
+        return NOT_DEFINITE, 0, 0, 0
     m_g = 0
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
@@ -642,17 +654,25 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     for k in range(p):
         v[k] = (f[k] - dot(E[k], v, k)) / E[k, k]
     # the LCP on the inequality multipliers: M = F2 F2', g = d - F1 v1 + F2 c2
-    M = np.empty((m, m))
     g = np.empty(m)
     r = n - p
     c2 = c[p:]
     for i in range(m):
         Fi = C[i]
-        F2i = Fi[p:]
+        g[i] = d[i] - dot(Fi, v, p) + dot(Fi[p:], c2, r)
+    if gram:
+        code, pivots, k_basic, pairs = _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d,
+                                             ckind, m_g, V, beta, g, max_pivots, pivot_tol,
+                                             tie_tol, tol, x, y, z, zb, stats, basic,
+                                             np.int64(REFINE if definite else REFINE_PROXIMAL))
+        if code == OK or not definite:  # L is P's own factor only when P is definite
+            return OK_GRAM if code == OK else code, pivots, k_basic, pairs
+    M = np.empty((m, m))
+    for i in range(m):
+        F2i = C[i][p:]
         for j in range(i + 1):
             M[i, j] = dot(F2i, C[j][p:], r)
             M[j, i] = M[i, j]
-        g[i] = d[i] - dot(Fi, v, p) + dot(F2i, c2, r)
     zz = np.zeros(m)
     pivots = 0
     k_basic = 0
@@ -682,6 +702,23 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             Ci = C[i]
             for t in range(p, n):
                 v[t] -= zi * Ci[t]
+    yy = np.empty(p)
+    point(L, E, V, beta, C, c, v, zz, x, yy)
+    caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
+    # No refinement step here: the point is kept only when it is accurate far beyond the
+    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+    if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
+        return CHECK_FAILED, pivots, k_basic, pairs
+    return OK, pivots, k_basic, pairs
+
+
+@inline_kernel
+def point(L, E, V, beta, C, c, v, zz, x, yy):
+    """x and the equality multipliers yy from v (``v1``, ``v2`` filled), c = Q'L^-1 q and the
+    inequality multipliers zz: ``yy = -R^-1 (v1 + c1 + F1 zz)`` and ``x = L'^-1 Q v`` (v is
+    overwritten)."""
+    p = E.shape[0]
+    m = C.shape[0]
     # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k])
     rhs = np.empty(p)
     for k in range(p):
@@ -689,7 +726,6 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         for i in range(m):
             acc += C[i, k] * zz[i]
         rhs[k] = acc
-    yy = np.empty(p)
     for k in range(p - 1, -1, -1):
         acc = rhs[k]
         for j in range(k + 1, p):
@@ -700,17 +736,26 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     for k in range(p - 1, -1, -1):
         householder_apply(V, beta, k, v)
     backward_transposed(L, v)
-    x[:] = v
-    # A bound whose multiplier is positive holds with equality: x_j is set to it exactly
-    # (it came out of the substitutions within their rounding of it).
-    for i in range(m_g, m):
-        if zz[i] > 0.0:
-            j = ckind[i]
-            x[j if j < n else j - n] = d[i] if j < n else -d[i]
-    for k in range(A.shape[0], p):  # a fixed variable is its bound, exactly
-        x[ekind[k]] = f[k]
-    # the multipliers in qpsolvers' form
-    p0 = A.shape[0]
+    copy(x, v)
+
+
+@inline_kernel
+def caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, snap):
+    """The multipliers in qpsolvers' form (y of A's rows, z of G's, zb of the bounds) from
+    those of the rows (yy of the equalities, zz of the inequalities); with ``snap``, x set
+    exactly to each bound whose multiplier is positive and to each fixed variable's value
+    (it came out of the substitutions within their rounding of it)."""
+    n = x.shape[0]
+    p = ekind.shape[0]
+    m = ckind.shape[0]
+    p0 = y.shape[0]
+    if snap:
+        for i in range(m_g, m):
+            if zz[i] > 0.0:
+                j = ckind[i]
+                x[j if j < n else j - n] = d[i] if j < n else -d[i]
+        for k in range(p0, p):  # a fixed variable is its bound, exactly
+            x[ekind[k]] = f[k]
     z[:] = 0.0
     zb[:] = 0.0
     for i in range(p0):
@@ -725,8 +770,206 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             zb[j] += zz[i]
         else:
             zb[j - n] -= zz[i]
-    # No refinement step here: the point is kept only when it is accurate far beyond the
-    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+
+
+# ----------------------------------------------------------------------------- m >> n
+
+@kernel
+def proximal_cholesky(P, L):
+    """L with ``L L' = P + delta I``, ``delta = PROXIMAL max_j P_jj``: the factor of the
+    proximal term of the module docstring (step 7) for a P that is only semidefinite to
+    rounding.  False when P has no positive diagonal entry or the factor does not exist."""
+    n = P.shape[0]
+    top = 0.0
+    for j in range(n):
+        top = max(top, P[j, j])
+    if not top > 0.0:
+        return False
+    Pd = np.empty((n, n))
+    for i in range(n):
+        for j in range(n):
+            Pd[i, j] = P[i, j]
+        Pd[i, i] += PROXIMAL * top
+    return cholesky(Pd, L)
+
+
+@kernel
+def gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags):
+    """Lemke's method on the LCP ``w = F2 F2' z + g`` (F2 the columns p.. of C's rows)
+    without forming M: the unrevised method on its factored form (``unrevised.lemke`` with
+    ``Fs``), each row of F2 scaled by the power of two nearest to 1 / its norm (M's
+    diagonal then near 1: the symmetric equilibration of a Gram matrix), the covering vector
+    all ones in those units.  ``flags`` gets the basic z's.  Returns ``(status, pivots)``
+    (SOLVED with no pivot when g >= 0)."""
+    m = g.shape[0]
+    r = C.shape[1] - p
+    for i in range(m):
+        flags[i] = False
+    g_min = 0.0
+    for i in range(m):
+        g_min = min(g_min, g[i])
+    if g_min >= 0.0:
+        return pivoting.SOLVED, 0
+    work = np.empty(m * (r + 4) + 2)
+    Fs = work[:m * r].reshape((m, r))
+    dcol = work[m * r:m * (r + 1)].reshape((m, 1))
+    gs = work[m * (r + 1):m * (r + 2)]
+    out = work[m * (r + 2):]
+    for i in range(m):
+        Fi = C[i][p:]
+        s = pow2_scale(np.sqrt(dot(Fi, Fi, r)))
+        Fsi = Fs[i]
+        for t in range(r):
+            Fsi[t] = s * Fi[t]
+        gs[i] = s * g[i]
+        dcol[i, 0] = 1.0
+    cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
+    return unrevised.lemke(dcol, Fs, gs, false_flags(m), no_matrix(), cap, pivot_tol, tie_tol,
+                           out[:m + 1], out[m + 1:], flags)
+
+
+@kernel
+def active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, x, yy, zz):
+    """The KKT point of the equality-constrained QP whose constraints are the equalities and
+    the inequalities ``S`` (k of them) held as equalities, through the factors at hand:
+    ``(x, yy, zz)`` with ``P x + rd + E'yy + C_S'zz_S = 0``, ``E x = rpE`` and ``C_S x = rpS``
+    (P = L L').  K2 holds the QR of ``F2_S'`` (``qr_rows`` of the rows S of F2), V2 and
+    beta2 its reflectors.  In v = Q'L'x: v1 as in :func:`_solve`, and v2 the projection of
+    -c2 on ``F2_S v2 = rpS - F1_S v1`` by that QR, not the normal equations of the LCP's
+    ``M_SS z_S = -g_S`` (whose condition is the square).  zz is written at S only."""
+    n = x.shape[0]
+    p = E.shape[0]
+    k = S.shape[0]
+    cc = rd.copy()
+    forward(L, cc)
+    for j in range(p):
+        householder_apply(V, beta, j, cc)
+    v = np.empty(n)
+    for j in range(p):
+        v[j] = (rpE[j] - dot(E[j], v, j)) / E[j, j]
+    c2 = cc[p:]
+    for j in range(k):
+        householder_apply(V2, beta2, j, c2)
+    w = v[p:]
+    for j in range(k):  # w1 = R2'^-1 (rpS - F1_S v1), R2[t, j] = K2[j, t]
+        w[j] = (rpS[j] - dot(C[S[j]], v, p) - dot(K2[j], w, j)) / K2[j, j]
+    zS = np.empty(k)
+    for j in range(k - 1, -1, -1):  # z_S = -R2^-1 (w1 + (Q2'c2)_1)
+        acc = -(w[j] + c2[j])
+        for t in range(j + 1, k):
+            acc -= K2[t, j] * zS[t]
+        zS[j] = acc / K2[j, j]
+    for t in range(k, w.shape[0]):
+        w[t] = -c2[t]
+    for j in range(k - 1, -1, -1):
+        householder_apply(V2, beta2, j, w)
+    for i in range(C.shape[0]):
+        zz[i] = 0.0
+    for j in range(k):
+        zz[S[j]] = zS[j]
+    point(L, E, V, beta, C, cc, v, zz, x, yy)
+
+
+@kernel
+def active_residuals(P, q, G, h, A, b, lb, ub, x, y, z, zb, ekind, f, ckind, S, rd, rpE, rpS):
+    """The residuals of the active set's KKT system at ``(x, y, z, zb)`` (qpsolvers' form)
+    on the caller's data, each summed in double-double (:func:`axpy2`, :func:`dot2`):
+    ``rd = P x + q + A'y + G'z + zb``, ``rpE = f - E x`` (A's rows, then the fixed
+    variables) and ``rpS = d_S - C_S x`` (the inequalities S)."""
+    n = x.shape[0]
+    p0 = A.shape[0]
+    s = q.copy()
+    err = np.zeros(n)
+    size = np.empty(n)
+    axpy2_rows(s, err, size, x, P)
+    axpy2_rows(s, err, size, y, A)
+    for j in range(S.shape[0]):
+        i = ckind[S[j]]
+        if i < 0:
+            axpy2(s, err, size, z[-1 - i], G[-1 - i])
+    for j in range(n):
+        t, e = two_sum(s[j], zb[j])
+        rd[j] = t + (e + err[j])
+    for k in range(ekind.shape[0]):
+        if k < p0:
+            rpE[k] = -dot2(A[k], x, -b[k])[0]
+        else:
+            rpE[k] = f[k] - x[ekind[k]]
+    for j in range(S.shape[0]):
+        i = ckind[S[j]]
+        if i < 0:
+            rpS[j] = -dot2(G[-1 - i], x, -h[-1 - i])[0]
+        elif i < n:
+            rpS[j] = ub[i] - x[i]
+        else:
+            rpS[j] = x[i - n] - lb[i - n]
+
+
+@kernel
+def _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g, max_pivots,
+          pivot_tol, tie_tol, tol, x, y, z, zb, stats, basic, steps):
+    """The path for m >> n (module docstring, step 7): the LCP by :func:`gram_lcp`, the
+    point of its final basis by :func:`active_solve`, refined ``steps`` times on the
+    caller's data (:func:`active_residuals`), checked by :func:`kkt_check`.  Returns
+    ``(code, pivots, k, pairs)`` as :func:`_solve`."""
+    n = x.shape[0]
+    p = E.shape[0]
+    m = C.shape[0]
+    r = n - p
+    flags = np.empty(m, dtype=np.bool_)
+    status, pivots = gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags)
+    if status != pivoting.SOLVED:
+        return NOT_SOLVED, pivots, 0, 0
+    k = 0
+    for i in range(m):
+        if flags[i]:
+            k += 1
+    if k > r:
+        return NOT_SOLVED, pivots, 0, 0
+    S = np.empty(k, dtype=np.int64)
+    k = 0
+    for i in range(m):
+        if flags[i]:
+            S[k] = i
+            k += 1
+    K2 = np.empty((k, r))
+    for j in range(k):
+        Fi = C[S[j]][p:]
+        K2j = K2[j]
+        for t in range(r):
+            K2j[t] = Fi[t]
+    V2 = np.empty((k, r))
+    beta2 = np.empty(k)
+    if qr_rows(K2, V2, beta2) <= RANK_TOL:
+        return NOT_SOLVED, pivots, 0, 0
+    rd = q.copy()
+    rpE = f.copy()
+    rpS = np.empty(k)
+    for j in range(k):
+        rpS[j] = d[S[j]]
+    xi = np.empty(n)
+    yy = np.empty(p)
+    zz = np.empty(m)
+    active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, xi, yy, zz)
+    dx = np.empty(n)
+    dy = np.empty(p)
+    dz = np.empty(m)
+    for step in range(steps):
+        copy(x, xi)
+        caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.False_)
+        active_residuals(P, q, G, h, A, b, lb, ub, x, y, z, zb, ekind, f, ckind, S, rd, rpE, rpS)
+        active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, dx, dy, dz)
+        for t in range(n):
+            xi[t] += dx[t]
+        for t in range(p):
+            yy[t] += dy[t]
+        for j in range(k):
+            zz[S[j]] += dz[S[j]]
+    for j in range(k):
+        zz[S[j]] = max(zz[S[j]], 0.0)
+    copy(x, xi)
+    caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
+    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, S, basic)
     if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
         return CHECK_FAILED, pivots, k_basic, pairs
     return OK, pivots, k_basic, pairs
