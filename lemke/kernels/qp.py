@@ -68,7 +68,7 @@ RANK_TOL = 1e-10
 STRICT_TOL = 1e-12  # the fused path answers only when its point passes at this tolerance  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
 EPS = np.finfo(np.float64).eps
 GRAM_RATIO = 4  # the LCP is solved in factored form (step 7) when m >= GRAM_RATIO n
-PROXIMAL = 1e-8  # delta of the proximal term, relative to max P_jj (step 7)
+PROXIMAL = 1e-6  # delta of the proximal term, relative to max P_jj (step 7)
 REFINE = 2  # refinement steps of the point of step 7, P definite
 REFINE_PROXIMAL = 3  # and with the proximal term
 SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
@@ -816,11 +816,16 @@ def gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags):
     gs = work[m * (r + 1):m * (r + 2)]
     out = work[m * (r + 2):]
     for i in range(m):
-        Fi = C[i][p:]
-        s = pow2_scale(np.sqrt(dot(Fi, Fi, r)))
+        Fi = C[i]
+        norm2 = dot(Fi[p:], Fi[p:], r)
+        # A row within rounding of the equalities' span (its part in v2 below RANK_TOL of
+        # the whole, as qr_rows judges the equalities) is a constant, w_i = g_i: kept
+        # exactly zero, not scaled up to a unit row of rounding noise.
+        keep = norm2 > RANK_TOL * RANK_TOL * (norm2 + dot(Fi, Fi, p))
+        s = pow2_scale(np.sqrt(norm2)) if keep else 1.0
         Fsi = Fs[i]
         for t in range(r):
-            Fsi[t] = s * Fi[t]
+            Fsi[t] = s * Fi[p + t] if keep else 0.0
         gs[i] = s * g[i]
         dcol[i, 0] = 1.0
     cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
