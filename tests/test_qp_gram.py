@@ -27,16 +27,26 @@ REFS = references(DATA / "README.md")
 
 @pytest.fixture
 def gram_calls(monkeypatch):
-    """The codes the fused kernel returned during the test, in order."""
+    """The codes the kernel of the factored path (``kqp.solve_gram``) returned during the
+    test, in order; ``dense_calls`` those of the dense fused kernel (``kqp.solve``)."""
+    return _recorder(monkeypatch, "solve_gram")
+
+
+@pytest.fixture
+def dense_calls(monkeypatch):
+    return _recorder(monkeypatch, "solve")
+
+
+def _recorder(monkeypatch, name):
     codes = []
-    solve = kqp.solve
+    kernel = getattr(kqp, name)
 
     def recording(*args):
-        out = solve(*args)
+        out = kernel(*args)
         codes.append(out[0])
         return out
 
-    monkeypatch.setattr(kqp, "solve", recording)
+    monkeypatch.setattr(kqp, name, recording)
     return codes
 
 
@@ -54,7 +64,7 @@ def test_dualc(name, method, gram_calls):
     problem, r = load(DATA / f"{name}.mat")
     res = lemke.solve_qp(*problem, method=method)
     check_solved(problem, res)
-    assert gram_calls == [kqp.OK_GRAM]
+    assert gram_calls == [kqp.OK]
     assert abs(res.obj + r - REFS[name]) <= 1e-6 * abs(REFS[name])
     assert res.pivots <= 40
 
@@ -69,7 +79,7 @@ def test_random_many_inequalities(n, ratio, gram_calls):
         problem = random_convex_qp(n, rng, m=ratio * n)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls == [kqp.OK_GRAM] * 3
+    assert gram_calls == [kqp.OK] * 3
 
 
 def test_random_without_equalities_or_bounds(gram_calls):
@@ -83,7 +93,7 @@ def test_random_without_equalities_or_bounds(gram_calls):
         check_solved(problem, res)
         if shift:
             assert res.pivots == 0 and not np.any(res.z)
-    assert gram_calls == [kqp.OK_GRAM] * 2
+    assert gram_calls == [kqp.OK] * 2
 
 
 @pytest.mark.parametrize("rank", [4, 6])
@@ -96,7 +106,7 @@ def test_random_semidefinite(rank, gram_calls):
         problem = random_convex_qp(8, rng, m=160, rank=rank)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls == [kqp.OK_GRAM] * 3
+    assert gram_calls == [kqp.OK] * 3
 
 
 def test_degenerate_vertex_with_singular_p(gram_calls):
@@ -114,14 +124,14 @@ def test_degenerate_vertex_with_singular_p(gram_calls):
     problem = (P, q, G, h, None, None, lb, ub)
     res = lemke.solve_qp(*problem)
     check_solved(problem, res)
-    assert gram_calls == [kqp.OK_GRAM]
+    assert gram_calls == [kqp.OK]
 
 
 @pytest.mark.parametrize("n", [4, 8])
-def test_random_infeasible(n, gram_calls):
+def test_random_infeasible(n, gram_calls, dense_calls):
     """m = 30 n rows, two of which contradict each other: the factored LCP ends on a ray,
-    the kernel falls back to its dense path (which ends NOT_SOLVED too), and the KKT-MLCP
-    path certifies infeasibility as before (Farkas vector checked independently)."""
+    the dense fused kernel ends NOT_SOLVED too, and the KKT-MLCP path certifies
+    infeasibility as before (Farkas vector checked independently)."""
     rng = np.random.default_rng(n)
     P, q, G, h, A, b, lb, ub = random_convex_qp(n, rng, m=30 * n)
     g = rng.standard_normal(n)
@@ -130,7 +140,7 @@ def test_random_infeasible(n, gram_calls):
     res = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
     assert res.status == Status.PRIMAL_INFEASIBLE, res
     assert_farkas(G, h, A, b, lb, ub, res.certificate, n)
-    assert gram_calls == [kqp.NOT_SOLVED]
+    assert gram_calls == [kqp.NOT_SOLVED] and dense_calls == [kqp.NOT_SOLVED]
 
 
 def test_unbounded_semidefinite(gram_calls):
@@ -147,18 +157,24 @@ def test_unbounded_semidefinite(gram_calls):
     res = lemke.solve_qp(P, q, G, h)
     assert res.status == Status.DUAL_INFEASIBLE, res
     assert_unbounded_direction(P, q, G, None, None, None, res.certificate)
-    assert gram_calls and gram_calls[0] != kqp.OK_GRAM
+    assert len(gram_calls) == 1 and gram_calls[0] != kqp.OK
 
 
-def test_not_taken_below_the_ratio(gram_calls):
-    """m < 4 n inequalities (bench_qp's families: m = n rows and a box, 3n in all): the
-    dense path answers, as before."""
+def test_not_taken_below_the_ratio(gram_calls, dense_calls):
+    """Fewer than 4 n inequalities: the dense fused path answers, as before.  With m = n
+    rows and a box (3n in all, bench_qp's family) the factored kernel is not even called;
+    with 14 rows on 5 variables and only lower bounds (24 >= 4n rows before the kernel
+    counts them, 19 after) it is called and declines."""
     rng = np.random.default_rng(1)
     for n in (5, 20):
         problem = random_convex_qp(n, rng)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls == [kqp.OK, kqp.OK]
+    assert gram_calls == [] and dense_calls == [kqp.OK, kqp.OK]
+    P, q, G, h, A, b, lb, ub = random_convex_qp(5, rng, m=14)
+    problem = (P, q, G, h, A, b, lb, np.full(5, np.inf))
+    check_solved(problem, lemke.solve_qp(*problem))
+    assert gram_calls == [kqp.NOT_APPLICABLE] and dense_calls[-1] == kqp.OK
 
 
 def test_warm_start_from_the_factored_path():

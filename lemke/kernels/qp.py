@@ -5,8 +5,8 @@ The QP (qpsolvers' form) ``min 1/2 x'Px + q'x  s.t.  G x <= h, A x = b, lb <= x 
 with P positive definite is solved on its dual, an LCP in the inequality multipliers only:
 
 1. ``P = L L'`` (Cholesky, one thread).  A pivot that is not clearly positive stops here
-   with NOT_DEFINITE: P is only semidefinite (or not even that), and the caller falls back
-   to the KKT-MLCP path, which handles every convex QP.
+   with NOT_DEFINITE (unless step 7 applies): P is only semidefinite (or not even that),
+   and the caller falls back to the KKT-MLCP path, which handles every convex QP.
 2. The constraints are gathered as rows: equalities ``E x = f`` (A's rows, then a unit row
    per fixed variable, lb = ub) and inequalities ``C x <= d`` (G's rows, then ``x_j <=
    ub_j`` and ``-x_j <= -lb_j`` for every finite bound).  With ``u = L'x`` the QP reads
@@ -37,14 +37,42 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    there is no refinement step, so an ill-conditioned problem whose point is only accurate
    to the tolerance is left to the KKT-MLCP path, which refines in extended precision.
 
+7. **Many more inequalities than variables** (``m >= GRAM_RATIO n``, the DUALC problems,
+   m counting the bounds' rows): M = F2 F2' has rank at most ``r = n - p``, and forming it
+   (``r m^2 / 2``) and pivoting on its m x m tableau (``m^2`` a pivot) is what the solve
+   costs.  So the LCP is solved without forming it (``gram_lcp``): the unrevised method
+   on its factored form (``unrevised.lemke`` with ``Fs``: a column ``F2 F2[e]'`` computed
+   when z_e enters, the block H of at most r + 1 columns kept factored), with the rows of
+   F2 scaled to unit norm (the symmetric equilibration of a Gram matrix; a row within
+   rounding of the equalities' span is a constant, kept exactly zero) and the covering
+   vector all ones in those units (z0 first meets the constraint farthest from the
+   unconstrained minimum; invariant under the scaling of G's rows).  Same pivoting rule
+   (``kernels.pivoting``).  The point is not read from the LCP's z (the normal equations
+   ``M_SS z_S = -g_S`` square the condition): the final basis S names the active rows,
+   whose equality-constrained QP is solved through the factors at hand and a QR of
+   ``F2_S'`` (``active_solve``), then refined twice with its residuals on the caller's data
+   summed in double-double (``active_residuals``), and checked by :func:`kkt_check` at the
+   same tolerance as step 6.  A P that is positive semidefinite only to rounding (no
+   Cholesky factor at step 1: DUALC2 and DUALC8, min eigenvalue -1e-11 of 7e6) is
+   factored as ``P + delta I`` (``delta = PROXIMAL max P_jj``, ``proximal_cholesky``); the
+   refinement (three steps) then runs with the caller's P in the residuals and the proximal
+   factor in the solves, the proximal point iteration on the active rows: exact at once
+   where the active rows pin x (a vertex, DUALC's case), converging by ``delta / (lambda +
+   delta)`` a step along a direction of curvature lambda, and not converging where P is
+   singular on a free direction, which the check then refuses.  Cost ``n^3/6 + m n^2``
+   (substitutions and QR, as above) plus ``m (r + k)`` a pivot, k the size of H.  This path
+   is an entry kernel of its own, :func:`solve_gram` (only a QP with that many rows
+   compiles it; one entry for both paths cost the dense path's first call a quarter more
+   compile); whatever it does not end solved and checked, ``solve_qp`` hands to
+   :func:`solve` (steps 1-6) and then to the KKT-MLCP path, as before: an infeasible QP
+   ends there with its certificate.
+
 No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
 The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
 
 Cost: ``n^3/6`` (Cholesky) ``+ n^2 (p + m) / 2`` (substitutions) ``+ 2 n p (p + m)`` (QR)
-``+ (n - p) m^2 / 2`` (M) plus Lemke's pivots on an m x (m + 1) tableau.  When m >> n (the
-DUALC problems) M has rank n - p; it is still the cheapest form that keeps the pivoting rule,
-as forming it costs ``(n - p) m^2 / 2`` and a pivot ``m^2``, and only a handful of pivots
-(at most about n) are taken.
+``+ (n - p) m^2 / 2`` (M) plus Lemke's pivots on an m x (m + 1) tableau; with step 7 the
+last two terms are ``m (r + k)`` a pivot instead.
 """
 import numpy as np
 from numba import njit
@@ -59,7 +87,7 @@ NOT_SOLVED = 3  # the LCP ended otherwise than solved (infeasible QP, or a numer
 CHECK_FAILED = 4  # the KKT check on the caller's data failed
 
 BAD_INPUT = 5  # the data needs the front's validation (which raises, naming the entry)
-OK_GRAM = 6  # as OK, answered by the path for m >> n (step 7)
+NOT_APPLICABLE = 6  # solve_gram: fewer than GRAM_RATIO n inequalities
 
 INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
 SYMMETRY_TOL = 1e-10  # relative, as the front's: a larger asymmetry of P is an error
@@ -581,10 +609,9 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
     Writes in ``out`` (see :func:`out_size`) the QP's point and multipliers (qpsolvers'
     signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
     residuals, see :func:`kkt_check`), and in ``basic`` (length at least m + 2n) the final
-    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``:
-    code OK (or OK_GRAM: answered by step 7), BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES,
-    NOT_SOLVED or CHECK_FAILED; k the length of the basis, pairs the number of pairs it is
-    a basis of.  ``max_pivots < 0`` means
+    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``: code OK,
+    BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; k the length
+    of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
     the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
     caller-made buffers only: boxing returned arrays costs more than a small solve."""
     n = q.shape[0]
@@ -600,25 +627,44 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
 
 
 @kernel
-def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-           x, y, z, zb, stats, basic):
-    """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
-    outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
-    the basis written in ``basic``."""
+def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, out, basic):
+    """Step 7 of the module docstring alone, with :func:`solve`'s arguments (but the
+    method: always the unrevised one) and outputs: NOT_APPLICABLE when the QP has fewer
+    than ``GRAM_RATIO n`` inequalities (bounds counted), else as :func:`solve`.  An entry
+    of its own, so that only a QP with many more inequalities than variables compiles it;
+    what it does not solve the caller hands to :func:`solve`."""
+    n = q.shape[0]
+    m0 = G.shape[0]
+    p0 = A.shape[0]
+    out[:] = 0.0
+    ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
+    if not ok:
+        return BAD_INPUT, 0, 0, 0
+    return _solve_gram(Ps, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
+                       out[:n], out[n:n + p0], out[n + p0:n + p0 + m0],
+                       out[n + p0 + m0:2 * n + p0 + m0], out[2 * n + p0 + m0:], basic)
+
+
+@inline_kernel
+def factors(q, G, h, A, b, lb, ub, L):
+    """Steps 2 and 3 and the LCP's right-hand side, given ``L`` (P = L L'): ``(code, E, f,
+    ekind, C, d, ckind, m_g, V, beta, c, v, g)`` with code OK or DEPENDENT_EQUALITIES, the
+    rows of :func:`rows_of` turned into R (E) and F = Q'W (C), the reflectors, c = Q'L^-1 q,
+    v1 in ``v[:p]`` and ``g = d - F1 v1 + F2 c2``."""
     n = q.shape[0]
     E, f, ekind, C, d, ckind = rows_of(G, h, A, b, lb, ub)
     p = E.shape[0]
     m = C.shape[0]
-    gram = m >= GRAM_RATIO * n
-    L = np.empty((n, n))
-    definite = cholesky(P, L)
-    if not definite and not (gram and proximal_cholesky(P, L)):
-        return NOT_DEFINITE, 0, 0, 0
     m_g = 0
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
+    V = np.empty((min(p, n), n))
+    beta = np.empty(min(p, n))
+    c = q.copy()
+    v = np.empty(n)
+    g = np.empty(m)
     if p > n:
-        return DEPENDENT_EQUALITIES, 0, 0, 0
+        return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     # W' = rows L^-1 e_i, L^-1 c_i
     forward_rows(L, E)
     # The rows of G and of the upper bounds; a lower bound's row -e_j is then minus the
@@ -639,34 +685,41 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
                 Ci[t] = -Cu[t]
         else:
             forward(L, C[i])
-    c = q.copy()
     forward(L, c)
-    V = np.empty((p, n))
-    beta = np.empty(p)
     if qr_rows(E, V, beta) <= RANK_TOL:
-        return DEPENDENT_EQUALITIES, 0, 0, 0
+        return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     for k in range(p):
         householder_apply(V, beta, k, c)
         for i in range(m):
             householder_apply(V, beta, k, C[i])
     # v1 = R'^-1 f, R[k, j] = E[j, k] (j >= k): R' is lower triangular with rows E[k, :k+1]
-    v = np.empty(n)
     for k in range(p):
         v[k] = (f[k] - dot(E[k], v, k)) / E[k, k]
     # the LCP on the inequality multipliers: M = F2 F2', g = d - F1 v1 + F2 c2
-    g = np.empty(m)
     r = n - p
     c2 = c[p:]
     for i in range(m):
         Fi = C[i]
         g[i] = d[i] - dot(Fi, v, p) + dot(Fi[p:], c2, r)
-    if gram:
-        code, pivots, k_basic, pairs = _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d,
-                                             ckind, m_g, V, beta, g, max_pivots, pivot_tol,
-                                             tie_tol, tol, x, y, z, zb, stats, basic,
-                                             np.int64(REFINE if definite else REFINE_PROXIMAL))
-        if code == OK or not definite:  # L is P's own factor only when P is definite
-            return OK_GRAM if code == OK else code, pivots, k_basic, pairs
+    return OK, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
+
+
+@kernel
+def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
+           x, y, z, zb, stats, basic):
+    """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
+    outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
+    the basis written in ``basic``."""
+    n = q.shape[0]
+    L = np.empty((n, n))
+    if not cholesky(P, L):
+        return NOT_DEFINITE, 0, 0, 0
+    code, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g = factors(q, G, h, A, b, lb, ub, L)
+    if code != OK:
+        return code, 0, 0, 0
+    p = E.shape[0]
+    m = C.shape[0]
+    r = n - p
     M = np.empty((m, m))
     for i in range(m):
         F2i = C[i][p:]
@@ -712,7 +765,40 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     return OK, pivots, k_basic, pairs
 
 
-@inline_kernel
+@kernel
+def _solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
+                x, y, z, zb, stats, basic):
+    """:func:`solve_gram` on screened data (as :func:`_solve`)."""
+    n = q.shape[0]
+    if inequalities(h, lb, ub) < GRAM_RATIO * n:
+        return NOT_APPLICABLE, 0, 0, 0
+    L = np.empty((n, n))
+    definite = cholesky(P, L)
+    if not definite and not proximal_cholesky(P, L):
+        return NOT_DEFINITE, 0, 0, 0
+    code, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g = factors(q, G, h, A, b, lb, ub, L)
+    if code != OK:
+        return code, 0, 0, 0
+    return _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g,
+                 max_pivots, pivot_tol, tie_tol, tol, x, y, z, zb, stats, basic,
+                 np.int64(REFINE if definite else REFINE_PROXIMAL))
+
+
+@kernel
+def inequalities(h, lb, ub):
+    """The number of inequality rows :func:`rows_of` makes: the rows of G with a finite h,
+    and the finite bounds of the variables that are not fixed."""
+    m = 0
+    for i in range(h.shape[0]):
+        if h[i] < np.inf:
+            m += 1
+    for j in range(lb.shape[0]):
+        if lb[j] != ub[j]:
+            m += (ub[j] < np.inf) + (lb[j] > -np.inf)
+    return m
+
+
+@kernel
 def point(L, E, V, beta, C, c, v, zz, x, yy):
     """x and the equality multipliers yy from v (``v1``, ``v2`` filled), c = Q'L^-1 q and the
     inequality multipliers zz: ``yy = -R^-1 (v1 + c1 + F1 zz)`` and ``x = L'^-1 Q v`` (v is
@@ -739,7 +825,7 @@ def point(L, E, V, beta, C, c, v, zz, x, yy):
     copy(x, v)
 
 
-@inline_kernel
+@kernel
 def caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, snap):
     """The multipliers in qpsolvers' form (y of A's rows, z of G's, zb of the bounds) from
     those of the rows (yy of the equalities, zz of the inequalities); with ``snap``, x set
@@ -793,7 +879,7 @@ def proximal_cholesky(P, L):
     return cholesky(Pd, L)
 
 
-@kernel
+@inline_kernel
 def gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags):
     """Lemke's method on the LCP ``w = F2 F2' z + g`` (F2 the columns p.. of C's rows)
     without forming M: the unrevised method on its factored form (``unrevised.lemke`` with
@@ -910,7 +996,7 @@ def active_residuals(P, q, G, h, A, b, lb, ub, x, y, z, zb, ekind, f, ckind, S, 
             rpS[j] = x[i - n] - lb[i - n]
 
 
-@kernel
+@inline_kernel
 def _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g, max_pivots,
           pivot_tol, tie_tol, tol, x, y, z, zb, stats, basic, steps):
     """The path for m >> n (module docstring, step 7): the LCP by :func:`gram_lcp`, the
