@@ -53,8 +53,9 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    ``F2_S'`` (``active_solve``), then refined twice with its residuals on the caller's data
    summed in double-double (``active_residuals``), and checked by :func:`kkt_check` at the
    same tolerance as step 6.  A P that is positive semidefinite only to rounding (no
-   Cholesky factor at step 1: DUALC2 and DUALC8, min eigenvalue -1e-11 of 7e6) is
-   factored as ``P + delta I`` (``delta = PROXIMAL max P_jj``, ``proximal_cholesky``); the
+   Cholesky factor at step 1: DUALC2 and DUALC8, eigenvalues down to -1e-11 beside a
+   largest of 6e5 and 7e6) is factored as ``P + delta I`` (``delta = PROXIMAL max P_jj``,
+   ``proximal_cholesky``); the
    refinement (three steps) then runs with the caller's P in the residuals and the proximal
    factor in the solves, the proximal point iteration on the active rows: exact at once
    where the active rows pin x (a vertex, DUALC's case), converging by ``delta / (lambda +
@@ -798,7 +799,7 @@ def inequalities(h, lb, ub):
     return m
 
 
-@kernel
+@inline_kernel
 def point(L, E, V, beta, C, c, v, zz, x, yy):
     """x and the equality multipliers yy from v (``v1``, ``v2`` filled), c = Q'L^-1 q and the
     inequality multipliers zz: ``yy = -R^-1 (v1 + c1 + F1 zz)`` and ``x = L'^-1 Q v`` (v is
@@ -825,7 +826,7 @@ def point(L, E, V, beta, C, c, v, zz, x, yy):
     copy(x, v)
 
 
-@kernel
+@inline_kernel
 def caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, snap):
     """The multipliers in qpsolvers' form (y of A's rows, z of G's, zb of the bounds) from
     those of the rows (yy of the equalities, zz of the inequalities); with ``snap``, x set
