@@ -294,8 +294,8 @@ def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray
     ``G0``: the inverse of the starting block in those units, or an empty array).  Outputs
     as ``lemke``, in the caller's units."""
     A, qs, d_scale = scaled_system(M, q, d, R, C)
-    status, pivots = lemke(A, no_matrix(), qs, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
-                           z_basic_out)
+    status, pivots = lemke(A, no_matrix(), qs, z_start, G0, max_pivots, pivot_tol, tie_tol,
+                           x_out, ray_out, z_basic_out)
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
