@@ -602,6 +602,13 @@ def out_size(n, p, m):
     return 2 * n + p + m + 4
 
 
+@inline_kernel
+def out_views(out, n, p0, m0):
+    """The views ``(x, y, z, zb, stats)`` of the output buffer (see :func:`out_size`)."""
+    return (out[:n], out[n:n + p0], out[n + p0:n + p0 + m0], out[n + p0 + m0:2 * n + p0 + m0],
+            out[2 * n + p0 + m0:])
+
+
 @kernel
 def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, basic):
     """The fused cold path of the module docstring, on the caller's arrays (float64, of
@@ -615,16 +622,13 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
     of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
     the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
     caller-made buffers only: boxing returned arrays costs more than a small solve."""
-    n = q.shape[0]
-    m0 = G.shape[0]
-    p0 = A.shape[0]
     out[:] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
         return BAD_INPUT, 0, 0, 0
+    x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-                  out[:n], out[n:n + p0], out[n + p0:n + p0 + m0],
-                  out[n + p0 + m0:2 * n + p0 + m0], out[2 * n + p0 + m0:], basic)
+                  x, y, z, zb, stats, basic)
 
 
 @kernel
@@ -634,16 +638,13 @@ def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, ou
     than ``GRAM_RATIO n`` inequalities (bounds counted), else as :func:`solve`.  An entry
     of its own, so that only a QP with many more inequalities than variables compiles it;
     what it does not solve the caller hands to :func:`solve`."""
-    n = q.shape[0]
-    m0 = G.shape[0]
-    p0 = A.shape[0]
     out[:] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
         return BAD_INPUT, 0, 0, 0
+    x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve_gram(Ps, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
-                       out[:n], out[n:n + p0], out[n + p0:n + p0 + m0],
-                       out[n + p0 + m0:2 * n + p0 + m0], out[2 * n + p0 + m0:], basic)
+                       x, y, z, zb, stats, basic)
 
 
 @inline_kernel
