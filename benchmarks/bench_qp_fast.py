@@ -2,12 +2,15 @@
 P) against daqp called natively and through qpsolvers, and quadprog through qpsolvers,
 interleaved in one run.
 
-Three families, each at n = 10, 100, 300 by default: P = B B'/n + I/10 (B n x n Gaussian);
+Three families (a fourth on request), each at n = 10, 100, 300 by default: P = B B'/n + I/10
+(B n x n Gaussian);
 
 - ``mixed``: n/2 inequalities and n/4 equalities (Gaussian rows) that a random point x0
   satisfies, the inequalities with a slack uniform in [0, 1] there;
 - ``ineq``: the same n/2 inequalities, no equalities;
-- ``box``: bounds only, x0 -/+ uniform [0.1, 1].
+- ``box``: bounds only, x0 -/+ uniform [0.1, 1];
+- ``rows`` (not run by default): 20 n inequalities as in ``ineq``, many more than the
+  variables (the kernel's step 7, the LCP in factored form).
 
 q is Gaussian with standard deviation 3, so that a good share of the constraints is active
 at the optimum.  "daqp native" times ``daqp.solve`` alone on arguments built beforehand
@@ -42,8 +45,8 @@ def make_qp(family, n, rng):
     q = 3.0 * rng.standard_normal(n)
     x0 = rng.standard_normal(n)
     G = h = A = b = lb = ub = None
-    if family in ("mixed", "ineq"):
-        m = max(1, n // 2)
+    if family in ("mixed", "ineq", "rows"):
+        m = 20 * n if family == "rows" else max(1, n // 2)
         G = rng.standard_normal((m, n))
         h = G @ x0 + rng.uniform(0.0, 1.0, m)
     if family == "mixed":

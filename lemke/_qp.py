@@ -140,7 +140,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         variable (every variable may be fixed); its z_box is what makes its row of
         ``P x + q + A'y + G'z + z_box = 0`` hold.
     method : {"tableau", "unrevised"}
-        The Lemke method (see :func:`lemke.solve_lcp`).
+        The Lemke method (see :func:`lemke.solve_lcp`).  A cold QP with at least 4n
+        inequalities (bounds counted) first tries the unrevised method on its multiplier
+        LCP in factored form, whatever the method (see ``kernels.qp``, step 7).
     warm_start : WarmStart, optional
         ``result.warm_start`` of an earlier QP with the same sizes and the same kinds of
         bounds.
@@ -168,7 +170,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
     # Cold, the fast paths first: a box-only QP through the bounded kernel (first when it is
     # large enough to beat the fused path, measured: BOX_FIRST), a definite P through the
-    # fused kernel; else, or when they do not end solved and checked, the KKT-MLCP path.
+    # fused kernel (also a P semidefinite to rounding when m >= 4n: its step 7); else, or
+    # when they do not end solved and checked, the KKT-MLCP path.
     box_only = warm_start is None and G is None and h is None and A is None and b is None and (
         lb is not None or ub is not None)
     box_first = box_only and np.size(q) >= BOX_FIRST
@@ -430,7 +433,9 @@ def _box_basis(lo, up, ws):
 def _solve_definite(args, method, opts):
     """The fused cold path for a positive definite P (``kernels.qp``): one kernel call that
     screens the data, factors P, solves the LCP of the inequality multipliers and checks
-    the KKT point on the data.  None when it does not apply (data that needs the full
+    the KKT point on the data; with m >= 4n inequalities, first its LCP in factored form
+    (``kqp.solve_gram``, the kernel's step 7, whatever ``method``; also for a P that is
+    semidefinite to rounding).  None when it does not apply (data that needs the full
     validation, P only semidefinite, dependent equalities) or did not end solved and
     checked: the caller then takes the KKT-MLCP path, which also finds the certificates of
     infeasible and unbounded QPs."""
@@ -438,10 +443,18 @@ def _solve_definite(args, method, opts):
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
     out = np.empty(2 * n + p + m + 4)  # kqp.out_size
     basic = np.empty(m + 2 * n, dtype=np.int64)
-    code, pivots, k, pairs = kqp.solve(
-        P, q, G, h, A, b, lb, ub, cold.METHODS[method],
-        -1 if opts.max_pivots is None else opts.max_pivots, opts.pivot_tol, opts.tie_tol,
-        opts.tol, out, basic)
+    max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
+    code = None
+    absent = _absent(n)
+    if m + n * ((lb is not absent[2]) + (ub is not absent[3])) >= kqp.GRAM_RATIO * n:
+        # at most that many inequalities: perhaps many more than variables (the kernel's
+        # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
+        code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
+                                                opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
+    if code != kqp.OK:
+        code, pivots, k, pairs = kqp.solve(P, q, G, h, A, b, lb, ub, cold.METHODS[method],
+                                           max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol,
+                                           out, basic)
     if code != kqp.OK:
         return None
     out.setflags(write=False)  # the views below are read-only too

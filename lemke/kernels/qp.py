@@ -5,8 +5,8 @@ The QP (qpsolvers' form) ``min 1/2 x'Px + q'x  s.t.  G x <= h, A x = b, lb <= x 
 with P positive definite is solved on its dual, an LCP in the inequality multipliers only:
 
 1. ``P = L L'`` (Cholesky, one thread).  A pivot that is not clearly positive stops here
-   with NOT_DEFINITE: P is only semidefinite (or not even that), and the caller falls back
-   to the KKT-MLCP path, which handles every convex QP.
+   with NOT_DEFINITE (unless step 7 applies): P is only semidefinite (or not even that),
+   and the caller falls back to the KKT-MLCP path, which handles every convex QP.
 2. The constraints are gathered as rows: equalities ``E x = f`` (A's rows, then a unit row
    per fixed variable, lb = ub) and inequalities ``C x <= d`` (G's rows, then ``x_j <=
    ub_j`` and ``-x_j <= -lb_j`` for every finite bound).  With ``u = L'x`` the QP reads
@@ -37,20 +37,49 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    there is no refinement step, so an ill-conditioned problem whose point is only accurate
    to the tolerance is left to the KKT-MLCP path, which refines in extended precision.
 
+7. **Many more inequalities than variables** (``m >= GRAM_RATIO n``, the DUALC problems,
+   m counting the bounds' rows): M = F2 F2' has rank at most ``r = n - p``, and forming it
+   (``r m^2 / 2``) and pivoting on its m x m tableau (``m^2`` a pivot) is what the solve
+   costs.  So the LCP is solved without forming it (``gram_lcp``): the unrevised method
+   on its factored form (``unrevised.lemke`` with ``Fs``: a column ``F2 F2[e]'`` computed
+   when z_e enters, the block H of at most r + 1 columns kept factored), with the rows of
+   F2 scaled to unit norm (the symmetric equilibration of a Gram matrix; a row within
+   rounding of the equalities' span is a constant, kept exactly zero) and the covering
+   vector all ones in those units (z0 first meets the constraint farthest from the
+   unconstrained minimum; invariant under the scaling of G's rows).  Same pivoting rule
+   (``kernels.pivoting``).  The point is not read from the LCP's z (the normal equations
+   ``M_SS z_S = -g_S`` square the condition): the final basis S names the active rows,
+   whose equality-constrained QP is solved through the factors at hand and a QR of
+   ``F2_S'`` (``active_solve``), then refined twice with its residuals on the caller's data
+   summed in double-double (``active_residuals``), and checked by :func:`kkt_check` at the
+   same tolerance as step 6.  A P that is positive semidefinite only to rounding (no
+   Cholesky factor at step 1: DUALC2 and DUALC8, eigenvalues down to -1e-11 beside a
+   largest of 6e5 and 7e6) is factored as ``P + delta I`` (``delta = PROXIMAL max P_jj``,
+   ``proximal_cholesky``); the
+   refinement (three steps) then runs with the caller's P in the residuals and the proximal
+   factor in the solves, the proximal point iteration on the active rows: exact at once
+   where the active rows pin x (a vertex, DUALC's case), converging by ``delta / (lambda +
+   delta)`` a step along a direction of curvature lambda, and not converging where P is
+   singular on a free direction, which the check then refuses.  Cost ``n^3/6 + m n^2``
+   (substitutions and QR, as above) plus ``m (r + k)`` a pivot, k the size of H.  This path
+   is an entry kernel of its own, :func:`solve_gram` (only a QP with that many rows
+   compiles it; one entry for both paths cost the dense path's first call a quarter more
+   compile); whatever it does not end solved and checked, ``solve_qp`` hands to
+   :func:`solve` (steps 1-6) and then to the KKT-MLCP path, as before: an infeasible QP
+   ends there with its certificate.
+
 No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
 The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
 
 Cost: ``n^3/6`` (Cholesky) ``+ n^2 (p + m) / 2`` (substitutions) ``+ 2 n p (p + m)`` (QR)
-``+ (n - p) m^2 / 2`` (M) plus Lemke's pivots on an m x (m + 1) tableau.  When m >> n (the
-DUALC problems) M has rank n - p; it is still the cheapest form that keeps the pivoting rule,
-as forming it costs ``(n - p) m^2 / 2`` and a pivot ``m^2``, and only a handful of pivots
-(at most about n) are taken.
+``+ (n - p) m^2 / 2`` (M) plus Lemke's pivots on an m x (m + 1) tableau; with step 7 the
+last two terms are ``m (r + k)`` a pivot instead.
 """
 import numpy as np
 from numba import njit
 
-from . import cold, kernel, pivoting
-from .linalg import absmax, dot, nan_probe
+from . import cold, inline_kernel, kernel, pivoting, unrevised
+from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_scale
 
 OK = 0
 NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
@@ -59,6 +88,7 @@ NOT_SOLVED = 3  # the LCP ended otherwise than solved (infeasible QP, or a numer
 CHECK_FAILED = 4  # the KKT check on the caller's data failed
 
 BAD_INPUT = 5  # the data needs the front's validation (which raises, naming the entry)
+NOT_APPLICABLE = 6  # solve_gram: fewer than GRAM_RATIO n inequalities
 
 INFINITY = 1e20  # bounds at least this large in magnitude are infinite, as in qpsolvers
 SYMMETRY_TOL = 1e-10  # relative, as the front's: a larger asymmetry of P is an error
@@ -66,6 +96,10 @@ DEFINITE_TOL = 1e-12  # a Cholesky pivot d_j must have d_j^2 > DEFINITE_TOL * ma
 RANK_TOL = 1e-10
 STRICT_TOL = 1e-12  # the fused path answers only when its point passes at this tolerance  # |R_kk| must exceed RANK_TOL times the largest |W_E| column norm
 EPS = np.finfo(np.float64).eps
+GRAM_RATIO = 4  # the LCP is solved in factored form (step 7) when m >= GRAM_RATIO n
+PROXIMAL = 1e-6  # delta of the proximal term, relative to max P_jj (step 7)
+REFINE = 2  # refinement steps of the point of step 7, P definite
+REFINE_PROXIMAL = 3  # and with the proximal term
 SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
 
 
@@ -320,6 +354,13 @@ def axpy2(s, err, size, a, x):
         size[j] += abs(p)
 
 
+@inline_kernel
+def axpy2_rows(s, err, size, coef, rows):
+    """``s + err += rows' coef`` compensated (:func:`axpy2`, row by row)."""
+    for i in range(rows.shape[0]):
+        axpy2(s, err, size, coef[i], rows[i])
+
+
 # ----------------------------------------------------------------------------- the check
 
 @kernel
@@ -350,8 +391,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     s = q.copy()
     err = np.zeros(n)
     size = np.abs(q)
-    for i in range(n):
-        axpy2(s, err, size, x[i], P[i])
+    axpy2_rows(s, err, size, x, P)
     # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
     gap_hi = 0.0
     gap_lo = 0.0
@@ -360,10 +400,8 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         gap_lo += x[j] * err[j]
     xPq_hi = gap_hi
     xPq_lo = gap_lo
-    for i in range(A.shape[0]):
-        axpy2(s, err, size, y[i], A[i])
-    for i in range(G.shape[0]):
-        axpy2(s, err, size, z[i], G[i])
+    axpy2_rows(s, err, size, y, A)
+    axpy2_rows(s, err, size, z, G)
     ok = True
     dual = 0.0
     allow = np.empty(n)
@@ -564,6 +602,13 @@ def out_size(n, p, m):
     return 2 * n + p + m + 4
 
 
+@inline_kernel
+def out_views(out, n, p0, m0):
+    """The views ``(x, y, z, zb, stats)`` of the output buffer (see :func:`out_size`)."""
+    return (out[:n], out[n:n + p0], out[n + p0:n + p0 + m0], out[n + p0 + m0:2 * n + p0 + m0],
+            out[2 * n + p0 + m0:])
+
+
 @kernel
 def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, basic):
     """The fused cold path of the module docstring, on the caller's arrays (float64, of
@@ -577,36 +622,51 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
     of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
     the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
     caller-made buffers only: boxing returned arrays costs more than a small solve."""
-    n = q.shape[0]
-    m0 = G.shape[0]
-    p0 = A.shape[0]
     out[:] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
         return BAD_INPUT, 0, 0, 0
+    x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-                  out[:n], out[n:n + p0], out[n + p0:n + p0 + m0],
-                  out[n + p0 + m0:2 * n + p0 + m0], out[2 * n + p0 + m0:], basic)
+                  x, y, z, zb, stats, basic)
 
 
 @kernel
-def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-           x, y, z, zb, stats, basic):
-    """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
-    outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
-    the basis written in ``basic``."""
+def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, out, basic):
+    """Step 7 of the module docstring alone, with :func:`solve`'s arguments (but the
+    method: always the unrevised one) and outputs: NOT_APPLICABLE when the QP has fewer
+    than ``GRAM_RATIO n`` inequalities (bounds counted), else as :func:`solve`.  An entry
+    of its own, so that only a QP with many more inequalities than variables compiles it;
+    what it does not solve the caller hands to :func:`solve`."""
+    out[:] = 0.0
+    ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
+    if not ok:
+        return BAD_INPUT, 0, 0, 0
+    x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
+    return _solve_gram(Ps, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
+                       x, y, z, zb, stats, basic)
+
+
+@inline_kernel
+def factors(q, G, h, A, b, lb, ub, L):
+    """Steps 2 and 3 and the LCP's right-hand side, given ``L`` (P = L L'): ``(code, E, f,
+    ekind, C, d, ckind, m_g, V, beta, c, v, g)`` with code OK or DEPENDENT_EQUALITIES, the
+    rows of :func:`rows_of` turned into R (E) and F = Q'W (C), the reflectors, c = Q'L^-1 q,
+    v1 in ``v[:p]`` and ``g = d - F1 v1 + F2 c2``."""
     n = q.shape[0]
-    L = np.empty((n, n))
-    if not cholesky(P, L):
-        return NOT_DEFINITE, 0, 0, 0
     E, f, ekind, C, d, ckind = rows_of(G, h, A, b, lb, ub)
     p = E.shape[0]
     m = C.shape[0]
     m_g = 0
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
+    V = np.empty((min(p, n), n))
+    beta = np.empty(min(p, n))
+    c = q.copy()
+    v = np.empty(n)
+    g = np.empty(m)
     if p > n:
-        return DEPENDENT_EQUALITIES, 0, 0, 0
+        return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     # W' = rows L^-1 e_i, L^-1 c_i
     forward_rows(L, E)
     # The rows of G and of the upper bounds; a lower bound's row -e_j is then minus the
@@ -627,32 +687,47 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
                 Ci[t] = -Cu[t]
         else:
             forward(L, C[i])
-    c = q.copy()
     forward(L, c)
-    V = np.empty((p, n))
-    beta = np.empty(p)
     if qr_rows(E, V, beta) <= RANK_TOL:
-        return DEPENDENT_EQUALITIES, 0, 0, 0
+        return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     for k in range(p):
         householder_apply(V, beta, k, c)
         for i in range(m):
             householder_apply(V, beta, k, C[i])
     # v1 = R'^-1 f, R[k, j] = E[j, k] (j >= k): R' is lower triangular with rows E[k, :k+1]
-    v = np.empty(n)
     for k in range(p):
         v[k] = (f[k] - dot(E[k], v, k)) / E[k, k]
     # the LCP on the inequality multipliers: M = F2 F2', g = d - F1 v1 + F2 c2
-    M = np.empty((m, m))
-    g = np.empty(m)
     r = n - p
     c2 = c[p:]
     for i in range(m):
         Fi = C[i]
-        F2i = Fi[p:]
+        g[i] = d[i] - dot(Fi, v, p) + dot(Fi[p:], c2, r)
+    return OK, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
+
+
+@kernel
+def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
+           x, y, z, zb, stats, basic):
+    """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
+    outputs are written in place.  Returns ``(code, pivots, k, pairs)``, k the length of
+    the basis written in ``basic``."""
+    n = q.shape[0]
+    L = np.empty((n, n))
+    if not cholesky(P, L):
+        return NOT_DEFINITE, 0, 0, 0
+    code, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g = factors(q, G, h, A, b, lb, ub, L)
+    if code != OK:
+        return code, 0, 0, 0
+    p = E.shape[0]
+    m = C.shape[0]
+    r = n - p
+    M = np.empty((m, m))
+    for i in range(m):
+        F2i = C[i][p:]
         for j in range(i + 1):
             M[i, j] = dot(F2i, C[j][p:], r)
             M[j, i] = M[i, j]
-        g[i] = d[i] - dot(Fi, v, p) + dot(F2i, c2, r)
     zz = np.zeros(m)
     pivots = 0
     k_basic = 0
@@ -682,6 +757,56 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             Ci = C[i]
             for t in range(p, n):
                 v[t] -= zi * Ci[t]
+    yy = np.empty(p)
+    point(L, E, V, beta, C, c, v, zz, x, yy)
+    caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
+    # No refinement step here: the point is kept only when it is accurate far beyond the
+    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+    if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
+        return CHECK_FAILED, pivots, k_basic, pairs
+    return OK, pivots, k_basic, pairs
+
+
+@kernel
+def _solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
+                x, y, z, zb, stats, basic):
+    """:func:`solve_gram` on screened data (as :func:`_solve`)."""
+    n = q.shape[0]
+    if inequalities(h, lb, ub) < GRAM_RATIO * n:
+        return NOT_APPLICABLE, 0, 0, 0
+    L = np.empty((n, n))
+    definite = cholesky(P, L)
+    if not definite and not proximal_cholesky(P, L):
+        return NOT_DEFINITE, 0, 0, 0
+    code, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g = factors(q, G, h, A, b, lb, ub, L)
+    if code != OK:
+        return code, 0, 0, 0
+    return _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g,
+                 max_pivots, pivot_tol, tie_tol, tol, x, y, z, zb, stats, basic,
+                 np.int64(REFINE if definite else REFINE_PROXIMAL))
+
+
+@kernel
+def inequalities(h, lb, ub):
+    """The number of inequality rows :func:`rows_of` makes: the rows of G with a finite h,
+    and the finite bounds of the variables that are not fixed."""
+    m = 0
+    for i in range(h.shape[0]):
+        if h[i] < np.inf:
+            m += 1
+    for j in range(lb.shape[0]):
+        if lb[j] != ub[j]:
+            m += (ub[j] < np.inf) + (lb[j] > -np.inf)
+    return m
+
+
+@inline_kernel
+def point(L, E, V, beta, C, c, v, zz, x, yy):
+    """x and the equality multipliers yy from v (``v1``, ``v2`` filled), c = Q'L^-1 q and the
+    inequality multipliers zz: ``yy = -R^-1 (v1 + c1 + F1 zz)`` and ``x = L'^-1 Q v`` (v is
+    overwritten)."""
+    p = E.shape[0]
+    m = C.shape[0]
     # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k])
     rhs = np.empty(p)
     for k in range(p):
@@ -689,7 +814,6 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         for i in range(m):
             acc += C[i, k] * zz[i]
         rhs[k] = acc
-    yy = np.empty(p)
     for k in range(p - 1, -1, -1):
         acc = rhs[k]
         for j in range(k + 1, p):
@@ -700,17 +824,26 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     for k in range(p - 1, -1, -1):
         householder_apply(V, beta, k, v)
     backward_transposed(L, v)
-    x[:] = v
-    # A bound whose multiplier is positive holds with equality: x_j is set to it exactly
-    # (it came out of the substitutions within their rounding of it).
-    for i in range(m_g, m):
-        if zz[i] > 0.0:
-            j = ckind[i]
-            x[j if j < n else j - n] = d[i] if j < n else -d[i]
-    for k in range(A.shape[0], p):  # a fixed variable is its bound, exactly
-        x[ekind[k]] = f[k]
-    # the multipliers in qpsolvers' form
-    p0 = A.shape[0]
+    copy(x, v)
+
+
+@inline_kernel
+def caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, snap):
+    """The multipliers in qpsolvers' form (y of A's rows, z of G's, zb of the bounds) from
+    those of the rows (yy of the equalities, zz of the inequalities); with ``snap``, x set
+    exactly to each bound whose multiplier is positive and to each fixed variable's value
+    (it came out of the substitutions within their rounding of it)."""
+    n = x.shape[0]
+    p = ekind.shape[0]
+    m = ckind.shape[0]
+    p0 = y.shape[0]
+    if snap:
+        for i in range(m_g, m):
+            if zz[i] > 0.0:
+                j = ckind[i]
+                x[j if j < n else j - n] = d[i] if j < n else -d[i]
+        for k in range(p0, p):  # a fixed variable is its bound, exactly
+            x[ekind[k]] = f[k]
     z[:] = 0.0
     zb[:] = 0.0
     for i in range(p0):
@@ -725,8 +858,211 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             zb[j] += zz[i]
         else:
             zb[j - n] -= zz[i]
-    # No refinement step here: the point is kept only when it is accurate far beyond the
-    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+
+
+# ----------------------------------------------------------------------------- m >> n
+
+@kernel
+def proximal_cholesky(P, L):
+    """L with ``L L' = P + delta I``, ``delta = PROXIMAL max_j P_jj``: the factor of the
+    proximal term of the module docstring (step 7) for a P that is only semidefinite to
+    rounding.  False when P has no positive diagonal entry or the factor does not exist."""
+    n = P.shape[0]
+    top = 0.0
+    for j in range(n):
+        top = max(top, P[j, j])
+    if not top > 0.0:
+        return False
+    Pd = np.empty((n, n))
+    for i in range(n):
+        for j in range(n):
+            Pd[i, j] = P[i, j]
+        Pd[i, i] += PROXIMAL * top
+    return cholesky(Pd, L)
+
+
+@inline_kernel
+def gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags):
+    """Lemke's method on the LCP ``w = F2 F2' z + g`` (F2 the columns p.. of C's rows)
+    without forming M: the unrevised method on its factored form (``unrevised.lemke`` with
+    ``Fs``), each row of F2 scaled by the power of two nearest to 1 / its norm (M's
+    diagonal then near 1: the symmetric equilibration of a Gram matrix), the covering vector
+    all ones in those units.  ``flags`` gets the basic z's.  Returns ``(status, pivots)``
+    (SOLVED with no pivot when g >= 0)."""
+    m = g.shape[0]
+    r = C.shape[1] - p
+    for i in range(m):
+        flags[i] = False
+    g_min = 0.0
+    for i in range(m):
+        g_min = min(g_min, g[i])
+    if g_min >= 0.0:
+        return pivoting.SOLVED, 0
+    work = np.empty(m * (r + 4) + 2)
+    Fs = work[:m * r].reshape((m, r))
+    dcol = work[m * r:m * (r + 1)].reshape((m, 1))
+    gs = work[m * (r + 1):m * (r + 2)]
+    out = work[m * (r + 2):]
+    for i in range(m):
+        Fi = C[i]
+        norm2 = dot(Fi[p:], Fi[p:], r)
+        # A row within rounding of the equalities' span (its part in v2 below RANK_TOL of
+        # the whole, as qr_rows judges the equalities) is a constant, w_i = g_i: kept
+        # exactly zero, not scaled up to a unit row of rounding noise.
+        keep = norm2 > RANK_TOL * RANK_TOL * (norm2 + dot(Fi, Fi, p))
+        s = pow2_scale(np.sqrt(norm2)) if keep else 1.0
+        Fsi = Fs[i]
+        for t in range(r):
+            Fsi[t] = s * Fi[p + t] if keep else 0.0
+        gs[i] = s * g[i]
+        dcol[i, 0] = 1.0
+    cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
+    return unrevised.lemke(dcol, Fs, gs, false_flags(m), no_matrix(), cap, pivot_tol, tie_tol,
+                           out[:m + 1], out[m + 1:], flags)
+
+
+@kernel
+def active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, x, yy, zz):
+    """The KKT point of the equality-constrained QP whose constraints are the equalities and
+    the inequalities ``S`` (k of them) held as equalities, through the factors at hand:
+    ``(x, yy, zz)`` with ``P x + rd + E'yy + C_S'zz_S = 0``, ``E x = rpE`` and ``C_S x = rpS``
+    (P = L L').  K2 holds the QR of ``F2_S'`` (``qr_rows`` of the rows S of F2), V2 and
+    beta2 its reflectors.  In v = Q'L'x: v1 as in :func:`_solve`, and v2 the projection of
+    -c2 on ``F2_S v2 = rpS - F1_S v1`` by that QR, not the normal equations of the LCP's
+    ``M_SS z_S = -g_S`` (whose condition is the square).  zz is written at S only."""
+    n = x.shape[0]
+    p = E.shape[0]
+    k = S.shape[0]
+    cc = rd.copy()
+    forward(L, cc)
+    for j in range(p):
+        householder_apply(V, beta, j, cc)
+    v = np.empty(n)
+    for j in range(p):
+        v[j] = (rpE[j] - dot(E[j], v, j)) / E[j, j]
+    c2 = cc[p:]
+    for j in range(k):
+        householder_apply(V2, beta2, j, c2)
+    w = v[p:]
+    for j in range(k):  # w1 = R2'^-1 (rpS - F1_S v1), R2[t, j] = K2[j, t]
+        w[j] = (rpS[j] - dot(C[S[j]], v, p) - dot(K2[j], w, j)) / K2[j, j]
+    zS = np.empty(k)
+    for j in range(k - 1, -1, -1):  # z_S = -R2^-1 (w1 + (Q2'c2)_1)
+        acc = -(w[j] + c2[j])
+        for t in range(j + 1, k):
+            acc -= K2[t, j] * zS[t]
+        zS[j] = acc / K2[j, j]
+    for t in range(k, w.shape[0]):
+        w[t] = -c2[t]
+    for j in range(k - 1, -1, -1):
+        householder_apply(V2, beta2, j, w)
+    for i in range(C.shape[0]):
+        zz[i] = 0.0
+    for j in range(k):
+        zz[S[j]] = zS[j]
+    point(L, E, V, beta, C, cc, v, zz, x, yy)
+
+
+@kernel
+def active_residuals(P, q, G, h, A, b, lb, ub, x, y, z, zb, ekind, f, ckind, S, rd, rpE, rpS):
+    """The residuals of the active set's KKT system at ``(x, y, z, zb)`` (qpsolvers' form)
+    on the caller's data, each summed in double-double (:func:`axpy2`, :func:`dot2`):
+    ``rd = P x + q + A'y + G'z + zb``, ``rpE = f - E x`` (A's rows, then the fixed
+    variables) and ``rpS = d_S - C_S x`` (the inequalities S)."""
+    n = x.shape[0]
+    p0 = A.shape[0]
+    s = q.copy()
+    err = np.zeros(n)
+    size = np.empty(n)
+    axpy2_rows(s, err, size, x, P)
+    axpy2_rows(s, err, size, y, A)
+    for j in range(S.shape[0]):
+        i = ckind[S[j]]
+        if i < 0:
+            axpy2(s, err, size, z[-1 - i], G[-1 - i])
+    for j in range(n):
+        t, e = two_sum(s[j], zb[j])
+        rd[j] = t + (e + err[j])
+    for k in range(ekind.shape[0]):
+        if k < p0:
+            rpE[k] = -dot2(A[k], x, -b[k])[0]
+        else:
+            rpE[k] = f[k] - x[ekind[k]]
+    for j in range(S.shape[0]):
+        i = ckind[S[j]]
+        if i < 0:
+            rpS[j] = -dot2(G[-1 - i], x, -h[-1 - i])[0]
+        elif i < n:
+            rpS[j] = ub[i] - x[i]
+        else:
+            rpS[j] = x[i - n] - lb[i - n]
+
+
+@inline_kernel
+def _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g, max_pivots,
+          pivot_tol, tie_tol, tol, x, y, z, zb, stats, basic, steps):
+    """The path for m >> n (module docstring, step 7): the LCP by :func:`gram_lcp`, the
+    point of its final basis by :func:`active_solve`, refined ``steps`` times on the
+    caller's data (:func:`active_residuals`), checked by :func:`kkt_check`.  Returns
+    ``(code, pivots, k, pairs)`` as :func:`_solve`."""
+    n = x.shape[0]
+    p = E.shape[0]
+    m = C.shape[0]
+    r = n - p
+    flags = np.empty(m, dtype=np.bool_)
+    status, pivots = gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags)
+    if status != pivoting.SOLVED:
+        return NOT_SOLVED, pivots, 0, 0
+    k = 0
+    for i in range(m):
+        if flags[i]:
+            k += 1
+    if k > r:
+        return NOT_SOLVED, pivots, 0, 0
+    S = np.empty(k, dtype=np.int64)
+    k = 0
+    for i in range(m):
+        if flags[i]:
+            S[k] = i
+            k += 1
+    K2 = np.empty((k, r))
+    for j in range(k):
+        Fi = C[S[j]][p:]
+        K2j = K2[j]
+        for t in range(r):
+            K2j[t] = Fi[t]
+    V2 = np.empty((k, r))
+    beta2 = np.empty(k)
+    if qr_rows(K2, V2, beta2) <= RANK_TOL:
+        return NOT_SOLVED, pivots, 0, 0
+    rd = q.copy()
+    rpE = f.copy()
+    rpS = np.empty(k)
+    for j in range(k):
+        rpS[j] = d[S[j]]
+    xi = np.empty(n)
+    yy = np.empty(p)
+    zz = np.empty(m)
+    active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, xi, yy, zz)
+    dx = np.empty(n)
+    dy = np.empty(p)
+    dz = np.empty(m)
+    for step in range(steps):
+        copy(x, xi)
+        caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.False_)
+        active_residuals(P, q, G, h, A, b, lb, ub, x, y, z, zb, ekind, f, ckind, S, rd, rpE, rpS)
+        active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, dx, dy, dz)
+        for t in range(n):
+            xi[t] += dx[t]
+        for t in range(p):
+            yy[t] += dy[t]
+        for j in range(k):
+            zz[S[j]] += dz[S[j]]
+    for j in range(k):
+        zz[S[j]] = max(zz[S[j]], 0.0)
+    copy(x, xi)
+    caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
+    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, S, basic)
     if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
         return CHECK_FAILED, pivots, k_basic, pairs
     return OK, pivots, k_basic, pairs

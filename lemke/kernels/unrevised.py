@@ -15,6 +15,13 @@ from G at every pivot and its residual checked row by row (relative to each row'
 RESIDUAL_TOL); G is refactored (``linalg.invert_in_place``, on the calling thread) when the
 check fails, when an update's pivot is tiny, and every ``REFACTOR_EVERY`` pivots.
 
+**M in factored form.**  With ``Fs`` not empty (n x r), M is ``Fs Fs'`` and is never
+formed: A is the covering column d alone (n x 1), a column of M is computed when a z enters
+(``Fs Fs[e]'``, n r multiply-adds, :func:`fetch_column`), and the block H, of rank at most
+r + 1, is kept in arrays of at most r + 1 columns.  A pivot then costs O(n (r + k)), not
+O(n^2): ``kernels.qp`` solves the multiplier LCP of a QP with many more inequalities than
+variables this way.
+
 Labels are those of the tableau kernel: 0..n-1 for w, n..2n-1 for z, 2n for z0.  The rule is
 :mod:`lemke.kernels.pivoting`'s, applied to the basic variables in pair order (pair j's basic
 variable, z0 last), with the basis inverse taken relative to the starting basis (whose row j
@@ -23,7 +30,7 @@ holds the basic variable of pair j).
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, dot, dot_and_size, invert_in_place, matvec, scaled_system
+from .linalg import axpy, dot, dot_and_size, invert_in_place, matvec, no_matrix, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
@@ -40,6 +47,13 @@ def invert(AB, alist, k, G):
         for c in range(k):  # a loop, not a slice assignment: see copy_column
             G[r, c] = src[c]
     return invert_in_place(G, k)
+
+
+@inline_kernel
+def set_column(dst, j, col):
+    """dst[:, j] = col, as a loop (see :func:`copy_column`)."""
+    for r in range(dst.shape[0]):
+        dst[r, j] = col[r]
 
 
 @inline_kernel
@@ -91,9 +105,10 @@ def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag):
 
 
 @kernel
-def direction(A, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
+def direction(acol, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
     """The change of every basic variable per unit increase of the non-basic ``label``:
-    dzb (k, the basic z's in beta order) and dw (n, read at the basic w's)."""
+    dzb (k, the basic z's in beta order) and dw (n, read at the basic w's).  For a z label
+    (or z0), ``acol`` is its column of A (:func:`fetch_column`)."""
     if label < n:  # a w leaves zero: H dz_beta = e_p
         p = apos[label]
         for r in range(k):
@@ -102,20 +117,41 @@ def direction(A, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
             if apos[i] < 0:
                 dw[i] = dot(AB[i], dzb, k)
     else:  # a z (or z0) enters: H dz_beta = -A[alpha, e]
-        e = label - n
         for r in range(k):
-            tmp[r] = -A[alist[r], e]
+            tmp[r] = -acol[alist[r]]
         matvec(G, k, tmp, dzb)
         for i in range(n):
             if apos[i] < 0:
-                dw[i] = A[i, e] + dot(AB[i], dzb, k)
+                dw[i] = acol[i] + dot(AB[i], dzb, k)
 
 
 @kernel
-def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
+def fetch_column(A, Fs, e, acol):
+    """acol = column e of [M | d]: read from A = [M | d] when Fs is empty; else M = Fs Fs'
+    and A is d alone (n x 1), so column e < n is ``Fs Fs[e]'`` (computed, n r multiply-adds)
+    and column n is d."""
+    n = acol.shape[0]
+    if Fs.shape[0] == 0:
+        for i in range(n):
+            acol[i] = A[i, e]
+    elif e == n:
+        for i in range(n):
+            acol[i] = A[i, 0]
+    else:
+        r = Fs.shape[1]
+        Fe = Fs[e]
+        for i in range(n):
+            acol[i] = dot(Fs[i], Fe, r)
+
+
+@kernel
+def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out):
     """Lemke's method from the complementary basis with z_i basic where z_start[i].
 
-    ``A`` = [M | d] (n x (n + 1)) and q, in the scaled units of tableau.solve; the
+    ``A`` = [M | d] (n x (n + 1)) and q, in the scaled units of tableau.solve, with Fs
+    empty; or M = Fs Fs' given by Fs (n x r) and A = d (n x 1), see the module docstring
+    (the block H then has at most r + 1 columns: a pivot that would give it more stops
+    with NUMERICAL_FAILURE).  The
     artificial variable's column must be positive in the coordinates of that basis.  ``G0``
     is the inverse of the starting block A[z_start, z_start] when the caller has it, else
     an empty array.  Returns ``(status, pivots)``; x_out gets z and z0, ray_out the ray on
@@ -123,6 +159,7 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     """
     n = q.shape[0]
     art = 2 * n
+    kmax = n if Fs.shape[0] == 0 else min(n, Fs.shape[1] + 1)  # H's largest size
     # Three allocations for the whole run (each one costs about as much as a small pivot):
     # the float, int and key work arrays are views of one array each.
     I = np.empty(7 * n + 1, dtype=np.int64)
@@ -131,10 +168,10 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     apos, bpos = I[2 * n : 3 * n], I[3 * n : 4 * n + 1]
     apos[:] = -1
     bpos[:] = -1
-    F = np.empty(2 * n * n + 15 * n + 1)
-    AB = F[: n * n].reshape((n, n))  # AB[:, c] = A[:, blist[c]]
-    G = F[n * n : 2 * n * n].reshape((n, n))
-    o = 2 * n * n
+    o = n * kmax + kmax * kmax
+    F = np.empty(o + 17 * n + 1)
+    AB = F[: n * kmax].reshape((n, kmax))  # AB[:, c] = A[:, blist[c]]
+    G = F[n * kmax : o].reshape((kmax, kmax))
     zb = F[o : o + n]
     wv = F[o + 1 * n : o + 2 * n]
     dzb = F[o + 2 * n : o + 3 * n]
@@ -150,7 +187,9 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     rv = F[o + 12 * n : o + 13 * n]  # the basic variables' values (pair order, z0 last)
     rc = F[o + 13 * n : o + 14 * n]  # and their changes per unit of the entering variable
     rm = F[o + 14 * n : o + 15 * n]  # and the sizes of the terms that formed the values
-    z0_max = F[o + 15 * n :]  # the largest value z0 has had (ratio_test keeps it)
+    acol = F[o + 15 * n : o + 16 * n]  # the entering variable's column of A
+    lcol = F[o + 16 * n : o + 17 * n]  # and another one's, for the lexicographic keys
+    z0_max = F[o + 17 * n :]  # the largest value z0 has had (ratio_test keeps it)
     z0_max[0] = 0.0
     cand = I[4 * n + 1 : 5 * n + 1]  # tied candidates, as positions in rlab
     rlab = I[5 * n + 1 : 6 * n + 1]  # the basic variables in pair order, z0 last
@@ -165,7 +204,8 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
             blist[k] = i
             apos[i] = k
             bpos[i] = k
-            copy_column(AB, k, A, i)
+            fetch_column(A, Fs, i, acol)
+            set_column(AB, k, acol)
             k += 1
     ray_out[:] = 0.0
     x_out[:] = 0.0
@@ -186,7 +226,9 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
     for i in range(n):
         h ^= hkeys[n + i] if bpos[i] >= 0 else hkeys[i]
     while pivots < max_pivots:
-        direction(A, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
+        if entering >= n:
+            fetch_column(A, Fs, entering - n, acol)
+        direction(acol, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
         m = gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm)
         if pivots == 0:
             # z0 rises until every basic variable is >= 0 (pivoting.first_row).
@@ -196,8 +238,9 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
                 break
             leaving = rlab[r]
         else:
-            leaving = ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start,
-                                 pivot_tol, tie_tol, rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, z0_max)
+            leaving = ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start,
+                                 pivot_tol, tie_tol, rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp,
+                                 lcol, z0_max)
             if leaving < 0:
                 status = RAY_TERMINATION
                 if entering >= n:
@@ -209,7 +252,11 @@ def lemke(A, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_b
         if not abs(piv) < np.inf:  # a NaN or infinite pivot: give up
             status = NUMERICAL_FAILURE
             break
-        ok = update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row)
+        if entering >= n and leaving < n and k >= kmax:
+            status = NUMERICAL_FAILURE  # H would outgrow M's rank: rounding, not a pivot
+            break
+        ok = update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw,
+                          row)
         if entering >= n and leaving < n:
             k += 1  # the block gained a row and a column
         elif entering < n and leaving >= n:
@@ -247,8 +294,8 @@ def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray
     ``G0``: the inverse of the starting block in those units, or an empty array).  Outputs
     as ``lemke``, in the caller's units."""
     A, qs, d_scale = scaled_system(M, q, d, R, C)
-    status, pivots = lemke(A, qs, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
-                           z_basic_out)
+    status, pivots = lemke(A, no_matrix(), qs, z_start, G0, max_pivots, pivot_tol, tie_tol,
+                           x_out, ray_out, z_basic_out)
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
@@ -276,8 +323,8 @@ def gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm):
 
 
 @inline_kernel
-def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, tie_tol,
-               rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, z0_max):
+def ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, tie_tol,
+               rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, lcol, z0_max):
     """The leaving variable's label, or -1 when nothing blocks: pivoting's rule over the
     basic variables gathered in (rlab, rv, rc)."""
     art = 2 * n
@@ -296,7 +343,9 @@ def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, t
         lab = n + j if z_start[j] else j
         basic = bpos[j] >= 0 if z_start[j] else apos[j] < 0
         if not basic:
-            direction(A, AB, lab, n, alist, k, G, apos, lz, lw, tmp)
+            if lab >= n:
+                fetch_column(A, Fs, lab - n, lcol)
+            direction(lcol, AB, lab, n, alist, k, G, apos, lz, lw, tmp)
         for c in range(nc):
             cl = rlab[cand[c]]
             if basic:
@@ -311,8 +360,9 @@ def ratio_test(A, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, t
 
 
 @inline_kernel
-def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
-    """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``.
+def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
+    """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``
+    (``acol``: the entering variable's column of A, when it is a z).
     Returns False when the update's pivot is too small to trust (then refactor)."""
     if entering >= n and leaving < n:
         # z_e enters, w_i leaves: H gains row i and column e.  With u = G A[alpha, e]
@@ -332,7 +382,7 @@ def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dz
         apos[i] = k
         blist[k] = e
         bpos[e] = k
-        copy_column(AB, k, A, e)
+        set_column(AB, k, acol)
         return abs(s) > 1e-13
     if entering >= n:
         # z_e replaces z_l as column p of H (Sherman-Morrison): with u = G A[alpha, e],
@@ -350,7 +400,7 @@ def update_basis(A, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dz
         blist[p] = e
         bpos[l] = -1
         bpos[e] = p
-        copy_column(AB, p, A, e)
+        set_column(AB, p, acol)
         return abs(piv) > 1e-13
     if leaving < n:
         # w_j enters, w_i leaves: row p of H becomes A[i, beta].  With r = A[i, beta] G:

@@ -1,0 +1,189 @@
+"""solve_qp when the inequalities far outnumber the variables (m >= 4n, the DUALC problems):
+the fused kernel's path in factored form (``kernels.qp``, step 7: Lemke on the multiplier
+LCP without forming M, the point from the final basis's active rows, refined and checked).
+
+Every solved QP is checked by the tests' own KKT check (helpers.assert_qp_kkt), every
+certificate by the tests' own Farkas / direction checks; ``gram_calls`` records which path
+of the fused kernel answered."""
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import lemke
+from lemke import Status
+from lemke.kernels import qp as kqp
+from lemke.problems import random_convex_qp
+from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
+
+HERE = Path(__file__).resolve().parent
+DATA = HERE / "data" / "maros-meszaros"
+sys.path.insert(0, str(HERE.parent / "benchmarks"))
+from maros_meszaros import load, references  # noqa: E402
+
+REFS = references(DATA / "README.md")
+
+
+@pytest.fixture
+def gram_calls(monkeypatch):
+    """The codes the kernel of the factored path (``kqp.solve_gram``) returned during the
+    test, in order; ``dense_calls`` those of the dense fused kernel (``kqp.solve``)."""
+    return _recorder(monkeypatch, "solve_gram")
+
+
+@pytest.fixture
+def dense_calls(monkeypatch):
+    return _recorder(monkeypatch, "solve")
+
+
+def _recorder(monkeypatch, name):
+    codes = []
+    kernel = getattr(kqp, name)
+
+    def recording(*args):
+        out = kernel(*args)
+        codes.append(out[0])
+        return out
+
+    monkeypatch.setattr(kqp, name, recording)
+    return codes
+
+
+def check_solved(problem, res):
+    assert res.status == Status.SOLVED, res
+    assert_qp_kkt(*problem, res, rtol=1e-8)
+    assert max(res.primal_residual, res.dual_residual, res.duality_gap) <= 1e-9
+
+
+@pytest.mark.parametrize("name", ["DUALC1", "DUALC2", "DUALC5", "DUALC8"])
+def test_dualc(name, method, gram_calls):
+    """The four DUALC problems (n = 7..9, 214..502 rows of G, an equality, a box): answered
+    by the factored path (DUALC2 and DUALC8 with the proximal term: their P is singular
+    to rounding), at the reference optimum."""
+    problem, r = load(DATA / f"{name}.mat")
+    res = lemke.solve_qp(*problem, method=method)
+    check_solved(problem, res)
+    assert gram_calls == [kqp.OK]
+    assert abs(res.obj + r - REFS[name]) <= 1e-6 * abs(REFS[name])
+    assert res.pivots <= 40
+
+
+@pytest.mark.parametrize("n", [3, 6, 10])
+@pytest.mark.parametrize("ratio", [10, 25, 50])
+def test_random_many_inequalities(n, ratio, gram_calls):
+    """Feasible strictly convex QPs with m = ratio n rows of G (and a box): the factored
+    path answers, and its answer is a KKT point (checked independently) at quadprog's x."""
+    rng = np.random.default_rng([ratio, n])
+    for _ in range(3):
+        problem = random_convex_qp(n, rng, m=ratio * n)
+        res = lemke.solve_qp(*problem)
+        check_solved(problem, res)
+    assert gram_calls == [kqp.OK] * 3
+
+
+def test_random_without_equalities_or_bounds(gram_calls):
+    """Only inequalities (p = 0, no box), also when the unconstrained minimum is feasible
+    (no pivot)."""
+    rng = np.random.default_rng(5)
+    for shift in (0.0, 1e3):
+        P, q, G, h, _, _, _, _ = random_convex_qp(8, rng, m=120)
+        problem = (P, q, G, h + shift, None, None, None, None)
+        res = lemke.solve_qp(*problem)
+        check_solved(problem, res)
+        if shift:
+            assert res.pivots == 0 and not np.any(res.z)
+    assert gram_calls == [kqp.OK] * 2
+
+
+@pytest.mark.parametrize("rank", [4, 6])
+def test_random_semidefinite(rank, gram_calls):
+    """P = B B' of rank < n (no identity added): the factored path solves with P + delta I
+    and answers only when the refined point passes the check on the caller's P (here it
+    does)."""
+    rng = np.random.default_rng(rank)
+    for _ in range(3):
+        problem = random_convex_qp(8, rng, m=160, rank=rank)
+        res = lemke.solve_qp(*problem)
+        check_solved(problem, res)
+    assert gram_calls == [kqp.OK] * 3
+
+
+def test_degenerate_vertex_with_singular_p(gram_calls):
+    """A singular P whose minimum is a vertex (DUALC8's situation): P has a null direction
+    that the active bounds pin, and the proximal term's answer, refined on the caller's P,
+    passes the check exactly."""
+    rng = np.random.default_rng(3)
+    n = 6
+    B = rng.standard_normal((n, n - 2))
+    P = B @ B.T
+    q = 50.0 * rng.standard_normal(n)
+    G = rng.standard_normal((40 * n, n))
+    h = np.abs(G).sum(axis=1) + 1.0  # inactive within the box
+    lb, ub = -np.ones(n), np.ones(n)
+    problem = (P, q, G, h, None, None, lb, ub)
+    res = lemke.solve_qp(*problem)
+    check_solved(problem, res)
+    assert gram_calls == [kqp.OK]
+
+
+@pytest.mark.parametrize("n", [4, 8])
+def test_random_infeasible(n, gram_calls, dense_calls):
+    """m = 30 n rows, two of which contradict each other: the factored LCP ends on a ray,
+    the dense fused kernel ends NOT_SOLVED too, and the KKT-MLCP path certifies
+    infeasibility as before (Farkas vector checked independently)."""
+    rng = np.random.default_rng(n)
+    P, q, G, h, A, b, lb, ub = random_convex_qp(n, rng, m=30 * n)
+    g = rng.standard_normal(n)
+    G = np.vstack([G, g, -g])
+    h = np.concatenate([h, [-1.0, -1.0]])  # g x <= -1 and g x >= 1
+    res = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
+    assert res.status == Status.PRIMAL_INFEASIBLE, res
+    assert_farkas(G, h, A, b, lb, ub, res.certificate, n)
+    assert gram_calls == [kqp.NOT_SOLVED] and dense_calls == [kqp.NOT_SOLVED]
+
+
+def test_unbounded_semidefinite(gram_calls):
+    """P singular with q descending along its null direction, which the many rows of G do
+    not block: the proximal problem is bounded, but its answer fails the check on the
+    caller's data, and the KKT-MLCP path finds the direction of unbounded descent."""
+    rng = np.random.default_rng(9)
+    n = 4
+    P = np.diag([1.0, 2.0, 3.0, 0.0])
+    q = np.array([0.5, -1.0, 0.0, -1.0])
+    G = rng.standard_normal((25 * n, n))
+    G[:, 3] = -np.abs(G[:, 3])  # x_3 -> +inf keeps every row satisfied
+    h = rng.uniform(1.0, 2.0, 25 * n)
+    res = lemke.solve_qp(P, q, G, h)
+    assert res.status == Status.DUAL_INFEASIBLE, res
+    assert_unbounded_direction(P, q, G, None, None, None, res.certificate)
+    assert len(gram_calls) == 1 and gram_calls[0] != kqp.OK
+
+
+def test_not_taken_below_the_ratio(gram_calls, dense_calls):
+    """Fewer than 4 n inequalities: the dense fused path answers, as before.  With m = n
+    rows and a box (3n in all, bench_qp's family) the factored kernel is not even called;
+    with 14 rows on 5 variables and only lower bounds (24 >= 4n rows before the kernel
+    counts them, 19 after) it is called and declines."""
+    rng = np.random.default_rng(1)
+    for n in (5, 20):
+        problem = random_convex_qp(n, rng)
+        res = lemke.solve_qp(*problem)
+        check_solved(problem, res)
+    assert gram_calls == [] and dense_calls == [kqp.OK, kqp.OK]
+    P, q, G, h, A, b, lb, ub = random_convex_qp(5, rng, m=14)
+    problem = (P, q, G, h, A, b, lb, np.full(5, np.inf))
+    check_solved(problem, lemke.solve_qp(*problem))
+    assert gram_calls == [kqp.NOT_APPLICABLE] and dense_calls[-1] == kqp.OK
+
+
+def test_warm_start_from_the_factored_path():
+    """The factored path's basis, numbered as the KKT-MLCP's, warm-starts solve_qp."""
+    rng = np.random.default_rng(12)
+    problem = random_convex_qp(6, rng, m=90)
+    res = lemke.solve_qp(*problem)
+    check_solved(problem, res)
+    again = lemke.solve_qp(*problem, warm_start=res.warm_start)
+    check_solved(problem, again)
+    assert again.pivots == 0
+    np.testing.assert_allclose(again.x, res.x, atol=1e-9)
