@@ -148,12 +148,11 @@ def _entry_point(method):
     floats; ``kernels.entry_point``), of the kernel for a solve by ``method``:
     ``_FIRST_RUN`` for the tableau (cold or warm), else ``_SOLVE_ONE``; once compiled,
     until then the kernel itself."""
-    key = method
-    kernel = _FIRST_RUN if key == "tableau" else _SOLVE_ONE
+    kernel = _FIRST_RUN if method == "tableau" else _SOLVE_ONE
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
     run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
     if run is not kernel:
-        _ENTRY[key] = run
+        _ENTRY[method] = run
     return run
 
 
