@@ -97,6 +97,7 @@ def test_small_problem_whose_warm_basis_fails_goes_cold(method, n):
     restarted from (the unrevised restart costs more than a cold solve there): the answer is
     the cold answer, bit for bit, and it solves the problem."""
     rng = np.random.default_rng([61, n])
+    failed = 0
     for _ in range(20):
         A = rng.standard_normal((n, n))
         M, q = A @ A.T + 0.1 * np.eye(n), rng.standard_normal(n)
@@ -106,7 +107,9 @@ def test_small_problem_whose_warm_basis_fails_goes_cold(method, n):
         assert warm.success
         assert_lcp_solution(M, q2, warm.z)
         if warm.pivots:  # the old basis failed
+            failed += 1
             assert np.array_equal(warm.z, cold.z) and warm.pivots == cold.pivots
+    assert failed > 0  # the cold path was exercised
 
 
 @settings(max_examples=60, deadline=None)
