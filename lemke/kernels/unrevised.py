@@ -36,6 +36,7 @@ from .tableau import unscale
 
 REFACTOR_EVERY = 200
 RESIDUAL_TOL = 1e-12
+CHECK_EVERY = 8  # pivots between two checks of the values against the basis (drift)
 
 
 @kernel
@@ -101,6 +102,42 @@ def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag):
         for c in range(k):
             zb[c] -= tmp2[c]
         res = _all_w(AB, q, apos, zb, k, wv, wmag)
+    return res
+
+
+@inline_kernel
+def advance(t, k, n, apos, zb, dzb, wv, dw):
+    """Move every basic value by t times its change per unit of the entering variable
+    (the tableau's update of its right-hand side): zb += t dzb, and wv += t dw at the basic
+    w's."""
+    for p in range(k):
+        zb[p] += t * dzb[p]
+    for i in range(n):
+        if apos[i] < 0:
+            wv[i] += t * dw[i]
+
+
+@inline_kernel
+def place(t, entering, n, bpos, zb, wv):
+    """The entering variable's value t, at its place after :func:`update_basis`."""
+    if entering >= n:
+        zb[bpos[entering - n]] = t
+    else:
+        wv[entering] = t
+
+
+@kernel
+def drift(AB, q, apos, zb, k, wv):
+    """How far the values (updated in place) are from those of the basis, row by row
+    relative to the size of the row's terms: max over i of |q_i + AB[i] z_beta - w_i| /
+    (|q_i| + |AB[i]| |z_beta|), with w_i = 0 for the non-basic w's (i in alpha)."""
+    res = 0.0
+    for i in range(q.shape[0]):
+        mz, size = dot_and_size(AB[i], zb, k)
+        size += abs(q[i])
+        w = q[i] + mz - (wv[i] if apos[i] < 0 else 0.0)
+        if abs(w) > res * size:
+            res = abs(w) / size
     return res
 
 
@@ -221,6 +258,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
         max_pivots = 0
     basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
     since_refactor = 0
+    since_check = 0
     entering = art
     h = np.uint64(0)
     for i in range(n):
@@ -229,7 +267,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
         if entering >= n:
             fetch_column(A, Fs, entering - n, acol)
         direction(acol, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
-        m = gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm)
+        m = gather(n, apos, bpos, zb, wv, dzb, dw, rlab, rv, rc, rm)
         if pivots == 0:
             # z0 rises until every basic variable is >= 0 (pivoting.first_row).
             r = pivoting.first_row(rv, rc, m, tie_tol)
@@ -238,9 +276,10 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
                 break
             leaving = rlab[r]
         else:
-            leaving = ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start,
-                                 pivot_tol, tie_tol, rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp,
-                                 lcol, z0_max)
+            r = ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start,
+                           pivot_tol, tie_tol, rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp,
+                           lcol, z0_max)
+            leaving = rlab[r] if r >= 0 else np.int64(-1)
             if leaving < 0:
                 status = RAY_TERMINATION
                 if entering >= n:
@@ -255,21 +294,29 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
         if entering >= n and leaving < n and k >= kmax:
             status = NUMERICAL_FAILURE  # H would outgrow M's rank: rounding, not a pivot
             break
+        # The values move along the direction by the entering variable's new value t
+        # (updated in place, as the tableau updates its right-hand side).
+        t = -rv[r] / rc[r]
+        advance(t, k, n, apos, zb, dzb, wv, dw)
         ok = update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw,
-                          row)
+                          row, zb)
         if entering >= n and leaving < n:
             k += 1  # the block gained a row and a column
         elif entering < n and leaving >= n:
             k -= 1  # the block lost a row and a column
+        place(t, entering, n, bpos, zb, wv)
         pivots += 1
         since_refactor += 1
-        if not ok or since_refactor >= REFACTOR_EVERY:
+        since_check += 1
+        refresh = not ok or since_refactor >= REFACTOR_EVERY
+        if not refresh and since_check >= CHECK_EVERY:
+            since_check = 0
+            refresh = drift(AB, q, apos, zb, k, wv) > RESIDUAL_TOL
+        if refresh:
+            # a tiny update pivot, the periodic refactorization, or values that drifted:
+            # refactor, and recompute the values from the inverse
             since_refactor = 0
-            if k > 0 and not invert(AB, alist, k, G):
-                status = NUMERICAL_FAILURE
-                break
-        if basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag) > RESIDUAL_TOL:
-            since_refactor = 0
+            since_check = 0
             if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
                 break
@@ -279,6 +326,9 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
             status = stop
             break
         entering = leaving + n if leaving < n else leaving - n
+    if status != NUMERICAL_FAILURE:
+        # the point from the basis inverse, not the values updated in place
+        basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
     for p in range(k):
         x_out[blist[p]] = zb[p]
     for i in range(n):
@@ -301,23 +351,24 @@ def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray
 
 
 @kernel
-def gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm):
+def gather(n, apos, bpos, zb, wv, dzb, dw, rlab, rv, rc, rm):
     """The basic variables in pair order (z0 last): labels, values and changes per unit of
-    the entering variable.  Returns how many (n: z0 and one variable of every pair but the
-    entering one's)."""
+    the entering variable, and the values again as their sizes (rm: as in the tableau's
+    first run, only negative values count as zero).  Returns how many (n: z0 and one
+    variable of every pair but the entering one's)."""
     m = 0
     for i in range(n + 1):
         if bpos[i] >= 0:
             rlab[m] = n + i
             rv[m] = zb[bpos[i]]
             rc[m] = dzb[bpos[i]]
-            rm[m] = zmag[bpos[i]]
+            rm[m] = rv[m]
             m += 1
         elif i < n and apos[i] < 0:
             rlab[m] = i
             rv[m] = wv[i]
             rc[m] = dw[i]
-            rm[m] = wmag[i]
+            rm[m] = rv[m]
             m += 1
     return m
 
@@ -325,18 +376,18 @@ def gather(n, apos, bpos, zb, wv, dzb, dw, zmag, wmag, rlab, rv, rc, rm):
 @inline_kernel
 def ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, tie_tol,
                rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, lcol, z0_max):
-    """The leaving variable's label, or -1 when nothing blocks: pivoting's rule over the
-    basic variables gathered in (rlab, rv, rc)."""
+    """The leaving variable's position in (rlab, rv, rc), the basic variables gathered by
+    :func:`gather`, or -1 when nothing blocks: pivoting's rule over them."""
     art = 2 * n
     r_art = m - 1 if m > 0 and rlab[m - 1] == art else np.int64(-1)  # see kernels/__init__.py
     if r_art >= 0:
         z0_max[0] = max(z0_max[0], rv[r_art])
     nc = pivoting.min_ratio(rv, rm, rc, m, pivot_tol, tie_tol, cand, r_art, z0_max[0])
     if nc <= 1:
-        return rlab[cand[0]] if nc == 1 else -1
+        return cand[0] if nc == 1 else -1
     for c in range(nc):
         if rlab[cand[c]] == art:
-            return art
+            return cand[c]
     # Column j of the basis inverse relative to the starting basis is the unit vector of
     # its pair-j variable when that is basic, else minus its direction.
     for j in range(n):
@@ -355,12 +406,12 @@ def ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_to
             keys[c] = pivoting.lex_key(b, rc[cand[c]], pivot_tol)
         nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
         if nc == 1:
-            return rlab[cand[0]]
-    return rlab[pivoting.largest_pivot(cand, rc, nc)] if nc > 0 else -1
+            return cand[0]
+    return pivoting.largest_pivot(cand, rc, nc) if nc > 0 else -1
 
 
 @inline_kernel
-def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row):
+def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row, zb):
     """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``
     (``acol``: the entering variable's column of A, when it is a z).
     Returns False when the update's pivot is too small to trust (then refactor)."""
@@ -438,6 +489,7 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
     for r in range(last):
         G[r, p] = G[r, last]
     copy_column(AB, m, AB, last)
+    zb[m] = zb[last]
     bl = blist[last]
     blist[m] = bl
     bpos[bl] = m
