@@ -40,8 +40,8 @@ until one ends solved and checked.  Recovery runs of the tableau are *careful*: 
 3. a covering vector with fixed pseudo-random factors in [1, 2) in the equilibrated
    coordinates: on degenerate contact problems (piles with deep overlaps) the path of a
    constant covering vector can run into rounding that a generic one avoids;
-4. the other method (tableau <-> unrevised) with d = 1 / R: the two compute their values
-   differently (updated in place / recomputed from the basis inverse), and rounding rarely
+4. the other method (tableau <-> unrevised) with d = 1 / R: the two compute their columns
+   differently (updated in place / from the basis inverse), and rounding rarely
    defeats both on one problem.
 
 A run that ends solved replaces one that did not even when its check fails (the front then

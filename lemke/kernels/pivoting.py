@@ -28,15 +28,15 @@ merely because both are small: a basic variable of size 1e-10 is not tied with o
 0 (both count as what they are), which is what keeps the right-hand side the first key even
 when q mixes entries of 1e-2 and 1e-10.  What is zero is decided per row: a value counts as
 zero when it is below ``VALUE_ROUNDING`` times the size of the terms it was formed from,
-i.e. when it is rounding of an exact zero.  That size is |B^-1| |q| for a value B^-1 q.  The
-unrevised method recomputes every value from the basis inverse at each pivot and has it at
-once (|G| |q_alpha|, |q| + |AB| |z|); there exact zeros come out as +-1e-17.  The tableau
-updates its values in place and keeps exact zeros exact far more often; a running bound on
-that size grows with every pivot and would zero real values, and the exact size costs O(n)
-a row (tried: 10x slower), so the tableau's first run gives the values themselves as their size, and
-only negative values count as zero there; its recovery runs (kernels.cold) compute the
-exact size for the few rows under a running bound.  This is one source of the differences between
-the two methods that the README lists.  ``tie_tol = 0`` asks for exact ties only; the row
+i.e. when it is rounding of an exact zero.  That size is |B^-1| |q| for a value B^-1 q.  Both
+methods update their values in place (the unrevised method checks them against its basis
+every few pivots); a running bound on that size grows with every pivot and would zero real
+values, and the exact size costs O(n) a row (tried: 10x slower), so the first runs give the
+values themselves as their size, and only negative values count as zero there; the
+tableau's recovery runs (kernels.cold) compute the exact size for the few rows under a
+running bound.  The tableau keeps exact zeros of its columns exact far more often than the
+unrevised method's basis inverse (+-1e-17 there): one source of the differences between the
+two methods that the README lists.  ``tie_tol = 0`` asks for exact ties only; the row
 of the minimum always ties itself, so the candidate list is never empty.
 
 The entries of the basis inverse that are zero in exact arithmetic come out as rounding

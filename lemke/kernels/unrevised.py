@@ -10,10 +10,15 @@ with every basic w_i = q_i + A[i, beta] z_beta.  The change of the basic variabl
 of a driving variable comes from the same block, so each pivot needs only products with
 G = H^-1 and with AB = A[:, beta] (kept as a contiguous copy, one column changed a pivot).
 G is updated from pivot to pivot in O(k^2), one of four cases: the block gains a row and a
-column, loses them, or has one row or one column replaced.  The basic point is recomputed
-from G at every pivot and its residual checked row by row (relative to each row's terms,
-RESIDUAL_TOL); G is refactored (``linalg.invert_in_place``, on the calling thread) when the
-check fails, when an update's pivot is tiny, and every ``REFACTOR_EVERY`` pivots.
+column, loses them, or has one row or one column replaced.  The basic values move along the
+driving column by the entering variable's new value (:func:`advance`, :func:`place`: the
+tableau's update of its right-hand side, O(n) a pivot); every ``CHECK_EVERY`` pivots they
+are checked against the block row by row (:func:`drift`, relative to each row's terms,
+RESIDUAL_TOL).  G is refactored (``linalg.invert_in_place``, on the calling thread) and the
+values recomputed from it (:func:`basic_point`) when they drifted, when an update's pivot
+is tiny, and every ``REFACTOR_EVERY`` pivots; the final point is recomputed from G.
+Recomputing the point at every pivot (as this kernel first did) cost O(n k) a pivot, a
+third of the method's time at n = 100 to 300.
 
 **M in factored form.**  With ``Fs`` not empty (n x r), M is ``Fs Fs'`` and is never
 formed: A is the covering column d alone (n x 1), a column of M is computed when a z enters
@@ -67,7 +72,7 @@ def copy_column(dst, j, src, i):
 
 
 @kernel
-def _all_w(AB, q, apos, zb, k, wv, wmag):
+def _all_w(AB, q, apos, zb, k, wv):
     """wv = q + AB[:, :k] z_beta; returns the residual of H z_beta + q_alpha (zero in exact
     arithmetic), row by row relative to the size of the row's terms: max over i in alpha of
     |w_i| / (|q_i| + |AB[i]| |z_beta|)."""
@@ -76,7 +81,6 @@ def _all_w(AB, q, apos, zb, k, wv, wmag):
         mz, size = dot_and_size(AB[i], zb, k)
         w = q[i] + mz
         wv[i] = w
-        wmag[i] = size + abs(q[i])
         if apos[i] >= 0:
             size += abs(q[i])
             if abs(w) > res * size:
@@ -85,7 +89,7 @@ def _all_w(AB, q, apos, zb, k, wv, wmag):
 
 
 @kernel
-def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag):
+def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2):
     """z_beta = -G q_alpha and every w_i = q_i + AB[i] z_beta (the values of the basic w's).
     Refines z_beta once when the row-wise residual of H z_beta + q_alpha (see ``_all_w``)
     is above RESIDUAL_TOL, and returns that residual.  ``zmag`` and ``wmag`` receive the
@@ -93,15 +97,15 @@ def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag):
     for r in range(k):
         tmp[r] = -q[alist[r]]
     for r in range(k):
-        zb[r], zmag[r] = dot_and_size(G[r], tmp, k)
-    res = _all_w(AB, q, apos, zb, k, wv, wmag)
+        zb[r] = dot(G[r], tmp, k)
+    res = _all_w(AB, q, apos, zb, k, wv)
     if res > RESIDUAL_TOL:
         for r in range(k):
             tmp[r] = wv[alist[r]]
         matvec(G, k, tmp, tmp2)
         for c in range(k):
             zb[c] -= tmp2[c]
-        res = _all_w(AB, q, apos, zb, k, wv, wmag)
+        res = _all_w(AB, q, apos, zb, k, wv)
     return res
 
 
@@ -206,7 +210,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
     apos[:] = -1
     bpos[:] = -1
     o = n * kmax + kmax * kmax
-    F = np.empty(o + 17 * n + 1)
+    F = np.empty(o + 14 * n + 1)
     AB = F[: n * kmax].reshape((n, kmax))  # AB[:, c] = A[:, blist[c]]
     G = F[n * kmax : o].reshape((kmax, kmax))
     zb = F[o : o + n]
@@ -219,14 +223,11 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
     tmp2 = F[o + 7 * n : o + 8 * n]
     row = F[o + 8 * n : o + 9 * n]
     keys = F[o + 9 * n : o + 10 * n]
-    zmag = F[o + 10 * n : o + 11 * n]
-    wmag = F[o + 11 * n : o + 12 * n]
-    rv = F[o + 12 * n : o + 13 * n]  # the basic variables' values (pair order, z0 last)
-    rc = F[o + 13 * n : o + 14 * n]  # and their changes per unit of the entering variable
-    rm = F[o + 14 * n : o + 15 * n]  # and the sizes of the terms that formed the values
-    acol = F[o + 15 * n : o + 16 * n]  # the entering variable's column of A
-    lcol = F[o + 16 * n : o + 17 * n]  # and another one's, for the lexicographic keys
-    z0_max = F[o + 17 * n :]  # the largest value z0 has had (ratio_test keeps it)
+    rv = F[o + 10 * n : o + 11 * n]  # the basic variables' values (pair order, z0 last)
+    rc = F[o + 11 * n : o + 12 * n]  # and their changes per unit of the entering variable
+    acol = F[o + 12 * n : o + 13 * n]  # the entering variable's column of A
+    lcol = F[o + 13 * n : o + 14 * n]  # and another one's, for the lexicographic keys
+    z0_max = F[o + 14 * n :]  # the largest value z0 has had (ratio_test keeps it)
     z0_max[0] = 0.0
     cand = I[4 * n + 1 : 5 * n + 1]  # tied candidates, as positions in rlab
     rlab = I[5 * n + 1 : 6 * n + 1]  # the basic variables in pair order, z0 last
@@ -256,7 +257,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
     elif not invert(AB, alist, k, G):
         status = NUMERICAL_FAILURE
         max_pivots = 0
-    basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
+    basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
     since_refactor = 0
     since_check = 0
     entering = art
@@ -267,7 +268,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
         if entering >= n:
             fetch_column(A, Fs, entering - n, acol)
         direction(acol, AB, entering, n, alist, k, G, apos, dzb, dw, tmp)
-        m = gather(n, apos, bpos, zb, wv, dzb, dw, rlab, rv, rc, rm)
+        m = gather(n, apos, bpos, zb, wv, dzb, dw, rlab, rv, rc)
         if pivots == 0:
             # z0 rises until every basic variable is >= 0 (pivoting.first_row).
             r = pivoting.first_row(rv, rc, m, tie_tol)
@@ -277,7 +278,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
             leaving = rlab[r]
         else:
             r = ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start,
-                           pivot_tol, tie_tol, rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp,
+                           pivot_tol, tie_tol, rlab, rv, rc, m, cand, keys, lz, lw, tmp,
                            lcol, z0_max)
             leaving = rlab[r] if r >= 0 else np.int64(-1)
             if leaving < 0:
@@ -320,7 +321,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
             if k > 0 and not invert(AB, alist, k, G):
                 status = NUMERICAL_FAILURE
                 break
-            basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
+            basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
         h, stop = pivoting.after_pivot(leaving, entering, art, h, hkeys, detector)
         if stop >= 0:
             status = stop
@@ -328,7 +329,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
         entering = leaving + n if leaving < n else leaving - n
     if status != NUMERICAL_FAILURE:
         # the point from the basis inverse, not the values updated in place
-        basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2, zmag, wmag)
+        basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2)
     for p in range(k):
         x_out[blist[p]] = zb[p]
     for i in range(n):
@@ -351,38 +352,37 @@ def solve(M, q, d, R, C, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray
 
 
 @kernel
-def gather(n, apos, bpos, zb, wv, dzb, dw, rlab, rv, rc, rm):
+def gather(n, apos, bpos, zb, wv, dzb, dw, rlab, rv, rc):
     """The basic variables in pair order (z0 last): labels, values and changes per unit of
-    the entering variable, and the values again as their sizes (rm: as in the tableau's
-    first run, only negative values count as zero).  Returns how many (n: z0 and one
-    variable of every pair but the entering one's)."""
+    the entering variable.  Returns how many (n: z0 and one variable of every pair but the
+    entering one's)."""
     m = 0
     for i in range(n + 1):
         if bpos[i] >= 0:
             rlab[m] = n + i
             rv[m] = zb[bpos[i]]
             rc[m] = dzb[bpos[i]]
-            rm[m] = rv[m]
             m += 1
         elif i < n and apos[i] < 0:
             rlab[m] = i
             rv[m] = wv[i]
             rc[m] = dw[i]
-            rm[m] = rv[m]
             m += 1
     return m
 
 
 @inline_kernel
 def ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_tol, tie_tol,
-               rlab, rv, rc, rm, m, cand, keys, lz, lw, tmp, lcol, z0_max):
+               rlab, rv, rc, m, cand, keys, lz, lw, tmp, lcol, z0_max):
     """The leaving variable's position in (rlab, rv, rc), the basic variables gathered by
-    :func:`gather`, or -1 when nothing blocks: pivoting's rule over them."""
+    :func:`gather`, or -1 when nothing blocks: pivoting's rule over them, with the values
+    as their own sizes (as in the tableau's first run: only negative values count as
+    zero)."""
     art = 2 * n
     r_art = m - 1 if m > 0 and rlab[m - 1] == art else np.int64(-1)  # see kernels/__init__.py
     if r_art >= 0:
         z0_max[0] = max(z0_max[0], rv[r_art])
-    nc = pivoting.min_ratio(rv, rm, rc, m, pivot_tol, tie_tol, cand, r_art, z0_max[0])
+    nc = pivoting.min_ratio(rv, rv, rc, m, pivot_tol, tie_tol, cand, r_art, z0_max[0])
     if nc <= 1:
         return cand[0] if nc == 1 else -1
     for c in range(nc):
