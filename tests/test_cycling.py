@@ -229,8 +229,8 @@ SAME_PATH = [pytest.param(c.key, _options(c, t), id=f"{c.key}-{_tie_id(t)}")
 def _may_diverge(key):
     """The cases where the README allows the two methods different paths: degenerate,
     rank-deficient problems (the contact steps, with their redundant contacts, and Siconos'
-    lcp_tobenna), where a basic variable that is exactly zero comes out exact in the tableau
-    but as +-1e-17 from the unrevised method's basis inverse; and copies whose rows or
+    lcp_tobenna), where an entry of the driving column that is exactly zero comes out exact
+    in the tableau but as +-1e-17 from the unrevised method's basis inverse; and copies whose rows or
     columns were scaled (``scaled/``), where the default covering vector is uneven after
     equilibration and the recovery runs (kernels/cold.py) may be needed by one method and
     not the other."""
