@@ -142,7 +142,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     method : {"tableau", "unrevised"}
         The Lemke method (see :func:`lemke.solve_lcp`).  A cold QP with at least 4n
         inequalities (bounds counted) first tries the unrevised method on its multiplier
-        LCP in factored form, whatever the method (see ``kernels.qp``, step 7).
+        LCP in factored form, whatever the method (see ``kernels.qp``, step 7); so does
+        one whose P is only semidefinite where the equalities can pin its flat directions
+        (step 8).
     warm_start : WarmStart, optional
         ``result.warm_start`` of an earlier QP with the same sizes and the same kinds of
         bounds.
@@ -435,7 +437,8 @@ def _solve_definite(args, method, opts):
     screens the data, factors P, solves the LCP of the inequality multipliers and checks
     the KKT point on the data; with m >= 4n inequalities, first its LCP in factored form
     (``kqp.solve_gram``, the kernel's step 7, whatever ``method``; also for a P that is
-    semidefinite to rounding).  None when it does not apply (data that needs the full
+    semidefinite to rounding; and, step 8, for a P that is not definite whose flat
+    directions the equalities can pin).  None when it does not apply (data that needs the full
     validation, P only semidefinite, dependent equalities) or did not end solved and
     checked: the caller then takes the KKT-MLCP path, which also finds the certificates of
     infeasible and unbounded QPs."""
@@ -450,11 +453,19 @@ def _solve_definite(args, method, opts):
         # at most that many inequalities: perhaps many more than variables (the kernel's
         # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
         code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
-                                                opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
+                                                opts.pivot_tol, opts.tie_tol, opts.tol, out, basic,
+                                                False)
     if code != kqp.OK:
+        tried = code is not None and code != kqp.NOT_APPLICABLE  # step 7 ran
         code, pivots, k, pairs = kqp.solve(P, q, G, h, A, b, lb, ub, cold.METHODS[method],
                                            max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol,
                                            out, basic)
+        if code == kqp.NOT_DEFINITE and not tried:
+            # P only semidefinite: its proximal factor, where the equalities can pin its
+            # flat directions (the kernel's step 8; NOT_APPLICABLE where they cannot)
+            code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
+                                                    opts.pivot_tol, opts.tie_tol, opts.tol, out,
+                                                    basic, True)
     if code != kqp.OK:
         return None
     out.setflags(write=False)  # the views below are read-only too

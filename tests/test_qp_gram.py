@@ -187,3 +187,56 @@ def test_warm_start_from_the_factored_path():
     check_solved(problem, again)
     assert again.pivots == 0
     np.testing.assert_allclose(again.x, res.x, atol=1e-9)
+
+
+# --- step 8: a P that is not definite, with few rows -------------------------------------
+
+
+@pytest.mark.parametrize("name", ["HS51", "HS52", "HS53", "GENHS28", "TAME", "LOTSCHD",
+                                  "DPKLO1", "CVXQP1_S", "CVXQP2_S", "CVXQP3_S"])
+def test_semidefinite_pinned_by_equalities(name, method, gram_calls, dense_calls):
+    """Maros-Meszaros problems whose P is singular (1 to 56 flat directions) and whose
+    equality rows outnumber them: the dense fused kernel finds P not definite, and the
+    factored path with the proximal factor answers (step 8) at the reference optimum, a KKT
+    point by the tests' own check."""
+    problem, r = load(DATA / f"{name}.mat")
+    P = problem[0]
+    assert np.linalg.eigvalsh(P).min() <= 1e-12 * np.abs(P).max()  # not definite indeed
+    res = lemke.solve_qp(*problem, method=method)
+    check_solved(problem, res)
+    assert dense_calls == [kqp.NOT_DEFINITE]
+    assert gram_calls == [kqp.OK]
+    assert abs(res.obj + r - REFS[name]) <= 1e-8 * max(1.0, abs(REFS[name]))
+
+
+@pytest.mark.parametrize("name", ["QAFIRO", "ZECEVIC2", "PRIMALC1", "QADLITTL"])
+def test_flat_directions_not_pinned(name, gram_calls, dense_calls):
+    """Linear-program-like problems (P with more flat directions than equality rows): step 8
+    declines at once (NOT_APPLICABLE, before any pivot) and the KKT-MLCP path answers."""
+    problem, r = load(DATA / f"{name}.mat")
+    res = lemke.solve_qp(*problem)
+    check_solved(problem, res)
+    assert dense_calls == [kqp.NOT_DEFINITE]
+    assert gram_calls == [kqp.NOT_APPLICABLE]
+    assert abs(res.obj + r - REFS[name]) <= 1e-6 * max(1.0, abs(REFS[name]))
+
+
+def test_flat_directions_counted_by_the_factor(gram_calls):
+    """A P without a zero diagonal entry but with a two-dimensional null space (P = B B',
+    B 4 x 2) and one equality: the proximal factor has two pivots of order delta, more than
+    the one equality row, so step 8 declines; with two equality rows it answers."""
+    rng = np.random.default_rng(8)
+    B = rng.standard_normal((4, 2))
+    P = B @ B.T
+    assert np.all(np.diag(P) > 0)
+    q = rng.standard_normal(4)
+    lb, ub = -np.ones(4), np.ones(4)
+    A1 = rng.standard_normal((1, 4))
+    res = lemke.solve_qp(P, q, A=A1, b=np.zeros(1), lb=lb, ub=ub)
+    assert gram_calls == [kqp.NOT_APPLICABLE]
+    check_solved((P, q, None, None, A1, np.zeros(1), lb, ub), res)
+    gram_calls.clear()
+    A2 = rng.standard_normal((2, 4))
+    res = lemke.solve_qp(P, q, A=A2, b=np.zeros(2), lb=lb, ub=ub)
+    assert gram_calls == [kqp.OK]
+    check_solved((P, q, None, None, A2, np.zeros(2), lb, ub), res)

@@ -68,6 +68,23 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    :func:`solve` (steps 1-6) and then to the KKT-MLCP path, as before: an infeasible QP
    ends there with its certificate.
 
+8. **A P that is not definite, with fewer rows.** :func:`solve` stops at step 1; the
+   caller then calls :func:`solve_gram` with ``semidefinite`` set, which runs step 7 with
+   the proximal factor whatever the number of rows, where the equalities can pin P's flat
+   directions: when neither P's zero diagonal entries (each a direction of the null space
+   of a semidefinite P) nor the proximal factor's pivots below ``FLAT max P_jj`` (the k-th
+   leading block of ``P + delta I`` has a pivot of order delta exactly where the nullity of
+   P's k-th leading block grows) outnumber the equality rows.  Then the reduced problem can
+   be strictly convex and the proximal point iteration on the active rows converges by
+   ``delta / (lambda + delta)`` a step, lambda its smallest curvature.  Elsewhere
+   (linear-program-like problems, many variables without curvature and few equalities,
+   where the proximal LCP is ill-conditioned and its runs failed the check on every
+   Maros-Meszaros problem of that kind, at up to 2 s a problem) it returns NOT_APPLICABLE
+   after the count of the diagonal or one Cholesky factor, and the caller takes the
+   KKT-MLCP path.  On Maros-Meszaros: HS51-53, GENHS28, TAME, LOTSCHD, DPKLO1 and
+   CVXQP1-3_S (0.01-1.3 ms instead of 0.9-13 ms); ZECEVIC2 and QSHARE2B would solve too but
+   fail the count.
+
 No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
 The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
 
@@ -98,6 +115,7 @@ STRICT_TOL = 1e-12  # the fused path answers only when its point passes at this 
 EPS = np.finfo(np.float64).eps
 GRAM_RATIO = 4  # the LCP is solved in factored form (step 7) when m >= GRAM_RATIO n
 PROXIMAL = 1e-6  # delta of the proximal term, relative to max P_jj (step 7)
+FLAT = 1e-3  # a proximal factor's pivot below FLAT max P_jj marks a flat direction of P (step 8)
 REFINE = 2  # refinement steps of the point of step 7, P definite
 REFINE_PROXIMAL = 3  # and with the proximal term
 SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
@@ -632,19 +650,22 @@ def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
 
 
 @kernel
-def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, out, basic):
-    """Step 7 of the module docstring alone, with :func:`solve`'s arguments (but the
+def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, out, basic,
+               semidefinite):
+    """Steps 7 and 8 of the module docstring alone, with :func:`solve`'s arguments (but the
     method: always the unrevised one) and outputs: NOT_APPLICABLE when the QP has fewer
-    than ``GRAM_RATIO n`` inequalities (bounds counted), else as :func:`solve`.  An entry
-    of its own, so that only a QP with many more inequalities than variables compiles it;
-    what it does not solve the caller hands to :func:`solve`."""
+    than ``GRAM_RATIO n`` inequalities (bounds counted), unless ``semidefinite`` (step 8:
+    :func:`solve` found P not definite) and the equalities can pin P's flat directions;
+    else as :func:`solve`.  An entry of its own, so that only a QP with many more
+    inequalities than variables, or a P that is not definite, compiles it; what it does not
+    solve with many rows the caller hands to :func:`solve`."""
     out[:] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
         return BAD_INPUT, 0, 0, 0
     x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve_gram(Ps, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
-                       x, y, z, zb, stats, basic)
+                       x, y, z, zb, stats, basic, semidefinite)
 
 
 @inline_kernel
@@ -769,21 +790,66 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
 
 @kernel
 def _solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
-                x, y, z, zb, stats, basic):
+                x, y, z, zb, stats, basic, semidefinite):
     """:func:`solve_gram` on screened data (as :func:`_solve`)."""
     n = q.shape[0]
-    if inequalities(h, lb, ub) < GRAM_RATIO * n:
+    few = inequalities(h, lb, ub) < GRAM_RATIO * n
+    if few and not semidefinite:
         return NOT_APPLICABLE, 0, 0, 0
     L = np.empty((n, n))
-    definite = cholesky(P, L)
-    if not definite and not proximal_cholesky(P, L):
-        return NOT_DEFINITE, 0, 0, 0
+    definite = False if semidefinite else cholesky(P, L)
+    if not definite:
+        # step 8: with few rows, only where the equalities can pin P's flat directions
+        # (a zero P_jj is one, for a semidefinite P; the proximal factor counts them all)
+        if few and zero_diagonal(P) > equalities(A, lb, ub):
+            return NOT_APPLICABLE, 0, 0, 0
+        if not proximal_cholesky(P, L):
+            return NOT_DEFINITE, 0, 0, 0
+        if few and flat_directions(P, L) > equalities(A, lb, ub):
+            return NOT_APPLICABLE, 0, 0, 0
     code, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g = factors(q, G, h, A, b, lb, ub, L)
     if code != OK:
         return code, 0, 0, 0
     return _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g,
                  max_pivots, pivot_tol, tie_tol, tol, x, y, z, zb, stats, basic,
                  np.int64(REFINE if definite else REFINE_PROXIMAL))
+
+
+@kernel
+def flat_directions(P, L):
+    """The pivots of the proximal factor L (``L L' = P + delta I``) below ``FLAT max P_jj``:
+    for a positive semidefinite P, the dimension of its null space (the k-th leading block
+    of P + delta I has a pivot of order delta exactly where the nullity of P's k-th
+    leading block grows), plus the directions of curvature below that."""
+    top = 0.0
+    for j in range(P.shape[0]):
+        top = max(top, P[j, j])
+    flat = 0
+    for j in range(P.shape[0]):
+        if L[j, j] * L[j, j] < FLAT * top:
+            flat += 1
+    return flat
+
+
+@kernel
+def zero_diagonal(P):
+    """The number of zero entries of P's diagonal (for a positive semidefinite P, each is a
+    direction of its null space, and they are independent)."""
+    k = 0
+    for j in range(P.shape[0]):
+        if P[j, j] == 0.0:
+            k += 1
+    return k
+
+
+@kernel
+def equalities(A, lb, ub):
+    """The number of equality rows :func:`rows_of` makes: A's rows and the fixed variables."""
+    p = A.shape[0]
+    for j in range(lb.shape[0]):
+        if lb[j] == ub[j]:
+            p += 1
+    return p
 
 
 @kernel
