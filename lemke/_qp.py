@@ -14,7 +14,6 @@ certificate is checked (``_certify``) before it is returned.
 """
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -30,7 +29,7 @@ from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import cold, qp as kqp
+from .kernels import cold, entry_point, qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
 BOX_FIRST = 16  # box-only QPs of at least this many variables try the bounded kernel first
@@ -164,6 +163,22 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
+    if warm_start is None and (G is not None or A is not None):
+        # The common call first, on its own lines: a cold QP with constraint rows and plain
+        # data (float64 arrays, C-contiguous, aligned, writable, of the kernel's ranks; the
+        # kernel checks their shapes) goes to the fused kernel through its compiled entry
+        # point with no other Python step; anything else, or a QP it does not solve and
+        # check, takes the steps below (which call it again only for data made plain).
+        plain = _plain_fast(P, q, G, h, A, b, lb, ub)
+        if plain is not None and type(method) is str and method in METHODS:
+            res = _solve_definite(plain, method, as_options(options))
+            if res is not None:
+                return res
+            tried = True
+        else:
+            tried = False
+    else:
+        tried = False
     _validate.method(method, METHODS)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
@@ -179,7 +194,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         res = _solve_box(P, q, lb, ub, opts)
         if res is not None:
             return res
-    if warm_start is None:
+    if warm_start is None and not tried:
         plain = _plain_args(P, q, G, h, A, b, lb, ub)
         if plain is not None:
             res = _solve_definite(plain, method, opts)
@@ -275,25 +290,33 @@ def _restore_rows(res, keep):
     return replace(res, z=full(res.z), certificate=cert)
 
 
-@functools.lru_cache(maxsize=64)
+_ABSENT: dict = {}  # n -> _absent(n), the last 64 sizes
+
+
 def _absent(n):
     """``(G or A, h or b, lb, ub)`` of a QP of n variables without them: empty rows and
     infinite bounds, made once per n (a fresh ``np.full`` costs about 1 us, a fifth of a
-    small solve).  Private to the fused path, whose kernel only reads them."""
-    return np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+    small solve) and kept for the last 64 sizes.  Private to the fused path, whose kernel
+    only reads them."""
+    absent = _ABSENT.get(n)
+    if absent is None:
+        absent = np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+        if len(_ABSENT) >= 64:
+            del _ABSENT[next(iter(_ABSENT))]
+        _ABSENT[n] = absent
+    return absent
 
 
 _F64 = np.dtype(np.float64)
 
 
 def _kernel_array(x):
-    """float64, C-contiguous and writable (see ``_validate.kernel_array``); a plain float64
-    ndarray that already is goes through without a call into numpy."""
-    if type(x) is np.ndarray and x.dtype == _F64:
-        f = x.flags
-        if f.c_contiguous and f.writeable:
-            return x
-    return _validate.kernel_array(np.asarray(x, dtype=np.float64))
+    """float64, C-contiguous, aligned and writable (see ``_validate.kernel_array``); a plain
+    float64 ndarray that already is goes through without a call into numpy."""
+    if type(x) is np.ndarray and x.dtype == _F64 and x.flags.carray:
+        return x
+    x = _validate.kernel_array(np.asarray(x, dtype=np.float64))
+    return x if x.flags.aligned else x.copy()  # (the fused kernel's entry point: aligned)
 
 
 def _kernel_vector(v):
@@ -302,6 +325,51 @@ def _kernel_vector(v):
     if v.ndim == 2 and v.shape[1] == 1:
         v = v.reshape(-1)
     return v
+
+
+_ND = np.ndarray
+
+
+def _plain_fast(P, q, G, h, A, b, lb, ub):
+    """:func:`_plain_args` for the common call, in a fraction of its time: every array given
+    is already a float64 ndarray, C-contiguous, aligned and writable (``flags.carray``) of
+    the rank the fused kernel takes (P and the rows 2-D, the vectors 1-D); absent pairs
+    are the empty rows and infinite bounds of :func:`_absent`.  Shapes are not compared
+    here: the kernel's :func:`kernels.qp.screen` does that (BAD_INPUT).  None for anything
+    else (then :func:`_plain_args`, which converts)."""
+    if not (type(P) is _ND and type(q) is _ND and (P.dtype is _F64 or P.dtype == _F64)
+            and (q.dtype is _F64 or q.dtype == _F64) and P.ndim == 2 and q.ndim == 1
+            and P.flags.carray and q.flags.carray):
+        return None
+    n = q.shape[0]
+    absent = _ABSENT.get(n) or _absent(n)
+    if G is None:
+        if h is not None:
+            return None
+        G, h = absent[0], absent[1]
+    elif not (type(G) is _ND and type(h) is _ND and (G.dtype is _F64 or G.dtype == _F64)
+              and (h.dtype is _F64 or h.dtype == _F64) and G.ndim == 2 and h.ndim == 1
+              and G.flags.carray and h.flags.carray):
+        return None
+    if A is None:
+        if b is not None:
+            return None
+        A, b = absent[0], absent[1]
+    elif not (type(A) is _ND and type(b) is _ND and (A.dtype is _F64 or A.dtype == _F64)
+              and (b.dtype is _F64 or b.dtype == _F64) and A.ndim == 2 and b.ndim == 1
+              and A.flags.carray and b.flags.carray):
+        return None
+    if lb is None:
+        lb = absent[2]
+    elif not (type(lb) is _ND and (lb.dtype is _F64 or lb.dtype == _F64) and lb.ndim == 1
+              and lb.flags.carray):
+        return None
+    if ub is None:
+        ub = absent[3]
+    elif not (type(ub) is _ND and (ub.dtype is _F64 or ub.dtype == _F64) and ub.ndim == 1
+              and ub.flags.carray):
+        return None
+    return P, q, G, h, A, b, lb, ub
 
 
 def _plain_args(P, q, G, h, A, b, lb, ub):
@@ -442,27 +510,54 @@ def _solve_definite(args, method, opts):
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
     out = np.empty(2 * n + p + m + 4)  # kqp.out_size
-    basic = np.empty(m + 2 * n, dtype=np.int64)
-    max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
+    basic = np.empty(m + 2 * n, _I64)
+    max_pivots = opts.max_pivots
+    if max_pivots is None:
+        max_pivots = -1
     code = None
-    absent = _absent(n)
+    absent = _ABSENT.get(n) or _absent(n)
     if m + n * ((lb is not absent[2]) + (ub is not absent[3])) >= kqp.GRAM_RATIO * n:
         # at most that many inequalities: perhaps many more than variables (the kernel's
         # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
         code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                 opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
     if code != kqp.OK:
-        code, pivots, k, pairs = kqp.solve(P, q, G, h, A, b, lb, ub, cold.METHODS[method],
-                                           max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol,
-                                           out, basic)
+        # through the compiled entry point (the arrays are of its types: _plain_args)
+        run = _ENTRY.get(kqp.solve) or _entry_point(kqp.solve)
+        code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], max_pivots,
+                                     opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
     if code != kqp.OK:
         return None
-    out.setflags(write=False)  # the views below are read-only too
+    out.setflags(False)  # (write=False, positional: a third of the time) the views too
     # x and the status now; the multipliers, residuals and the basis when first read
-    # (QPResult._deferred): building them costs as much as a small solve's LCP.
-    return QPResult._deferred(
-        {"x": out[:n], "status": Status.SOLVED, "pivots": pivots, "certificate": None},
-        _fused_fields, (out, n, p, m, basic, k, pairs))
+    # (QPResult._deferred, inlined): building them costs as much as a small solve's LCP.
+    res = _new(QPResult)
+    d = res.__dict__
+    d["x"] = out[:n]
+    d["status"] = _SOLVED
+    d["pivots"] = pivots
+    d["certificate"] = None
+    d["_resolve"] = (_fused_fields, (out, n, p, m, basic, k, pairs))
+    return res
+
+
+_new = object.__new__
+_SOLVED = Status.SOLVED
+_I64 = np.dtype(np.int64)
+_METHOD_CODES = dict(cold.METHODS)
+_ENTRY: dict = {}
+
+
+def _entry_point(dispatcher):
+    """The compiled entry point of the fused kernel ``dispatcher`` (``kqp.solve``) for the
+    argument types :func:`_plain_args` gives (``kernels.entry_point``), once compiled; until
+    then the kernel itself."""
+    a1, a2 = np.empty(0), np.empty((0, 0))
+    run = entry_point(dispatcher, a2, a1, a2, a1, a2, a1, a1, a1, 0, 0, 0.0, 0.0, 0.0, a1,
+                      np.empty(0, dtype=np.int64))
+    if run is not dispatcher:
+        _ENTRY[dispatcher] = run
+    return run
 
 
 def _fused_fields(out, n, p, m, basic, k, pairs):

@@ -112,11 +112,17 @@ def screen(P, q, G, h, A, b, lb, ub):
     lb <= ub, P symmetric to ``SYMMETRY_TOL`` of its largest entry), the symmetric part
     ``Ps = (P + P')/2``, and the bounds with entries beyond ``INFINITY`` made infinite.
     Data that is not plainly valid goes to the front's validation, which raises (naming the
-    entry) or accepts it; this is only the fast way through for the common case."""
+    entry) or accepts it; this is only the fast way through for the common case.  So do
+    shapes that do not match (P n x n, G m x n and h of length m, A p x n and b of length
+    p, lb and ub of length n): the front leaves that comparison to this kernel."""
     n = q.shape[0]
     Ps = np.empty((n, n))
     lo = np.empty(n)
     up = np.empty(n)
+    if not (P.shape[0] == n and P.shape[1] == n and G.shape[1] == n and h.shape[0] == G.shape[0]
+            and A.shape[1] == n and b.shape[0] == A.shape[0] and lb.shape[0] == n
+            and ub.shape[0] == n):
+        return False, Ps, lo, up
     top = 0.0
     probe = nan_probe(q, n)
     for i in range(n):
