@@ -163,7 +163,19 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
-    if warm_start is None and (G is not None or A is not None):
+    if (warm_start is None and G is None and h is None and A is None and b is None
+            and (lb is not None or ub is not None)):
+        # A box-only QP with plain data below BOX_FIRST variables: the box kernel in one
+        # call (kernels.qp.solve_box), held to the fused kernel's check; from BOX_FIRST on,
+        # or when that call does not end solved and checked, the steps below.
+        plain = _plain_fast(P, q, None, None, None, None, lb, ub)
+        if (plain is not None and q.shape[0] < BOX_FIRST and type(method) is str
+                and method in METHODS):
+            res = _solve_box_small(plain, as_options(options))
+            if res is not None:
+                return res
+        tried = False
+    elif warm_start is None:
         # The common call first, on its own lines: a cold QP with constraint rows and plain
         # data (float64 arrays, C-contiguous, aligned, writable, of the kernel's ranks; the
         # kernel checks their shapes) goes to the fused kernel through its compiled entry
@@ -457,6 +469,63 @@ def _solve_box(P, q, lb, ub, opts):
         _box_fields, (P, q, lo, up, r.z, z_box, r.warm_start))
 
 
+def _solve_box_small(args, opts):
+    """A box-only QP with plain data (:func:`_plain_fast`) of fewer than BOX_FIRST variables
+    in one kernel call, ``kernels.qp.solve_box``: the screen and P definite as the fused
+    path's, one run of the box kernel (as :func:`_solve_box`'s first run), its natural-map
+    check, then the fused path's KKT check (``kernels.qp.kkt_check`` at ``min(tol,
+    STRICT_TOL)``: what the fused path answered these QPs with before).  The box LCP has n
+    pairs where the fused path's LCP has a row per bound (2n for a boxed variable): at
+    n = 10, 2 to 5 us of kernel against 13.  None unless solved and checked: the fused path
+    and then :func:`_solve_box` (with its recovery runs) decide.  Residuals, multipliers
+    and the basis are read from the kernel's buffer when first read."""
+    P, q, G, h, A, b, lb, ub = args
+    n = q.shape[0]
+    out = np.empty(9 * n + 5)  # kqp.box_out_size
+    final = np.empty(n, _I64)
+    mp = opts.max_pivots
+    run = _ENTRY.get(kqp.solve_box) or _box_entry_point()
+    code, pivots, k, m = run(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
+                             100 * (n + 1) if mp is None else mp,  # (solve_blcp's default)
+                             opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
+    if code != kqp.OK:
+        return None
+    out.setflags(False)
+    res = _new(QPResult)
+    d = res.__dict__
+    d["x"] = out[:n]
+    d["status"] = _SOLVED
+    d["pivots"] = pivots
+    d["certificate"] = None
+    d["_resolve"] = (_box_small_fields, (out, n, final, k, m))
+    return res
+
+
+def _box_small_fields(out, n, final, k, m):
+    """The deferred fields of a result of :func:`_solve_box_small`."""
+    primal, dual, gap, obj = out[9 * n + 1:].tolist()
+    basic = final[:m].tolist()
+    return {"y": _EMPTY, "z": _EMPTY, "z_box": out[6 * n + 1:7 * n + 1], "obj": obj,
+            "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
+            "warm_start": _box_basis(out[7 * n + 1:8 * n + 1], out[8 * n + 1:9 * n + 1],
+                                     basic[:k], basic[k:])}
+
+
+def _box_entry_point():
+    """``kernels.qp.solve_box``'s compiled entry point for :func:`_plain_fast`'s types."""
+    a1, a2 = np.empty(0), np.empty((0, 0))
+    run = entry_point(kqp.solve_box, a2, a1, a2, a1, a2, a1, a1, a1, _NO_WARM[0], 0, 0.0, 0.0,
+                      0.0, a1, np.empty(0, dtype=np.int64))
+    if run is not kqp.solve_box:
+        _ENTRY[kqp.solve_box] = run
+    return run
+
+
+_EMPTY = np.zeros(0)
+_EMPTY.setflags(write=False)
+_NO_WARM = [np.zeros(2 * n, dtype=np.bool_) for n in range(BOX_FIRST)]  # no warm start
+
+
 def _box_screened(P, q, lb, ub):
     """``(Ps, q, lo, up)`` of a box-only QP whose data the fused path's screen passes
     (``kernels.qp.screen``: finite, symmetric to the front's tolerance, lb <= ub, bounds
@@ -480,10 +549,10 @@ def _box_fields(P, q, lo, up, x, z_box, ws):
     _, primal, dual, gap, obj = kkt((P, q, np.zeros((0, n)), empty, np.zeros((0, n)), empty,
                                      lo, up), x, empty, empty, z_box, 0.0)
     return {"obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
-            "warm_start": _box_basis(lo, up, ws)}
+            "warm_start": _box_basis(lo, up, ws.z_basic, ws.at_upper)}
 
 
-def _box_basis(lo, up, ws):
+def _box_basis(lo, up, z_basic, at_upper):
     """The box LCP's final basis as the KKT-MLCP's (``_reductions.qp_mlcp``), so that it can
     warm-start ``solve_qp``: pair k of a shifted variable (x' = x - lb, or ub - x when only
     ub is finite) is basic when x' can be positive there, and a boxed variable's upper
@@ -491,7 +560,7 @@ def _box_basis(lo, up, ws):
     lo_f, up_f = np.isfinite(lo), np.isfinite(up)
     fixed = lo_f & up_f & (lo == up)
     shifted = np.flatnonzero((lo_f | up_f) & ~fixed)
-    basic, upper = set(ws.z_basic), set(ws.at_upper)
+    basic, upper = set(z_basic), set(at_upper)
     pairs = [k for k, j in enumerate(shifted) if j in basic or (lo_f[j] and j in upper)]
     boxed = [j for j in shifted if lo_f[j] and up_f[j]]
     pairs += [shifted.size + b for b, j in enumerate(boxed) if j in upper]

@@ -78,7 +78,7 @@ last two terms are ``m (r + k)`` a pivot instead.
 import numpy as np
 from numba import njit
 
-from . import cold, inline_kernel, kernel, pivoting, unrevised
+from . import boxed, cold, inline_kernel, kernel, pivoting, unrevised
 from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_scale
 
 OK = 0
@@ -651,6 +651,55 @@ def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, ou
     x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve_gram(Ps, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol,
                        x, y, z, zb, stats, basic)
+
+
+@kernel
+def box_out_size(n):
+    """The length of :func:`solve_box`'s output buffer: ``[boxed.solve's buffer (6n + 1:
+    x, w, ...) | zb (n) | lo (n) | up (n) | primal, dual, gap, obj]``."""
+    return 9 * n + 5
+
+
+@kernel
+def solve_box(P, q, G, h, A, b, lb, ub, warm, max_pivots, pivot_tol, tie_tol, tol, out, final):
+    """A QP whose only constraints are bounds, in one call, as ``solve_qp``'s box path
+    (``lemke._qp._solve_box``) solves it: :func:`screen` (G, h, A, b empty), P definite
+    (:func:`cholesky`), then one run of ``boxed.solve`` on the box LCP ``(Ps, q, lo, up)``
+    (its KKT conditions: w = Ps x + q, z_box = -w), judged by its natural-map check
+    (``boxed.box_check``), and then by the fused path's own check, :func:`kkt_check` at
+    ``min(tol, STRICT_TOL)`` on the caller's data (so an answer from here is held to what
+    :func:`solve` holds its answers to).
+
+    Writes in ``out`` (:func:`box_out_size`) boxed.solve's buffer (x in its first n
+    entries), zb, the screened bounds and ``(primal, dual, gap, obj)``, and in ``final``
+    (length n) boxed.solve's final basis.  Returns ``(code, pivots, k, m)``: code OK,
+    BAD_INPUT, NOT_DEFINITE, NOT_SOLVED (the run did not end solved and checked: the
+    front's other paths, with their recoveries, decide) or CHECK_FAILED; ``final[:k]``
+    the basic x's, ``final[k:m]`` those at their upper bounds.  ``max_pivots`` as
+    ``solve_blcp``'s (the front passes its default, ``100 (n + 1)``)."""
+    n = q.shape[0]
+    ok, Ps, lo, up = screen(P, q, G, h, A, b, lb, ub)
+    if not ok:
+        return BAD_INPUT, 0, 0, 0
+    L = np.empty((n, n))
+    if not cholesky(Ps, L):
+        return NOT_DEFINITE, 0, 0, 0
+    buf = out[:6 * n + 1]
+    code, pivots, z0, solved, residual, k, m = boxed.solve(
+        Ps, q, lo, up, warm, np.int64(0), max_pivots, pivot_tol, tie_tol, tol, buf, final)
+    if not (code == pivoting.SOLVED and solved):
+        return NOT_SOLVED, pivots, 0, 0
+    x = buf[:n]
+    w = buf[n:2 * n]
+    zb = out[6 * n + 1:7 * n + 1]
+    for j in range(n):
+        zb[j] = -w[j]
+        out[7 * n + 1 + j] = lo[j]
+        out[8 * n + 1 + j] = up[j]
+    if not kkt_check(Ps, q, G, h, A, b, lo, up, x, b, h, zb, min(tol, STRICT_TOL),
+                     out[9 * n + 1:]):
+        return CHECK_FAILED, pivots, k, m
+    return OK, pivots, k, m
 
 
 @inline_kernel
