@@ -163,34 +163,88 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
-    if (warm_start is None and G is None and h is None and A is None and b is None
-            and (lb is not None or ub is not None)):
-        # A box-only QP with plain data below BOX_FIRST variables: the box kernel in one
-        # call (kernels.qp.solve_box), held to the fused kernel's check; from BOX_FIRST on,
-        # or when that call does not end solved and checked, the steps below.
-        plain = _plain_fast(P, q, None, None, None, None, lb, ub)
-        if (plain is not None and q.shape[0] < BOX_FIRST and type(method) is str
-                and method in METHODS):
-            res = _solve_box_small(plain, as_options(options))
-            if res is not None:
-                return res
-        tried = False
-    elif warm_start is None:
-        # The common call first, on its own lines: a cold QP with constraint rows and plain
-        # data (float64 arrays, C-contiguous, aligned, writable, of the kernel's ranks; the
-        # kernel checks their shapes) goes to the fused kernel through its compiled entry
-        # point with no other Python step; anything else, or a QP it does not solve and
-        # check, takes the steps below (which call it again only for data made plain).
-        plain = _plain_fast(P, q, G, h, A, b, lb, ub)
-        if plain is not None and type(method) is str and method in METHODS:
-            res = _solve_definite(plain, method, as_options(options))
-            if res is not None:
-                return res
-            tried = True
+    tried = False
+    if (warm_start is None and type(P) is _ND and type(q) is _ND
+            and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
+            and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
+            and q.shape[0] and type(method) is str and method in METHODS):
+        # The common cold call, inline: plain data (float64 ndarrays, C-contiguous, aligned
+        # and writable, of the fused kernel's ranks: what _plain_args would return as it is;
+        # the kernels compare the shapes) goes to its kernel's compiled entry point with no
+        # other Python step (each call and attribute read here costs about a tenth of a
+        # microsecond warm, several times that when the caches are cold).  A box-only QP
+        # below BOX_FIRST variables takes the box kernel (_solve_box_small), any other the
+        # fused kernel (as _solve_definite); what they do not solve and check, or data in
+        # another form, takes the steps below (which do not call the fused kernel again).
+        n = q.shape[0]
+        absent = _ABSENT.get(n) or _absent(n)
+        box = G is None and h is None and A is None and b is None
+        plain = True
+        if G is None:
+            if h is not None:
+                plain = False
+            Gk, hk = absent[0], absent[1]
+        elif (type(G) is _ND and type(h) is _ND and (G.dtype is _F64 or G.dtype == _F64)
+                  and (h.dtype is _F64 or h.dtype == _F64) and G.ndim == 2 and h.ndim == 1
+                  and G.flags.carray and h.flags.carray):
+            Gk, hk = G, h
         else:
-            tried = False
-    else:
-        tried = False
+            plain = False
+        if A is None:
+            if b is not None:
+                plain = False
+            Ak, bk = absent[0], absent[1]
+        elif (type(A) is _ND and type(b) is _ND and (A.dtype is _F64 or A.dtype == _F64)
+                  and (b.dtype is _F64 or b.dtype == _F64) and A.ndim == 2 and b.ndim == 1
+                  and A.flags.carray and b.flags.carray):
+            Ak, bk = A, b
+        else:
+            plain = False
+        if lb is None:
+            lo = absent[2]
+        elif (type(lb) is _ND and (lb.dtype is _F64 or lb.dtype == _F64) and lb.ndim == 1
+              and lb.flags.carray):
+            lo = lb
+        else:
+            plain = False
+        if ub is None:
+            up = absent[3]
+        elif (type(ub) is _ND and (ub.dtype is _F64 or ub.dtype == _F64) and ub.ndim == 1
+              and ub.flags.carray):
+            up = ub
+        else:
+            plain = False
+        if plain:
+            opts = _DEFAULT_OPTIONS if options is None else as_options(options)
+            if box and (lb is not None or ub is not None):
+                if n < BOX_FIRST:
+                    res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
+                    if res is not None:
+                        return res
+            elif Gk.shape[0] + n * ((lb is not None) + (ub is not None)) >= kqp.GRAM_RATIO * n:
+                res = _solve_definite((P, q, Gk, hk, Ak, bk, lo, up), method, opts)
+                if res is not None:
+                    return res
+                tried = True
+            else:  # _solve_definite, inline
+                p, m = Ak.shape[0], Gk.shape[0]
+                out = np.empty(2 * n + p + m + 4)  # kqp.out_size
+                basic = np.empty(m + 2 * n, _I64)
+                mp = opts.max_pivots
+                code, pivots, k, pairs = (_ENTRY.get(kqp.solve) or _entry_point(kqp.solve))(
+                    P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method], -1 if mp is None else mp,
+                    opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
+                if code == kqp.OK:
+                    out.setflags(False)  # (write=False, positional: a third of the time)
+                    res = _new(QPResult)  # (QPResult._deferred, inlined)
+                    d = res.__dict__
+                    d["x"] = out[:n]
+                    d["status"] = _SOLVED
+                    d["pivots"] = pivots
+                    d["certificate"] = None
+                    d["_resolve"] = (_fused_fields, (out, n, p, m, basic, k, pairs))
+                    return res
+                tried = True
     _validate.method(method, METHODS)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
@@ -342,48 +396,6 @@ def _kernel_vector(v):
 _ND = np.ndarray
 
 
-def _plain_fast(P, q, G, h, A, b, lb, ub):
-    """:func:`_plain_args` for the common call, in a fraction of its time: every array given
-    is already a float64 ndarray, C-contiguous, aligned and writable (``flags.carray``) of
-    the rank the fused kernel takes (P and the rows 2-D, the vectors 1-D); absent pairs
-    are the empty rows and infinite bounds of :func:`_absent`.  Shapes are not compared
-    here: the kernel's :func:`kernels.qp.screen` does that (BAD_INPUT).  None for anything
-    else (then :func:`_plain_args`, which converts)."""
-    if not (type(P) is _ND and type(q) is _ND and (P.dtype is _F64 or P.dtype == _F64)
-            and (q.dtype is _F64 or q.dtype == _F64) and P.ndim == 2 and q.ndim == 1
-            and P.flags.carray and q.flags.carray):
-        return None
-    n = q.shape[0]
-    absent = _ABSENT.get(n) or _absent(n)
-    if G is None:
-        if h is not None:
-            return None
-        G, h = absent[0], absent[1]
-    elif not (type(G) is _ND and type(h) is _ND and (G.dtype is _F64 or G.dtype == _F64)
-              and (h.dtype is _F64 or h.dtype == _F64) and G.ndim == 2 and h.ndim == 1
-              and G.flags.carray and h.flags.carray):
-        return None
-    if A is None:
-        if b is not None:
-            return None
-        A, b = absent[0], absent[1]
-    elif not (type(A) is _ND and type(b) is _ND and (A.dtype is _F64 or A.dtype == _F64)
-              and (b.dtype is _F64 or b.dtype == _F64) and A.ndim == 2 and b.ndim == 1
-              and A.flags.carray and b.flags.carray):
-        return None
-    if lb is None:
-        lb = absent[2]
-    elif not (type(lb) is _ND and (lb.dtype is _F64 or lb.dtype == _F64) and lb.ndim == 1
-              and lb.flags.carray):
-        return None
-    if ub is None:
-        ub = absent[3]
-    elif not (type(ub) is _ND and (ub.dtype is _F64 or ub.dtype == _F64) and ub.ndim == 1
-              and ub.flags.carray):
-        return None
-    return P, q, G, h, A, b, lb, ub
-
-
 def _plain_args(P, q, G, h, A, b, lb, ub):
     """The arguments as float64 C-contiguous arrays of exactly the shapes the fused kernel
     takes (column vectors flattened and absent constraints empty, as in
@@ -470,7 +482,7 @@ def _solve_box(P, q, lb, ub, opts):
 
 
 def _solve_box_small(args, opts):
-    """A box-only QP with plain data (:func:`_plain_fast`) of fewer than BOX_FIRST variables
+    """A box-only QP with plain data (as :func:`solve_qp`'s first lines take it) of fewer than BOX_FIRST variables
     in one kernel call, ``kernels.qp.solve_box``: the screen and P definite as the fused
     path's, one run of the box kernel (as :func:`_solve_box`'s first run), its natural-map
     check, then the fused path's KKT check (``kernels.qp.kkt_check`` at ``min(tol,
@@ -512,7 +524,8 @@ def _box_small_fields(out, n, final, k, m):
 
 
 def _box_entry_point():
-    """``kernels.qp.solve_box``'s compiled entry point for :func:`_plain_fast`'s types."""
+    """``kernels.qp.solve_box``'s compiled entry point for the plain types of
+    :func:`solve_qp`'s first lines."""
     a1, a2 = np.empty(0), np.empty((0, 0))
     run = entry_point(kqp.solve_box, a2, a1, a2, a1, a2, a1, a1, a1, _NO_WARM[0], 0, 0.0, 0.0,
                       0.0, a1, np.empty(0, dtype=np.int64))
@@ -611,6 +624,7 @@ def _solve_definite(args, method, opts):
 
 
 _new = object.__new__
+_DEFAULT_OPTIONS = as_options(None)
 _SOLVED = Status.SOLVED
 _I64 = np.dtype(np.int64)
 _METHOD_CODES = dict(cold.METHODS)
