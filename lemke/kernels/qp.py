@@ -116,9 +116,10 @@ def screen(P, q, G, h, A, b, lb, ub):
     shapes that do not match (P n x n, G m x n and h of length m, A p x n and b of length
     p, lb and ub of length n): the front leaves that comparison to this kernel."""
     n = q.shape[0]
-    Ps = np.empty((n, n))
-    lo = np.empty(n)
-    up = np.empty(n)
+    work = np.empty(n * (n + 2))  # one allocation: Ps, lo, up
+    Ps = work[:n * n].reshape((n, n))
+    lo = work[n * n:n * (n + 1)]
+    up = work[n * (n + 1):]
     if not (P.shape[0] == n and P.shape[1] == n and G.shape[1] == n and h.shape[0] == G.shape[0]
             and A.shape[1] == n and b.shape[0] == A.shape[0] and lb.shape[0] == n
             and ub.shape[0] == n):
@@ -394,9 +395,15 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     n = q.shape[0]
     t = tol + 4.0 * EPS
     # stationarity: P x + q + A'y + G'z + zb, accumulated over rows (P is symmetric)
-    s = q.copy()
-    err = np.zeros(n)
-    size = np.abs(q)
+    work = np.empty(4 * n)  # one allocation: s, err, size, allow
+    s = work[:n]
+    err = work[n:2 * n]
+    size = work[2 * n:3 * n]
+    allow = work[3 * n:]
+    for j in range(n):
+        s[j] = q[j]
+        err[j] = 0.0
+        size[j] = abs(q[j])
     axpy2_rows(s, err, size, x, P)
     # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
     gap_hi = 0.0
@@ -410,7 +417,6 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     axpy2_rows(s, err, size, z, G)
     ok = True
     dual = 0.0
-    allow = np.empty(n)
     for j in range(n):
         r, e = two_sum(s[j], zb[j])
         r += e + err[j]
@@ -514,11 +520,31 @@ def rows_of(G, h, A, b, lb, ub):
                 n_up += 1
             if lb[j] > -np.inf:
                 n_lo += 1
-    E = np.zeros((p0 + n_fix, n))
-    f = np.empty(p0 + n_fix)
-    ekind = np.full(p0 + n_fix, -1, dtype=np.int64)
-    E[:p0] = A
-    f[:p0] = b
+    m_g = 0
+    for i in range(m0):
+        if h[i] < np.inf:
+            m_g += 1
+    m = m_g + n_up + n_lo
+    p = p0 + n_fix
+    # one allocation per kind: [E | C | f | d] and [ekind | ckind]
+    work = np.empty((p + m) * (n + 1))
+    for t in range((p + m) * n):
+        work[t] = 0.0
+    E = work[:p * n].reshape((p, n))
+    C = work[p * n:(p + m) * n].reshape((m, n))
+    f = work[(p + m) * n:(p + m) * n + p]
+    d = work[(p + m) * n + p:]
+    kinds = np.empty(p + m, dtype=np.int64)
+    for t in range(p + m):
+        kinds[t] = -1
+    ekind = kinds[:p]
+    ckind = kinds[p:]
+    for i in range(p0):
+        Ei = E[i]
+        Ai = A[i]
+        for t in range(n):
+            Ei[t] = Ai[t]
+        f[i] = b[i]
     k = p0
     for j in range(n):
         if lb[j] == ub[j]:
@@ -526,18 +552,13 @@ def rows_of(G, h, A, b, lb, ub):
             f[k] = lb[j]
             ekind[k] = j
             k += 1
-    m_g = 0
-    for i in range(m0):
-        if h[i] < np.inf:
-            m_g += 1
-    m = m_g + n_up + n_lo
-    C = np.zeros((m, n))
-    d = np.empty(m)
-    ckind = np.full(m, -1, dtype=np.int64)
     k = 0
     for i in range(m0):
         if h[i] < np.inf:  # h_i = +inf: no constraint
-            C[k] = G[i]
+            Ck = C[k]
+            Gi = G[i]
+            for t in range(n):
+                Ck[t] = Gi[t]
             d[k] = h[i]
             ckind[k] = -1 - i
             k += 1
@@ -566,11 +587,14 @@ def mlcp_basis(lb, ub, m_g, ckind, lcp_basic, out):
     number and the number of pairs."""
     n = lb.shape[0]
     m = ckind.shape[0]
-    on = np.zeros(m, dtype=np.bool_)
+    flags = np.empty(m + 2 * n, dtype=np.bool_)  # one allocation: on, lo_on, up_on
+    for t in range(m + 2 * n):
+        flags[t] = False
+    on = flags[:m]
+    lo_on = flags[m:m + n]
+    up_on = flags[m + n:]
     for i in range(lcp_basic.shape[0]):
         on[lcp_basic[i]] = True
-    lo_on = np.zeros(n, dtype=np.bool_)
-    up_on = np.zeros(n, dtype=np.bool_)
     for i in range(m_g, m):
         j = ckind[i]
         if j < n:
@@ -715,11 +739,16 @@ def factors(q, G, h, A, b, lb, ub, L):
     m_g = 0
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
-    V = np.empty((min(p, n), n))
-    beta = np.empty(min(p, n))
-    c = q.copy()
-    v = np.empty(n)
-    g = np.empty(m)
+    pv = min(p, n)
+    work = np.empty(pv * (n + 1) + 2 * n + m)  # one allocation: V, beta, c, v, g
+    V = work[:pv * n].reshape((pv, n))
+    beta = work[pv * n:pv * (n + 1)]
+    o = pv * (n + 1)
+    c = work[o:o + n]
+    v = work[o + n:o + 2 * n]
+    g = work[o + 2 * n:]
+    for t in range(n):
+        c[t] = q[t]
     if p > n:
         return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     # W' = rows L^-1 e_i, L^-1 c_i
@@ -777,32 +806,36 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     p = E.shape[0]
     m = C.shape[0]
     r = n - p
-    M = np.empty((m, m))
+    # one allocation per kind for the rest: [M | zz | ones | yy | LCP buffer], the LCP's basis
+    work = np.empty(m * (m + 2) + p + cold.buffer_size(m))
+    M = work[:m * m].reshape((m, m))
+    zz = work[m * m:m * (m + 1)]
+    ones = work[m * (m + 1):m * (m + 2)]
+    yy = work[m * (m + 2):m * (m + 2) + p]
+    buf = work[m * (m + 2) + p:]
+    lcp_basic = np.empty(m, dtype=np.int64)
+    for i in range(m):
+        zz[i] = 0.0
+        ones[i] = 1.0
     for i in range(m):
         F2i = C[i][p:]
         for j in range(i + 1):
             M[i, j] = dot(F2i, C[j][p:], r)
             M[j, i] = M[i, j]
-    zz = np.zeros(m)
     pivots = 0
     k_basic = 0
     if m > 0:
-        buf = np.empty(cold.buffer_size(m))
-        lcp_basic = np.empty(m, dtype=np.int64)
         cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
         # The covering vector all ones, as solve_lcp's default, but given: cold.checked then
         # makes no recovery runs after a first run whose point fails its check (see the
         # module docstring, step 4); cold.checked_once is that, without their code.
         code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked_once(
-            method, M, g, np.ones(m), cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
+            method, M, g, ones, cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
         if not (code == pivoting.SOLVED or code == cold.TRIVIAL) or not lcp_ok:
             return NOT_SOLVED, pivots, 0, 0
         for i in range(m):
             zz[i] = max(buf[i], 0.0)
-        lcp_basic = lcp_basic[:k_basic].copy()
-    else:
-        lcp_basic = np.empty(0, dtype=np.int64)
-    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, lcp_basic, basic)
+    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, lcp_basic[:k_basic], basic)
     # v2 = -c2 - F2' z;  x = L'^-1 Q v
     for t in range(p, n):
         v[t] = -c[t]
@@ -812,7 +845,6 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             Ci = C[i]
             for t in range(p, n):
                 v[t] -= zi * Ci[t]
-    yy = np.empty(p)
     point(L, E, V, beta, C, c, v, zz, x, yy)
     caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
     # No refinement step here: the point is kept only when it is accurate far beyond the
