@@ -32,7 +32,7 @@ from ._status import Status
 from .kernels import cold, entry_point, qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
-BOX_FIRST = 16  # box-only QPs of at least this many variables try the bounded kernel first
+BOX_FIRST = 16  # box-only QPs: below, plain data goes to kqp.solve_box; from here, solve_blcp first
 
 
 @dataclass(frozen=True, eq=False)
@@ -249,10 +249,12 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
-    # Cold, the fast paths first: a box-only QP through the bounded kernel (first when it is
-    # large enough to beat the fused path, measured: BOX_FIRST), a definite P through the
-    # fused kernel (also a P semidefinite to rounding when m >= 4n: its step 7); else, or
-    # when they do not end solved and checked, the KKT-MLCP path.
+    # Cold, the fast paths first (for data the first lines did not take, or a QP they did
+    # not solve): a box-only QP of at least BOX_FIRST variables through the bounded kernel,
+    # a definite P through the fused kernel (also a P semidefinite to rounding when m >= 4n:
+    # its step 7; not again when the first lines tried it), a smaller box-only QP through
+    # the bounded kernel with its recovery runs; else, or when they do not end solved and
+    # checked, the KKT-MLCP path.
     box_only = warm_start is None and G is None and h is None and A is None and b is None and (
         lb is not None or ub is not None)
     box_first = box_only and np.size(q) >= BOX_FIRST
@@ -482,11 +484,11 @@ def _solve_box(P, q, lb, ub, opts):
 
 
 def _solve_box_small(args, opts):
-    """A box-only QP with plain data (as :func:`solve_qp`'s first lines take it) of fewer than BOX_FIRST variables
-    in one kernel call, ``kernels.qp.solve_box``: the screen and P definite as the fused
-    path's, one run of the box kernel (as :func:`_solve_box`'s first run), its natural-map
-    check, then the fused path's KKT check (``kernels.qp.kkt_check`` at ``min(tol,
-    STRICT_TOL)``: what the fused path answered these QPs with before).  The box LCP has n
+    """A box-only QP with plain data (as :func:`solve_qp`'s first lines take it) of fewer
+    than BOX_FIRST variables in one kernel call, ``kernels.qp.solve_box``: the screen and P
+    definite as the fused path's, one run of the box kernel (as :func:`_solve_box`'s first
+    run), its natural-map check, then the fused path's KKT check (``kernels.qp.kkt_check``
+    at ``min(tol, STRICT_TOL)``: what the fused path answered these QPs with before).  The box LCP has n
     pairs where the fused path's LCP has a row per bound (2n for a boxed variable): at
     n = 10, 2 to 5 us of kernel against 13.  None unless solved and checked: the fused path
     and then :func:`_solve_box` (with its recovery runs) decide.  Residuals, multipliers
@@ -604,7 +606,8 @@ def _solve_definite(args, method, opts):
         code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                 opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
     if code != kqp.OK:
-        # through the compiled entry point (the arrays are of its types: _plain_args)
+        # through the compiled entry point (the arrays are of its types: _plain_args and
+        # solve_qp's first lines make them C-contiguous, aligned and writable)
         run = _ENTRY.get(kqp.solve) or _entry_point(kqp.solve)
         code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], max_pivots,
                                      opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)

@@ -68,6 +68,11 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    :func:`solve` (steps 1-6) and then to the KKT-MLCP path, as before: an infeasible QP
    ends there with its certificate.
 
+**Bounds only** (``solve_box``, an entry of its own; ``solve_qp`` calls it for plain data
+below ``_qp.BOX_FIRST`` variables): the QP is the box LCP ``(P, q, lb, ub)``, solved by one
+run of ``boxed.solve`` on n pairs (where steps 2-4 would make an LCP with a row per bound),
+then checked by :func:`kkt_check` as in step 6.
+
 No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
 The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
 
