@@ -495,11 +495,11 @@ def _solve_box_small(args, opts):
     and the basis are read from the kernel's buffer when first read."""
     P, q, G, h, A, b, lb, ub = args
     n = q.shape[0]
-    out = np.empty(9 * n + 5)  # kqp.box_out_size
-    final = np.empty(n, _I64)
+    out = np.empty(7 * n + 5)  # kqp.box_out_size
+    final = np.empty(3 * n, _I64)
     mp = opts.max_pivots
     run = _ENTRY.get(kqp.solve_box) or _box_entry_point()
-    code, pivots, k, m = run(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
+    code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
                              100 * (n + 1) if mp is None else mp,  # (solve_blcp's default)
                              opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
     if code != kqp.OK:
@@ -511,18 +511,17 @@ def _solve_box_small(args, opts):
     d["status"] = _SOLVED
     d["pivots"] = pivots
     d["certificate"] = None
-    d["_resolve"] = (_box_small_fields, (out, n, final, k, m))
+    d["_resolve"] = (_box_small_fields, (out, n, final, k, pairs))
     return res
 
 
-def _box_small_fields(out, n, final, k, m):
-    """The deferred fields of a result of :func:`_solve_box_small`."""
-    primal, dual, gap, obj = out[9 * n + 1:].tolist()
-    basic = final[:m].tolist()
+def _box_small_fields(out, n, final, k, pairs):
+    """The deferred fields of a result of :func:`_solve_box_small` (the basis numbered as
+    :func:`_box_basis` numbers it, by the kernel: ``kernels.qp.box_basis``)."""
+    primal, dual, gap, obj = out[7 * n + 1:].tolist()
     return {"y": _EMPTY, "z": _EMPTY, "z_box": out[6 * n + 1:7 * n + 1], "obj": obj,
             "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
-            "warm_start": _box_basis(out[7 * n + 1:8 * n + 1], out[8 * n + 1:9 * n + 1],
-                                     basic[:k], basic[k:])}
+            "warm_start": WarmStart._trusted(pairs, tuple(final[n:n + k].tolist()))}
 
 
 def _box_entry_point():
@@ -564,10 +563,10 @@ def _box_fields(P, q, lo, up, x, z_box, ws):
     _, primal, dual, gap, obj = kkt((P, q, np.zeros((0, n)), empty, np.zeros((0, n)), empty,
                                      lo, up), x, empty, empty, z_box, 0.0)
     return {"obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
-            "warm_start": _box_basis(lo, up, ws.z_basic, ws.at_upper)}
+            "warm_start": _box_basis(lo, up, ws)}
 
 
-def _box_basis(lo, up, z_basic, at_upper):
+def _box_basis(lo, up, ws):
     """The box LCP's final basis as the KKT-MLCP's (``_reductions.qp_mlcp``), so that it can
     warm-start ``solve_qp``: pair k of a shifted variable (x' = x - lb, or ub - x when only
     ub is finite) is basic when x' can be positive there, and a boxed variable's upper
@@ -575,7 +574,7 @@ def _box_basis(lo, up, z_basic, at_upper):
     lo_f, up_f = np.isfinite(lo), np.isfinite(up)
     fixed = lo_f & up_f & (lo == up)
     shifted = np.flatnonzero((lo_f | up_f) & ~fixed)
-    basic, upper = set(z_basic), set(at_upper)
+    basic, upper = set(ws.z_basic), set(ws.at_upper)
     pairs = [k for k, j in enumerate(shifted) if j in basic or (lo_f[j] and j in upper)]
     boxed = [j for j in shifted if lo_f[j] and up_f[j]]
     pairs += [shifted.size + b for b, j in enumerate(boxed) if j in upper]

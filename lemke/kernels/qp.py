@@ -685,8 +685,44 @@ def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, ou
 @kernel
 def box_out_size(n):
     """The length of :func:`solve_box`'s output buffer: ``[boxed.solve's buffer (6n + 1:
-    x, w, ...) | zb (n) | lo (n) | up (n) | primal, dual, gap, obj]``."""
-    return 9 * n + 5
+    x, w, ...) | zb (n) | primal, dual, gap, obj]``."""
+    return 7 * n + 5
+
+
+@kernel
+def box_basis(lo, up, final, k, m, out):
+    """The final basis of a box LCP (``final[:k]`` the basic x's, ``final[k:m]`` those at
+    their upper bounds, as ``boxed.solve`` writes them) as ``solve_qp``'s KKT-MLCP numbers
+    its pairs (as :func:`mlcp_basis`): first one pair per variable with a finite bound that
+    is not fixed, its shifted variable (x - lb, or ub - x when only ub is finite) basic
+    when x is basic or sits at ub with lb finite; then one pair per boxed variable, its
+    upper multiplier basic when x sits at ub.  Writes the basic pairs in ``out`` (length
+    at least 2n), ascending; returns their number and the number of pairs."""
+    n = lo.shape[0]
+    flags = np.empty(2 * n, dtype=np.bool_)
+    for j in range(2 * n):
+        flags[j] = False
+    for i in range(k):
+        flags[final[i]] = True
+    for i in range(k, m):
+        flags[n + final[i]] = True
+    cnt = 0
+    pos = 0
+    for j in range(n):
+        lo_f = lo[j] > -np.inf
+        up_f = up[j] < np.inf
+        if (lo_f or up_f) and not (lo_f and up_f and lo[j] == up[j]):
+            if flags[j] or (lo_f and flags[n + j]):
+                out[cnt] = pos
+                cnt += 1
+            pos += 1
+    for j in range(n):
+        if lo[j] > -np.inf and up[j] < np.inf and lo[j] != up[j]:
+            if flags[n + j]:
+                out[cnt] = pos
+                cnt += 1
+            pos += 1
+    return cnt, pos
 
 
 @kernel
@@ -700,11 +736,11 @@ def solve_box(P, q, G, h, A, b, lb, ub, warm, max_pivots, pivot_tol, tie_tol, to
     :func:`solve` holds its answers to).
 
     Writes in ``out`` (:func:`box_out_size`) boxed.solve's buffer (x in its first n
-    entries), zb, the screened bounds and ``(primal, dual, gap, obj)``, and in ``final``
-    (length n) boxed.solve's final basis.  Returns ``(code, pivots, k, m)``: code OK,
-    BAD_INPUT, NOT_DEFINITE, NOT_SOLVED (the run did not end solved and checked: the
-    front's other paths, with their recoveries, decide) or CHECK_FAILED; ``final[:k]``
-    the basic x's, ``final[k:m]`` those at their upper bounds.  ``max_pivots`` as
+    entries), zb and ``(primal, dual, gap, obj)``, and in ``final`` (length 3n) boxed.solve's
+    final basis (its first n entries), then the basis as :func:`box_basis` numbers it.
+    Returns ``(code, pivots, k, pairs)``: code OK, BAD_INPUT, NOT_DEFINITE, NOT_SOLVED (the
+    run did not end solved and checked: the front's other paths, with their recoveries,
+    decide) or CHECK_FAILED; ``final[n:n + k]`` the basic pairs of ``pairs``.  ``max_pivots`` as
     ``solve_blcp``'s (the front passes its default, ``100 (n + 1)``)."""
     n = q.shape[0]
     ok, Ps, lo, up = screen(P, q, G, h, A, b, lb, ub)
@@ -715,7 +751,7 @@ def solve_box(P, q, G, h, A, b, lb, ub, warm, max_pivots, pivot_tol, tie_tol, to
         return NOT_DEFINITE, 0, 0, 0
     buf = out[:6 * n + 1]
     code, pivots, z0, solved, residual, k, m = boxed.solve(
-        Ps, q, lo, up, warm, np.int64(0), max_pivots, pivot_tol, tie_tol, tol, buf, final)
+        Ps, q, lo, up, warm, np.int64(0), max_pivots, pivot_tol, tie_tol, tol, buf, final[:n])
     if not (code == pivoting.SOLVED and solved):
         return NOT_SOLVED, pivots, 0, 0
     x = buf[:n]
@@ -723,12 +759,11 @@ def solve_box(P, q, G, h, A, b, lb, ub, warm, max_pivots, pivot_tol, tie_tol, to
     zb = out[6 * n + 1:7 * n + 1]
     for j in range(n):
         zb[j] = -w[j]
-        out[7 * n + 1 + j] = lo[j]
-        out[8 * n + 1 + j] = up[j]
     if not kkt_check(Ps, q, G, h, A, b, lo, up, x, b, h, zb, min(tol, STRICT_TOL),
-                     out[9 * n + 1:]):
-        return CHECK_FAILED, pivots, k, m
-    return OK, pivots, k, m
+                     out[7 * n + 1:]):
+        return CHECK_FAILED, pivots, 0, 0
+    cnt, pairs = box_basis(lo, up, final, k, m, final[n:])
+    return OK, pivots, cnt, pairs
 
 
 @inline_kernel
