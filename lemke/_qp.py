@@ -14,7 +14,6 @@ certificate is checked (``_certify``) before it is returned.
 """
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -30,10 +29,10 @@ from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import cold, qp as kqp
+from .kernels import cold, entry_point, qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
-BOX_FIRST = 16  # box-only QPs of at least this many variables try the bounded kernel first
+BOX_FIRST = 16  # box-only QPs: below, plain data goes to kqp.solve_box; from here, solve_blcp first
 
 
 @dataclass(frozen=True, eq=False)
@@ -166,14 +165,102 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
+    tried = False
+    if (warm_start is None and type(P) is _ND and type(q) is _ND
+            and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
+            and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
+            and q.shape[0] and type(method) is str and method in METHODS):
+        # The common cold call, inline: plain data (float64 ndarrays, C-contiguous, aligned
+        # and writable, of the fused kernel's ranks: what _plain_args would return as it is;
+        # the kernels compare the shapes) goes to its kernel's compiled entry point with no
+        # other Python step (each call and attribute read here costs about a tenth of a
+        # microsecond warm, several times that when the caches are cold).  A box-only QP
+        # below BOX_FIRST variables takes the box kernel (_solve_box_small), any other the
+        # fused kernel (as _solve_definite); what they do not solve and check, or data in
+        # another form, takes the steps below (which do not call the fused kernel again).
+        n = q.shape[0]
+        absent = _ABSENT.get(n) or _absent(n)
+        box = G is None and h is None and A is None and b is None
+        plain = True
+        if G is None:
+            if h is not None:
+                plain = False
+            Gk, hk = absent[0], absent[1]
+        elif (type(G) is _ND and type(h) is _ND and (G.dtype is _F64 or G.dtype == _F64)
+                  and (h.dtype is _F64 or h.dtype == _F64) and G.ndim == 2 and h.ndim == 1
+                  and G.flags.carray and h.flags.carray):
+            Gk, hk = G, h
+        else:
+            plain = False
+        if A is None:
+            if b is not None:
+                plain = False
+            Ak, bk = absent[0], absent[1]
+        elif (type(A) is _ND and type(b) is _ND and (A.dtype is _F64 or A.dtype == _F64)
+                  and (b.dtype is _F64 or b.dtype == _F64) and A.ndim == 2 and b.ndim == 1
+                  and A.flags.carray and b.flags.carray):
+            Ak, bk = A, b
+        else:
+            plain = False
+        if lb is None:
+            lo = absent[2]
+        elif (type(lb) is _ND and (lb.dtype is _F64 or lb.dtype == _F64) and lb.ndim == 1
+              and lb.flags.carray):
+            lo = lb
+        else:
+            plain = False
+        if ub is None:
+            up = absent[3]
+        elif (type(ub) is _ND and (ub.dtype is _F64 or ub.dtype == _F64) and ub.ndim == 1
+              and ub.flags.carray):
+            up = ub
+        else:
+            plain = False
+        if plain:
+            opts = _DEFAULT_OPTIONS if options is None else as_options(options)
+            if box and (lb is not None or ub is not None):
+                if n < BOX_FIRST:
+                    res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
+                    if res is not None:
+                        return res
+            elif Gk.shape[0] + n * ((lb is not None) + (ub is not None)) >= kqp.GRAM_RATIO * n:
+                res = _solve_definite((P, q, Gk, hk, Ak, bk, lo, up), method, opts)
+                if res is not None:
+                    return res
+                tried = True
+            else:  # _solve_definite, inline
+                p, m = Ak.shape[0], Gk.shape[0]
+                out = np.empty(2 * n + p + m + 4)  # kqp.out_size
+                basic = np.empty(m + 2 * n, _I64)
+                mp = opts.max_pivots
+                code, pivots, k, pairs = (_ENTRY.get(kqp.solve) or _entry_point(kqp.solve))(
+                    P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method], -1 if mp is None else mp,
+                    opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
+                if code == kqp.OK:
+                    out.setflags(False)  # (write=False, positional: a third of the time)
+                    res = _new(QPResult)  # (QPResult._deferred, inlined)
+                    d = res.__dict__
+                    d["x"] = out[:n]
+                    d["status"] = _SOLVED
+                    d["pivots"] = pivots
+                    d["certificate"] = None
+                    d["_resolve"] = (_fused_fields, (out, n, p, m, basic, k, pairs))
+                    return res
+                if code == kqp.NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
+                    res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
+                    if res is not None:
+                        return res
+                tried = True
     _validate.method(method, METHODS)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
-    # Cold, the fast paths first: a box-only QP through the bounded kernel (first when it is
-    # large enough to beat the fused path, measured: BOX_FIRST), a definite P through the
-    # fused kernel (also a P semidefinite to rounding when m >= 4n: its step 7); else, or
-    # when they do not end solved and checked, the KKT-MLCP path.
+    # Cold, the fast paths first (for data the first lines did not take, or a QP they did
+    # not solve): a box-only QP of at least BOX_FIRST variables through the bounded kernel,
+    # a definite P through the fused kernel (also a P semidefinite to rounding when m >= 4n:
+    # its step 7; not again when the first lines tried it), a smaller box-only QP through
+    # the bounded kernel with its recovery runs; else, or when they do not end solved and
+    # checked, the KKT-MLCP path.
     box_only = warm_start is None and G is None and h is None and A is None and b is None and (
         lb is not None or ub is not None)
     box_first = box_only and np.size(q) >= BOX_FIRST
@@ -181,7 +268,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         res = _solve_box(P, q, lb, ub, opts)
         if res is not None:
             return res
-    if warm_start is None:
+    if warm_start is None and not tried:
         plain = _plain_args(P, q, G, h, A, b, lb, ub)
         if plain is not None:
             res = _solve_definite(plain, method, opts)
@@ -277,25 +364,33 @@ def _restore_rows(res, keep):
     return replace(res, z=full(res.z), certificate=cert)
 
 
-@functools.lru_cache(maxsize=64)
+_ABSENT: dict = {}  # n -> _absent(n), the last 64 sizes
+
+
 def _absent(n):
     """``(G or A, h or b, lb, ub)`` of a QP of n variables without them: empty rows and
     infinite bounds, made once per n (a fresh ``np.full`` costs about 1 us, a fifth of a
-    small solve).  Private to the fused path, whose kernel only reads them."""
-    return np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+    small solve) and kept for the last 64 sizes.  Private to the fused path, whose kernel
+    only reads them."""
+    absent = _ABSENT.get(n)
+    if absent is None:
+        absent = np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+        if len(_ABSENT) >= 64:
+            del _ABSENT[next(iter(_ABSENT))]
+        _ABSENT[n] = absent
+    return absent
 
 
 _F64 = np.dtype(np.float64)
 
 
 def _kernel_array(x):
-    """float64, C-contiguous and writable (see ``_validate.kernel_array``); a plain float64
-    ndarray that already is goes through without a call into numpy."""
-    if type(x) is np.ndarray and x.dtype == _F64:
-        f = x.flags
-        if f.c_contiguous and f.writeable:
-            return x
-    return _validate.kernel_array(np.asarray(x, dtype=np.float64))
+    """float64, C-contiguous, aligned and writable (see ``_validate.kernel_array``); a plain
+    float64 ndarray that already is goes through without a call into numpy."""
+    if type(x) is np.ndarray and x.dtype == _F64 and x.flags.carray:
+        return x
+    x = _validate.kernel_array(np.asarray(x, dtype=np.float64))
+    return x if x.flags.aligned else x.copy()  # (the fused kernel's entry point: aligned)
 
 
 def _kernel_vector(v):
@@ -304,6 +399,9 @@ def _kernel_vector(v):
     if v.ndim == 2 and v.shape[1] == 1:
         v = v.reshape(-1)
     return v
+
+
+_ND = np.ndarray
 
 
 def _plain_args(P, q, G, h, A, b, lb, ub):
@@ -391,6 +489,63 @@ def _solve_box(P, q, lb, ub, opts):
         _box_fields, (P, q, lo, up, r.z, z_box, r.warm_start))
 
 
+def _solve_box_small(args, opts):
+    """A box-only QP with plain data (as :func:`solve_qp`'s first lines take it) of fewer
+    than BOX_FIRST variables in one kernel call, ``kernels.qp.solve_box``: the screen and P
+    definite as the fused path's, one run of the box kernel (as :func:`_solve_box`'s first
+    run), its natural-map check, then the fused path's KKT check (``kernels.qp.kkt_check``
+    at ``min(tol, STRICT_TOL)``: what the fused path answered these QPs with before).  The box LCP has n
+    pairs where the fused path's LCP has a row per bound (2n for a boxed variable): at
+    n = 10, 2 to 5 us of kernel against 13.  None unless solved and checked: the fused path
+    and then :func:`_solve_box` (with its recovery runs) decide.  Residuals, multipliers
+    and the basis are read from the kernel's buffer when first read."""
+    P, q, G, h, A, b, lb, ub = args
+    n = q.shape[0]
+    out = np.empty(7 * n + 5)  # kqp.box_out_size
+    final = np.empty(3 * n, _I64)
+    mp = opts.max_pivots
+    run = _ENTRY.get(kqp.solve_box) or _box_entry_point()
+    code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
+                             100 * (n + 1) if mp is None else mp,  # (solve_blcp's default)
+                             opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
+    if code != kqp.OK:
+        return None
+    out.setflags(False)
+    res = _new(QPResult)
+    d = res.__dict__
+    d["x"] = out[:n]
+    d["status"] = _SOLVED
+    d["pivots"] = pivots
+    d["certificate"] = None
+    d["_resolve"] = (_box_small_fields, (out, n, final, k, pairs))
+    return res
+
+
+def _box_small_fields(out, n, final, k, pairs):
+    """The deferred fields of a result of :func:`_solve_box_small` (the basis numbered as
+    :func:`_box_basis` numbers it, by the kernel: ``kernels.qp.box_basis``)."""
+    primal, dual, gap, obj = out[7 * n + 1:].tolist()
+    return {"y": _EMPTY, "z": _EMPTY, "z_box": out[6 * n + 1:7 * n + 1], "obj": obj,
+            "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
+            "warm_start": WarmStart._trusted(pairs, tuple(final[n:n + k].tolist()))}
+
+
+def _box_entry_point():
+    """``kernels.qp.solve_box``'s compiled entry point for the plain types of
+    :func:`solve_qp`'s first lines."""
+    a1, a2 = np.empty(0), np.empty((0, 0))
+    run = entry_point(kqp.solve_box, a2, a1, a2, a1, a2, a1, a1, a1, _NO_WARM[0], 0, 0.0, 0.0,
+                      0.0, a1, np.empty(0, dtype=np.int64))
+    if run is not kqp.solve_box:
+        _ENTRY[kqp.solve_box] = run
+    return run
+
+
+_EMPTY = np.zeros(0)
+_EMPTY.setflags(write=False)
+_NO_WARM = [np.zeros(2 * n, dtype=np.bool_) for n in range(BOX_FIRST)]  # no warm start
+
+
 def _box_screened(P, q, lb, ub):
     """``(Ps, q, lo, up)`` of a box-only QP whose data the fused path's screen passes
     (``kernels.qp.screen``: finite, symmetric to the front's tolerance, lb <= ub, bounds
@@ -445,10 +600,12 @@ def _solve_definite(args, method, opts):
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
     out = np.empty(2 * n + p + m + 4)  # kqp.out_size
-    basic = np.empty(m + 2 * n, dtype=np.int64)
-    max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
+    basic = np.empty(m + 2 * n, _I64)
+    max_pivots = opts.max_pivots
+    if max_pivots is None:
+        max_pivots = -1
     code = None
-    absent = _absent(n)
+    absent = _ABSENT.get(n) or _absent(n)
     if m + n * ((lb is not absent[2]) + (ub is not absent[3])) >= kqp.GRAM_RATIO * n:
         # at most that many inequalities: perhaps many more than variables (the kernel's
         # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
@@ -457,23 +614,68 @@ def _solve_definite(args, method, opts):
                                                 False)
     if code != kqp.OK:
         tried = code is not None and code != kqp.NOT_APPLICABLE  # step 7 ran
-        code, pivots, k, pairs = kqp.solve(P, q, G, h, A, b, lb, ub, cold.METHODS[method],
-                                           max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol,
-                                           out, basic)
+        # through the compiled entry point (the arrays are of its types: _plain_args and
+        # solve_qp's first lines make them C-contiguous, aligned and writable)
+        run = _ENTRY.get(kqp.solve) or _entry_point(kqp.solve)
+        code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], max_pivots,
+                                     opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
         if code == kqp.NOT_DEFINITE and not tried:
-            # P only semidefinite: its proximal factor, where the equalities can pin its
-            # flat directions (the kernel's step 8; NOT_APPLICABLE where they cannot)
-            code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
-                                                    opts.pivot_tol, opts.tie_tol, opts.tol, out,
-                                                    basic, True)
+            return _solve_semidefinite(args, opts)
     if code != kqp.OK:
         return None
-    out.setflags(write=False)  # the views below are read-only too
+    return _fused_result(out, n, p, m, basic, k, pairs, pivots)
+
+
+def _solve_semidefinite(args, opts):
+    """The kernel's step 8 for a P that the fused kernel found not definite: its proximal
+    factor and the factored path, where the equalities can pin P's flat directions
+    (``kqp.solve_gram`` with ``semidefinite``; NOT_APPLICABLE where they cannot).  None
+    when it does not end solved and checked."""
+    P, q, G, h, A, b, lb, ub = args
+    n, p, m = q.shape[0], A.shape[0], G.shape[0]
+    out = np.empty(2 * n + p + m + 4)  # kqp.out_size
+    basic = np.empty(m + 2 * n, _I64)
+    max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
+    code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, opts.pivot_tol,
+                                            opts.tie_tol, opts.tol, out, basic, True)
+    if code != kqp.OK:
+        return None
+    return _fused_result(out, n, p, m, basic, k, pairs, pivots)
+
+
+def _fused_result(out, n, p, m, basic, k, pairs, pivots):
+    """The result of the fused kernels' output: x and the status now, the rest deferred."""
+    out.setflags(False)  # (write=False, positional: a third of the time) the views too
     # x and the status now; the multipliers, residuals and the basis when first read
-    # (QPResult._deferred): building them costs as much as a small solve's LCP.
-    return QPResult._deferred(
-        {"x": out[:n], "status": Status.SOLVED, "pivots": pivots, "certificate": None},
-        _fused_fields, (out, n, p, m, basic, k, pairs))
+    # (QPResult._deferred, inlined): building them costs as much as a small solve's LCP.
+    res = _new(QPResult)
+    d = res.__dict__
+    d["x"] = out[:n]
+    d["status"] = _SOLVED
+    d["pivots"] = pivots
+    d["certificate"] = None
+    d["_resolve"] = (_fused_fields, (out, n, p, m, basic, k, pairs))
+    return res
+
+
+_new = object.__new__
+_DEFAULT_OPTIONS = as_options(None)
+_SOLVED = Status.SOLVED
+_I64 = np.dtype(np.int64)
+_METHOD_CODES = dict(cold.METHODS)
+_ENTRY: dict = {}
+
+
+def _entry_point(dispatcher):
+    """The compiled entry point of the fused kernel ``dispatcher`` (``kqp.solve``) for the
+    argument types :func:`_plain_args` gives (``kernels.entry_point``), once compiled; until
+    then the kernel itself."""
+    a1, a2 = np.empty(0), np.empty((0, 0))
+    run = entry_point(dispatcher, a2, a1, a2, a1, a2, a1, a1, a1, 0, 0, 0.0, 0.0, 0.0, a1,
+                      np.empty(0, dtype=np.int64))
+    if run is not dispatcher:
+        _ENTRY[dispatcher] = run
+    return run
 
 
 def _fused_fields(out, n, p, m, basic, k, pairs):

@@ -85,6 +85,11 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    CVXQP1-3_S (0.01-1.3 ms instead of 0.9-13 ms); ZECEVIC2 and QSHARE2B would solve too but
    fail the count.
 
+**Bounds only** (``solve_box``, an entry of its own; ``solve_qp`` calls it for plain data
+below ``_qp.BOX_FIRST`` variables): the QP is the box LCP ``(P, q, lb, ub)``, solved by one
+run of ``boxed.solve`` on n pairs (where steps 2-4 would make an LCP with a row per bound),
+then checked by :func:`kkt_check` as in step 6.
+
 No BLAS or LAPACK call is made: a factorization inside a kernel must not start a thread pool.
 The O(n^3) loops are dot products and axpys over contiguous rows (vectorized).
 
@@ -95,7 +100,7 @@ last two terms are ``m (r + k)`` a pivot instead.
 import numpy as np
 from numba import njit
 
-from . import cold, inline_kernel, kernel, pivoting, unrevised
+from . import boxed, cold, inline_kernel, kernel, pivoting, unrevised
 from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_scale
 
 OK = 0
@@ -130,11 +135,18 @@ def screen(P, q, G, h, A, b, lb, ub):
     lb <= ub, P symmetric to ``SYMMETRY_TOL`` of its largest entry), the symmetric part
     ``Ps = (P + P')/2``, and the bounds with entries beyond ``INFINITY`` made infinite.
     Data that is not plainly valid goes to the front's validation, which raises (naming the
-    entry) or accepts it; this is only the fast way through for the common case."""
+    entry) or accepts it; this is only the fast way through for the common case.  So do
+    shapes that do not match (P n x n, G m x n and h of length m, A p x n and b of length
+    p, lb and ub of length n): the front leaves that comparison to this kernel."""
     n = q.shape[0]
-    Ps = np.empty((n, n))
-    lo = np.empty(n)
-    up = np.empty(n)
+    work = np.empty(n * (n + 2))  # one allocation: Ps, lo, up
+    Ps = work[:n * n].reshape((n, n))
+    lo = work[n * n:n * (n + 1)]
+    up = work[n * (n + 1):]
+    if not (P.shape[0] == n and P.shape[1] == n and G.shape[1] == n and h.shape[0] == G.shape[0]
+            and A.shape[1] == n and b.shape[0] == A.shape[0] and lb.shape[0] == n
+            and ub.shape[0] == n):
+        return False, Ps, lo, up
     top = 0.0
     probe = nan_probe(q, n)
     for i in range(n):
@@ -406,9 +418,15 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     n = q.shape[0]
     t = tol + 4.0 * EPS
     # stationarity: P x + q + A'y + G'z + zb, accumulated over rows (P is symmetric)
-    s = q.copy()
-    err = np.zeros(n)
-    size = np.abs(q)
+    work = np.empty(4 * n)  # one allocation: s, err, size, allow
+    s = work[:n]
+    err = work[n:2 * n]
+    size = work[2 * n:3 * n]
+    allow = work[3 * n:]
+    for j in range(n):
+        s[j] = q[j]
+        err[j] = 0.0
+        size[j] = abs(q[j])
     axpy2_rows(s, err, size, x, P)
     # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
     gap_hi = 0.0
@@ -422,7 +440,6 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     axpy2_rows(s, err, size, z, G)
     ok = True
     dual = 0.0
-    allow = np.empty(n)
     for j in range(n):
         r, e = two_sum(s[j], zb[j])
         r += e + err[j]
@@ -526,11 +543,31 @@ def rows_of(G, h, A, b, lb, ub):
                 n_up += 1
             if lb[j] > -np.inf:
                 n_lo += 1
-    E = np.zeros((p0 + n_fix, n))
-    f = np.empty(p0 + n_fix)
-    ekind = np.full(p0 + n_fix, -1, dtype=np.int64)
-    E[:p0] = A
-    f[:p0] = b
+    m_g = 0
+    for i in range(m0):
+        if h[i] < np.inf:
+            m_g += 1
+    m = m_g + n_up + n_lo
+    p = p0 + n_fix
+    # one allocation per kind: [E | C | f | d] and [ekind | ckind]
+    work = np.empty((p + m) * (n + 1))
+    for t in range((p + m) * n):
+        work[t] = 0.0
+    E = work[:p * n].reshape((p, n))
+    C = work[p * n:(p + m) * n].reshape((m, n))
+    f = work[(p + m) * n:(p + m) * n + p]
+    d = work[(p + m) * n + p:]
+    kinds = np.empty(p + m, dtype=np.int64)
+    for t in range(p + m):
+        kinds[t] = -1
+    ekind = kinds[:p]
+    ckind = kinds[p:]
+    for i in range(p0):
+        Ei = E[i]
+        Ai = A[i]
+        for t in range(n):
+            Ei[t] = Ai[t]
+        f[i] = b[i]
     k = p0
     for j in range(n):
         if lb[j] == ub[j]:
@@ -538,18 +575,13 @@ def rows_of(G, h, A, b, lb, ub):
             f[k] = lb[j]
             ekind[k] = j
             k += 1
-    m_g = 0
-    for i in range(m0):
-        if h[i] < np.inf:
-            m_g += 1
-    m = m_g + n_up + n_lo
-    C = np.zeros((m, n))
-    d = np.empty(m)
-    ckind = np.full(m, -1, dtype=np.int64)
     k = 0
     for i in range(m0):
         if h[i] < np.inf:  # h_i = +inf: no constraint
-            C[k] = G[i]
+            Ck = C[k]
+            Gi = G[i]
+            for t in range(n):
+                Ck[t] = Gi[t]
             d[k] = h[i]
             ckind[k] = -1 - i
             k += 1
@@ -578,11 +610,14 @@ def mlcp_basis(lb, ub, m_g, ckind, lcp_basic, out):
     number and the number of pairs."""
     n = lb.shape[0]
     m = ckind.shape[0]
-    on = np.zeros(m, dtype=np.bool_)
+    flags = np.empty(m + 2 * n, dtype=np.bool_)  # one allocation: on, lo_on, up_on
+    for t in range(m + 2 * n):
+        flags[t] = False
+    on = flags[:m]
+    lo_on = flags[m:m + n]
+    up_on = flags[m + n:]
     for i in range(lcp_basic.shape[0]):
         on[lcp_basic[i]] = True
-    lo_on = np.zeros(n, dtype=np.bool_)
-    up_on = np.zeros(n, dtype=np.bool_)
     for i in range(m_g, m):
         j = ckind[i]
         if j < n:
@@ -668,6 +703,90 @@ def solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, pivot_tol, tie_tol, tol, ou
                        x, y, z, zb, stats, basic, semidefinite)
 
 
+@kernel
+def box_out_size(n):
+    """The length of :func:`solve_box`'s output buffer: ``[boxed.solve's buffer (6n + 1:
+    x, w, ...) | zb (n) | primal, dual, gap, obj]``."""
+    return 7 * n + 5
+
+
+@kernel
+def box_basis(lo, up, final, k, m, out):
+    """The final basis of a box LCP (``final[:k]`` the basic x's, ``final[k:m]`` those at
+    their upper bounds, as ``boxed.solve`` writes them) as ``solve_qp``'s KKT-MLCP numbers
+    its pairs (as :func:`mlcp_basis`): first one pair per variable with a finite bound that
+    is not fixed, its shifted variable (x - lb, or ub - x when only ub is finite) basic
+    when x is basic or sits at ub with lb finite; then one pair per boxed variable, its
+    upper multiplier basic when x sits at ub.  Writes the basic pairs in ``out`` (length
+    at least 2n), ascending; returns their number and the number of pairs."""
+    n = lo.shape[0]
+    flags = np.empty(2 * n, dtype=np.bool_)
+    for j in range(2 * n):
+        flags[j] = False
+    for i in range(k):
+        flags[final[i]] = True
+    for i in range(k, m):
+        flags[n + final[i]] = True
+    cnt = 0
+    pos = 0
+    for j in range(n):
+        lo_f = lo[j] > -np.inf
+        up_f = up[j] < np.inf
+        if (lo_f or up_f) and not (lo_f and up_f and lo[j] == up[j]):
+            if flags[j] or (lo_f and flags[n + j]):
+                out[cnt] = pos
+                cnt += 1
+            pos += 1
+    for j in range(n):
+        if lo[j] > -np.inf and up[j] < np.inf and lo[j] != up[j]:
+            if flags[n + j]:
+                out[cnt] = pos
+                cnt += 1
+            pos += 1
+    return cnt, pos
+
+
+@kernel
+def solve_box(P, q, G, h, A, b, lb, ub, warm, max_pivots, pivot_tol, tie_tol, tol, out, final):
+    """A QP whose only constraints are bounds, in one call, as ``solve_qp``'s box path
+    (``lemke._qp._solve_box``) solves it: :func:`screen` (G, h, A, b empty), P definite
+    (:func:`cholesky`), then one run of ``boxed.solve`` on the box LCP ``(Ps, q, lo, up)``
+    (its KKT conditions: w = Ps x + q, z_box = -w), judged by its natural-map check
+    (``boxed.box_check``), and then by the fused path's own check, :func:`kkt_check` at
+    ``min(tol, STRICT_TOL)`` on the caller's data (so an answer from here is held to what
+    :func:`solve` holds its answers to).
+
+    Writes in ``out`` (:func:`box_out_size`) boxed.solve's buffer (x in its first n
+    entries), zb and ``(primal, dual, gap, obj)``, and in ``final`` (length 3n) boxed.solve's
+    final basis (its first n entries), then the basis as :func:`box_basis` numbers it.
+    Returns ``(code, pivots, k, pairs)``: code OK, BAD_INPUT, NOT_DEFINITE, NOT_SOLVED (the
+    run did not end solved and checked: the front's other paths, with their recoveries,
+    decide) or CHECK_FAILED; ``final[n:n + k]`` the basic pairs of ``pairs``.  ``max_pivots`` as
+    ``solve_blcp``'s (the front passes its default, ``100 (n + 1)``)."""
+    n = q.shape[0]
+    ok, Ps, lo, up = screen(P, q, G, h, A, b, lb, ub)
+    if not ok:
+        return BAD_INPUT, 0, 0, 0
+    L = np.empty((n, n))
+    if not cholesky(Ps, L):
+        return NOT_DEFINITE, 0, 0, 0
+    buf = out[:6 * n + 1]
+    code, pivots, z0, solved, residual, k, m = boxed.solve(
+        Ps, q, lo, up, warm, np.int64(0), max_pivots, pivot_tol, tie_tol, tol, buf, final[:n])
+    if not (code == pivoting.SOLVED and solved):
+        return NOT_SOLVED, pivots, 0, 0
+    x = buf[:n]
+    w = buf[n:2 * n]
+    zb = out[6 * n + 1:7 * n + 1]
+    for j in range(n):
+        zb[j] = -w[j]
+    if not kkt_check(Ps, q, G, h, A, b, lo, up, x, b, h, zb, min(tol, STRICT_TOL),
+                     out[7 * n + 1:]):
+        return CHECK_FAILED, pivots, 0, 0
+    cnt, pairs = box_basis(lo, up, final, k, m, final[n:])
+    return OK, pivots, cnt, pairs
+
+
 @inline_kernel
 def factors(q, G, h, A, b, lb, ub, L):
     """Steps 2 and 3 and the LCP's right-hand side, given ``L`` (P = L L'): ``(code, E, f,
@@ -681,11 +800,16 @@ def factors(q, G, h, A, b, lb, ub, L):
     m_g = 0
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
-    V = np.empty((min(p, n), n))
-    beta = np.empty(min(p, n))
-    c = q.copy()
-    v = np.empty(n)
-    g = np.empty(m)
+    pv = min(p, n)
+    work = np.empty(pv * (n + 1) + 2 * n + m)  # one allocation: V, beta, c, v, g
+    V = work[:pv * n].reshape((pv, n))
+    beta = work[pv * n:pv * (n + 1)]
+    o = pv * (n + 1)
+    c = work[o:o + n]
+    v = work[o + n:o + 2 * n]
+    g = work[o + 2 * n:]
+    for t in range(n):
+        c[t] = q[t]
     if p > n:
         return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     # W' = rows L^-1 e_i, L^-1 c_i
@@ -743,32 +867,36 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     p = E.shape[0]
     m = C.shape[0]
     r = n - p
-    M = np.empty((m, m))
+    # one allocation per kind for the rest: [M | zz | ones | yy | LCP buffer], the LCP's basis
+    work = np.empty(m * (m + 2) + p + cold.buffer_size(m))
+    M = work[:m * m].reshape((m, m))
+    zz = work[m * m:m * (m + 1)]
+    ones = work[m * (m + 1):m * (m + 2)]
+    yy = work[m * (m + 2):m * (m + 2) + p]
+    buf = work[m * (m + 2) + p:]
+    lcp_basic = np.empty(m, dtype=np.int64)
+    for i in range(m):
+        zz[i] = 0.0
+        ones[i] = 1.0
     for i in range(m):
         F2i = C[i][p:]
         for j in range(i + 1):
             M[i, j] = dot(F2i, C[j][p:], r)
             M[j, i] = M[i, j]
-    zz = np.zeros(m)
     pivots = 0
     k_basic = 0
     if m > 0:
-        buf = np.empty(cold.buffer_size(m))
-        lcp_basic = np.empty(m, dtype=np.int64)
         cap = max_pivots if max_pivots >= 0 else 100 * (m + 1)
         # The covering vector all ones, as solve_lcp's default, but given: cold.checked then
         # makes no recovery runs after a first run whose point fails its check (see the
         # module docstring, step 4); cold.checked_once is that, without their code.
         code, pivots, k_basic, lcp_ok, residual, recoveries = cold.checked_once(
-            method, M, g, np.ones(m), cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
+            method, M, g, ones, cap, pivot_tol, tie_tol, tol, buf, lcp_basic)
         if not (code == pivoting.SOLVED or code == cold.TRIVIAL) or not lcp_ok:
             return NOT_SOLVED, pivots, 0, 0
         for i in range(m):
             zz[i] = max(buf[i], 0.0)
-        lcp_basic = lcp_basic[:k_basic].copy()
-    else:
-        lcp_basic = np.empty(0, dtype=np.int64)
-    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, lcp_basic, basic)
+    k_basic, pairs = mlcp_basis(lb, ub, m_g, ckind, lcp_basic[:k_basic], basic)
     # v2 = -c2 - F2' z;  x = L'^-1 Q v
     for t in range(p, n):
         v[t] = -c[t]
@@ -778,7 +906,6 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
             Ci = C[i]
             for t in range(p, n):
                 v[t] -= zi * Ci[t]
-    yy = np.empty(p)
     point(L, E, V, beta, C, c, v, zz, x, yy)
     caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
     # No refinement step here: the point is kept only when it is accurate far beyond the
