@@ -62,7 +62,7 @@ import functools
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
-from .certify import lcp_check_sized, lcp_ray_check
+from .certify import lcp_check_sized, lcp_ray_check_scaled
 from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
@@ -229,7 +229,7 @@ def basis_checks(M, q, z_basic, tol, R):
 
 @inline_kernel
 def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, first_code,
-            first_pivots):
+            first_pivots, scaled):
     """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
     (empty: all ones), then check the answer on (M, q).
 
@@ -241,7 +241,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     recoveries counts the restarts (after a cycle or a failed check, see the module
     docstring).
 
-    ``first_code`` < 0 solves from the start.  Otherwise :func:`first_run` has made the
+    ``first_code`` < 0 solves from the start (``scaled``: the finite check and the
+    equilibration are done already, by :func:`old_basis`, and the scales are in ``buf``).
+    Otherwise :func:`first_run` has made the
     first run (the prologue and the attempt 0 of :func:`pivot_recovering`), which ended
     with ``first_code`` after ``first_pivots`` pivots; ``buf`` holds its output and
     ``basic`` its flags of the basic z's, and the solve goes on from there, with the same
@@ -251,7 +253,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     z_basic = np.empty(n, dtype=np.bool_)
     start = np.int64(0)  # not a literal 0: see kernels/__init__.py
     if first_code < 0:
-        code = prologue(M, q, d, buf, np.False_)
+        code = prologue(M, q, d, buf, scaled)
         if code < 0:
             return code, 0, 0, code == TRIVIAL, 0.0, 0
     else:
@@ -265,6 +267,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     other = UNREVISED if method == TABLEAU else TABLEAU
     buf2, z_basic2 = buf, z_basic  # the recovery runs' own, allocated only when one runs
     have_ray = False  # buf holds a checked ray of a retry
+    # The verdict of the ray check on buf's ray, once made (the check is deterministic, and
+    # the scales R, C in buf are the equilibration's of (M, q) in every run).
+    ray_known, ray_ok = False, False
     # The first run (step -1) and the recovery runs (steps 0 .. RETRIES - 1) share one call
     # of pivot_recovering: every call site inlines both methods' set-up.
     for step in range(-1, RETRIES):
@@ -275,9 +280,11 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
         else:
             if d.shape[0] != 0 or (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
                 break  # a caller's covering vector gets no recovery runs
-            if step == 0 and code == pivoting.RAY_TERMINATION and lcp_ray_check(
-                    M, q, cov, x[:n], x[n], ray, tol):
-                break  # a checked ray of the first run: a verdict, not a failure
+            if step == 0 and code == pivoting.RAY_TERMINATION:
+                ray_known = True
+                ray_ok = lcp_ray_check_scaled(M, q, cov, x[:n], x[n], ray, tol, R, C)
+                if ray_ok:
+                    break  # a checked ray of the first run: a verdict, not a failure
             if step == 0:
                 buf2 = np.empty(buf.shape[0])  # only on the failure path: none when solved
                 z_basic2 = np.empty(n, dtype=np.bool_)
@@ -303,8 +310,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
                 and basis_checks(M, q, z_basic2, tol, R)):
             take = True  # both failed the check, only this one's basis gives a point
         if (not take and not have_ray and code2 == pivoting.RAY_TERMINATION
-                and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
+                and lcp_ray_check_scaled(M, q, cov2, x2[:n], x2[n], ray2, tol, R2, C2)):
             take = have_ray = True  # kept while no later run solves
+            ray_known, ray_ok = True, True
         elif take:
             have_ray = False
         if take:
@@ -312,7 +320,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
             copy(z_basic, z_basic2)
             code, ok, residual = code2, ok2, residual2
     if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
-        ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)
+        ok = ray_ok if ray_known else lcp_ray_check_scaled(M, q, cov, x[:n], x[n], ray, tol, R, C)
     return code, pivots, basic_indices(z_basic, basic), ok, residual, recoveries
 
 
@@ -530,6 +538,7 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     from there."""
     pivots = 0
     first_code, first_pivots = np.int64(-1), np.int64(0)
+    scaled = np.False_  # the finite check and the equilibration made (by old_basis)
     if k == -1:
         first_code, first_pivots = beta[0], beta[1]
     elif k != 0:
@@ -540,9 +549,10 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
                                                             tie_tol, tol, buf, basic, tried)
         if stage < 2:
             return code, pivots, kk, ok, residual, 0, stage if stage >= 0 else 2
+        scaled = np.True_  # stage 2: M and q finite, R and C in buf (not touched since)
     code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
                                                    pivot_tol, tie_tol, tol, buf, basic,
-                                                   first_code, first_pivots)
+                                                   first_code, first_pivots, scaled)
     return code, p + pivots, kk, ok, residual, recoveries, 2
 
 
