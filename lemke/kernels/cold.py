@@ -63,7 +63,7 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check_scaled
-from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
+from .linalg import copy, false_flags, finite_absmax, finite_equilibrate, no_matrix, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -120,12 +120,8 @@ def prologue(M, q, d, buf, scaled):
     :func:`old_basis`), and are not made again."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    if not scaled:
-        finite, m_max = finite_absmax(M)
-        finite &= nan_probe(q, n) == 0.0
-        if not finite:
-            return NOT_FINITE
-        equilibrate(M, q, R, C)
+    if not scaled and not finite_equilibrate(M, q, R, C)[0]:
+        return NOT_FINITE
     q_min = 0.0
     for i in range(n):
         q_min = min(q_min, q[i])
@@ -454,10 +450,9 @@ def old_basis(M, q, d, beta, k, tol, buf, basic):
     old block is singular, -1 when M or q has a NaN or an infinity; m_max = max |M|."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    finite, m_max = finite_absmax(M)
-    if not finite or nan_probe(q, n) != 0.0:
+    finite, m_max = finite_equilibrate(M, q, R, C)
+    if not finite:
         return -1, m_max, 0.0
-    equilibrate(M, q, R, C)
     x[n] = 0.0
     if not basis_point(M, q, beta, k, x[:n]):
         return 2, m_max, 0.0
@@ -576,12 +571,33 @@ def batch(method, Ms, mstart, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_to
     share one M), warm start ``beta[boff[b]:boff[b + 1]]`` (empty: cold), output buffer
     ``bufs[buff[b]:buff[b + 1]]``, basic indices ``basics[qoff[b]:qoff[b + 1]]`` and pivot
     cap ``max_pivots[b]``.  Row b of ``out_i`` gets (code, pivots, k, recoveries, stage), of
-    ``out_f`` (ok, residual)."""
+    ``out_f`` (ok, residual).  By the tableau, each problem takes the path of ``solve_lcp``:
+    :func:`first_run`, then :func:`solve_one` from where it stopped (stage -1 or -2), so the
+    common solves skip solve_one's recovery machinery (at n = 3 it cost as much as the
+    solve), with the same bits."""
     d = np.empty(0)
+    resume = np.empty(2, dtype=np.int64)  # solve_one's beta after a first run (stage -1)
     for b in range(lo, hi):
         n = qoff[b + 1] - qoff[b]
         M = Ms[mstart[b]:mstart[b] + n * n].reshape((n, n))
-        r = solve_one(method, M, qs[qoff[b]:qoff[b + 1]], d, beta[boff[b]:boff[b + 1]],
-                      boff[b + 1] - boff[b], max_pivots[b], pivot_tol, tie_tol, tol,
-                      bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]])
+        q = qs[qoff[b]:qoff[b + 1]]
+        beta_b = beta[boff[b]:boff[b + 1]]
+        k = boff[b + 1] - boff[b]
+        buf = bufs[buff[b]:buff[b + 1]]
+        basic = basics[qoff[b]:qoff[b + 1]]
+        if method == TABLEAU:
+            r = first_run(method, M, q, d, beta_b, k, max_pivots[b], pivot_tol, tie_tol, tol,
+                          buf, basic)
+            if r[6] >= 0:
+                _record(b, out_i, out_f, *r)
+                continue
+            if r[6] == -1:  # go on from the first run
+                resume[0] = r[0]
+                resume[1] = r[1]
+                beta_b = resume
+                k = np.int64(-1)
+            else:  # -2: restart from the old basis, whose point first_run tried
+                k = -2 - k
+        r = solve_one(method, M, q, d, beta_b, k, max_pivots[b], pivot_tol, tie_tol, tol, buf,
+                      basic)
         _record(b, out_i, out_f, *r)
