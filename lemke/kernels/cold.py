@@ -63,7 +63,7 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check_scaled
-from .linalg import copy, false_flags, finite_absmax, finite_equilibrate, no_matrix, solve_principal
+from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -120,8 +120,12 @@ def prologue(M, q, d, buf, scaled):
     :func:`old_basis`), and are not made again."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    if not scaled and not finite_equilibrate(M, q, R, C)[0]:
-        return NOT_FINITE
+    if not scaled:
+        finite, m_max = finite_absmax(M)
+        finite &= nan_probe(q, n) == 0.0
+        if not finite:
+            return NOT_FINITE
+        equilibrate(M, q, R, C)
     q_min = 0.0
     for i in range(n):
         q_min = min(q_min, q[i])
@@ -374,9 +378,9 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     decides the solve (the old basis solves it; solved and checked, q >= 0, a caller's
     covering vector, the pivots spent: no recovery run follows), it returns what solve_one
     returns.  When it does not (a cycle, a ray to check, recovery runs to make), it returns
-    stage -1 with that run's code and pivots, and ``basic`` holds its flags of the basic
-    z's: solve_one called with ``beta = [code, pivots]`` and ``k = -1`` goes on from there
-    with the same bits.  A warm start whose old basis fails at n >= RESTART_FROM returns
+    stage -1 with that run's code, pivots and residual (of the point's check; 0 after a
+    cycle), and ``basic`` holds its flags of the basic z's: solve_one called with ``beta =
+    [code, pivots]`` and ``k = -1`` goes on from there with the same bits.  A warm start whose old basis fails at n >= RESTART_FROM returns
     stage -2 at once: solve_one from that basis with ``k = -2 - k`` restarts Lemke there
     (without trying the point again).  Below RESTART_FROM a failed old basis goes cold here,
     as in solve_one.  So the first solves compile none of the rest (the unrevised method,
@@ -407,7 +411,7 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
             code == pivoting.RAY_TERMINATION or (d.shape[0] == 0 and pivots < max_pivots)):
         for i in range(n):
             basic[i] = z_basic[i]
-        return code, pivots, 0, False, 0.0, 0, -1
+        return code, pivots, 0, False, residual, 0, -1
     return code, pivots, basic_indices(z_basic, basic), ok, residual, 0, 2
 
 
@@ -450,9 +454,10 @@ def old_basis(M, q, d, beta, k, tol, buf, basic):
     old block is singular, -1 when M or q has a NaN or an infinity; m_max = max |M|."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
-    finite, m_max = finite_equilibrate(M, q, R, C)
-    if not finite:
+    finite, m_max = finite_absmax(M)
+    if not finite or nan_probe(q, n) != 0.0:
         return -1, m_max, 0.0
+    equilibrate(M, q, R, C)
     x[n] = 0.0
     if not basis_point(M, q, beta, k, x[:n]):
         return 2, m_max, 0.0
@@ -574,7 +579,11 @@ def batch(method, Ms, mstart, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_to
     ``out_f`` (ok, residual).  By the tableau, each problem takes the path of ``solve_lcp``:
     :func:`first_run`, then :func:`solve_one` from where it stopped (stage -1 or -2), so the
     common solves skip solve_one's recovery machinery (at n = 3 it cost as much as the
-    solve), with the same bits."""
+    solve), with the same bits.  A first run that ended on a ray whose point failed the
+    check (stage -1, code RAY_TERMINATION) gets the ray check here: when the ray passes,
+    solve_one would return it at once (:func:`checked`: a checked ray of the first run is
+    the verdict), and the result is made as it would (the basic z's, the residual of the
+    point's check, 0 recoveries, stage 2); else solve_one goes on (the recovery runs)."""
     d = np.empty(0)
     resume = np.empty(2, dtype=np.int64)  # solve_one's beta after a first run (stage -1)
     for b in range(lo, hi):
@@ -591,6 +600,16 @@ def batch(method, Ms, mstart, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_to
             if r[6] >= 0:
                 _record(b, out_i, out_f, *r)
                 continue
+            if r[6] == -1 and r[0] == pivoting.RAY_TERMINATION:
+                x, ray, w, cov, R, C = layout(n, buf)
+                if lcp_ray_check_scaled(M, q, cov, x[:n], x[n], ray, tol, R, C):
+                    kk = np.int64(0)  # the flags in basic to indices, in place (kk <= i)
+                    for i in range(n):
+                        if basic[i] != 0:
+                            basic[kk] = i
+                            kk += 1
+                    _record(b, out_i, out_f, r[0], r[1], kk, np.True_, r[4], np.int64(0), np.int64(2))
+                    continue
             if r[6] == -1:  # go on from the first run
                 resume[0] = r[0]
                 resume[1] = r[1]

@@ -203,24 +203,7 @@ def equilibrate(M, q, R, C):
     floor mean the same in every row and column, whatever scaling the caller's rows and
     columns came in.  q takes part so that rows are balanced as whole equations: in
     diag(1e12, 1e-12) z + (-1, -1) both rows keep their -1 (the columns take the scale)."""
-    _equilibrate(M, q, R, C, np.False_)
-
-
-@kernel
-def finite_equilibrate(M, q, R, C):
-    """``(finite, max|M|)`` as :func:`finite_absmax` (with q checked too) and, when finite,
-    :func:`equilibrate`'s scales, in one pass fewer over M: the finite check and max|M|
-    are read off the first sweep, whose scales are all 1.  When M or q is not finite, R and
-    C are not the scales (the caller reports the data instead)."""
-    return _equilibrate(M, q, R, C, np.True_)
-
-
-@inline_kernel
-def _equilibrate(M, q, R, C, probe):
-    """:func:`equilibrate`; with ``probe`` it returns :func:`finite_equilibrate`'s
-    ``(finite, m_max)`` (else ``(True, 0.0)``)."""
     n = M.shape[0]
-    m_max = 0.0
     R[:] = 1.0
     C[:] = 1.0
     cq = pow2_scale(absmax(q, n))  # q's own size never unbalances anything
@@ -241,14 +224,6 @@ def _equilibrate(M, q, R, C, probe):
             a = abs(q[i]) * r * cq
             rmax[i] = max(rm, a)
             qmax = max(qmax, a)
-        if probe and sweep == 0:
-            # The scales are all 1 in the first sweep: cmax holds the columns' largest |M_ij|.
-            nan = nan_probe(q, n)
-            for i in range(n):
-                nan += nan_probe(M[i], n)
-            if nan != 0.0:
-                return False, 0.0
-            m_max = absmax(cmax, n)
         balanced = not (qmax > 0.0 and (qmax < 0.5 or qmax > 2.0))
         for i in range(n):
             if rmax[i] > 0.0 and (rmax[i] < 0.5 or rmax[i] > 2.0):
@@ -261,7 +236,6 @@ def _equilibrate(M, q, R, C, probe):
             R[i] *= pow2_scale(math.sqrt(rmax[i]))
             C[i] *= pow2_scale(math.sqrt(cmax[i]))
         cq *= pow2_scale(math.sqrt(qmax))
-    return True, m_max
 
 
 @kernel
