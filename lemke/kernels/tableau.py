@@ -248,9 +248,20 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
         current_column(T, U, V, k, s, col)
         if is_basic[artificial]:
             z0_max = max(z0_max, rhs[pos[artificial]])
-        r = ratio_test(T, U, V, k, col, rhs, basis, pos, is_basic, start_basis,
-                       artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags,
-                       careful)
+        # The first run's common case first: its values are their own sizes (ratio_test's
+        # mags = rhs), and when the minimum ratio is unique (or nothing blocks) that decides;
+        # a tie goes through ratio_test, which finds the same candidates again.  (So the
+        # common pivot skips binding ratio_test's fourteen arrays: a reference count each.)
+        nc = 2
+        if not careful:
+            art = pos[artificial] if is_basic[artificial] else np.int64(-1)
+            nc = pivoting.min_ratio(rhs, rhs, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+        if nc <= 1:
+            r = cand[0] if nc == 1 else np.int64(-1)
+        else:
+            r = ratio_test(T, U, V, k, col, rhs, basis, pos, is_basic, start_basis,
+                           artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags,
+                           careful)
         if r < 0:
             status = RAY_TERMINATION
             entering = nonbasic[s]
