@@ -127,6 +127,16 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     that bound are read as zero, so is dz0 when d dz0 is below g times the size of M dz,
     and u may miss by the rounding floor of q (in the row-equilibrated units, as there)."""
     n = q.shape[0]
+    R = np.empty(2 * n)
+    equilibrate(M, q, R[:n], R[n:])
+    return lcp_ray_check_scaled(M, q, d, z, z0, ray, tol, R[:n], R[n:])
+
+
+@kernel
+def lcp_ray_check_scaled(M, q, d, z, z0, ray, tol, R, C):
+    """:func:`lcp_ray_check` when the caller already has the scales R, C of
+    ``equilibrate(M, q)`` (the LCP kernels keep them in their output buffer)."""
+    n = q.shape[0]
     g = (n + 3) * EPS
     t = tol + g
     if not z0 == z0:
@@ -134,12 +144,11 @@ def lcp_ray_check(M, q, d, z, z0, ray, tol):
     for j in range(n + 1):
         if not abs(ray[j]) < np.inf:
             return False
-    work = np.empty(10 * n + 1)  # one allocation for the ten work vectors below
-    R, C, dz = work[:n], work[n : 2 * n], work[2 * n : 3 * n + 1]
-    floors, no_floor = work[3 * n + 1 : 4 * n + 1], work[4 * n + 1 : 5 * n + 1]
-    ru, rdu = work[5 * n + 1 : 6 * n + 1], work[6 * n + 1 : 7 * n + 1]
-    u, w, du = work[7 * n + 1 : 8 * n + 1], work[8 * n + 1 : 9 * n + 1], work[9 * n + 1 :]
-    equilibrate(M, q, R, C)
+    work = np.empty(8 * n + 1)  # one allocation for the eight work vectors below
+    dz = work[: n + 1]
+    floors, no_floor = work[n + 1 : 2 * n + 1], work[2 * n + 1 : 3 * n + 1]
+    ru, rdu = work[3 * n + 1 : 4 * n + 1], work[4 * n + 1 : 5 * n + 1]
+    u, w, du = work[5 * n + 1 : 6 * n + 1], work[6 * n + 1 : 7 * n + 1], work[7 * n + 1 :]
     # Rounding in the direction: an entry of dz below g times the largest entry of the
     # direction (in the equilibrated units of the columns, dz0 included in the units where
     # the covering column R d has largest entry 1) is zero; so is dz0 when its contribution

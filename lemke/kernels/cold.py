@@ -62,7 +62,7 @@ import functools
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
-from .certify import lcp_check_sized, lcp_ray_check
+from .certify import lcp_check_sized, lcp_ray_check_scaled
 from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
@@ -229,7 +229,7 @@ def basis_checks(M, q, z_basic, tol, R):
 
 @inline_kernel
 def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, first_code,
-            first_pivots):
+            first_pivots, scaled):
     """Solve LCP(M, q) cold by ``method`` (TABLEAU or UNREVISED) with covering vector d
     (empty: all ones), then check the answer on (M, q).
 
@@ -241,7 +241,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     recoveries counts the restarts (after a cycle or a failed check, see the module
     docstring).
 
-    ``first_code`` < 0 solves from the start.  Otherwise :func:`first_run` has made the
+    ``first_code`` < 0 solves from the start (``scaled``: the finite check and the
+    equilibration are done already, by :func:`old_basis`, and the scales are in ``buf``).
+    Otherwise :func:`first_run` has made the
     first run (the prologue and the attempt 0 of :func:`pivot_recovering`), which ended
     with ``first_code`` after ``first_pivots`` pivots; ``buf`` holds its output and
     ``basic`` its flags of the basic z's, and the solve goes on from there, with the same
@@ -251,7 +253,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     z_basic = np.empty(n, dtype=np.bool_)
     start = np.int64(0)  # not a literal 0: see kernels/__init__.py
     if first_code < 0:
-        code = prologue(M, q, d, buf, np.False_)
+        code = prologue(M, q, d, buf, scaled)
         if code < 0:
             return code, 0, 0, code == TRIVIAL, 0.0, 0
     else:
@@ -265,6 +267,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
     other = UNREVISED if method == TABLEAU else TABLEAU
     buf2, z_basic2 = buf, z_basic  # the recovery runs' own, allocated only when one runs
     have_ray = False  # buf holds a checked ray of a retry
+    # The verdict of the ray check on buf's ray, once made (the check is deterministic, and
+    # the scales R, C in buf are the equilibration's of (M, q) in every run).
+    ray_known, ray_ok = False, False
     # The first run (step -1) and the recovery runs (steps 0 .. RETRIES - 1) share one call
     # of pivot_recovering: every call site inlines both methods' set-up.
     for step in range(-1, RETRIES):
@@ -275,9 +280,11 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
         else:
             if d.shape[0] != 0 or (code == pivoting.SOLVED and ok) or pivots >= max_pivots:
                 break  # a caller's covering vector gets no recovery runs
-            if step == 0 and code == pivoting.RAY_TERMINATION and lcp_ray_check(
-                    M, q, cov, x[:n], x[n], ray, tol):
-                break  # a checked ray of the first run: a verdict, not a failure
+            if step == 0 and code == pivoting.RAY_TERMINATION:
+                ray_known = True
+                ray_ok = lcp_ray_check_scaled(M, q, cov, x[:n], x[n], ray, tol, R, C)
+                if ray_ok:
+                    break  # a checked ray of the first run: a verdict, not a failure
             if step == 0:
                 buf2 = np.empty(buf.shape[0])  # only on the failure path: none when solved
                 z_basic2 = np.empty(n, dtype=np.bool_)
@@ -303,8 +310,9 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
                 and basis_checks(M, q, z_basic2, tol, R)):
             take = True  # both failed the check, only this one's basis gives a point
         if (not take and not have_ray and code2 == pivoting.RAY_TERMINATION
-                and lcp_ray_check(M, q, cov2, x2[:n], x2[n], ray2, tol)):
+                and lcp_ray_check_scaled(M, q, cov2, x2[:n], x2[n], ray2, tol, R2, C2)):
             take = have_ray = True  # kept while no later run solves
+            ray_known, ray_ok = True, True
         elif take:
             have_ray = False
         if take:
@@ -312,7 +320,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
             copy(z_basic, z_basic2)
             code, ok, residual = code2, ok2, residual2
     if code == pivoting.RAY_TERMINATION:  # ok: the verdict on the ray (the point failed)
-        ok = lcp_ray_check(M, q, cov, x[:n], x[n], ray, tol)
+        ok = ray_ok if ray_known else lcp_ray_check_scaled(M, q, cov, x[:n], x[n], ray, tol, R, C)
     return code, pivots, basic_indices(z_basic, basic), ok, residual, recoveries
 
 
@@ -370,9 +378,9 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     decides the solve (the old basis solves it; solved and checked, q >= 0, a caller's
     covering vector, the pivots spent: no recovery run follows), it returns what solve_one
     returns.  When it does not (a cycle, a ray to check, recovery runs to make), it returns
-    stage -1 with that run's code and pivots, and ``basic`` holds its flags of the basic
-    z's: solve_one called with ``beta = [code, pivots]`` and ``k = -1`` goes on from there
-    with the same bits.  A warm start whose old basis fails at n >= RESTART_FROM returns
+    stage -1 with that run's code, pivots and residual (of the point's check; 0 after a
+    cycle), and ``basic`` holds its flags of the basic z's: solve_one called with ``beta =
+    [code, pivots]`` and ``k = -1`` goes on from there with the same bits.  A warm start whose old basis fails at n >= RESTART_FROM returns
     stage -2 at once: solve_one from that basis with ``k = -2 - k`` restarts Lemke there
     (without trying the point again).  Below RESTART_FROM a failed old basis goes cold here,
     as in solve_one.  So the first solves compile none of the rest (the unrevised method,
@@ -403,7 +411,7 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
             code == pivoting.RAY_TERMINATION or (d.shape[0] == 0 and pivots < max_pivots)):
         for i in range(n):
             basic[i] = z_basic[i]
-        return code, pivots, 0, False, 0.0, 0, -1
+        return code, pivots, 0, False, residual, 0, -1
     return code, pivots, basic_indices(z_basic, basic), ok, residual, 0, 2
 
 
@@ -530,6 +538,7 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     from there."""
     pivots = 0
     first_code, first_pivots = np.int64(-1), np.int64(0)
+    scaled = np.False_  # the finite check and the equilibration made (by old_basis)
     if k == -1:
         first_code, first_pivots = beta[0], beta[1]
     elif k != 0:
@@ -540,9 +549,10 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
                                                             tie_tol, tol, buf, basic, tried)
         if stage < 2:
             return code, pivots, kk, ok, residual, 0, stage if stage >= 0 else 2
+        scaled = np.True_  # stage 2: M and q finite, R and C in buf (not touched since)
     code, p, kk, ok, residual, recoveries = checked(method, M, q, d, max(0, max_pivots - pivots),
                                                    pivot_tol, tie_tol, tol, buf, basic,
-                                                   first_code, first_pivots)
+                                                   first_code, first_pivots, scaled)
     return code, p + pivots, kk, ok, residual, recoveries, 2
 
 
@@ -566,12 +576,47 @@ def batch(method, Ms, mstart, qs, qoff, beta, boff, lo, hi, max_pivots, pivot_to
     share one M), warm start ``beta[boff[b]:boff[b + 1]]`` (empty: cold), output buffer
     ``bufs[buff[b]:buff[b + 1]]``, basic indices ``basics[qoff[b]:qoff[b + 1]]`` and pivot
     cap ``max_pivots[b]``.  Row b of ``out_i`` gets (code, pivots, k, recoveries, stage), of
-    ``out_f`` (ok, residual)."""
+    ``out_f`` (ok, residual).  By the tableau, each problem takes the path of ``solve_lcp``:
+    :func:`first_run`, then :func:`solve_one` from where it stopped (stage -1 or -2), so the
+    common solves skip solve_one's recovery machinery (at n = 3 it cost as much as the
+    solve), with the same bits.  A first run that ended on a ray whose point failed the
+    check (stage -1, code RAY_TERMINATION) gets the ray check here: when the ray passes,
+    solve_one would return it at once (:func:`checked`: a checked ray of the first run is
+    the verdict), and the result is made as it would (the basic z's, the residual of the
+    point's check, 0 recoveries, stage 2); else solve_one goes on (the recovery runs)."""
     d = np.empty(0)
+    resume = np.empty(2, dtype=np.int64)  # solve_one's beta after a first run (stage -1)
     for b in range(lo, hi):
         n = qoff[b + 1] - qoff[b]
         M = Ms[mstart[b]:mstart[b] + n * n].reshape((n, n))
-        r = solve_one(method, M, qs[qoff[b]:qoff[b + 1]], d, beta[boff[b]:boff[b + 1]],
-                      boff[b + 1] - boff[b], max_pivots[b], pivot_tol, tie_tol, tol,
-                      bufs[buff[b]:buff[b + 1]], basics[qoff[b]:qoff[b + 1]])
+        q = qs[qoff[b]:qoff[b + 1]]
+        beta_b = beta[boff[b]:boff[b + 1]]
+        k = boff[b + 1] - boff[b]
+        buf = bufs[buff[b]:buff[b + 1]]
+        basic = basics[qoff[b]:qoff[b + 1]]
+        if method == TABLEAU:
+            r = first_run(method, M, q, d, beta_b, k, max_pivots[b], pivot_tol, tie_tol, tol,
+                          buf, basic)
+            if r[6] >= 0:
+                _record(b, out_i, out_f, *r)
+                continue
+            if r[6] == -1 and r[0] == pivoting.RAY_TERMINATION:
+                x, ray, w, cov, R, C = layout(n, buf)
+                if lcp_ray_check_scaled(M, q, cov, x[:n], x[n], ray, tol, R, C):
+                    kk = np.int64(0)  # the flags in basic to indices, in place (kk <= i)
+                    for i in range(n):
+                        if basic[i] != 0:
+                            basic[kk] = i
+                            kk += 1
+                    _record(b, out_i, out_f, r[0], r[1], kk, np.True_, r[4], np.int64(0), np.int64(2))
+                    continue
+            if r[6] == -1:  # go on from the first run
+                resume[0] = r[0]
+                resume[1] = r[1]
+                beta_b = resume
+                k = np.int64(-1)
+            else:  # -2: restart from the old basis, whose point first_run tried
+                k = -2 - k
+        r = solve_one(method, M, q, d, beta_b, k, max_pivots[b], pivot_tol, tie_tol, tol, buf,
+                      basic)
         _record(b, out_i, out_f, *r)

@@ -133,20 +133,41 @@ def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
                artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags, careful):
     """The row that blocks the entering column (current values in ``col``), or -1 when
     nothing blocks (a ray): the rule of :mod:`lemke.kernels.pivoting`, with the columns of
-    the basis inverse read off the tableau."""
+    the basis inverse read off the tableau.  (:func:`lemke` runs its three parts itself,
+    :func:`careful_sizes` only in a careful run and :func:`lex_ties` only on a tie, so that
+    the common pivot binds none of their arrays: each one bound is a reference count.)
+
+    The size of the terms behind each value, |B^-1| |q|, for the rule's test of "zero to
+    rounding": only when ``careful`` (the recovery runs of kernels.cold), see
+    :func:`careful_sizes`; the first run passes the values themselves (only negative values
+    count as zero there)."""
     n = T.shape[0]
     art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
-    # The size of the terms behind each value, |B^-1| |q|, for the rule's test of "zero to
-    # rounding".  Only when ``careful`` (the recovery runs of kernels.cold): magb bounds it
-    # from above (updated with every pivot), so only a row whose value is below
-    # VALUE_ROUNDING * magb can be rounding, and only for those rows is the exact size
-    # computed, from the row of B^-1 (O(n) each; the bound grows with the pivots, and on
-    # large problems that makes the first run up to 10x slower, so the first run passes the
-    # values themselves: only negative values count as zero there).
+    sizes = rhs
+    if careful:
+        careful_sizes(T, U, V, k_pending, col, rhs, pos, is_basic, start_basis, q0, magb, mags)
+        sizes = mags
+    nc = pivoting.min_ratio(rhs, sizes, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+    if nc <= 1:
+        return cand[0] if nc == 1 else np.int64(-1)
+    return lex_ties(T, U, V, k_pending, col, basis, pos, is_basic, start_basis, artificial,
+                    pivot_tol, tie_tol, cand, keys, nc)
+
+
+@inline_kernel
+def careful_sizes(T, U, V, k_pending, col, rhs, pos, is_basic, start_basis, q0, magb, mags):
+    """``mags`` = the size of the terms behind each value, |B^-1| |q|, for the rule's test of
+    "zero to rounding", in a careful run (the recovery runs of kernels.cold): magb bounds it
+    from above (updated with every pivot), so only a row whose value is below
+    VALUE_ROUNDING * magb can be rounding, and only for those rows is the exact size
+    computed, from the row of B^-1 (O(n) each; the bound grows with the pivots, and on
+    large problems that makes the first run up to 10x slower, so the first run passes the
+    values themselves); the other rows get their values."""
+    n = T.shape[0]
     for i in range(n):
         v = rhs[i]
         mags[i] = v
-        if careful and col[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
+        if col[i] < 0.0 and v > 0.0 and v <= pivoting.VALUE_ROUNDING * magb[i]:
             size = 0.0
             for j in range(n):
                 lab = start_basis[j]
@@ -156,9 +177,14 @@ def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
                     b = entry(T, U, V, k_pending, i, pos[lab])
                 size += abs(b) * abs(q0[j])
             mags[i] = size
-    nc = pivoting.min_ratio(rhs, mags, col, n, pivot_tol, tie_tol, cand, art, z0_max)
-    if nc <= 1:
-        return cand[0] if nc == 1 else -1
+
+
+@inline_kernel
+def lex_ties(T, U, V, k_pending, col, basis, pos, is_basic, start_basis, artificial, pivot_tol,
+             tie_tol, cand, keys, nc):
+    """The row among the ``nc`` candidates tied at the minimum ratio (``cand``, nc >= 2):
+    the artificial variable if it is one of them, else the lexicographic rule."""
+    n = T.shape[0]
     for c in range(nc):
         if basis[cand[c]] == artificial:
             return cand[c]
@@ -176,7 +202,7 @@ def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
         nc = pivoting.keep_lowest(cand, keys, nc, tie_tol)
         if nc == 1:
             return cand[0]
-    return pivoting.largest_pivot(cand, col, nc) if nc > 0 else -1
+    return pivoting.largest_pivot(cand, col, nc) if nc > 0 else np.int64(-1)
 
 
 @kernel
@@ -248,9 +274,18 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
         current_column(T, U, V, k, s, col)
         if is_basic[artificial]:
             z0_max = max(z0_max, rhs[pos[artificial]])
-        r = ratio_test(T, U, V, k, col, rhs, basis, pos, is_basic, start_basis,
-                       artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags,
-                       careful)
+        # ratio_test, its parts called here: the common pivot binds none of their arrays
+        art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
+        sizes = rhs  # the first run: the values are their own sizes
+        if careful:
+            careful_sizes(T, U, V, k, col, rhs, pos, is_basic, start_basis, q0, magb, mags)
+            sizes = mags
+        nc = pivoting.min_ratio(rhs, sizes, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+        if nc <= 1:
+            r = cand[0] if nc == 1 else np.int64(-1)
+        else:
+            r = lex_ties(T, U, V, k, col, basis, pos, is_basic, start_basis, artificial,
+                         pivot_tol, tie_tol, cand, keys, nc)
         if r < 0:
             status = RAY_TERMINATION
             entering = nonbasic[s]
