@@ -27,7 +27,7 @@ the check on the caller's data, or whose ray fails the ray check, or that met a 
 failure, is followed by up to four more runs (their pivots counted, within the same cap),
 until one ends solved and checked.  Recovery runs of the tableau are *careful*: they test
 "zero to rounding" with the exact |B^-1| |q| of the rows under a running bound (see
-``tableau.ratio_test``), which the first run skips for speed.  The runs:
+``tableau.careful_sizes``), which the first run skips for speed.  The runs:
 
 1. the covering vector that is all ones in the *equilibrated* coordinates (d = 1 / R).  The
    default d = 1 is all ones in the caller's coordinates; when the rows of M come in very

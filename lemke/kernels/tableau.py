@@ -76,7 +76,7 @@ def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
         T[r, j] = prow[j]
     rhs[r] = -rhs[r] * inv
     rr = rhs[r]
-    magb[r] *= abs(inv)  # an upper bound on |B^-1| |q| per row (see ratio_test)
+    magb[r] *= abs(inv)  # an upper bound on |B^-1| |q| per row (see careful_sizes)
     mr = magb[r]
     for p in range(k):  # row r and column s are now exact in T
         U[r, p] = 0.0
@@ -126,32 +126,6 @@ def flush(T, U, V, k, act):
             for j in range(m):
                 T[i, j] += a * V[p, j]
             c += 1
-
-
-@inline_kernel
-def ratio_test(T, U, V, k_pending, col, rhs, basis, pos, is_basic, start_basis,
-               artificial, pivot_tol, tie_tol, cand, keys, z0_max, q0, magb, mags, careful):
-    """The row that blocks the entering column (current values in ``col``), or -1 when
-    nothing blocks (a ray): the rule of :mod:`lemke.kernels.pivoting`, with the columns of
-    the basis inverse read off the tableau.  (:func:`lemke` runs its three parts itself,
-    :func:`careful_sizes` only in a careful run and :func:`lex_ties` only on a tie, so that
-    the common pivot binds none of their arrays: each one bound is a reference count.)
-
-    The size of the terms behind each value, |B^-1| |q|, for the rule's test of "zero to
-    rounding": only when ``careful`` (the recovery runs of kernels.cold), see
-    :func:`careful_sizes`; the first run passes the values themselves (only negative values
-    count as zero there)."""
-    n = T.shape[0]
-    art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
-    sizes = rhs
-    if careful:
-        careful_sizes(T, U, V, k_pending, col, rhs, pos, is_basic, start_basis, q0, magb, mags)
-        sizes = mags
-    nc = pivoting.min_ratio(rhs, sizes, col, n, pivot_tol, tie_tol, cand, art, z0_max)
-    if nc <= 1:
-        return cand[0] if nc == 1 else np.int64(-1)
-    return lex_ties(T, U, V, k_pending, col, basis, pos, is_basic, start_basis, artificial,
-                    pivot_tol, tie_tol, cand, keys, nc)
 
 
 @inline_kernel
@@ -274,7 +248,9 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
         current_column(T, U, V, k, s, col)
         if is_basic[artificial]:
             z0_max = max(z0_max, rhs[pos[artificial]])
-        # ratio_test, its parts called here: the common pivot binds none of their arrays
+        # The ratio test (the rule of kernels.pivoting, the columns of the basis inverse read
+        # off the tableau), its parts called here: the common pivot, settled by min_ratio,
+        # binds none of the arrays of careful_sizes and lex_ties (a reference count each)
         art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
         sizes = rhs  # the first run: the values are their own sizes
         if careful:
