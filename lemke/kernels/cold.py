@@ -440,8 +440,9 @@ def basis_point(M, q, beta, k, z):
 #: warm basis of q and q moved by a relative 1e-3, 1e-2 and 0.3; PD and contact-like M):
 #: at n = 8 the restart took 1.2-1.4x a cold solve, at n = 16 0.9-1.4x, at n = 24 0.75-1.2x,
 #: from n = 32 to 200 0.35-0.8x when q moved by 1e-3 or 1e-2 (fewer pivots win) and
-#: 0.9-1.3x when it moved by 0.3.  The restart runs the unrevised method, whose pivots
-#: cost 2-3x the tableau's at these sizes, so fewer pivots pay only from about n = 24.
+#: 0.9-1.3x when it moved by 0.3.  The restart runs the unrevised method; remeasured after
+#: its pivots got as cheap as the tableau's (values updated in place): 1.1-1.4x at n = 8-12,
+#: 0.9-1.2x at n = 16, 0.6-1.2x at n = 24, 0.5-0.8x from n = 32 for the small moves.
 RESTART_FROM = 24
 
 
