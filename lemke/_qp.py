@@ -633,6 +633,11 @@ def _solve_semidefinite(args, opts):
     when it does not end solved and checked."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
+    if np.count_nonzero(P.diagonal() == 0.0) > p + np.count_nonzero(lb == ub):
+        # more zero diagonal entries (flat directions) than equality rows: the kernel would
+        # decline at once (kqp.zero_diagonal); a linear program, say, neither calls nor
+        # compiles it
+        return None
     out = np.empty(2 * n + p + m + 4)  # kqp.out_size
     basic = np.empty(m + 2 * n, _I64)
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import lemke
-from lemke import Status
+from lemke import Status, _qp
 from lemke.kernels import qp as kqp
 from lemke.problems import random_convex_qp
 from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
@@ -211,14 +211,22 @@ def test_semidefinite_pinned_by_equalities(name, method, gram_calls, dense_calls
 
 @pytest.mark.parametrize("name", ["QAFIRO", "ZECEVIC2", "PRIMALC1", "QADLITTL"])
 def test_flat_directions_not_pinned(name, gram_calls, dense_calls):
-    """Linear-program-like problems (P with more flat directions than equality rows): step 8
-    declines at once (NOT_APPLICABLE, before any pivot) and the KKT-MLCP path answers."""
+    """Linear-program-like problems (P with more zero diagonal entries than equality rows):
+    step 8 is not even called (solve_qp counts them first), the KKT-MLCP path answers; the
+    kernel itself, called directly, declines before any pivot (NOT_APPLICABLE)."""
     problem, r = load(DATA / f"{name}.mat")
     res = lemke.solve_qp(*problem)
     check_solved(problem, res)
     assert dense_calls == [kqp.NOT_DEFINITE]
-    assert gram_calls == [kqp.NOT_APPLICABLE]
+    assert gram_calls == []
     assert abs(res.obj + r - REFS[name]) <= 1e-6 * max(1.0, abs(REFS[name]))
+    P, q, G, h, A, b, lb, ub = _qp._plain_args(*problem)
+    n, p, m = q.size, A.shape[0], G.shape[0]
+    out, basic = np.empty(2 * n + p + m + 4), np.empty(m + 2 * n, dtype=np.int64)
+    o = lemke.Options()
+    code, pivots, _, _ = kqp.solve_gram(P, q, G, h, A, b, lb, ub, -1, o.pivot_tol, o.tie_tol,
+                                        o.tol, out, basic, True)
+    assert (code, pivots) == (kqp.NOT_APPLICABLE, 0)
 
 
 def test_flat_directions_counted_by_the_factor(gram_calls):

@@ -81,7 +81,8 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
    where the proximal LCP is ill-conditioned and its runs failed the check on every
    Maros-Meszaros problem of that kind, at up to 2 s a problem) it returns NOT_APPLICABLE
    after the count of the diagonal or one Cholesky factor, and the caller takes the
-   KKT-MLCP path.  On Maros-Meszaros: HS51-53, GENHS28, TAME, LOTSCHD, DPKLO1 and
+   KKT-MLCP path (``solve_qp`` counts the zero diagonal entries itself first, so that a
+   linear program neither calls nor compiles this entry).  On Maros-Meszaros: HS51-53, GENHS28, TAME, LOTSCHD, DPKLO1 and
    CVXQP1-3_S (0.01-1.3 ms instead of 0.9-13 ms); ZECEVIC2 and QSHARE2B would solve too but
    fail the count.
 
