@@ -18,6 +18,16 @@ rank-deficient with repeated rows) and the next step of each (q moved by 1e-3), 
 from the first step's bases: a Python loop of ``solve_lcp``, one ``solve_lcp_many`` call
 with 1 and 2 workers, and a loop of quantecon (cold; it has no warm start).  Medians of
 ``--rounds`` interleaved rounds.  Every answer is checked (``w = M z + q`` recomputed).
+
+Part 3, a pile simulation: ``--pile`` disks dropped into a bin with friction
+(``tests/contact_sim.py``, seed 1), one LCP per time step whose size changes as contacts
+appear and vanish.  The trajectory is fixed first (lemke warm advances the scene); then
+``--passes`` passes over the steps, in order, time per step: lemke warm (the last step's
+``warm_start`` carried by the contacts' labels with ``WarmStart.relabel``, included in the
+time), lemke cold, Drake's ``UnrevisedLemkeSolver`` kept across the steps of a pass (it
+keeps its last basis: Drake's warm start), quantecon cold; the calls of a step in a random
+order.  A step's time is its median over passes; the table gives medians over the settled
+steps (from step 100) grouped by size.
 """
 from __future__ import annotations
 
@@ -120,12 +130,87 @@ def part2(count, rounds, rng):
     return {k: np.median(v) * 1e3 for k, v in times.items()}, solved
 
 
+def part3(bodies, steps, passes, rng):
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests"))
+    import contact_sim
+
+    try:
+        from pydrake.solvers import MathematicalProgram, UnrevisedLemkeSolver
+    except ImportError:  # pragma: no cover
+        MathematicalProgram = None
+    sc = contact_sim.Scene(1, bodies, False)
+    seq, ws, labels = [], None, []
+    for step in range(steps):
+        M, q, apply = contact_sim.step_lcp(sc, step)
+        start = None if ws is None else ws.relabel(labels, apply.labels)
+        seq.append((M, q, ws, labels, apply.labels, start))
+        r = lemke.solve_lcp(M, q, warm_start=start)
+        apply(r.z if r.success else None)
+        ws, labels = r.warm_start, apply.labels
+    progs = []
+    if MathematicalProgram is not None:
+        for M, q, *_ in seq:
+            prog = MathematicalProgram()
+            z = prog.NewContinuousVariables(len(q), "z")
+            prog.AddLinearComplementarityConstraint(M, q, z)
+            progs.append((prog, z))
+    names = ["lemke warm", "lemke warm solve", "lemke cold", "Drake persistent", "quantecon cold"]
+    times = {k: [[] for _ in seq] for k in names}
+    ok = {k: 0 for k in names}
+    pivots = {k: [0] * len(seq) for k in names}
+    gc.disable()
+    try:
+        for p in range(passes):
+            drake = UnrevisedLemkeSolver() if progs else None
+            for step, (M, q, ws, old, new, start) in enumerate(seq):
+                calls = {"lemke warm": lambda: lemke.solve_lcp(
+                             M, q, warm_start=None if ws is None else ws.relabel(old, new)),
+                         "lemke warm solve": lambda: lemke.solve_lcp(M, q, warm_start=start),
+                         "lemke cold": lambda: lemke.solve_lcp(M, q)}
+                if progs:
+                    calls["Drake persistent"] = lambda: drake.Solve(progs[step][0])
+                if lcp_lemke is not None:
+                    calls["quantecon cold"] = lambda: lcp_lemke(M, q)
+                order = list(calls)
+                rng.shuffle(order)
+                for k in order:
+                    t = time.perf_counter()
+                    r = calls[k]()
+                    times[k][step].append(time.perf_counter() - t)
+                    if p == 0:
+                        if k == "Drake persistent":
+                            z, claimed = r.GetSolution(progs[step][1]), r.is_success()
+                        elif k == "quantecon cold":
+                            z, claimed = r.z, r.status == 0
+                        else:
+                            z, claimed = r.z, r.success
+                            if k in pivots:
+                                pivots[k][step] = r.pivots
+                        ok[k] += bool(claimed and (len(q) == 0 or _ok(M, q, z)))
+    finally:
+        gc.enable()
+    sizes = np.array([len(s[1]) for s in seq])
+    med = {k: np.array([np.median(t) if t else np.nan for t in v]) * 1e6 for k, v in times.items()}
+    groups = []
+    settled = np.arange(len(seq)) >= 100
+    for lo, hi in ((1, 131), (132, 168), (169, 10**6)):
+        sel = settled & (sizes >= lo) & (sizes <= hi)
+        if sel.any():
+            groups.append((lo, hi, int(sel.sum()), int(sizes[sel].min()), int(sizes[sel].max()),
+                           {k: float(np.median(v[sel])) for k, v in med.items()},
+                           {k: float(np.median(np.array(pivots[k])[sel])) for k in ("lemke warm", "lemke cold")}))
+    return groups, ok, len(seq)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--sizes", type=int, nargs="*", default=[3, 12, 24, 48])
     p.add_argument("--reps", type=int, default=3000)
     p.add_argument("--islands", type=int, default=400)
     p.add_argument("--rounds", type=int, default=40)
+    p.add_argument("--pile", type=int, default=16, help="disks in the pile simulation (0: skip part 3)")
+    p.add_argument("--steps", type=int, default=300)
+    p.add_argument("--passes", type=int, default=5)
     p.add_argument("--out", default=None)
     p.add_argument("--note", default="")
     args = p.parse_args(argv)
@@ -135,6 +220,7 @@ def main(argv=None):
     t0 = time.time()
     rows = part1(args.sizes, args.reps, rng)
     islands, solved = part2(args.islands, args.rounds, rng)
+    pile = part3(args.pile, args.steps, args.passes, rng) if args.pile else None
     mark_end(info)
     L = report_head("Small problems: cold and warm solves vs quantecon, islands in one call",
                     "bench_small.py", args, time.time() - t0, info)
@@ -154,6 +240,25 @@ def main(argv=None):
           "| how | time | per island | solved and checked |", "|---|---:|---:|---:|"]
     for k, t in islands.items():
         L.append(f"| {k} | {t:.2f} ms | {t / args.islands * 1e3:.1f} us | {solved[k]}/{args.islands} |")
+    if pile:
+        groups, ok, nsteps = pile
+        L += ["", f"## 3. A pile of {args.pile} disks: {nsteps} steps, medians per step over {args.passes} passes "
+              "(microseconds)", "",
+              "Settled steps (from step 100), grouped by the LCP's size. *lemke warm (relabel + solve)*: "
+              "`solve_lcp(M, q, warm_start=last.warm_start.relabel(old_labels, new_labels))`, the labels being "
+              "the scene's tuples (each label is hashed: the relabel is Python work proportional to n); "
+              "*the solve*: the same call with the relabeled warm start made beforehand. Ratios: of the "
+              "relabel + solve column. Target (issue 14): a warm step at n of about 150 (132-168) <= 120 us.", "",
+              "| sizes | steps | lemke warm (relabel + solve) | lemke warm, the solve | lemke cold | Drake persistent | "
+              "quantecon cold | warm / Drake | warm / cold | pivots warm / cold |",
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+        for lo, hi, count, smin, smax, t, piv in groups:
+            L.append(f"| {smin}-{smax} | {count} | {t['lemke warm']:.1f} | {t['lemke warm solve']:.1f} | {t['lemke cold']:.1f} | "
+                     f"{t['Drake persistent']:.1f} | {t['quantecon cold']:.1f} | "
+                     f"{t['lemke warm'] / t['Drake persistent']:.2f} | {t['lemke warm'] / t['lemke cold']:.2f} | "
+                     f"{piv['lemke warm']:g} / {piv['lemke cold']:g} |")
+        L += ["", "Answers reported solved and passing the script's own check, all steps of the first pass: "
+              + ", ".join(f"{k} {v}/{nsteps}" for k, v in ok.items()) + "."]
     text = "\n".join(L) + "\n"
     if args.out:
         with open(args.out, "w") as f:

@@ -143,6 +143,25 @@ def test_take_and_relabel():
         ws.relabel("abc", "ab")
     with pytest.raises(ValueError):
         ws.relabel("aacd", "ab")
+    with pytest.raises(ValueError, match="new_labels"):
+        ws.relabel("abcd", "abca")  # a label twice: two new rows from one old row
+
+
+def test_relabel_is_take_by_position():
+    """relabel (its own pure-Python path) against take (numpy) on random label lists: rows
+    kept, dropped, permuted and new, labels of several types."""
+    rng = np.random.default_rng(11)
+    for _ in range(300):
+        n = int(rng.integers(0, 30))
+        old = [("c", int(i), (int(i) % 3, "t")) for i in rng.permutation(60)[:n]]
+        ws = lemke.WarmStart(n, tuple(sorted(rng.permutation(n)[: int(rng.integers(0, n + 1))].tolist())))
+        kept = [old[j] for j in rng.permutation(n)[: int(rng.integers(0, n + 1))]]
+        fresh = [("c", 100 + int(i), (0, "t")) for i in range(int(rng.integers(0, 5)))]
+        new = [kept[i] if i < len(kept) else fresh[i - len(kept)] for i in rng.permutation(len(kept) + len(fresh))]
+        positions = [old.index(label) if label in old else -1 for label in new]
+        got = ws.relabel(iter(old), new)
+        assert got == ws.take(positions)
+        assert all(type(i) is int for i in got.z_basic)
 
 
 def test_a_permuted_problem_keeps_its_basis():
