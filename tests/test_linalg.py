@@ -201,3 +201,17 @@ def test_equilibrate_both_sweeps_match_the_reference():
         linalg.equilibrate(M, q, R, C)
         R0, C0 = _ruiz_reference(M, q)
         assert np.array_equal(R, R0) and np.array_equal(C, C0), (t, n)
+
+
+def test_finite_absmax_flags_every_nan_and_inf():
+    """finite_absmax (SIMD maxima from n = SIMD_FROM, the NaN probe apart): max|M| exactly
+    on finite matrices, and not finite wherever one NaN or infinity sits."""
+    rng = np.random.default_rng(8)
+    for n in range(1, 41):
+        M = rng.standard_normal((n, n)) * np.exp(rng.normal(0, 30))
+        finite, top = linalg.finite_absmax(M)
+        assert finite and top == np.abs(M).max()
+        for bad in (np.nan, np.inf, -np.inf):
+            B = M.copy()
+            B[rng.integers(0, n), rng.integers(0, n)] = bad
+            assert not linalg.finite_absmax(B)[0]

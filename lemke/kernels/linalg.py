@@ -57,8 +57,20 @@ def finite_absmax(M):
     for i in range(n):
         row = M[i]
         probe += nan_probe(row, n)
-        m_max = max(m_max, absmax(row, n))
+        m_max = max(m_max, absmax(row, n) if n < SIMD_FROM else absmax_simd(row, n))
     return probe == 0.0, m_max
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"nnan", "nsz"})
+def absmax_simd(x, k):
+    """:func:`absmax` in SIMD registers (``llvm.maxnum`` under the no-NaN and
+    no-signed-zero flags: see :func:`sweep_simd`), for an x that has no NaN; on one that
+    has, its value is meaningless (finite_absmax's NaN probe says so, and then its callers
+    never read max|M|)."""
+    m = 0.0
+    for j in range(k):
+        m = maxnum(m, abs(x[j]))
+    return m
 
 
 @kernel
