@@ -16,7 +16,9 @@ the table gives medians in microseconds and ratios to quantecon.
 Part 2, islands: ``--islands`` contact-like LCPs of 1..12 rows (``lemke.problems.contact_like``,
 rank-deficient with repeated rows) and the next step of each (q moved by 1e-3), solved warm
 from the first step's bases: a Python loop of ``solve_lcp``, one ``solve_lcp_many`` call
-with 1 and 2 workers, and a loop of quantecon (cold; it has no warm start).  Medians of
+with 1 and 2 workers, and a loop of quantecon (cold; it has no warm start).  lemke's
+results build their arrays when first read, so two rows read back what a simulation needs
+(each island's z, and its warm start for the next step; quantecon's z).  Medians of
 ``--rounds`` interleaved rounds.  Every answer is checked (``w = M z + q`` recomputed).
 
 Part 3, a pile simulation: ``--pile`` disks dropped into a bin with friction
@@ -121,10 +123,19 @@ def part2(count, rounds, rng):
     }
     if lcp_lemke is not None:
         calls["quantecon loop, cold"] = lambda: [lcp_lemke(M, q) for M, q in zip(Ms, qs2)]
+
+    def read(rs):  # what a simulation reads back: each island's z and its next warm start
+        for r in rs:
+            r.z, r.warm_start
+        return rs
+    calls["solve_lcp_many, warm, 1 worker, z and warm_start read"] = lambda: read(
+        lemke.solve_lcp_many(Ms, qs2, warm_start=ws, workers=1))
+    if lcp_lemke is not None:
+        calls["quantecon loop, cold, z read"] = lambda: [lcp_lemke(M, q).z for M, q in zip(Ms, qs2)]
     results = {k: f() for k, f in calls.items()}
     solved = {}
     for k, res in results.items():
-        zs = [x.z for x in res]
+        zs = [x if isinstance(x, np.ndarray) else x.z for x in res]
         solved[k] = sum(_ok(M, q, z) for M, q, z in zip(Ms, qs2, zs))
     times = _interleaved(calls, rounds, rng)
     return {k: np.median(v) * 1e3 for k, v in times.items()}, solved
