@@ -231,13 +231,40 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     for i in range(n):
         q0[i] = rhs[i]  # the right-hand side of the starting basis
         magb[i] = abs(rhs[i])
+    m = n + 1
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
         if not abs(col[r]) < np.inf:  # a NaN or infinite pivot: give up, never index with it
             status = NUMERICAL_FAILURE
             break
-        k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
+        if block == 1:
+            # pivot() with nothing pending, written out here: the same operations in the
+            # same order (flush's update of row i, its entry s included, where V is 0), but
+            # no array bound to an inlined callee's arguments, each an atomic reference
+            # count increment and decrement a pivot (26 of them a pivot before).
+            inv = 1.0 / col[r]
+            for j in range(m):
+                prow[j] = -T[r, j] * inv
+            prow[s] = inv
+            for j in range(m):
+                T[r, j] = prow[j]
+            rhs[r] = -rhs[r] * inv
+            rr = rhs[r]
+            magb[r] *= abs(inv)  # see pivot()
+            mr = magb[r]
+            prow[s] = 0.0  # V's row of the pivot
+            for i in range(n):
+                if i != r:
+                    f = col[i]
+                    T[i, s] = f * inv
+                    if f != 0.0:
+                        rhs[i] += f * rr
+                        magb[i] += abs(f) * mr
+                        for j in range(m):
+                            T[i, j] += f * prow[j]
+        else:
+            k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
         pivots += 1
         pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
         h, stop = pivoting.after_pivot(leaving, entering, artificial, h, hkeys, detector)
@@ -245,18 +272,28 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
             status = stop
             break
         s = pos[leaving + n if leaving < n else leaving - n]  # the complement enters
-        current_column(T, U, V, k, s, col)
+        if k == 0:  # current_column, and max |col| for the ratio test (min_ratio's)
+            for i in range(n):
+                col[i] = T[i, s]
+        else:
+            current_column(T, U, V, k, s, col)
+        cmax = 0.0
+        for i in range(n):
+            cmax = max(cmax, abs(col[i]))
         if is_basic[artificial]:
             z0_max = max(z0_max, rhs[pos[artificial]])
         # The ratio test (the rule of kernels.pivoting, the columns of the basis inverse read
-        # off the tableau), its parts called here: the common pivot, settled by min_ratio,
-        # binds none of the arrays of careful_sizes and lex_ties (a reference count each)
+        # off the tableau), its parts called here: the common pivot, settled by
+        # blocking_rows (min_ratio's second half), binds none of the arrays of
+        # careful_sizes and lex_ties (a reference count each)
         art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
-        sizes = rhs  # the first run: the values are their own sizes
         if careful:
             careful_sizes(T, U, V, k, col, rhs, pos, is_basic, start_basis, q0, magb, mags)
-            sizes = mags
-        nc = pivoting.min_ratio(rhs, sizes, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+            nc = pivoting.blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art,
+                                        z0_max)
+        else:  # the first run: the values are their own sizes
+            nc = pivoting.blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art,
+                                        z0_max)
         if nc <= 1:
             r = cand[0] if nc == 1 else np.int64(-1)
         else:
