@@ -50,15 +50,45 @@ def nan_probe(x, k):
 
 @kernel
 def finite_absmax(M):
-    """``(finite, max|M|)`` in one pass over the rows of a square matrix."""
+    """``(finite, max|M|)`` in one pass over the rows of a square matrix, read in place (a
+    view of each row cost two atomic reference count operations a row)."""
     n = M.shape[0]
     probe = 0.0
     m_max = 0.0
     for i in range(n):
-        row = M[i]
-        probe += nan_probe(row, n)
-        m_max = max(m_max, absmax(row, n))
+        probe += nan_probe_row(M, i, n)
+        m_max = max(m_max, absmax_row(M, i, n))
     return probe == 0.0, m_max
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def nan_probe_row(M, i, k):
+    """:func:`nan_probe` of row i of M (its first k entries)."""
+    acc = 0.0
+    for j in range(k):
+        acc += 0.0 * M[i, j]
+    return acc
+
+
+@kernel
+def absmax_row(M, i, k):
+    """:func:`absmax` of row i of M (its first k entries), the same operations in the same
+    order."""
+    m0 = 0.0
+    m1 = 0.0
+    m2 = 0.0
+    m3 = 0.0
+    j = 0
+    while j + 4 <= k:
+        m0 = max(m0, abs(M[i, j]))
+        m1 = max(m1, abs(M[i, j + 1]))
+        m2 = max(m2, abs(M[i, j + 2]))
+        m3 = max(m3, abs(M[i, j + 3]))
+        j += 4
+    while j < k:
+        m0 = max(m0, abs(M[i, j]))
+        j += 1
+    return max(max(m0, m1), max(m2, m3))
 
 
 @kernel
