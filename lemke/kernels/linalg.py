@@ -275,20 +275,28 @@ def scaled_system(M, q, d, R, C):
     d_scale = max |R d|, so that the artificial column has largest entry 1).  z' = z / C
     and z0' = z0 d_scale are its unknowns."""
     n = q.shape[0]
+    work = np.empty(n * (n + 2))  # one allocation for both
+    A = work[: n * (n + 1)].reshape((n, n + 1))
+    qs = work[n * (n + 1) :]
+    d_scale = scaled_into(M, q, d, R, C, A, qs)
+    return A, qs, d_scale
+
+
+@inline_kernel
+def scaled_into(M, q, d, R, C, A, qs):
+    """:func:`scaled_system` into the caller's A (n x (n + 1)) and qs (n); returns d_scale."""
+    n = q.shape[0]
     d_scale = 0.0
     for i in range(n):
         d_scale = max(d_scale, abs(d[i]) * R[i])
     inv_d = 1.0 / d_scale
-    work = np.empty(n * (n + 2))  # one allocation for both
-    A = work[: n * (n + 1)].reshape((n, n + 1))
-    qs = work[n * (n + 1) :]
     for i in range(n):
         r = R[i]
         for j in range(n):
             A[i, j] = (M[i, j] * r) * C[j]
         A[i, n] = (d[i] * r) * inv_d
         qs[i] = q[i] * r
-    return A, qs, d_scale
+    return d_scale
 
 
 
