@@ -23,7 +23,11 @@ _SOLVED = Status.SOLVED
 _TRIVIAL = cold.TRIVIAL
 _RAY = int(Status.RAY_TERMINATION)
 _new = object.__new__
-_buffer_length = cold.buffer_length
+_empty = np.empty
+#: cold.buffer_length(n) = _LEN_N * n + _LEN_1 (the layout's lengths are linear in n)
+_LEN_1 = cold.buffer_length(0)
+_LEN_N = cold.buffer_length(1) - _LEN_1
+_PIVOT_TOL, _TIE_TOL, _TOL = _DEFAULT.pivot_tol, _DEFAULT.tie_tol, _DEFAULT.tol
 #: {method: the compiled entry point of its kernel for the fast path's argument types}
 _ENTRY: dict = {}
 
@@ -78,16 +82,24 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     ws = warm_start
     # (``is`` first, for speed; ``==`` for a float64 dtype that is not numpy's own object,
     # such as that of an array made by a numba kernel.)
-    if (type(M) is _ND and type(q) is _ND and d is None and q.ndim == 1
+    if (type(M) is _ND and type(q) is _ND and d is None and q.ndim == 1 and M.ndim == 2
             and (M.dtype is _F64 or M.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
-            and M.shape == q.shape * 2 and M.flags.carray and q.flags.carray
-            and method in _CODES and (ws is None or (type(ws) is WarmStart and ws.n == q.shape[0]))):
-        # The common case: float64, square, C-contiguous, aligned and writable already (the
-        # kernels never write to M and q, and check that they are finite), so no copies, and
-        # the kernel called through its compiled entry point for exactly these types.
-        opts = _DEFAULT if options is None else as_options(options)
+            and M.flags.carray and q.flags.carray
+            and method in _CODES and (ws is None or (type(ws) is WarmStart and ws.n == len(q)))):
+        # The common case: float64, C-contiguous, aligned and writable already (the kernels
+        # never write to M and q, and check that they are finite and that their sizes
+        # match: NOT_FINITE below when not), so no copies, and the kernel called through
+        # its compiled entry point for exactly these types.  (Each Python step here is a
+        # visible share of a small solve: ``len(q)``, not ``q.shape[0]``.)
         run = _ENTRY.get(method) or _entry_point(method)
+        n = len(q)
         d = _NO_D
+        if options is None:
+            opts = _DEFAULT
+            mp, pivot_tol, tie_tol, tol = 100 * (n + 1), _PIVOT_TOL, _TIE_TOL, _TOL
+        else:
+            opts = as_options(options)
+            mp, pivot_tol, tie_tol, tol = opts.max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol
     else:
         _validate.method(method, METHODS)
         M, q, d = _validate.lcp(M, q, d)
@@ -97,19 +109,22 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
                              "warm_start is for a problem of size {ws}, this one has n = {n}")
         d = _NO_D if d is None else d
         run = _FIRST_RUN if method == "tableau" else _SOLVE_ONE
-    n = q.shape[0]
+        n = q.shape[0]
+        mp, pivot_tol, tie_tol, tol = opts.max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol
+    if mp is None:
+        mp = 100 * (n + 1)  # (Options.pivot_limit inlined)
     if ws is None:
         beta = _NO_BASIS
+        kb = 0
     else:  # the basis as an index array, kept with the (immutable) WarmStart
         beta = ws.__dict__.get("_beta")
         if beta is None:
             beta = ws.__dict__["_beta"] = np.array(ws.z_basic, dtype=np.int64)
-    mp = opts.max_pivots
-    buf = np.empty(_buffer_length(n))
-    basic = np.empty(n, _I64)
+        kb = len(beta)
+    buf = _empty(_LEN_N * n + _LEN_1)  # cold.buffer_length(n)
+    basic = _empty(n, _I64)
     code, pivots, k, ok, residual, recoveries, stage = run(
-        _CODES[method], M, q, d, beta, beta.shape[0], 100 * (n + 1) if mp is None else mp,
-        opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic)  # (Options.pivot_limit inlined)
+        _CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, basic)
     if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
         # Solved and checked (or q >= 0: z = 0), or a checked ray: the common cases, built
         # lazily (LCPResult._lazy, inlined).
@@ -131,13 +146,12 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         resume = stage == -1
         code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
             _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64) if resume else beta,
-            -1 if resume else -2 - beta.shape[0], 100 * (n + 1) if mp is None else mp,
-            opts.pivot_tol, opts.tie_tol, opts.tol, buf, basic)
+            -1 if resume else -2 - kb, mp, pivot_tol, tie_tol, tol, buf, basic)
         if ok and (code == 0 or code == _RAY):
             return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
                                    residual, recoveries, (buf, 0, basic, 0, n, k))
     if code == cold.NOT_FINITE:
-        _validate.lcp(M, q)  # raises, saying where
+        _validate.lcp(M, q)  # raises, saying where (a NaN, an infinity, the sizes)
         raise AssertionError("the kernel found a NaN or an infinity that validation did not")
     return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
 

@@ -65,7 +65,7 @@ from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_sized, lcp_ray_check_scaled
 from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
 
-NOT_FINITE = -1  # M or q has a NaN or an infinity: the front reports it
+NOT_FINITE = -1  # M or q has a NaN or an infinity (or sizes that do not match): the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
 TABLEAU = 0
 UNREVISED = 1
@@ -385,8 +385,12 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     (without trying the point again).  Below RESTART_FROM a failed old basis goes cold here,
     as in solve_one.  So the first solves compile none of the rest (the unrevised method,
     the restart, the recoveries, the ray check: about two thirds of the compile of
-    solve_one)."""
+    solve_one).  M and q of sizes that do not match (the front's fast path leaves the
+    comparison to the kernels): code NOT_FINITE, nothing read (the front's validation then
+    says what is wrong)."""
     n = q.shape[0]
+    if M.shape[0] != n or M.shape[1] != n:
+        return NOT_FINITE, 0, 0, False, 0.0, 0, 2
     if k > 0:  # a warm start: its first stage here, the restart in solve_one
         found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
         if found == 0:
@@ -536,7 +540,9 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     code ``beta[0]`` and ``beta[1]`` pivots (``checked``'s ``first_code`` and
     ``first_pivots``).  ``k < -1``: the warm start ``beta[:-2 - k]`` whose old basis's
     point :func:`first_run` tried (stage -2, its buffer as first_run left it): the restart
-    from there."""
+    from there.  M and q of sizes that do not match: code NOT_FINITE (see :func:`first_run`)."""
+    if M.shape[0] != q.shape[0] or M.shape[1] != q.shape[0]:
+        return NOT_FINITE, 0, 0, False, 0.0, 0, 2
     pivots = 0
     first_code, first_pivots = np.int64(-1), np.int64(0)
     scaled = np.False_  # the finite check and the equilibration made (by old_basis)

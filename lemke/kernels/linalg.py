@@ -53,27 +53,57 @@ def nan_probe(x, k):
 
 @kernel
 def finite_absmax(M):
-    """``(finite, max|M|)`` in one pass over the rows of a square matrix."""
+    """``(finite, max|M|)`` in one pass over the rows of a square matrix, read in place (a
+    view of each row cost two atomic reference count operations a row)."""
     n = M.shape[0]
     probe = 0.0
     m_max = 0.0
     for i in range(n):
-        row = M[i]
-        probe += nan_probe(row, n)
-        m_max = max(m_max, absmax(row, n) if n < SIMD_FROM else absmax_simd(row, n))
+        probe += nan_probe_row(M, i, n)
+        m_max = max(m_max, absmax_row(M, i, n) if n < SIMD_FROM else absmax_simd(M, i, n))
     return probe == 0.0, m_max
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"nnan", "nsz"})
-def absmax_simd(x, k):
-    """:func:`absmax` in SIMD registers (``llvm.maxnum`` under the no-NaN and
-    no-signed-zero flags: see :func:`sweep_simd`), for an x that has no NaN; on one that
+def absmax_simd(M, i, k):
+    """:func:`absmax_row` in SIMD registers (``llvm.maxnum`` under the no-NaN and
+    no-signed-zero flags: see :func:`sweep_simd`), for a row that has no NaN; on one that
     has, its value is meaningless (finite_absmax's NaN probe says so, and then its callers
     never read max|M|)."""
     m = 0.0
     for j in range(k):
-        m = maxnum(m, abs(x[j]))
+        m = maxnum(m, abs(M[i, j]))
     return m
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def nan_probe_row(M, i, k):
+    """:func:`nan_probe` of row i of M (its first k entries)."""
+    acc = 0.0
+    for j in range(k):
+        acc += 0.0 * M[i, j]
+    return acc
+
+
+@kernel
+def absmax_row(M, i, k):
+    """:func:`absmax` of row i of M (its first k entries), the same operations in the same
+    order."""
+    m0 = 0.0
+    m1 = 0.0
+    m2 = 0.0
+    m3 = 0.0
+    j = 0
+    while j + 4 <= k:
+        m0 = max(m0, abs(M[i, j]))
+        m1 = max(m1, abs(M[i, j + 1]))
+        m2 = max(m2, abs(M[i, j + 2]))
+        m3 = max(m3, abs(M[i, j + 3]))
+        j += 4
+    while j < k:
+        m0 = max(m0, abs(M[i, j]))
+        j += 1
+    return max(max(m0, m1), max(m2, m3))
 
 
 @kernel
@@ -277,10 +307,9 @@ def sweep(M, q, R, C, cq, rmax, cmax):
     qmax = 0.0
     for i in range(n):
         r = R[i]
-        row = M[i]
-        rm = 0.0  # a local running maximum, branch-free
+        rm = 0.0  # a local running maximum, branch-free; M read in place (no row view)
         for j in range(n):
-            a = abs(row[j]) * r * C[j]
+            a = abs(M[i, j]) * r * C[j]
             rm = max(rm, a)
             cmax[j] = max(cmax[j], a)
         a = abs(q[i]) * r * cq
@@ -303,10 +332,9 @@ def sweep_simd(M, q, R, C, cq, rmax, cmax):
     qmax = 0.0
     for i in range(n):
         r = R[i]
-        row = M[i]
         rm = 0.0
         for j in range(n):
-            a = abs(row[j]) * r * C[j]
+            a = abs(M[i, j]) * r * C[j]
             rm = maxnum(rm, a)
             cmax[j] = maxnum(cmax[j], a)
         a = abs(q[i]) * r * cq
@@ -322,20 +350,28 @@ def scaled_system(M, q, d, R, C):
     d_scale = max |R d|, so that the artificial column has largest entry 1).  z' = z / C
     and z0' = z0 d_scale are its unknowns."""
     n = q.shape[0]
+    work = np.empty(n * (n + 2))  # one allocation for both
+    A = work[: n * (n + 1)].reshape((n, n + 1))
+    qs = work[n * (n + 1) :]
+    d_scale = scaled_into(M, q, d, R, C, A, qs)
+    return A, qs, d_scale
+
+
+@inline_kernel
+def scaled_into(M, q, d, R, C, A, qs):
+    """:func:`scaled_system` into the caller's A (n x (n + 1)) and qs (n); returns d_scale."""
+    n = q.shape[0]
     d_scale = 0.0
     for i in range(n):
         d_scale = max(d_scale, abs(d[i]) * R[i])
     inv_d = 1.0 / d_scale
-    work = np.empty(n * (n + 2))  # one allocation for both
-    A = work[: n * (n + 1)].reshape((n, n + 1))
-    qs = work[n * (n + 1) :]
     for i in range(n):
         r = R[i]
         for j in range(n):
             A[i, j] = (M[i, j] * r) * C[j]
         A[i, n] = (d[i] * r) * inv_d
         qs[i] = q[i] * r
-    return A, qs, d_scale
+    return d_scale
 
 
 

@@ -26,7 +26,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, copy, equilibrate, false_flags, scaled_system
+from .linalg import axpy, copy, equilibrate, false_flags, scaled_into
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
@@ -180,32 +180,51 @@ def lex_ties(T, U, V, k_pending, col, basis, pos, is_basic, start_basis, artific
 
 
 @kernel
+def work_sizes(n, block):
+    """The lengths of the float and int64 work arrays of :func:`lemke`."""
+    return 6 * n + 1 + block * (2 * n + 1), 4 * n + 1 + block + (2 * n + 1 + 7) // 8 + 2 * n + 4
+
+
+@kernel
 def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
-          block, careful=False):
+          block, careful=False, F=None, I=None):
     """Run Lemke's method from the tableau (T, rhs) with the artificial variable non-basic,
     keeping up to ``block`` pivots pending (any block gives the same bits).
 
     ``basis`` (n) and ``nonbasic`` (n + 1) hold the labels of the rows and columns and are
     updated in place; so are T and rhs.  Returns ``(status, pivots)``.  ``x_out`` (n + 1)
     receives the final z and z0; on a ray, ``ray_out`` (n + 1) receives its direction;
-    ``z_basic_out`` (n) says which z's end basic.
+    ``z_basic_out`` (n) says which z's end basic.  ``F`` (float64) and ``I`` (int64) are
+    work arrays of the lengths :func:`work_sizes`, allocated by the caller with the
+    tableau (see :func:`solve`); allocated here when not given.
     """
     n = T.shape[0]
     artificial = 2 * n
-    # Four allocations for the whole run (each one costs about as much as a small pivot):
-    # the float, int, bool and key work arrays are views of one array each.
-    F = np.empty(6 * n + 1 + block * (2 * n + 1))
+    if F is None:
+        Fw = np.empty(work_sizes(n, block)[0])
+    else:
+        Fw = F
+    if I is None:
+        Iw = np.empty(work_sizes(n, block)[1], dtype=np.int64)
+    else:
+        Iw = I
+    F, I = Fw, Iw
+    # The float, int, bool and key work arrays are views of the caller's two arrays (an
+    # allocation costs about as much as a small pivot): the flags and the keys are bool and
+    # uint64 views of the int64 array.
     keys, col, q0 = F[:n], F[n : 2 * n], F[2 * n : 3 * n]
     magb, mags = F[3 * n : 4 * n], F[4 * n : 5 * n]
     prow = F[5 * n : 6 * n + 1]
     U = F[6 * n + 1 : 6 * n + 1 + n * block].reshape((n, block))
     V = F[6 * n + 1 + n * block :].reshape((block, n + 1))
-    I = np.empty(4 * n + 1 + block, dtype=np.int64)
     pos, start_basis = I[: 2 * n + 1], I[2 * n + 1 : 3 * n + 1]
-    cand, act = I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 :]
-    is_basic = false_flags(2 * n + 1)
-    H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
-    hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]
+    cand, act = I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 : 4 * n + 1 + block]
+    nb = (2 * n + 1 + 7) // 8  # int64 words for the 2n + 1 flags
+    is_basic = I[4 * n + 1 + block : 4 * n + 1 + block + nb].view(np.bool_)[: 2 * n + 1]
+    for i in range(2 * n + 1):
+        is_basic[i] = False
+    H = I[4 * n + 1 + block + nb :].view(np.uint64)  # the labels' keys and the cycle detector
+    hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 : 2 * n + 4]
     for i in range(n):
         start_basis[i] = basis[i]  # (a loop: see unrevised.copy_column)
         pos[basis[i]] = i
@@ -231,13 +250,40 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     for i in range(n):
         q0[i] = rhs[i]  # the right-hand side of the starting basis
         magb[i] = abs(rhs[i])
+    m = n + 1
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
         if not abs(col[r]) < np.inf:  # a NaN or infinite pivot: give up, never index with it
             status = NUMERICAL_FAILURE
             break
-        k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
+        if block == 1:
+            # pivot() with nothing pending, written out here: the same operations in the
+            # same order (flush's update of row i, its entry s included, where V is 0), but
+            # no array bound to an inlined callee's arguments, each an atomic reference
+            # count increment and decrement a pivot (26 of them a pivot before).
+            inv = 1.0 / col[r]
+            for j in range(m):
+                prow[j] = -T[r, j] * inv
+            prow[s] = inv
+            for j in range(m):
+                T[r, j] = prow[j]
+            rhs[r] = -rhs[r] * inv
+            rr = rhs[r]
+            magb[r] *= abs(inv)  # see pivot()
+            mr = magb[r]
+            prow[s] = 0.0  # V's row of the pivot
+            for i in range(n):
+                if i != r:
+                    f = col[i]
+                    T[i, s] = f * inv
+                    if f != 0.0:
+                        rhs[i] += f * rr
+                        magb[i] += abs(f) * mr
+                        for j in range(m):
+                            T[i, j] += f * prow[j]
+        else:
+            k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
         pivots += 1
         pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
         h, stop = pivoting.after_pivot(leaving, entering, artificial, h, hkeys, detector)
@@ -245,18 +291,28 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
             status = stop
             break
         s = pos[leaving + n if leaving < n else leaving - n]  # the complement enters
-        current_column(T, U, V, k, s, col)
+        if k == 0:  # current_column, and max |col| for the ratio test (min_ratio's)
+            for i in range(n):
+                col[i] = T[i, s]
+        else:
+            current_column(T, U, V, k, s, col)
+        cmax = 0.0
+        for i in range(n):
+            cmax = max(cmax, abs(col[i]))
         if is_basic[artificial]:
             z0_max = max(z0_max, rhs[pos[artificial]])
         # The ratio test (the rule of kernels.pivoting, the columns of the basis inverse read
-        # off the tableau), its parts called here: the common pivot, settled by min_ratio,
-        # binds none of the arrays of careful_sizes and lex_ties (a reference count each)
+        # off the tableau), its parts called here: the common pivot, settled by
+        # blocking_rows (min_ratio's second half), binds none of the arrays of
+        # careful_sizes and lex_ties (a reference count each)
         art = pos[artificial] if is_basic[artificial] else np.int64(-1)  # see kernels/__init__.py
-        sizes = rhs  # the first run: the values are their own sizes
         if careful:
             careful_sizes(T, U, V, k, col, rhs, pos, is_basic, start_basis, q0, magb, mags)
-            sizes = mags
-        nc = pivoting.min_ratio(rhs, sizes, col, n, pivot_tol, tie_tol, cand, art, z0_max)
+            nc = pivoting.blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art,
+                                        z0_max)
+        else:  # the first run: the values are their own sizes
+            nc = pivoting.blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art,
+                                        z0_max)
         if nc <= 1:
             r = cand[0] if nc == 1 else np.int64(-1)
         else:
@@ -293,15 +349,23 @@ def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic
     ``ray_out`` the ray, ``z_basic_out`` the final basic z's.
     """
     n = q.shape[0]
-    T, rhs, d_scale = scaled_system(M, q, d, R, C)
-    labels = np.empty(2 * n + 1, dtype=np.int64)  # one allocation for both
-    basis, nonbasic = labels[:n], labels[n:]
+    block = block_size(n)
+    nf, ni = work_sizes(n, block)
+    # Two allocations for the whole run: the tableau and the floats of lemke, the labels
+    # and its ints (at n = 3 each allocation costs about as much as a pivot).
+    F = np.empty(n * (n + 2) + nf)
+    I = np.empty(2 * n + 1 + ni, dtype=np.int64)
+    T = F[: n * (n + 1)].reshape((n, n + 1))
+    rhs = F[n * (n + 1) : n * (n + 2)]
+    d_scale = scaled_into(M, q, d, R, C, T, rhs)
+    basis, nonbasic = I[:n], I[n : 2 * n + 1]
     for i in range(n):
         basis[i] = i
         nonbasic[i] = n + i
     nonbasic[n] = 2 * n
     status, pivots = lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out,
-                           ray_out, z_basic_out, block_size(n), careful)
+                           ray_out, z_basic_out, block, careful, F[n * (n + 2) :],
+                           I[2 * n + 1 :])
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED)
     return status, pivots
 
