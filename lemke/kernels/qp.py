@@ -148,11 +148,12 @@ def screen(P, q, G, h, A, b, lb, ub):
             and A.shape[1] == n and b.shape[0] == A.shape[0] and lb.shape[0] == n
             and ub.shape[0] == n):
         return False, Ps, lo, up
-    top = 0.0
+    # P, G and A are C-contiguous: each is probed as one flat vector (a call per matrix, not
+    # per row; the probe is 0 or NaN and the largest entry exact in any order)
     probe = nan_probe(q, n)
-    for i in range(n):
-        probe += nan_probe(P[i], n)
-        top = max(top, absmax(P[i], n))
+    Pf = P.reshape(n * n)
+    probe += nan_probe(Pf, n * n)
+    top = absmax(Pf, n * n)
     asym = 0.0
     B = 32  # in square tiles: P[j, i] is read down a column
     for i0 in range(0, n, B):
@@ -164,12 +165,13 @@ def screen(P, q, G, h, A, b, lb, ub):
                     asym = max(asym, abs(a - c))
                     Ps[i, j] = 0.5 * (a + c)
                     Ps[j, i] = Ps[i, j]
-    for i in range(G.shape[0]):
-        probe += nan_probe(G[i], n)
+    m0 = G.shape[0]
+    probe += nan_probe(G.reshape(m0 * n), m0 * n)
+    for i in range(m0):
         if not (h[i] > -np.inf):  # NaN or -inf
             return False, Ps, lo, up
-    for i in range(A.shape[0]):
-        probe += nan_probe(A[i], n)
+    p0 = A.shape[0]
+    probe += nan_probe(A.reshape(p0 * n), p0 * n)
     probe += nan_probe(b, b.shape[0])
     if probe != 0.0 or asym > SYMMETRY_TOL * top:
         return False, Ps, lo, up
@@ -392,6 +394,35 @@ def axpy2_rows(s, err, size, coef, rows):
         axpy2(s, err, size, coef[i], rows[i])
 
 
+@inline_kernel
+def axpy2_matrix(s, err, size, coef, M):
+    """:func:`axpy2_rows` indexing M in place (the same sums in the same order; no row views
+    and no call per row, whose reference counting cost more than the sums at small n)."""
+    n = s.shape[0]
+    for i in range(M.shape[0]):
+        a = coef[i]
+        for j in range(n):
+            p, e = two_product(a, M[i, j])
+            t, f = two_sum(s[j], p)
+            s[j] = t
+            err[j] += e + f
+            size[j] += abs(p)
+
+
+@inline_kernel
+def dot2_row(M, i, y, c):
+    """:func:`dot2` of row i of M with y, indexing M in place."""
+    s = c
+    err = 0.0
+    size = abs(c)
+    norm = 0.0
+    for j in range(y.shape[0]):
+        s, err = acc2(s, err, M[i, j], y[j])
+        size += abs(M[i, j] * y[j])
+        norm += abs(M[i, j])
+    return s + err, size, norm
+
+
 # ----------------------------------------------------------------------------- the check
 
 @kernel
@@ -428,7 +459,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         s[j] = q[j]
         err[j] = 0.0
         size[j] = abs(q[j])
-    axpy2_rows(s, err, size, x, P)
+    axpy2_matrix(s, err, size, x, P)
     # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
     gap_hi = 0.0
     gap_lo = 0.0
@@ -437,8 +468,8 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         gap_lo += x[j] * err[j]
     xPq_hi = gap_hi
     xPq_lo = gap_lo
-    axpy2_rows(s, err, size, y, A)
-    axpy2_rows(s, err, size, z, G)
+    axpy2_matrix(s, err, size, y, A)
+    axpy2_matrix(s, err, size, z, G)
     ok = True
     dual = 0.0
     for j in range(n):
@@ -456,7 +487,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     floor = 4.0 * (n + 2) * EPS * x_top
     primal = 0.0
     for i in range(A.shape[0]):
-        r, sz, norm = dot2(A[i], x, -b[i])
+        r, sz, norm = dot2_row(A, i, x, -b[i])
         primal = max(primal, abs(r))
         gap_hi, gap_lo = acc2(gap_hi, gap_lo, b[i], y[i])
         if not abs(r) <= t * sz + floor * norm:
@@ -464,7 +495,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     for i in range(G.shape[0]):
         if not h[i] < np.inf:
             continue  # no constraint (its z_i is 0)
-        r, sz, norm = dot2(G[i], x, -h[i])
+        r, sz, norm = dot2_row(G, i, x, -h[i])
         sz = t * sz + floor * norm
         primal = max(primal, r)
         gap_hi, gap_lo = acc2(gap_hi, gap_lo, h[i], z[i])
