@@ -695,25 +695,28 @@ def out_views(out, n, p0, m0):
 
 
 @kernel
-def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, basic):
+def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out):
     """The fused cold path of the module docstring, on the caller's arrays (float64, of
     matching shapes; :func:`screen` decides whether their values are plainly valid).
 
     Writes in ``out`` (see :func:`out_size`) the QP's point and multipliers (qpsolvers'
-    signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
-    residuals, see :func:`kkt_check`), and in ``basic`` (length at least m + 2n) the final
-    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``: code OK,
+signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
+    residuals, see :func:`kkt_check`), and after them (``out`` of length at least
+    ``out_size(n, p, m) + m + 2n``, m the rows of G) the final basis as :func:`mlcp_basis`
+    numbers it, int64 in the buffer's float64 slots (the caller reads them back through a
+    view): one buffer, one allocation and one array to pass.  Returns ``(code, pivots, k, pairs)``: code OK,
     BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; k the length
     of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
     the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
     caller-made buffers only: boxing returned arrays costs more than a small solve."""
-    out[:] = 0.0
+    k0 = out_size(q.shape[0], A.shape[0], G.shape[0])
+    out[:k0] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
         return BAD_INPUT, 0, 0, 0
     x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-                  x, y, z, zb, stats, basic)
+                  x, y, z, zb, stats, out[k0:].view(np.int64))
 
 
 @kernel
@@ -906,7 +909,8 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     ones = work[m * (m + 1):m * (m + 2)]
     yy = work[m * (m + 2):m * (m + 2) + p]
     buf = work[m * (m + 2) + p:]
-    lcp_basic = np.empty(m, dtype=np.int64)
+    # the LCP's basis in the head of basic: mlcp_basis reads it whole before it writes there
+    lcp_basic = basic[:m]
     for i in range(m):
         zz[i] = 0.0
         ones[i] = 1.0
@@ -1032,15 +1036,15 @@ def point(L, E, V, beta, C, c, v, zz, x, yy):
     overwritten)."""
     p = E.shape[0]
     m = C.shape[0]
-    # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k])
-    rhs = np.empty(p)
+    # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k]), the
+    # right-hand side in yy (entry k is read before it is overwritten, the later ones after)
     for k in range(p):
         acc = v[k] + c[k]
         for i in range(m):
             acc += C[i, k] * zz[i]
-        rhs[k] = acc
+        yy[k] = acc
     for k in range(p - 1, -1, -1):
-        acc = rhs[k]
+        acc = yy[k]
         for j in range(k + 1, p):
             acc -= E[j, k] * yy[j]
         yy[k] = acc / E[k, k]
