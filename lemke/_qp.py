@@ -169,16 +169,17 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     if (warm_start is None and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
-            and q.shape[0] and type(method) is str and method in METHODS):
+            and len(q) and type(method) is str and method in METHODS):
         # The common cold call, inline: plain data (float64 ndarrays, C-contiguous, aligned
         # and writable, of the fused kernel's ranks: what _plain_args would return as it is;
         # the kernels compare the shapes) goes to its kernel's compiled entry point with no
         # other Python step (each call and attribute read here costs about a tenth of a
-        # microsecond warm, several times that when the caches are cold).  A box-only QP
+        # microsecond warm, several times that when the caches are cold; len(a) is a
+        # third of a.shape[0]).  A box-only QP
         # below BOX_FIRST variables takes the box kernel (_solve_box_small), any other the
         # fused kernel (as _solve_definite); what they do not solve and check, or data in
         # another form, takes the steps below (which do not call the fused kernel again).
-        n = q.shape[0]
+        n = len(q)
         absent = _ABSENT.get(n) or _absent(n)
         box = G is None and h is None and A is None and b is None
         plain = True
@@ -223,13 +224,13 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                     res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
-            elif Gk.shape[0] + n * ((lb is not None) + (ub is not None)) >= _GRAM_RATIO * n:
+            elif len(Gk) + n * ((lb is not None) + (ub is not None)) >= _GRAM_RATIO * n:
                 res = _solve_definite((P, q, Gk, hk, Ak, bk, lo, up), method, opts)
                 if res is not None:
                     return res
                 tried = True
             else:  # _solve_definite, inline
-                p, m = Ak.shape[0], Gk.shape[0]
+                p, m = len(Ak), len(Gk)
                 out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
                 mp = opts.max_pivots
                 code, pivots, k, pairs = (_ENTRY.get(kqp.solve) or _entry_point(kqp.solve))(
