@@ -581,15 +581,15 @@ def rows_of(G, h, A, b, lb, ub):
             m_g += 1
     m = m_g + n_up + n_lo
     p = p0 + n_fix
-    # one allocation per kind: [E | C | f | d] and [ekind | ckind]
-    work = np.empty((p + m) * (n + 1))
+    # one allocation: [E | C | f | d | ekind ckind], the kinds int64 in float64 slots
+    work = np.empty((p + m) * (n + 2))
     for t in range((p + m) * n):
         work[t] = 0.0
     E = work[:p * n].reshape((p, n))
     C = work[p * n:(p + m) * n].reshape((m, n))
     f = work[(p + m) * n:(p + m) * n + p]
-    d = work[(p + m) * n + p:]
-    kinds = np.empty(p + m, dtype=np.int64)
+    d = work[(p + m) * n + p:(p + m) * (n + 1)]
+    kinds = work[(p + m) * (n + 1):].view(np.int64)
     for t in range(p + m):
         kinds[t] = -1
     ekind = kinds[:p]
@@ -836,13 +836,14 @@ def factors(q, G, h, A, b, lb, ub, L):
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
     pv = min(p, n)
-    work = np.empty(pv * (n + 1) + 2 * n + m)  # one allocation: V, beta, c, v, g
+    # one allocation: V, beta, c, v, g, and up_row below (int64 in float64 slots)
+    work = np.empty(pv * (n + 1) + 3 * n + m)
     V = work[:pv * n].reshape((pv, n))
     beta = work[pv * n:pv * (n + 1)]
     o = pv * (n + 1)
     c = work[o:o + n]
     v = work[o + n:o + 2 * n]
-    g = work[o + 2 * n:]
+    g = work[o + 2 * n:o + 2 * n + m]
     for t in range(n):
         c[t] = q[t]
     if p > n:
@@ -855,7 +856,9 @@ def factors(q, G, h, A, b, lb, ub, L):
     while m_u < m and ckind[m_u] < n:
         m_u += 1
     forward_rows(L, C[:m_u])
-    up_row = np.full(n, -1, dtype=np.int64)
+    up_row = work[o + 2 * n + m:].view(np.int64)
+    for j in range(n):
+        up_row[j] = -1
     for i in range(m_g, m_u):
         up_row[ckind[i]] = i
     for i in range(m_u, m):
@@ -886,7 +889,7 @@ def factors(q, G, h, A, b, lb, ub, L):
     return OK, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
 
 
-@kernel
+@inline_kernel
 def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
            x, y, z, zb, stats, basic):
     """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
