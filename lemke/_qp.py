@@ -169,16 +169,17 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     if (warm_start is None and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
-            and q.shape[0] and type(method) is str and method in METHODS):
+            and len(q) and type(method) is str and method in METHODS):
         # The common cold call, inline: plain data (float64 ndarrays, C-contiguous, aligned
         # and writable, of the fused kernel's ranks: what _plain_args would return as it is;
         # the kernels compare the shapes) goes to its kernel's compiled entry point with no
         # other Python step (each call and attribute read here costs about a tenth of a
-        # microsecond warm, several times that when the caches are cold).  A box-only QP
+        # microsecond warm, several times that when the caches are cold; len(a) is a
+        # third of a.shape[0]).  A box-only QP
         # below BOX_FIRST variables takes the box kernel (_solve_box_small), any other the
         # fused kernel (as _solve_definite); what they do not solve and check, or data in
         # another form, takes the steps below (which do not call the fused kernel again).
-        n = q.shape[0]
+        n = len(q)
         absent = _ABSENT.get(n) or _absent(n)
         box = G is None and h is None and A is None and b is None
         plain = True
@@ -223,20 +224,19 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                     res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
-            elif Gk.shape[0] + n * ((lb is not None) + (ub is not None)) >= kqp.GRAM_RATIO * n:
+            elif len(Gk) + n * ((lb is not None) + (ub is not None)) >= _GRAM_RATIO * n:
                 res = _solve_definite((P, q, Gk, hk, Ak, bk, lo, up), method, opts)
                 if res is not None:
                     return res
                 tried = True
             else:  # _solve_definite, inline
-                p, m = Ak.shape[0], Gk.shape[0]
-                out = np.empty(2 * n + p + m + 4)  # kqp.out_size
-                basic = np.empty(m + 2 * n, _I64)
+                p, m = len(Ak), len(Gk)
+                out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
                 mp = opts.max_pivots
                 code, pivots, k, pairs = (_ENTRY.get(kqp.solve) or _entry_point(kqp.solve))(
                     P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method], -1 if mp is None else mp,
-                    opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
-                if code == kqp.OK:
+                    opts.pivot_tol, opts.tie_tol, opts.tol, out)
+                if code == _OK:
                     out.setflags(False)  # (write=False, positional: a third of the time)
                     res = _new(QPResult)  # (QPResult._deferred, inlined)
                     d = res.__dict__
@@ -244,9 +244,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                     d["status"] = _SOLVED
                     d["pivots"] = pivots
                     d["certificate"] = None
-                    d["_resolve"] = (_fused_fields, (out, n, p, m, basic, k, pairs))
+                    d["_resolve"] = (_fused_fields, (out, n, p, m, k, pairs))
                     return res
-                if code == kqp.NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
+                if code == _NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
@@ -599,8 +599,7 @@ def _solve_definite(args, method, opts):
     infeasible and unbounded QPs."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    out = np.empty(2 * n + p + m + 4)  # kqp.out_size
-    basic = np.empty(m + 2 * n, _I64)
+    out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
     max_pivots = opts.max_pivots
     if max_pivots is None:
         max_pivots = -1
@@ -610,20 +609,20 @@ def _solve_definite(args, method, opts):
         # at most that many inequalities: perhaps many more than variables (the kernel's
         # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
         code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
-                                                opts.pivot_tol, opts.tie_tol, opts.tol, out, basic,
-                                                False)
+                                                opts.pivot_tol, opts.tie_tol, opts.tol, out,
+                                                _basis_view(out, n, p, m), False)
     if code != kqp.OK:
         tried = code is not None and code != kqp.NOT_APPLICABLE  # step 7 ran
         # through the compiled entry point (the arrays are of its types: _plain_args and
         # solve_qp's first lines make them C-contiguous, aligned and writable)
         run = _ENTRY.get(kqp.solve) or _entry_point(kqp.solve)
         code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], max_pivots,
-                                     opts.pivot_tol, opts.tie_tol, opts.tol, out, basic)
+                                     opts.pivot_tol, opts.tie_tol, opts.tol, out)
         if code == kqp.NOT_DEFINITE and not tried:
             return _solve_semidefinite(args, opts)
     if code != kqp.OK:
         return None
-    return _fused_result(out, n, p, m, basic, k, pairs, pivots)
+    return _fused_result(out, n, p, m, k, pairs, pivots)
 
 
 def _solve_semidefinite(args, opts):
@@ -638,17 +637,17 @@ def _solve_semidefinite(args, opts):
         # decline at once (kqp.zero_diagonal); a linear program, say, neither calls nor
         # compiles it
         return None
-    out = np.empty(2 * n + p + m + 4)  # kqp.out_size
-    basic = np.empty(m + 2 * n, _I64)
+    out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
     code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, opts.pivot_tol,
-                                            opts.tie_tol, opts.tol, out, basic, True)
+                                            opts.tie_tol, opts.tol, out, _basis_view(out, n, p, m),
+                                            True)
     if code != kqp.OK:
         return None
-    return _fused_result(out, n, p, m, basic, k, pairs, pivots)
+    return _fused_result(out, n, p, m, k, pairs, pivots)
 
 
-def _fused_result(out, n, p, m, basic, k, pairs, pivots):
+def _fused_result(out, n, p, m, k, pairs, pivots):
     """The result of the fused kernels' output: x and the status now, the rest deferred."""
     out.setflags(False)  # (write=False, positional: a third of the time) the views too
     # x and the status now; the multipliers, residuals and the basis when first read
@@ -659,8 +658,14 @@ def _fused_result(out, n, p, m, basic, k, pairs, pivots):
     d["status"] = _SOLVED
     d["pivots"] = pivots
     d["certificate"] = None
-    d["_resolve"] = (_fused_fields, (out, n, p, m, basic, k, pairs))
+    d["_resolve"] = (_fused_fields, (out, n, p, m, k, pairs))
     return res
+
+
+def _basis_view(out, n, p, m):
+    """The int64 view of the fused kernels' basis, after ``kqp.out_size(n, p, m)`` entries of
+    ``out`` (``kqp.solve`` makes the same view inside)."""
+    return out[2 * n + p + m + 4:].view(_I64)
 
 
 _new = object.__new__
@@ -668,6 +673,7 @@ _DEFAULT_OPTIONS = as_options(None)
 _SOLVED = Status.SOLVED
 _I64 = np.dtype(np.int64)
 _METHOD_CODES = dict(cold.METHODS)
+_OK, _NOT_DEFINITE, _GRAM_RATIO = kqp.OK, kqp.NOT_DEFINITE, kqp.GRAM_RATIO
 _ENTRY: dict = {}
 
 
@@ -676,16 +682,17 @@ def _entry_point(dispatcher):
     argument types :func:`_plain_args` gives (``kernels.entry_point``), once compiled; until
     then the kernel itself."""
     a1, a2 = np.empty(0), np.empty((0, 0))
-    run = entry_point(dispatcher, a2, a1, a2, a1, a2, a1, a1, a1, 0, 0, 0.0, 0.0, 0.0, a1,
-                      np.empty(0, dtype=np.int64))
+    run = entry_point(dispatcher, a2, a1, a2, a1, a2, a1, a1, a1, 0, 0, 0.0, 0.0, 0.0, a1)
     if run is not dispatcher:
         _ENTRY[dispatcher] = run
     return run
 
 
-def _fused_fields(out, n, p, m, basic, k, pairs):
+def _fused_fields(out, n, p, m, k, pairs):
     """The deferred fields of a result of the fused path (see :func:`_solve_definite`)."""
-    primal, dual, gap, obj = out[-4:].tolist()
+    s = 2 * n + p + m
+    primal, dual, gap, obj = out[s:s + 4].tolist()
+    basic = out[s + 4:s + 4 + k].view(_I64)
     return {"y": out[n:n + p], "z": out[n + p:n + p + m], "z_box": out[n + p + m:2 * n + p + m],
             "obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
             "warm_start": WarmStart._trusted(pairs, tuple(basic[:k].tolist()))}

@@ -383,8 +383,7 @@ def test_fused_path_gives_up_after_one_failed_run():
     n, p, m = args[1].size, args[4].shape[0], args[2].shape[0]
     opts = as_options(None)
     code, pivots, _, _ = kqp.solve(*args, cold.METHODS["tableau"], -1, opts.pivot_tol,
-                                   opts.tie_tol, opts.tol, np.empty(2 * n + p + m + 4),
-                                   np.empty(m + 2 * n, dtype=np.int64))
+                                   opts.tie_tol, opts.tol, np.empty(4 * n + p + 2 * m + 4))
     assert code == kqp.NOT_SOLVED and pivots <= 10
     res = lemke.solve_qp(*problem)
     assert res.status == Status.SOLVED, res

@@ -148,11 +148,12 @@ def screen(P, q, G, h, A, b, lb, ub):
             and A.shape[1] == n and b.shape[0] == A.shape[0] and lb.shape[0] == n
             and ub.shape[0] == n):
         return False, Ps, lo, up
-    top = 0.0
+    # P, G and A are C-contiguous: each is probed as one flat vector (a call per matrix, not
+    # per row; the probe is 0 or NaN and the largest entry exact in any order)
     probe = nan_probe(q, n)
-    for i in range(n):
-        probe += nan_probe(P[i], n)
-        top = max(top, absmax(P[i], n))
+    Pf = P.reshape(n * n)
+    probe += nan_probe(Pf, n * n)
+    top = absmax(Pf, n * n)
     asym = 0.0
     B = 32  # in square tiles: P[j, i] is read down a column
     for i0 in range(0, n, B):
@@ -164,12 +165,13 @@ def screen(P, q, G, h, A, b, lb, ub):
                     asym = max(asym, abs(a - c))
                     Ps[i, j] = 0.5 * (a + c)
                     Ps[j, i] = Ps[i, j]
-    for i in range(G.shape[0]):
-        probe += nan_probe(G[i], n)
+    m0 = G.shape[0]
+    probe += nan_probe(G.reshape(m0 * n), m0 * n)
+    for i in range(m0):
         if not (h[i] > -np.inf):  # NaN or -inf
             return False, Ps, lo, up
-    for i in range(A.shape[0]):
-        probe += nan_probe(A[i], n)
+    p0 = A.shape[0]
+    probe += nan_probe(A.reshape(p0 * n), p0 * n)
     probe += nan_probe(b, b.shape[0])
     if probe != 0.0 or asym > SYMMETRY_TOL * top:
         return False, Ps, lo, up
@@ -392,6 +394,35 @@ def axpy2_rows(s, err, size, coef, rows):
         axpy2(s, err, size, coef[i], rows[i])
 
 
+@inline_kernel
+def axpy2_matrix(s, err, size, coef, M):
+    """:func:`axpy2_rows` indexing M in place (the same sums in the same order; no row views
+    and no call per row, whose reference counting cost more than the sums at small n)."""
+    n = s.shape[0]
+    for i in range(M.shape[0]):
+        a = coef[i]
+        for j in range(n):
+            p, e = two_product(a, M[i, j])
+            t, f = two_sum(s[j], p)
+            s[j] = t
+            err[j] += e + f
+            size[j] += abs(p)
+
+
+@inline_kernel
+def dot2_row(M, i, y, c):
+    """:func:`dot2` of row i of M with y, indexing M in place."""
+    s = c
+    err = 0.0
+    size = abs(c)
+    norm = 0.0
+    for j in range(y.shape[0]):
+        s, err = acc2(s, err, M[i, j], y[j])
+        size += abs(M[i, j] * y[j])
+        norm += abs(M[i, j])
+    return s + err, size, norm
+
+
 # ----------------------------------------------------------------------------- the check
 
 @kernel
@@ -428,7 +459,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         s[j] = q[j]
         err[j] = 0.0
         size[j] = abs(q[j])
-    axpy2_rows(s, err, size, x, P)
+    axpy2_matrix(s, err, size, x, P)
     # x'(P x + q) in double-double (gap_hi + gap_lo), for the gap and the objective
     gap_hi = 0.0
     gap_lo = 0.0
@@ -437,8 +468,8 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         gap_lo += x[j] * err[j]
     xPq_hi = gap_hi
     xPq_lo = gap_lo
-    axpy2_rows(s, err, size, y, A)
-    axpy2_rows(s, err, size, z, G)
+    axpy2_matrix(s, err, size, y, A)
+    axpy2_matrix(s, err, size, z, G)
     ok = True
     dual = 0.0
     for j in range(n):
@@ -456,7 +487,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     floor = 4.0 * (n + 2) * EPS * x_top
     primal = 0.0
     for i in range(A.shape[0]):
-        r, sz, norm = dot2(A[i], x, -b[i])
+        r, sz, norm = dot2_row(A, i, x, -b[i])
         primal = max(primal, abs(r))
         gap_hi, gap_lo = acc2(gap_hi, gap_lo, b[i], y[i])
         if not abs(r) <= t * sz + floor * norm:
@@ -464,7 +495,7 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     for i in range(G.shape[0]):
         if not h[i] < np.inf:
             continue  # no constraint (its z_i is 0)
-        r, sz, norm = dot2(G[i], x, -h[i])
+        r, sz, norm = dot2_row(G, i, x, -h[i])
         sz = t * sz + floor * norm
         primal = max(primal, r)
         gap_hi, gap_lo = acc2(gap_hi, gap_lo, h[i], z[i])
@@ -550,15 +581,15 @@ def rows_of(G, h, A, b, lb, ub):
             m_g += 1
     m = m_g + n_up + n_lo
     p = p0 + n_fix
-    # one allocation per kind: [E | C | f | d] and [ekind | ckind]
-    work = np.empty((p + m) * (n + 1))
+    # one allocation: [E | C | f | d | ekind ckind], the kinds int64 in float64 slots
+    work = np.empty((p + m) * (n + 2))
     for t in range((p + m) * n):
         work[t] = 0.0
     E = work[:p * n].reshape((p, n))
     C = work[p * n:(p + m) * n].reshape((m, n))
     f = work[(p + m) * n:(p + m) * n + p]
-    d = work[(p + m) * n + p:]
-    kinds = np.empty(p + m, dtype=np.int64)
+    d = work[(p + m) * n + p:(p + m) * (n + 1)]
+    kinds = work[(p + m) * (n + 1):].view(np.int64)
     for t in range(p + m):
         kinds[t] = -1
     ekind = kinds[:p]
@@ -664,25 +695,28 @@ def out_views(out, n, p0, m0):
 
 
 @kernel
-def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, basic):
+def solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out):
     """The fused cold path of the module docstring, on the caller's arrays (float64, of
     matching shapes; :func:`screen` decides whether their values are plainly valid).
 
     Writes in ``out`` (see :func:`out_size`) the QP's point and multipliers (qpsolvers'
-    signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
-    residuals, see :func:`kkt_check`), and in ``basic`` (length at least m + 2n) the final
-    basis as :func:`mlcp_basis` numbers it.  Returns ``(code, pivots, k, pairs)``: code OK,
+signs: ``P x + q + A'y + G'z + zb = 0``) and ``(primal, dual, gap, obj)`` (qpsolvers'
+    residuals, see :func:`kkt_check`), and after them (``out`` of length at least
+    ``out_size(n, p, m) + m + 2n``, m the rows of G) the final basis as :func:`mlcp_basis`
+    numbers it, int64 in the buffer's float64 slots (the caller reads them back through a
+    view): one buffer, one allocation and one array to pass.  Returns ``(code, pivots, k, pairs)``: code OK,
     BAD_INPUT, NOT_DEFINITE, DEPENDENT_EQUALITIES, NOT_SOLVED or CHECK_FAILED; k the length
     of the basis, pairs the number of pairs it is a basis of.  ``max_pivots < 0`` means
     the default cap ``100 (m + 1)``, m the number of inequalities the LCP has.  Scalars and
     caller-made buffers only: boxing returned arrays costs more than a small solve."""
-    out[:] = 0.0
+    k0 = out_size(q.shape[0], A.shape[0], G.shape[0])
+    out[:k0] = 0.0
     ok, Ps, lb, ub = screen(P, q, G, h, A, b, lb, ub)
     if not ok:
         return BAD_INPUT, 0, 0, 0
     x, y, z, zb, stats = out_views(out, q.shape[0], A.shape[0], G.shape[0])
     return _solve(Ps, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
-                  x, y, z, zb, stats, basic)
+                  x, y, z, zb, stats, out[k0:].view(np.int64))
 
 
 @kernel
@@ -802,13 +836,14 @@ def factors(q, G, h, A, b, lb, ub, L):
     while m_g < m and ckind[m_g] < 0:
         m_g += 1
     pv = min(p, n)
-    work = np.empty(pv * (n + 1) + 2 * n + m)  # one allocation: V, beta, c, v, g
+    # one allocation: V, beta, c, v, g, and up_row below (int64 in float64 slots)
+    work = np.empty(pv * (n + 1) + 3 * n + m)
     V = work[:pv * n].reshape((pv, n))
     beta = work[pv * n:pv * (n + 1)]
     o = pv * (n + 1)
     c = work[o:o + n]
     v = work[o + n:o + 2 * n]
-    g = work[o + 2 * n:]
+    g = work[o + 2 * n:o + 2 * n + m]
     for t in range(n):
         c[t] = q[t]
     if p > n:
@@ -821,7 +856,9 @@ def factors(q, G, h, A, b, lb, ub, L):
     while m_u < m and ckind[m_u] < n:
         m_u += 1
     forward_rows(L, C[:m_u])
-    up_row = np.full(n, -1, dtype=np.int64)
+    up_row = work[o + 2 * n + m:].view(np.int64)
+    for j in range(n):
+        up_row[j] = -1
     for i in range(m_g, m_u):
         up_row[ckind[i]] = i
     for i in range(m_u, m):
@@ -852,7 +889,7 @@ def factors(q, G, h, A, b, lb, ub, L):
     return OK, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
 
 
-@kernel
+@inline_kernel
 def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol,
            x, y, z, zb, stats, basic):
     """:func:`solve` on screened data (P symmetric, bounds beyond INFINITY infinite); the
@@ -875,7 +912,8 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     ones = work[m * (m + 1):m * (m + 2)]
     yy = work[m * (m + 2):m * (m + 2) + p]
     buf = work[m * (m + 2) + p:]
-    lcp_basic = np.empty(m, dtype=np.int64)
+    # the LCP's basis in the head of basic: mlcp_basis reads it whole before it writes there
+    lcp_basic = basic[:m]
     for i in range(m):
         zz[i] = 0.0
         ones[i] = 1.0
@@ -1001,15 +1039,15 @@ def point(L, E, V, beta, C, c, v, zz, x, yy):
     overwritten)."""
     p = E.shape[0]
     m = C.shape[0]
-    # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k])
-    rhs = np.empty(p)
+    # y = -R^-1 (v1 + c1 + F1 z): back substitution with R (R[k, j] = E[j, k]), the
+    # right-hand side in yy (entry k is read before it is overwritten, the later ones after)
     for k in range(p):
         acc = v[k] + c[k]
         for i in range(m):
             acc += C[i, k] * zz[i]
-        rhs[k] = acc
+        yy[k] = acc
     for k in range(p - 1, -1, -1):
-        acc = rhs[k]
+        acc = yy[k]
         for j in range(k + 1, p):
             acc -= E[j, k] * yy[j]
         yy[k] = acc / E[k, k]
