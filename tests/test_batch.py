@@ -9,6 +9,7 @@ from siconos_dat import read_lcp
 
 import lemke
 from lemke import Status, problems
+from lemke.kernels.cold import RESTART_FROM
 
 DATA = Path(__file__).parent / "data"
 
@@ -175,7 +176,7 @@ def test_many_is_bit_identical_to_one_by_one_for_any_workers(method):
 
 
 @pytest.mark.parametrize("method", lemke.METHODS)
-@pytest.mark.parametrize("n, move", [(10, 1e-3), (30, 1e-3), (30, 0.3)])
+@pytest.mark.parametrize("n, move", [(10, 1e-3), (30, 0.3), (RESTART_FROM, 1e-3), (RESTART_FROM, 0.3)])
 def test_batch_with_warm_starts_is_bit_identical(method, n, move):
     """solve_lcp (whose tableau warm starts go through the lean first_run, then solve_one
     for a restart at n >= RESTART_FROM) gives the batch's bits (solve_one alone)."""

@@ -440,14 +440,18 @@ def basis_point(M, q, beta, k, z):
 
 
 #: The smallest n at which a warm start whose basis fails is restarted from that basis;
-#: below it the problem goes cold at once.  Measured (kernel times, restart / cold, the
-#: warm basis of q and q moved by a relative 1e-3, 1e-2 and 0.3; PD and contact-like M):
-#: at n = 8 the restart took 1.2-1.4x a cold solve, at n = 16 0.9-1.4x, at n = 24 0.75-1.2x,
-#: from n = 32 to 200 0.35-0.8x when q moved by 1e-3 or 1e-2 (fewer pivots win) and
-#: 0.9-1.3x when it moved by 0.3.  The restart runs the unrevised method; remeasured after
-#: its pivots got as cheap as the tableau's (values updated in place): 1.1-1.4x at n = 8-12,
-#: 0.9-1.2x at n = 16, 0.6-1.2x at n = 24, 0.5-0.8x from n = 32 for the small moves.
-RESTART_FROM = 24
+#: below it the problem goes cold (after the old basis's point was tried: 1.05-1.2x a cold
+#: solve).  Remeasured after the tableau's pivots got cheaper (its loop without reference
+#: counting), whole solve_lcp calls, restart / cold of the same q on seeded PD and
+#: contact-like M, q moved by a relative 1e-3, 1e-2 and 0.3 (medians over problems and
+#: moves): 1.4-1.7x at n = 24-48, PD 1.3 and contact 1.9 at 64, PD 1.0 and contact 1.4 at
+#: 100, PD 0.63 and contact 1.3 at 150 (the restart often takes more pivots than a cold
+#: solve on contact problems), then 0.3-0.9x at n = 200 and 300 (contact 1.1x for the
+#: largest move at 300).  At 100 the PD problems and P-matrices moved a little (a few
+#: pivots instead of a cold solve's 40-70) gain and the contact problems lose: the
+#: threshold is there.  The earlier one, 24, was measured when a tableau pivot cost twice
+#: as much.
+RESTART_FROM = 100
 
 
 @inline_kernel
