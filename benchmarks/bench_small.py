@@ -168,7 +168,7 @@ def part3(bodies, steps, passes, rng):
     names = ["lemke warm", "lemke warm solve", "lemke cold", "Drake persistent", "quantecon cold"]
     times = {k: [[] for _ in seq] for k in names}
     ok = {k: 0 for k in names}
-    pivots = {k: [0] * len(seq) for k in names}
+    pivots = {k: [0] * len(seq) for k in names if k.startswith("lemke")}
     gc.disable()
     try:
         for p in range(passes):
@@ -195,8 +195,7 @@ def part3(bodies, steps, passes, rng):
                             z, claimed = r.z, r.status == 0
                         else:
                             z, claimed = r.z, r.success
-                            if k in pivots:
-                                pivots[k][step] = r.pivots
+                            pivots[k][step] = r.pivots
                         ok[k] += bool(claimed and (len(q) == 0 or _ok(M, q, z)))
     finally:
         gc.enable()
