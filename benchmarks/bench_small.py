@@ -26,7 +26,7 @@ Part 3, a pile simulation: ``--pile`` disks dropped into a bin with friction
 appear and vanish.  The trajectory is fixed first (lemke warm advances the scene); then
 ``--passes`` passes over the steps, in order, time per step: lemke warm (the last step's
 ``warm_start`` carried by the contacts' labels with ``WarmStart.relabel``, included in the
-time), lemke cold, Drake's ``UnrevisedLemkeSolver`` kept across the steps of a pass (it
+time; once with the scene's tuple labels, once with the same labels as ints), lemke cold, Drake's ``UnrevisedLemkeSolver`` kept across the steps of a pass (it
 keeps its last basis: Drake's warm start), quantecon cold; the calls of a step in a random
 order.  A step's time is its median over passes; the table gives medians over the settled
 steps (from step 100) grouped by size.
@@ -150,14 +150,15 @@ def part3(bodies, steps, passes, rng):
     except ImportError:  # pragma: no cover
         MathematicalProgram = None
     sc = contact_sim.Scene(1, bodies, False)
-    seq, ws, labels = [], None, []
+    seq, ws, labels, ids = [], None, [], []
     for step in range(steps):
         M, q, apply = contact_sim.step_lcp(sc, step)
         start = None if ws is None else ws.relabel(labels, apply.labels)
-        seq.append((M, q, ws, labels, apply.labels, start))
+        assert ws is None or ws.relabel(ids, apply.ids) == start  # the int ids are the same labels
+        seq.append((M, q, ws, labels, apply.labels, start, ids, apply.ids))
         r = lemke.solve_lcp(M, q, warm_start=start)
         apply(r.z if r.success else None)
-        ws, labels = r.warm_start, apply.labels
+        ws, labels, ids = r.warm_start, apply.labels, apply.ids
     progs = []
     if MathematicalProgram is not None:
         for M, q, *_ in seq:
@@ -165,7 +166,7 @@ def part3(bodies, steps, passes, rng):
             z = prog.NewContinuousVariables(len(q), "z")
             prog.AddLinearComplementarityConstraint(M, q, z)
             progs.append((prog, z))
-    names = ["lemke warm", "lemke warm solve", "lemke cold", "Drake persistent", "quantecon cold"]
+    names = ["lemke warm", "lemke warm, int ids", "lemke warm solve", "lemke cold", "Drake persistent", "quantecon cold"]
     times = {k: [[] for _ in seq] for k in names}
     ok = {k: 0 for k in names}
     pivots = {k: [0] * len(seq) for k in names if k.startswith("lemke")}
@@ -173,9 +174,11 @@ def part3(bodies, steps, passes, rng):
     try:
         for p in range(passes):
             drake = UnrevisedLemkeSolver() if progs else None
-            for step, (M, q, ws, old, new, start) in enumerate(seq):
+            for step, (M, q, ws, old, new, start, old_ids, new_ids) in enumerate(seq):
                 calls = {"lemke warm": lambda: lemke.solve_lcp(
                              M, q, warm_start=None if ws is None else ws.relabel(old, new)),
+                         "lemke warm, int ids": lambda: lemke.solve_lcp(
+                             M, q, warm_start=None if ws is None else ws.relabel(old_ids, new_ids)),
                          "lemke warm solve": lambda: lemke.solve_lcp(M, q, warm_start=start),
                          "lemke cold": lambda: lemke.solve_lcp(M, q)}
                 if progs:
@@ -257,13 +260,15 @@ def main(argv=None):
               "Settled steps (from step 100), grouped by the LCP's size. *lemke warm (relabel + solve)*: "
               "`solve_lcp(M, q, warm_start=last.warm_start.relabel(old_labels, new_labels))`, the labels being "
               "the scene's tuples (each label is hashed: the relabel is Python work proportional to n); "
+              "*int ids*: the same with the labels as ints (`apply.ids`, one int per label: "
+              "what a simulation that wants the relabel fast passes); "
               "*the solve*: the same call with the relabeled warm start made beforehand. Ratios: of the "
               "relabel + solve column. Target (issue 14): a warm step at n of about 150 (132-168) <= 120 us.", "",
-              "| sizes | steps | lemke warm (relabel + solve) | lemke warm, the solve | lemke cold | Drake persistent | "
+              "| sizes | steps | lemke warm (relabel + solve) | lemke warm, int ids | lemke warm, the solve | lemke cold | Drake persistent | "
               "quantecon cold | warm / Drake | warm / cold | pivots warm / cold |",
-              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
         for lo, hi, count, smin, smax, t, piv in groups:
-            L.append(f"| {smin}-{smax} | {count} | {t['lemke warm']:.1f} | {t['lemke warm solve']:.1f} | {t['lemke cold']:.1f} | "
+            L.append(f"| {smin}-{smax} | {count} | {t['lemke warm']:.1f} | {t['lemke warm, int ids']:.1f} | {t['lemke warm solve']:.1f} | {t['lemke cold']:.1f} | "
                      f"{t['Drake persistent']:.1f} | {t['quantecon cold']:.1f} | "
                      f"{t['lemke warm'] / t['Drake persistent']:.2f} | {t['lemke warm'] / t['lemke cold']:.2f} | "
                      f"{piv['lemke warm']:g} / {piv['lemke cold']:g} |")

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass, fields
+from itertools import compress, repeat
+from operator import itemgetter
 
 import numpy as np
 
@@ -67,22 +69,26 @@ class WarmStart:
         a new row.  Labels are any hashable values, distinct within each list (each is hashed
         once per call: ints and short strings hash fastest, a tuple is hashed item by item)."""
         old = old_labels if type(old_labels) in (list, tuple) else list(old_labels)
-        if len(old) != self.n:
-            raise ValueError(f"old_labels has {len(old)} labels for a basis of size {self.n}")
-        where = {label: j for j, label in enumerate(old)}
-        if len(where) != len(old):
+        n = self.n
+        if len(old) != n:
+            raise ValueError(f"old_labels has {len(old)} labels for a basis of size {n}")
+        # Pure Python, every pass over the labels a C loop (dict, map, set, itemgetter,
+        # compress: no Python bytecode per label): each label is hashed once; index n (one
+        # past the old rows) marks a new row, never basic.  At a pile's n = 150-200 the
+        # numpy steps of take() cost more than the hashing.
+        where = dict(zip(old, range(n)))
+        if len(where) != n:
             raise ValueError("old_labels holds a label twice")
-        # Pure Python from here: each label is hashed once, and at a pile's n = 150-200 the
-        # numpy steps of take() cost more than the hashing (32 of 80 us).
-        get = where.get
-        idx = [get(label, -1) for label in new_labels]
-        new = len(idx) - idx.count(-1)  # rows of the new problem that an old row carries to
-        if new and len(set(idx)) - (new != len(idx)) != new:
+        idx = list(map(where.get, new_labels, repeat(n)))
+        m = len(idx)
+        carried = m - idx.count(n)  # rows of the new problem that an old row carries to
+        if carried and len(set(idx)) - (carried != m) != carried:
             raise ValueError("new_labels holds a label twice")
-        basic = bytearray(self.n + 1)  # the last entry (index -1): new rows, never basic
+        basic = bytearray(n + 1)
         for j in self.z_basic:
             basic[j] = 1
-        return WarmStart._trusted(len(idx), tuple([i for i, j in enumerate(idx) if basic[j]]))
+        flags = itemgetter(*idx)(basic) if m > 1 else tuple(basic[j] for j in idx)
+        return WarmStart._trusted(m, tuple(compress(range(m), flags)))
 
     def __getstate__(self):
         # the fields only: not the index array that solve_lcp keeps with it (``_beta``, its
