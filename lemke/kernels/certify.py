@@ -67,6 +67,14 @@ def lcp_check_sized(M, q, z, tol, w, R):
     return check_rows(M, q, z, tol, w, R, work, np.False_)
 
 
+@kernel
+def lcp_check_early(M, q, z, tol, w, R, work):
+    """:func:`check_rows` in its early mode, compiled as a function of its own (inlined into
+    a large kernel it ran a few per cent slower): the verdict on a point that will mostly
+    fail, with the work array (2n floats) given."""
+    return check_rows(M, q, z, tol, w, R, work, np.True_)
+
+
 @inline_kernel
 def check_rows(M, q, z, tol, w, R, work, early):
     """The check of :func:`lcp_check_sized`, with its work array (2n floats) given.

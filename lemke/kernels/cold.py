@@ -62,7 +62,7 @@ import functools
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
-from .certify import check_rows, lcp_check_sized, lcp_ray_check_scaled
+from .certify import lcp_check_early, lcp_check_sized, lcp_ray_check_scaled
 from .linalg import (copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_gathered,
                      solve_work)
 
@@ -445,7 +445,7 @@ def basis_point_in(M, q, beta, k, z, work):
 
 
 #: The smallest n at which a warm start whose basis fails is restarted from that basis;
-#: below it the problem goes cold (after the old basis's point was tried: 1.05-1.2x a cold
+#: below it the problem goes cold (after the old basis's point was tried: 1.1-1.2x a cold
 #: solve).  Remeasured after the tableau's pivots got cheaper (its loop without reference
 #: counting), whole solve_lcp calls, restart / cold of the same q on seeded PD and
 #: contact-like M, q moved by a relative 1e-3, 1e-2 and 0.3 (medians over problems and
@@ -481,7 +481,7 @@ def old_basis(M, q, d, beta, k, tol, buf, basic):
         return 2, m_max, 0.0
     # The check stops at the first row that fails (a wrong basis mostly fails in the first
     # rows it reads, and the full check's zero_size reads a column of M per failed row).
-    ok, residual = check_rows(M, q, x[:n], tol, w, R, work, np.True_)
+    ok, residual = lcp_check_early(M, q, x[:n], tol, w, R, work)
     if not ok:
         return 1, m_max, 0.0
     for i in range(n):
