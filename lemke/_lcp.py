@@ -117,8 +117,9 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         beta = _NO_BASIS
         kb = 0
     else:  # the basis as an index array, kept with the (immutable) WarmStart
-        beta = ws.__dict__.get("_beta")
-        if beta is None:
+        try:
+            beta = ws._beta  # (an attribute read: cheaper than ws.__dict__.get)
+        except AttributeError:
             beta = ws.__dict__["_beta"] = np.array(ws.z_basic, dtype=np.int64)
         kb = len(beta)
     buf = _empty(_LEN_N * n + _LEN_1)  # cold.buffer_length(n)

@@ -62,8 +62,9 @@ import functools
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
-from .certify import lcp_check_sized, lcp_ray_check_scaled
-from .linalg import copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_principal
+from .certify import lcp_check_early, lcp_check_sized, lcp_ray_check_scaled
+from .linalg import (copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_gathered,
+                     solve_work)
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity (or sizes that do not match): the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -424,23 +425,27 @@ def basis_point(M, q, beta, k, z):
     """z of the complementary basis with z_i basic for i in beta[:k]: ``z_beta = -M_bb^-1
     q_beta`` by LU (``linalg.solve_principal``), negative entries clipped to 0, the others
     0.  False when M_bb is singular or the point is not finite."""
+    return basis_point_in(M, q, beta, k, z, np.empty(k * (k + 2)))
+
+
+@inline_kernel
+def basis_point_in(M, q, beta, k, z, work):
+    """:func:`basis_point` with its work array given (at least k (k + 2) floats)."""
     z[:] = 0.0
     if k == 0:
         return True
-    idx = beta[:k]
-    rhs = np.empty(k)
+    A, y, zb = solve_work(work, k)
     for i in range(k):
-        rhs[i] = -q[idx[i]]
-    ok, zb = solve_principal(M, idx, rhs)
-    if not ok:
+        y[i] = -q[beta[i]]
+    if not solve_gathered(M, beta, A, y, zb, k):
         return False
     for i in range(k):
-        z[idx[i]] = max(zb[i], 0.0)
+        z[beta[i]] = max(zb[i], 0.0)
     return True
 
 
 #: The smallest n at which a warm start whose basis fails is restarted from that basis;
-#: below it the problem goes cold (after the old basis's point was tried: 1.05-1.2x a cold
+#: below it the problem goes cold (after the old basis's point was tried: 1.1-1.2x a cold
 #: solve).  Remeasured after the tableau's pivots got cheaper (its loop without reference
 #: counting), whole solve_lcp calls, restart / cold of the same q on seeded PD and
 #: contact-like M, q moved by a relative 1e-3, 1e-2 and 0.3 (medians over problems and
@@ -459,8 +464,10 @@ def old_basis(M, q, d, beta, k, tol, buf, basic):
     """The first stage of a warm start: the point of the old basis (z_i basic for i in
     beta[:k], :func:`basis_point`), checked on (M, q), after the finite check and the
     equilibration (R and C in ``buf``).  Returns ``(found, m_max, residual)``: found 0 when
-    the point passes (it is in ``buf``, ``basic`` holds beta), 1 when it fails, 2 when the
-    old block is singular, -1 when M or q has a NaN or an infinity; m_max = max |M|."""
+    the point passes (it is in ``buf``, ``basic`` holds beta, residual is its check's), 1
+    when it fails (the check stopped at the first failed row: residual 0, w in ``buf``
+    partly written; the caller solves again, which writes both), 2 when the old block is
+    singular, -1 when M or q has a NaN or an infinity; m_max = max |M|."""
     n = q.shape[0]
     x, ray, w, cov, R, C = layout(n, buf)
     finite, m_max = finite_absmax(M)
@@ -468,11 +475,15 @@ def old_basis(M, q, d, beta, k, tol, buf, basic):
         return -1, m_max, 0.0
     equilibrate(M, q, R, C)
     x[n] = 0.0
-    if not basis_point(M, q, beta, k, x[:n]):
+    # One work array for the LU and then the check (2n floats), the only allocation here.
+    work = np.empty(max(k * (k + 2), 2 * n))
+    if not basis_point_in(M, q, beta, k, x[:n], work):
         return 2, m_max, 0.0
-    ok, residual = lcp_check_sized(M, q, x[:n], tol, w, R)
+    # The check stops at the first row that fails (a wrong basis mostly fails in the first
+    # rows it reads, and the full check's zero_size reads a column of M per failed row).
+    ok, residual = lcp_check_early(M, q, x[:n], tol, w, R, work)
     if not ok:
-        return 1, m_max, residual
+        return 1, m_max, 0.0
     for i in range(n):
         cov[i] = d[i] if d.shape[0] else 1.0
     ray[:] = 0.0

@@ -542,7 +542,7 @@ def solve(H, b):
     is exactly zero (H is singular in floating point), the shapes do not match or x is not
     finite.  Never raises."""
     k = b.shape[0]
-    A, y, x = _solve_work(k)
+    A, y, x = solve_work(np.empty(k * (k + 2)), k)
     if H.shape[0] != k or H.shape[1] != k:
         return False, x
     for r in range(k):
@@ -556,22 +556,31 @@ def solve(H, b):
 def solve_principal(M, idx, b):
     """:func:`solve` on the principal block ``M[idx][:, idx]``, read straight from M."""
     k = b.shape[0]
-    A, y, x = _solve_work(k)
+    A, y, x = solve_work(np.empty(k * (k + 2)), k)
     if idx.shape[0] != k:
         return False, x
+    for r in range(k):
+        y[r] = b[r]
+    return solve_gathered(M, idx, A, y, x, k), x
+
+
+@inline_kernel
+def solve_gathered(M, idx, A, y, x, k):
+    """The solve of :func:`solve_principal` with the right-hand side already in y (the work
+    arrays of :func:`solve_work`): the block ``M[idx[:k]][:, idx[:k]]`` gathered into A,
+    then eliminated; x gets the solution.  Returns ok."""
     for r in range(k):
         row = M[idx[r]]
         for c in range(k):
             A[r, c] = row[idx[c]]
-        y[r] = b[r]
-    return _eliminate(A, y, x, k), x
+    return _eliminate(A, y, x, k)
 
 
 @inline_kernel
-def _solve_work(k):
-    """The work arrays of :func:`solve` in one allocation: A (k x k), y, and x = 0."""
-    work = np.empty(k * (k + 2))
-    x = work[k * (k + 1) :]
+def solve_work(work, k):
+    """The work arrays of :func:`solve` carved from ``work`` (at least k (k + 2) floats, one
+    allocation): A (k x k), y, and x = 0."""
+    x = work[k * (k + 1) : k * (k + 2)]
     x[:] = 0.0
     return work[: k * k].reshape((k, k)), work[k * k : k * (k + 1)], x
 
