@@ -71,7 +71,9 @@ def _bases(warm_start, B, sizes):
             b = int(np.flatnonzero(warm_start.n != sizes)[0])
             raise ValueError(f"warm_start[{b}] is for a problem of size {warm_start.n[b]}, problem {b} "
                              f"has n = {sizes[b]}")
-        return warm_start.z_basic, warm_start.offsets, None
+        # (copies: the kernels take writable arrays only, one compiled type; a read-only one
+        # would compile cold.batch again)
+        return warm_start.z_basic.copy(), warm_start.offsets.copy(), None
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")
