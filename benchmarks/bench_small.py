@@ -5,7 +5,10 @@ and islands of a contact scene in one call.
 Usage::
 
     python benchmarks/bench_small.py [--sizes 3 12 24 48] [--reps 3000] [--islands 400]
-                                     [--out benchmarks/RESULTS-small.md]
+                                     [--island-sizes 1 12] [--out benchmarks/RESULTS-small.md]
+    # issue 14's islands target (part 2 alone: 3,000 islands of 3-12 rows)
+    python benchmarks/bench_small.py --sizes --pile 0 --islands 3000 --island-sizes 3 12 \
+                                     --out benchmarks/RESULTS-islands.md
 
 Part 1, one problem at a time (random monotone LCPs ``M = A A' + 0.1 I``, ``q ~ N(0, I)``,
 seeded): lemke cold (tableau), lemke warm with the basis unchanged (q moved by 1e-9: the old
@@ -13,13 +16,20 @@ basis still solves it, 0 pivots), lemke warm from a wrong basis (q moved by 0.3:
 quantecon's ``lcp_lemke``.  The four calls run interleaved in a random order for every repeat;
 the table gives medians in microseconds and ratios to quantecon.
 
-Part 2, islands: ``--islands`` contact-like LCPs of 1..12 rows (``lemke.problems.contact_like``,
-rank-deficient with repeated rows) and the next step of each (q moved by 1e-3), solved warm
-from the first step's bases: a Python loop of ``solve_lcp``, one ``solve_lcp_many`` call
-with 1 and 2 workers, and a loop of quantecon (cold; it has no warm start).  lemke's
-results build their arrays when first read, so two rows read back what a simulation needs
-(each island's z, and its warm start for the next step; quantecon's z).  Medians of
-``--rounds`` interleaved rounds.  Every answer is checked (``w = M z + q`` recomputed).
+Part 2, islands: ``--islands`` contact-like LCPs of ``--island-sizes`` rows (default 1..12;
+``lemke.problems.contact_like``, rank-deficient with repeated rows) and the next step of
+each (q moved by 1e-3), solved warm from the first step's bases: a Python loop of
+``solve_lcp``, one ``solve_lcp_many`` call with 1 and 2 workers (the bases as a list of
+``WarmStart``), and a loop of quantecon (cold; it has no warm start).  lemke's results build
+their items and arrays when first read, so some rows read back what a simulation needs
+(each island's z, and its warm start for the next step; quantecon's z): item by item
+(``r.z``, ``r.warm_start`` of each ``LCPResult``), or flat (the result's ``z``, ``offsets``
+and ``warm_start``, a ``WarmStartBatch``, with the first step's ``WarmStartBatch`` passed
+in: what a simulation that keeps its islands' bases in one batch does each step).  Medians
+of ``--rounds`` interleaved rounds.  Every answer is checked (``w = M z + q`` recomputed;
+the flat rows' z split at the offsets).  Issue 14's target: 3,000 islands of 3-12 rows
+(``--islands 3000 --island-sizes 3 12``) at <= 3 us per island on one core, warm starts
+and reading included.
 
 Part 3, a pile simulation: ``--pile`` disks dropped into a bin with friction
 (``tests/contact_sim.py``, seed 1), one LCP per time step whose size changes as contacts
@@ -105,11 +115,11 @@ def part1(sizes, reps, rng):
     return rows
 
 
-def part2(count, rounds, rng):
+def part2(count, rounds, rng, lo=1, hi=12):
     r = np.random.default_rng(15)
     Ms, qs, qs2 = [], [], []
     for _ in range(count):
-        n = int(r.integers(1, 13))
+        n = int(r.integers(lo, hi + 1))
         M, q = problems.contact_like(n, r) if n >= 2 else (np.array([[2.0]]), np.array([-1.0]))
         Ms.append(np.ascontiguousarray(M))
         qs.append(q)
@@ -132,10 +142,24 @@ def part2(count, rounds, rng):
         lemke.solve_lcp_many(Ms, qs2, warm_start=ws, workers=1))
     if lcp_lemke is not None:
         calls["quantecon loop, cold, z read"] = lambda: [lcp_lemke(M, q).z for M, q in zip(Ms, qs2)]
+    batch = lemke.solve_lcp_many(Ms, qs, workers=1).warm_start  # the first step's bases, one WarmStartBatch
+    assert list(batch) == ws
+
+    def read_flat(rs):  # the same, flat: z and its offsets, every warm start in one object
+        rs.z, rs.offsets, rs.warm_start
+        return rs
+    calls["solve_lcp_many, warm (WarmStartBatch), 1 worker, flat z and warm_start read"] = lambda: read_flat(
+        lemke.solve_lcp_many(Ms, qs2, warm_start=batch, workers=1))
+    calls["solve_lcp_many, warm (WarmStartBatch), 2 workers, flat z and warm_start read"] = lambda: read_flat(
+        lemke.solve_lcp_many(Ms, qs2, warm_start=batch, workers=2))
     results = {k: f() for k, f in calls.items()}
     solved = {}
     for k, res in results.items():
-        zs = [x if isinstance(x, np.ndarray) else x.z for x in res]
+        if "flat" in k:
+            zs = np.split(res.z, res.offsets[1:-1])
+            assert all(a.tobytes() == b.z.tobytes() for a, b in zip(zs, results["solve_lcp loop, warm"]))
+        else:
+            zs = [x if isinstance(x, np.ndarray) else x.z for x in res]
         solved[k] = sum(_ok(M, q, z) for M, q, z in zip(Ms, qs2, zs))
     times = _interleaved(calls, rounds, rng)
     return {k: np.median(v) * 1e3 for k, v in times.items()}, solved
@@ -220,6 +244,8 @@ def main(argv=None):
     p.add_argument("--sizes", type=int, nargs="*", default=[3, 12, 24, 48])
     p.add_argument("--reps", type=int, default=3000)
     p.add_argument("--islands", type=int, default=400)
+    p.add_argument("--island-sizes", type=int, nargs=2, default=[1, 12], metavar=("LO", "HI"),
+                   help="the islands' rows, from LO to HI (issue 14's target: 3 12, with --islands 3000)")
     p.add_argument("--rounds", type=int, default=40)
     p.add_argument("--pile", type=int, default=16, help="disks in the pile simulation (0: skip part 3)")
     p.add_argument("--steps", type=int, default=300)
@@ -232,27 +258,32 @@ def main(argv=None):
     info = machine_info()
     t0 = time.time()
     rows = part1(args.sizes, args.reps, rng)
-    islands, solved = part2(args.islands, args.rounds, rng)
+    islands, solved = part2(args.islands, args.rounds, rng, *args.island_sizes)
     pile = part3(args.pile, args.steps, args.passes, rng) if args.pile else None
     mark_end(info)
     L = report_head("Small problems: cold and warm solves vs quantecon, islands in one call",
                     "bench_small.py", args, time.time() - t0, info)
-    L += ["", "## 1. One problem at a time (medians, microseconds)", "",
-          f"{args.reps} interleaved repeats per size; ratios to quantecon's `lcp_lemke`. *warm, wrong basis* "
-          "solves q moved by 0.3 (normal) from the basis of the unmoved q, and *wrong/cold* divides it by a "
-          "cold solve of that same moved q (*cold, far*). Pivots: cold / warm unchanged / warm wrong basis / cold, far.", "",
-          "| n | cold | warm, basis unchanged | warm, wrong basis | cold, far | quantecon | cold/qe | warm unchanged/qe | warm unchanged/cold | wrong/cold | pivots | all answers checked |",
-          "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"]
-    for n, t, ok, piv in rows:
-        qe = t.get("quantecon", float("nan"))
-        L.append(f"| {n} | {t['cold']:.1f} | {t['warm, basis unchanged']:.1f} | {t['warm, wrong basis']:.1f} | "
-                 f"{t['cold, far']:.1f} | {qe:.1f} | {t['cold'] / qe:.2f} | {t['warm, basis unchanged'] / qe:.2f} | "
-                 f"{t['warm, basis unchanged'] / t['cold']:.2f} | {t['warm, wrong basis'] / t['cold, far']:.2f} | "
-                 f"{'/'.join(map(str, piv))} | {'yes' if ok else 'NO'} |")
-    L += ["", f"## 2. {args.islands} islands of 1..12 rows, the next step warm (medians of {args.rounds} rounds, ms)", "",
-          "| how | time | per island | solved and checked |", "|---|---:|---:|---:|"]
+    if rows:
+        L += ["", "## 1. One problem at a time (medians, microseconds)", "",
+              f"{args.reps} interleaved repeats per size; ratios to quantecon's `lcp_lemke`. *warm, wrong basis* "
+              "solves q moved by 0.3 (normal) from the basis of the unmoved q, and *wrong/cold* divides it by a "
+              "cold solve of that same moved q (*cold, far*). Pivots: cold / warm unchanged / warm wrong basis / cold, far.", "",
+              "| n | cold | warm, basis unchanged | warm, wrong basis | cold, far | quantecon | cold/qe | warm unchanged/qe | warm unchanged/cold | wrong/cold | pivots | all answers checked |",
+              "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"]
+        for n, t, ok, piv in rows:
+            qe = t.get("quantecon", float("nan"))
+            L.append(f"| {n} | {t['cold']:.1f} | {t['warm, basis unchanged']:.1f} | {t['warm, wrong basis']:.1f} | "
+                     f"{t['cold, far']:.1f} | {qe:.1f} | {t['cold'] / qe:.2f} | {t['warm, basis unchanged'] / qe:.2f} | "
+                     f"{t['warm, basis unchanged'] / t['cold']:.2f} | {t['warm, wrong basis'] / t['cold, far']:.2f} | "
+                     f"{'/'.join(map(str, piv))} | {'yes' if ok else 'NO'} |")
+    lo, hi = args.island_sizes
+    L += ["", f"## 2. {args.islands} islands of {lo}..{hi} rows, the next step warm (medians of {args.rounds} "
+          "rounds, ms)", "",
+          "| how | time | per island | per island / quantecon's loop (z read) | solved and checked |",
+          "|---|---:|---:|---:|---:|"]
+    qe = islands.get("quantecon loop, cold, z read", float("nan"))
     for k, t in islands.items():
-        L.append(f"| {k} | {t:.2f} ms | {t / args.islands * 1e3:.1f} us | {solved[k]}/{args.islands} |")
+        L.append(f"| {k} | {t:.2f} ms | {t / args.islands * 1e3:.2f} us | {t / qe:.2f} | {solved[k]}/{args.islands} |")
     if pile:
         groups, ok, nsteps = pile
         L += ["", f"## 3. A pile of {args.pile} disks: {nsteps} steps, medians per step over {args.passes} passes "

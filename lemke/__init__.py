@@ -4,7 +4,7 @@ Public API: :func:`solve_lcp` (methods in ``METHODS``), :func:`solve_lcp_batch` 
 of one size in parallel threads), :func:`solve_lcp_many` (many of different sizes), :func:`solve_lcp_batch_dask` (a batch over a
 Dask cluster),
 :func:`solve_mlcp` (mixed LCPs), :func:`solve_qp` (convex QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
-:class:`LCPBatchResult`, :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
+:class:`LCPBatchResult`, :class:`LCPManyResult` (with :class:`WarmStartBatch`), :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
 :class:`Options`, :class:`WarmStart`, :func:`pivot_column` (one step of the unrevised
 method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as values
 (:class:`Problem`) and in files (:func:`read_problem`, :func:`write_problem`,
@@ -22,7 +22,7 @@ from ._options import Options
 from ._pivot_column import pivot_column
 from ._problem import Problem
 from ._qp import Certificate, QPResult, solve_qp, solve_qpsolvers_problem
-from ._result import LCPBatchResult, LCPResult, WarmStart
+from ._result import LCPBatchResult, LCPManyResult, LCPResult, WarmStart, WarmStartBatch
 from ._status import Status
 from ._version import __version__
 
@@ -35,6 +35,7 @@ __all__ = [
     "GameBasis",
     "Certificate",
     "LCPBatchResult",
+    "LCPManyResult",
     "LCPResult",
     "MLCPResult",
     "Options",
@@ -43,6 +44,7 @@ __all__ = [
     "QPResult",
     "Status",
     "WarmStart",
+    "WarmStartBatch",
     "is_lcp_ray",
     "is_lcp_solution",
     "lcp_residual",

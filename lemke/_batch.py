@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
-from itertools import chain, repeat
+from itertools import chain
 from operator import attrgetter
 
 import numpy as np
@@ -13,7 +13,7 @@ import numpy as np
 from . import _validate
 from ._lcp import METHODS, _outcome
 from ._options import as_options
-from ._result import LCPBatchResult, LCPResult, WarmStart
+from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
 from ._validate import real_array
 from .kernels import cold
@@ -60,9 +60,20 @@ def _run(kernel, args, tail, B, workers):
 
 def _bases(warm_start, B, sizes):
     """The warm starts as one index array and offsets (an empty basis: cold), and the list of
-    them (None when not given).  ``sizes``: the problems' sizes, a list."""
+    them (None when not given, or given as a WarmStartBatch, whose arrays are taken as they
+    are).  ``sizes``: the problems' sizes, a list."""
     if warm_start is None:
         return np.zeros(0, dtype=np.int64), np.zeros(B + 1, dtype=np.int64), None
+    if type(warm_start) is WarmStartBatch:
+        if len(warm_start) != B:
+            raise ValueError(f"warm_start must hold one basis per problem: {len(warm_start)} for {B} problems")
+        if warm_start.n.tolist() != sizes:
+            b = int(np.flatnonzero(warm_start.n != sizes)[0])
+            raise ValueError(f"warm_start[{b}] is for a problem of size {warm_start.n[b]}, problem {b} "
+                             f"has n = {sizes[b]}")
+        # (copies: the kernels take writable arrays only, one compiled type; a read-only one
+        # would compile cold.batch again)
+        return warm_start.z_basic.copy(), warm_start.offsets.copy(), None
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")
@@ -196,7 +207,8 @@ def batch_arrays(M, q):
     return _validate.kernel_array(M), _validate.kernel_array(q)
 
 
-def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> list:
+def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
+                   warm_start=None) -> LCPManyResult:
     r"""Solve LCPs of different sizes (the islands of a contact scene) in one call, in
     parallel threads without the GIL: problem b is ``(M[b], q[b])`` with its own n_b.
 
@@ -207,15 +219,22 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     options : Options or dict, optional
     workers : int, optional
         Threads (default: every usable core; 1 runs in the calling thread).
-    warm_start : sequence of WarmStart or None, optional
-        One per problem (None: cold); e.g. each island's last ``warm_start``, carried over
-        with :meth:`WarmStart.relabel` when its contacts changed.
+    warm_start : WarmStartBatch, or sequence of WarmStart or None, optional
+        The last step's ``result.warm_start`` (a :class:`WarmStartBatch`, taken as it is: no
+        Python work per problem), or one WarmStart per problem (None: cold), e.g. each
+        island's last ``warm_start``, carried over with :meth:`WarmStart.relabel` when its
+        contacts changed.
 
     Returns
     -------
-    list of LCPResult
-        Result b is what ``solve_lcp(M[b], q[b], method=method, warm_start=warm_start[b],
-        options=options)`` returns, bit for bit, whatever the number of workers.
+    LCPManyResult
+        A sequence of :class:`LCPResult`: item b is what ``solve_lcp(M[b], q[b],
+        method=method, warm_start=warm_start[b], options=options)`` returns, bit for bit,
+        whatever the number of workers, built when first read.  The same answers lie in
+        flat arrays, read without a Python object per problem: ``z`` and ``w`` end to end
+        (problem b's at ``offsets[b]:offsets[b + 1]``), ``status``, ``success``,
+        ``pivots``, ``residual``, and ``warm_start``, every final basis in one
+        :class:`WarmStartBatch` to pass back.
 
     Examples
     --------
@@ -223,6 +242,12 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     >>> rs = lemke.solve_lcp_many([[[2.0]], [[2.0, 1.0], [1.0, 2.0]]], [[-1.0], [-5.0, -6.0]])
     >>> [r.z.round(6).tolist() for r in rs]
     [[0.5], [1.333333, 2.333333]]
+    >>> rs.z.round(6).tolist(), rs.offsets.tolist(), rs.success.tolist()
+    ([0.5, 1.333333, 2.333333], [0, 1, 3], [True, True])
+    >>> nxt = lemke.solve_lcp_many([[[2.0]], [[2.0, 1.0], [1.0, 2.0]]], [[-1.1], [-5.0, -6.1]],
+    ...                            warm_start=rs.warm_start)
+    >>> nxt.pivots.tolist()  # the old bases still solve them
+    [0, 0]
     """
     _validate.method(method, METHODS)
     opts = as_options(options)
@@ -241,8 +266,6 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
                        for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
     sizes = list(map(len, qs))
     beta, boff, ws = _bases(warm_start, B, sizes)
-    if not B:
-        return []
     # offsets: of q and the basic z's, of M, of the output buffers (cold.buffer_length)
     off = np.zeros((3, B + 1), dtype=np.int64)
     n_b = off[0, 1:]
@@ -260,40 +283,24 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None, warm_s
     out_f = np.empty((B, 2))
     _run(cold.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
-    for b in np.flatnonzero(out_i[:, 0] == cold.NOT_FINITE):
+    code = out_i[:, 0]
+    for b in np.flatnonzero(code == cold.NOT_FINITE):
         _checked(int(b), Ms[b], qs[b])  # raises, naming the problem and the entry
-    return _results(B, sizes, ws, opts, out_i, out_f, bufs, basics, off, Mflat, qflat)
+    # Everything but a checked solution (and q >= 0), or a checked ray, goes through
+    # solve_lcp's own logic now (the recomputation from the final basis, the downgrades),
+    # from problem b's own copy of (M, q) in the flat arrays; the result builds the others
+    # (lazily, from the shared buffers) only when its items are read.
+    special = {}
+    for b in np.flatnonzero((out_f[:, 0] == 0.0) | ((code != 0) & (code != cold.TRIVIAL) & (code != _RAY))).tolist():
+        c, pivots, k, recoveries, _ = out_i[b].tolist()
+        n, m, o, bo = sizes[b], int(mstart[b]), int(qoff[b]), int(buff[b])
+        special[b] = _outcome(Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n], opts, c, pivots,
+                              basics[o : o + k], bool(out_f[b, 0]), float(out_f[b, 1]),
+                              bufs[bo : int(buff[b + 1])], recoveries)
+    return LCPManyResult(sizes, off, out_i, out_f, bufs, basics, ws, special)
 
 
-def _results(B, sizes, ws, opts, out_i, out_f, bufs, basics, off, Mflat, qflat, _new=object.__new__,
-             _SOLVED=Status.SOLVED, _RAY_TERMINATION=Status.RAY_TERMINATION,
-             _TRIVIAL=cold.TRIVIAL, _RAY=int(Status.RAY_TERMINATION)):
-    """The results of solve_lcp_many, as solve_lcp builds them.  They share the output
-    buffers (read-only from now on), and each makes its views when a field is first read
-    (LCPResult._lazy, inlined: this loop is most of the Python time per problem).  The
-    others (neither solved and checked, nor q >= 0, nor a checked ray) are built from
-    problem b's own copy of (M, q) in the flat arrays."""
-    bufs.setflags(write=False)
-    qo, ms, bo = off[0].tolist(), off[1].tolist(), off[2].tolist()
-    out = list(map(_new, repeat(LCPResult, B)))
-    srcs = zip(repeat(bufs), bo, repeat(basics), qo, sizes, out_i[:, 2].tolist())
-    for b, res, (code, pivots, k, recoveries, stage), (ok, residual), src, w in zip(
-            range(B), out, out_i.tolist(), out_f.tolist(), srcs, repeat(None) if ws is None else ws):
-        if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
-            f = res.__dict__
-            f["status"] = _SOLVED if code != _RAY else _RAY_TERMINATION
-            f["pivots"] = pivots
-            f["residual"] = residual
-            if recoveries:
-                f["recoveries"] = recoveries
-            f["_src"] = src
-            if stage == 0:
-                f["warm_start"] = w
-        else:
-            n, m, o = sizes[b], ms[b], qo[b]
-            out[b] = _outcome(Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n], opts, code, pivots,
-                              basics[o : o + k], bool(ok), residual, bufs[bo[b] : bo[b + 1]], recoveries)
-    return out
+_RAY = int(Status.RAY_TERMINATION)
 
 
 def _flat(arrays):

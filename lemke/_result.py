@@ -6,8 +6,11 @@ and ``hash`` follows the same fields, so results can be dict keys and set member
 """
 from __future__ import annotations
 
+import operator
 import struct
+from collections.abc import Sequence
 from dataclasses import dataclass, fields
+from functools import cached_property
 from itertools import compress, repeat
 from operator import itemgetter
 
@@ -354,6 +357,285 @@ _LAZY_FIELDS = ("z", "z0", "ray", "w", "covering", "row_scale", "col_scale", "wa
 for _name in _LAZY_FIELDS:
     setattr(LCPResult, _name, _FromBuffer(_name))
 del _name
+
+
+@dataclass(frozen=True, eq=False)
+class WarmStartBatch(Value):
+    """The complementary bases of B problems in one value: problem b has size ``n[b]``, and
+    ``z_basic[offsets[b]:offsets[b + 1]]`` lists (sorted, 0-based) the i whose z_i is basic,
+    as one :class:`WarmStart` would.  The ``warm_start`` of :func:`lemke.solve_lcp_many`'s
+    result; pass it back whole, ``solve_lcp_many(..., warm_start=batch)`` (or to
+    :func:`lemke.solve_lcp_batch`), and the kernels take its arrays as they are: no Python
+    work per problem.  An empty basis is a cold start.  ``batch[b]`` is problem b's
+    :class:`WarmStart` (made when asked), ``len`` and iteration work as on a list of them.
+    Its arrays are read-only int64; ``==`` and ``hash`` compare them bit for bit.
+
+    >>> WarmStartBatch([2, 3], [1, 0, 2], [0, 1, 3])[1]
+    WarmStart(n=3, z_basic=(0, 2))
+    """
+
+    n: np.ndarray
+    z_basic: np.ndarray
+    offsets: np.ndarray
+
+    def __post_init__(self):
+        n, z, off = (_int_vector(getattr(self, name), name) for name in ("n", "z_basic", "offsets"))
+        if off.size != n.size + 1 or off[0] != 0 or off[-1] != z.size or (np.diff(off) < 0).any():
+            raise ValueError("WarmStartBatch.offsets must rise from 0 to len(z_basic), one more "
+                             f"entry than n: got {off.size} offsets for {n.size} problems, ending at "
+                             f"{off[-1]} for {z.size} indices")
+        if (n < 0).any():
+            raise ValueError("WarmStartBatch.n must hold non-negative sizes")
+        counts = np.diff(off)
+        rising = np.ones(z.size, dtype=bool)  # z_basic rises within each problem's segment
+        rising[1:] = np.diff(z) > 0
+        rising[off[:-1][counts > 0]] = True
+        if (z < 0).any() or (z >= np.repeat(n, counts)).any() or not rising.all():
+            raise ValueError("WarmStartBatch.z_basic must hold, for each problem b, distinct sorted "
+                             "indices in [0, n[b])")
+        for name, v in (("n", n), ("z_basic", z), ("offsets", off)):
+            object.__setattr__(self, name, v)
+
+    @classmethod
+    def _trusted(cls, n, z_basic, offsets) -> "WarmStartBatch":
+        """Build from int64 arrays the solver made itself (no checks; made read-only)."""
+        ws = object.__new__(cls)
+        f = ws.__dict__
+        for name, v in (("n", n), ("z_basic", z_basic), ("offsets", offsets)):
+            v.setflags(write=False)
+            f[name] = v
+        return ws
+
+    def __reduce__(self):
+        return (WarmStartBatch._trusted, (self.n.copy(), self.z_basic.copy(), self.offsets.copy()))
+
+    def __len__(self) -> int:
+        return len(self.n)
+
+    def __getitem__(self, b) -> WarmStart:
+        b = _index(b, len(self.n))
+        lo, hi = self.offsets[b : b + 2].tolist()
+        beta = self.z_basic[lo:hi]
+        ws = WarmStart._trusted(int(self.n[b]), tuple(beta.tolist()))
+        ws.__dict__["_beta"] = beta  # the index array that solve_lcp's warm path takes
+        return ws
+
+    def __iter__(self):
+        return map(self.__getitem__, range(len(self.n)))
+
+    def __repr__(self) -> str:
+        return f"WarmStartBatch(B={len(self.n)}, basic z's={self.z_basic.size})"
+
+
+def _int_vector(v, name):
+    """``v`` as a new read-only 1-D int64 array, or a TypeError naming the field."""
+    a = np.array(v, copy=True)
+    if a.ndim != 1 or (a.size and a.dtype.kind not in "iu"):
+        raise TypeError(f"WarmStartBatch.{name} must be a 1-D sequence of integers")
+    a = a.astype(np.int64)
+    a.setflags(write=False)
+    return a
+
+
+def _index(b, size) -> int:
+    """``b`` (an integer, negative from the end) as an index into ``size`` items."""
+    b = operator.index(b)
+    if b < 0:
+        b += size
+    if not 0 <= b < size:
+        raise IndexError(f"index {b} out of range for {size} problems")
+    return b
+
+
+class LCPManyResult(Sequence):
+    """The outcome of :func:`lemke.solve_lcp_many`: a sequence of :class:`LCPResult`, item b
+    what :func:`lemke.solve_lcp` gives for problem b (bit for bit), with every problem's
+    answer also in flat arrays, each made by a few numpy calls when first read.
+
+    Neither holds a Python object per problem until asked: an item is built when first
+    indexed (then kept), all of them when the sequence is iterated, compared or added to a
+    list (``len``, indexing, iteration, slices, ``==`` with a list of results or another
+    ``LCPManyResult``, ``+`` with a list, ``in`` and ``index`` give what the list of results
+    would; it is a ``collections.abc.Sequence``).
+
+    Attributes
+    ----------
+    offsets : ndarray of int64, shape (B + 1,)
+        Problem b's entries of ``z`` and ``w`` are ``offsets[b]:offsets[b + 1]`` (its size
+        n_b = ``offsets[b + 1] - offsets[b]``).
+    z, w : ndarray of float64, shape (sum of n_b,)
+        Every problem's ``z`` and ``w`` laid end to end.
+    status : ndarray of int64, shape (B,)
+        :class:`Status` codes (``lemke.Status(result.status[b])`` names one).
+    success : ndarray of bool, shape (B,)
+        Which problems were solved (status SOLVED).
+    pivots, recoveries : ndarray of int64, shape (B,)
+    residual : ndarray of float64, shape (B,)
+    warm_start : WarmStartBatch
+        Every problem's final basis (each item's ``warm_start``), to pass back whole as
+        ``solve_lcp_many(..., warm_start=result.warm_start)``.
+
+    The arrays are read-only.  ``ray``, ``z0``, ``covering`` and the scales are read on the
+    items.
+    """
+
+    def __init__(self, sizes, off, out_i, out_f, bufs, basics, ws, special):
+        """``sizes`` (a list) and ``off`` (int64 (3, B + 1): the offsets of q and the basic
+        z's, of M, of the output buffers), the kernels' ``out_i``, ``out_f``, ``bufs`` and
+        ``basics`` (``kernels.cold.batch``), the warm starts given (a list, or None) and
+        ``special``: ``{b: LCPResult}``, the results built already (those not solved and
+        checked, nor q >= 0, nor a checked ray: see ``_batch.solve_lcp_many``)."""
+        for a in (off, out_i, out_f, bufs, basics):
+            a.setflags(write=False)
+        self._sizes, self._off, self._out_i, self._out_f = sizes, off, out_i, out_f
+        self._bufs, self._basics, self._ws, self._special = bufs, basics, ws, special
+        self._items = [None] * len(sizes)
+        for b, res in special.items():
+            self._items[b] = res
+
+    # --- the sequence of LCPResult --------------------------------------------------------
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __getitem__(self, b):
+        if isinstance(b, slice):
+            return self._all()[b]
+        b = _index(b, len(self._items))
+        res = self._items[b]
+        if res is None:
+            self._build(b, b + 1)
+            res = self._items[b]
+        return res
+
+    def __iter__(self):
+        return iter(self._all())
+
+    def _all(self) -> list:
+        """Every item, built now where not yet (one loop, the cheapest per problem)."""
+        items = self._items
+        if None in items:
+            self._build(0, len(items))
+        return items
+
+    def _build(self, lo, hi, _new=object.__new__, _SOLVED=Status.SOLVED,
+               _RAY_TERMINATION=Status.RAY_TERMINATION, _RAY=int(Status.RAY_TERMINATION)):
+        """Items lo..hi-1 not built yet, as solve_lcp builds them (``LCPResult._lazy``,
+        inlined: this loop is most of their Python time): they share the output buffers,
+        and each makes its views when a field is first read."""
+        items, bufs, basics, ws = self._items, self._bufs, self._basics, self._ws
+        for b, (code, pivots, k, recoveries, stage), (ok, residual), qo, bo, n in zip(
+                range(lo, hi), self._out_i[lo:hi].tolist(), self._out_f[lo:hi].tolist(),
+                self._off[0, lo:hi].tolist(), self._off[2, lo:hi].tolist(), self._sizes[lo:hi]):
+            if items[b] is not None:
+                continue
+            res = _new(LCPResult)
+            f = res.__dict__
+            f["status"] = _RAY_TERMINATION if code == _RAY else _SOLVED
+            f["pivots"] = pivots
+            f["residual"] = residual
+            if recoveries:
+                f["recoveries"] = recoveries
+            f["_src"] = (bufs, bo, basics, qo, n, k)
+            if stage == 0 and ws is not None:
+                f["warm_start"] = ws[b]  # the one given (it still solved the problem)
+            items[b] = res
+
+    def __eq__(self, other):
+        if isinstance(other, LCPManyResult):
+            return self is other or self._all() == other._all()
+        if isinstance(other, list):
+            return self._all() == other
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(tuple(self._all()))
+
+    def __add__(self, other):
+        if isinstance(other, (list, LCPManyResult)):
+            return list(self._all()) + list(other)
+        return NotImplemented
+
+    def __radd__(self, other):
+        if isinstance(other, list):
+            return other + self._all()
+        return NotImplemented
+
+    def __repr__(self) -> str:
+        return f"LCPManyResult(B={len(self)}, solved={int(self.success.sum())}/{len(self)})"
+
+    def __setstate__(self, state):  # (pickle loses the arrays' read-only flags)
+        self.__dict__.update(state)
+        for v in self.__dict__.values():
+            if isinstance(v, np.ndarray):
+                v.setflags(write=False)
+
+    # --- the flat fields ------------------------------------------------------------------
+
+    @cached_property
+    def offsets(self) -> np.ndarray:
+        return self._off[0]
+
+    def _gather(self, name):
+        """Field ``name`` (``z`` or ``w``) of every problem, end to end: read from the output
+        buffers, and from the results built already (their points recomputed)."""
+        a, c, _, _ = _SPANS[name]
+        qo, bo = self._off[0], self._off[2]
+        n = np.diff(qo)
+        idx = np.arange(qo[-1], dtype=np.int64)
+        idx += np.repeat(bo[:-1] + a * n + c - qo[:-1], n)
+        v = self._bufs.take(idx)
+        for b, res in self._special.items():
+            v[qo[b] : qo[b + 1]] = getattr(res, name)
+        v.setflags(write=False)
+        return v
+
+    @cached_property
+    def z(self) -> np.ndarray:
+        return self._gather("z")
+
+    @cached_property
+    def w(self) -> np.ndarray:
+        return self._gather("w")
+
+    def _column(self, values, field, convert):
+        v = values.copy()
+        for b, res in self._special.items():
+            v[b] = convert(getattr(res, field))
+        v.setflags(write=False)
+        return v
+
+    @cached_property
+    def status(self) -> np.ndarray:
+        code = self._out_i[:, 0]
+        return self._column(np.where(code == cold.TRIVIAL, 0, code), "status", int)
+
+    @cached_property
+    def success(self) -> np.ndarray:
+        v = self.status == Status.SOLVED
+        v.setflags(write=False)
+        return v
+
+    @cached_property
+    def pivots(self) -> np.ndarray:
+        return self._column(self._out_i[:, 1], "pivots", int)
+
+    @cached_property
+    def recoveries(self) -> np.ndarray:
+        return self._column(self._out_i[:, 3], "recoveries", int)
+
+    @cached_property
+    def residual(self) -> np.ndarray:
+        return self._column(self._out_f[:, 1], "residual", float)
+
+    @cached_property
+    def warm_start(self) -> WarmStartBatch:
+        k = self._out_i[:, 2]
+        off = np.zeros(len(k) + 1, dtype=np.int64)
+        np.cumsum(k, out=off[1:])
+        idx = np.arange(off[-1], dtype=np.int64)
+        idx += np.repeat(self._off[0, :-1] - off[:-1], k)
+        return WarmStartBatch._trusted(np.diff(self._off[0]), self._basics.take(idx), off)
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,5 +1,6 @@
 """solve_lcp_batch: every problem gets exactly what solve_lcp gives it, checked independently."""
 import json
+import pickle
 from pathlib import Path
 
 import numpy as np
@@ -9,6 +10,7 @@ from siconos_dat import read_lcp
 
 import lemke
 from lemke import Status, problems
+from lemke.kernels import cold
 from lemke.kernels.cold import RESTART_FROM
 
 DATA = Path(__file__).parent / "data"
@@ -205,3 +207,151 @@ def test_many_bad_input():
     with pytest.raises(ValueError, match="one WarmStart"):
         lemke.solve_lcp_batch(np.eye(2), [[1.0, 1.0]], warm_start=[])
     assert lemke.solve_lcp_many([], []) == []
+
+
+# --- the flat fields of solve_lcp_many and the WarmStartBatch --------------------------
+
+def _rays_and_trivial(Ms, qs):
+    """The islands with a ray (a copositive-plus M with an infeasible q) and a q >= 0 among
+    them, so that every kind of result is in the batch."""
+    Ms, qs = list(Ms), list(qs)
+    Ms[5], qs[5] = np.array([[1.0, -1.0], [-1.0, 1.0]]), np.array([-1.0, -1.0])  # infeasible
+    qs[6] = np.abs(qs[6])
+    return Ms, qs
+
+
+def _assert_flat_is_items(res, Ms, qs):
+    """Every flat field of an LCPManyResult is its items' field, bit for bit; solved islands
+    pass an independent numpy check on the flat z and w."""
+    B = len(Ms)
+    sizes = [len(q) for q in qs]
+    assert len(res) == B and res.offsets.tolist() == np.concatenate([[0], np.cumsum(sizes)]).tolist()
+    for name in ("offsets", "z", "w", "status", "success", "pivots", "recoveries", "residual"):
+        a = getattr(res, name)
+        assert not a.flags.writeable, name
+        assert getattr(res, name) is a  # made once
+    assert res.z.dtype == res.w.dtype == np.float64 and res.status.dtype == np.int64
+    for b, (r, M, q) in enumerate(zip(res, Ms, qs)):
+        lo, hi = res.offsets[b], res.offsets[b + 1]
+        assert res.z[lo:hi].tobytes() == r.z.tobytes() and res.w[lo:hi].tobytes() == r.w.tobytes(), b
+        assert (res.status[b], res.pivots[b], res.recoveries[b]) == (int(r.status), r.pivots, r.recoveries)
+        assert res.residual[b].tobytes() == np.float64(r.residual).tobytes()
+        assert res.success[b] == r.success
+        assert res.warm_start[b] == r.warm_start
+    # the independent check, on the flat arrays: w = M z + q recomputed, z >= 0, w >= 0, z'w = 0
+    for b in np.flatnonzero(res.success):
+        lo, hi = res.offsets[b], res.offsets[b + 1]
+        z, M, q = res.z[lo:hi], np.asarray(Ms[b], float), np.asarray(qs[b], float)
+        assert_lcp_solution(M, q, z)
+        scale = max(1.0, np.abs(M).max(initial=0) * np.abs(z).max(initial=0), np.abs(q).max(initial=0))
+        assert np.allclose(res.w[lo:hi], M @ z + q, rtol=0, atol=1e-12 * scale)
+
+
+@pytest.mark.parametrize("method", lemke.METHODS)
+def test_many_flat_fields_are_the_items_and_one_by_one(method):
+    Ms, qs, qs2 = _islands(3, count=50)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    res = lemke.solve_lcp_many(Ms, qs, method=method)
+    assert isinstance(res, lemke.LCPManyResult)
+    assert {Status.SOLVED, Status.RAY_TERMINATION} <= set(res.status.tolist())
+    assert res.pivots[6] == 0 and res.success[6]  # q >= 0
+    _assert_flat_is_items(res, Ms, qs)
+    single = [lemke.solve_lcp(M, q, method=method) for M, q in zip(Ms, qs)]
+    assert res == single  # every field of every item, bit for bit
+    for b, (r, M, q) in enumerate(zip(single, Ms, qs)):
+        if r.status == Status.RAY_TERMINATION:
+            assert_ray(M, q, r.covering, r.z, r.z0, r.ray)
+    for workers in (1, 2, 4):
+        other = lemke.solve_lcp_many(Ms, qs, method=method, workers=workers)
+        for name in ("z", "w", "status", "pivots", "residual", "offsets"):
+            assert getattr(other, name).tobytes() == getattr(res, name).tobytes(), (workers, name)
+        assert other.warm_start == res.warm_start
+
+
+@pytest.mark.parametrize("method", lemke.METHODS)
+def test_warm_start_batch_passed_back_is_each_warm_start(method):
+    """A simulation's step: the last result's WarmStartBatch passed back whole gives what
+    the list of its WarmStarts gives, and what solve_lcp gives each island, bit for bit."""
+    Ms, qs, qs2 = _islands(4, count=50)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    qs2[5] = qs[5]
+    first = lemke.solve_lcp_many(Ms, qs, method=method)
+    batch = first.warm_start
+    assert isinstance(batch, lemke.WarmStartBatch) and len(batch) == len(Ms)
+    compiled = len(cold.batch.signatures)
+    assert list(batch) == [r.warm_start for r in first]
+    for workers in (1, 2):
+        flat = lemke.solve_lcp_many(Ms, qs2, method=method, warm_start=batch, workers=workers)
+        listed = lemke.solve_lcp_many(Ms, qs2, method=method, warm_start=list(batch), workers=workers)
+        assert flat == listed
+        _assert_flat_is_items(flat, Ms, qs2)
+        for b, (r, M, q) in enumerate(zip(flat, Ms, qs2)):
+            assert r == lemke.solve_lcp(M, q, method=method, warm_start=batch[b]), b
+    assert len(cold.batch.signatures) == compiled  # the batch's arrays: the kernel's one type
+    assert (flat.pivots == 0).sum() > (first.pivots == 0).sum()  # the old bases still solve many
+    assert flat.pivots.sum() < lemke.solve_lcp_many(Ms, qs2, method=method).pivots.sum()
+    # a batch from problems of one size goes to solve_lcp_batch too
+    M = 2.0 * np.eye(3) + 0.5
+    Q = np.random.default_rng(5).standard_normal((6, 3))
+    ws = lemke.solve_lcp_many([M] * 6, list(Q)).warm_start
+    Q2 = Q + 1e-3
+    a = lemke.solve_lcp_batch(M, Q2, method=method, warm_start=ws)
+    b = lemke.solve_lcp_batch(M, Q2, method=method, warm_start=list(ws))
+    assert a == b and (a.pivots == 0).all()
+
+
+def test_many_result_is_a_sequence_of_results():
+    Ms, qs, _ = _islands(6, count=12)
+    res = lemke.solve_lcp_many(Ms, qs, workers=1)
+    single = [lemke.solve_lcp(M, q) for M, q in zip(Ms, qs)]
+    assert res[3] is res[3] and res[-1] == single[-1] and res[2:5] == single[2:5]
+    with pytest.raises(IndexError):
+        res[12]
+    with pytest.raises(TypeError):
+        res["a"]
+    assert res + [single[0]] == single + [single[0]] and [single[0]] + res == [single[0]] + single
+    assert res + res == single + single
+    assert res == lemke.solve_lcp_many(Ms, qs, workers=2) and res != single[:-1] and res != "no"
+    assert hash(res) == hash(lemke.solve_lcp_many(Ms, qs)) and single[4] in res and res.index(single[4]) == 4
+    back = pickle.loads(pickle.dumps(res))
+    assert back == res and not back.z.flags.writeable and back.z.tobytes() == res.z.tobytes()
+    assert back.warm_start == res.warm_start
+    assert "B=12" in repr(res) and "B=12" in repr(res.warm_start)
+    empty = lemke.solve_lcp_many([], [])
+    assert empty == [] and len(empty) == 0 and empty.z.size == 0 and empty.offsets.tolist() == [0]
+    assert len(empty.warm_start) == 0
+    assert lemke.solve_lcp_many([], [], warm_start=empty.warm_start) == []
+
+
+def test_many_flat_fields_of_results_built_by_the_general_path():
+    """Results that are not solved and checked (here MAX_PIVOTS), built by solve_lcp's own
+    logic, are in the flat fields as their items hold them."""
+    Ms, qs, _ = _islands(8, count=30)
+    res = lemke.solve_lcp_many(Ms, qs, options={"max_pivots": 2})
+    assert Status.MAX_PIVOTS in set(res.status.tolist())
+    _assert_flat_is_items(res, Ms, qs)
+    assert res == [lemke.solve_lcp(M, q, options={"max_pivots": 2}) for M, q in zip(Ms, qs)]
+
+
+def test_warm_start_batch_is_a_checked_value():
+    ws = lemke.WarmStartBatch([2, 3, 0], [1, 0, 2], [0, 1, 3, 3])
+    assert list(ws) == [lemke.WarmStart(2, (1,)), lemke.WarmStart(3, (0, 2)), lemke.WarmStart(0, ())]
+    assert ws == lemke.WarmStartBatch(np.array([2, 3, 0]), (1, 0, 2), [0, 1, 3, 3]) and len({ws, ws}) == 1
+    assert pickle.loads(pickle.dumps(ws)) == ws and not pickle.loads(pickle.dumps(ws)).n.flags.writeable
+    assert ws[-2] == ws[1] and ws.z_basic.dtype == np.int64 and not ws.offsets.flags.writeable
+    for bad in (([2], [2], [0, 1]), ([2], [1, 0], [0, 2]), ([2], [1, 1], [0, 2]), ([2], [-1], [0, 1]),
+                ([2, 2], [0], [0, 1]), ([2], [0], [1, 1]), ([2], [0], [0, 2]), ([-1], [], [0, 0])):
+        with pytest.raises(ValueError):
+            lemke.WarmStartBatch(*bad)
+    with pytest.raises(TypeError):
+        lemke.WarmStartBatch([2.5], [0], [0, 1])
+    with pytest.raises(IndexError):
+        ws[3]
+    # it must fit the problems
+    Ms, qs = [np.eye(2), np.eye(3), np.eye(2)], [-np.ones(2), -np.ones(3), -np.ones(2)]
+    with pytest.raises(ValueError, match=r"warm_start\[2\] is for a problem of size 0"):
+        lemke.solve_lcp_many(Ms, qs, warm_start=ws)
+    with pytest.raises(ValueError, match="one basis per problem"):
+        lemke.solve_lcp_many(Ms[:2], qs[:2], warm_start=ws)
+    res = lemke.solve_lcp_many(Ms, qs, warm_start=lemke.WarmStartBatch([2, 3, 2], [0, 1, 0, 1, 2], [0, 2, 5, 5]))
+    assert res.pivots[:2].tolist() == [0, 0] and res.pivots[2] > 0 and res.success.all()  # the last one cold
