@@ -122,10 +122,12 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         except AttributeError:
             beta = ws.__dict__["_beta"] = np.array(ws.z_basic, dtype=np.int64)
         kb = len(beta)
-    buf = _empty(_LEN_N * n + _LEN_1)  # cold.buffer_length(n)
-    basic = _empty(n, _I64)
+    # One buffer: cold.buffer_length(n) floats, then the n int64 of the basic z's (an empty
+    # ``basic`` argument tells the kernel so: cold.own_basic).
+    at = _LEN_N * n + _LEN_1
+    buf = _empty(at + n)
     code, pivots, k, ok, residual, recoveries, stage = run(
-        _CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, basic)
+        _CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS)
     if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
         # Solved and checked (or q >= 0: z = 0), or a checked ray: the common cases, built
         # lazily (LCPResult._lazy, inlined).
@@ -136,7 +138,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         f["residual"] = residual
         if recoveries:
             f["recoveries"] = recoveries
-        f["_src"] = (buf, 0, basic, 0, n, k)
+        f["_src"] = (buf, 0, None, at, n, k)
         if stage == 0:
             f["warm_start"] = ws
         return res
@@ -147,14 +149,15 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         resume = stage == -1
         code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
             _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64) if resume else beta,
-            -1 if resume else -2 - kb, mp, pivot_tol, tie_tol, tol, buf, basic)
+            -1 if resume else -2 - kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS)
         if ok and (code == 0 or code == _RAY):
             return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
-                                   residual, recoveries, (buf, 0, basic, 0, n, k))
+                                   residual, recoveries, (buf, 0, None, at, n, k))
     if code == cold.NOT_FINITE:
         _validate.lcp(M, q)  # raises, saying where (a NaN, an infinity, the sizes)
         raise AssertionError("the kernel found a NaN or an infinity that validation did not")
-    return _outcome(M, q, opts, code, pivots, basic[:k], ok, residual, buf, recoveries)
+    return _outcome(M, q, opts, code, pivots, buf[at : at + k].view(_I64), ok, residual, buf,
+                    recoveries)
 
 
 def _entry_point(method):

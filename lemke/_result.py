@@ -317,7 +317,10 @@ class _FromBuffer:
             raise AttributeError(f"'LCPResult' object has no attribute {name!r}")
         buf, o, basic, bo, n, k = src
         if name == "warm_start":
-            beta = basic[bo : bo + k]
+            # basic None: the int64 are in buf from bo on (solve_lcp's one buffer)
+            beta = (buf.view(np.int64) if basic is None else basic)[bo : bo + k]
+            if not beta.flags.writeable:
+                beta = beta.copy()  # (a read-only array would compile the kernels again)
             v = _new(WarmStart)  # WarmStart._trusted, inlined
             f = v.__dict__
             f["n"] = n
@@ -415,7 +418,7 @@ class WarmStartBatch(Value):
     def __getitem__(self, b) -> WarmStart:
         b = _index(b, len(self.n))
         lo, hi = self.offsets[b : b + 2].tolist()
-        beta = self.z_basic[lo:hi]
+        beta = self.z_basic[lo:hi].copy()  # writable: a read-only one compiles the kernels again
         ws = WarmStart._trusted(int(self.n[b]), tuple(beta.tolist()))
         ws.__dict__["_beta"] = beta  # the index array that solve_lcp's warm path takes
         return ws

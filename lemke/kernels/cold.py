@@ -110,7 +110,7 @@ def layout(n, buf):
     """The views ``(x, ray, w, cov, R, C)`` of the output buffer (x = z followed by z0), as
     :data:`BUFFER` lays it out."""
     return (buf[: n + 1], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2],
-            buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 :])
+            buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 : 6 * n + 2])
 
 
 @inline_kernel
@@ -370,6 +370,16 @@ def basic_indices(z_basic, basic):
     return k
 
 
+@inline_kernel
+def own_basic(n, buf, basic):
+    """``basic``, or, when it is empty and n > 0, the n int64 that follow the buffer's
+    fields (``buffer_size(n)`` floats): ``solve_lcp`` allocates one buffer of
+    ``buffer_size(n) + n`` floats for both (an allocation and an argument fewer a call)."""
+    if basic.shape[0] == 0 and n > 0:
+        return buf[6 * n + 2 : 7 * n + 2].view(np.int64)
+    return basic
+
+
 @kernel
 def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
     """The common first calls, compiled alone: :func:`solve_one` by the tableau (``method`` is
@@ -392,6 +402,7 @@ def first_run(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     n = q.shape[0]
     if M.shape[0] != n or M.shape[1] != n:
         return NOT_FINITE, 0, 0, False, 0.0, 0, 2
+    basic = own_basic(n, buf, basic)
     if k > 0:  # a warm start: its first stage here, the restart in solve_one
         found, m_max, residual = old_basis(M, q, d, beta, k, tol, buf, basic)
         if found == 0:
@@ -558,6 +569,7 @@ def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf
     from there.  M and q of sizes that do not match: code NOT_FINITE (see :func:`first_run`)."""
     if M.shape[0] != q.shape[0] or M.shape[1] != q.shape[0]:
         return NOT_FINITE, 0, 0, False, 0.0, 0, 2
+    basic = own_basic(q.shape[0], buf, basic)
     pivots = 0
     first_code, first_pivots = np.int64(-1), np.int64(0)
     scaled = np.False_  # the finite check and the equilibration made (by old_basis)
