@@ -200,3 +200,33 @@ def test_pile_simulation_with_contacts_that_come_and_go():
         ws, labels = res.warm_start, apply.labels
     assert sizes_changed > 0
     assert warm_pivots < cold_pivots, (warm_pivots, cold_pivots)
+
+
+def test_warm_starts_read_back_compile_nothing_new():
+    """A warm start read from a result whose arrays were read first (its buffer read-only
+    by then), or from a solve_lcp_many result's WarmStartBatch, goes to the kernels with
+    the argument types of a cold call: in a new process whose first solve_lcp call is such
+    a warm start, the kernels get exactly the signatures a cold call gives them (a
+    read-only index array would compile them a second time, some 20 s)."""
+    import subprocess
+    import sys
+
+    code = """
+import numpy as np, lemke
+from lemke.kernels import cold
+rng = np.random.default_rng(3)
+A = rng.standard_normal((6, 6))
+M, q = A @ A.T + 0.1 * np.eye(6), rng.standard_normal(6)
+many = lemke.solve_lcp_many([M, M], [q, q])
+many.z
+first = lemke.solve_lcp(M, q + 1e-3, warm_start=many.warm_start[1])
+res = lemke.solve_lcp(M, q)
+assert res.z.flags.writeable is False
+for ws in (res.warm_start, many[0].warm_start, first.warm_start):
+    again = lemke.solve_lcp(M, q + 1e-3, warm_start=ws)
+    assert again.success
+print(len(cold.first_run.signatures), all(s[4].mutable for s in cold.first_run.signatures))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["1", "True"]
