@@ -102,7 +102,7 @@ import numpy as np
 from numba import njit
 
 from . import boxed, cold, inline_kernel, kernel, pivoting, unrevised
-from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_scale
+from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_rsqrt
 
 OK = 0
 NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
@@ -1142,7 +1142,7 @@ def gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags):
         # the whole, as qr_rows judges the equalities) is a constant, w_i = g_i: kept
         # exactly zero, not scaled up to a unit row of rounding noise.
         keep = norm2 > RANK_TOL * RANK_TOL * (norm2 + dot(Fi, Fi, p))
-        s = pow2_scale(np.sqrt(norm2)) if keep else 1.0
+        s = pow2_rsqrt(norm2) if keep else 1.0
         Fsi = Fs[i]
         for t in range(r):
             Fsi[t] = s * Fi[p + t] if keep else 0.0
