@@ -25,7 +25,8 @@ their items and arrays when first read, so some rows read back what a simulation
 (each island's z, and its warm start for the next step; quantecon's z): item by item
 (``r.z``, ``r.warm_start`` of each ``LCPResult``), or flat (the result's ``z``, ``offsets``
 and ``warm_start``, a ``WarmStartBatch``, with the first step's ``WarmStartBatch`` passed
-in: what a simulation that keeps its islands' bases in one batch does each step).  Medians
+in: what a simulation that keeps its islands' bases in one batch does each step); the
+packed rows pass the islands as two flat arrays and their sizes (``sizes=``).  Medians
 of ``--rounds`` interleaved rounds.  Every answer is checked (``w = M z + q`` recomputed;
 the flat rows' z split at the offsets).  Issue 14's target: 3,000 islands of 3-12 rows
 (``--islands 3000 --island-sizes 3 12``) at <= 3 us per island on one core, warm starts
@@ -152,6 +153,13 @@ def part2(count, rounds, rng, lo=1, hi=12):
         lemke.solve_lcp_many(Ms, qs2, warm_start=batch, workers=1))
     calls["solve_lcp_many, warm (WarmStartBatch), 2 workers, flat z and warm_start read"] = lambda: read_flat(
         lemke.solve_lcp_many(Ms, qs2, warm_start=batch, workers=2))
+    # the islands packed (every M row by row and every q end to end, with their sizes): what a
+    # scene that keeps its islands in flat buffers passes, no Python object per island
+    sizes = np.array([len(q) for q in qs2])
+    Mp, qp2 = np.concatenate([M.ravel() for M in Ms]), np.concatenate(qs2)
+    for w in (1, 2):
+        calls[f"solve_lcp_many, packed, warm (WarmStartBatch), {w} worker{'s' * (w > 1)}, flat z and warm_start read"] = (
+            lambda w=w: read_flat(lemke.solve_lcp_many(Mp, qp2, sizes=sizes, warm_start=batch, workers=w)))
     results = {k: f() for k, f in calls.items()}
     solved = {}
     for k, res in results.items():

@@ -45,17 +45,41 @@ def _workers(workers) -> int:
 
 def _run(kernel, args, tail, B, workers):
     """``kernel(*args, lo, hi, *tail)`` over chunks of the B problems: in the calling thread
-    when one worker (or one chunk), else in the pool.  Every problem is solved by the same
-    kernel whatever the chunking, so the results do not depend on the number of workers."""
-    chunks = min(B, 2 * workers) if workers > 1 else min(B, 1)
-    bounds = np.linspace(0, B, chunks + 1).astype(int) if chunks else np.zeros(1, dtype=int)
+    when one worker (or one chunk), else by the calling thread and ``workers - 1`` threads of
+    the pool, each taking the next chunk until none is left.  The calling thread starts at
+    once, so a pool thread that is slow to wake (an idle core of a shared machine can take
+    a millisecond) only takes fewer chunks.  Every problem is solved by the same kernel
+    whatever the chunking and whichever thread runs it, so the results do not depend on
+    the number of workers."""
+    chunks = min(B, CHUNKS_PER_WORKER * workers) if workers > 1 else min(B, 1)
+    bounds = np.linspace(0, B, chunks + 1).astype(int).tolist() if chunks else [0]
     if chunks <= 1:
         for lo, hi in zip(bounds[:-1], bounds[1:]):
-            kernel(*args, int(lo), int(hi), *tail)
+            kernel(*args, lo, hi, *tail)
         return
+    spans = iter(list(zip(bounds[:-1], bounds[1:])))
+    lock = threading.Lock()
+
+    def take():
+        while True:
+            with lock:
+                span = next(spans, None)
+            if span is None:
+                return
+            kernel(*args, span[0], span[1], *tail)
+
     pool = _executor()
-    for f in [pool.submit(kernel, *args, int(lo), int(hi), *tail) for lo, hi in zip(bounds[:-1], bounds[1:])]:
-        f.result()
+    helpers = [pool.submit(take) for _ in range(min(workers, chunks) - 1)]
+    try:
+        take()
+    finally:
+        for f in helpers:
+            f.result()
+
+
+#: Chunks per worker: enough that a late thread leaves little for the others to wait on,
+#: few enough that a kernel call's set-up (a few microseconds) stays negligible.
+CHUNKS_PER_WORKER = 8
 
 
 def _bases(warm_start, B, sizes):
@@ -208,13 +232,21 @@ def batch_arrays(M, q):
 
 
 def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
-                   warm_start=None) -> LCPManyResult:
+                   warm_start=None, sizes=None) -> LCPManyResult:
     r"""Solve LCPs of different sizes (the islands of a contact scene) in one call, in
     parallel threads without the GIL: problem b is ``(M[b], q[b])`` with its own n_b.
 
     Parameters
     ----------
     M, q : sequences of (n_b, n_b) and (n_b,) array_like, of the same length B
+        Or, with ``sizes``, packed: 1-D arrays of every M_b (row by row) and every q_b
+        laid end to end -- the layout of the result's ``z`` -- with no Python object per
+        problem (what a scene that keeps its islands in flat buffers has at hand; about
+        0.4 us an island less than the lists).
+    sizes : 1-D array_like of int, optional
+        The n_b of packed ``M`` and ``q`` (B of them; ``M`` then holds sum n_b^2 numbers and
+        ``q`` sum n_b).  Problem b is ``M[mo:mo + n_b**2].reshape(n_b, n_b)``, ``q[o:o + n_b]``
+        with mo and o the sums of the earlier n^2 and n.
     method : {"tableau", "unrevised"}
     options : Options or dict, optional
     workers : int, optional
@@ -252,31 +284,33 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     _validate.method(method, METHODS)
     opts = as_options(options)
     workers = _workers(workers)
-    Ms, qs = list(M), list(q)
-    B = len(Ms)
-    if B != len(qs):
-        raise ValueError(f"M and q must hold the same number of problems, got {B} and {len(qs)}")
-    # Every problem ready for the kernels (float64 ndarrays, M square of q's size) is the
-    # common case, checked in one pass; else each problem is checked and converted.
-    if len([None for Mb, qb in zip(Ms, qs)
-            if type(Mb) is _ND and type(qb) is _ND
-            and (Mb.dtype is _F64 or Mb.dtype == _F64) and (qb.dtype is _F64 or qb.dtype == _F64)
-            and qb.ndim == 1 and Mb.shape == qb.shape * 2]) != B:
-        Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
-                       for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
-    sizes = list(map(len, qs))
-    beta, boff, ws = _bases(warm_start, B, sizes)
     # offsets: of q and the basic z's, of M, of the output buffers (cold.buffer_length)
-    off = np.zeros((3, B + 1), dtype=np.int64)
+    if sizes is None:
+        Ms, qs = list(M), list(q)
+        B = len(Ms)
+        if B != len(qs):
+            raise ValueError(f"M and q must hold the same number of problems, got {B} and {len(qs)}")
+        # Every problem ready for the kernels (float64 ndarrays, M square of q's size) is the
+        # common case, checked in one pass; else each problem is checked and converted.
+        if len([None for Mb, qb in zip(Ms, qs)
+                if type(Mb) is _ND and type(qb) is _ND
+                and (Mb.dtype is _F64 or Mb.dtype == _F64) and (qb.dtype is _F64 or qb.dtype == _F64)
+                and qb.ndim == 1 and Mb.shape == qb.shape * 2]) != B:
+            Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
+                           for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
+        sizes = list(map(len, qs))
+        off = _offsets(sizes)
+        Mflat, qflat = _flat(Ms), _flat(qs)
+    else:
+        Mflat, qflat, off = _packed(M, q, sizes)
+        sizes = off[0, 1:].tolist()
+        B = len(sizes)
+    beta, boff, ws = _bases(warm_start, B, sizes)
     n_b = off[0, 1:]
-    n_b[:] = sizes
-    off[1, 1:] = n_b * n_b
-    off[2, 1:] = sum(length(n_b) for _, length in cold.BUFFER)
     limits = np.empty(B, dtype=np.int64)
     limits[:] = opts.pivot_limit(n_b)
     np.cumsum(off, axis=1, out=off)
     qoff, mstart, buff = off[0], off[1, :-1], off[2]
-    Mflat, qflat = _flat(Ms), _flat(qs)
     bufs = np.empty(int(buff[-1]))
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
@@ -284,8 +318,9 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     _run(cold.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
     code = out_i[:, 0]
-    for b in np.flatnonzero(code == cold.NOT_FINITE):
-        _checked(int(b), Ms[b], qs[b])  # raises, naming the problem and the entry
+    for b in np.flatnonzero(code == cold.NOT_FINITE).tolist():
+        n, m, o = sizes[b], int(mstart[b]), int(qoff[b])
+        _checked(b, Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n])  # raises, naming the entry
     # Everything but a checked solution (and q >= 0), or a checked ray, goes through
     # solve_lcp's own logic now (the recomputation from the final basis, the downgrades),
     # from problem b's own copy of (M, q) in the flat arrays; the result builds the others
@@ -301,6 +336,46 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
 
 
 _RAY = int(Status.RAY_TERMINATION)
+
+
+def _offsets(sizes):
+    """int64 (3, B + 1): row 0, 1, 2 from index 1 on the problems' n, n^2 and output buffer
+    lengths (``cold.BUFFER``), to be summed into offsets."""
+    off = np.zeros((3, len(sizes) + 1), dtype=np.int64)
+    n_b = off[0, 1:]
+    n_b[:] = sizes
+    off[1, 1:] = n_b * n_b
+    off[2, 1:] = sum(length(n_b) for _, length in cold.BUFFER)
+    return off
+
+
+def _packed(M, q, sizes):
+    """Packed problems (see solve_lcp_many): ``(M, q, offsets)`` with M and q float64 1-D
+    arrays ready for the kernels (the caller's own when they are already), or a
+    ``ValueError``/``TypeError`` naming what is wrong.  Finiteness is left to the kernels
+    (an error then names the problem and the entry)."""
+    try:
+        n_b = np.asarray(sizes)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"sizes must be a 1-D array of integers: {exc}") from None
+    if n_b.ndim != 1 or (n_b.dtype.kind not in "iu" and n_b.size):
+        raise TypeError(f"sizes must be a 1-D array of integers, got shape {n_b.shape} and dtype {n_b.dtype}")
+    if n_b.size and n_b.min() < 0:
+        raise ValueError(f"sizes must be >= 0, got {int(n_b.min())} at index {int(np.argmin(n_b))}")
+    off = _offsets(n_b)
+    flat = []
+    for name, x, need in (("M", M, int(off[1].sum())), ("q", q, int(off[0].sum()))):
+        try:
+            a = np.asarray(x)
+        except (TypeError, ValueError) as exc:
+            raise TypeError(f"{name} must be a numeric array: {exc}") from None
+        if a.dtype.kind not in "fiub":
+            raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+        if a.ndim != 1 or a.size != need:
+            raise ValueError(f"packed {name} must be 1-D with {need} numbers for these sizes "
+                             f"(sum of n_b{'^2' if name == 'M' else ''}), got shape {a.shape}")
+        flat.append(_validate.kernel_array(a if a.dtype == _F64 else a.astype(np.float64)))
+    return flat[0], flat[1], off
 
 
 def _flat(arrays):

@@ -355,3 +355,62 @@ def test_warm_start_batch_is_a_checked_value():
         lemke.solve_lcp_many(Ms[:2], qs[:2], warm_start=ws)
     res = lemke.solve_lcp_many(Ms, qs, warm_start=lemke.WarmStartBatch([2, 3, 2], [0, 1, 0, 1, 2], [0, 2, 5, 5]))
     assert res.pivots[:2].tolist() == [0, 0] and res.pivots[2] > 0 and res.success.all()  # the last one cold
+
+
+# --- packed problems: solve_lcp_many(M, q, sizes=...) -------------------------------------
+
+def _pack(Ms, qs):
+    """The islands packed by hand with numpy (independent of the front's own packing)."""
+    sizes = np.array([len(q) for q in qs], dtype=np.int64)
+    return (np.concatenate([np.asarray(M, float).ravel() for M in Ms] + [np.zeros(0)]),
+            np.concatenate([np.asarray(q, float) for q in qs] + [np.zeros(0)]), sizes)
+
+
+@pytest.mark.parametrize("method", lemke.METHODS)
+def test_packed_problems_are_the_lists_bit_for_bit(method):
+    Ms, qs, qs2 = _islands(9, count=50)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    qs2[5] = qs[5]
+    Mp, qp, sizes = _pack(Ms, qs)
+    Mp.setflags(write=False)  # a read-only caller's array is taken as well
+    before = (Mp.tobytes(), qp.tobytes())
+    listed = lemke.solve_lcp_many(Ms, qs, method=method)
+    for workers in (1, 2, 4):
+        packed = lemke.solve_lcp_many(Mp, qp, sizes=sizes, method=method, workers=workers)
+        assert packed == listed  # every field of every item, bit for bit
+        _assert_flat_is_items(packed, Ms, qs)
+    assert (Mp.tobytes(), qp.tobytes()) == before  # nothing of the caller's is written
+    # the next step, warm, packed: what the lists give, and each island one by one
+    qp2 = np.concatenate(qs2)
+    nxt = lemke.solve_lcp_many(Mp, qp2, sizes=list(sizes), method=method, warm_start=listed.warm_start)
+    assert nxt == lemke.solve_lcp_many(Ms, qs2, method=method, warm_start=listed.warm_start)
+    assert nxt == [lemke.solve_lcp(M, q, method=method, warm_start=r.warm_start)
+                   for M, q, r in zip(Ms, qs2, listed)]
+    assert (nxt.pivots == 0).sum() > (listed.pivots == 0).sum()
+    # integer data are converted; an empty batch is allowed
+    ints = lemke.solve_lcp_many(np.array([2, 1, 1, 2]), np.array([-5, -6]), sizes=[2])
+    assert ints == [lemke.solve_lcp([[2.0, 1.0], [1.0, 2.0]], [-5.0, -6.0])]
+    assert lemke.solve_lcp_many(np.zeros(0), np.zeros(0), sizes=[]) == []
+
+
+def test_packed_problems_bad_input():
+    Mp, qp, sizes = _pack([np.eye(2), 2.0 * np.eye(3)], [-np.ones(2), -np.ones(3)])
+    for bad, exc, match in (([[2, 3]], TypeError, "1-D array of integers"),
+                            ([2.0, 3.0], TypeError, "1-D array of integers"),
+                            ([2, -3], ValueError, ">= 0"),
+                            ([2, 2], ValueError, "packed M must be 1-D with 8 numbers"),
+                            ([1, 4], ValueError, "packed M")):
+        with pytest.raises(exc, match=match):
+            lemke.solve_lcp_many(Mp, qp, sizes=bad)
+    with pytest.raises(ValueError, match="packed q"):
+        lemke.solve_lcp_many(Mp, qp[:-1], sizes=sizes)
+    with pytest.raises(ValueError, match="packed M"):
+        lemke.solve_lcp_many(Mp.reshape(1, -1), qp, sizes=sizes)
+    with pytest.raises(TypeError, match="real numbers"):
+        lemke.solve_lcp_many(Mp.astype(complex), qp, sizes=sizes)
+    bad = Mp.copy()
+    bad[4 + 3 * 1 + 2] = np.inf  # problem 1, row 1, column 2
+    with pytest.raises(ValueError, match=r"problem 1: M has a NaN or infinite entry at index \(1, 2\)"):
+        lemke.solve_lcp_many(bad, qp, sizes=sizes)
+    with pytest.raises(ValueError, match=r"warm_start\[0\] is for a problem of size 3"):
+        lemke.solve_lcp_many(Mp, qp, sizes=sizes, warm_start=[lemke.WarmStart(3, ()), None])
