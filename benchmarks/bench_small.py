@@ -156,7 +156,7 @@ def part2(count, rounds, rng, lo=1, hi=12):
     # the islands packed (every M row by row and every q end to end, with their sizes): what a
     # scene that keeps its islands in flat buffers passes, no Python object per island
     sizes = np.array([len(q) for q in qs2])
-    Mp, qp2 = np.concatenate([M.ravel() for M in Ms]), np.concatenate(qs2)
+    Mp, qp2 = np.concatenate([M.ravel() for M in Ms] + [np.zeros(0)]), np.concatenate(qs2 + [np.zeros(0)])
     for w in (1, 2):
         calls[f"solve_lcp_many, packed, warm (WarmStartBatch), {w} worker{'s' * (w > 1)}, flat z and warm_start read"] = (
             lambda w=w: read_flat(lemke.solve_lcp_many(Mp, qp2, sizes=sizes, warm_start=batch, workers=w)))
@@ -182,15 +182,16 @@ def part3(bodies, steps, passes, rng):
     except ImportError:  # pragma: no cover
         MathematicalProgram = None
     sc = contact_sim.Scene(1, bodies, False)
-    seq, ws, labels, ids = [], None, [], []
+    seq, ws, labels, ids, arr = [], None, [], [], None
     for step in range(steps):
         M, q, apply = contact_sim.step_lcp(sc, step)
         start = None if ws is None else ws.relabel(labels, apply.labels)
         assert ws is None or ws.relabel(ids, apply.ids) == start  # the int ids are the same labels
-        seq.append((M, q, ws, labels, apply.labels, start, ids, apply.ids))
+        assert ws is None or ws.relabel(arr, apply.id_array) == start  # and as int64 arrays
+        seq.append((M, q, ws, labels, apply.labels, start, ids, apply.ids, arr, apply.id_array))
         r = lemke.solve_lcp(M, q, warm_start=start)
         apply(r.z if r.success else None)
-        ws, labels, ids = r.warm_start, apply.labels, apply.ids
+        ws, labels, ids, arr = r.warm_start, apply.labels, apply.ids, apply.id_array
     progs = []
     if MathematicalProgram is not None:
         for M, q, *_ in seq:
@@ -198,7 +199,7 @@ def part3(bodies, steps, passes, rng):
             z = prog.NewContinuousVariables(len(q), "z")
             prog.AddLinearComplementarityConstraint(M, q, z)
             progs.append((prog, z))
-    names = ["lemke warm", "lemke warm, int ids", "lemke warm solve", "lemke cold", "Drake persistent", "quantecon cold"]
+    names = ["lemke warm", "lemke warm, int ids", "lemke warm, int64 array ids", "lemke warm solve", "lemke cold", "Drake persistent", "quantecon cold"]
     times = {k: [[] for _ in seq] for k in names}
     ok = {k: 0 for k in names}
     pivots = {k: [0] * len(seq) for k in names if k.startswith("lemke")}
@@ -206,11 +207,13 @@ def part3(bodies, steps, passes, rng):
     try:
         for p in range(passes):
             drake = UnrevisedLemkeSolver() if progs else None
-            for step, (M, q, ws, old, new, start, old_ids, new_ids) in enumerate(seq):
+            for step, (M, q, ws, old, new, start, old_ids, new_ids, old_arr, new_arr) in enumerate(seq):
                 calls = {"lemke warm": lambda: lemke.solve_lcp(
                              M, q, warm_start=None if ws is None else ws.relabel(old, new)),
                          "lemke warm, int ids": lambda: lemke.solve_lcp(
                              M, q, warm_start=None if ws is None else ws.relabel(old_ids, new_ids)),
+                         "lemke warm, int64 array ids": lambda: lemke.solve_lcp(
+                             M, q, warm_start=None if ws is None else ws.relabel(old_arr, new_arr)),
                          "lemke warm solve": lambda: lemke.solve_lcp(M, q, warm_start=start),
                          "lemke cold": lambda: lemke.solve_lcp(M, q)}
                 if progs:
@@ -300,14 +303,15 @@ def main(argv=None):
               "`solve_lcp(M, q, warm_start=last.warm_start.relabel(old_labels, new_labels))`, the labels being "
               "the scene's tuples (each label is hashed: the relabel is Python work proportional to n); "
               "*int ids*: the same with the labels as ints (`apply.ids`, one int per label: "
-              "what a simulation that wants the relabel fast passes); "
+              "what a simulation that wants the relabel fast passes); *int64 array ids*: the same ids as "
+              "int64 arrays (`apply.id_array`: relabel's kernel path, hash tables in one call); "
               "*the solve*: the same call with the relabeled warm start made beforehand. Ratios: of the "
               "relabel + solve column. Target (issue 14): a warm step at n of about 150 (132-168) <= 120 us.", "",
-              "| sizes | steps | lemke warm (relabel + solve) | lemke warm, int ids | lemke warm, the solve | lemke cold | Drake persistent | "
+              "| sizes | steps | lemke warm (relabel + solve) | lemke warm, int ids | lemke warm, int64 array ids | lemke warm, the solve | lemke cold | Drake persistent | "
               "quantecon cold | warm / Drake | warm / cold | pivots warm / cold |",
-              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
         for lo, hi, count, smin, smax, t, piv in groups:
-            L.append(f"| {smin}-{smax} | {count} | {t['lemke warm']:.1f} | {t['lemke warm, int ids']:.1f} | {t['lemke warm solve']:.1f} | {t['lemke cold']:.1f} | "
+            L.append(f"| {smin}-{smax} | {count} | {t['lemke warm']:.1f} | {t['lemke warm, int ids']:.1f} | {t['lemke warm, int64 array ids']:.1f} | {t['lemke warm solve']:.1f} | {t['lemke cold']:.1f} | "
                      f"{t['Drake persistent']:.1f} | {t['quantecon cold']:.1f} | "
                      f"{t['lemke warm'] / t['Drake persistent']:.2f} | {t['lemke warm'] / t['lemke cold']:.2f} | "
                      f"{piv['lemke warm']:g} / {piv['lemke cold']:g} |")

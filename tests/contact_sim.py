@@ -316,6 +316,7 @@ def step_lcp(sc: Scene, step: int):
     ids = [((a * (sc.n + 1) + b + 1) * 64 + k) * 4 for a, b, k in keys]
     assert all(k < 64 for _a, _b, k in keys)
     apply.ids = ids + [i + role for i in ids for role in (1, 2)] + [i + 3 for i in ids]
+    apply.id_array = np.array(apply.ids, dtype=np.int64)  # the same, for relabel's kernel path
     return M, q, apply
 
 

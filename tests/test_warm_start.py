@@ -164,6 +164,43 @@ def test_relabel_is_take_by_position():
         assert all(type(i) is int for i in got.z_basic)
 
 
+def test_relabel_by_integer_arrays_is_take_by_position():
+    """relabel with 1-D integer arrays (one kernel call, kernels.carry's hash tables)
+    against take (numpy) on random ids: rows kept, dropped, permuted and new; ids that
+    share their low bits (contact ids times 4), negative ids, uint64 ids above 2**63, other
+    integer dtypes; a WarmStart made by hand as well as one read from a result."""
+    rng = np.random.default_rng(12)
+    for t in range(400):
+        n, fresh = int(rng.integers(0, 40)), int(rng.integers(0, 6))
+        ids = rng.choice(10**6, size=n + fresh, replace=False).astype(np.int64) * 4
+        if t % 3 == 1:
+            ids -= 2 * 10**6
+        old, extra = rng.permutation(ids[:n]), ids[n:]
+        ws = lemke.WarmStart(n, tuple(sorted(rng.permutation(n)[: int(rng.integers(0, n + 1))].tolist())))
+        kept = old[rng.permutation(n)[: int(rng.integers(0, n + 1))]]
+        new = rng.permutation(np.concatenate([kept, extra]))
+        positions = [int(np.flatnonzero(old == label)[0]) if label in old else -1 for label in new]
+        want = ws.take(positions)
+        got = ws.relabel(old, new)
+        assert got == want == ws.relabel(old.tolist(), new.tolist())
+        assert got.__dict__["_beta"].tolist() == list(got.z_basic)
+        assert all(type(i) is int for i in got.z_basic)
+        if t % 3 == 2:  # other integer dtypes, read-only and strided arrays
+            o32 = np.repeat(old.astype(np.int32), 2)[::2]
+            o32.setflags(write=False)
+            assert ws.relabel(o32, new.astype(np.int64).astype(np.uint64)) == want
+    big = np.array([2**63 + 5, 2**63 + 9, 7], dtype=np.uint64)
+    assert lemke.WarmStart(3, (0, 2)).relabel(big, big[::-1].copy()) == lemke.WarmStart(3, (0, 2))
+    with pytest.raises(ValueError, match="old_labels holds a label twice"):
+        lemke.WarmStart(3, ()).relabel(np.array([1, 2, 1]), np.array([1]))
+    with pytest.raises(ValueError, match="new_labels holds a label twice"):
+        lemke.WarmStart(2, ()).relabel(np.array([1, 2]), np.array([3, 3]))
+    with pytest.raises(ValueError, match="old_labels has 2 labels"):
+        lemke.WarmStart(3, ()).relabel(np.array([1, 2]), np.array([3]))
+    # float arrays are labels too (hashable values): the general path takes them
+    assert lemke.WarmStart(2, (1,)).relabel(np.array([0.5, 1.5]), np.array([1.5])) == lemke.WarmStart(1, (0,))
+
+
 def test_a_permuted_problem_keeps_its_basis():
     rng = np.random.default_rng(5)
     A = rng.standard_normal((12, 12))
@@ -183,11 +220,13 @@ def test_pile_simulation_with_contacts_that_come_and_go():
     import contact_sim
 
     sc = contact_sim.Scene(3, 10, False)
-    ws, labels = None, []
+    ws, labels, ids = None, [], None
     warm_pivots = cold_pivots = sizes_changed = 0
     for step in range(60):
         M, q, apply = contact_sim.step_lcp(sc, step)
         start = None if ws is None else ws.relabel(labels, apply.labels)
+        # the same contacts as int64 ids carry the same basis (the kernel path)
+        assert ws is None or ws.relabel(ids, apply.id_array) == start
         sizes_changed += ws is not None and ws.n != q.size
         res = lemke.solve_lcp(M, q, warm_start=start)
         cold = lemke.solve_lcp(M, q)
@@ -197,7 +236,7 @@ def test_pile_simulation_with_contacts_that_come_and_go():
         warm_pivots += res.pivots
         cold_pivots += cold.pivots
         apply(res.z if res.success else None)
-        ws, labels = res.warm_start, apply.labels
+        ws, labels, ids = res.warm_start, apply.labels, apply.id_array
     assert sizes_changed > 0
     assert warm_pivots < cold_pivots, (warm_pivots, cold_pivots)
 
