@@ -52,6 +52,14 @@ def lcp(label, M, q, **kw):
                 lambda method=method: lemke.solve_lcp(M, q, method=method, **kw))
 
 
+def _relabel_or_value_error(ws, old, new):
+    """relabel; the ValueError of a duplicated label is its answer, not a finding."""
+    try:
+        ws.relabel(old, new)
+    except ValueError as e:
+        assert "holds a label twice" in str(e)
+
+
 def probe():
     """Whether numba's bounds checking is in force in this process (a throw-away kernel
     indexing past the end of an array must raise IndexError)."""
@@ -102,6 +110,14 @@ def main():
         stress_cases.contact_sim.step_lcps(3, 12, 30)))
     for k in range(10, len(steps), 4):
         lcp(f"contact seed 3 step {k}", *steps[k])
+    # relabel's kernel (hash tables) on empty, disjoint, equal and duplicated id arrays
+    ws5 = lemke.WarmStart(5, (0, 3, 4))
+    for old, new in (([], []), ([1, 2, 3, 4, 5], []), ([1, 2, 3, 4, 5], [5, 4, 9, 1]),
+                     ([1, 2, 3, 4, 5], [7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23]),
+                     ([1, 2, 3, 4, 1], [1]), ([1, 2, 3, 4, 5], [6, 6])):
+        w = ws5 if len(old) == 5 else lemke.WarmStart(0, ())
+        attempt(f"relabel({old}, {new})", lambda w=w, old=old, new=new: _relabel_or_value_error(
+            w, np.array(old, dtype=np.int64), np.array(new, dtype=np.int64)))
     # Extreme options on DART 12D (crashes in the options sweep of test_cycling.py).
     for t, p, mp in ((0.0, 0.0, None), (0.0, 0.0, 2), (0.0, 1e-300, None), (5e-324, 0.0, 1), (0.5, 0.5, 0)):
         lcp("dart/Lemke_12D", M12, q12, options={"tie_tol": t, "pivot_tol": p, "max_pivots": mp})
