@@ -3,10 +3,13 @@
 ``python tests/golden.py`` (from the repository root) solves every problem below with the
 installed ``lemke`` and writes ``tests/data/golden.json``: per problem and method the status,
 the pivots and the answer's arrays (floats written with ``repr``, so they read back exactly),
-with the versions of numpy, scipy and numba that produced them.  ``test_golden.py`` solves
-them again and asserts the same bits when the versions are the same (the kernels are
-deterministic; numpy's LAPACK, used by the MLCP and QP fronts, may round differently in
-another version, and then the test asserts agreement to 1e-8 and the same status instead).
+with the versions of numpy, scipy and numba that produced them and the CPU the kernels were
+compiled for (one record per such platform; writing replaces this platform's).
+``test_golden.py`` solves them again and asserts the same bits when a record is of this
+platform (the kernels are deterministic; numpy's LAPACK, used by the MLCP and QP fronts,
+may round differently in another version, and a CPU with wider vectors splits a
+vectorized sum differently), and otherwise agreement to 1e-8 with the newest record, with
+the same status (and the same pivots for the LCPs).
 
 Regenerate only for a change that is *meant* to change answers, and say so in the commit.
 """
@@ -25,10 +28,24 @@ METHODS = ("tableau", "unrevised")
 
 
 def versions() -> dict:
+    """What the bits depend on: numpy, scipy and numba, and the CPU that numba compiles the
+    kernels for (its name and a digest of its features: with wider vector registers a
+    vectorized sum is split differently, so its last bits differ)."""
+    import hashlib
+
     import numba
     import scipy
+    from llvmlite import binding
 
-    return {"numpy": np.__version__, "scipy": scipy.__version__, "numba": numba.__version__}
+    features = binding.get_host_cpu_features().flatten()
+    return {"numpy": np.__version__, "scipy": scipy.__version__, "numba": numba.__version__,
+            "cpu": f"{binding.get_host_cpu_name()} {hashlib.sha256(features.encode()).hexdigest()[:12]}"}
+
+
+def records() -> list:
+    """The recorded answers, one record per platform (``versions()``) they were made on."""
+    data = json.loads(OUT.read_text())
+    return data["records"] if "records" in data else [data]
 
 
 def lcp_cases():
@@ -118,5 +135,10 @@ if __name__ == "__main__":
     sys.path.insert(0, str(HERE.parent))
     import lemke.problems  # noqa: F401
 
-    OUT.write_text(json.dumps({"versions": versions(), "results": solve_all()}, indent=0) + "\n")
-    print(f"wrote {OUT}")
+    # This platform's record replaces its old one; the other platforms' records stay while
+    # they answer the same problems (their bits are checked when the tests run there).
+    now = {"versions": versions(), "results": solve_all()}
+    kept = [r for r in (records() if OUT.exists() else [])
+            if r["versions"] != now["versions"] and sorted(r["results"]) == sorted(now["results"])]
+    OUT.write_text(json.dumps({"records": kept + [now]}, indent=0) + "\n")
+    print(f"wrote {OUT}: {len(kept) + 1} record(s)")

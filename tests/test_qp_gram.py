@@ -99,14 +99,18 @@ def test_random_without_equalities_or_bounds(gram_calls):
 @pytest.mark.parametrize("rank", [4, 6])
 def test_random_semidefinite(rank, gram_calls):
     """P = B B' of rank < n (no identity added): the factored path solves with P + delta I
-    and answers only when the refined point passes the check on the caller's P (here it
-    does)."""
+    and answers only when the refined point passes the check on the caller's P.  It does
+    on most of these; where it does not, it declines (CHECK_FAILED) and the KKT-MLCP path
+    answers.  Which ones pass depends on the CPU's rounding: on an AVX-512 host the third
+    problem of rank 4 ends the factored path at another point of P's flat directions (7.6e-3
+    away from the answer the fallback gives) whose check fails; on the host the test was
+    written on, all three passed."""
     rng = np.random.default_rng(rank)
     for _ in range(3):
         problem = random_convex_qp(8, rng, m=160, rank=rank)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls == [kqp.OK] * 3
+    assert gram_calls.count(kqp.OK) >= 2 and set(gram_calls) <= {kqp.OK, kqp.CHECK_FAILED}, gram_calls
 
 
 def test_degenerate_vertex_with_singular_p(gram_calls):
