@@ -17,6 +17,7 @@ from operator import itemgetter
 import numpy as np
 
 from ._status import Status
+from ._validate import kernel_array
 from .kernels import carry, cold
 
 
@@ -107,13 +108,10 @@ class WarmStart:
             return None
         if old.size != self.n:
             raise ValueError(f"old_labels has {old.size} labels for a basis of size {self.n}")
-        # int64 (a uint64 label above 2**63 wraps: still one int64 per label, distinct)
-        old = np.ascontiguousarray(old, dtype=np.int64)
-        new = np.ascontiguousarray(new, dtype=np.int64)
-        if not old.flags.writeable:  # (one compiled type: writable arrays)
-            old = old.copy()
-        if not new.flags.writeable:
-            new = new.copy()
+        # int64 (a uint64 label above 2**63 wraps: still one int64 per label, distinct),
+        # of the kernel's one compiled type
+        old = kernel_array(old.astype(np.int64, copy=False))
+        new = kernel_array(new.astype(np.int64, copy=False))
         beta = self.__dict__.get("_beta")
         if beta is None:  # kept, as solve_lcp keeps it
             beta = self.__dict__["_beta"] = np.array(self.z_basic, dtype=np.int64)
