@@ -365,16 +365,11 @@ def _packed(M, q, sizes):
     off = _offsets(n_b)
     flat = []
     for name, x, need in (("M", M, int(off[1].sum())), ("q", q, int(off[0].sum()))):
-        try:
-            a = np.asarray(x)
-        except (TypeError, ValueError) as exc:
-            raise TypeError(f"{name} must be a numeric array: {exc}") from None
-        if a.dtype.kind not in "fiub":
-            raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+        a = _validate.float64_array(x, name)
         if a.ndim != 1 or a.size != need:
             raise ValueError(f"packed {name} must be 1-D with {need} numbers for these sizes "
                              f"(sum of n_b{'^2' if name == 'M' else ''}), got shape {a.shape}")
-        flat.append(_validate.kernel_array(a if a.dtype == _F64 else a.astype(np.float64)))
+        flat.append(_validate.kernel_array(a))
     return flat[0], flat[1], off
 
 

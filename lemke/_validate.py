@@ -14,16 +14,7 @@ import numpy as np
 def real_array(x, name: str, allow_inf: int = 0) -> np.ndarray:
     """float64 view or copy of ``x``; NaN is refused, and so is an infinite entry unless
     ``allow_inf`` is -1 (``-inf`` allowed: lower bounds) or +1 (``+inf``: upper bounds)."""
-    if hasattr(x, "toarray") and hasattr(x, "nnz"):  # scipy.sparse: densified for now
-        x = x.toarray()
-    try:
-        a = np.asarray(x)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a numeric array: {exc}") from None
-    if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
-        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
-    if a.dtype != np.float64:
-        a = a.astype(np.float64)
+    a = float64_array(x, name)
     good = np.isfinite(a)
     if allow_inf:
         good |= a == allow_inf * np.inf
@@ -32,6 +23,20 @@ def real_array(x, name: str, allow_inf: int = 0) -> np.ndarray:
         what = "a NaN or infinite" if not allow_inf else f"a NaN or {'+' if allow_inf < 0 else '-'}inf"
         raise ValueError(f"{name} has {what} entry at index {tuple(int(i) for i in bad)}")
     return a
+
+
+def float64_array(x, name: str) -> np.ndarray:
+    """float64 view or copy of ``x`` (a TypeError naming ``name`` unless it holds real
+    numbers), its entries not checked: :func:`real_array` checks them, or the kernels do."""
+    if hasattr(x, "toarray") and hasattr(x, "nnz"):  # scipy.sparse: densified for now
+        x = x.toarray()
+    try:
+        a = np.asarray(x)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a numeric array: {exc}") from None
+    if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
+        raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
+    return a if a.dtype == np.float64 else a.astype(np.float64)
 
 
 def kernel_array(a: np.ndarray) -> np.ndarray:
