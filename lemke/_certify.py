@@ -17,7 +17,7 @@ formed from, plus the rounding of forming it:
   refused (``CERTIFIABLE``).
 * **MLCP point** (``check_mlcp``): the same rule on the stacked system ``E x + e``, against
   the size of the whole stacked system (its rows have no common scale once a QP's KKT rows
-  are stacked), with ``E x + e`` in extended precision and the same ``CERTIFIABLE`` bound.
+  are stacked), with ``E x + e`` summed in double-double and the same ``CERTIFIABLE`` bound.
 * **QP KKT point**: the MLCP test of its KKT system (``_qp``), whose residuals are then
   reported in qpsolvers' terms.
 * **Directions** -- an LCP ray (``is_lcp_ray``), an MLCP ray (``is_mlcp_ray``), a Farkas
@@ -37,10 +37,14 @@ import numpy as np
 from ._result import Value
 from ._validate import square_matrix, vector
 from .kernels import certify
+from .kernels import linalg as klinalg
 from .kernels.certify import CERTIFIABLE
 
 EPS = float(np.finfo(np.float64).eps)
-EPS_EXT = float(np.finfo(np.longdouble).eps)
+#: The rounding allowance of ``E x + e`` in check_mlcp: x86's long double epsilon, in which
+#: it was once computed; the double-double sums (``kernels.linalg.residual2``) are more
+#: accurate than that, on every platform alike.
+EPS_EXT = 2.0 ** -63
 RAY_SLACK = 10.0  # directions (rays, Farkas vectors, descent) get 10x the point's allowance
 
 
@@ -92,13 +96,14 @@ def check_mlcp(E, e, n, x, tol):
     """``(w, ok, residual)`` for the stacked MLCP ``E x + e = (0, w)``: the LCP acceptance
     rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
     equations, with the tolerances taken from the whole stacked system and ``E x + e``
-    computed in extended precision (so the rounding allowance is that of longdouble)."""
+    summed in double-double (its rounding allowance, EPS_EXT, is that of x86's long
+    double)."""
     N = e.size
-    # In extended precision, so that the test needs no allowance for rounding in computing
-    # E x (such an allowance grows with |x| and would pass any huge x).  Where numpy's
-    # longdouble is plain double the allowance is the double one, as in the LCP test.
-    y_ext = E.astype(np.longdouble) @ x.astype(np.longdouble) + e.astype(np.longdouble)
-    y = y_ext.astype(np.float64)
+    # In double-double, so that the test needs no allowance for rounding in computing E x
+    # beyond EPS_EXT (an allowance of eps would grow with |x| and pass any huge x).
+    y = np.empty(N)
+    c = np.ascontiguousarray
+    klinalg.residual2(c(E, dtype=np.float64), c(x, dtype=np.float64), c(e, dtype=np.float64), y)
     e_max, E_max = absmax(e), absmax(E)
     s_z = tol * max(absmax(x), e_max / E_max if E_max > 0.0 else 0.0)
     s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * absmax(x)

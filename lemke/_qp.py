@@ -29,7 +29,7 @@ from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import cold, entry_point, qp as kqp
+from .kernels import cold, entry_point, linalg as klinalg, qp as kqp
 
 EPS = float(np.finfo(np.float64).eps)
 BOX_FIRST = 16  # box-only QPs: below, plain data goes to kqp.solve_box; from here, solve_blcp first
@@ -756,12 +756,19 @@ def _polished(qp, point, basis, tol):
 
         P x + A'y + G_S'z_S + I_B'zb_B = -q,   A x = b,   G_S x = h_S,   x_B = bound_B
 
-    is solved once (LAPACK) and refined with residuals in extended precision
-    (``refined_solve``): the point the MLCP path recovers has been through the shift of
-    the bounds (``x = lb + x'``) and the MLCP's own rounding, this one only through the
-    rounding of the answer (multipliers at the rounding level of the solve made zero).  It replaces ``point`` only when it passes the row-wise KKT
-    check at ``tol`` and its largest residual (primal, dual, gap, summed in double-double)
-    is smaller; a singular system (dependent active rows) leaves ``point`` as it is."""
+    is solved for the variables not held at a bound (F) and the multipliers of A and G_S,
+    with ``x_B`` given: the rows of F, A and G_S, factored once
+    (``kernels.linalg.refined_solve``: LU on one thread, of the size of F plus the active
+    rows, not of all n variables and the bounds) and refined with residuals summed in
+    double-double over every column, x_B's included, and the solution carried in
+    double-double.  The bound multipliers zb_B then follow from the rows of B at that exact
+    solution, summed in double-double too.  The point the MLCP path
+    recovers has been through the shift of the bounds (``x = lb + x'``) and the MLCP's own
+    rounding, this one only through the rounding of the answer (multipliers at the
+    rounding level of the solve made zero).  It replaces ``point`` only when it passes the
+    row-wise KKT check at ``tol`` and its largest residual (primal, dual, gap, summed in
+    double-double) is smaller; a singular system (dependent active rows) leaves ``point``
+    as it is."""
     n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
     nn, nb = qp.shifted.size, qp.boxed.size
     v = np.zeros(nn + mg + nb, dtype=bool)
@@ -773,31 +780,45 @@ def _polished(qp, point, basis, tol):
     bound[upper] = qp.ub[upper]
     bound[qp.fixed] = qp.lb[qp.fixed]
     S = np.flatnonzero(v[nn:nn + mg])
-    B = np.flatnonzero(~np.isnan(bound))
-    k, s = n + p, n + p + S.size
-    N = s + B.size
-    K = np.zeros((N, N))
-    K[:n, :n] = qp.P
-    K[:n, n:k] = qp.A.T
-    K[n:k, :n] = qp.A
-    K[:n, k:s] = qp.G[S].T
-    K[k:s, :n] = qp.G[S]
-    K[B, s + np.arange(B.size)] = 1.0
-    K[s + np.arange(B.size), B] = 1.0
-    sol = refined_solve(K, np.concatenate([-qp.q, qp.b, qp.h[S], bound[B]]), steps=3)
-    if sol is None:
+    held = ~np.isnan(bound)
+    B, F = np.flatnonzero(held), np.flatnonzero(~held)
+    GS = qp.G[S]
+    # Columns x_F, y, z_S, then x_B (given); rows: stationarity on F, A x = b, G_S x = h_S.
+    f, k, s = F.size, F.size + p, F.size + p + S.size
+    K = np.zeros((s, s + B.size))
+    K[:f, :f] = qp.P[np.ix_(F, F)]
+    K[:f, f:k] = qp.A[:, F].T
+    K[:f, k:s] = GS[:, F].T
+    K[f:k, :f] = qp.A[:, F]
+    K[k:s, :f] = GS[:, F]
+    K[:f, s:] = qp.P[np.ix_(F, B)]
+    K[f:k, s:] = qp.A[:, B]
+    K[k:s, s:] = GS[:, B]
+    out = refined_solve(K, np.concatenate([-qp.q[F], qp.b, qp.h[S]]), steps=3, given=bound[B],
+                        low=True)
+    if out is None:
         return point
+    sol, lo = out
+    x = np.empty(n)
+    x[F] = sol[:f]
+    x[B] = bound[B]
+    # The rows of B: zb_B = -(P_B. x + q_B + A_B' y + G_SB' z_S) at the exact solution (sol
+    # + lo, summed in double-double): the rounding of the exact zb_B.
+    exact_lo = np.zeros(n + s - f)
+    exact_lo[F] = lo[:f]
+    exact_lo[n:] = lo[f:]
+    KB = np.hstack([qp.P[B], qp.A[:, B].T, GS[:, B].T])
+    zb = np.empty(B.size)
+    klinalg.residual2(np.hstack([KB, KB]), np.concatenate([x, sol[f:], exact_lo]), qp.q[B], zb)
     # A multiplier at the solve's rounding level (eps times the largest) is zero: left in,
     # it would fail the row-wise test in a stationarity row whose terms are all that small.
-    mult = sol[n:]
+    mult = np.concatenate([sol[f:], -zb])
     mult[np.abs(mult) <= EPS * _size(mult)] = 0.0
-    x = sol[:n].copy()
-    x[B] = bound[B]
     z = np.zeros(mg)
-    z[S] = sol[k:s]
+    z[S] = mult[p:p + S.size]
     z_box = np.zeros(n)
-    z_box[B] = sol[s:]
-    new = (x, sol[n:k].copy(), z, z_box)
+    z_box[B] = mult[p + S.size:]
+    new = (x, mult[:p].copy(), z, z_box)
     ok, *res = kkt(_data(qp), *new, tol)
     if not ok:
         return point

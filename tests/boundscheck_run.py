@@ -118,6 +118,14 @@ def main():
         w = ws5 if len(old) == 5 else lemke.WarmStart(0, ())
         attempt(f"relabel({old}, {new})", lambda w=w, old=old, new=new: _relabel_or_value_error(
             w, np.array(old, dtype=np.int64), np.array(new, dtype=np.int64)))
+    # refined_solve: the LU kept for the refinement (pivots in pairs: odd and even sizes)
+    for k in (0, 1, 2, 3, 5, 8):
+        H = np.vander(np.linspace(1.0, 2.0, k), k) + np.eye(k)
+        attempt(f"refined_solve (k = {k})", lambda H=H, k=k: lemke.kernels.linalg.refined_solve(
+            H, np.ones(k), 2, np.empty(k), np.empty(k)))
+    Kg = np.hstack([np.eye(3) + 0.5, np.ones((3, 2))])  # two given unknowns
+    attempt("refined_solve (3 + 2 given)", lambda: lemke.kernels.linalg.refined_solve(
+        Kg, np.ones(3), 2, np.array([0.0, 0.0, 0.0, 1.0, 2.0]), np.empty(3)))
     # Extreme options on DART 12D (crashes in the options sweep of test_cycling.py).
     for t, p, mp in ((0.0, 0.0, None), (0.0, 0.0, 2), (0.0, 1e-300, None), (5e-324, 0.0, 1), (0.5, 0.5, 0)):
         lcp("dart/Lemke_12D", M12, q12, options={"tie_tol": t, "pivot_tol": p, "max_pivots": mp})

@@ -11,13 +11,14 @@ The mixed LCP in Siconos' form: find u (free, n of them) and v (m of them) with
 3. what is left is an LCP in the m pairs (some swapped: v_k basic, w_k the LCP's variable).
 
 Its recovery maps the LCP's answer back, or recomputes the point of the final basis from
-the caller's data (one dense solve with refinement in extended precision).
+the caller's data (one dense solve, refined with residuals in double-double).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from .._certify import absmax as _size
+from ..kernels import linalg as klinalg
 from ..kernels import mlcp as kmlcp
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
@@ -177,20 +178,21 @@ def _all_but(n, drop):
     return np.flatnonzero(keep)
 
 
-def refined_solve(K, rhs, steps=2):
-    """Solve K x = rhs with iterative refinement whose residuals are computed in extended
-    precision (numpy's longdouble): on a degenerate basis a variable that is zero comes
-    out zero to the last digits instead of at cond(K) eps.  None if K is singular.
-
-    numpy's LAPACK only, never scipy's: the two carry separate OpenBLAS thread pools, and
-    alternating between them on a busy machine made a 200 x 200 Cholesky take 0.4 s."""
-    try:
-        x = np.linalg.solve(K, rhs)
-        K_ext = K.astype(np.longdouble)
-        rhs_ext = rhs.astype(np.longdouble)
-        for _ in range(steps):
-            r = (rhs_ext - K_ext @ x.astype(np.longdouble)).astype(np.float64)
-            x = x + np.linalg.solve(K, r)
-    except np.linalg.LinAlgError:
+def refined_solve(K, rhs, steps=2, given=None, low=False):
+    """Solve K x = rhs with iterative refinement whose residuals are summed in double-double
+    (``kernels.linalg.refined_solve``: one LU factorization on one thread, reused by every
+    step; x carried in double-double, so that it comes out as the rounding of the exact
+    solution): on a degenerate basis a variable that is zero comes out zero to the last
+    digits instead of at cond(K) eps.  ``given``: the values of K's last ``given.size``
+    unknowns (K then has that many more columns than rows), which enter every residual as
+    they are; the others are returned.  None if K's square block is singular or x is not
+    finite; with ``low``, ``(x, lo)``: x + lo is the exact solution to about eps^2."""
+    k = rhs.size
+    x = np.empty(k if given is None else k + given.size)  # the kernel checks K's shape
+    x[k:] = () if given is None else given
+    lo = np.empty(k)
+    ok = klinalg.refined_solve(np.ascontiguousarray(K, dtype=np.float64),
+                               np.ascontiguousarray(rhs, dtype=np.float64), steps, x, lo)
+    if not ok:
         return None
-    return x if np.isfinite(x).all() else None
+    return (x[:k], lo) if low else x[:k]

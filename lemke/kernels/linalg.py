@@ -222,6 +222,53 @@ else:
             args[0], ir.DoubleType())
 
 
+if config.DISABLE_JIT:
+    def fma(a, b, c):
+        """a b + c rounded once (plain Python: exactly, through fractions)."""
+        from fractions import Fraction
+        if not all(math.isfinite(v) for v in (a, b, c)):
+            return a * b + c
+        return float(Fraction(a) * Fraction(b) + Fraction(c))
+else:
+    @intrinsic
+    def fma(typingctx, a, b, c):
+        """a b + c rounded once, as LLVM's ``llvm.fma`` (one instruction where the CPU has
+        fused multiply-add, a correctly rounded library call where it has not)."""
+        if a != types.float64 or b != types.float64 or c != types.float64:
+            return None
+
+        def codegen(context, builder, sig, args):
+            d = ir.DoubleType()
+            fn = builder.module.declare_intrinsic("llvm.fma", [d], ir.FunctionType(d, [d, d, d]))
+            return builder.call(fn, args)
+        return types.float64(types.float64, types.float64, types.float64), codegen
+
+
+@kernel
+def two_product(a, b):
+    """``(p, e)`` with p = fl(a b) and a b = p + e exactly (e by one fused multiply-add;
+    exact unless a b over- or underflows)."""
+    p = a * b
+    return p, fma(a, b, -p)
+
+
+@kernel
+def two_sum(a, b):
+    """``(s, e)`` with s = fl(a + b) and a + b = s + e exactly (Knuth)."""
+    s = a + b
+    z = s - a
+    return s, (a - (s - z)) + (b - z)
+
+
+@kernel
+def acc2(hi, lo, a, b):
+    """``(hi, lo) += a b`` in double-double: the sum ``hi + lo`` carries the error terms of
+    every product and addition (Ogita, Rump and Oishi's Dot2, one term)."""
+    p, e = two_product(a, b)
+    s, f = two_sum(hi, p)
+    return s, lo + (e + f)
+
+
 SQRT2_FRACTION = 0x6A09E667F3BCD  # the 52 fraction bits of 1.4142135623730951 = 2 * 0.7071067811865476
 
 
@@ -549,7 +596,7 @@ def solve(H, b):
         for c in range(k):
             A[r, c] = H[r, c]
         y[r] = b[r]
-    return _eliminate(A, y, x, k), x
+    return _eliminate(A, y, x, k, None), x
 
 
 @kernel
@@ -573,7 +620,7 @@ def solve_gathered(M, idx, A, y, x, k):
         row = M[idx[r]]
         for c in range(k):
             A[r, c] = row[idx[c]]
-    return _eliminate(A, y, x, k)
+    return _eliminate(A, y, x, k, None)
 
 
 @inline_kernel
@@ -586,9 +633,12 @@ def solve_work(work, k):
 
 
 @inline_kernel
-def _eliminate(A, y, x, k):
+def _eliminate(A, y, x, k, piv):
     """Solve A x = y in place (A and y are overwritten; x starts at 0): the elimination of
-    :func:`solve`.  Returns ok."""
+    :func:`solve`.  Returns ok.  A is left holding its LU factors (the multipliers below
+    the diagonal, U on and above it, rows in pivot order); ``piv``, None or k int64s, gets
+    the row swapped into place at each step, so that :func:`_lu_solve` can solve again with
+    the same factors (:func:`refined_solve`)."""
     if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
         return False
     j = np.int64(0)
@@ -596,6 +646,8 @@ def _eliminate(A, y, x, k):
         p = _pivot_row(A, j, k, 0.0)
         if p < 0:
             return False
+        if piv is not None:
+            piv[j] = p
         _swap_rows(A, j, p, k)
         t = y[j]
         y[j] = y[p]
@@ -611,6 +663,8 @@ def _eliminate(A, y, x, k):
         p = _pivot_row(A, j + 1, k, h)
         if p < 0:
             return False
+        if piv is not None:
+            piv[j + 1] = p
         _swap_rows(A, j + 1, p, k)
         t = y[j + 1]
         y[j + 1] = y[p]
@@ -624,10 +678,17 @@ def _eliminate(A, y, x, k):
             rowr = A[r]
             f = rowr[j]
             g = (rowr[j + 1] - f * h) * inv1
+            rowr[j + 1] = g  # the multiplier of pivot j + 1, kept in column j + 1
             if f != 0.0 or g != 0.0:
                 _row_update2(rowr, f, rowj, g, row1, j + 2, k)
                 y[r] = (y[r] - f * y[j]) - g * y[j + 1]
         j += 2
+    return _back_substitute(A, y, x, k)
+
+
+@inline_kernel
+def _back_substitute(A, y, x, k):
+    """x = U^-1 y with U the upper triangle of A[:k, :k].  Returns whether x is finite."""
     for r in range(k - 1, -1, -1):
         acc = y[r]
         rowr = A[r]
@@ -635,3 +696,98 @@ def _eliminate(A, y, x, k):
             acc -= rowr[c] * x[c]
         x[r] = acc / rowr[r]
     return nan_probe(x, k) == 0.0
+
+
+@inline_kernel
+def _lu_solve(A, piv, y, x, k):
+    """Solve again with the factors :func:`_eliminate` left in A and piv (y is overwritten):
+    each row of y gets the same operations in the same order as there, so the first
+    solve's x comes out bit for bit.  Returns whether x is finite."""
+    for j in range(k):  # the row swaps first: the multipliers moved with their rows
+        p = piv[j]
+        t = y[j]
+        y[j] = y[p]
+        y[p] = t
+    j = np.int64(0)
+    while j + 1 < k:
+        y[j + 1] -= A[j + 1, j] * y[j]
+        for r in range(j + 2, k):
+            f = A[r, j]
+            g = A[r, j + 1]
+            if f != 0.0 or g != 0.0:
+                y[r] = (y[r] - f * y[j]) - g * y[j + 1]
+        j += 2
+    return _back_substitute(A, y, x, k)
+
+
+@kernel
+def refined_solve(K, rhs, steps, x, lo):
+    """x with K x = rhs: one LU factorization with partial pivoting (the elimination of
+    :func:`solve`, on one thread: no LAPACK, no thread pool), then ``steps`` steps of
+    iterative refinement whose residual ``rhs - K x`` is summed in double-double
+    (:func:`residual2`) and solved with the same factors.  On a degenerate basis a
+    variable that is zero then comes out zero to the last digits instead of at cond(K)
+    eps.
+
+    K is k x (k + j), j >= 0: the last j unknowns are given, in ``x[k:]`` (the bounds a
+    QP's active variables are held at), and only ``x[:k]`` is solved for, with the factors
+    of K's leading k x k block; their columns take part in every residual, so nothing of
+    the given values is rounded away before the sums.
+
+    x is carried in double-double through the refinement, ``x[:k] + lo``: it converges to
+    the exact solution, and x[:k] to its rounding, whatever the rounding of the factors;
+    ``lo`` (k floats) gets the low parts, for a caller that goes on from the exact solution
+    (the bound multipliers of ``_qp._polished``).
+
+    Returns ok: False (x[:k] garbage) when K, rhs or the given entries are not finite, the
+    shapes do not match, a pivot is exactly zero (the block is singular in floating point)
+    or x is not finite.  K and rhs are not modified.  Never raises."""
+    k = rhs.shape[0]
+    j = K.shape[1] - k
+    if (K.shape[0] != k or j < 0 or x.shape[0] != k + j or lo.shape[0] != k
+            or nan_probe(x[k:], j) != 0.0):
+        return False
+    A, y, d = solve_work(np.empty(k * (k + 2)), k)
+    piv = np.empty(k, dtype=np.int64)
+    for r in range(k):
+        for c in range(k):
+            A[r, c] = K[r, c]
+        y[r] = rhs[r]
+    if j > 0:
+        residual2(K[:, k:], -x[k:], rhs, y)  # rhs - K_given x_given
+    xs = x[:k]
+    xs[:] = 0.0
+    if not _eliminate(A, y, xs, k, piv):
+        return False
+    lo[:] = 0.0
+    for _ in range(steps):
+        for r in range(k):  # rhs - K (x + lo), in double-double
+            s = rhs[r]
+            err = 0.0
+            for c in range(k + j):
+                s, err = acc2(s, err, -K[r, c], x[c])
+            for c in range(k):
+                err -= K[r, c] * lo[c]
+            y[r] = s + err
+        if not _lu_solve(A, piv, y, d, k):
+            return False
+        for r in range(k):  # (xs, lo) += d
+            t, e = two_sum(xs[r], d[r])
+            e += lo[r]
+            xs[r] = t + e
+            lo[r] = e - (xs[r] - t)
+    return nan_probe(xs, k) == 0.0
+
+
+@kernel
+def residual2(E, x, e, y):
+    """y = E x + e, each row summed in double-double (:func:`acc2`) and then rounded: the
+    value at x to within a unit in its last place plus ``k eps^2 |E| |x|`` -- no rounding of
+    the evaluation that grows with |x| beyond that.  (For the MLCP check, ``_certify``.)"""
+    k = x.shape[0]
+    for r in range(E.shape[0]):
+        s = e[r]
+        err = 0.0
+        for c in range(k):
+            s, err = acc2(s, err, E[r, c], x[c])
+        y[r] = s + err

@@ -35,7 +35,7 @@ with P positive definite is solved on its dual, an LCP in the inequality multipl
 6. The KKT conditions are checked once, row by row, on the caller's data with compensated
    (double-double) sums (:func:`kkt_check`), at the tolerance ``min(tol, STRICT_TOL)``:
    there is no refinement step, so an ill-conditioned problem whose point is only accurate
-   to the tolerance is left to the KKT-MLCP path, which refines in extended precision.
+   to the tolerance is left to the KKT-MLCP path, which refines in double-double.
 
 7. **Many more inequalities than variables** (``m >= GRAM_RATIO n``, the DUALC problems,
    m counting the bounds' rows): M = F2 F2' has rank at most ``r = n - p``, and forming it
@@ -102,7 +102,7 @@ import numpy as np
 from numba import njit
 
 from . import boxed, cold, inline_kernel, kernel, pivoting, unrevised
-from .linalg import absmax, copy, dot, false_flags, nan_probe, no_matrix, pow2_rsqrt
+from .linalg import absmax, acc2, copy, dot, false_flags, nan_probe, no_matrix, pow2_rsqrt, two_product, two_sum
 
 OK = 0
 NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
@@ -124,7 +124,6 @@ PROXIMAL = 1e-6  # delta of the proximal term, relative to max P_jj (step 7)
 FLAT = 1e-3  # a proximal factor's pivot below FLAT max P_jj marks a flat direction of P (step 8)
 REFINE = 2  # refinement steps of the point of step 7, P definite
 REFINE_PROXIMAL = 3  # and with the proximal term
-SPLITTER = 134217729.0  # 2^27 + 1: Dekker's split of a double into two halves
 
 
 # ----------------------------------------------------------------------------- screening
@@ -330,36 +329,6 @@ def qr_rows(WE, V, beta):
 
 
 # ----------------------------------------------------------------------------- compensated sums
-
-@kernel
-def two_product(a, b):
-    """``(p, e)`` with p = fl(a b) and a b = p + e exactly (Dekker)."""
-    p = a * b
-    t = SPLITTER * a
-    ah = t - (t - a)
-    al = a - ah
-    t = SPLITTER * b
-    bh = t - (t - b)
-    bl = b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
-
-
-@kernel
-def two_sum(a, b):
-    """``(s, e)`` with s = fl(a + b) and a + b = s + e exactly (Knuth)."""
-    s = a + b
-    z = s - a
-    return s, (a - (s - z)) + (b - z)
-
-
-@kernel
-def acc2(hi, lo, a, b):
-    """``(hi, lo) += a b`` in double-double: the sum ``hi + lo`` carries the error terms of
-    every product and addition (as in :func:`dot2`)."""
-    p, e = two_product(a, b)
-    s, f = two_sum(hi, p)
-    return s, lo + (e + f)
-
 
 @kernel
 def dot2(x, y, c):
@@ -948,7 +917,7 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     point(L, E, V, beta, C, c, v, zz, x, yy)
     caller_form(x, y, z, zb, yy, zz, ekind, f, ckind, d, m_g, np.True_)
     # No refinement step here: the point is kept only when it is accurate far beyond the
-    # tolerance; otherwise the KKT-MLCP path, which refines in extended precision, answers.
+    # tolerance; otherwise the KKT-MLCP path, which refines in double-double, answers.
     if not kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, min(tol, STRICT_TOL), stats):
         return CHECK_FAILED, pivots, k_basic, pairs
     return OK, pivots, k_basic, pairs
