@@ -31,15 +31,25 @@ SINGULAR = 2  # no exchange makes the free block nonsingular (not seen on monoto
 
 
 @kernel
-def exchange(T, r, c, row_label, col_label, prow):
-    """Exchange the basic variable of row r with the non-basic one of column c."""
+def exchange(T, r, c, row_label, col_label, prow, nz):
+    """Exchange the basic variable of row r with the non-basic one of column c.  ``prow``
+    (N + 1 floats) and ``nz`` (N + 1 int64s) are scratch.  A KKT system is sparse (on the
+    Maros-Meszaros LPs a few per cent of T is non-zero after every exchange), so where the
+    pivot row has few non-zeros only those columns of the other rows are updated: the same
+    sums on the entries that change, and none on the others."""
     rows, cols = T.shape
     inv = 1.0 / T[r, c]
+    m = 0
     for k in range(cols):
-        prow[k] = -T[r, k] * inv
+        v = -T[r, k] * inv
+        prow[k] = v
+        if v != 0.0 and k != c:
+            nz[m] = k
+            m += 1
     prow[c] = inv
     for k in range(cols):
         T[r, k] = prow[k]
+    sparse = 4 * m < cols
     for i in range(rows):
         if i == r:
             continue
@@ -47,8 +57,13 @@ def exchange(T, r, c, row_label, col_label, prow):
         if f == 0.0:
             continue
         row = T[i]
-        for k in range(cols):
-            row[k] += f * prow[k]
+        if sparse:
+            for t in range(m):
+                k = nz[t]
+                row[k] += f * prow[k]
+        else:
+            for k in range(cols):
+                row[k] += f * prow[k]
         row[c] = f * inv
     tmp = row_label[r]
     row_label[r] = col_label[c]
@@ -56,7 +71,7 @@ def exchange(T, r, c, row_label, col_label, prow):
 
 
 @kernel
-def enter_free(T, c, n, rank_tol, row_label, col_label, prow):
+def enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz):
     """The free variable of column c enters in place of the slack of an equation, the one
     with the largest entry in that column, if that entry exceeds rank_tol."""
     best, r_best = 0.0, np.int64(-1)  # not a literal: see kernels/__init__.py
@@ -64,7 +79,7 @@ def enter_free(T, c, n, rank_tol, row_label, col_label, prow):
         if row_label[r] < n and abs(T[r, c]) > best:
             best, r_best = abs(T[r, c]), r
     if r_best >= 0 and best > rank_tol:
-        exchange(T, r_best, c, row_label, col_label, prow)
+        exchange(T, r_best, c, row_label, col_label, prow, nz)
 
 
 @kernel
@@ -75,17 +90,35 @@ def reduce(T, n, rank_tol, e_size, row_label, col_label):
     ``rank_tol``, and an equation's constant is zero when below ``rank_tol * e_size``."""
     N = T.shape[0]
     prow = np.empty(N + 1)
+    nz = np.empty(N + 1, dtype=np.int64)
     for i in range(N):
         row_label[i] = i
         col_label[i] = N + i
     # 1. u_c enters in place of the slack of an equation (column by column, largest pivot).
     for c in range(n):
-        enter_free(T, c, n, rank_tol, row_label, col_label, prow)
+        enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz)
 
     # 2. Swap a pair k to make room: 2 x 2 exchanges while slacks and free columns remain.
+    # Each round lists the free columns still non-basic, the rows of slacks and where each
+    # non-basic label is (O(N)), so that its search reads only those entries of T.
+    fcols = np.empty(N, dtype=np.int64)
+    srows = np.empty(N, dtype=np.int64)
+    col_of = np.empty(2 * N, dtype=np.int64)
     while True:
-        # Free columns still non-basic and rows of pair variables: for each such row, its
-        # largest entry over those columns.
+        nf = 0
+        col_of[:] = -1
+        for c in range(N):
+            lc = col_label[c]
+            col_of[lc] = c
+            if N <= lc < N + n:
+                fcols[nf] = c
+                nf += 1
+        ns = 0
+        for r in range(N):
+            if row_label[r] < n:
+                srows[ns] = r
+                ns += 1
+        # Rows of pair variables: for each, its largest entry over the free columns.
         best = 0.0
         r_best, k_col, k_row = np.int64(-1), np.int64(-1), np.int64(-1)  # see kernels/__init__.py
         for i in range(N):
@@ -93,35 +126,29 @@ def reduce(T, n, rank_tol, e_size, row_label, col_label):
             if li < n or (N <= li < N + n):
                 continue  # a slack or a free variable: not a pair's row
             rmax = 0.0
-            for c in range(N):
-                if N <= col_label[c] < N + n:
-                    rmax = max(rmax, abs(T[i, c]))
+            for t in range(nf):
+                rmax = max(rmax, abs(T[i, fcols[t]]))
             if rmax <= rank_tol:
                 continue
             # This row's pair partner is non-basic in some column j.
-            partner = li - N if li >= N else li + N
-            j = np.int64(-1)  # not a literal: see kernels/__init__.py
-            for c in range(N):
-                if col_label[c] == partner:
-                    j = c
-                    break
-            for r in range(N):
-                if row_label[r] < n:
-                    v = abs(T[r, j])
-                    if v > rank_tol and v * rmax > best:
-                        best, r_best, k_col, k_row = v * rmax, r, j, i
+            j = col_of[li - N if li >= N else li + N]
+            for t in range(ns):
+                r = srows[t]
+                v = abs(T[r, j])
+                if v > rank_tol and v * rmax > best:
+                    best, r_best, k_col, k_row = v * rmax, r, j, i
         if r_best < 0:
             break
-        exchange(T, r_best, k_col, row_label, col_label, prow)
+        exchange(T, r_best, k_col, row_label, col_label, prow, nz)
         c_best, cbest = np.int64(-1), 0.0  # not a literal: see kernels/__init__.py
         for c in range(N):
             if N <= col_label[c] < N + n and abs(T[k_row, c]) > cbest:
                 cbest, c_best = abs(T[k_row, c]), c
-        exchange(T, k_row, c_best, row_label, col_label, prow)
+        exchange(T, k_row, c_best, row_label, col_label, prow, nz)
         # The 1-step pivot may now succeed in a column that failed before.
         for c in range(N):
             if N <= col_label[c] < N + n:
-                enter_free(T, c, n, rank_tol, row_label, col_label, prow)
+                enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz)
 
     # 3. What remains must be redundant: zero rows (slacks) and zero columns (free variables).
     for r in range(N):
