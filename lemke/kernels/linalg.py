@@ -467,6 +467,27 @@ def _row_update2(y, f, x, g, u, lo, k):
         ys[c] = (ys[c] - f * xs[c]) - g * us[c]
 
 
+@kernel
+def _nonzero_columns(x, u, lo, k, idx):
+    """The columns c in lo..k-1 where x[c] or u[c] is not zero, into idx; their count, or -1
+    when they are a quarter of the range or more (then a dense pass costs less)."""
+    m = 0
+    for c in range(lo, k):
+        if x[c] != 0.0 or u[c] != 0.0:
+            idx[m] = c
+            m += 1
+    return m if 4 * m < k - lo else -1
+
+
+@kernel
+def _row_update2_at(y, f, x, g, u, idx, m):
+    """y[c] = (y[c] - f x[c]) - g u[c] for c in idx[:m] (:func:`_row_update2` on a list of
+    columns)."""
+    for t in range(m):
+        c = idx[t]
+        y[c] = (y[c] - f * x[c]) - g * u[c]
+
+
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
 def _block_probe(G, k):
     """0 when every entry of G[:k, :k] is finite, NaN otherwise."""
@@ -638,7 +659,12 @@ def _eliminate(A, y, x, k, piv):
     :func:`solve`.  Returns ok.  A is left holding its LU factors (the multipliers below
     the diagonal, U on and above it, rows in pivot order); ``piv``, None or k int64s, gets
     the row swapped into place at each step, so that :func:`_lu_solve` can solve again with
-    the same factors (:func:`refined_solve`)."""
+    the same factors (:func:`refined_solve`).  Given piv (then 2k int64s: the second half
+    is scratch), the updates of the rows below a pair of pivots read only the pivot rows'
+    non-zero columns when they are under a quarter (:func:`_nonzero_columns`): a KKT
+    system's factors stay a few per cent non-zero.  The same sums on the entries that
+    change, without the fused multiply-adds that ``_row_update2`` may use, so the last
+    bits can differ from the solve without piv."""
     if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
         return False
     j = np.int64(0)
@@ -674,13 +700,19 @@ def _eliminate(A, y, x, k, piv):
         _row_update(row1, l1, rowj, j + 1, k)
         y[j + 1] -= l1 * y[j]
         inv1 = 1.0 / row1[j + 1]
+        m = -1  # the pivot rows' non-zero columns (refined_solve only): -1, not listed
+        if piv is not None:
+            m = _nonzero_columns(rowj, row1, j + 2, k, piv[k:])
         for r in range(j + 2, k):  # both eliminations in one pass over each row below
             rowr = A[r]
             f = rowr[j]
             g = (rowr[j + 1] - f * h) * inv1
             rowr[j + 1] = g  # the multiplier of pivot j + 1, kept in column j + 1
             if f != 0.0 or g != 0.0:
-                _row_update2(rowr, f, rowj, g, row1, j + 2, k)
+                if m >= 0:
+                    _row_update2_at(rowr, f, rowj, g, row1, piv[k:], m)
+                else:
+                    _row_update2(rowr, f, rowj, g, row1, j + 2, k)
                 y[r] = (y[r] - f * y[j]) - g * y[j + 1]
         j += 2
     return _back_substitute(A, y, x, k)
@@ -748,7 +780,7 @@ def refined_solve(K, rhs, steps, x, lo):
             or nan_probe(x[k:], j) != 0.0):
         return False
     A, y, d = solve_work(np.empty(k * (k + 2)), k)
-    piv = np.empty(k, dtype=np.int64)
+    piv = np.empty(2 * k, dtype=np.int64)  # the pivots, then _eliminate's scratch
     for r in range(k):
         for c in range(k):
             A[r, c] = K[r, c]
@@ -761,13 +793,15 @@ def refined_solve(K, rhs, steps, x, lo):
         return False
     lo[:] = 0.0
     for _ in range(steps):
-        for r in range(k):  # rhs - K (x + lo), in double-double
+        for r in range(k):  # rhs - K (x + lo), in double-double (zeros add nothing)
             s = rhs[r]
             err = 0.0
             for c in range(k + j):
-                s, err = acc2(s, err, -K[r, c], x[c])
-            for c in range(k):
-                err -= K[r, c] * lo[c]
+                a = K[r, c]
+                if a != 0.0:
+                    s, err = acc2(s, err, -a, x[c])
+                    if c < k:
+                        err -= a * lo[c]
             y[r] = s + err
         if not _lu_solve(A, piv, y, d, k):
             return False
@@ -789,5 +823,7 @@ def residual2(E, x, e, y):
         s = e[r]
         err = 0.0
         for c in range(k):
-            s, err = acc2(s, err, E[r, c], x[c])
+            a = E[r, c]
+            if a != 0.0:  # a zero adds nothing (a KKT system is mostly zeros)
+                s, err = acc2(s, err, a, x[c])
         y[r] = s + err
