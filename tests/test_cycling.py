@@ -193,6 +193,36 @@ def _scaled_copy(case, method):
         f"{res.pivots} pivots on the copy, {ref.pivots} on the original (bound 2 (n + 1) x {ref.pivots})")
 
 
+# Copies on which the tableau's first run ends solved on a point that fails the check, and
+# the point of its final basis passes (found by scanning CASES).
+FIRST_BASIS_RIGHT = ["scaled/perm-rowcol:dart/Lemke_2D", "scaled/rowcol-a:dart/Lemke_6D",
+                     "scaled/rowcol-a:int-p/n5-s0", "scaled/times1e-6:contact/pile-step020"]
+
+
+@pytest.mark.parametrize("key", FIRST_BASIS_RIGHT)
+def test_a_first_run_with_the_right_basis_needs_no_recovery_run(key):
+    """kernels.cold.checked: when the first run ends SOLVED on a point that fails the check,
+    the point of its final basis (one LU solve on the data) is tried before any recovery
+    run; where it passes, that is the answer: recoveries 0, and the pivots are the first
+    run's.  The answer is checked here independently."""
+    from lemke.kernels import cold
+    M, q = (np.ascontiguousarray(a, dtype=float) for a in problem(key))
+    n = q.size
+    buf = np.empty(cold.buffer_length(n) + n)
+    none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
+    code, pivots, _, ok, _, _, stage = cold.first_run(
+        cold.TABLEAU, M, q, none_f, none_i, 0, 10**6, 1e-12, 1e-10, 1e-9, buf, np.empty(n, dtype=np.int64))
+    assert code == 0 and not ok and stage == -1, "the first run no longer fails its check here"
+    res = lemke.solve_lcp(M, q)
+    assert res.status == Status.SOLVED and res.recoveries == 0 and res.pivots == pivots
+    # Taken back to the original's coordinates (as in _scaled_copy), an answer of the original.
+    how, base_key = key.split("/", 1)[1].split(":", 1)
+    p, _, d2 = scaling(n, how, base_key)
+    z = np.empty_like(res.z)
+    z[p] = d2 * res.z
+    assert_lcp_solution(*problem(base_key), z)
+
+
 # --- contact simulation -----------------------------------------------------------------
 
 CONTACT = [c for c in BASE_CASES if c.family == "contact"]
