@@ -223,6 +223,35 @@ def test_a_first_run_with_the_right_basis_needs_no_recovery_run(key):
     assert_lcp_solution(*problem(base_key), z)
 
 
+def test_a_first_run_one_basis_off_is_restarted_from_its_basis():
+    """kernels.cold.checked, n >= RESTART_FROM: when the first run ends SOLVED on a point
+    that fails the check and so does the point of its final basis, Lemke's method restarts
+    from that basis (cold.restart) before the recovery runs: on this contact step (196 rows)
+    the first run's basis was a few pivots off, and the restart's 20 pivots end it
+    (recoveries 1).  The answer is checked here independently."""
+    from lemke import Options
+    from lemke.kernels import cold, linalg
+    o = Options()
+    M, q = (np.ascontiguousarray(a, dtype=float) for a in problem("contact/mixed-step055"))
+    n = q.size
+    assert n >= cold.RESTART_FROM
+    buf = np.empty(cold.buffer_length(n) + n)
+    flags = np.empty(n, dtype=np.int64)
+    code, first, _, ok, _, _, stage = cold.first_run(
+        cold.TABLEAU, M, q, np.zeros(0), np.zeros(0, dtype=np.int64), 0, 10**6, o.pivot_tol,
+        o.tie_tol, o.tol, buf, flags)
+    z_basic = flags != 0
+    R = buf[cold.fields(n)["row_scale"]]
+    assert code == 0 and not ok and stage == -1 and not cold.basis_checks(M, q, z_basic, o.tol, R)
+    again, z_after = buf.copy(), np.empty(n, dtype=np.bool_)
+    extra, ok_restart, _ = cold.restart(M, q, z_basic, linalg.finite_absmax(M)[1], 10**6, o.pivot_tol,
+                                        o.tie_tol, o.tol, again, z_after)
+    assert ok_restart
+    res = lemke.solve_lcp(M, q)
+    assert res.status == Status.SOLVED and res.recoveries == 1 and res.pivots == first + extra
+    assert_lcp_solution(M, q, res.z)
+
+
 # --- contact simulation -----------------------------------------------------------------
 
 CONTACT = [c for c in BASE_CASES if c.family == "contact"]
