@@ -585,7 +585,7 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
     return 2, 0, pivots, 0, False, 0.0
 
 
-@kernel
+@inline_kernel
 def restart(M, q, z_start, m_max, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic):
     """Lemke's method restarted from the complementary basis with z_i basic where
     ``z_start[i]`` (the unrevised method on the principal pivoting transform, with a
