@@ -244,8 +244,9 @@ def test_a_first_run_one_basis_off_is_restarted_from_its_basis():
     R = buf[cold.fields(n)["row_scale"]]
     assert code == 0 and not ok and stage == -1 and not cold.basis_checks(M, q, z_basic, o.tol, R)
     again, z_after = buf.copy(), np.empty(n, dtype=np.bool_)
-    extra, ok_restart, _ = cold.restart(M, q, z_basic, linalg.finite_absmax(M)[1], 10**6, o.pivot_tol,
-                                        o.tie_tol, o.tol, again, z_after)
+    beta = np.flatnonzero(z_basic).astype(np.int64)
+    extra, ok_restart, _ = cold.restart(M, q, z_basic, beta, len(beta), linalg.finite_absmax(M)[1],
+                                        10**6, o.pivot_tol, o.tie_tol, o.tol, again, z_after)
     assert ok_restart
     res = lemke.solve_lcp(M, q)
     assert res.status == Status.SOLVED and res.recoveries == 1 and res.pivots == first + extra

@@ -235,14 +235,8 @@ def basis_point_checked(M, q, z_basic, tol, R, z, w):
     """The point of the complementary basis with z_i basic where ``z_basic[i]``
     (:func:`basis_point`) into z, and ``(ok, residual)`` of its check on (M, q), w = M z + q
     into w."""
-    n = q.shape[0]
-    beta = np.empty(n, dtype=np.int64)
-    k = np.int64(0)  # not a literal 0: see kernels/__init__.py
-    for i in range(n):
-        if z_basic[i]:
-            beta[k] = i
-            k += 1
-    if not basis_point(M, q, beta, k, z):
+    beta = np.empty(q.shape[0], dtype=np.int64)
+    if not basis_point(M, q, beta, np.int64(basic_indices(z_basic, beta)), z):
         return False, 0.0
     return lcp_check_sized(M, q, z, tol, w, R)
 
@@ -338,8 +332,11 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
                     buf2 = np.empty(buf.shape[0])
                     z_basic2 = np.empty(n, dtype=np.bool_)
                     copy(buf2, buf)
-                    p3, ok3, r3 = restart(M, q, z_basic, finite_absmax(M)[1], max_pivots - pivots,
-                                          pivot_tol, tie_tol, tol, buf2, z_basic2)
+                    beta = np.empty(n, dtype=np.int64)
+                    kb = basic_indices(z_basic, beta)
+                    p3, ok3, r3 = restart(M, q, z_basic, beta, kb, finite_absmax(M)[1],
+                                          max_pivots - pivots, pivot_tol, tie_tol, tol, buf2,
+                                          z_basic2)
                     pivots += p3
                     recoveries += 1
                     if ok3:
@@ -578,17 +575,17 @@ def warm_stages(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basi
     z_start, z_basic = flags[:n], flags[n:]
     for i in range(k):
         z_start[beta[i]] = True
-    pivots, ok, residual = restart(M, q, z_start, m_max, max_pivots, pivot_tol, tie_tol, tol, buf,
-                                   z_basic)
+    pivots, ok, residual = restart(M, q, z_start, beta, k, m_max, max_pivots, pivot_tol, tie_tol,
+                                   tol, buf, z_basic)
     if ok:
         return 1, pivoting.SOLVED, pivots, basic_indices(z_basic, basic), True, residual
     return 2, 0, pivots, 0, False, 0.0
 
 
 @inline_kernel
-def restart(M, q, z_start, m_max, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic):
+def restart(M, q, z_start, beta, k, m_max, max_pivots, pivot_tol, tie_tol, tol, buf, z_basic):
     """Lemke's method restarted from the complementary basis with z_i basic where
-    ``z_start[i]`` (the unrevised method on the principal pivoting transform, with a
+    ``z_start[i]``, that is for i in ``beta[:k]`` (ascending; the unrevised method on the principal pivoting transform, with a
     constant covering vector there: ``c e_alpha - M[:, beta] 1``, c = max|M| = m_max, so z
     rows and w rows get the same constant), its point checked on (M, q).  R and C must be
     in ``buf``, which gets the run's output; ``z_basic`` its final basic z's.  Returns
@@ -598,9 +595,8 @@ def restart(M, q, z_start, m_max, max_pivots, pivot_tol, tie_tol, tol, buf, z_ba
     m_scale = m_max if m_max > 0.0 else 1.0
     for i in range(n):
         acc = 0.0 if z_start[i] else m_scale
-        for j in range(n):
-            if z_start[j]:
-                acc -= M[i, j]
+        for j in range(k):
+            acc -= M[i, beta[j]]
         cov[i] = acc
     code, pivots = unrevised.solve(M, q, cov, R, C, z_start, no_matrix(), max_pivots,
                                    pivot_tol, tie_tol, x, ray, z_basic)
