@@ -657,10 +657,10 @@ def solve_work(work, k):
 def _eliminate(A, y, x, k, piv):
     """Solve A x = y in place (A and y are overwritten; x starts at 0): the elimination of
     :func:`solve`.  Returns ok.  A is left holding its LU factors (the multipliers below
-    the diagonal, U on and above it, rows in pivot order); ``piv``, None or k int64s, gets
-    the row swapped into place at each step, so that :func:`_lu_solve` can solve again with
-    the same factors (:func:`refined_solve`).  Given piv (then 2k int64s: the second half
-    is scratch), the updates of the rows below a pair of pivots read only the pivot rows'
+    the diagonal, U on and above it, rows in pivot order); ``piv`` is None or 2k int64s:
+    its first k get the row swapped into place at each step, so that :func:`_lu_solve` can
+    solve again with the same factors (:func:`refined_solve`), and its second half is
+    scratch.  Given piv, the updates of the rows below a pair of pivots read only the pivot rows'
     non-zero columns when they are under a quarter (:func:`_nonzero_columns`): a KKT
     system's factors stay a few per cent non-zero.  The same sums on the entries that
     change, without the fused multiply-adds that ``_row_update2`` may use, so the last
