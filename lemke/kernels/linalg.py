@@ -458,13 +458,44 @@ def _row_update(y, f, x, lo, k):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
-def _row_update2(y, f, x, g, u, lo, k):
-    """y[lo:k] = (y[lo:k] - f x[lo:k]) - g u[lo:k]: two eliminations in one pass over y."""
-    ys = y[lo:k]
-    xs = x[lo:k]
-    us = u[lo:k]
-    for c in range(ys.shape[0]):
-        ys[c] = (ys[c] - f * xs[c]) - g * us[c]
+def _update_below_pair(A, j, k):
+    """Rows j + 2 .. k - 1 of A, each r whose multipliers f = A[r, j] and g = A[r, j + 1]
+    (in place already) are not both zero: A[r, c] = (A[r, c] - f A[j, c]) - g A[j + 1, c]
+    for c = j + 2 .. k - 1 (fused multiply-adds allowed: ``contract``), in one call: a row
+    view and a call per row (as this was written before, with the same bits) cost an atomic
+    reference count increment and decrement each, more than the update of a short row.  The column index
+    is unsigned, so numba does not wrap it around (a signed one from j + 2 would keep the
+    loop scalar); the rows written lie after the two read, so LLVM's overlap check passes.
+    Measured on whole LUs of SPD blocks: 0.72x the time at k = 28, 0.51x at 100."""
+    lo = np.uint64(j + 2)
+    hi = np.uint64(k)
+    for r in range(j + 2, k):
+        f = A[r, j]
+        g = A[r, j + 1]
+        if f != 0.0 or g != 0.0:
+            for c in range(lo, hi):
+                A[r, c] = (A[r, c] - f * A[j, c]) - g * A[j + 1, c]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+def _update_all_pair(G, fg, j, k, S):
+    """Every row r of G[:k, :k] but j and j + 1, with f = fg[r] and g = fg[k + r] not both
+    zero: G[r, c] = (G[r, c] - f G[j, c]) - g G[j + 1, c] for c < k
+    (:func:`_update_below_pair` for the Gauss-Jordan passes of :func:`invert_in_place`).
+    The pivot rows are read from a copy in S (2k floats): read from G, which the rows
+    written surround, LLVM's overlap check (hoisted out of the row loop, over all of G)
+    would fail and keep every row's loop scalar.  Measured: 0.60x the inversion's time at
+    k = 28 and 60, 0.75x at 150."""
+    for c in range(k):
+        S[c] = G[j, c]
+        S[k + c] = G[j + 1, c]
+    for r in range(k):
+        if r != j and r != j + 1:
+            f = fg[r]
+            g = fg[k + r]
+            if f != 0.0 or g != 0.0:
+                for c in range(k):
+                    G[r, c] = (G[r, c] - f * S[c]) - g * S[k + c]
 
 
 @kernel
@@ -481,8 +512,8 @@ def _nonzero_columns(x, u, lo, k, idx):
 
 @kernel
 def _row_update2_at(y, f, x, g, u, idx, m):
-    """y[c] = (y[c] - f x[c]) - g u[c] for c in idx[:m] (:func:`_row_update2` on a list of
-    columns)."""
+    """y[c] = (y[c] - f x[c]) - g u[c] for c in idx[:m] (:func:`_update_below_pair`'s
+    update of one row, on a list of columns)."""
     for t in range(m):
         c = idx[t]
         y[c] = (y[c] - f * x[c]) - g * u[c]
@@ -538,6 +569,8 @@ def invert_in_place(G, k):
     if _block_probe(G, k) != 0.0:
         return False
     piv = np.empty(k, dtype=np.int64)
+    work = np.empty(4 * k)
+    fg, S = work[: 2 * k], work[2 * k :]  # a pass's multipliers, and its pivot rows
     j = np.int64(0)  # not a literal 0: see kernels/__init__.py
     start = np.int64(0)
     while j < k:
@@ -575,18 +608,22 @@ def invert_in_place(G, k):
         row1[j + 1] = 1.0
         for c in range(k):
             row1[c] *= d1
-        # Every other row: both eliminations in one pass.  Column j of the result is
-        # -f rowj[j] - g row1[j], column j + 1 is -g row1[j + 1] (the in-place trick).
+        # Every other row: both eliminations in one pass (the multipliers f and g first,
+        # into fg).  Column j of the result is -f rowj[j] - g row1[j], column j + 1 is
+        # -g row1[j + 1] (the in-place trick).
         for r in range(k):
-            if r == j or r == j + 1:
-                continue
-            rowr = G[r]
-            f = rowr[j]
-            g = rowr[j + 1] - f * h
-            if f != 0.0 or g != 0.0:
-                _row_update2(rowr, f, rowj, g, row1, start, k)
-                rowr[j] = -f * rowj[j] - g * row1[j]
-                rowr[j + 1] = -g * row1[j + 1]
+            if r != j and r != j + 1:
+                f = G[r, j]
+                fg[r] = f
+                fg[k + r] = G[r, j + 1] - f * h
+        _update_all_pair(G, fg, j, k, S)
+        for r in range(k):
+            if r != j and r != j + 1:
+                f = fg[r]
+                g = fg[k + r]
+                if f != 0.0 or g != 0.0:
+                    G[r, j] = -f * rowj[j] - g * row1[j]
+                    G[r, j + 1] = -g * row1[j + 1]
         # Row j last (the pass above read it as pivot j left it).
         rowj[j + 1] = 0.0
         _row_update(rowj, h, row1, start, k)
@@ -663,7 +700,7 @@ def _eliminate(A, y, x, k, piv):
     scratch.  Given piv, the updates of the rows below a pair of pivots read only the pivot rows'
     non-zero columns when they are under a quarter (:func:`_nonzero_columns`): a KKT
     system's factors stay a few per cent non-zero.  The same sums on the entries that
-    change, without the fused multiply-adds that ``_row_update2`` may use, so the last
+    change, without the fused multiply-adds that ``_update_below_pair`` may use, so the last
     bits can differ from the solve without piv."""
     if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
         return False
@@ -704,16 +741,15 @@ def _eliminate(A, y, x, k, piv):
         if piv is not None:
             m = _nonzero_columns(rowj, row1, j + 2, k, piv[k:])
         for r in range(j + 2, k):  # both eliminations in one pass over each row below
-            rowr = A[r]
-            f = rowr[j]
-            g = (rowr[j + 1] - f * h) * inv1
-            rowr[j + 1] = g  # the multiplier of pivot j + 1, kept in column j + 1
+            f = A[r, j]
+            g = (A[r, j + 1] - f * h) * inv1
+            A[r, j + 1] = g  # the multiplier of pivot j + 1, kept in column j + 1
             if f != 0.0 or g != 0.0:
                 if m >= 0:
-                    _row_update2_at(rowr, f, rowj, g, row1, piv[k:], m)
-                else:
-                    _row_update2(rowr, f, rowj, g, row1, j + 2, k)
+                    _row_update2_at(A[r], f, rowj, g, row1, piv[k:], m)
                 y[r] = (y[r] - f * y[j]) - g * y[j + 1]
+        if m < 0:  # the rows' updates, dense
+            _update_below_pair(A, j, k)
         j += 2
     return _back_substitute(A, y, x, k)
 
