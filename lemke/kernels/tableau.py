@@ -262,17 +262,21 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
             # same order (flush's update of row i, its entry s included, where V is 0), but
             # no array bound to an inlined callee's arguments, each an atomic reference
             # count increment and decrement a pivot (26 of them a pivot before).
+            # Entry s of a row is written after the row's loop, never before: a scalar
+            # store that the loop's vector loads then overlap cannot be forwarded to them,
+            # and that stall was about 40 % of a pivot at n = 24.  So prow[s] keeps the
+            # loop's -T[r, s] inv (V's row has 0 there: the rows' updates in column s are
+            # overwritten, by the values they would have had: f inv + f * 0).
             inv = 1.0 / col[r]
             for j in range(m):
-                prow[j] = -T[r, j] * inv
-            prow[s] = inv
-            for j in range(m):
-                T[r, j] = prow[j]
+                v = -T[r, j] * inv
+                prow[j] = v
+                T[r, j] = v
+            T[r, s] = inv
             rhs[r] = -rhs[r] * inv
             rr = rhs[r]
             magb[r] *= abs(inv)  # see pivot()
             mr = magb[r]
-            prow[s] = 0.0  # V's row of the pivot
             for i in range(n):
                 if i != r:
                     f = col[i]
@@ -281,12 +285,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
                         magb[i] += abs(f) * mr
                         for j in range(m):
                             T[i, j] += f * prow[j]
-                        # Entry s after the row's loop, with the value it would have had
-                        # written before it (f inv, plus the loop's f * prow[s] = f * 0):
-                        # a scalar store that a vector load of the row then overlaps
-                        # cannot be forwarded, and that stall was about 40 % of a pivot
-                        # at n = 24.
-                        T[i, s] = f * inv + f * prow[s]
+                        T[i, s] = f * inv + f * 0.0
                     else:
                         T[i, s] = f * inv
         else:

@@ -35,7 +35,7 @@ holds the basic variable of pair j).
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, dot, dot_and_size, invert_in_place, matvec, no_matrix, scaled_system
+from .linalg import dot, dot_and_size, invert_in_place, matvec, no_matrix, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
@@ -210,7 +210,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
     apos[:] = -1
     bpos[:] = -1
     o = n * kmax + kmax * kmax
-    F = np.empty(o + 14 * n + 1)
+    F = np.empty(o + 15 * n + 1)
     AB = F[: n * kmax].reshape((n, kmax))  # AB[:, c] = A[:, blist[c]]
     G = F[n * kmax : o].reshape((kmax, kmax))
     zb = F[o : o + n]
@@ -227,7 +227,8 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
     rc = F[o + 11 * n : o + 12 * n]  # and their changes per unit of the entering variable
     acol = F[o + 12 * n : o + 13 * n]  # the entering variable's column of A
     lcol = F[o + 13 * n : o + 14 * n]  # and another one's, for the lexicographic keys
-    z0_max = F[o + 14 * n :]  # the largest value z0 has had (ratio_test keeps it)
+    coef = F[o + 14 * n : o + 15 * n]  # update_basis's multipliers
+    z0_max = F[o + 15 * n :]  # the largest value z0 has had (ratio_test keeps it)
     z0_max[0] = 0.0
     cand = I[4 * n + 1 : 5 * n + 1]  # tied candidates, as positions in rlab
     rlab = I[5 * n + 1 : 6 * n + 1]  # the basic variables in pair order, z0 last
@@ -300,7 +301,7 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
         t = -rv[r] / rc[r]
         advance(t, k, n, apos, zb, dzb, wv, dw)
         ok = update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw,
-                          row, zb)
+                          row, zb, coef)
         if entering >= n and leaving < n:
             k += 1  # the block gained a row and a column
         elif entering < n and leaving >= n:
@@ -411,10 +412,12 @@ def ratio_test(A, Fs, AB, n, alist, k, G, apos, bpos, dzb, dw, z_start, pivot_to
 
 
 @inline_kernel
-def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row, zb):
+def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G, dzb, dw, row, zb,
+                 coef):
     """Update the index sets, AB and G = H^-1 for ``entering`` replacing ``leaving``
-    (``acol``: the entering variable's column of A, when it is a z).
-    Returns False when the update's pivot is too small to trust (then refactor)."""
+    (``acol``: the entering variable's column of A, when it is a z; ``row`` and ``coef``:
+    scratch of n floats).  Returns False when the update's pivot is too small to trust
+    (then refactor)."""
     if entering >= n and leaving < n:
         # z_e enters, w_i leaves: H gains row i and column e.  With u = G A[alpha, e]
         # (= -dzb), r = A[i, beta] G and the Schur complement s = dw[i]:
@@ -424,8 +427,9 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
         s = dw[i]
         _row_times(AB[i], G, k, row)
         for p in range(k):
-            axpy(G[p, :k], -dzb[p] / s, row[:k])
+            coef[p] = -dzb[p] / s
             G[p, k] = dzb[p] / s
+        add_rows(G, k, coef, row, np.False_)
         for c in range(k):
             G[k, c] = -row[c] / s
         G[k, k] = 1.0 / s
@@ -445,9 +449,8 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
         for c in range(k):
             row[c] = G[p, c] / piv
         for r in range(k):
-            f = -dzb[r] - (1.0 if r == p else 0.0)
-            if f != 0.0:
-                axpy(G[r, :k], -f, row[:k])
+            coef[r] = -(-dzb[r] - (1.0 if r == p else 0.0))
+        add_rows(G, k, coef, row, np.True_)
         blist[p] = e
         bpos[l] = -1
         bpos[e] = p
@@ -463,9 +466,8 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
         piv = row[p]
         row[p] -= 1.0
         for r in range(k):
-            f = dzb[r] / piv  # dzb = G[:, p]
-            if f != 0.0:
-                axpy(G[r, :k], -f, row[:k])
+            coef[r] = -(dzb[r] / piv)  # dzb = G[:, p]
+        add_rows(G, k, coef, row, np.True_)
         alist[p] = i
         apos[j] = -1
         apos[i] = p
@@ -479,10 +481,10 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
     m = bpos[l]
     piv = G[m, p]
     for r in range(k):
-        if r != m:
-            f = G[r, p] / piv
-            if f != 0.0:
-                axpy(G[r, :k], -f, G[m, :k])
+        coef[r] = -(G[r, p] / piv) if r != m else 0.0
+    for c in range(k):
+        row[c] = G[m, c]
+    add_rows(G, k, coef, row, np.True_)
     last = k - 1
     for c in range(k):
         G[m, c] = G[last, c]
@@ -502,9 +504,26 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
 
 
 @kernel
+def add_rows(G, k, a, x, skip_zero):
+    """G[r, :k] += a[r] x[:k] for every r < k (but those with a[r] == 0 when skip_zero):
+    ``linalg.axpy`` on each row, the same operations, in one call.  A row view and a call
+    per row cost two atomic reference count operations each, and x, not a row of G, lets
+    LLVM's overlap check (hoisted out of the row loop) pass, so that the rows' loops run
+    in vector registers."""
+    for r in range(k):
+        f = a[r]
+        if f != 0.0 or not skip_zero:
+            for c in range(k):
+                G[r, c] += f * x[c]
+
+
+@kernel
 def _row_times(x, G, k, out):
     """out[:k] = x[:k] G[:k, :k] (row-major friendly)."""
-    out[:k] = 0.0
-    for p in range(k):
-        if x[p] != 0.0:
-            axpy(out[:k], x[p], G[p, :k])
+    for c in range(k):
+        out[c] = 0.0
+    for p in range(k):  # linalg.axpy of each row of G, without a view per row (add_rows)
+        xp = x[p]
+        if xp != 0.0:
+            for c in range(k):
+                out[c] += xp * G[p, c]
