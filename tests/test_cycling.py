@@ -224,7 +224,7 @@ def test_a_first_run_with_the_right_basis_needs_no_recovery_run(key):
 
 
 def test_a_first_run_one_basis_off_is_restarted_from_its_basis():
-    """kernels.cold.checked, n >= RECOVERY_RESTART_FROM: when the first run ends SOLVED on a point
+    """kernels.cold.checked, n >= RESTART_FROM: when the first run ends SOLVED on a point
     that fails the check and so does the point of its final basis, Lemke's method restarts
     from that basis (cold.restart) before the recovery runs: on this contact step (196 rows)
     the first run's basis was a few pivots off, and the restart's 20 pivots end it
@@ -234,7 +234,7 @@ def test_a_first_run_one_basis_off_is_restarted_from_its_basis():
     o = Options()
     M, q = (np.ascontiguousarray(a, dtype=float) for a in problem("contact/mixed-step055"))
     n = q.size
-    assert n >= cold.RECOVERY_RESTART_FROM
+    assert n >= cold.RESTART_FROM
     buf = np.empty(cold.buffer_length(n) + n)
     flags = np.empty(n, dtype=np.int64)
     code, first, _, ok, _, _, stage = cold.first_run(

@@ -29,7 +29,7 @@ passes, it is the answer and no recovery run follows.  Over hundreds of pivots t
 tableau's values drift while its basis stays right: on the reduced LCP of Maros-Meszaros'
 QGROW15 (1245 pairs) the first run's basis was right and its point failed, and the runs
 below then took 1000 more pivots (2.4 s against 0.45 s).  When that point fails too and n
->= RECOVERY_RESTART_FROM, Lemke's method is restarted from that basis (:func:`restart`, as a warm
+>= RESTART_FROM, Lemke's method is restarted from that basis (:func:`restart`, as a warm
 start whose basis fails; a recovery), in a buffer of its own that is kept only when its
 point passes: on QSCSD1's (760 pairs) the first run ended after 1316 pivots one basis
 off, the restart took 9 (0.09 s; the runs below took 750 more and 0.55 s).  Otherwise,
@@ -326,7 +326,7 @@ def checked(method, M, q, d, max_pivots, pivot_tol, tie_tol, tol, buf, basic, fi
                     x[n] = 0.0
                     copy(w, zw[n:])
                     ok, residual = okb, rb
-                elif n >= RECOVERY_RESTART_FROM and pivots < max_pivots:
+                elif n >= RESTART_FROM and pivots < max_pivots:
                     # Then Lemke's method restarted from that basis (as a warm start whose
                     # basis fails), in a buffer of its own, kept only when it passes.
                     buf2 = np.empty(buf.shape[0])
@@ -497,20 +497,22 @@ def basis_point_in(M, q, beta, k, z, work):
 
 #: The smallest n at which a warm start whose basis fails is restarted from that basis;
 #: below it the problem goes cold (after the old basis's point was tried: 1.1-1.2x a cold
-#: solve).  Remeasured (benchmark script in the issue 14 note of 2026-11-25) after the
-#: unrevised method's updates and the LU lost their row views (the restart's pivots 1.2-2x
-#: cheaper): whole solve_lcp calls, warm / cold of the same q on seeded PD and
-#: contact-like M whose old basis fails, q moved by a relative 1e-3, 1e-2 and 0.3 (medians
-#: over 6 problems and the moves), going cold -> restarting: n = 24 PD 1.18 -> 1.61,
-#: contact 1.14 -> 1.48; 32: 1.15 -> 1.49, 1.12 -> 1.32; 40: 1.13 -> 1.23, 1.10 -> 1.18;
-#: 48: 1.15 -> 1.15, 1.08 -> 0.80; 56: 1.13 -> 1.16, 1.10 -> 1.01; 64: 1.12 -> 1.07,
-#: 1.07 -> 0.75.  From 48 the restart wins on contact problems and ties on PD ones.  (The
-#: threshold was 100 when a restart's pivots cost twice as much, 24 before that.)
-RESTART_FROM = 48
-#: The smallest n at which a first run that ended one basis off (its final basis's point
-#: fails the check) is restarted from that basis before the recovery runs (:func:`checked`;
-#: measured on the reduced LCPs of QGROW15 and QSCSD1 and the contact piles' steps).
-RECOVERY_RESTART_FROM = 100
+#: solve).  Remeasured after the tableau's pivots got cheaper (its loop without reference
+#: counting), whole solve_lcp calls, restart / cold of the same q on seeded PD and
+#: contact-like M, q moved by a relative 1e-3, 1e-2 and 0.3 (medians over problems and
+#: moves): 1.4-1.7x at n = 24-48, PD 1.3 and contact 1.9 at 64, PD 1.0 and contact 1.4 at
+#: 100, PD 0.63 and contact 1.3 at 150 (the restart often takes more pivots than a cold
+#: solve on contact problems), then 0.3-0.9x at n = 200 and 300 (contact 1.1x for the
+#: largest move at 300).  At 100 the PD problems and P-matrices moved a little (a few
+#: pivots instead of a cold solve's 40-70) gain and the contact problems lose: the
+#: threshold is there.  The earlier one, 24, was measured when a tableau pivot cost twice
+#: as much.  Tried again at 48 after the unrevised method's updates got 1.2-2x cheaper
+#: (2026-11-25): per solve the restart then tied with going cold on PD problems and took
+#: 0.75-1.0x on contact ones at n = 48-64, but the pile of benchmarks/bench_small.py
+#: settled into bases with 110 basic z's instead of 68 (restarts end in bases that keep
+#: more z's basic at zero), and every later zero-pivot step paid the larger LU: 78 us a
+#: step instead of 48 at n = 144.  So 100 stays.
+RESTART_FROM = 100
 
 
 @inline_kernel
