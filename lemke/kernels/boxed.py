@@ -155,10 +155,10 @@ def step_values(x, basis, col, n, e, delta):
 
 @kernel
 def exchange_labels(T, r, s, col, basis, nonbasic, pos, is_basic, scratch):
-    """Pivot the tableau on (r, s) (``tableau.pivot``, nothing pending) and swap the
-    labels: the label of column s enters in row r, the label of row r goes to column s."""
-    rhs, magb, U, V, act, prow, _ = scratch
-    tableau.pivot(T, rhs, magb, r, s, col, U, V, np.int64(0), prow, act)
+    """Pivot the tableau on (r, s) (``tableau.pivot_now``) and swap the labels: the label of
+    column s enters in row r, the label of row r goes to column s."""
+    rhs, magb, prow, _ = scratch
+    tableau.pivot_now(T, rhs, magb, r, s, col, prow)
     pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
 
 
@@ -168,7 +168,7 @@ def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
     principal block, each pivot the largest diagonal entry left, or (when every diagonal
     entry is below EXCHANGE_TOL) the largest entry of the block.  Returns the number of
     pivots; when the block is singular some wanted z's stay non-basic."""
-    col = scratch[6]
+    col = scratch[3]
     done = 0
     while True:
         best = 0.0
@@ -263,7 +263,7 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
     z0 non-basic; everything in scaled units.  Returns ``(status, pivots)``; on a ray,
     ``ray`` (2n + 1, by label) gets the direction of every variable."""
     n = T.shape[0]
-    col = scratch[6]
+    col = scratch[3]
     art_lab = 2 * n
     # One allocation per kind of work array (each costs about as much as a small pivot).
     I = np.empty(2 * n + 1, dtype=np.int64)
@@ -489,12 +489,10 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     x, ray_lab = F[o + 4 * n : o + 6 * n + 1], F[o + 6 * n + 1 : o + 8 * n + 2]
     o += 8 * n + 2
     rhs_s, magb_s = F[o : o + n], F[o + n : o + 2 * n]  # the pivots' scratch
-    U_s = F[o + 2 * n : o + 3 * n].reshape((n, 1))
-    V_s = F[o + 3 * n : o + 4 * n + 1].reshape((1, n + 1))
     prow_s, col_s = F[o + 4 * n + 1 : o + 5 * n + 2], F[o + 5 * n + 2 :]
     I = np.empty(4 * n + 3, dtype=np.int64)
     basis, nonbasic = I[:n], I[n : 2 * n + 1]
-    pos, act_s = I[2 * n + 1 : 4 * n + 2], I[4 * n + 2 :]
+    pos = I[2 * n + 1 : 4 * n + 2]
     warm_basic = warm[:n]
     warm_hi = warm[n:]
     code = prologue(M, q, lo, hi)
@@ -548,7 +546,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     pos[2 * n] = n
     rhs_s[:] = 0.0
     magb_s[:] = 0.0
-    scratch = (rhs_s, magb_s, U_s, V_s, act_s, prow_s, col_s)
+    scratch = (rhs_s, magb_s, prow_s, col_s)
     want[:] = warm_basic
     for i in range(n):
         if far_both(lo, hi, i) and (cold or lo[i] == -np.inf and hi[i] == np.inf):

@@ -113,11 +113,11 @@ def exchange(T, rhs, magb, r, s, col, prow):
     T.shape[1]."""
     n, k = T.shape
     inv = 1.0 / col[r]
-    for j in range(k):
-        prow[j] = -T[r, j] * inv
-    prow[s] = inv
-    for j in range(k):
-        T[r, j] = prow[j]
+    for j in range(k):  # (prow[s] is not set to inv: the rows' entries s are overwritten)
+        v = -T[r, j] * inv
+        prow[j] = v
+        T[r, j] = v
+    T[r, s] = inv
     rr = -rhs[r] * inv
     rhs[r] = rr
     magb[r] *= abs(inv)

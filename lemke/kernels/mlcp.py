@@ -40,31 +40,29 @@ def exchange(T, r, c, row_label, col_label, prow, nz):
     rows, cols = T.shape
     inv = 1.0 / T[r, c]
     m = 0
-    for k in range(cols):
+    for k in range(cols):  # (prow[c] is not set to inv: the rows' entries c are overwritten)
         v = -T[r, k] * inv
         prow[k] = v
+        T[r, k] = v
         if v != 0.0 and k != c:
             nz[m] = k
             m += 1
-    prow[c] = inv
-    for k in range(cols):
-        T[r, k] = prow[k]
+    T[r, c] = inv
     sparse = 4 * m < cols
-    for i in range(rows):
+    for i in range(rows):  # T indexed directly: a row view per row costs refcounting
         if i == r:
             continue
         f = T[i, c]
         if f == 0.0:
             continue
-        row = T[i]
         if sparse:
             for t in range(m):
                 k = nz[t]
-                row[k] += f * prow[k]
+                T[i, k] += f * prow[k]
         else:
             for k in range(cols):
-                row[k] += f * prow[k]
-        row[c] = f * inv
+                T[i, k] += f * prow[k]
+        T[i, c] = f * inv
     tmp = row_label[r]
     row_label[r] = col_label[c]
     col_label[c] = tmp

@@ -100,6 +100,42 @@ def pivot(T, rhs, magb, r, s, col, U, V, k, prow, act):
     return k
 
 
+@kernel
+def pivot_now(T, rhs, magb, r, s, col, prow):
+    """:func:`pivot` with nothing pending and the update applied at once (a block of 1): the
+    same operations in the same order as pivot() followed by :func:`flush` (flush's update
+    of row i, its entry s included, where V's row is 0), so the same bits.  ``prow``:
+    scratch of length T.shape[1].
+
+    Entry s of a row is written after the row's loop, never before: a scalar store that the
+    loop's vector loads then overlap cannot be forwarded to them, and that stall was about
+    40 % of a pivot at n = 24.  So prow[s] keeps the loop's -T[r, s] inv (V's row has 0
+    there: the rows' updates in column s are overwritten, by the values they would have
+    had: f inv + f * 0)."""
+    n, m = T.shape
+    inv = 1.0 / col[r]
+    for j in range(m):
+        v = -T[r, j] * inv
+        prow[j] = v
+        T[r, j] = v
+    T[r, s] = inv
+    rhs[r] = -rhs[r] * inv
+    rr = rhs[r]
+    magb[r] *= abs(inv)  # an upper bound on |B^-1| |q| per row (see careful_sizes)
+    mr = magb[r]
+    for i in range(n):
+        if i != r:
+            f = col[i]
+            if f != 0.0:
+                rhs[i] += f * rr
+                magb[i] += abs(f) * mr
+                for j in range(m):
+                    T[i, j] += f * prow[j]
+                T[i, s] = f * inv + f * 0.0
+            else:
+                T[i, s] = f * inv
+
+
 @inline_kernel
 def flush(T, U, V, k, act):
     """Apply the k pending pivots, row by row, four at a time (the terms of a row with a
@@ -258,36 +294,7 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
             status = NUMERICAL_FAILURE
             break
         if block == 1:
-            # pivot() with nothing pending, written out here: the same operations in the
-            # same order (flush's update of row i, its entry s included, where V is 0), but
-            # no array bound to an inlined callee's arguments, each an atomic reference
-            # count increment and decrement a pivot (26 of them a pivot before).
-            # Entry s of a row is written after the row's loop, never before: a scalar
-            # store that the loop's vector loads then overlap cannot be forwarded to them,
-            # and that stall was about 40 % of a pivot at n = 24.  So prow[s] keeps the
-            # loop's -T[r, s] inv (V's row has 0 there: the rows' updates in column s are
-            # overwritten, by the values they would have had: f inv + f * 0).
-            inv = 1.0 / col[r]
-            for j in range(m):
-                v = -T[r, j] * inv
-                prow[j] = v
-                T[r, j] = v
-            T[r, s] = inv
-            rhs[r] = -rhs[r] * inv
-            rr = rhs[r]
-            magb[r] *= abs(inv)  # see pivot()
-            mr = magb[r]
-            for i in range(n):
-                if i != r:
-                    f = col[i]
-                    if f != 0.0:
-                        rhs[i] += f * rr
-                        magb[i] += abs(f) * mr
-                        for j in range(m):
-                            T[i, j] += f * prow[j]
-                        T[i, s] = f * inv + f * 0.0
-                    else:
-                        T[i, s] = f * inv
+            pivot_now(T, rhs, magb, r, s, col, prow)
         else:
             k = pivot(T, rhs, magb, r, s, col, U, V, k, prow, act)
         pivots += 1
