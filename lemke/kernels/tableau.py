@@ -105,7 +105,8 @@ def pivot_now(T, rhs, magb, r, s, col, prow):
     """:func:`pivot` with nothing pending and the update applied at once (a block of 1): the
     same operations in the same order as pivot() followed by :func:`flush` (flush's update
     of row i, its entry s included, where V's row is 0), so the same bits.  ``prow``:
-    scratch of length T.shape[1].
+    scratch of length T.shape[1].  A kernel, not inlined: an inlined callee's array
+    arguments cost an atomic reference count increment and decrement each, every pivot.
 
     Entry s of a row is written after the row's loop, never before: a scalar store that the
     loop's vector loads then overlap cannot be forwarded to them, and that stall was about
@@ -286,7 +287,6 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     for i in range(n):
         q0[i] = rhs[i]  # the right-hand side of the starting basis
         magb[i] = abs(rhs[i])
-    m = n + 1
     while pivots < max_pivots:
         leaving = basis[r]
         entering = nonbasic[s]
