@@ -481,7 +481,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     flags = np.zeros(5 * n + 1, dtype=np.bool_)
     z_basic, z_hi = flags[:n], flags[n : 2 * n]
     is_basic, want = flags[2 * n : 4 * n + 1], flags[4 * n + 1 :]
-    F = np.empty(n * (n + 1) + 14 * n + 4)
+    F = np.empty(n * (n + 1) + 12 * n + 3)
     T = F[: n * (n + 1)].reshape((n, n + 1))  # the tableau [R M C | cov]
     o = n * (n + 1)
     qs, los = F[o : o + n], F[o + n : o + 2 * n]
@@ -489,8 +489,8 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     x, ray_lab = F[o + 4 * n : o + 6 * n + 1], F[o + 6 * n + 1 : o + 8 * n + 2]
     o += 8 * n + 2
     rhs_s, magb_s = F[o : o + n], F[o + n : o + 2 * n]  # the pivots' scratch
-    prow_s, col_s = F[o + 4 * n + 1 : o + 5 * n + 2], F[o + 5 * n + 2 :]
-    I = np.empty(4 * n + 3, dtype=np.int64)
+    prow_s, col_s = F[o + 2 * n : o + 3 * n + 1], F[o + 3 * n + 1 :]
+    I = np.empty(4 * n + 2, dtype=np.int64)
     basis, nonbasic = I[:n], I[n : 2 * n + 1]
     pos = I[2 * n + 1 : 4 * n + 2]
     warm_basic = warm[:n]
