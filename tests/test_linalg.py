@@ -296,6 +296,36 @@ def test_pow2_rsqrt_is_pow2_scale_of_the_square_root():
         assert struct.pack("<d", linalg.pow2_rsqrt(x)) == struct.pack("<d", want), x
 
 
+def test_pow2_rsqrt_all_is_pow2_rsqrt_of_each_or_declines():
+    """pow2_rsqrt_all (equilibrate's scales of a sweep, branch-free): on a block of zeros
+    and positive normal floats, the bits of the reference (pow2_scale of the square root,
+    1 for zero) for every entry; with a subnormal or an infinity in the block, it declines
+    and leaves the block as it was.  Its balance flag is the numpy one either way."""
+    import math
+    import struct
+
+    rng = np.random.default_rng(12)
+    pows = 2.0 ** np.arange(-1022, 1024, dtype=float)
+    normal = np.concatenate([pows, np.nextafter(pows, np.inf), np.nextafter(pows[1:], -np.inf),
+                             rng.integers(0x0010000000000000, 0x7FF0000000000000, 20000).view(np.float64),
+                             rng.uniform(0, 4, 5000), [0.0, 0.5, 2.0, 1.7976931348623157e308]])
+    odd = [5e-324, 2.2250738585072009e-308, np.inf]
+    for block in np.array_split(rng.permutation(normal), 300):
+        for extra in ([], [odd[int(rng.integers(3))]]):
+            x = np.concatenate([block, extra])
+            x = x[rng.permutation(x.size)]
+            before = x.copy()
+            fast, balanced = linalg.pow2_rsqrt_all(x, x.size)
+            assert balanced == (not ((before > 0) & ((before < 0.5) | (before > 2.0))).any())
+            if extra:
+                assert not fast and np.array_equal(x, before)
+                continue
+            assert fast
+            for got, v in zip(x.tolist(), before.tolist()):
+                want = _pow2_scale_reference(math.sqrt(v)) if v > 0.0 else 1.0
+                assert struct.pack("<d", got) == struct.pack("<d", want), v
+
+
 def _ruiz_reference(M, q, sweeps=linalg.EQUILIBRATE_SWEEPS):
     """equilibrate's documented iteration in numpy (whole-matrix maxima; the scales by
     math.frexp/ldexp as pow2_scale's docstring states them), independent of the kernels."""
