@@ -499,12 +499,13 @@ def _row_update(y, f, x, lo, k):
 def _update_below_pair(A, j, k):
     """Rows j + 2 .. k - 1 of A, each r whose multipliers f = A[r, j] and g = A[r, j + 1]
     (in place already) are not both zero: A[r, c] = (A[r, c] - f A[j, c]) - g A[j + 1, c]
-    for c = j + 2 .. k - 1 (fused multiply-adds allowed: ``contract``), in one call: a row
-    view and a call per row (as this was written before, with the same bits) cost an atomic
-    reference count increment and decrement each, more than the update of a short row.  The column index
-    is unsigned, so numba does not wrap it around (a signed one from j + 2 would keep the
-    loop scalar); the rows written lie after the two read, so LLVM's overlap check passes.
-    Measured on whole LUs of SPD blocks: 0.72x the time at k = 28, 0.51x at 100."""
+    for c = j + 2 .. k - 1 (fused multiply-adds allowed: ``contract``).  All rows in one
+    call: a row view and a call per row (the earlier form, with the same bits) cost an
+    atomic reference count increment and decrement each, more than a short row's update.
+    The column index is unsigned, so numba does not wrap it around (a signed one from
+    j + 2 would keep the loop scalar); the rows written lie after the two read, so LLVM's
+    overlap check passes.  Measured on whole LUs of SPD blocks: 0.72x the time at k = 28,
+    0.51x at 100."""
     lo = np.uint64(j + 2)
     hi = np.uint64(k)
     for r in range(j + 2, k):
