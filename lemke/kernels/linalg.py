@@ -496,6 +496,17 @@ def _row_update(y, f, x, lo, k):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+def _update_next_row(A, j, k, f):
+    """A[j + 1, c] -= f A[j, c] for c = j + 1 .. k - 1: :func:`_row_update` of row j + 1 by
+    row j (the same operations, so the same bits) without the two row views and their
+    reference counts."""
+    lo = np.uint64(j + 1)
+    hi = np.uint64(k)
+    for c in range(lo, hi):
+        A[j + 1, c] -= f * A[j, c]
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
 def _update_below_pair(A, j, k):
     """Rows j + 2 .. k - 1 of A, each r whose multipliers f = A[r, j] and g = A[r, j + 1]
     (in place already) are not both zero: A[r, c] = (A[r, c] - f A[j, c]) - g A[j + 1, c]
@@ -713,10 +724,10 @@ def solve_gathered(M, idx, A, y, x, k):
     """The solve of :func:`solve_principal` with the right-hand side already in y (the work
     arrays of :func:`solve_work`): the block ``M[idx[:k]][:, idx[:k]]`` gathered into A,
     then eliminated; x gets the solution.  Returns ok."""
-    for r in range(k):
-        row = M[idx[r]]
+    for r in range(k):  # (M indexed directly: a row view per row costs refcounting)
+        ir = idx[r]
         for c in range(k):
-            A[r, c] = row[idx[c]]
+            A[r, c] = M[ir, idx[c]]
     return _eliminate(A, y, x, k, None)
 
 
@@ -754,14 +765,13 @@ def _eliminate(A, y, x, k, piv):
         t = y[j]
         y[j] = y[p]
         y[p] = t
-        rowj = A[j]
-        inv = 1.0 / rowj[j]
+        inv = 1.0 / A[j, j]
         if j + 1 == k:
             break
         for r in range(j + 1, k):  # the multipliers of pivot j, kept in column j
             A[r, j] *= inv
         # Pivot j + 1 from column j + 1 as pivot j leaves it: A[r, j + 1] - l_r A[j, j + 1].
-        h = rowj[j + 1]
+        h = A[j, j + 1]
         p = _pivot_row(A, j + 1, k, h)
         if p < 0:
             return False
@@ -771,21 +781,20 @@ def _eliminate(A, y, x, k, piv):
         t = y[j + 1]
         y[j + 1] = y[p]
         y[p] = t
-        row1 = A[j + 1]
-        l1 = row1[j]
-        _row_update(row1, l1, rowj, j + 1, k)
+        l1 = A[j + 1, j]
+        _update_next_row(A, j, k, l1)
         y[j + 1] -= l1 * y[j]
-        inv1 = 1.0 / row1[j + 1]
+        inv1 = 1.0 / A[j + 1, j + 1]
         m = -1  # the pivot rows' non-zero columns (refined_solve only): -1, not listed
         if piv is not None:
-            m = _nonzero_columns(rowj, row1, j + 2, k, piv[k:])
+            m = _nonzero_columns(A[j], A[j + 1], j + 2, k, piv[k:])
         for r in range(j + 2, k):  # both eliminations in one pass over each row below
             f = A[r, j]
             g = (A[r, j + 1] - f * h) * inv1
             A[r, j + 1] = g  # the multiplier of pivot j + 1, kept in column j + 1
             if f != 0.0 or g != 0.0:
                 if m >= 0:
-                    _row_update2_at(A[r], f, rowj, g, row1, piv[k:], m)
+                    _row_update2_at(A[r], f, A[j], g, A[j + 1], piv[k:], m)
                 y[r] = (y[r] - f * y[j]) - g * y[j + 1]
         if m < 0:  # the rows' updates, dense
             _update_below_pair(A, j, k)
@@ -796,12 +805,11 @@ def _eliminate(A, y, x, k, piv):
 @inline_kernel
 def _back_substitute(A, y, x, k):
     """x = U^-1 y with U the upper triangle of A[:k, :k].  Returns whether x is finite."""
-    for r in range(k - 1, -1, -1):
+    for r in range(k - 1, -1, -1):  # (A indexed directly: no row view per row)
         acc = y[r]
-        rowr = A[r]
         for c in range(r + 1, k):
-            acc -= rowr[c] * x[c]
-        x[r] = acc / rowr[r]
+            acc -= A[r, c] * x[c]
+        x[r] = acc / A[r, r]
     return nan_probe(x, k) == 0.0
 
 
