@@ -449,7 +449,7 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
         for c in range(k):
             row[c] = G[p, c] / piv
         for r in range(k):
-            coef[r] = -(-dzb[r] - (1.0 if r == p else 0.0))
+            coef[r] = dzb[r] + (1.0 if r == p else 0.0)  # -f, f = -dzb[r] - [r == p]
         add_rows(G, k, coef, row, np.True_)
         blist[p] = e
         bpos[l] = -1
