@@ -325,7 +325,9 @@ def test_delayed_updates_change_no_bit(block):
             basis = np.arange(n)
             nonbasic = np.r_[np.arange(n, 2 * n), 2 * n]
             out = (np.empty(n + 1), np.empty(n + 1), np.empty(n, dtype=np.bool_))
-            code = tableau.lemke(T, rhs, basis, nonbasic, 10_000, 1e-11, 1e-11, *out, b)
+            nf, ni = tableau.work_sizes(n, b)
+            code = tableau.lemke(T, rhs, basis, nonbasic, 10_000, 1e-11, 1e-11, *out, b,
+                                 np.False_, np.empty(nf), np.empty(ni, dtype=np.int64))
             runs.append((code, out[0].tobytes(), out[1].tobytes(), out[2].tobytes(), basis.tolist()))
         assert runs[0] == runs[1]
 

@@ -74,8 +74,8 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
 from .certify import lcp_check_early, lcp_check_sized, lcp_ray_check_scaled
-from .linalg import (copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix, solve_gathered,
-                     solve_work)
+from .linalg import (borrow, copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix,
+                     solve_gathered, solve_work)
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity (or sizes that do not match): the front reports it
 TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
@@ -119,9 +119,13 @@ def buffer_size(n):
 @kernel
 def layout(n, buf):
     """The views ``(x, ray, w, cov, R, C)`` of the output buffer (x = z followed by z0), as
-    :data:`BUFFER` lays it out."""
-    return (buf[: n + 1], buf[n + 1 : 2 * n + 2], buf[2 * n + 2 : 3 * n + 2],
-            buf[3 * n + 2 : 4 * n + 2], buf[4 * n + 2 : 5 * n + 2], buf[5 * n + 2 : 6 * n + 2])
+    :data:`BUFFER` lays it out; borrowed (``linalg.borrow``: no reference counts, six
+    atomic pairs a call saved), so valid only while ``buf`` is referenced: every buffer
+    given here is a kernel's argument, or a recovery run's own buffer, live through the
+    loop that uses it (:func:`checked`)."""
+    return (borrow(buf, 0, n + 1, np.float64), borrow(buf, n + 1, n + 1, np.float64),
+            borrow(buf, 2 * n + 2, n, np.float64), borrow(buf, 3 * n + 2, n, np.float64),
+            borrow(buf, 4 * n + 2, n, np.float64), borrow(buf, 5 * n + 2, n, np.float64))
 
 
 @inline_kernel
@@ -416,7 +420,7 @@ def own_basic(n, buf, basic):
     fields (``buffer_size(n)`` floats): ``solve_lcp`` allocates one buffer of
     ``buffer_size(n) + n`` floats for both (an allocation and an argument fewer a call)."""
     if basic.shape[0] == 0 and n > 0:
-        return buf[6 * n + 2 : 7 * n + 2].view(np.int64)
+        return borrow(buf, 6 * n + 2, n, np.int64)
     return basic
 
 

@@ -26,7 +26,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, copy, equilibrate, false_flags, scaled_into
+from .linalg import axpy, borrow, copy, equilibrate, false_flags, scaled_into
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
@@ -224,7 +224,7 @@ def work_sizes(n, block):
 
 @kernel
 def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
-          block, careful=False, F=None, I=None):
+          block, careful, F, I):
     """Run Lemke's method from the tableau (T, rhs) with the artificial variable non-basic,
     keeping up to ``block`` pivots pending (any block gives the same bits).
 
@@ -232,36 +232,29 @@ def lemke(T, rhs, basis, nonbasic, max_pivots, pivot_tol, tie_tol, x_out, ray_ou
     updated in place; so are T and rhs.  Returns ``(status, pivots)``.  ``x_out`` (n + 1)
     receives the final z and z0; on a ray, ``ray_out`` (n + 1) receives its direction;
     ``z_basic_out`` (n) says which z's end basic.  ``F`` (float64) and ``I`` (int64) are
-    work arrays of the lengths :func:`work_sizes`, allocated by the caller with the
-    tableau (see :func:`solve`); allocated here when not given.
+    work arrays of at least the lengths :func:`work_sizes`, allocated by the caller with
+    the tableau (see :func:`solve`).
     """
     n = T.shape[0]
     artificial = 2 * n
-    if F is None:
-        Fw = np.empty(work_sizes(n, block)[0])
-    else:
-        Fw = F
-    if I is None:
-        Iw = np.empty(work_sizes(n, block)[1], dtype=np.int64)
-    else:
-        Iw = I
-    F, I = Fw, Iw
-    # The float, int, bool and key work arrays are views of the caller's two arrays (an
-    # allocation costs about as much as a small pivot): the flags and the keys are bool and
-    # uint64 views of the int64 array.
-    keys, col, q0 = F[:n], F[n : 2 * n], F[2 * n : 3 * n]
-    magb, mags = F[3 * n : 4 * n], F[4 * n : 5 * n]
-    prow = F[5 * n : 6 * n + 1]
-    U = F[6 * n + 1 : 6 * n + 1 + n * block].reshape((n, block))
-    V = F[6 * n + 1 + n * block :].reshape((block, n + 1))
-    pos, start_basis = I[: 2 * n + 1], I[2 * n + 1 : 3 * n + 1]
-    cand, act = I[3 * n + 1 : 4 * n + 1], I[4 * n + 1 : 4 * n + 1 + block]
+    # The float, int, bool and key work arrays lie in the caller's two arrays (an
+    # allocation costs about as much as a small pivot), borrowed (linalg.borrow: no
+    # reference counts); the flags and the keys are bool and uint64 arrays over the int64 one.
+    keys, col = borrow(F, 0, n, np.float64), borrow(F, n, n, np.float64)
+    q0 = borrow(F, 2 * n, n, np.float64)
+    magb, mags = borrow(F, 3 * n, n, np.float64), borrow(F, 4 * n, n, np.float64)
+    prow = borrow(F, 5 * n, n + 1, np.float64)
+    U = borrow(F, 6 * n + 1, (n, block), np.float64)
+    V = borrow(F, 6 * n + 1 + n * block, (block, n + 1), np.float64)
+    pos, start_basis = borrow(I, 0, 2 * n + 1, np.int64), borrow(I, 2 * n + 1, n, np.int64)
+    cand, act = borrow(I, 3 * n + 1, n, np.int64), borrow(I, 4 * n + 1, block, np.int64)
     nb = (2 * n + 1 + 7) // 8  # int64 words for the 2n + 1 flags
-    is_basic = I[4 * n + 1 + block : 4 * n + 1 + block + nb].view(np.bool_)[: 2 * n + 1]
+    is_basic = borrow(I, 4 * n + 1 + block, 2 * n + 1, np.bool_)
     for i in range(2 * n + 1):
         is_basic[i] = False
-    H = I[4 * n + 1 + block + nb :].view(np.uint64)  # the labels' keys and the cycle detector
-    hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 : 2 * n + 4]
+    # the labels' keys and the cycle detector
+    hkeys = borrow(I, 4 * n + 1 + block + nb, 2 * n + 1, np.uint64)
+    detector = borrow(I, 4 * n + 1 + block + nb + 2 * n + 1, 3, np.uint64)
     for i in range(n):
         start_basis[i] = basis[i]  # (a loop: see unrevised.copy_column)
         pos[basis[i]] = i
@@ -366,12 +359,14 @@ def solve(M, q, d, R, C, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic
     nf, ni = work_sizes(n, block)
     # Two allocations for the whole run: the tableau and the floats of lemke, the labels
     # and its ints (at n = 3 each allocation costs about as much as a pivot).
+    # T, rhs and the labels borrowed (linalg.borrow): F and I stay referenced through the
+    # call of lemke, which gets the rest of each as its work arrays.
     F = np.empty(n * (n + 2) + nf)
     I = np.empty(2 * n + 1 + ni, dtype=np.int64)
-    T = F[: n * (n + 1)].reshape((n, n + 1))
-    rhs = F[n * (n + 1) : n * (n + 2)]
+    T = borrow(F, 0, (n, n + 1), np.float64)
+    rhs = borrow(F, n * (n + 1), n, np.float64)
     d_scale = scaled_into(M, q, d, R, C, T, rhs)
-    basis, nonbasic = I[:n], I[n : 2 * n + 1]
+    basis, nonbasic = borrow(I, 0, n, np.int64), borrow(I, n, n + 1, np.int64)
     for i in range(n):
         basis[i] = i
         nonbasic[i] = n + i
