@@ -386,3 +386,60 @@ def test_finite_absmax_flags_every_nan_and_inf():
             B = M.copy()
             B[rng.integers(0, n), rng.integers(0, n)] = bad
             assert not linalg.finite_absmax(B)[0]
+
+
+def test_row_dot_and_size_gives_the_bits_of_dot_and_size_on_the_row():
+    """row_dot_and_size (M read in place, the checks' row products) against dot_and_size of
+    the row view: the same bits on rows of every length up to 130 and widely spread
+    magnitudes, with zeros in y (a basic point's z)."""
+    rng = np.random.default_rng(30)
+    for _ in range(1500):
+        n = int(rng.integers(1, 131))
+        M = rng.standard_normal((n, n)) * 10.0 ** rng.integers(-8, 9, (n, n))
+        y = rng.standard_normal(n)
+        y[rng.random(n) < 0.5] = 0.0
+        i, k = int(rng.integers(n)), int(rng.integers(0, n + 1))
+        got = linalg.row_dot_and_size(M, i, y, k)
+        want = linalg.dot_and_size(M[i].copy(), y, k)
+        assert np.array(got).tobytes() == np.array(want).tobytes(), (n, i, k)
+        # and both are the products' sums (to rounding; computed here by numpy)
+        t = M[i, :k] * y[:k]
+        assert abs(got[0] - t.sum()) <= 1e-13 * np.abs(t).sum() + 1e-300
+        assert abs(got[1] - np.abs(t).sum()) <= 1e-13 * np.abs(t).sum() + 1e-300
+
+
+def test_borrow_is_a_view_of_the_argument_in_a_kernel_and_in_python():
+    """linalg.borrow in a kernel (no reference counts) and in plain Python: arrays of the
+    asked shape and dtype over the argument's memory from the given element on, so writes
+    through them land at those bytes of the argument, and nothing else is touched."""
+    from numba import njit
+
+    def fill(F, I):
+        a = linalg.borrow(F, 3, 4, np.float64)
+        U = linalg.borrow(F, 7, (2, 3), np.float64)
+        b = linalg.borrow(I, 2, 10, np.bool_)
+        u = linalg.borrow(I, 5, 2, np.uint64)
+        for j in range(4):
+            a[j] = 1.0 + j
+        for r in range(2):
+            for c in range(3):
+                U[r, c] = 10.0 * r + c
+        for j in range(10):
+            b[j] = j % 3 == 0
+        u[0] = np.uint64(2**63 + 5)
+        u[1] = np.uint64(7)
+        return a.shape[0] + U.shape[0] * U.shape[1] + b.shape[0] + u.shape[0]
+
+    results = []
+    for f in (fill, njit(fill)):
+        F, I = np.full(16, -1.0), np.full(8, -3, dtype=np.int64)
+        assert f(F, I) == 4 + 6 + 10 + 2
+        results.append((F.tobytes(), I.tobytes()))
+        assert F[:3].tolist() == [-1.0] * 3 and F[13:].tolist() == [-1.0] * 3
+        assert F[3:7].tolist() == [1.0, 2.0, 3.0, 4.0]
+        assert F[7:13].tolist() == [0.0, 1.0, 2.0, 10.0, 11.0, 12.0]
+        flags = I.view(np.uint8)[16:26]
+        assert flags.tolist() == [1 if j % 3 == 0 else 0 for j in range(10)]
+        assert I.view(np.uint64)[5] == 2**63 + 5 and I[6] == 7
+        assert I[0] == I[1] == I[7] == -3
+    assert results[0] == results[1]

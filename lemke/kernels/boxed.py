@@ -53,7 +53,7 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau
 from .certify import CERTIFIABLE, EPS, zero_size
-from .linalg import dot, dot_and_size, equilibrate, nan_probe, finite_absmax, solve_principal
+from .linalg import dot, row_dot_and_size, equilibrate, nan_probe, finite_absmax, solve_principal
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity, or lo/hi a NaN: the front says where
@@ -405,12 +405,12 @@ def box_check(M, q, lo, hi, z, tol, w, R, n_round=0):
     data = 1.0
     z_zero = not nonzero(z, n)
     for i in range(n):
-        mz, size = (0.0, 0.0) if z_zero else dot_and_size(M[i], z, n)
+        mz, size = (0.0, 0.0) if z_zero else row_dot_and_size(M, i, z, n)
         w[i] = q[i] + mz
         rows[i] = size + abs(q[i])
         floors[i] = (nr + 2) * EPS * q_top / R[i]
         big = max(big, R[i] * size)
-        psize = 0.0 if p_zero else dot_and_size(M[i], p, n)[1]
+        psize = 0.0 if p_zero else row_dot_and_size(M, i, p, n)[1]
         data = max(data, R[i] * (abs(q[i]) + psize))
     ok = EPS * big <= CERTIFIABLE * t * data
     residual = 0.0
@@ -509,7 +509,7 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     qs[:] = q
     if nonzero(z0s, n):
         for i in range(n):
-            qs[i] = q[i] + dot_and_size(M[i], z0s, n)[0]
+            qs[i] = q[i] + row_dot_and_size(M, i, z0s, n)[0]
     if cold and trivial_start(lo, hi, z_hi, qs, n):
         for i in range(n):  # every w has its sign already: the start solves it
             z[i] = z0s[i]
@@ -679,8 +679,8 @@ def is_ray(M, q, lo, hi, d, z, z0, ray, tol):
         q_top = max(q_top, abs(q[i]))
     m_top = finite_absmax(M)[1]
     for i in range(n):
-        mz, size = dot_and_size(M[i], z, n)
-        mdz, dsize = dot_and_size(M[i], dz, n)
+        mz, size = row_dot_and_size(M, i, z, n)
+        mdz, dsize = row_dot_and_size(M, i, dz, n)
         u = (mz + q[i]) + d[i] * z0
         du = mdz + d[i] * dz0
         su = t * ((size + abs(q[i])) + abs(d[i] * z0)) + g * q_top

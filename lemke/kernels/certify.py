@@ -29,7 +29,7 @@ different problem.)
 import numpy as np
 
 from . import inline_kernel, kernel
-from .linalg import dot_and_size, equilibrate
+from .linalg import row_dot_and_size, equilibrate
 
 EPS = np.finfo(np.float64).eps
 CERTIFIABLE = 1e3
@@ -94,7 +94,7 @@ def check_rows(M, q, z, tol, w, R, work, early):
     for i in range(n):
         q_top = max(q_top, R[i] * abs(q[i]))
     for i in range(n):
-        mz, size = dot_and_size(M[i], z, n)
+        mz, size = row_dot_and_size(M, i, z, n)
         w[i] = q[i] + mz
         rows[i] = size + abs(q[i])
         floors[i] = (n + 2) * EPS * q_top / R[i]  # rounding of q's largest row, in row i's units
@@ -199,7 +199,7 @@ def lcp_ray_check_scaled(M, q, d, z, z0, ray, tol, R, C):
         return False  # dz = 0 (to rounding): the primary ray, no certificate (docstring)
     mdz = 0.0
     for i in range(n):
-        mdz = max(mdz, dot_and_size(M[i], dz, n)[1])
+        mdz = max(mdz, row_dot_and_size(M, i, dz, n)[1])
     dz[n] = ray[n] if abs(ray[n]) * d_max > g * mdz else 0.0
     dz0 = dz[n]
     if dz0 < 0.0:
@@ -211,11 +211,11 @@ def lcp_ray_check_scaled(M, q, d, z, z0, ray, tol, R, C):
         floors[i] = g * q_top / R[i]
     no_floor[:] = 0.0
     for i in range(n):
-        mz, sz = dot_and_size(M[i], z, n)
+        mz, sz = row_dot_and_size(M, i, z, n)
         w[i] = q[i] + mz
         u[i] = w[i] + d[i] * z0
         ru[i] = abs(q[i]) + sz + abs(d[i] * z0)
-        md, sd = dot_and_size(M[i], dz, n)
+        md, sd = row_dot_and_size(M, i, dz, n)
         du[i] = md + d[i] * dz0
         rdu[i] = sd + abs(d[i] * dz0)
     for i in range(n):

@@ -42,6 +42,20 @@ def dot_and_size(x, y, k):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+def row_dot_and_size(M, i, y, k):
+    """:func:`dot_and_size` of row i of M (its first k entries) and y, M read in place (a
+    view of each row costs two atomic reference count operations): the same loop, and the
+    same bits (a test compares them)."""
+    acc = 0.0
+    size = 0.0
+    for j in range(k):
+        t = M[i, j] * y[j]
+        acc += t
+        size += abs(t)
+    return acc, size
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
 def nan_probe(x, k):
     """sum_{j < k} 0 * x[j]: 0 when every x[j] is finite, NaN otherwise (reordering the sum
     changes neither)."""

@@ -35,7 +35,7 @@ holds the basic variable of pair j).
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import dot, dot_and_size, invert_in_place, matvec, no_matrix, scaled_system
+from .linalg import dot, row_dot_and_size, invert_in_place, matvec, no_matrix, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
@@ -78,7 +78,7 @@ def _all_w(AB, q, apos, zb, k, wv):
     |w_i| / (|q_i| + |AB[i]| |z_beta|)."""
     res = 0.0
     for i in range(q.shape[0]):
-        mz, size = dot_and_size(AB[i], zb, k)
+        mz, size = row_dot_and_size(AB, i, zb, k)
         w = q[i] + mz
         wv[i] = w
         if apos[i] >= 0:
@@ -137,7 +137,7 @@ def drift(AB, q, apos, zb, k, wv):
     (|q_i| + |AB[i]| |z_beta|), with w_i = 0 for the non-basic w's (i in alpha)."""
     res = 0.0
     for i in range(q.shape[0]):
-        mz, size = dot_and_size(AB[i], zb, k)
+        mz, size = row_dot_and_size(AB, i, zb, k)
         size += abs(q[i])
         w = q[i] + mz - (wv[i] if apos[i] < 0 else 0.0)
         if abs(w) > res * size:
