@@ -53,7 +53,8 @@ import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau
 from .certify import CERTIFIABLE, EPS, zero_size
-from .linalg import dot, row_dot_and_size, equilibrate, nan_probe, finite_absmax, solve_principal
+from .linalg import (borrow, dot, equilibrate, finite_absmax, nan_probe, row_dot_and_size,
+                     solve_principal)
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity, or lo/hi a NaN: the front says where
@@ -133,15 +134,21 @@ def trivial_start(lo, hi, at_hi, w, n):
 @kernel
 def bounds_of(lab, n, lo, hi, at_hi):
     """The bounds of variable ``lab`` while basic (scaled units): a z its box; a w, while its
-    z is non-basic, [0, inf) at lo, (-inf, 0] at hi, free for a fixed z; z0 [0, inf)."""
-    if lab < n:
-        if lo[lab] == hi[lab]:
-            return -np.inf, np.inf
-        if at_hi[lab]:
-            return -np.inf, 0.0
+    z is non-basic, [0, inf) at lo, (-inf, 0] at hi, free for a fixed z; z0 [0, inf).
+    (Every entry read before the branches that return: so written, numba's pruning removes
+    the reference counts of the three arrays, six atomic operations a call, two calls a
+    pivot.)"""
+    if lab >= 2 * n:
         return 0.0, np.inf
-    if lab < 2 * n:
+    if lab >= n:
         return lo[lab - n], hi[lab - n]
+    lb = lo[lab]
+    ub = hi[lab]
+    up = at_hi[lab]
+    if lb == ub:
+        return -np.inf, np.inf
+    if up:
+        return -np.inf, 0.0
     return 0.0, np.inf
 
 
@@ -200,12 +207,15 @@ def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
 
 
 @kernel
-def ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo, hi, rlo,
-               rhi, pivot_tol, tie_tol, gaps, cc, low, cand, keys, z0_max):
-    """The row that blocks the entering variable e (moving in direction ``sigma``, its
-    column in ``col``), n for a bound flip of e, or -1 (a ray).  ``rlo``, ``rhi``: the
-    bounds of each row's basic variable.  ``low[r]`` tells whether row r's variable stops
-    at its lower bound (else its upper)."""
+def ratio_rows(x, basis, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi, gaps, cc, low):
+    """The rows of the ratio test for the entering variable e (moving in direction ``sigma``,
+    its column in ``col``): ``gaps[i]`` the distance of row i's basic variable to the bound
+    it moves towards, ``cc[i]`` its (negative) rate, ``low[i]`` whether it stops at its
+    lower bound; row n the bound flip of e.  ``rlo``, ``rhi``: the bounds of each row's
+    basic variable.  Returns the artificial variable's row (-1 when it is not basic) and the
+    largest |cc|.  (The ratio test's first half, calling no kernel: numba then counts no
+    references to its arrays; :func:`lemke` takes the blocking rows from
+    ``pivoting.blocking_rows`` and its ties from :func:`ratio_ties`.)"""
     art_lab = 2 * n
     art = pos[art_lab] if is_basic[art_lab] else np.int64(-1)  # not a literal: kernels/__init__.py
     for i in range(n):  # written to compile to selects: this loop runs every pivot
@@ -232,9 +242,18 @@ def ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo
             gaps[n] = ub - lb
             cc[n] = -1.0
             low[n] = sigma < 0.0
-    nc = pivoting.min_ratio(gaps, gaps, cc, n + 1, pivot_tol, tie_tol, cand, art, z0_max)
-    if nc <= 1:
-        return cand[0] if nc == 1 else -1
+    cmax = 0.0  # (pivoting.min_ratio's, over the n + 1 rates)
+    for i in range(n + 1):
+        cmax = max(cmax, abs(cc[i]))
+    return art, cmax
+
+
+@kernel
+def ratio_ties(T, pos, is_basic, start_basis, s0, n, pivot_tol, tie_tol, cc, low, cand, keys, nc,
+               art):
+    """The blocking row among the ``nc`` > 1 rows tied at the minimum ratio (``cand``): z0's
+    row when it is one of them, else the lexicographic rule on the rows of the starting
+    basis's inverse (``pivoting.lex_key``), then the largest pivot; -1 when none is left."""
     for c in range(nc):
         if cand[c] == art:
             return art
@@ -258,25 +277,27 @@ def ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo
 
 @kernel
 def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, pivot_tol,
-          tie_tol, ray, scratch):
+          tie_tol, ray, scratch, F, I, low):
     """Bounded-variable Lemke from a complementary basis with z0's column in T[:, n] and
     z0 non-basic; everything in scaled units.  Returns ``(status, pivots)``; on a ray,
-    ``ray`` (2n + 1, by label) gets the direction of every variable."""
+    ``ray`` (2n + 1, by label) gets the direction of every variable.  Work arrays (from
+    :func:`solve_in`'s allocations): ``F`` 5n + 3 floats, ``I`` 5n + 5 int64, ``low`` n + 1
+    bools."""
     n = T.shape[0]
-    col = scratch[3]
+    rhs_s, magb_s, prow_s, col = scratch
     art_lab = 2 * n
-    # One allocation per kind of work array (each costs about as much as a small pivot).
-    I = np.empty(2 * n + 1, dtype=np.int64)
-    start_basis, cand = I[:n], I[n:]
+    # The work arrays borrowed from the caller's (linalg.borrow: no reference counts).
+    start_basis, cand = borrow(I, 0, n, np.int64), borrow(I, n, n + 1, np.int64)
     start_basis[:] = basis
-    F = np.empty(5 * n + 3)
-    keys, gaps, cc = F[: n + 1], F[n + 1 : 2 * n + 2], F[2 * n + 2 : 3 * n + 3]
-    rlo, rhi = F[3 * n + 3 : 4 * n + 3], F[4 * n + 3 :]  # the bounds of each row's basic variable
-    low = np.empty(n + 1, dtype=np.bool_)
+    keys, gaps = borrow(F, 0, n + 1, np.float64), borrow(F, n + 1, n + 1, np.float64)
+    cc = borrow(F, 2 * n + 2, n + 1, np.float64)
+    # the bounds of each row's basic variable
+    rlo, rhi = borrow(F, 3 * n + 3, n, np.float64), borrow(F, 4 * n + 3, n, np.float64)
     for i in range(n):
         rlo[i], rhi[i] = bounds_of(basis[i], n, lo, hi, at_hi)
-    H = np.empty(3 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
-    hkeys, detector = H[: 3 * n + 1], H[3 * n + 1 :]  # keys 0..2n: the labels; 2n+1+i: z_i at hi
+    # the labels' keys and the cycle detector: keys 0..2n the labels, 2n+1+i z_i at hi
+    hkeys = borrow(I, 2 * n + 1, 3 * n + 1, np.uint64)
+    detector = borrow(I, 5 * n + 2, 3, np.uint64)
     pivoting.fill_label_keys(hkeys)
     h = pivoting.fingerprint(hkeys, basis, n)
     for i in range(n):
@@ -329,7 +350,10 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
                 break
             lb, ub = bounds_of(leaving, n, lo, hi, at_hi)
             x[leaving] = lb if low_r else ub
-            exchange_labels(T, r, s, col, basis, nonbasic, pos, is_basic, scratch)
+            # (exchange_labels' two calls made here: a kernel that hands its arrays on to
+            # another kernel counts references to them, nine atomic pairs a pivot)
+            tableau.pivot_now(T, rhs_s, magb_s, r, s, col, prow_s)
+            pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
             rlo[r], rhi[r] = bounds_of(e, n, lo, hi, at_hi)
             pivots += 1
             h ^= hkeys[leaving] ^ hkeys[e]
@@ -357,8 +381,16 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
             col[i] = T[i, s]
         if is_basic[art_lab]:
             z0_max = max(z0_max, x[art_lab])
-        r = ratio_test(T, x, basis, pos, is_basic, start_basis, s0, col, sigma, e, n, lo, hi,
-                       rlo, rhi, pivot_tol, tie_tol, gaps, cc, low, cand, keys, z0_max)
+        # The ratio test, its parts called from here (see ratio_rows)
+        art, cmax = ratio_rows(x, basis, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi,
+                               gaps, cc, low)
+        nc = pivoting.blocking_rows(gaps, gaps, cc, n + 1, -pivot_tol * cmax, tie_tol, cand, art,
+                                    z0_max)
+        if nc <= 1:
+            r = cand[0] if nc == 1 else np.int64(-1)
+        else:
+            r = ratio_ties(T, pos, is_basic, start_basis, s0, n, pivot_tol, tie_tol, cc, low,
+                           cand, keys, nc, art)
         if r < 0:
             status = RAY_TERMINATION
             for i in range(n):
@@ -456,9 +488,11 @@ def prologue(M, q, lo, hi):
 
 @kernel
 def layout(n, buf):
-    """The views ``(z, w, d, R, C, ray)`` of the output buffer (length 6n + 1)."""
-    return (buf[:n], buf[n:2 * n], buf[2 * n:3 * n], buf[3 * n:4 * n], buf[4 * n:5 * n],
-            buf[5 * n:])
+    """The views ``(z, w, d, R, C, ray)`` of the output buffer (length 6n + 1), borrowed
+    (``linalg.borrow``: valid while ``buf``, an argument of the caller, is)."""
+    return (borrow(buf, 0, n, np.float64), borrow(buf, n, n, np.float64),
+            borrow(buf, 2 * n, n, np.float64), borrow(buf, 3 * n, n, np.float64),
+            borrow(buf, 4 * n, n, np.float64), borrow(buf, 5 * n, n + 1, np.float64))
 
 
 @kernel
@@ -475,26 +509,39 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     z's and ``final[k:m]`` the non-basic z's at their upper bounds.  A run that stops other than SOLVED at a point that passes the check is
     SOLVED (the check decides, as in ``kernels.cold``)."""
     n = q.shape[0]
-    z, w, d, R, C, ray = layout(n, buf)
+    if warm.shape[0] < 2 * n or buf.shape[0] < 6 * n + 1 or final.shape[0] < n:
+        return NOT_FINITE, 0, 0.0, False, np.inf, 0, 0  # (the front's arrays: never here)
     # Three allocations for the whole solve (each one costs about as much as a small pivot):
-    # the flags, floats and indices of the run are views of one array each.
-    flags = np.zeros(5 * n + 1, dtype=np.bool_)
-    z_basic, z_hi = flags[:n], flags[n : 2 * n]
-    is_basic, want = flags[2 * n : 4 * n + 1], flags[4 * n + 1 :]
-    F = np.empty(n * (n + 1) + 12 * n + 3)
-    T = F[: n * (n + 1)].reshape((n, n + 1))  # the tableau [R M C | cov]
+    # the flags, floats and indices of the run, each carved into its arrays by solve_in.
+    return solve_in(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf,
+                    final, np.zeros(6 * n + 2, dtype=np.bool_),
+                    np.empty(n * (n + 1) + 17 * n + 6), np.empty(9 * n + 7, dtype=np.int64))
+
+
+@kernel
+def solve_in(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf, final,
+             flags, F, I):
+    """:func:`solve` with its work arrays given: ``flags`` (6n + 2 bools, all False), ``F``
+    (n (n + 1) + 17n + 6 floats) and ``I`` (9n + 7 int64), the last n + 1, 5n + 3 and 5n +
+    5 of them :func:`lemke`'s.  Every array of the run is
+    borrowed from them and from ``buf`` and ``warm`` (``linalg.borrow``: numba counts no
+    references to them; as views they took 124 atomic pairs a call, about 1 us at n =
+    12)."""
+    n = q.shape[0]
+    z, w, d, R, C, ray = layout(n, buf)
+    z_basic, z_hi = borrow(flags, 0, n, np.bool_), borrow(flags, n, n, np.bool_)
+    is_basic, want = borrow(flags, 2 * n, 2 * n + 1, np.bool_), borrow(flags, 4 * n + 1, n, np.bool_)
+    T = borrow(F, 0, (n, n + 1), np.float64)  # the tableau [R M C | cov]
     o = n * (n + 1)
-    qs, los = F[o : o + n], F[o + n : o + 2 * n]
-    his, s0 = F[o + 2 * n : o + 3 * n], F[o + 3 * n : o + 4 * n]
-    x, ray_lab = F[o + 4 * n : o + 6 * n + 1], F[o + 6 * n + 1 : o + 8 * n + 2]
+    qs, los = borrow(F, o, n, np.float64), borrow(F, o + n, n, np.float64)
+    his, s0 = borrow(F, o + 2 * n, n, np.float64), borrow(F, o + 3 * n, n, np.float64)
+    x, ray_lab = borrow(F, o + 4 * n, 2 * n + 1, np.float64), borrow(F, o + 6 * n + 1, 2 * n + 1, np.float64)
     o += 8 * n + 2
-    rhs_s, magb_s = F[o : o + n], F[o + n : o + 2 * n]  # the pivots' scratch
-    prow_s, col_s = F[o + 2 * n : o + 3 * n + 1], F[o + 3 * n + 1 :]
-    I = np.empty(4 * n + 2, dtype=np.int64)
-    basis, nonbasic = I[:n], I[n : 2 * n + 1]
-    pos = I[2 * n + 1 : 4 * n + 2]
-    warm_basic = warm[:n]
-    warm_hi = warm[n:]
+    rhs_s, magb_s = borrow(F, o, n, np.float64), borrow(F, o + n, n, np.float64)  # the pivots' scratch
+    prow_s, col_s = borrow(F, o + 2 * n, n + 1, np.float64), borrow(F, o + 3 * n + 1, n, np.float64)
+    basis, nonbasic = borrow(I, 0, n, np.int64), borrow(I, n, n + 1, np.int64)
+    pos = borrow(I, 2 * n + 1, 2 * n + 1, np.int64)
+    warm_basic, warm_hi = borrow(warm, 0, n, np.bool_), borrow(warm, n, n, np.bool_)
     code = prologue(M, q, lo, hi)
     if code < 0:
         return code, 0, 0.0, False, np.inf, 0, 0
@@ -617,7 +664,10 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     ray_lab[:] = 0.0
     if infeasible:
         code, p = lemke(T, x, los, his, z_hi, basis, nonbasic, pos, is_basic, s0,
-                        max_pivots - pivots, pivot_tol, tie_tol, ray_lab, scratch)
+                        max_pivots - pivots, pivot_tol, tie_tol, ray_lab, scratch,
+                        borrow(F, n * (n + 1) + 12 * n + 3, 5 * n + 3, np.float64),
+                        borrow(I, 4 * n + 2, 5 * n + 5, np.int64),
+                        borrow(flags, 5 * n + 1, n + 1, np.bool_))
         pivots += p
         z0 = x[2 * n]
     # Back to the caller's units.
