@@ -443,3 +443,31 @@ def test_borrow_is_a_view_of_the_argument_in_a_kernel_and_in_python():
         assert I.view(np.uint64)[5] == 2**63 + 5 and I[6] == 7
         assert I[0] == I[1] == I[7] == -3
     assert results[0] == results[1]
+
+
+def test_row_is_the_row_of_the_matrix_in_a_kernel_and_in_python():
+    """linalg.row (a borrowed row of a C-contiguous matrix, the QP kernels' row loops):
+    the entries of M[i], and writes through it land in row i and nowhere else; borrow's
+    start counts in the flat order of a 2-D parent."""
+    from numba import njit
+
+    def bump_rows(M, out):
+        for i in range(M.shape[0]):
+            r = linalg.row(M, i)
+            out[i] = r.sum()
+            r[i % M.shape[1]] += 100.0 * (i + 1)
+        tail = linalg.borrow(M, M.shape[1] + 1, 2, np.float64)  # M[1, 1:3], flat offset
+        return tail[0] + 10.0 * tail[1]
+
+    rng = np.random.default_rng(31)
+    for f in (bump_rows, njit(bump_rows)):
+        M = rng.standard_normal((5, 7)).round(3)
+        before = M.copy()
+        out = np.empty(5)
+        got = f(M, out)
+        assert np.allclose(out, before.sum(axis=1), rtol=1e-14, atol=1e-12)
+        want = before.copy()
+        for i in range(5):
+            want[i, i % 7] += 100.0 * (i + 1)
+        assert np.array_equal(M, want)
+        assert got == want[1, 1] + 10.0 * want[1, 2]

@@ -194,7 +194,8 @@ def axpy(y, a, x):
 
 def borrow(buf, start, shape, dtype):
     """A C-contiguous array of ``shape`` (an int or a pair) and ``dtype`` over the memory of
-    the 1-D array ``buf`` from its element ``start`` on, that holds no reference to it: in
+    the C-contiguous array ``buf`` from its element ``start`` on (counted in buf's flat
+    order: row i of a matrix with n columns starts at i n), that holds no reference to it: in
     a kernel, a slice of an array takes an atomic reference count operation when made and
     one when dropped (each of tableau.lemke's fifteen work views cost two a call, 0.1 us at
     n = 12); this view costs none.  It is valid only while ``buf`` is alive: borrow only
@@ -204,13 +205,15 @@ def borrow(buf, start, shape, dtype):
     shape = (int(shape),) if np.ndim(shape) == 0 else tuple(int(s) for s in shape)
     at = start * buf.itemsize
     nbytes = int(np.prod(shape)) * np.dtype(dtype).itemsize
-    return buf.view(np.uint8)[at : at + nbytes].view(dtype).reshape(shape)
+    return buf.reshape(-1).view(np.uint8)[at : at + nbytes].view(dtype).reshape(shape)
 
 
 @intrinsic
 def _address(typingctx, buf, start):
-    """The address of ``buf[start]``, as a void pointer (for :func:`borrow`)."""
-    if not isinstance(buf, types.Array) or not isinstance(start, types.Integer):
+    """The address of element ``start`` of the C-contiguous ``buf`` (flat order), as a void
+    pointer (for :func:`borrow`)."""
+    if (not isinstance(buf, types.Array) or buf.layout != "C"
+            or not isinstance(start, types.Integer)):
         return None
 
     def codegen(context, builder, sig, args):
@@ -225,6 +228,15 @@ def _borrow(buf, start, shape, dtype):
     def impl(buf, start, shape, dtype):
         return carray(_address(buf, start), shape, dtype)
     return impl
+
+
+@kernel
+def row(M, i):
+    """Row i of the C-contiguous float64 matrix M, borrowed (:func:`borrow`): what ``M[i]``
+    gives, without its two atomic reference count operations, for loops that take a row at
+    a time.  Valid while M is referenced (a kernel's argument, or a local the code uses
+    afterwards)."""
+    return borrow(M, i * M.shape[1], M.shape[1], np.float64)
 
 
 if config.DISABLE_JIT:  # plain Python (debugging): the same bits through struct
