@@ -446,14 +446,14 @@ def test_borrow_is_a_view_of_the_argument_in_a_kernel_and_in_python():
 
 
 def test_row_is_the_row_of_the_matrix_in_a_kernel_and_in_python():
-    """linalg.row (a borrowed row of a C-contiguous matrix, the QP kernels' row loops):
+    """linalg.row_of (a borrowed row of a C-contiguous matrix, the QP kernels' row loops):
     the entries of M[i], and writes through it land in row i and nowhere else; borrow's
     start counts in the flat order of a 2-D parent."""
     from numba import njit
 
     def bump_rows(M, out):
         for i in range(M.shape[0]):
-            r = linalg.row(M, i)
+            r = linalg.row_of(M, i)
             out[i] = r.sum()
             r[i % M.shape[1]] += 100.0 * (i + 1)
         tail = linalg.borrow(M, M.shape[1] + 1, 2, np.float64)  # M[1, 1:3], flat offset

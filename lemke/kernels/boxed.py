@@ -54,7 +54,7 @@ import numpy as np
 from . import inline_kernel, kernel, pivoting, tableau
 from .certify import CERTIFIABLE, EPS, zero_size
 from .linalg import (borrow, dot, equilibrate, finite_absmax, nan_probe, row_dot_and_size,
-                     solve_principal)
+                     row_of, solve_principal)
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 NOT_FINITE = -1  # M or q has a NaN or an infinity, or lo/hi a NaN: the front says where
@@ -796,7 +796,7 @@ def basis_point(M, q, lo, hi, zb, zh, warm_rule, z):
     if nb > 0:
         for c in range(nb):
             r = idx[c]
-            rhs[c] = -(q[r] + dot(M[r], z, n))
+            rhs[c] = -(q[r] + dot(row_of(M, r), z, n))
         ok, x = solve_principal(M, idx[:nb], rhs[:nb])
         if not ok:
             return False
@@ -822,7 +822,7 @@ def check_scales(M, q, lo, hi, R, C):
         p[i] = min(max(0.0, lo[i]), hi[i])
         p_zero = p_zero and p[i] == 0.0
     for i in range(n):
-        qs[i] = q[i] if p_zero else q[i] + dot(M[i], p, n)
+        qs[i] = q[i] if p_zero else q[i] + dot(row_of(M, i), p, n)
     equilibrate(M, qs, R, C)
 
 

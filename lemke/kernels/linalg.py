@@ -124,7 +124,7 @@ def absmax_row(M, i, k):
 def matvec(G, k, x, out):
     """out[:k] = G[:k, :k] x[:k]."""
     for r in range(k):
-        out[r] = dot(G[r], x, k)
+        out[r] = dot(row_of(G, r), x, k)
 
 
 @kernel
@@ -231,7 +231,7 @@ def _borrow(buf, start, shape, dtype):
 
 
 @kernel
-def row(M, i):
+def row_of(M, i):
     """Row i of the C-contiguous float64 matrix M, borrowed (:func:`borrow`): what ``M[i]``
     gives, without its two atomic reference count operations, for loops that take a row at
     a time.  Valid while M is referenced (a kernel's argument, or a local the code uses

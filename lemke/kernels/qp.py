@@ -103,7 +103,7 @@ from numba import njit
 
 from . import boxed, cold, inline_kernel, kernel, pivoting, unrevised
 from .linalg import (absmax, acc2, borrow, copy, dot, false_flags, nan_probe, no_matrix, pow2_rsqrt,
-                     row, two_product, two_sum)
+                     row_of, two_product, two_sum)
 
 OK = 0
 NOT_DEFINITE = 1  # a Cholesky pivot of P is not clearly positive
@@ -199,9 +199,9 @@ def cholesky(P, L):
     if not top > 0.0:
         return False
     for i in range(n):
-        Li = row(L, i)
+        Li = row_of(L, i)
         for j in range(i):
-            Li[j] = (P[i, j] - dot(Li, row(L, j), j)) / L[j, j]
+            Li[j] = (P[i, j] - dot(Li, row_of(L, j), j)) / L[j, j]
         d = P[i, i] - dot(Li, Li, i)
         if not d > floor:
             return False
@@ -221,7 +221,7 @@ def forward(L, r):
         s += 1
     rs = borrow(r, s, n - s, np.float64)  # (borrowed: no view and its count per row)
     for j in range(s, n):
-        Lj = row(L, j)
+        Lj = row_of(L, j)
         r[j] = (r[j] - dot(Lj[s:], rs, j - s)) / Lj[j]
 
 
@@ -251,15 +251,15 @@ def forward_rows(L, R):
     k = R.shape[0]
     i = 0
     while i + 4 <= k:
-        r0 = row(R, i)
-        r1 = row(R, i + 1)
-        r2 = row(R, i + 2)
-        r3 = row(R, i + 3)
+        r0 = row_of(R, i)
+        r1 = row_of(R, i + 1)
+        r2 = row_of(R, i + 2)
+        r3 = row_of(R, i + 3)
         s = 0
         while s < n and r0[s] == 0.0 and r1[s] == 0.0 and r2[s] == 0.0 and r3[s] == 0.0:
             s += 1
         for j in range(s, n):
-            Lj = row(L, j)
+            Lj = row_of(L, j)
             d0, d1, d2, d3 = _dot4(Lj[s:j], r0[s:j], r1[s:j], r2[s:j], r3[s:j])
             inv = 1.0 / Lj[j]
             r0[j] = (r0[j] - d0) * inv
@@ -268,7 +268,7 @@ def forward_rows(L, R):
             r3[j] = (r3[j] - d3) * inv
         i += 4
     while i < k:
-        forward(L, row(R, i))
+        forward(L, row_of(R, i))
         i += 1
 
 
@@ -280,7 +280,7 @@ def backward_transposed(L, r):
     for j in range(n - 1, -1, -1):
         xj = r[j] / L[j, j]
         r[j] = xj
-        Lj = row(L, j)
+        Lj = row_of(L, j)
         for k in range(j):
             r[k] -= xj * Lj[k]
 
@@ -308,15 +308,15 @@ def qr_rows(WE, V, beta):
         return 0.0
     top = 0.0
     for k in range(p):
-        top = max(top, np.sqrt(dot(row(WE, k), row(WE, k), n)))
+        top = max(top, np.sqrt(dot(row_of(WE, k), row_of(WE, k), n)))
     worst = np.inf
     for k in range(p):
-        x = row(WE, k)
+        x = row_of(WE, k)
         for i in range(k):  # the earlier reflectors, in order
             householder_apply(V, beta, i, x)
         sigma = dot(x[k:], x[k:], n - k)
         norm = np.sqrt(sigma)
-        v = row(V, k)
+        v = row_of(V, k)
         v[:k] = 0.0
         v[k:] = x[k:]
         alpha = -norm if x[k] >= 0.0 else norm
@@ -566,8 +566,8 @@ def rows_of(G, h, A, b, lb, ub):
     ekind = kinds[:p]
     ckind = kinds[p:]
     for i in range(p0):
-        Ei = row(E, i)
-        Ai = row(A, i)
+        Ei = row_of(E, i)
+        Ai = row_of(A, i)
         for t in range(n):
             Ei[t] = Ai[t]
         f[i] = b[i]
@@ -581,8 +581,8 @@ def rows_of(G, h, A, b, lb, ub):
     k = 0
     for i in range(m0):
         if h[i] < np.inf:  # h_i = +inf: no constraint
-            Ck = row(C, k)
-            Gi = row(G, i)
+            Ck = row_of(C, k)
+            Gi = row_of(G, i)
             for t in range(n):
                 Ck[t] = Gi[t]
             d[k] = h[i]
@@ -835,27 +835,27 @@ def factors(q, G, h, A, b, lb, ub, L):
     for i in range(m_u, m):
         j = ckind[i] - n
         if up_row[j] >= 0:
-            Ci = row(C, i)
-            Cu = row(C, up_row[j])
+            Ci = row_of(C, i)
+            Cu = row_of(C, up_row[j])
             for t in range(n):
                 Ci[t] = -Cu[t]
         else:
-            forward(L, row(C, i))
+            forward(L, row_of(C, i))
     forward(L, c)
     if qr_rows(E, V, beta) <= RANK_TOL:
         return DEPENDENT_EQUALITIES, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
     for k in range(p):
         householder_apply(V, beta, k, c)
         for i in range(m):
-            householder_apply(V, beta, k, row(C, i))
+            householder_apply(V, beta, k, row_of(C, i))
     # v1 = R'^-1 f, R[k, j] = E[j, k] (j >= k): R' is lower triangular with rows E[k, :k+1]
     for k in range(p):
-        v[k] = (f[k] - dot(row(E, k), v, k)) / E[k, k]
+        v[k] = (f[k] - dot(row_of(E, k), v, k)) / E[k, k]
     # the LCP on the inequality multipliers: M = F2 F2', g = d - F1 v1 + F2 c2
     r = n - p
     c2 = c[p:]
     for i in range(m):
-        Fi = row(C, i)
+        Fi = row_of(C, i)
         g[i] = d[i] - dot(Fi, v, p) + dot(Fi[p:], c2, r)
     return OK, E, f, ekind, C, d, ckind, m_g, V, beta, c, v, g
 
@@ -889,9 +889,9 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
         zz[i] = 0.0
         ones[i] = 1.0
     for i in range(m):
-        F2i = row(C, i)[p:]
+        F2i = row_of(C, i)[p:]
         for j in range(i + 1):
-            M[i, j] = dot(F2i, row(C, j)[p:], r)
+            M[i, j] = dot(F2i, row_of(C, j)[p:], r)
             M[j, i] = M[i, j]
     pivots = 0
     k_basic = 0
@@ -913,7 +913,7 @@ def _solve(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol
     for i in range(m):
         zi = zz[i]
         if zi != 0.0:
-            Ci = row(C, i)
+            Ci = row_of(C, i)
             for t in range(p, n):
                 v[t] -= zi * Ci[t]
     point(L, E, V, beta, C, c, v, zz, x, yy)
@@ -1107,7 +1107,7 @@ def gram_lcp(C, g, p, max_pivots, pivot_tol, tie_tol, flags):
     gs = work[m * (r + 1):m * (r + 2)]
     out = work[m * (r + 2):]
     for i in range(m):
-        Fi = row(C, i)
+        Fi = row_of(C, i)
         norm2 = dot(Fi[p:], Fi[p:], r)
         # A row within rounding of the equalities' span (its part in v2 below RANK_TOL of
         # the whole, as qr_rows judges the equalities) is a constant, w_i = g_i: kept
@@ -1142,13 +1142,13 @@ def active_solve(L, E, V, beta, C, S, K2, V2, beta2, rd, rpE, rpS, x, yy, zz):
         householder_apply(V, beta, j, cc)
     v = np.empty(n)
     for j in range(p):
-        v[j] = (rpE[j] - dot(row(E, j), v, j)) / E[j, j]
+        v[j] = (rpE[j] - dot(row_of(E, j), v, j)) / E[j, j]
     c2 = cc[p:]
     for j in range(k):
         householder_apply(V2, beta2, j, c2)
     w = v[p:]
     for j in range(k):  # w1 = R2'^-1 (rpS - F1_S v1), R2[t, j] = K2[j, t]
-        w[j] = (rpS[j] - dot(C[S[j]], v, p) - dot(K2[j], w, j)) / K2[j, j]
+        w[j] = (rpS[j] - dot(row_of(C, S[j]), v, p) - dot(row_of(K2, j), w, j)) / K2[j, j]
     zS = np.empty(k)
     for j in range(k - 1, -1, -1):  # z_S = -R2^-1 (w1 + (Q2'c2)_1)
         acc = -(w[j] + c2[j])
@@ -1230,8 +1230,8 @@ def _gram(P, q, G, h, A, b, lb, ub, L, E, f, ekind, C, d, ckind, m_g, V, beta, g
             k += 1
     K2 = np.empty((k, r))
     for j in range(k):
-        Fi = row(C, S[j])[p:]
-        K2j = row(K2, j)
+        Fi = row_of(C, S[j])[p:]
+        K2j = row_of(K2, j)
         for t in range(r):
             K2j[t] = Fi[t]
     V2 = np.empty((k, r))

@@ -35,7 +35,7 @@ holds the basic variable of pair j).
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import dot, row_dot_and_size, invert_in_place, matvec, no_matrix, scaled_system
+from .linalg import dot, invert_in_place, matvec, no_matrix, row_dot_and_size, row_of, scaled_system
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
@@ -97,7 +97,7 @@ def basic_point(AB, q, alist, k, G, apos, zb, wv, tmp, tmp2):
     for r in range(k):
         tmp[r] = -q[alist[r]]
     for r in range(k):
-        zb[r] = dot(G[r], tmp, k)
+        zb[r] = dot(row_of(G, r), tmp, k)
     res = _all_w(AB, q, apos, zb, k, wv)
     if res > RESIDUAL_TOL:
         for r in range(k):
@@ -156,14 +156,14 @@ def direction(acol, AB, label, n, alist, k, G, apos, dzb, dw, tmp):
             dzb[r] = G[r, p]
         for i in range(n):
             if apos[i] < 0:
-                dw[i] = dot(AB[i], dzb, k)
+                dw[i] = dot(row_of(AB, i), dzb, k)
     else:  # a z (or z0) enters: H dz_beta = -A[alpha, e]
         for r in range(k):
             tmp[r] = -acol[alist[r]]
         matvec(G, k, tmp, dzb)
         for i in range(n):
             if apos[i] < 0:
-                dw[i] = acol[i] + dot(AB[i], dzb, k)
+                dw[i] = acol[i] + dot(row_of(AB, i), dzb, k)
 
 
 @kernel
@@ -180,9 +180,9 @@ def fetch_column(A, Fs, e, acol):
             acol[i] = A[i, 0]
     else:
         r = Fs.shape[1]
-        Fe = Fs[e]
+        Fe = row_of(Fs, e)  # (borrowed rows: no view and its reference count per row)
         for i in range(n):
-            acol[i] = dot(Fs[i], Fe, r)
+            acol[i] = dot(row_of(Fs, i), Fe, r)
 
 
 @kernel
@@ -425,7 +425,7 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
         e = entering - n
         i = leaving
         s = dw[i]
-        _row_times(AB[i], G, k, row)
+        _row_times(row_of(AB, i), G, k, row)
         for p in range(k):
             coef[p] = -dzb[p] / s
             G[p, k] = dzb[p] / s
@@ -462,7 +462,7 @@ def update_basis(acol, AB, n, entering, leaving, alist, blist, apos, bpos, k, G,
         j = entering
         i = leaving
         p = apos[j]
-        _row_times(AB[i], G, k, row)
+        _row_times(row_of(AB, i), G, k, row)
         piv = row[p]
         row[p] -= 1.0
         for r in range(k):
