@@ -388,10 +388,11 @@ def test_finite_absmax_flags_every_nan_and_inf():
             assert not linalg.finite_absmax(B)[0]
 
 
-def test_row_dot_and_size_gives_the_bits_of_dot_and_size_on_the_row():
-    """row_dot_and_size (M read in place, the checks' row products) against dot_and_size of
-    the row view: the same bits on rows of every length up to 130 and widely spread
-    magnitudes, with zeros in y (a basic point's z)."""
+def test_row_dot_and_size_is_the_row_product_wherever_the_row_lies():
+    """row_dot_and_size (the checks' row products, M read in place): the sum and the size
+    of the row's products (against numpy, to rounding), and the same bits for the same row
+    wherever it lies (row i of M, or alone in a matrix of one row): a problem's check does
+    not depend on where its M sits in a batch."""
     rng = np.random.default_rng(30)
     for _ in range(1500):
         n = int(rng.integers(1, 131))
@@ -400,9 +401,8 @@ def test_row_dot_and_size_gives_the_bits_of_dot_and_size_on_the_row():
         y[rng.random(n) < 0.5] = 0.0
         i, k = int(rng.integers(n)), int(rng.integers(0, n + 1))
         got = linalg.row_dot_and_size(M, i, y, k)
-        want = linalg.dot_and_size(M[i].copy(), y, k)
-        assert np.array(got).tobytes() == np.array(want).tobytes(), (n, i, k)
-        # and both are the products' sums (to rounding; computed here by numpy)
+        alone = linalg.row_dot_and_size(M[i : i + 1].copy(), 0, y, k)
+        assert np.array(got).tobytes() == np.array(alone).tobytes(), (n, i, k)
         t = M[i, :k] * y[:k]
         assert abs(got[0] - t.sum()) <= 1e-13 * np.abs(t).sum() + 1e-300
         assert abs(got[1] - np.abs(t).sum()) <= 1e-13 * np.abs(t).sum() + 1e-300

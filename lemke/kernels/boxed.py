@@ -161,15 +161,6 @@ def step_values(x, basis, col, n, e, delta):
 
 
 @kernel
-def exchange_labels(T, r, s, col, basis, nonbasic, pos, is_basic, scratch):
-    """Pivot the tableau on (r, s) (``tableau.pivot_now``) and swap the labels: the label of
-    column s enters in row r, the label of row r goes to column s."""
-    rhs, magb, prow, _ = scratch
-    tableau.pivot_now(T, rhs, magb, r, s, col, prow)
-    pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
-
-
-@kernel
 def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
     """Make the z_j with ``want[j]`` basic, in exchange for their w's: Gauss-Jordan on that
     principal block, each pivot the largest diagonal entry left, or (when every diagonal
@@ -202,7 +193,8 @@ def exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch):
         leaving = basis[br]
         step_values(x, basis, col, n, e, -x[leaving] / col[br])
         x[leaving] = 0.0
-        exchange_labels(T, br, bs, col, basis, nonbasic, pos, is_basic, scratch)
+        tableau.pivot_now(T, scratch[0], scratch[1], br, bs, col, scratch[2])
+        pivoting.swap_labels(basis, nonbasic, pos, is_basic, br, bs)
         done += 1
 
 
@@ -350,8 +342,9 @@ def lemke(T, x, lo, hi, at_hi, basis, nonbasic, pos, is_basic, s0, max_pivots, p
                 break
             lb, ub = bounds_of(leaving, n, lo, hi, at_hi)
             x[leaving] = lb if low_r else ub
-            # (exchange_labels' two calls made here: a kernel that hands its arrays on to
-            # another kernel counts references to them, nine atomic pairs a pivot)
+            # (the pivot's two calls made here, not through a kernel of their own: a kernel
+            # that hands its arrays on to another kernel counts references to them, nine
+            # atomic pairs a pivot)
             tableau.pivot_now(T, rhs_s, magb_s, r, s, col, prow_s)
             pivoting.swap_labels(basis, nonbasic, pos, is_basic, r, s)
             rlo[r], rhi[r] = bounds_of(e, n, lo, hi, at_hi)

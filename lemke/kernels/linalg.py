@@ -30,22 +30,11 @@ def dot(x, y, k):
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
-def dot_and_size(x, y, k):
-    """``(sum x[j] y[j], sum |x[j] y[j]|)`` over j < k: a row of M z and its size."""
-    acc = 0.0
-    size = 0.0
-    for j in range(k):
-        t = x[j] * y[j]
-        acc += t
-        size += abs(t)
-    return acc, size
-
-
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
 def row_dot_and_size(M, i, y, k):
-    """:func:`dot_and_size` of row i of M (its first k entries) and y, M read in place (a
-    view of each row costs two atomic reference count operations): the same loop, and the
-    same bits (a test compares them)."""
+    """``(sum M[i, j] y[j], sum |M[i, j] y[j]|)`` over j < k: a row of M z and its size, M
+    read in place (a view of each row costs two atomic reference count operations).  It
+    replaced ``dot_and_size(M[i], y, k)``, the same loop over a row view, with the same bits
+    (checked on 1,500 random rows when it did)."""
     acc = 0.0
     size = 0.0
     for j in range(k):
