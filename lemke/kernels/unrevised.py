@@ -35,7 +35,8 @@ holds the basic variable of pair j).
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import dot, invert_in_place, matvec, no_matrix, row_dot_and_size, row_of, scaled_system
+from .linalg import (borrow, dot, invert_in_place, matvec, no_matrix, row_dot_and_size, row_of,
+                     scaled_system)
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 from .tableau import unscale
 
@@ -199,41 +200,61 @@ def lemke(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
     RAY_TERMINATION and z_basic_out the final set of basic z's.
     """
     n = q.shape[0]
-    art = 2 * n
     kmax = n if Fs.shape[0] == 0 else min(n, Fs.shape[1] + 1)  # H's largest size
     # Three allocations for the whole run (each one costs about as much as a small pivot):
-    # the float, int and key work arrays are views of one array each.
-    I = np.empty(7 * n + 1, dtype=np.int64)
-    alist = I[:n]  # H's rows: the non-basic w's
-    blist = I[n : 2 * n]  # H's columns: the basic z's (n stands for z0)
-    apos, bpos = I[2 * n : 3 * n], I[3 * n : 4 * n + 1]
+    # the int, float and key work arrays, carved by lemke_in.
+    return lemke_in(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+                    z_basic_out, np.empty(7 * n + 1, dtype=np.int64),
+                    np.empty(n * kmax + kmax * kmax + 15 * n + 1),
+                    np.empty(2 * n + 4, dtype=np.uint64))
+
+
+@kernel
+def lemke_in(A, Fs, q, z_start, G0, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+             z_basic_out, I, F, H):
+    """:func:`lemke` with its work arrays given (``I`` 7n + 1 int64, ``F`` n kmax + kmax^2 +
+    15n + 1 floats, ``H`` 2n + 4 uint64).  Every array, the arguments included, is borrowed
+    (``linalg.borrow``): the kernels called every pivot (``direction``, ``fetch_column``,
+    ``ratio_test``, ``update_basis`` ...) then count no references to what they are handed
+    (with views, 22 % of a solve at n = 48 went to reference counts)."""
+    n = q.shape[0]
+    art = 2 * n
+    kmax = n if Fs.shape[0] == 0 else min(n, Fs.shape[1] + 1)  # H's largest size
+    A = borrow(A, 0, (A.shape[0], A.shape[1]), np.float64)
+    Fs = borrow(Fs, 0, (Fs.shape[0], Fs.shape[1]), np.float64)
+    q = borrow(q, 0, n, np.float64)
+    z_start = borrow(z_start, 0, z_start.shape[0], np.bool_)
+    x_out = borrow(x_out, 0, x_out.shape[0], np.float64)
+    ray_out = borrow(ray_out, 0, ray_out.shape[0], np.float64)
+    alist = borrow(I, 0, n, np.int64)  # H's rows: the non-basic w's
+    blist = borrow(I, n, n, np.int64)  # H's columns: the basic z's (n stands for z0)
+    apos, bpos = borrow(I, 2 * n, n, np.int64), borrow(I, 3 * n, n + 1, np.int64)
     apos[:] = -1
     bpos[:] = -1
     o = n * kmax + kmax * kmax
-    F = np.empty(o + 15 * n + 1)
-    AB = F[: n * kmax].reshape((n, kmax))  # AB[:, c] = A[:, blist[c]]
-    G = F[n * kmax : o].reshape((kmax, kmax))
-    zb = F[o : o + n]
-    wv = F[o + 1 * n : o + 2 * n]
-    dzb = F[o + 2 * n : o + 3 * n]
-    dw = F[o + 3 * n : o + 4 * n]
-    lz = F[o + 4 * n : o + 5 * n]
-    lw = F[o + 5 * n : o + 6 * n]
-    tmp = F[o + 6 * n : o + 7 * n]
-    tmp2 = F[o + 7 * n : o + 8 * n]
-    row = F[o + 8 * n : o + 9 * n]
-    keys = F[o + 9 * n : o + 10 * n]
-    rv = F[o + 10 * n : o + 11 * n]  # the basic variables' values (pair order, z0 last)
-    rc = F[o + 11 * n : o + 12 * n]  # and their changes per unit of the entering variable
-    acol = F[o + 12 * n : o + 13 * n]  # the entering variable's column of A
-    lcol = F[o + 13 * n : o + 14 * n]  # and another one's, for the lexicographic keys
-    coef = F[o + 14 * n : o + 15 * n]  # update_basis's multipliers
-    z0_max = F[o + 15 * n :]  # the largest value z0 has had (ratio_test keeps it)
+    AB = borrow(F, 0, (n, kmax), np.float64)  # AB[:, c] = A[:, blist[c]]
+    G = borrow(F, n * kmax, (kmax, kmax), np.float64)
+    zb = borrow(F, o, n, np.float64)
+    wv = borrow(F, o + 1 * n, n, np.float64)
+    dzb = borrow(F, o + 2 * n, n, np.float64)
+    dw = borrow(F, o + 3 * n, n, np.float64)
+    lz = borrow(F, o + 4 * n, n, np.float64)
+    lw = borrow(F, o + 5 * n, n, np.float64)
+    tmp = borrow(F, o + 6 * n, n, np.float64)
+    tmp2 = borrow(F, o + 7 * n, n, np.float64)
+    row = borrow(F, o + 8 * n, n, np.float64)
+    keys = borrow(F, o + 9 * n, n, np.float64)
+    rv = borrow(F, o + 10 * n, n, np.float64)  # the basic variables' values (pair order, z0 last)
+    rc = borrow(F, o + 11 * n, n, np.float64)  # and their changes per unit of the entering variable
+    acol = borrow(F, o + 12 * n, n, np.float64)  # the entering variable's column of A
+    lcol = borrow(F, o + 13 * n, n, np.float64)  # and another one's, for the lexicographic keys
+    coef = borrow(F, o + 14 * n, n, np.float64)  # update_basis's multipliers
+    z0_max = borrow(F, o + 15 * n, 1, np.float64)  # the largest value z0 has had (ratio_test keeps it)
     z0_max[0] = 0.0
-    cand = I[4 * n + 1 : 5 * n + 1]  # tied candidates, as positions in rlab
-    rlab = I[5 * n + 1 : 6 * n + 1]  # the basic variables in pair order, z0 last
-    H = np.empty(2 * n + 4, dtype=np.uint64)  # the labels' keys and the cycle detector
-    hkeys, detector = H[: 2 * n + 1], H[2 * n + 1 :]
+    cand = borrow(I, 4 * n + 1, n, np.int64)  # tied candidates, as positions in rlab
+    rlab = borrow(I, 5 * n + 1, n, np.int64)  # the basic variables in pair order, z0 last
+    # the labels' keys and the cycle detector
+    hkeys, detector = borrow(H, 0, 2 * n + 1, np.uint64), borrow(H, 2 * n + 1, 3, np.uint64)
     pivoting.fill_label_keys(hkeys)
     detector[:] = 0
     k = np.int64(0)  # not a literal 0: see kernels/__init__.py
