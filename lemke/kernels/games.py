@@ -46,7 +46,7 @@ import math
 import numpy as np
 
 from . import kernel, pivoting
-from .linalg import pow2_scale
+from .linalg import borrow, pow2_scale
 from .pivoting import CYCLING, MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 PERTURBATION = 1e-7  # relative perturbation of the right-hand side in the last restart
@@ -448,22 +448,28 @@ def lh_path(A, B, scale, k, startP, startQ, perturb, max_pivots, pivot_tol, tie_
     m, n = A.shape
     L = m + n
     big = max(m, n)
+    # The work arrays borrowed from F, I, Z, U (linalg.borrow: step, called every pivot with
+    # a dozen of them, then counts no references; with views that was a sixth of a solve)
+    f8, i8 = np.float64, np.int64
     o = 0
-    TP = F[o : o + n * m].reshape((n, m))
+    TP = borrow(F, o, (n, m), f8)
     o += n * m
-    TQ = F[o : o + m * n].reshape((m, n))
+    TQ = borrow(F, o, (m, n), f8)
     o += m * n
-    rP, mbP, rQ, mbQ = F[o : o + n], F[o + n : o + 2 * n], F[o + 2 * n : o + 2 * n + m], F[o + 2 * n + m : o + 2 * L]
+    rP, mbP = borrow(F, o, n, f8), borrow(F, o + n, n, f8)
+    rQ, mbQ = borrow(F, o + 2 * n, m, f8), borrow(F, o + 2 * n + m, m, f8)
     o += 2 * L
-    wlabP, wlabQ, wcolP, wcolQ = F[o : o + L], F[o + L : o + 2 * L], F[o + 2 * L : o + 2 * L + m], F[o + 2 * L + m : o + 3 * L]
+    wlabP, wlabQ = borrow(F, o, L, f8), borrow(F, o + L, L, f8)
+    wcolP, wcolQ = borrow(F, o + 2 * L, m, f8), borrow(F, o + 2 * L + m, n, f8)
     o += 3 * L
-    col, prow, scratch, keys_, mags = (F[o : o + big], F[o + big : o + 2 * big], F[o + 2 * big : o + 3 * big],
-                                       F[o + 3 * big : o + 4 * big], F[o + 4 * big : o + 5 * big])
-    bP, nP, bQ, nQ = I[:n], I[n:L], I[L : L + m], I[L + m : 2 * L]
-    posP, posQ, slackP, slackQ = I[2 * L : 3 * L], I[3 * L : 4 * L], I[4 * L : 4 * L + n], I[4 * L + n : 5 * L]
-    cand = I[5 * L : 5 * L + big]
-    inP, inQ, free = Z[:L], Z[L : 2 * L], Z[2 * L : 3 * L]
-    hkeys, detector = U[: 2 * L], U[2 * L : 2 * L + 3]
+    col, prow, scratch = borrow(F, o, big, f8), borrow(F, o + big, big, f8), borrow(F, o + 2 * big, big, f8)
+    keys_, mags = borrow(F, o + 3 * big, big, f8), borrow(F, o + 4 * big, big, f8)
+    bP, nP, bQ, nQ = borrow(I, 0, n, i8), borrow(I, n, m, i8), borrow(I, L, m, i8), borrow(I, L + m, n, i8)
+    posP, posQ = borrow(I, 2 * L, L, i8), borrow(I, 3 * L, L, i8)
+    slackP, slackQ = borrow(I, 4 * L, n, i8), borrow(I, 4 * L + n, m, i8)
+    cand = borrow(I, 5 * L, big, i8)
+    inP, inQ, free = borrow(Z, 0, L, np.bool_), borrow(Z, L, L, np.bool_), borrow(Z, 2 * L, L, np.bool_)
+    hkeys, detector = borrow(U, 0, 2 * L, np.uint64), borrow(U, 2 * L, 3, np.uint64)
     tableau_setup(B, scale[2], scale[3], TP, rP, bP, nP, posP, inP, m)
     tableau_setup(A.T, scale[0], scale[1], TQ, rQ, bQ, nQ, posQ, inQ, np.int64(0))
     slackP[:] = bP
