@@ -26,7 +26,7 @@ only cuts the memory traffic, which bounds the speed of a tableau that does not 
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting
-from .linalg import axpy, borrow, copy, equilibrate, false_flags, scaled_into
+from .linalg import axpy, borrow, copy, scaled_into
 from .pivoting import MAX_PIVOTS, NUMERICAL_FAILURE, RAY_TERMINATION, SOLVED
 
 
