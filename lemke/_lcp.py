@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _validate
+from . import _core, _validate
 from ._certify import check_lcp
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
@@ -12,7 +12,9 @@ from .kernels import cold, entry_point, linalg
 
 METHODS = tuple(cold.METHODS)
 _SOLVE_ONE = cold.solve_one  # module attributes, so that a test can stand a lying kernel in
-_FIRST_RUN = cold.first_run
+#: The first stages of a solve by the tableau, cold or warm: the C++ core's port of
+#: ``cold.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
+_FIRST_RUN = _core.first_run
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
 _NO_BASIS = np.zeros(0, dtype=np.int64)
@@ -161,12 +163,15 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
 
 
 def _entry_point(method):
-    """The compiled entry point, for the argument types of ``solve_lcp``'s fast path
-    (float64 arrays, C-contiguous, aligned and writable; int64 indices; Python ints and
-    floats; ``kernels.entry_point``), of the kernel for a solve by ``method``:
-    ``_FIRST_RUN`` for the tableau (cold or warm), else ``_SOLVE_ONE``; once compiled,
-    until then the kernel itself."""
-    kernel = _FIRST_RUN if method == "tableau" else _SOLVE_ONE
+    """The function the fast path calls for a solve by ``method``: the C++ core's
+    ``first_run`` for the tableau (cold or warm), else the compiled entry point of
+    ``_SOLVE_ONE`` for the fast path's argument types (float64 arrays, C-contiguous,
+    aligned and writable; int64 indices; Python ints and floats; ``kernels.entry_point``),
+    once compiled, until then the kernel itself."""
+    if method == "tableau":
+        _ENTRY[method] = _FIRST_RUN
+        return _FIRST_RUN
+    kernel = _SOLVE_ONE
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
     run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
     if run is not kernel:

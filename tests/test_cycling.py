@@ -286,15 +286,23 @@ SAME_PATH = [pytest.param(c.key, _options(c, t), id=f"{c.key}-{_tie_id(t)}")
              for c in CASES for t in (SWEEP if c.family in ("dart", "murty", "siconos", "drake") else [None])]
 
 
-def _may_diverge(key):
+def _may_diverge(key, options=()):
     """The cases where the README allows the two methods different paths: degenerate,
     rank-deficient problems (the contact steps, with their redundant contacts, and Siconos'
     lcp_tobenna), where an entry of the driving column that is exactly zero comes out exact
     in the tableau but as +-1e-17 from the unrevised method's basis inverse; and copies whose rows or
     columns were scaled (``scaled/``), where the default covering vector is uneven after
     equilibration and the recovery runs (kernels/cold.py) may be needed by one method and
-    not the other."""
-    return key.startswith(("contact/", "scaled/")) or key == "siconos/lcp_tobenna"
+    not the other; and DART's Lemke_12D with a tie window of 1e-9 or wider, where ratios
+    that differ in exact arithmetic count as tied and the choice then rests on the last
+    bits of each method's arithmetic: since the dot products sum in a fixed order (the
+    C++ core's, without fused multiply-adds) the unrevised method's first run there meets a
+    repeated basis and its recovery (exact ties) ends in the tableau's basis after 28
+    pivots in all, against the tableau's 10 (it took the tableau's path before, with the
+    host's reordered, fused sums)."""
+    loose = dict(options).get("tie_tol", 0.0) >= 1e-9
+    return (key.startswith(("contact/", "scaled/")) or key == "siconos/lcp_tobenna"
+            or (key == "dart/Lemke_12D" and loose))
 
 
 @pytest.mark.parametrize("key, options", SAME_PATH)
@@ -305,7 +313,7 @@ def test_methods_follow_the_same_path(key, options):
 def _same_path(key, options):
     a = solve(key, "tableau", options)
     b = solve(key, "unrevised", options)
-    if _may_diverge(key):
+    if _may_diverge(key, options):
         # The bound the README states: the same status (each answer checked), and neither
         # takes more than 2 (n + 1) times the other's pivots.
         M, q = problem(key)

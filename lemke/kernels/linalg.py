@@ -1,10 +1,10 @@
 """Small dense kernels shared by the others.
 
-Without permission to reorder a floating-point sum, a dot-product loop is one long
-dependency chain and cannot use SIMD.  The dot products are compiled with the fastmath
-flags ``reassoc`` and ``contract`` (reordering and fused multiply-add; no flag that changes
-comparisons, infinities or NaNs, which the pivoting rules depend on): about 5x faster, with
-a different but equally accurate rounding order.  The maxima of the equilibration and of
+No fused multiply-add and no reordered sum anywhere (the same rule as the C++ core's
+``-ffp-contract=off``): the dot products keep eight running sums in a fixed order
+(:func:`row_dot_and_size`), which runs in vector registers without reordering anything and
+gives the same bits on every instruction set, here and in the C++ core.  The NaN probes
+(sums of 0 * x: 0 or NaN in any order) may reorder.  The maxima of the equilibration and of
 the finite check (``sweep_simd``, ``absmax_simd``) take the no-NaN and no-signed-zero flags
 instead, and only where their terms can be neither NaN nor -0: a maximum is exact in any
 order, so they give the same bits as the plain loops, 2x faster from n of about 50.
@@ -20,28 +20,76 @@ from numba.extending import intrinsic, overload
 from . import inline_kernel, kernel
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+@kernel
 def dot(x, y, k):
-    """sum_{j < k} x[j] * y[j]."""
-    acc = 0.0
-    for j in range(k):
-        acc += x[j] * y[j]
-    return acc
+    """sum_{j < k} x[j] * y[j], in the fixed order of :func:`row_dot_and_size` (eight
+    running sums, no fused multiply-add), which the C++ core (``src/lemke/linalg.hpp``)
+    repeats bit for bit."""
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
+    j = 0
+    while j + 8 <= k:
+        a0 += x[j] * y[j]
+        a1 += x[j + 1] * y[j + 1]
+        a2 += x[j + 2] * y[j + 2]
+        a3 += x[j + 3] * y[j + 3]
+        a4 += x[j + 4] * y[j + 4]
+        a5 += x[j + 5] * y[j + 5]
+        a6 += x[j + 6] * y[j + 6]
+        a7 += x[j + 7] * y[j + 7]
+        j += 8
+    while j < k:
+        a0 += x[j] * y[j]
+        j += 1
+    return ((a0 + a1) + (a2 + a3)) + ((a4 + a5) + (a6 + a7))
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+@kernel
 def row_dot_and_size(M, i, y, k):
     """``(sum M[i, j] y[j], sum |M[i, j] y[j]|)`` over j < k: a row of M z and its size, M
-    read in place (a view of each row costs two atomic reference count operations).  It
-    replaced ``dot_and_size(M[i], y, k)``, the same loop over a row view, with the same bits
-    (checked on 1,500 random rows when it did)."""
-    acc = 0.0
-    size = 0.0
-    for j in range(k):
+    read in place (a view of each row costs two atomic reference count operations).
+
+    **A fixed order**: eight running sums (lane ``j mod 8`` of the first ``8 floor(k / 8)``
+    terms, the rest into lane 0), added pairwise at the end, with no fused multiply-add.
+    The lanes are independent, so the loop runs in vector registers without reordering
+    anything, and the result is the same bits on every instruction set and in the C++
+    core (``src/lemke/linalg.hpp``).  (Before, the sums were compiled with the fastmath
+    flags ``reassoc`` and ``contract``: their bits depended on the host's vector width.)"""
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = 0.0
+    s0 = s1 = s2 = s3 = s4 = s5 = s6 = s7 = 0.0
+    j = 0
+    while j + 8 <= k:
+        t0 = M[i, j] * y[j]
+        t1 = M[i, j + 1] * y[j + 1]
+        t2 = M[i, j + 2] * y[j + 2]
+        t3 = M[i, j + 3] * y[j + 3]
+        t4 = M[i, j + 4] * y[j + 4]
+        t5 = M[i, j + 5] * y[j + 5]
+        t6 = M[i, j + 6] * y[j + 6]
+        t7 = M[i, j + 7] * y[j + 7]
+        a0 += t0
+        a1 += t1
+        a2 += t2
+        a3 += t3
+        a4 += t4
+        a5 += t5
+        a6 += t6
+        a7 += t7
+        s0 += abs(t0)
+        s1 += abs(t1)
+        s2 += abs(t2)
+        s3 += abs(t3)
+        s4 += abs(t4)
+        s5 += abs(t5)
+        s6 += abs(t6)
+        s7 += abs(t7)
+        j += 8
+    while j < k:
         t = M[i, j] * y[j]
-        acc += t
-        size += abs(t)
-    return acc, size
+        a0 += t
+        s0 += abs(t)
+        j += 1
+    return (((a0 + a1) + (a2 + a3)) + ((a4 + a5) + (a6 + a7)),
+            ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)))
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
@@ -533,10 +581,10 @@ def scaled_into(M, q, d, R, C, A, qs):
 
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+@njit(cache=True, nogil=True, error_model="numpy", fastmath=False)
 def _row_update(y, f, x, lo, k):
-    """y[lo:k] -= f x[lo:k].  No reduction, so it vectorizes without reordering anything:
-    the only fastmath flag, ``contract``, allows fused multiply-adds.  The loop runs over
+    """y[lo:k] -= f x[lo:k].  No reduction, so it vectorizes without reordering anything
+    (no fused multiply-add: the module docstring).  The loop runs over
     slices from 0 (indexing from ``lo`` keeps numba's negative-index wraparound in the
     loop, which stops vectorization: 3x slower)."""
     ys = y[lo:k]
@@ -545,7 +593,7 @@ def _row_update(y, f, x, lo, k):
         ys[c] -= f * xs[c]
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+@njit(cache=True, nogil=True, error_model="numpy", fastmath=False)
 def _update_next_row(A, j, k, f):
     """A[j + 1, c] -= f A[j, c] for c = j + 1 .. k - 1: :func:`_row_update` of row j + 1 by
     row j (the same operations, so the same bits) without the two row views and their
@@ -556,11 +604,11 @@ def _update_next_row(A, j, k, f):
         A[j + 1, c] -= f * A[j, c]
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+@njit(cache=True, nogil=True, error_model="numpy", fastmath=False)
 def _update_below_pair(A, j, k):
     """Rows j + 2 .. k - 1 of A, each r whose multipliers f = A[r, j] and g = A[r, j + 1]
     (in place already) are not both zero: A[r, c] = (A[r, c] - f A[j, c]) - g A[j + 1, c]
-    for c = j + 2 .. k - 1 (fused multiply-adds allowed: ``contract``).  All rows in one
+    for c = j + 2 .. k - 1.  All rows in one
     call: a row view and a call per row (the earlier form, with the same bits) cost an
     atomic reference count increment and decrement each, more than a short row's update.
     The column index is unsigned, so numba does not wrap it around (a signed one from
@@ -577,7 +625,7 @@ def _update_below_pair(A, j, k):
                 A[r, c] = (A[r, c] - f * A[j, c]) - g * A[j + 1, c]
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"contract"})
+@njit(cache=True, nogil=True, error_model="numpy", fastmath=False)
 def _update_all_pair(G, fg, j, k, S):
     """Every row r of G[:k, :k] but j and j + 1, with f = fg[r] and g = fg[k + r] not both
     zero: G[r, c] = (G[r, c] - f G[j, c]) - g G[j + 1, c] for c < k
@@ -800,8 +848,7 @@ def _eliminate(A, y, x, k, piv):
     scratch.  Given piv, the updates of the rows below a pair of pivots read only the pivot rows'
     non-zero columns when they are under a quarter (:func:`_nonzero_columns`): a KKT
     system's factors stay a few per cent non-zero.  The same sums on the entries that
-    change, without the fused multiply-adds that ``_update_below_pair`` may use, so the last
-    bits can differ from the solve without piv."""
+    change (no fused multiply-add on either path)."""
     if _block_probe(A, k) != 0.0 or nan_probe(y, k) != 0.0:
         return False
     j = np.int64(0)

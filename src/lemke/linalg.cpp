@@ -1,0 +1,228 @@
+#include "linalg.hpp"
+
+#include "multiversion.hpp"
+
+namespace lemke {
+
+LEMKE_CLONES
+void row_dot_and_size(const double* row, const double* y, idx k, double& dot_out,
+                      double& size_out) {
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+    for (; j + 8 <= k; j += 8) {
+        for (int l = 0; l < 8; ++l) {
+            double t = row[j + l] * y[j + l];
+            a[l] += t;
+            s[l] += std::fabs(t);
+        }
+    }
+    for (; j < k; ++j) {
+        double t = row[j] * y[j];
+        a[0] += t;
+        s[0] += std::fabs(t);
+    }
+    dot_out = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+    size_out = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
+
+LEMKE_CLONES
+double dot(const double* x, const double* y, idx k) {
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+    for (; j + 8 <= k; j += 8)
+        for (int l = 0; l < 8; ++l) a[l] += x[j + l] * y[j + l];
+    for (; j < k; ++j) a[0] += x[j] * y[j];
+    return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+}
+
+bool finite_absmax(Mat<const double> M, double& m_max) {
+    idx n = M.rows;
+    bool finite = true;
+    m_max = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        const double* r = M.row(i);
+        finite &= all_finite(r, n);
+        m_max = pmax(m_max, absmax(r, n));
+    }
+    return finite;
+}
+
+double pow2_scale(double x) {
+    if (!(x > 0.0 && x < INF)) return 1.0;
+    std::int64_t b = float_bits(x);
+    std::int64_t biased = b >> 52;
+    if (biased == 0 || biased >= 2045) {
+        int e;
+        double m = std::frexp(x, &e);
+        return m < 0.7071067811865476 ? std::ldexp(1.0, 1 - e) : std::ldexp(1.0, -e);
+    }
+    const std::int64_t sqrt2_fraction = 0x6A09E667F3BCDLL;
+    std::int64_t out = (b & 0xFFFFFFFFFFFFFLL) < sqrt2_fraction ? 2046 - biased : 2045 - biased;
+    return bits_float(out << 52);
+}
+
+double pow2_rsqrt(double x) {
+    if (!(x > 0.0 && x < INF)) return 1.0;
+    std::int64_t biased = float_bits(x) >> 52;
+    if (biased == 0) return pow2_scale(std::sqrt(x));
+    return bits_float((1023 - ((biased - 1022) >> 1)) << 52);
+}
+
+namespace {
+
+constexpr int EQUILIBRATE_SWEEPS = 16;
+
+// One sweep: the largest entry of each row (q's times cq included) and column of
+// diag(R) M diag(C) into rmax, cmax; returns q's largest. Maxima are exact in any order.
+double sweep(Mat<const double> M, const double* q, const double* R, const double* C, double cq,
+             double* rmax, double* cmax) {
+    idx n = M.rows;
+    for (idx j = 0; j < n; ++j) cmax[j] = 0.0;
+    double qmax = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double r = R[i];
+        double rm = 0.0;
+        const double* row = M.row(i);
+        for (idx j = 0; j < n; ++j) {
+            double a = std::fabs(row[j]) * r * C[j];
+            rm = pmax(rm, a);
+            cmax[j] = pmax(cmax[j], a);
+        }
+        double a = std::fabs(q[i]) * r * cq;
+        rmax[i] = pmax(rm, a);
+        qmax = pmax(qmax, a);
+    }
+    return qmax;
+}
+
+constexpr double DBL_MIN_NORMAL = 2.2250738585072014e-308;
+
+}  // namespace
+
+void equilibrate(Mat<const double> M, const double* q, double* R, double* C, double* work) {
+    idx n = M.rows;
+    for (idx i = 0; i < n; ++i) { R[i] = 1.0; C[i] = 1.0; }
+    double cq = pow2_scale(absmax(q, n));
+    double* rmax = work;
+    double* cmax = work + n;
+    for (int sweep_no = 0; sweep_no < EQUILIBRATE_SWEEPS; ++sweep_no) {
+        double qmax = sweep(M, q, R, C, cq, rmax, cmax);
+        bool balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
+        for (idx i = 0; i < 2 * n; ++i) {
+            double a = work[i];
+            if (a > 0.0 && (a < 0.5 || a > 2.0)) balanced = false;
+            work[i] = pow2_rsqrt(a);
+        }
+        if (balanced) break;
+        for (idx i = 0; i < n; ++i) {
+            R[i] = R[i] * rmax[i];
+            C[i] = C[i] * cmax[i];
+        }
+        cq *= pow2_rsqrt(qmax);
+    }
+    (void)DBL_MIN_NORMAL;
+}
+
+double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,
+                   const double* C, Mat<double> A, double* qs) {
+    idx n = M.rows;
+    double d_scale = 0.0;
+    for (idx i = 0; i < n; ++i) d_scale = pmax(d_scale, std::fabs(d[i]) * R[i]);
+    double inv_d = 1.0 / d_scale;
+    for (idx i = 0; i < n; ++i) {
+        double r = R[i];
+        const double* mrow = M.row(i);
+        double* arow = A.row(i);
+        for (idx j = 0; j < n; ++j) arow[j] = (mrow[j] * r) * C[j];
+        arow[n] = (d[i] * r) * inv_d;
+        qs[i] = q[i] * r;
+    }
+    return d_scale;
+}
+
+namespace {
+
+// The row r in j..k-1 with the largest |A[r, j] - A[r, j - 1] shift| (shift 0: |A[r, j]|),
+// -1 when that is 0 or NaN.
+idx pivot_row(Mat<double> A, idx j, idx k, double shift) {
+    idx p = -1;
+    double best = 0.0;
+    for (idx r = j; r < k; ++r) {
+        double a = shift != 0.0 ? std::fabs(A(r, j) - A(r, j - 1) * shift) : std::fabs(A(r, j));
+        if (a > best) {
+            best = a;
+            p = r;
+        } else if (a != a) {
+            return -1;
+        }
+    }
+    return p;
+}
+
+void swap_rows(Mat<double> A, idx i, idx j, idx k) {
+    if (i == j) return;
+    for (idx c = 0; c < k; ++c) {
+        double t = A(i, c);
+        A(i, c) = A(j, c);
+        A(j, c) = t;
+    }
+}
+
+}  // namespace
+
+bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y, double* x,
+                    idx k) {
+    Mat<double> A(a, k, k);
+    for (idx r = 0; r < k; ++r) {
+        const double* mrow = M.row(index[r]);
+        for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
+    }
+    for (idx i = 0; i < k; ++i) x[i] = 0.0;
+    bool finite = all_finite(y, k);
+    for (idx r = 0; r < k; ++r) finite &= all_finite(A.row(r), k);
+    if (!finite) return false;
+    idx j = 0;
+    while (j < k) {
+        idx p = pivot_row(A, j, k, 0.0);
+        if (p < 0) return false;
+        swap_rows(A, j, p, k);
+        double t = y[j]; y[j] = y[p]; y[p] = t;
+        double inv = 1.0 / A(j, j);
+        if (j + 1 == k) break;
+        for (idx r = j + 1; r < k; ++r) A(r, j) *= inv;
+        double h = A(j, j + 1);
+        p = pivot_row(A, j + 1, k, h);
+        if (p < 0) return false;
+        swap_rows(A, j + 1, p, k);
+        t = y[j + 1]; y[j + 1] = y[p]; y[p] = t;
+        double l1 = A(j + 1, j);
+        for (idx c = j + 1; c < k; ++c) A(j + 1, c) -= l1 * A(j, c);
+        y[j + 1] -= l1 * y[j];
+        double inv1 = 1.0 / A(j + 1, j + 1);
+        for (idx r = j + 2; r < k; ++r) {
+            double f = A(r, j);
+            double g = (A(r, j + 1) - f * h) * inv1;
+            A(r, j + 1) = g;
+            if (f != 0.0 || g != 0.0) y[r] = (y[r] - f * y[j]) - g * y[j + 1];
+        }
+        for (idx r = j + 2; r < k; ++r) {
+            double f = A(r, j), g = A(r, j + 1);
+            if (f != 0.0 || g != 0.0) {
+                double* ar = A.row(r);
+                const double* aj = A.row(j);
+                const double* aj1 = A.row(j + 1);
+                for (idx c = j + 2; c < k; ++c) ar[c] = (ar[c] - f * aj[c]) - g * aj1[c];
+            }
+        }
+        j += 2;
+    }
+    for (idx r = k - 1; r >= 0; --r) {
+        double acc = y[r];
+        for (idx c = r + 1; c < k; ++c) acc -= A(r, c) * x[c];
+        x[r] = acc / A(r, r);
+    }
+    return all_finite(x, k);
+}
+
+}  // namespace lemke

@@ -1,0 +1,73 @@
+// Small dense kernels: Python's max/min semantics, the fixed-order dot product, the finite
+// check, Ruiz equilibration by powers of two, the scaled system, and a pivoted LU solve.
+// Every sum is in a fixed order with no fused multiply-add (-ffp-contract=off), so the
+// results are the same bits on every instruction set and equal the numba kernels'
+// (lemke/kernels/linalg.py), which follow the same order.
+#pragma once
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "span.hpp"
+
+namespace lemke {
+
+constexpr double INF = std::numeric_limits<double>::infinity();
+constexpr double EPS = 2.220446049250313e-16;
+
+// Python's max(a, b) and min(a, b): the first argument unless the second compares
+// greater (smaller); NaN and signed zeros come out as they do there.
+inline double pmax(double a, double b) { return b > a ? b : a; }
+inline double pmin(double a, double b) { return b < a ? b : a; }
+
+inline std::int64_t float_bits(double x) { std::int64_t b; std::memcpy(&b, &x, 8); return b; }
+inline double bits_float(std::int64_t b) { double x; std::memcpy(&x, &b, 8); return x; }
+
+// (sum M[i, j] y[j], sum |M[i, j] y[j]|) over j < k in the fixed order: eight running sums
+// (lane j mod 8 of the first 8 floor(k / 8) terms, the rest into lane 0), added pairwise.
+void row_dot_and_size(const double* row, const double* y, idx k, double& dot, double& size);
+double dot(const double* x, const double* y, idx k);
+
+// 0 when every x[j] is finite, else not 0 (NaN).
+inline bool all_finite(const double* x, idx k) {
+    double acc = 0.0;
+    for (idx j = 0; j < k; ++j) acc += 0.0 * x[j];
+    return acc == 0.0;
+}
+
+// max_j |x[j]| with four running maxima (as linalg.absmax).
+inline double absmax(const double* x, idx k) {
+    double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
+    idx j = 0;
+    for (; j + 4 <= k; j += 4) {
+        m0 = pmax(m0, std::fabs(x[j]));
+        m1 = pmax(m1, std::fabs(x[j + 1]));
+        m2 = pmax(m2, std::fabs(x[j + 2]));
+        m3 = pmax(m3, std::fabs(x[j + 3]));
+    }
+    for (; j < k; ++j) m0 = pmax(m0, std::fabs(x[j]));
+    return pmax(pmax(m0, m1), pmax(m2, m3));
+}
+
+// (finite, max |M|) of a square matrix. max|M| is meaningless when M is not finite.
+bool finite_absmax(Mat<const double> M, double& m_max);
+
+// The power of two nearest to 1 / x (x > 0), 1 for x = 0 or x not finite.
+double pow2_scale(double x);
+// pow2_scale(sqrt(x)) read off the exponent.
+double pow2_rsqrt(double x);
+
+// Row and column scales R, C (powers of two) of the LCP (M, q): Ruiz's iteration with q as
+// one more column, at most 16 sweeps (linalg.equilibrate). `work`: 2n doubles.
+void equilibrate(Mat<const double> M, const double* q, double* R, double* C, double* work);
+
+// A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q; returns d_scale = max |R d|.
+double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,
+                   const double* C, Mat<double> A, double* qs);
+
+// Solve M[idx, idx] x = y (k x k, gathered into A) by the pivoted elimination of
+// linalg._eliminate (pivots taken in pairs, no refinement). A: k*k doubles of work; y is
+// overwritten; x gets the solution. Returns whether the block is non-singular and x finite.
+bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
+
+}  // namespace lemke

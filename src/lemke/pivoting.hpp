@@ -1,0 +1,166 @@
+// The pivoting rule shared by every engine (the port of lemke/kernels/pivoting.py, whose
+// docstring states the rule): the first pivot, the ratio test with relative ties, the
+// lexicographic tie-break and Brent's cycle detector on a 64-bit basis fingerprint. A method
+// supplies only numbers: the values, the entering column, entries of its basis inverse.
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "linalg.hpp"
+
+namespace lemke {
+
+// The one status vocabulary of the core (the codes of lemke.Status).
+enum Status : int {
+    SOLVED = 0,
+    MAX_PIVOTS = 1,
+    RAY_TERMINATION = 2,
+    NUMERICAL_FAILURE = 3,
+    CYCLING = 6,
+};
+
+constexpr double VALUE_ROUNDING = 1e-13;
+constexpr double Z0_ROUNDING = 1e-11;
+
+// The row that leaves when z0 enters first: the largest -vals[i] / col[i] over col[i] > 0,
+// ties (relative) to the highest row; -1 when no entry is usable.
+inline idx first_row(const double* vals, const double* col, idx m, double tie_tol) {
+    double need = -INF;
+    for (idx i = 0; i < m; ++i)
+        if (col[i] > 0.0) need = pmax(need, -vals[i] / col[i]);
+    if (need == -INF) return -1;
+    idx r = -1;
+    for (idx i = 0; i < m; ++i) {
+        if (col[i] > 0.0) {
+            double t = -vals[i] / col[i];
+            if (t >= need - tie_tol * pmax(std::fabs(t), std::fabs(need))) r = i;
+        }
+    }
+    return r;
+}
+
+inline double row_value(const double* vals, const double* mags, idx i, idx art, double z0_max) {
+    double v = vals[i];
+    if (i == art) return v > Z0_ROUNDING * z0_max ? v : 0.0;
+    return v > VALUE_ROUNDING * mags[i] ? v : 0.0;
+}
+
+inline bool z0_leaves_harmlessly(const double* vals, const double* mags, const double* col, idx m,
+                                 idx art, double z0_max) {
+    double t = vals[art] / -col[art];
+    double slack = Z0_ROUNDING * z0_max;
+    for (idx i = 0; i < m; ++i) {
+        if (i != art) {
+            double change = t * col[i];
+            if (change < 0.0 &&
+                pmax(vals[i], 0.0) + VALUE_ROUNDING * pmax(mags[i], 0.0) + slack < -change)
+                return false;
+        }
+    }
+    return true;
+}
+
+// The blocking rows tied at the minimum ratio, in increasing order, into cand; returns how
+// many (0: a ray). thr = -pivot_tol * max|col|.
+inline idx blocking_rows(const double* vals, const double* mags, const double* col, idx m,
+                         double thr, double tie_tol, idx* cand, idx art, double z0_max) {
+    double theta = INF, lim = INF;
+    idx nc = 0;
+    if (art >= 0 && vals[art] <= Z0_ROUNDING * z0_max && std::fabs(col[art]) > -thr) {
+        if (z0_leaves_harmlessly(vals, mags, col, m, art, z0_max)) {
+            cand[0] = art;
+            theta = 0.0;
+            nc = 1;
+            m = 0;
+        } else {
+            z0_max = 0.0;
+        }
+    }
+    for (idx i = 0; i < m; ++i) {
+        double c = col[i];
+        double t = row_value(vals, mags, i, art, z0_max) / -c;
+        if ((c < thr) & (t <= lim)) {
+            if (t < theta) {
+                theta = t;
+                lim = theta + tie_tol * theta;
+                idx kept = 0;
+                for (idx q = 0; q < nc; ++q) {
+                    idx j = cand[q];
+                    if (row_value(vals, mags, j, art, z0_max) / -col[j] <= lim) cand[kept++] = j;
+                }
+                nc = kept;
+            }
+            cand[nc++] = i;
+        }
+    }
+    return theta < INF ? nc : 0;
+}
+
+inline double lex_key(double b, double piv, double pivot_tol) {
+    if (std::fabs(b) <= pivot_tol) b = 0.0;
+    return b / -piv;
+}
+
+inline idx keep_lowest(idx* cand, double* keys, idx nc, double tie_tol) {
+    double kmin = INF;
+    for (idx c = 0; c < nc; ++c) kmin = pmin(kmin, keys[c]);
+    idx kept = 0;
+    for (idx c = 0; c < nc; ++c) {
+        if (keys[c] <= kmin + tie_tol * pmax(std::fabs(keys[c]), std::fabs(kmin))) {
+            cand[kept] = cand[c];
+            keys[kept] = keys[c];
+            ++kept;
+        }
+    }
+    return kept;
+}
+
+inline idx largest_pivot(const idx* cand, const double* col, idx nc) {
+    idx best = cand[0];
+    for (idx c = 1; c < nc; ++c)
+        if (col[cand[c]] < col[best]) best = cand[c];
+    return best;
+}
+
+// A fixed pseudo-random 64-bit key per label (splitmix64 of label + 1).
+inline std::uint64_t label_key(idx lab) {
+    std::uint64_t x = static_cast<std::uint64_t>(lab + 1) * 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+}
+
+inline double unit_random(std::uint64_t key) {
+    return static_cast<double>(key >> 11) * (1.0 / 9007199254740992.0);
+}
+
+// Brent's cycle detector over basis fingerprints.
+struct Detector {
+    std::uint64_t saved = 0, power = 0, steps = 0;
+    bool repeats(std::uint64_t h) {
+        if (power > 0 && h == saved) return true;
+        if (steps == power) {
+            saved = h;
+            power = power == 0 ? 1 : power * 2;
+            steps = 0;
+        }
+        steps += 1;
+        return false;
+    }
+};
+
+// The labels of a basis: basis[r] (rows), nonbasic[s] (columns), pos[label] (its row or
+// column), is_basic[label].
+inline idx swap_labels(idx* basis, idx* nonbasic, idx* pos, std::uint8_t* is_basic, idx r, idx s) {
+    idx leaving = basis[r];
+    idx entering = nonbasic[s];
+    basis[r] = entering;
+    nonbasic[s] = leaving;
+    pos[entering] = r;
+    is_basic[entering] = 1;
+    pos[leaving] = s;
+    is_basic[leaving] = 0;
+    return leaving;
+}
+
+}  // namespace lemke

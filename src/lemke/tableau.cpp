@@ -1,0 +1,220 @@
+#include "tableau.hpp"
+
+#include "multiversion.hpp"
+
+namespace lemke {
+
+void TableauWork::layout(idx size) {
+    n = size;
+    f.resize(static_cast<std::size_t>(n * (n + 1) + 7 * n + 1));
+    i.resize(static_cast<std::size_t>(6 * n + 2));
+    flags.resize(static_cast<std::size_t>(2 * n + 1));
+}
+
+namespace {
+
+// The pivot on row r and column s (entering column in col), applied at once; the same
+// operations in the same order as the numba kernel's pivot_now, so the same bits. Compiled
+// per instruction set (multiversion.hpp): the row updates are the solve's hot loop.
+LEMKE_CLONES
+void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
+               double* prow) {
+    idx n = T.rows, m = T.cols;
+    double inv = 1.0 / col[r];
+    double* tr = T.row(r);
+    for (idx j = 0; j < m; ++j) {
+        double v = -tr[j] * inv;
+        prow[j] = v;
+        tr[j] = v;
+    }
+    tr[s] = inv;
+    rhs[r] = -rhs[r] * inv;
+    double rr = rhs[r];
+    magb[r] *= std::fabs(inv);
+    double mr = magb[r];
+    for (idx i = 0; i < n; ++i) {
+        if (i == r) continue;
+        double f = col[i];
+        double* ti = T.row(i);
+        if (f != 0.0) {
+            rhs[i] += f * rr;
+            magb[i] += std::fabs(f) * mr;
+            for (idx j = 0; j < m; ++j) ti[j] += f * prow[j];
+            ti[s] = f * inv + f * 0.0;
+        } else {
+            ti[s] = f * inv;
+        }
+    }
+}
+
+// mags = the size |B^-1| |q| of the rows under the running bound that may be rounding.
+void careful_sizes(Mat<double> T, const double* col, const double* rhs, const idx* pos,
+                   const std::uint8_t* is_basic, const idx* start_basis, const double* q0,
+                   const double* magb, double* mags) {
+    idx n = T.rows;
+    for (idx i = 0; i < n; ++i) {
+        double v = rhs[i];
+        mags[i] = v;
+        if (col[i] < 0.0 && v > 0.0 && v <= VALUE_ROUNDING * magb[i]) {
+            double size = 0.0;
+            for (idx j = 0; j < n; ++j) {
+                idx lab = start_basis[j];
+                double b = is_basic[lab] ? (pos[lab] == i ? 1.0 : 0.0) : T(i, pos[lab]);
+                size += std::fabs(b) * std::fabs(q0[j]);
+            }
+            mags[i] = size;
+        }
+    }
+}
+
+idx lex_ties(Mat<double> T, const double* col, const idx* basis, const idx* pos,
+             const std::uint8_t* is_basic, const idx* start_basis, idx artificial,
+             double pivot_tol, double tie_tol, idx* cand, double* keys, idx nc) {
+    idx n = T.rows;
+    for (idx c = 0; c < nc; ++c)
+        if (basis[cand[c]] == artificial) return cand[c];
+    for (idx j = 0; j < n; ++j) {
+        idx lab = start_basis[j];
+        for (idx c = 0; c < nc; ++c) {
+            idx i = cand[c];
+            double b = is_basic[lab] ? (pos[lab] == i ? 1.0 : 0.0) : -T(i, pos[lab]);
+            keys[c] = lex_key(b, col[i], pivot_tol);
+        }
+        nc = keep_lowest(cand, keys, nc, tie_tol);
+        if (nc == 1) return cand[0];
+    }
+    return nc > 0 ? largest_pivot(cand, col, nc) : -1;
+}
+
+}  // namespace
+
+Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double tie_tol,
+                     double* x_out, double* ray_out, std::uint8_t* z_basic_out, bool careful,
+                     idx& pivots) {
+    idx n = w.n;
+    idx artificial = 2 * n;
+    Mat<double> T = w.T();
+    double *rhs = w.rhs(), *col = w.col(), *q0 = w.q0(), *magb = w.magb(), *mags = w.mags();
+    double *prow = w.prow(), *keys = w.keys();
+    idx *basis = w.basis(), *nonbasic = w.nonbasic(), *pos = w.pos();
+    idx *start_basis = w.start_basis(), *cand = w.cand();
+    std::uint8_t* is_basic = w.flags.data();
+    for (idx i = 0; i < 2 * n + 1; ++i) is_basic[i] = 0;
+    for (idx i = 0; i < n; ++i) {
+        start_basis[i] = basis[i];
+        pos[basis[i]] = i;
+        is_basic[basis[i]] = 1;
+    }
+    for (idx j = 0; j < n + 1; ++j) pos[nonbasic[j]] = j;
+    for (idx j = 0; j < n + 1; ++j) ray_out[j] = 0.0;
+
+    Status status = MAX_PIVOTS;
+    pivots = 0;
+    idx s = pos[artificial];
+    for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+    idx r = first_row(rhs, col, n, tie_tol);
+    if (r < 0) {
+        max_pivots = 0;
+        status = NUMERICAL_FAILURE;
+    }
+    std::uint64_t h = 0;
+    for (idx i = 0; i < n; ++i) h ^= label_key(basis[i]);
+    Detector detector;
+    double z0_max = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        q0[i] = rhs[i];
+        magb[i] = std::fabs(rhs[i]);
+    }
+    while (pivots < max_pivots) {
+        idx leaving = basis[r];
+        idx entering = nonbasic[s];
+        if (!(std::fabs(col[r]) < INF)) {
+            status = NUMERICAL_FAILURE;
+            break;
+        }
+        pivot_now(T, rhs, magb, r, s, col, prow);
+        ++pivots;
+        swap_labels(basis, nonbasic, pos, is_basic, r, s);
+        if (leaving == artificial) {
+            status = SOLVED;
+            break;
+        }
+        h ^= label_key(leaving) ^ label_key(entering);
+        if (detector.repeats(h)) {
+            status = CYCLING;
+            break;
+        }
+        s = pos[leaving < n ? leaving + n : leaving - n];  // the complement enters
+        double cmax = 0.0;
+        for (idx i = 0; i < n; ++i) {
+            col[i] = T(i, s);
+            cmax = pmax(cmax, std::fabs(col[i]));
+        }
+        if (is_basic[artificial]) z0_max = pmax(z0_max, rhs[pos[artificial]]);
+        idx art = is_basic[artificial] ? pos[artificial] : -1;
+        idx nc;
+        if (careful) {
+            careful_sizes(T, col, rhs, pos, is_basic, start_basis, q0, magb, mags);
+            nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
+        } else {
+            nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
+        }
+        if (nc <= 1) {
+            r = nc == 1 ? cand[0] : -1;
+        } else {
+            r = lex_ties(T, col, basis, pos, is_basic, start_basis, artificial, pivot_tol,
+                         tie_tol, cand, keys, nc);
+        }
+        if (r < 0) {
+            status = RAY_TERMINATION;
+            entering = nonbasic[s];
+            for (idx i = 0; i < n; ++i) {
+                idx lab = basis[i];
+                if (lab >= n) ray_out[lab - n] = col[i];
+            }
+            if (entering >= n) ray_out[entering - n] = 1.0;
+            break;
+        }
+    }
+    for (idx j = 0; j < n + 1; ++j) x_out[j] = 0.0;
+    for (idx j = 0; j < n; ++j) z_basic_out[j] = 0;
+    for (idx i = 0; i < n; ++i) {
+        idx lab = basis[i];
+        if (lab >= n) {
+            x_out[lab - n] = rhs[i];
+            if (lab < artificial) z_basic_out[lab - n] = 1;
+        }
+    }
+    return status;
+}
+
+Status tableau_solve(Mat<const double> M, const double* q, const double* d, const double* R,
+                     const double* C, idx max_pivots, double pivot_tol, double tie_tol,
+                     double* x_out, double* ray_out, std::uint8_t* z_basic_out, bool careful,
+                     idx& pivots) {
+    thread_local TableauWork w;
+    idx n = M.rows;
+    w.layout(n);
+    double d_scale = scaled_into(M, q, d, R, C, w.T(), w.rhs());
+    idx* basis = w.basis();
+    idx* nonbasic = w.nonbasic();
+    for (idx i = 0; i < n; ++i) {
+        basis[i] = i;
+        nonbasic[i] = n + i;
+    }
+    nonbasic[n] = 2 * n;
+    Status status = tableau_lemke(w, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+                                  z_basic_out, careful, pivots);
+    double z0_factor = 1.0 / d_scale;
+    for (idx i = 0; i < n; ++i) {
+        x_out[i] *= C[i];
+        ray_out[i] *= C[i];
+    }
+    x_out[n] *= z0_factor;
+    ray_out[n] *= z0_factor;
+    if (status == SOLVED)
+        for (idx i = 0; i < n + 1; ++i) x_out[i] = pmax(x_out[i], 0.0);
+    return status;
+}
+
+}  // namespace lemke

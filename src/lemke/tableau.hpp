@@ -1,0 +1,48 @@
+// Lemke's method on a condensed tableau (the Japanese article's method; the port of
+// lemke/kernels/tableau.py). Row i says basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j];
+// labels 0..n-1 are w, n..2n-1 are z, 2n is z0.
+#pragma once
+#include <vector>
+
+#include "pivoting.hpp"
+
+namespace lemke {
+
+// The tableau engine's workspace, laid out once per size (one per thread, reused).
+struct TableauWork {
+    std::vector<double> f;   // T (n x (n + 1)), rhs, col, q0, magb, mags, prow, keys
+    std::vector<idx> i;      // basis, nonbasic, pos, start_basis, cand
+    std::vector<std::uint8_t> flags;  // is_basic
+    idx n = -1;
+    void layout(idx size);
+    Mat<double> T() { return Mat<double>(f.data(), n, n + 1); }
+    double* rhs() { return f.data() + n * (n + 1); }
+    double* col() { return rhs() + n; }
+    double* q0() { return col() + n; }
+    double* magb() { return q0() + n; }
+    double* mags() { return magb() + n; }
+    double* prow() { return mags() + n; }
+    double* keys() { return prow() + n + 1; }
+    idx* basis() { return i.data(); }
+    idx* nonbasic() { return basis() + n; }
+    idx* pos() { return nonbasic() + n + 1; }
+    idx* start_basis() { return pos() + 2 * n + 1; }
+    idx* cand() { return start_basis() + n; }
+};
+
+// One run from the tableau in `w` (T, rhs, basis, nonbasic set up): returns the status and
+// the pivots made. x_out (n + 1) gets z and z0, ray_out (n + 1) the ray on RAY_TERMINATION,
+// z_basic_out (n) the final basic z's. `careful`: exact sizes of the rows that may be
+// rounding (the recovery runs).
+Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double tie_tol,
+                     double* x_out, double* ray_out, std::uint8_t* z_basic_out, bool careful,
+                     idx& pivots);
+
+// A cold run from (M, q, d) with q not >= 0, on the system equilibrated by (R, C); x_out
+// and ray_out in the caller's units.
+Status tableau_solve(Mat<const double> M, const double* q, const double* d, const double* R,
+                     const double* C, idx max_pivots, double pivot_tol, double tie_tol,
+                     double* x_out, double* ray_out, std::uint8_t* z_basic_out, bool careful,
+                     idx& pivots);
+
+}  // namespace lemke
