@@ -6,8 +6,8 @@ IndexError.  The child (boundscheck_run.py) gets its own empty ``NUMBA_CACHE_DIR
 every kernel is compiled there with the checks, and the bounds-checked machine code is
 never stored next to, or loaded from, the normal on-disk cache; the test checks the
 child's compile statistics (no kernel loaded from a cache, each one cached in the fresh
-directory).  It also runs ``lemke solve`` first, which on that empty cache must say, once,
-that it is compiling.
+directory).  It also runs ``lemke solve`` first, which on that empty cache compiles nothing
+(the C++ core solves the default problem) and so prints nothing on stderr.
 
 Compiling every kernel with bounds checks takes a minute and a half on a 2-core machine;
 conftest.py starts the child when the test is collected, so that it runs beside the rest
@@ -54,8 +54,10 @@ def test_degenerate_families_under_bounds_checking():
     assert any(cache.rglob("*.nbi")), "nothing was written to the fresh cache directory"
     for module in ("boxed", "games", "qp", "cold", "tableau", "unrevised", "mlcp"):
         assert any(name.startswith(module + ".") for name in used), f"no kernel of kernels/{module}.py ran"
-    # On an empty cache the command line says, once, that it is compiling.
-    assert summary["cli_stderr"] == COMPILE_NOTICE + "\n", summary["cli_stderr"]
+    # On an empty cache the command line's default solve (an LCP by the tableau, which the
+    # C++ core runs) compiles nothing, so it says nothing (it said COMPILE_NOTICE once
+    # before the core; the notice stays for the kinds still in numba).
+    assert COMPILE_NOTICE not in summary["cli_stderr"] and summary["cli_stderr"] == "", summary["cli_stderr"]
 
     errors = summary["errors"]
     index_errors = [e for e in errors if "IndexError" in e["error"]]

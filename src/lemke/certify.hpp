@@ -13,4 +13,10 @@ constexpr double CERTIFIABLE = 1e3;
 bool check_rows(Mat<const double> M, const double* q, const double* z, double tol, double* w,
                 const double* R, double* work, bool early, double& residual);
 
+// Whether (z, z0) + t ray (t >= 0) is a secondary ray of u = M z + q + d z0, judged row by
+// row (certify.lcp_ray_check_scaled, whose docstring states the rule). R, C: the scales
+// of equilibrate(M, q).
+bool ray_check(Mat<const double> M, const double* q, const double* d, const double* z, double z0,
+               const double* ray, double tol, const double* R, const double* C);
+
 }  // namespace lemke

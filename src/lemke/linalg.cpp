@@ -74,7 +74,10 @@ namespace {
 constexpr int EQUILIBRATE_SWEEPS = 16;
 
 // One sweep: the largest entry of each row (q's times cq included) and column of
-// diag(R) M diag(C) into rmax, cmax; returns q's largest. Maxima are exact in any order.
+// diag(R) M diag(C) into rmax, cmax; returns q's largest. Every term is >= +0 and not NaN
+// (M is finite, the scales positive and finite, or the sweeps stop), and a maximum of such
+// terms is exact in any order: eight running maxima per row, so the loop is a vector loop.
+LEMKE_CLONES
 double sweep(Mat<const double> M, const double* q, const double* R, const double* C, double cq,
              double* rmax, double* cmax) {
     idx n = M.rows;
@@ -82,21 +85,51 @@ double sweep(Mat<const double> M, const double* q, const double* R, const double
     double qmax = 0.0;
     for (idx i = 0; i < n; ++i) {
         double r = R[i];
-        double rm = 0.0;
+        double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         const double* row = M.row(i);
-        for (idx j = 0; j < n; ++j) {
+        idx j = 0;
+        for (; j + 8 <= n; j += 8) {
+            for (int l = 0; l < 8; ++l) {
+                double a = std::fabs(row[j + l]) * r * C[j + l];
+                rm[l] = pmax(rm[l], a);
+                cmax[j + l] = pmax(cmax[j + l], a);
+            }
+        }
+        for (; j < n; ++j) {
             double a = std::fabs(row[j]) * r * C[j];
-            rm = pmax(rm, a);
+            rm[0] = pmax(rm[0], a);
             cmax[j] = pmax(cmax[j], a);
         }
+        double m = pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
+                        pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
         double a = std::fabs(q[i]) * r * cq;
-        rmax[i] = pmax(rm, a);
+        rmax[i] = pmax(m, a);
         qmax = pmax(qmax, a);
     }
     return qmax;
 }
 
-constexpr double DBL_MIN_NORMAL = 2.2250738585072014e-308;
+// Whether every x[i] (i < k) that is not zero lies in [0.5, 2] (balanced), and each x[i]
+// replaced by pow2_rsqrt(x[i]): by exponent arithmetic without a branch when every x[i] is
+// zero or a positive normal float (a vector loop), else one by one.
+bool rsqrt_all(double* x, idx k) {
+    bool fast = true, balanced = true;
+    for (idx i = 0; i < k; ++i) {
+        double a = x[i];
+        fast &= (a == 0.0) | ((a >= 2.2250738585072014e-308) & (a < INF));
+        balanced &= !((a > 0.0) & ((a < 0.5) | (a > 2.0)));
+    }
+    if (!fast) {
+        for (idx i = 0; i < k; ++i) x[i] = pow2_rsqrt(x[i]);
+        return balanced;
+    }
+    for (idx i = 0; i < k; ++i) {
+        double a = x[i];
+        double v = bits_float((1023 - (((float_bits(a) >> 52) - 1022) >> 1)) << 52);
+        x[i] = a == 0.0 ? 1.0 : v;
+    }
+    return balanced;
+}
 
 }  // namespace
 
@@ -109,11 +142,7 @@ void equilibrate(Mat<const double> M, const double* q, double* R, double* C, dou
     for (int sweep_no = 0; sweep_no < EQUILIBRATE_SWEEPS; ++sweep_no) {
         double qmax = sweep(M, q, R, C, cq, rmax, cmax);
         bool balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
-        for (idx i = 0; i < 2 * n; ++i) {
-            double a = work[i];
-            if (a > 0.0 && (a < 0.5 || a > 2.0)) balanced = false;
-            work[i] = pow2_rsqrt(a);
-        }
+        balanced &= rsqrt_all(work, 2 * n);
         if (balanced) break;
         for (idx i = 0; i < n; ++i) {
             R[i] = R[i] * rmax[i];
@@ -121,7 +150,6 @@ void equilibrate(Mat<const double> M, const double* q, double* R, double* C, dou
         }
         cq *= pow2_rsqrt(qmax);
     }
-    (void)DBL_MIN_NORMAL;
 }
 
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,

@@ -28,25 +28,26 @@ inline double bits_float(std::int64_t b) { double x; std::memcpy(&x, &b, 8); ret
 void row_dot_and_size(const double* row, const double* y, idx k, double& dot, double& size);
 double dot(const double* x, const double* y, idx k);
 
-// 0 when every x[j] is finite, else not 0 (NaN).
+// Whether every x[j] is finite: sum 0 * x[j] is 0 then and NaN otherwise, in any order, so
+// eight running sums (a vector loop without reordering permission).
 inline bool all_finite(const double* x, idx k) {
-    double acc = 0.0;
-    for (idx j = 0; j < k; ++j) acc += 0.0 * x[j];
-    return acc == 0.0;
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+    for (; j + 8 <= k; j += 8)
+        for (int l = 0; l < 8; ++l) a[l] += 0.0 * x[j + l];
+    for (; j < k; ++j) a[0] += 0.0 * x[j];
+    return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7])) == 0.0;
 }
 
-// max_j |x[j]| with four running maxima (as linalg.absmax).
+// max_j |x[j]| (0 for k = 0). A maximum of terms that are not NaN is exact in any order, so
+// eight running maxima; with a NaN the result is meaningless (callers check finiteness).
 inline double absmax(const double* x, idx k) {
-    double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
+    double m[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
-    for (; j + 4 <= k; j += 4) {
-        m0 = pmax(m0, std::fabs(x[j]));
-        m1 = pmax(m1, std::fabs(x[j + 1]));
-        m2 = pmax(m2, std::fabs(x[j + 2]));
-        m3 = pmax(m3, std::fabs(x[j + 3]));
-    }
-    for (; j < k; ++j) m0 = pmax(m0, std::fabs(x[j]));
-    return pmax(pmax(m0, m1), pmax(m2, m3));
+    for (; j + 8 <= k; j += 8)
+        for (int l = 0; l < 8; ++l) m[l] = pmax(m[l], std::fabs(x[j + l]));
+    for (; j < k; ++j) m[0] = pmax(m[0], std::fabs(x[j]));
+    return pmax(pmax(pmax(m[0], m[1]), pmax(m[2], m[3])), pmax(pmax(m[4], m[5]), pmax(m[6], m[7])));
 }
 
 // (finite, max |M|) of a square matrix. max|M| is meaningless when M is not finite.
