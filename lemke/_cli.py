@@ -1,12 +1,21 @@
-"""The ``lemke`` command.  ``main(argv)`` returns the exit code: 0 all solved, 1 some problem
-read but not solved, 2 a usage or input error (one line on stderr naming the file and what is
-wrong, never a traceback), 130 interrupted."""
+"""The ``lemke`` command.  ``main(argv)`` returns the exit code, the worst outcome over the
+sources: 0 all solved, 1 some problem read but not solved, 2 a usage or input error (one line
+on stderr naming the file and what is wrong, never a traceback; the other sources are still
+solved and reported), 130 interrupted (Ctrl-C: one line on stderr; the results of the sources
+finished before it are reported and written, atomically, to ``--out``).
+
+Options may stand anywhere among the sources (``lemke solve a.json --json b.json``).  The
+solves run in a worker thread, so that Ctrl-C is answered at once even while a kernel runs
+(the kernels do not look at signals): the main thread waits, and on SIGINT reports what is
+finished and ends the process."""
 from __future__ import annotations
 
 import argparse
 import json
 import os
+import signal
 import sys
+import threading
 import time
 from fractions import Fraction
 from pathlib import Path
@@ -19,6 +28,7 @@ from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_t
 from ._kinds import KINDS
 from ._options import Options
 from ._problem import Problem
+from ._status import Status
 from ._version import __version__
 
 DEFAULT_PROBLEM = "cps-4.4.7"
@@ -32,6 +42,23 @@ class _UsageError(Exception):
 class _Parser(argparse.ArgumentParser):
     def error(self, message):  # one line and exit code 2, as for any input error
         raise _UsageError(message)
+
+
+class _IntermixedParser(_Parser):
+    """A subcommand's parser whose options may stand between its positional arguments
+    (``solve a.json --json b.json``): argparse's intermixed parsing, which the parser of
+    subcommands calls through ``parse_known_args``."""
+
+    _inside = False
+
+    def parse_known_args(self, args=None, namespace=None):
+        if self._inside:  # parse_known_intermixed_args calls back here, twice
+            return super().parse_known_args(args, namespace)
+        self._inside = True
+        try:
+            return self.parse_known_intermixed_args(args, namespace)
+        finally:
+            self._inside = False
 
 
 def _count(text: str) -> int:
@@ -56,14 +83,17 @@ def _tolerance(text: str) -> float:
 
 def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="lemke", description="Solve linear complementarity problems (and MLCPs and "
-                "convex QPs) by Lemke's method.  Exit code: 0 solved, 1 not solved, 2 bad input.")
+                "convex QPs) by Lemke's method.  Exit code (the worst over the sources): 0 solved, "
+                "1 not solved, 2 bad input; 130 interrupted.")
     p.add_argument("--version", action="store_true", help="print the version and exit")
-    sub = p.add_subparsers(dest="command", parser_class=_Parser)
+    sub = p.add_subparsers(dest="command", parser_class=_IntermixedParser)
     s = sub.add_parser("solve", help="solve problems from files, directories or the built-in list",
                        description="Solve each SOURCE: a problem file (formats: "
                        f"{', '.join(sorted(EXTENSIONS))}; also told by content), a directory (its "
                        "problem files, sorted) or a built-in problem (`lemke problems`).  With no "
-                       f"SOURCE, the built-in example {DEFAULT_PROBLEM}.")
+                       f"SOURCE, the built-in example {DEFAULT_PROBLEM}.  Options may stand "
+                       "anywhere.  A source that cannot be read is reported on its own line and "
+                       "the others are still solved; the exit code is the worst outcome.")
     s.add_argument("source", nargs="*", metavar="SOURCE", help="file, directory or built-in name")
     methods = list(dict.fromkeys(m for k in KINDS.values() for m in k.methods))
     s.add_argument("--method", default=None, choices=methods,
@@ -93,27 +123,45 @@ def _builtin(name: str):
     return None
 
 
+class _Bad:
+    """A source that cannot be solved at all (missing, an unreadable directory, a bad
+    built-in name): reported on its own line, in its turn, while the others are solved."""
+
+    def __init__(self, name: str, error: str):
+        self.name, self.error = name, error
+
+
 def _sources(names: list[str]) -> list:
-    """Each SOURCE as a Path (a file to read) or a Problem (built-in); directories expanded."""
+    """Each SOURCE as a Path (a file to read), a Problem (built-in) or a :class:`_Bad`
+    (what is wrong with it); directories expanded."""
     out = []
     for name in names:
-        path = Path(name)
-        if path.is_dir():
+        try:
+            out += _source(name)
+        except _UsageError as exc:
+            out.append(_Bad(name, str(exc)))
+    return out
+
+
+def _source(name: str) -> list:
+    path = Path(name)
+    if path.is_dir():
+        try:
             files = sorted(p for p in path.iterdir()
                            if p.is_file() and p.suffix.lower() in EXTENSIONS and not p.name.startswith("."))
-            if not files:
-                raise _UsageError(f"{name}: no problem files ({', '.join(sorted(EXTENSIONS))}) in this directory")
-            out += files
-        elif path.exists() or os.path.lexists(path):
-            out.append(path)
-        else:
-            prob = _builtin(name)
-            if prob is None and (os.sep in name or path.suffix.lower() in EXTENSIONS):
-                raise _UsageError(f"{name}: no such file or directory")
-            if prob is None:
-                raise _UsageError(f"{name}: no such file, and not a built-in problem (see `lemke problems`)")
-            out.append(prob)
-    return out
+        except OSError as exc:
+            raise _UsageError(f"{name}: cannot list this directory: {exc.strerror or exc}") from None
+        if not files:
+            raise _UsageError(f"{name}: no problem files ({', '.join(sorted(EXTENSIONS))}) in this directory")
+        return files
+    if path.exists() or os.path.lexists(path):
+        return [path]
+    prob = _builtin(name)
+    if prob is None and (os.sep in name or path.suffix.lower() in EXTENSIONS):
+        raise _UsageError(f"{name}: no such file or directory")
+    if prob is None:
+        raise _UsageError(f"{name}: no such file, and not a built-in problem (see `lemke problems`)")
+    return [prob]
 
 
 # --------------------------------------------------------------------------- output
@@ -137,11 +185,27 @@ def _solution(prob, res) -> list[tuple[str, str]]:
     return rows
 
 
+#: What each outcome but SOLVED means, in one line, in the command line's terms (the API's
+#: ``Status.message`` says it at length, for every kind; the JSON output keeps that).
+_STATUS_LINES = {
+    Status.MAX_PIVOTS: "stopped at the pivot limit; raise --max-pivots (Lemke's method can need exponentially many)",
+    Status.RAY_TERMINATION: "ended on a secondary ray: no solution found (none exists if M is copositive-plus)",
+    Status.NUMERICAL_FAILURE: "the final point failed the check on the data (rounding); rescale, or loosen --tol",
+    Status.CYCLING: "the method cycled, its restarts too; rescale or perturb the problem, or try another --method",
+    Status.PRIMAL_INFEASIBLE: "infeasible: the constraints contradict each other (the certificate is in --json)",
+    Status.DUAL_INFEASIBLE: "unbounded below: no optimum (the direction is in --json's certificate)",
+}
+
+
+def _status_line(prob, res) -> str:
+    """``SOLVED: z >= 0, ...``: the outcome and what it means for this kind, in one short line."""
+    what = KINDS[prob.kind].solved if res.status == Status.SOLVED else _STATUS_LINES.get(res.status, res.message)
+    return f"{res.status.name}: {what}"
 
 
 def _report(prob, res, seconds: float) -> str:
     lines = [f"{prob.name} ({prob.kind.upper()}, {prob.size_text()})", f"  from       {prob.source}",
-             f"  status     {res.status.name}: {res.message}", f"  pivots     {res.pivots}",
+             f"  status     {_status_line(prob, res)}", f"  pivots     {res.pivots}",
              f"  residual   {KINDS[prob.kind].residual(res):.3g}", f"  time       {_ms(seconds)}"]
     lines += [f"  {key:10s} {text}" for key, text in _solution(prob, res)]
     return "\n".join(lines)
@@ -155,7 +219,7 @@ def _size(prob) -> str:
     return KINDS[prob.kind].size_short(prob.shape)
 
 
-def _table(rows: list[dict]) -> str:
+def _table(rows: list[dict], left: int = 0) -> str:
     head = ("name", "kind", "size", "status", "pivots", "residual", "time")
     cells = [head]
     for r in rows:
@@ -173,7 +237,8 @@ def _table(rows: list[dict]) -> str:
     errors = sum("error" in r for r in rows)
     total = sum(r.get("time_s", 0.0) for r in rows)
     lines.append(f"{len(rows)} problems: {solved} solved, {len(rows) - solved - errors} not solved, "
-                 f"{errors} bad input{' (errors above)' if errors else ''}; solve time {_ms(total)}")
+                 f"{errors} bad input{' (errors above)' if errors else ''}; solve time {_ms(total)}"
+                 + (f"; interrupted, {left} not run" if left else ""))
     kinds = [KINDS[k] for k in dict.fromkeys(r.get("kind") for r in rows) if k in KINDS]
     if kinds and kinds != [next(iter(KINDS.values()))]:  # more than plain LCPs: say what size means
         lines.append("size: " + ", ".join(k.size_legend for k in KINDS.values()))
@@ -235,31 +300,126 @@ def _solve(args) -> int:
               file=sys.stderr if args.json else sys.stdout)
     sources = _sources(args.source or [DEFAULT_PROBLEM])
     _check_out(args.out, sources)
-    options = _options(args)
-    single = len(sources) == 1
-    rows, code = [], 0
-    progress = _Progress(len(sources))
-    for k, src in enumerate(sources):
-        progress.show(k, src.name)
-        row = _run_one(src, args, options)
-        rows.append(row)
-        if "error" in row:
-            progress.clear()
-            print(f"lemke: error: {row['error']}", file=sys.stderr)
-            code = 2
-        else:
-            code = max(code, 0 if row["status"] == "SOLVED" else 1)
-            if single and not args.json:
-                print(_report(row["problem"], row["result"], row["time_s"]))
-    progress.clear()
-    docs = [_doc(row) for row in rows]
-    if args.json:
-        print(_json(docs[0]) if single else "[\n" + ",\n".join(map(_json, docs)) + "\n]")
-    elif not single:
-        print(_table(rows))
-    if args.out is not None:
-        _write_out(args.out, docs, rows, sources)
-    return code
+    return _in_worker(_Run(args, sources))
+
+
+class _Run:
+    """One ``lemke solve``: the sources, the rows finished so far, and the lock under which
+    everything is printed or written, so that an interrupt never cuts an output short."""
+
+    def __init__(self, args, sources: list):
+        self.args, self.sources = args, sources
+        self.single = len(sources) == 1
+        self.rows: list[dict] = []
+        self.lock = threading.Lock()
+        self.reported = False
+        self.progress = _Progress(len(sources))
+
+    def work(self) -> int:
+        """Solve every source, each reported as it ends, then the summary (the worker thread)."""
+        options = _options(self.args)
+        for k, src in enumerate(self.sources):
+            with self.lock:
+                self.progress.show(k, src.name)
+            row = _run_one(src, self.args, options)
+            with self.lock:
+                self.rows.append(row)
+                if "error" in row:
+                    self.progress.clear()
+                    print(f"lemke: error: {row['error']}", file=sys.stderr, flush=True)
+                elif self.single and not self.args.json:
+                    print(_report(row["problem"], row["result"], row["time_s"]), flush=True)
+        with self.lock:
+            self.report()
+        return self.code()
+
+    def code(self) -> int:
+        """The worst outcome: 2 an input error, 1 not solved, 0 all solved."""
+        return max((2 if "error" in r else 0 if r["status"] == "SOLVED" else 1 for r in self.rows), default=0)
+
+    def report(self) -> None:
+        """The JSON or the table of the finished rows on stdout, and ``--out``; once.  Called
+        with the lock held (by the worker at the end, or by the main thread on an interrupt:
+        then the rows are those finished before it)."""
+        if self.reported:
+            return
+        self.reported = True
+        self.progress.clear()
+        docs = [_doc(row) for row in self.rows]
+        left = len(self.sources) - len(self.rows)
+        if self.args.json:
+            if not self.single:
+                print("[\n" + ",\n".join(map(_json, docs)) + "\n]")
+            elif docs:
+                print(_json(docs[0]))
+        elif not self.single and (self.rows or not left):
+            print(_table(self.rows, left))
+        sys.stdout.flush()
+        if self.args.out is not None:
+            _write_out(self.args.out, docs, self.rows, self.sources)
+
+
+#: How often (seconds) the main thread looks whether Ctrl-C was pressed while the worker runs.
+_POLL = 0.01
+
+
+def _in_worker(run: _Run) -> int:
+    """``run.work()`` in a worker thread, the main thread waiting for it or for SIGINT.
+
+    On SIGINT (or a KeyboardInterrupt out of the work) the finished rows are reported and
+    written, under the run's lock (so no output is cut short, and none is written twice),
+    one line says so on stderr, and the exit code is 130: the process ends there
+    (``os._exit``) while the worker still runs a kernel, which would not stop."""
+    box: dict = {}
+    done = threading.Event()
+    asked = threading.Event()
+
+    def work():
+        try:
+            box["code"] = run.work()
+        except BaseException as exc:  # given to the main thread, which says it
+            box["error"] = exc
+        finally:
+            done.set()
+
+    on_main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: asked.set()) if on_main else None
+    try:
+        worker = threading.Thread(target=work, name="lemke-solve", daemon=True)
+        worker.start()
+        try:
+            while not done.wait(_POLL) and not asked.is_set():
+                pass
+        except KeyboardInterrupt:  # only where another handler was in force before ours
+            asked.set()
+        if asked.is_set() or isinstance(box.get("error"), KeyboardInterrupt):
+            return _interrupted(run, still_running=not done.is_set())
+        if "error" in box:
+            raise box["error"]
+        return box["code"]
+    finally:
+        if on_main:
+            signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
+
+
+def _interrupted(run: _Run, still_running: bool) -> int:
+    """Report and write what is finished, say "interrupted", and end: 130."""
+    with run.lock:  # waits for an output in progress; the worker prints nothing after this
+        try:
+            run.report()
+        except _UsageError as exc:  # --out could not be written
+            print(f"lemke: error: {exc}", file=sys.stderr)
+        except BrokenPipeError:
+            pass
+        print("lemke: interrupted", file=sys.stderr)
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError):
+                pass
+        if still_running:  # the kernel does not stop: end the process here, not at its end
+            os._exit(130)
+    return 130
 
 
 _WARM = set()
@@ -306,11 +466,14 @@ def _doc(row: dict) -> dict:
 
 
 def _write_out(out: str, docs: list, rows: list, sources: list) -> None:
+    """Write the results (atomically: a temporary file, then ``os.replace``): a list for
+    several sources (those finished, on an interrupt), the one result for one source (nothing
+    when it was not read, or not finished)."""
     protect = [s for s in sources if isinstance(s, Path)]
     try:
-        if len(rows) > 1:
+        if len(sources) > 1:
             write_result(docs, out, protect=protect)
-        elif "error" not in rows[0]:
+        elif rows and "error" not in rows[0]:
             row = rows[0]
             write_result(row["result"], out, problem=row["problem"], protect=protect, time_s=row["time_s"])
     except (OSError, ValueError) as exc:
@@ -319,6 +482,8 @@ def _write_out(out: str, docs: list, rows: list, sources: list) -> None:
 
 def _run_one(src, args, options) -> dict:
     """Read and solve one source: its row of the table (with "error", or the result)."""
+    if isinstance(src, _Bad):
+        return {"name": src.name, "error": src.error}
     if isinstance(src, Path):
         try:
             prob = read_problem(src, format=args.format)

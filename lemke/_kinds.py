@@ -58,6 +58,9 @@ class Kind:
         Whether the problem has an objective (and ``objective_constant``).
     example : dict
         The arrays of a tiny instance (the command line loads the kernels with it).
+    solved : str
+        What a SOLVED result of this kind guarantees, in one short line (the command line
+        prints it; ``Status.SOLVED.message`` says it for every kind at once).
     """
 
     name: str
@@ -75,6 +78,7 @@ class Kind:
     residual: Callable = lambda res: float(res.residual)
     has_objective: bool = False
     example: dict | None = None
+    solved: str = "checked on the data within the tolerance"
 
 
 def _plural(k: int, one: str, many: str) -> str:
@@ -94,6 +98,7 @@ LCP = Kind(
     size_legend="n (LCP)",
     answer=("z",),
     example={"M": [[2.0, 1.0], [1.0, 2.0]], "q": [-5.0, -6.0]},
+    solved="z >= 0, w = Mz + q >= 0 and z'w = 0, within the tolerance",
 )
 
 MLCP = Kind(
@@ -109,6 +114,7 @@ MLCP = Kind(
     size_legend="free+complementary (MLCP)",
     answer=("u", "v"),
     example={"A": [[2.0]], "B": [[1.0]], "C": [[1.0]], "D": [[-1.0]], "a": [-1.0], "b": [-1.0]},
+    solved="Au + Cv + a = 0, v >= 0, w = Du + Bv + b >= 0 and v'w = 0, within the tolerance",
 )
 
 QP = Kind(
@@ -127,6 +133,7 @@ QP = Kind(
     residual=lambda res: float(max(res.primal_residual, res.dual_residual)),
     has_objective=True,
     example={"P": [[2.0, 0.0], [0.0, 2.0]], "q": [-2.0, -5.0], "G": [[1.0, 1.0]], "h": [1.0]},
+    solved="optimal: the KKT conditions hold within the tolerance",
 )
 
 BLCP = Kind(
@@ -143,6 +150,7 @@ BLCP = Kind(
     answer=("z",),
     methods=("bounded",),
     example={"M": [[2.0, 1.0], [1.0, 2.0]], "q": [-5.0, 6.0], "lo": [-1.0, -1.0], "hi": [1.0, 1.0]},
+    solved="lo <= z <= hi; w = Mz + q >= 0 at lo, <= 0 at hi, 0 between, within the tolerance",
 )
 
 BIMATRIX = Kind(
@@ -160,6 +168,7 @@ BIMATRIX = Kind(
     methods=("lemke-howson", "tracing"),
     residual=lambda res: float(res.regret),
     example={"A": [[3.0, 3.0], [2.0, 5.0], [0.0, 6.0]], "B": [[3.0, 2.0], [2.0, 6.0], [3.0, 1.0]]},
+    solved="a Nash equilibrium: no player gains by deviating, within the tolerance",
 )
 
 #: Every kind, by name, in the order the documentation lists them.

@@ -76,6 +76,47 @@ def length(x, name: str) -> int:
     return a.shape[0]
 
 
+def _shape(x) -> tuple | None:
+    """The shape of ``x`` without converting it (None when it has none, e.g. ragged rows)."""
+    shape = getattr(x, "shape", None)  # an array, or scipy.sparse
+    if shape is None:
+        try:
+            shape = np.shape(x)
+        except (TypeError, ValueError):
+            return None
+    return tuple(int(k) for k in shape) if isinstance(shape, tuple) else None
+
+
+def _sizes(x, name: str, axes: tuple, ndim: int) -> list:
+    """The votes of ``x`` for the dimensions it fixes: ``(name, size)`` for each axis of
+    ``axes`` when ``x`` has ``ndim`` dimensions (and, a matrix, entries: ``[]`` stands for
+    any empty matrix); none otherwise."""
+    shape = _shape(x)
+    if shape is None or len(shape) != ndim or (ndim == 2 and 0 in shape):
+        return []
+    return [(name, shape[a]) for a in axes]
+
+
+def _agreed(votes: list):
+    """The size most of the arrays agree on, and the names of those that say so.
+
+    ``votes`` are ``(name, size)`` pairs (a square matrix votes twice, once per axis); a tie
+    goes to the earliest vote.  Data whose sizes disagree is reported as a fault of the
+    argument that disagrees with the others (a q of the wrong length beside a square M is
+    a wrong q, not a wrong M).  Returns ``(None, ())`` when nothing votes."""
+    sizes = [size for _, size in votes]
+    if not sizes:
+        return None, ()
+    best = max(sizes, key=lambda s: (sizes.count(s), -sizes.index(s)))
+    return best, tuple(dict.fromkeys(name for name, size in votes if size == best))
+
+
+def _because(name: str, names: tuple) -> str:
+    """`` to match M and q``: the others that fix the size ``name`` was checked against."""
+    others = _listed(names, name)
+    return f" to match {others}" if others else ""
+
+
 def block(x, name: str, shape: tuple, why: str = "") -> np.ndarray:
     """A float64 ``x`` of the given shape; ``[]`` (any array with no entries) stands for any
     empty shape, e.g. a C of shape (0, m), which a list of no rows cannot spell."""
@@ -103,9 +144,12 @@ def lcp(M, q, d=None):
 
 
 def lcp_fields(M, q) -> dict:
-    """The arrays of an LCP by name (what :class:`lemke.Problem` stores)."""
-    n = length(q, "q")
-    return {"M": block(M, "M", (n, n)), "q": block(q, "q", (n,))}
+    """The arrays of an LCP by name (what :class:`lemke.Problem` stores).  n is the size most
+    of M's two sides and q's length agree on, so the one that differs is named."""
+    n, names = _agreed(_sizes(q, "q", (0,), 1) + _sizes(M, "M", (0, 1), 2))
+    if n is None:
+        n = length(q, "q")  # q is not a vector: says so
+    return {"M": block(M, "M", (n, n), _because("M", names)), "q": block(q, "q", (n,), _because("q", names))}
 
 
 def mlcp(A, B, C, D, a, b) -> dict:
@@ -117,12 +161,30 @@ def mlcp(A, B, C, D, a, b) -> dict:
         raise ValueError(f"a must be a vector, got shape {a.shape}")
     if b.ndim != 1:
         raise ValueError(f"b must be a vector, got shape {b.shape}")
-    n, m = a.size, b.size
-    why = f" (n = {n} from a, m = {m} from b)"
-    out = {name: block(x, name, shape, why)
+    # n and m are the sizes most of the blocks agree on (a tie: those of a and b), so that
+    # the block that differs is the one named
+    n, n_from = _agreed([("a", a.size)] + _sizes(A, "A", (0, 1), 2) + _sizes(C, "C", (0,), 2)
+                       + _sizes(D, "D", (1,), 2))
+    m, m_from = _agreed([("b", b.size)] + _sizes(B, "B", (0, 1), 2) + _sizes(D, "D", (0,), 2)
+                       + _sizes(C, "C", (1,), 2))
+
+    def why(name):
+        return (f" (n = {n} from {_listed(n_from, name) or 'a'}, "
+                f"m = {m} from {_listed(m_from, name) or 'b'})")
+
+    for name, v, size in (("a", a, n), ("b", b, m)):
+        if v.size != size:
+            raise ValueError(f"{name} must have shape ({size},){why(name)}, got shape {v.shape}")
+    out = {name: block(x, name, shape, why(name))
            for name, x, shape in (("A", A, (n, n)), ("B", B, (m, m)), ("C", C, (n, m)), ("D", D, (m, n)))}
     out["a"], out["b"] = a, b
     return {k: out[k] for k in "ABCDab"}
+
+
+def _listed(names: tuple, leave_out: str) -> str:
+    """``A, C and D``: ``names`` without ``leave_out``, in words."""
+    names = [n for n in names if n != leave_out]
+    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)
 
 
 def qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> dict:
@@ -133,12 +195,22 @@ def qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> dict:
     q = real_array(q, "q")
     if q.ndim != 1:
         raise ValueError(f"q must be a vector, got shape {q.shape}")
-    n = q.size  # n = 0 is allowed: the constraints are then constant rows 0 <= h, 0 = b
+    # n = 0 is allowed: the constraints are then constant rows 0 <= h, 0 = b.  n is the size
+    # most of q, P's sides, G's and A's columns and the bound vectors agree on (a tie: q's),
+    # so the one that differs is named
+    votes = [("q", q.size)] + _sizes(P, "P", (0, 1), 2)
+    for M, name in ((G, "G"), (A, "A")):
+        votes += _sizes(M, name, (1,), 2) or _sizes(M, name, (0,), 1)  # a 1-D G or A is one row
+    for v, name in ((lb, "lb"), (ub, "ub")):
+        votes += _sizes(v, name, (0,), 1)
+    n, names = _agreed(votes)
+    if q.size != n:
+        raise ValueError(f"q must have shape ({n},){_because('q', names)}, got shape {q.shape}")
     P = real_array(P, "P")
     if n == 0 and P.size == 0:
         P = np.zeros((0, 0))  # [] or any other empty array
     if P.shape != (n, n):
-        raise ValueError(f"P must have shape ({n}, {n}) to match q, got {P.shape}")
+        raise ValueError(f"P must have shape ({n}, {n}){_because('P', names)}, got {P.shape}")
     out = {"P": P, "q": q}
     for M, v, mname, vname in ((G, h, "G", "h"), (A, b, "A", "b")):
         if M is not None or v is not None:
@@ -165,7 +237,7 @@ def _rows(M, v, n, mname, vname):
     elif M.ndim == 1:
         M = M.reshape(1, -1)
     if M.ndim != 2 or M.shape[1] != n:
-        raise ValueError(f"{mname} must have {n} columns (the size of q), got shape {M.shape}")
+        raise ValueError(f"{mname} must have {n} columns (the size of P and q), got shape {M.shape}")
     if v.shape != (M.shape[0],):
         raise ValueError(f"{vname} must have shape ({M.shape[0]},) to match {mname}, got {v.shape}")
     return M, v
@@ -227,6 +299,14 @@ def blcp(M, q, lo, hi, findex=None) -> dict:
     ValueError naming the entry for a NaN, lo > hi, lo = +inf or hi = -inf, and for a
     friction index out of range, pointing at its own row or at another friction row, with
     mu < 0, with lo_i != -hi_i, or whose normal row has lo_f < 0."""
+    # n is the size most of M's sides, q, lo, hi and findex agree on (a tie: M's), so the one
+    # that differs is named
+    votes = _sizes(M, "M", (0, 1), 2) + _sizes(q, "q", (0,), 1)
+    for v, name in ((lo, "lo"), (hi, "hi"), (findex, "findex")):
+        votes += _sizes(v, name, (0,), 1)
+    n, names = _agreed(votes)
+    if n is not None and _shape(M) not in (None, (n, n)) and 0 not in _shape(M):
+        raise ValueError(f"M must have shape ({n}, {n}){_because('M', names)}, got shape {_shape(M)}")
     M = square_matrix(M)
     n = M.shape[0]
     q = vector(q, n, "q")

@@ -1,9 +1,13 @@
-"""The ``lemke`` command: exit codes (0 solved, 1 not solved, 2 bad input, 130 interrupted),
-one-line errors naming the file, --json, --out, several sources, built-in problems."""
+"""The ``lemke`` command: exit codes (0 solved, 1 not solved, 2 bad input, 130 interrupted;
+the worst over the sources), one-line errors naming the file and the argument, the other
+sources still solved, options anywhere, --json, --out (atomic), several sources, built-in
+problems, one short status line, Ctrl-C answered at once (a subprocess, SIGINT)."""
 import json
 import os
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -301,3 +305,200 @@ def test_compiling_is_announced_once(capsys, monkeypatch):
     out, err = capsys.readouterr()
     assert out == "" and err == _cli.COMPILE_NOTICE + "\n"
 
+
+
+# --------------------------------------------------------------------------- keeps going
+
+def test_a_missing_or_unreadable_file_among_good_ones(capsys, tmp_path):
+    good = tmp_path / "good.json"
+    lemke.write_problem(problems.cps_447(), good)
+    missing = tmp_path / "missing.json"
+    unreadable = tmp_path / "dangling.json"  # a link to nothing: listed, but cannot be read
+    unreadable.symlink_to(tmp_path / "gone.json")
+    code, out, err = run(capsys, "solve", good, missing, "murty-3", unreadable, "nope", "murty-99", "--json")
+    assert code == 2  # the worst outcome: input errors
+    lines = err.splitlines()
+    assert len(lines) == 4 and all(line.startswith("lemke: error: ") for line in lines), err
+    for line, words in zip(lines, (["missing.json", "no such file"], ["dangling.json"],
+                                   ["nope", "not a built-in problem"], ["murty-99", "1..30"])):
+        assert all(w in line for w in words), line
+    docs = json.loads(out)  # every source has its entry, in order; the good ones solved
+    assert [Path(d["name"]).name for d in docs] == ["cps-4.4.7", "missing.json", "murty-3", "dangling.json",
+                                                   "nope", "murty-99"]
+    assert [d.get("status") for d in docs] == ["SOLVED", None, "SOLVED", None, None, None]
+    assert all("error" in d for d in docs if "status" not in d)
+
+
+def test_a_missing_file_among_good_ones_in_the_table(capsys, tmp_path):
+    code, out, err = run(capsys, "solve", "murty-3", tmp_path / "missing.json", "degenerate")
+    assert code == 2
+    one_error_line(err, "missing.json", "no such file or directory")
+    lines = out.splitlines()
+    assert any(line.startswith("murty-3") and "SOLVED" in line for line in lines)
+    assert any(line.startswith("degenerate") and "SOLVED" in line for line in lines)
+    assert any(line.startswith(str(tmp_path / "missing.json")) and "ERROR" in line for line in lines)
+    assert "3 problems: 2 solved, 0 not solved, 1 bad input" in out
+
+
+@pytest.mark.parametrize("argv, expected", [
+    (["murty-3", "degenerate"], 0),
+    (["murty-3", "bimatrix-lcp", "degenerate"], 1),  # one ends on a ray
+    (["murty-3", "bimatrix-lcp", "no-such-problem"], 2),  # and one cannot be read
+    (["no-such-problem", "bimatrix-lcp"], 2),
+])
+def test_the_exit_code_is_the_worst_outcome(capsys, argv, expected):
+    code, _, _ = run(capsys, "solve", *argv)
+    assert code == expected
+
+
+def test_options_may_stand_between_sources(capsys, tmp_path):
+    code, out, err = run(capsys, "solve", "murty-3", "--json", "murty-4", "--max-pivots", "3", "degenerate",
+                         "--out", tmp_path / "r.json")
+    assert err == "" and code == 1  # murty-3 and murty-4 stop at the pivot limit
+    docs = json.loads(out)
+    assert [d["name"] for d in docs] == ["murty-3", "murty-4", "degenerate"]
+    assert [d["status"] for d in docs] == ["MAX_PIVOTS", "MAX_PIVOTS", "SOLVED"]
+    assert json.loads((tmp_path / "r.json").read_text()) == docs
+    done = _lemke("solve", "degenerate", "--json", "murty-3")  # the same through python -m
+    assert done.returncode == 0, done.stderr
+    assert [d["name"] for d in json.loads(done.stdout)] == ["degenerate", "murty-3"]
+
+
+@pytest.mark.parametrize("doc, words", [
+    # a q of the wrong length is a wrong q, not a wrong M (M is square and fixes n)
+    ({"M": [[2, 1], [1, 2]], "q": [1, 2, 3]}, ["q must have shape (2,) to match M", "got shape (3,)"]),
+    ({"M": [[2, 1, 0], [1, 2, 0]], "q": [1, 2]}, ["M must have shape (2, 2)", "got shape (2, 3)"]),
+    ({"kind": "blcp", "M": [[2, 1], [1, 2]], "q": [1, 2, 3], "lo": [0, 0], "hi": [1, 1]}, ["q must have shape (2,)"]),
+    ({"kind": "blcp", "M": [[2, 1], [1, 2]], "q": [1, 2, 3], "lo": [0, 0, 0], "hi": [1, 1, 1]},
+     ["M must have shape (3, 3) to match q, lo and hi"]),
+    ({"P": [[2, 0], [0, 2]], "q": [1, 2, 3]}, ["q must have shape (2,) to match P"]),
+    ({"P": [[2, 0], [0, 2]], "q": [1, 2], "G": [[1, 0, 0]], "h": [1]}, ["G must have 2 columns"]),
+    ({"A": [[2]], "B": [[1]], "C": [[1]], "D": [[-1]], "a": [-1, 2], "b": [-1]}, ["a must have shape (1,)"]),
+    ({"A": [[2]], "B": [[1]], "C": [[1]], "D": [[-1]], "a": [-1], "b": [-1, 3]}, ["b must have shape (1,)"]),
+    ({"A": [[2, 0], [0, 2]], "B": [[1]], "C": [[1]], "D": [[-1]], "a": [-1], "b": [-1]}, ["A must have shape (1, 1)"]),
+])
+def test_a_wrong_size_names_the_argument_that_differs(capsys, tmp_path, doc, words):
+    path = tmp_path / "p.json"
+    path.write_text(json.dumps(doc))
+    code, out, err = run(capsys, "solve", path)
+    assert code == 2 and out == ""
+    one_error_line(err, "p.json", *words)
+
+
+# --------------------------------------------------------------------------- the status line
+
+@pytest.mark.parametrize("name, words", [
+    ("cps-4.4.7", ["SOLVED: z >= 0, w = Mz + q >= 0 and z'w = 0"]),
+    ("hs21", ["SOLVED: optimal", "KKT"]),
+    ("bimatrix", ["SOLVED: a Nash equilibrium"]),
+    ("bimatrix-lcp", ["RAY_TERMINATION: ended on a secondary ray"]),
+])
+def test_the_status_is_one_short_line_for_the_kind(capsys, name, words):
+    code, out, _ = run(capsys, "solve", name)
+    line = next(line for line in out.splitlines() if line.startswith("  status"))
+    assert len(line) <= 120, line
+    for word in words:
+        assert word in line, line
+    for other in ("MLCP", "box LCP", "QP", "game"):  # not every kind's conditions at once
+        assert other not in line, line
+
+
+def test_every_kind_has_a_short_solved_line(tmp_path, capsys):
+    from lemke._kinds import KINDS
+
+    lines = {k.solved for k in KINDS.values()}
+    assert len(lines) == len(KINDS) and all(len(line) <= 90 for line in lines)
+    # a box LCP and an MLCP file, through the command line
+    code, out, _ = run(capsys, "solve", DATA / "siconos" / "relay" / "relay_2x2.dat")
+    assert code == 0 and f"SOLVED: {KINDS['blcp'].solved}" in out
+    code, out, _ = run(capsys, "solve", DATA / "siconos" / "mlcp" / "RCD_mlcp.dat")
+    assert code == 0 and f"SOLVED: {KINDS['mlcp'].solved}" in out
+    assert lemke.Status.SOLVED.message not in out  # the API's long message stays in --json
+    code, out, _ = run(capsys, "solve", "murty-3", "--json")
+    assert json.loads(out)["message"] == lemke.Status.SOLVED.message
+
+
+def test_the_not_solved_lines_speak_of_the_options(capsys):
+    code, out, _ = run(capsys, "solve", "murty-10", "--max-pivots", "5")
+    assert code == 1 and "MAX_PIVOTS: stopped at the pivot limit; raise --max-pivots" in out
+
+
+# --------------------------------------------------------------------------- --out, interrupts
+
+def test_several_results_replace_the_out_file_atomically(capsys, tmp_path):
+    out = tmp_path / "r.json"
+    out.write_text("old")
+    inode = out.stat().st_ino
+    code, _, _ = run(capsys, "solve", "degenerate", "murty-3", "--out", out)
+    assert code == 0 and [d["name"] for d in json.loads(out.read_text())] == ["degenerate", "murty-3"]
+    assert out.stat().st_ino != inode  # a new file moved over the old one, not the old one rewritten
+    assert os.listdir(tmp_path) == ["r.json"]  # no temporary file left
+
+
+def test_an_interrupt_reports_and_writes_the_finished_sources(capsys, monkeypatch, tmp_path):
+    solve = lemke.Problem.solve
+
+    def interrupted_at_murty(self, *args, **kwargs):
+        if self.name.startswith("murty"):
+            raise KeyboardInterrupt
+        return solve(self, *args, **kwargs)
+
+    monkeypatch.setattr(lemke.Problem, "solve", interrupted_at_murty)
+    out = tmp_path / "r.json"
+    code, stdout, err = run(capsys, "solve", "degenerate", "cps-4.4.7", "murty-3", "hs21", "--json", "--out", out)
+    assert code == 130 and err == "lemke: interrupted\n"
+    names = ["degenerate", "cps-4.4.7"]
+    assert [d["name"] for d in json.loads(stdout)] == names
+    assert [d["name"] for d in json.loads(out.read_text())] == names
+    assert os.listdir(tmp_path) == ["r.json"]
+    code, stdout, err = run(capsys, "solve", "degenerate", "murty-3", "hs21")
+    assert code == 130 and "1 problems: 1 solved" in stdout and "interrupted, 2 not run" in stdout
+
+
+def _start_time():
+    """Seconds a small `python -m lemke solve` takes here (its kernels then cached on disk)."""
+    t0 = time.perf_counter()
+    done = _lemke("solve", "murty-3")
+    assert done.returncode == 0, done.stderr
+    return time.perf_counter() - t0
+
+
+@pytest.mark.parametrize("sources, finished", [
+    (["murty-28"], None),  # nothing finished: no --out written
+    (["murty-3", "degenerate", "murty-28", "murty-4"], ["murty-3", "degenerate"]),
+])
+def test_ctrl_c_stops_a_running_kernel_at_once(tmp_path, record_property, sources, finished):
+    """SIGINT while Lemke's method runs on Murty's problem at n = 28 (2^28 pivots, a minute or
+    more; the kernel does not look at signals): exit 130 at once (the target is 0.1 s; the
+    bound asserted is loose, for a loaded CI machine), one line on stderr, and the results
+    finished before it in --out, whole (or no --out at all), no temporary file left."""
+    wait = _start_time() + 1.0  # by then the kernel has been running for about a second
+    out = tmp_path / "r.json"
+    child = subprocess.Popen([sys.executable, "-m", "lemke", "solve", *sources, "--max-pivots", "1000000000",
+                              "--json", "--out", str(out)], cwd=ROOT, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    try:
+        time.sleep(wait)
+        assert child.poll() is None, "murty-28 ended before the interrupt"
+        t0 = time.perf_counter()
+        child.send_signal(signal.SIGINT)
+        code = child.wait(timeout=60)
+        latency = time.perf_counter() - t0
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+    stdout, stderr = child.stdout.read(), child.stderr.read()
+    child.stdout.close()
+    child.stderr.close()
+    print(f"SIGINT to exit: {latency * 1e3:.1f} ms")
+    record_property("sigint_latency_s", latency)
+    assert code == 130, stderr
+    assert latency < 2.0
+    assert stderr.replace(_cli.COMPILE_NOTICE + "\n", "") == "lemke: interrupted\n"
+    if finished is None:
+        assert stdout == "" and not out.exists()
+    else:
+        assert [d["name"] for d in json.loads(stdout)] == finished
+        assert [d["name"] for d in json.loads(out.read_text())] == finished
+    assert os.listdir(tmp_path) == (["r.json"] if finished else [])

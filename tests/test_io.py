@@ -369,7 +369,7 @@ def test_malformed_json(tmp_path):
         '{"M": [[1, 2], [3, 4]], "q": [1, NaN]}': "NaN is not allowed",
         '{"M": [[1, 2], [3, Infinity]], "q": [1, 2]}': "Infinity is not allowed",
         '{"M": [[1, 2], [3]], "q": [1, 2]}': "rows of different lengths",
-        '{"M": [[1, 2], [3, 4]], "q": [1, 2, 3]}': "M must have shape (3, 3)",
+        '{"M": [[1, 2], [3, 4]], "q": [1, 2, 3]}': "q must have shape (2,) to match M",  # q is the odd one out
         '{"M": [[1, 2], [3, 4]], "q": [1, "2"]}': "must hold numbers",
         '{"M": [[1, 2], [3, 4]], "q": [1, true]}': "must hold numbers",
         '{"M": [[1, 2], [3, 4]], "q": [1, 2], "Q": 1}': "unknown key",
