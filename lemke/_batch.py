@@ -10,7 +10,7 @@ from operator import attrgetter
 
 import numpy as np
 
-from . import _validate
+from . import _progress, _validate
 from ._lcp import METHODS, _outcome
 from ._options import as_options
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
@@ -43,14 +43,18 @@ def _workers(workers) -> int:
     return usable_cores() if workers is None else workers
 
 
-def _run(kernel, args, tail, B, workers):
+def _run(kernel, args, tail, B, workers, progress=None, what=""):
     """``kernel(*args, lo, hi, *tail)`` over chunks of the B problems: in the calling thread
     when one worker (or one chunk), else by the calling thread and ``workers - 1`` threads of
     the pool, each taking the next chunk until none is left.  The calling thread starts at
     once, so a pool thread that is slow to wake (an idle core of a shared machine can take
     a millisecond) only takes fewer chunks.  Every problem is solved by the same kernel
     whatever the chunking and whichever thread runs it, so the results do not depend on
-    the number of workers."""
+    the number of workers.  ``progress`` (checked by ``_progress.check``): when neither
+    None nor False, the work goes through :func:`_run_reporting`, the reports named
+    ``what``."""
+    if progress is not None and progress is not False:
+        return _run_reporting(kernel, args, tail, B, workers, progress, what)
     chunks = min(B, CHUNKS_PER_WORKER * workers) if workers > 1 else min(B, 1)
     bounds = np.linspace(0, B, chunks + 1).astype(int).tolist() if chunks else [0]
     if chunks <= 1:
@@ -77,9 +81,62 @@ def _run(kernel, args, tail, B, workers):
             f.result()
 
 
+def _run_reporting(kernel, args, tail, B, workers, progress, what):
+    """:func:`_run` calling ``progress(done, total)`` in the calling thread as chunks finish
+    (``done`` problems of ``total = B``, growing; the last call ``(B, B)``).  The chunks are
+    solved by ``workers`` threads of the pool while the calling thread waits and reports;
+    there are at least PROGRESS_CHUNKS of them (fewer when B is smaller), also with one
+    worker, so that the reports come at a useful rate (the results are the same whatever
+    the chunking).  Should the calling thread stop (an exception of ``progress``, Ctrl-C),
+    the threads take no new chunk, and it returns once their chunks in hand are done."""
+    with _progress.Reporter(progress, what, total=B, unit="problem") as report:
+        chunks = min(B, max(CHUNKS_PER_WORKER * workers, PROGRESS_CHUNKS))
+        bounds = np.linspace(0, B, chunks + 1).astype(int).tolist() if chunks else [0]
+        spans = iter(list(zip(bounds[:-1], bounds[1:])))
+        cond = threading.Condition()
+        state = {"done": 0, "running": min(workers, chunks), "stop": False}
+
+        def take():
+            try:
+                while True:
+                    with cond:
+                        span = None if state["stop"] else next(spans, None)
+                    if span is None:
+                        return
+                    kernel(*args, span[0], span[1], *tail)
+                    with cond:
+                        state["done"] += span[1] - span[0]
+                        cond.notify_all()
+            finally:
+                with cond:
+                    state["running"] -= 1
+                    cond.notify_all()
+
+        pool = _executor()
+        threads = [pool.submit(take) for _ in range(state["running"])]
+        reported = 0
+        try:
+            while True:
+                with cond:
+                    cond.wait_for(lambda: state["done"] > reported or not state["running"])
+                    done, running = state["done"], state["running"]
+                if done > reported or B == 0:
+                    reported = done
+                    report.update(done, B)
+                if not running:
+                    break
+        finally:
+            with cond:
+                state["stop"] = True
+            for f in threads:
+                f.result()
+
+
 #: Chunks per worker: enough that a late thread leaves little for the others to wait on,
 #: few enough that a kernel call's set-up (a few microseconds) stays negligible.
 CHUNKS_PER_WORKER = 8
+#: The fewest chunks of a batch with a progress report (a report per chunk).
+PROGRESS_CHUNKS = 64
 
 
 def _bases(warm_start, B, sizes):
@@ -138,7 +195,8 @@ def _check_bases(ws, sizes):
                                  f"warm_start[{b}] is for a problem of size {{ws}}, problem {b} has n = {{n}}")
 
 
-def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_start=None) -> LCPBatchResult:
+def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_start=None,
+                    progress=None) -> LCPBatchResult:
     r"""Solve B linear complementarity problems of one size n by Lemke's method, in parallel.
 
     Problem b asks for z with :math:`z \ge 0`, :math:`w = M_b z + q_b \ge 0`,
@@ -159,6 +217,12 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
         calling thread).
     warm_start : sequence of WarmStart or None, optional
         One per problem (None: cold), e.g. the ``warm_start`` of each problem's last solve.
+    progress : callable or bool, optional
+        Called as ``progress(done, total)`` in the calling thread as chunks of problems
+        are solved (``done`` of the ``total = B`` problems; the last call is ``(B, B)``).
+        The batch is then cut into at least 64 chunks (one report each), also with one
+        worker; the results do not change.  ``True`` shows a bar on stderr (tqdm's when
+        installed, ``pip install lemke[progress]``; else a one-line counter).
 
     Returns
     -------
@@ -175,6 +239,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     """
     _validate.method(method, METHODS)
     opts = as_options(options)
+    progress = _progress.check(progress)
     M, q = batch_arrays(M, q)
     B, n = q.shape
     workers = _workers(workers)
@@ -192,7 +257,8 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     limits = np.full(B, opts.pivot_limit(n), dtype=np.int64)
     _run(cold.batch, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs.reshape(-1),
-          np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers)
+          np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers,
+         progress, "solve_lcp_batch")
 
     f = cold.fields(n)
     z = np.ascontiguousarray(bufs[:, f["z"]])
@@ -232,7 +298,7 @@ def batch_arrays(M, q):
 
 
 def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
-                   warm_start=None, sizes=None) -> LCPManyResult:
+                   warm_start=None, sizes=None, progress=None) -> LCPManyResult:
     r"""Solve LCPs of different sizes (the islands of a contact scene) in one call, in
     parallel threads without the GIL: problem b is ``(M[b], q[b])`` with its own n_b.
 
@@ -256,6 +322,9 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         Python work per problem), or one WarmStart per problem (None: cold), e.g. each
         island's last ``warm_start``, carried over with :meth:`WarmStart.relabel` when its
         contacts changed.
+    progress : callable or bool, optional
+        As in :func:`solve_lcp_batch`: ``progress(done, total)`` as chunks of problems are
+        solved, or ``True`` for a bar on stderr.
 
     Returns
     -------
@@ -284,6 +353,8 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     _validate.method(method, METHODS)
     opts = as_options(options)
     workers = _workers(workers)
+    if progress is not None:
+        progress = _progress.check(progress)
     # offsets: of q and the basic z's, of M, of the output buffers (cold.buffer_length)
     if sizes is None:
         Ms, qs = list(M), list(q)
@@ -316,7 +387,8 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
     _run(cold.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
-         (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers)
+         (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
+         progress, "solve_lcp_many")
     code = out_i[:, 0]
     for b in np.flatnonzero(code == cold.NOT_FINITE).tolist():
         n, m, o = sizes[b], int(mstart[b]), int(qoff[b])

@@ -15,14 +15,18 @@ The kernels are in :mod:`lemke.kernels.games`, the exact arithmetic in
 """
 from __future__ import annotations
 
+import collections
 import functools
+import math
+import numbers
+import time
 from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 
 from . import _games_exact as ex
-from . import _validate
+from . import _progress, _validate
 from ._options import _DEFAULT, Options, as_options
 from ._result import LazyField, Outcome
 from ._status import Status
@@ -488,45 +492,155 @@ def _as_float(res: BimatrixResult) -> BimatrixResult:
                           res.restarts + 1, res.exact_from, res.walked_back)
 
 
-def lemke_paths(A, B, *, exact=False, options=None) -> tuple[BimatrixResult, ...]:
+class PathsResult(tuple):
+    """What :func:`lemke_paths` returns: a tuple of :class:`BimatrixResult` (it compares,
+    hashes, indexes and unpacks as the plain tuple of them), with two attributes:
+
+    Attributes
+    ----------
+    complete : bool
+        True when the search ran to its end (every path from every equilibrium found was
+        followed); False when it stopped at ``max_equilibria`` or ``time_limit`` with
+        paths left to follow (more equilibria may be reachable).
+    stopped : str or None
+        Why an incomplete search stopped: ``"max_equilibria"`` or ``"time_limit"``; None
+        when it is complete.
+    """
+
+    def __new__(cls, items=(), complete=True, stopped=None):
+        self = super().__new__(cls, items)
+        self.complete = bool(complete)
+        self.stopped = stopped
+        return self
+
+
+def _positive_int(value, name):
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be a positive integer or None, got {value!r}")
+    if value < 1:
+        raise ValueError(f"{name} must be a positive integer or None, got {value!r}")
+    return int(value)
+
+
+def _positive_seconds(value, name):
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a number of seconds or None, got {value!r}")
+    value = float(value)
+    if not (math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be a positive finite number of seconds or None, got {value!r}")
+    return value
+
+
+def lemke_paths(A, B, *, exact=False, options=None, max_equilibria=None, time_limit=None,
+                progress=None) -> PathsResult:
     """Every equilibrium that Lemke-Howson paths reach: from the artificial equilibrium
     dropping each label in turn, then from each equilibrium found dropping each label, until
     no new one appears (the "all Lemke paths" search of Gambit's ``gambit-lcp``).  The
     equilibria are de-duplicated (by their strategies; a degenerate game can have several
     bases for one) and returned in the order found.  With ``exact=True`` each is certified
-    as in :func:`solve_bimatrix`.
+    as in :func:`solve_bimatrix` as soon as it is found.
 
     Not every equilibrium is reachable this way in general (Wilson's example in
     Shapley 1974 and von Stengel 2002, section 3.6); it is a search, not an enumeration.
+    On a large game it can find a great many (thousands on a random 50 x 50 game) and run
+    for a long time: ``max_equilibria`` and ``time_limit`` bound it.
+
+    Parameters
+    ----------
+    A, B : (m, n) array_like
+        The payoffs, as in :func:`solve_bimatrix`.
+    exact : bool
+        Certify each equilibrium in rational arithmetic (see :func:`solve_bimatrix`).
+    options : Options or dict, optional
+        As in :func:`solve_bimatrix`, for every path.
+    max_equilibria : int, optional
+        Stop as soon as this many equilibria are found (a positive integer).
+    time_limit : float, optional
+        Stop once this many seconds (wall clock, a positive finite number) have passed.
+        The clock is read before every path (and every exact certificate), so the search
+        ends at most one path (one certificate) after the limit: on a 50 x 50 game a path
+        takes well under a millisecond, an exact certificate much longer.
+    progress : callable or bool, optional
+        Called as ``progress(found, explored, queued)`` (in the calling thread) after each
+        start is explored, a start being the artificial equilibrium or an equilibrium basis
+        from which every label is dropped in turn: ``found`` equilibria so far,
+        ``explored`` starts done, ``queued`` starts waiting; and once more when a budget
+        stops the search in the middle of a start (with the final ``found``).  An exception it raises stops
+        the search and propagates.  ``True`` shows a bar on stderr (tqdm's when installed:
+        ``pip install lemke[progress]``; else a one-line counter).
+
+    Returns
+    -------
+    PathsResult
+        A tuple of :class:`BimatrixResult`, in the order found, with ``complete`` (False
+        when ``max_equilibria`` or ``time_limit`` stopped the search) and ``stopped``
+        (``"max_equilibria"``, ``"time_limit"`` or None).
+
+    Ctrl-C (KeyboardInterrupt) stops the search within one path and propagates (what was
+    found so far is then lost: use ``time_limit`` or ``max_equilibria`` to keep it).
     """
     A, B = _as_payoffs(A, B)
+    max_equilibria = _positive_int(max_equilibria, "max_equilibria")
+    time_limit = _positive_seconds(time_limit, "time_limit")
+    progress = _progress.check(progress)
+    opts = as_options(options)
     m, n = A.shape
+    clock = time.perf_counter
+    deadline = math.inf if time_limit is None else clock() + time_limit
+    cap = math.inf if max_equilibria is None else max_equilibria
     seen_bases = set()
     found = []
     keys = set()
-    queue = []
-
-    def visit(res):
-        if not res.success or res.basis is None or res.basis in seen_bases:
-            return
-        seen_bases.add(res.basis)
-        queue.append(res)
-        key = (tuple(np.round(np.asarray(res.x, dtype=float), 9)),
-               tuple(np.round(np.asarray(res.y, dtype=float), 9)))
-        if key not in keys:
-            keys.add(key)
-            found.append(res)
-
-    for k in range(m + n):
-        visit(solve_bimatrix(A, B, init_label=k, options=options))
-    while queue:
-        start = queue.pop(0)
-        for k in range(m + n):
-            res = solve_bimatrix(A, B, init_label=k, warm_start=start.basis, options=options)
-            if res.basis is not None and res.basis.x_basic == tuple(range(m, m + n)):
-                continue  # back at the artificial equilibrium
-            visit(res)
-    if exact:
-        found = [_certify(A, B, r.init_label, r.basis, r.pivots, r.restarts, r.method,
-                          _max_pivots(as_options(options))) for r in found]
-    return tuple(found)
+    queue = collections.deque()  # the equilibrium bases still to start from
+    explored = 0  # the starts every label was dropped from
+    reported = None  # the counts last reported
+    stopped = None  # why the search stopped, None while it goes on or when it is complete
+    start = None  # None: the artificial equilibrium
+    complete = False
+    with _progress.Reporter(progress, "lemke_paths", unit="start",
+                            describe=lambda f, e, q: (e, f"{f} found, {q} queued")) as report:
+        while not complete and stopped is None:
+            for k in range(m + n):
+                if clock() >= deadline:
+                    stopped = "time_limit"
+                    break
+                if start is None:
+                    res = solve_bimatrix(A, B, init_label=k, options=opts)
+                else:
+                    res = solve_bimatrix(A, B, init_label=k, warm_start=start.basis, options=opts)
+                    if res.basis is not None and res.basis.x_basic == tuple(range(m, m + n)):
+                        continue  # back at the artificial equilibrium
+                if not res.success or res.basis is None or res.basis in seen_bases:
+                    continue
+                seen_bases.add(res.basis)
+                queue.append(res)
+                key = (tuple(np.round(np.asarray(res.x, dtype=float), 9)),
+                       tuple(np.round(np.asarray(res.y, dtype=float), 9)))
+                if key in keys:
+                    continue
+                keys.add(key)
+                if exact:
+                    if clock() >= deadline:
+                        stopped = "time_limit"
+                        break
+                    res = _certify(A, B, res.init_label, res.basis, res.pivots, res.restarts,
+                                   res.method, _max_pivots(opts))
+                found.append(res)
+                if len(found) >= cap:
+                    stopped = "max_equilibria"
+                    break
+            else:
+                explored += 1
+                if queue:
+                    start = queue.popleft()
+                else:
+                    complete = True
+            counts = (len(found), explored, len(queue))
+            if report.active and counts != reported:
+                report.update(*counts)
+                reported = counts
+    return PathsResult(found, complete, stopped)

@@ -44,6 +44,9 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Parameters
     ----------
     M : (n, n) array_like or scipy.sparse matrix
+        A sparse M is made dense (no sparse engine yet): with a
+        :class:`lemke.DensifyWarning` when the dense copy takes 64 MiB or more, refused
+        (``ValueError``) when it would not fit in the memory available.
     q : (n,) array_like
     method : {"tableau", "unrevised"}
         ``"tableau"``: complementary pivoting on a condensed tableau.  ``"unrevised"``: the

@@ -91,7 +91,7 @@ def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=N
     A : (n, n) array_like      B : (m, m) array_like
     C : (n, m) array_like      D : (m, n) array_like
     a : (n,) array_like        b : (m,) array_like
-        Dense or scipy.sparse; n = 0 (a plain LCP), m = 0 (linear equations) and both (an
+        Dense or scipy.sparse (made dense, as in :func:`lemke.solve_lcp`); n = 0 (a plain LCP), m = 0 (linear equations) and both (an
         empty problem: SOLVED with empty u, v, w) are allowed; ``[]`` is an empty block.
     method : {"tableau", "unrevised"}
         The Lemke method for the reduced LCP (see :func:`lemke.solve_lcp`).

@@ -8,6 +8,10 @@ infinity where none is allowed, inconsistent data), each naming the argument and
 """
 from __future__ import annotations
 
+import os
+import sys
+import warnings
+
 import numpy as np
 
 
@@ -29,7 +33,7 @@ def float64_array(x, name: str) -> np.ndarray:
     """float64 view or copy of ``x`` (a TypeError naming ``name`` unless it holds real
     numbers), its entries not checked: :func:`real_array` checks them, or the kernels do."""
     if hasattr(x, "toarray") and hasattr(x, "nnz"):  # scipy.sparse: densified for now
-        x = x.toarray()
+        x = densify(x, name)
     try:
         a = np.asarray(x)
     except (TypeError, ValueError) as exc:
@@ -37,6 +41,117 @@ def float64_array(x, name: str) -> np.ndarray:
     if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
         raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
     return a if a.dtype == np.float64 else a.astype(np.float64)
+
+
+class DensifyWarning(UserWarning):
+    """A large ``scipy.sparse`` input was made dense (lemke has no sparse engine yet):
+    the warning names the argument, its shape and the dense size."""
+
+
+#: A sparse input whose dense float64 copy takes at least this many bytes (64 MiB: a
+#: square matrix of n >= 2897) is densified with a :class:`DensifyWarning`.
+DENSIFY_WARN_BYTES = 64 * 2**20
+
+
+def densify(x, name: str) -> np.ndarray:
+    """The scipy.sparse matrix ``x`` made dense: with a :class:`DensifyWarning` when the
+    dense copy takes at least ``DENSIFY_WARN_BYTES``, and refused (a ValueError naming
+    ``name``, before any allocation) when it would take more than the memory available
+    (:func:`available_memory`; never refused when that is unknown)."""
+    shape = tuple(int(d) for d in x.shape)
+    entries = 1
+    for d in shape:
+        entries *= d
+    size = entries * 8  # bytes of the float64 copy the solvers work on
+    dims = " x ".join(map(str, shape))
+    if size >= DENSIFY_WARN_BYTES:
+        free = available_memory()
+        if free is not None and size > free:
+            raise ValueError(
+                f"{name} is a scipy.sparse {dims} matrix ({x.nnz} stored entries); lemke has no "
+                f"sparse engine yet and its dense {dims} float64 copy would take {_mib(size)}, "
+                f"more than the {_mib(free)} of memory available: not densified")
+        warnings.warn(
+            f"{name}: the scipy.sparse {dims} matrix ({x.nnz} stored entries) is made dense, a "
+            f"{dims} float64 array of {_mib(size)} (lemke has no sparse engine yet)",
+            DensifyWarning, stacklevel=_caller_level())
+    return x.toarray()
+
+
+def _mib(size: int) -> str:
+    return f"{size / 2**20:,.1f} MiB"
+
+
+def available_memory():
+    """Bytes of memory this process can still take, or None when unknown: Linux's
+    ``MemAvailable`` (free memory and reclaimable caches), else the free pages of
+    ``os.sysconf``; lowered to the room left under a cgroup memory limit (v2 or v1)."""
+    free = None
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    free = int(line.split()[1]) * 1024
+                    break
+    except (OSError, ValueError, IndexError):
+        pass
+    if free is None:
+        try:
+            free = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+        except (AttributeError, ValueError, OSError):
+            return None
+        if free <= 0:
+            return None
+    room = _cgroup_room()
+    return free if room is None else min(free, room)
+
+
+def _cgroup_room():
+    """Bytes left under this process's cgroup memory limit (v2, else v1: the limit less
+    the usage, the reclaimable ``inactive_file`` cache not counted, as ``docker stats``
+    does), or None when there is no limit or it cannot be read."""
+    dirs = []
+    try:
+        with open("/proc/self/cgroup") as f:
+            path = next((line.strip()[3:] for line in f if line.startswith("0::")), None)
+        if path is not None:
+            dirs.append(("/sys/fs/cgroup" + path.rstrip("/"), "memory.max", "memory.current"))
+    except OSError:
+        pass
+    dirs.append(("/sys/fs/cgroup/memory", "memory.limit_in_bytes", "memory.usage_in_bytes"))
+    for base, limit_file, usage_file in dirs:
+        try:
+            with open(os.path.join(base, limit_file)) as f:
+                limit = f.read().strip()
+            if limit == "max" or int(limit) >= 2**60:
+                continue  # no limit here
+            with open(os.path.join(base, usage_file)) as f:
+                used = int(f.read())
+            try:
+                with open(os.path.join(base, "memory.stat")) as f:
+                    for line in f:
+                        key, _, value = line.partition(" ")
+                        if key == "inactive_file":
+                            used -= int(value)
+            except OSError:
+                pass
+            return max(0, int(limit) - max(used, 0))
+        except (OSError, ValueError):
+            continue
+    return None
+
+
+def _caller_level() -> int:
+    """The ``stacklevel`` of a warning that points at the first frame outside lemke."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    level, frame = 1, sys._getframe(1)
+    while frame is not None:
+        d = os.path.dirname(os.path.abspath(frame.f_code.co_filename))
+        if d != here and not d.startswith(here + os.sep):
+            break
+        frame = frame.f_back
+        level += 1
+    return level
 
 
 def kernel_array(a: np.ndarray) -> np.ndarray:

@@ -205,3 +205,25 @@ def enumerate_solutions(M, q):
                 continue
             found.append(z)
     return found
+
+
+def assert_nash(A, B, x, y, rtol=1e-9):
+    """Assert that (x, y) is a Nash equilibrium of the bimatrix game (A, B) (A the row
+    player's payoffs, B the column player's, both m x n), in plain numpy: x and y are
+    probability vectors, and every pure strategy in the support of x is a best response to
+    y (its payoff ``(A y)_i`` within ``rtol`` times the range of A of the best), and the
+    same for y against x with B."""
+    A, B = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    m, n = A.shape
+    assert x.shape == (m,) and y.shape == (n,), f"strategies of shapes {x.shape}, {y.shape} for a {m} x {n} game"
+    for v, who in ((x, "x"), (y, "y")):
+        assert np.all(np.isfinite(v)) and v.min() >= 0, f"{who} has a negative or non-finite entry"
+        assert abs(v.sum() - 1) <= 1e-12 * v.size, f"{who} sums to {v.sum()}, not 1"
+    for P, own, other, who in ((A, x, y, "row"), (B.T, y, x, "column")):
+        payoff = P @ other  # each pure strategy's payoff against the other's mixed strategy
+        tol = rtol * max(np.ptp(P), 1e-300) + 1e-15 * np.abs(P).max()
+        support = np.flatnonzero(own > 0)
+        worst = payoff.max() - payoff[support].min()
+        assert worst <= tol, (f"the {who} player's strategy {int(support[np.argmin(payoff[support])])} is in "
+                              f"the support but {worst:.3g} short of a best response")

@@ -18,7 +18,7 @@ PACKAGE = Path(lemke.__file__).parent
 #: Layer of each module (dotted, relative to lemke); a module may import only lower layers
 #: (or, inside the kernels and _io packages, its siblings, acyclically).
 LAYERS = [
-    {"_status", "_options", "_validate", "_version", "kernels", "_core"},
+    {"_status", "_options", "_validate", "_version", "_progress", "kernels", "_core"},
     {"_result"},
     {"_certify"},
     {"_reductions", "_games_exact"},
