@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "lemke/lcp.hpp"
+#include "lemke/unrevised.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -50,10 +51,54 @@ static std::tuple<int, std::int64_t, std::int64_t, bool, double, std::int64_t, i
     return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
 }
 
+using FlagsIn = nb::ndarray<nb::ro, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Flags = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+// A 1-D array of bool or uint8 (one byte a flag).
+template <class A>
+static bool is_flags(const A& a) {
+    return a.dtype() == nb::dtype<bool>() || a.dtype() == nb::dtype<std::uint8_t>();
+}
+
+// unrevised.solve(M, q, d, R, C, z_start, no_matrix(), ...) (for tests against the numba
+// kernel): (status, pivots). z_start: n flags or empty (all w basic). Mis-sized or mistyped
+// arrays raise ValueError.
+static std::tuple<int, std::int64_t> unrevised_solve(Matrix M, Vector q, Vector d, Vector R,
+                                                     Vector C, FlagsIn z_start,
+                                                     std::int64_t max_pivots, double pivot_tol,
+                                                     double tie_tol, Buffer x_out, Buffer ray_out,
+                                                     Flags z_basic_out) {
+    using lemke::idx;
+    idx n = static_cast<idx>(q.shape(0));
+    auto is = [](std::size_t got, idx want) { return static_cast<idx>(got) == want; };
+    if (!is(M.shape(0), n) || !is(M.shape(1), n) || !is(d.shape(0), n) || !is(R.shape(0), n) ||
+        !is(C.shape(0), n) || !(z_start.shape(0) == 0 || is(z_start.shape(0), n)) ||
+        !is(x_out.shape(0), n + 1) || !is(ray_out.shape(0), n + 1) ||
+        !is(z_basic_out.shape(0), n))
+        throw nb::value_error("unrevised_solve: M must be n x n, q, d, R, C and z_basic_out "
+                              "of length n, z_start of length n or 0, x_out and ray_out n + 1");
+    if (!is_flags(z_start) || !is_flags(z_basic_out))
+        throw nb::value_error("unrevised_solve: z_start and z_basic_out must be bool or uint8 "
+                              "(z_basic_out writable)");
+    const auto* zs = z_start.shape(0) ? static_cast<const std::uint8_t*>(z_start.data()) : nullptr;
+    auto* zb = static_cast<std::uint8_t*>(z_basic_out.data());
+    idx pivots = 0;
+    lemke::Status status;
+    {
+        nb::gil_scoped_release release;
+        status = lemke::unrevised_solve(lemke::Mat<const double>(M.data(), n, n), q.data(),
+                                        d.data(), R.data(), C.data(), zs, max_pivots, pivot_tol,
+                                        tie_tol, x_out.data(), ray_out.data(), zb, pivots);
+    }
+    return {static_cast<int>(status), pivots};
+}
+
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
     m.def("first_run", &first_run, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a, "basic"_a);
+    m.def("unrevised_solve", &unrevised_solve, "M"_a, "q"_a, "d"_a, "R"_a, "C"_a, "z_start"_a,
+          "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "x_out"_a, "ray_out"_a, "z_basic_out"_a);
     m.attr("BUFFER_LENGTH_PER_N") = 6;
     m.attr("BUFFER_LENGTH_FIXED") = 2;
 }
