@@ -18,6 +18,10 @@ from ._status import Status
 from ._validate import real_array
 from .kernels import cold
 
+#: The batch kernel: the C++ core's (src/lemke/lcp.cpp, ``lemke::batch``), the port of
+#: ``kernels.cold.batch`` (a module attribute, so that a test can stand another in).
+_BATCH = _core.batch
+
 _pool = None
 _pool_lock = threading.Lock()
 
@@ -253,7 +257,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     mstart = np.zeros(B, dtype=np.int64) if M.shape[0] == 1 else np.arange(B, dtype=np.int64) * (n * n)
     qoff = np.arange(B + 1, dtype=np.int64) * n
     limits = np.full(B, opts.pivot_limit(n), dtype=np.int64)
-    _run(_core.batch, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
+    _run(_BATCH, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs.reshape(-1),
           np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers,
          progress, "solve_lcp_batch")
@@ -384,7 +388,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
-    _run(_core.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
+    _run(_BATCH, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
          progress, "solve_lcp_many")
     code = out_i[:, 0]
