@@ -23,8 +23,8 @@ extern "C" {
 enum lemke_status {
     LEMKE_SOLVED = 0,            /* z solves the LCP and passed the check */
     LEMKE_MAX_PIVOTS = 1,        /* the pivot limit was reached */
-    LEMKE_RAY_TERMINATION = 2,   /* the method ended on a secondary ray (no solution for
-                                    copositive-plus M); the ray is not certified here yet */
+    LEMKE_RAY_TERMINATION = 2,   /* the method ended on a secondary ray that passed the ray
+                                    check (no solution when M is copositive-plus) */
     LEMKE_NUMERICAL_FAILURE = 3, /* the answer failed the check */
     LEMKE_CYCLING = 6,           /* a basis repeated */
     LEMKE_NOT_FINITE = -1,       /* M or q holds a NaN or an infinity */
@@ -51,7 +51,10 @@ void lemke_default_options(lemke_options* options);
 
 /* Solve LCP(M, q) by the tableau method, cold (warm_basis == NULL or n_warm == 0) or warm
  * from a basis: warm_basis[0..n_warm) are the indices of the z's that were basic (the
- * basis_out of an earlier solve). options may be NULL (defaults).
+ * basis_out of an earlier solve). options may be NULL (defaults). The same solve as
+ * lemke.solve_lcp in Python, with the same bits: the old basis's point, a restart from it
+ * (n >= 100), the cold run with its recoveries (cycles, failed checks, the ladder of
+ * covering vectors and the unrevised method), rays checked.
  *
  * Out (each may be NULL when not wanted): z (n), w (n), basis_out (n: the basic z's of the
  * final basis, ascending; *n_basis_out says how many), info.

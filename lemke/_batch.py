@@ -10,13 +10,17 @@ from operator import attrgetter
 
 import numpy as np
 
-from . import _progress, _validate
+from . import _core, _progress, _validate
 from ._lcp import METHODS, _outcome
 from ._options import as_options
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
 from ._validate import real_array
 from .kernels import cold
+
+#: The batch kernel: the C++ core's (src/lemke/lcp.cpp, ``lemke::batch``), the port of
+#: ``kernels.cold.batch`` (a module attribute, so that a test can stand another in).
+_BATCH = _core.batch
 
 _pool = None
 _pool_lock = threading.Lock()
@@ -152,9 +156,7 @@ def _bases(warm_start, B, sizes):
             b = int(np.flatnonzero(warm_start.n != sizes)[0])
             raise ValueError(f"warm_start[{b}] is for a problem of size {warm_start.n[b]}, problem {b} "
                              f"has n = {sizes[b]}")
-        # (copies: the kernels take writable arrays only, one compiled type; a read-only one
-        # would compile cold.batch again)
-        return warm_start.z_basic.copy(), warm_start.offsets.copy(), None
+        return warm_start.z_basic, warm_start.offsets, None  # (the core reads them in place)
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")
@@ -255,7 +257,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     mstart = np.zeros(B, dtype=np.int64) if M.shape[0] == 1 else np.arange(B, dtype=np.int64) * (n * n)
     qoff = np.arange(B + 1, dtype=np.int64) * n
     limits = np.full(B, opts.pivot_limit(n), dtype=np.int64)
-    _run(cold.batch, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
+    _run(_BATCH, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs.reshape(-1),
           np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers,
          progress, "solve_lcp_batch")
@@ -386,7 +388,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
-    _run(cold.batch, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
+    _run(_BATCH, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
          progress, "solve_lcp_many")
     code = out_i[:, 0]

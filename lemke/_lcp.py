@@ -8,10 +8,14 @@ from ._certify import check_lcp
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import cold, entry_point, linalg
+from .kernels import cold, linalg
 
 METHODS = tuple(cold.METHODS)
-_SOLVE_ONE = cold.solve_one  # module attributes, so that a test can stand a lying kernel in
+#: The C++ core's LCP driver (src/lemke/lcp.cpp), the port of the numba kernels of
+#: kernels/cold.py with the same arguments, results and bits; module attributes, so that a
+#: test can stand a lying kernel in.  ``_SOLVE_ONE``: a whole solve, warm or cold, with its
+#: recoveries, either method.
+_SOLVE_ONE = _core.solve_one
 #: The first stages of a solve by the tableau, cold or warm: the C++ core's port of
 #: ``cold.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
 _FIRST_RUN = _core.first_run
@@ -167,18 +171,10 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
 
 def _entry_point(method):
     """The function the fast path calls for a solve by ``method``: the C++ core's
-    ``first_run`` for the tableau (cold or warm), else the compiled entry point of
-    ``_SOLVE_ONE`` for the fast path's argument types (float64 arrays, C-contiguous,
-    aligned and writable; int64 indices; Python ints and floats; ``kernels.entry_point``),
-    once compiled, until then the kernel itself."""
-    if method == "tableau":
-        _ENTRY[method] = _FIRST_RUN
-        return _FIRST_RUN
-    kernel = _SOLVE_ONE
-    a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
-    run = entry_point(kernel, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
-    if run is not kernel:
-        _ENTRY[method] = run
+    ``first_run`` for the tableau (cold or warm; what it does not settle goes on in
+    ``_SOLVE_ONE``), its ``solve_one`` for the unrevised method."""
+    run = _FIRST_RUN if method == "tableau" else _SOLVE_ONE
+    _ENTRY[method] = run
     return run
 
 

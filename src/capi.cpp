@@ -59,47 +59,39 @@ int solve(idx n, const double* M, const double* q, const lemke_options* options,
     std::vector<double> buf(static_cast<std::size_t>(L.length()));
     std::vector<idx> basic(static_cast<std::size_t>(n) + 1);
     lemke::Mat<const double> A(M, n, n);
-    lemke::RunResult r = lemke::first_run(A, q, nullptr, beta.data(), n_warm, max_pivots,
-                                          o.pivot_tol, o.tie_tol, o.tol, buf.data(), basic.data());
-    if (r.stage == -2)  // the old basis failed at n >= RESTART_FROM: cold (no restart here yet)
-        r = lemke::first_run(A, q, nullptr, beta.data(), 0, max_pivots, o.pivot_tol, o.tie_tol,
-                             o.tol, buf.data(), basic.data());
+    // The whole solve of solve_lcp by the tableau: the warm basis's point, a restart from it
+    // at n >= RESTART_FROM, the cold run with its recoveries, every answer checked.
+    lemke::RunResult r = lemke::solve(lemke::TABLEAU, A, q, nullptr, beta.data(), n_warm,
+                                      max_pivots, o.pivot_tol, o.tie_tol, o.tol, buf.data(),
+                                      basic.data());
     if (r.code == lemke::NOT_FINITE) return LEMKE_NOT_FINITE;
     int status = r.code == lemke::TRIVIAL ? LEMKE_SOLVED : r.code;
     double* x = buf.data() + L.z();
     double* wv = buf.data() + L.w();
     idx k = r.k;
-    if (r.stage == -1) {  // flags of the basic z's in `basic`: to indices
-        k = 0;
-        for (idx i = 0; i < n; ++i)
-            if (basic[i]) basic[k++] = i;
-        if (r.code == LEMKE_SOLVED && !r.ok) {
-            // The run's point failed the check: the point of its final basis, one LU solve
-            // on the caller's data, checked again.
-            std::vector<double> work(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
-            std::vector<double> zb(static_cast<std::size_t>(n));
-            std::vector<double> y(static_cast<std::size_t>(k)), xb(static_cast<std::size_t>(k));
-            double* a = work.data();
-            for (idx i = 0; i < k; ++i) y[i] = -q[basic[i]];
-            bool ok = lemke::solve_gathered(A, basic.data(), a, y.data(), xb.data(), k);
-            double residual = 0.0;
-            if (ok) {
-                for (idx i = 0; i < n; ++i) zb[i] = 0.0;
-                for (idx i = 0; i < k; ++i) zb[basic[i]] = lemke::pmax(xb[i], 0.0);
-                ok = lemke::check_rows(A, q, zb.data(), o.tol, wv, buf.data() + L.row_scale(),
-                                       work.data(), false, residual);
-            }
-            if (ok) {
-                for (idx i = 0; i < n; ++i) x[i] = zb[i];
-                r.residual = residual;
-            } else {
-                status = LEMKE_NUMERICAL_FAILURE;
-            }
-        } else if (r.code == LEMKE_SOLVED) {
-            status = LEMKE_SOLVED;
+    if (status == LEMKE_SOLVED && !r.ok) {
+        // Solved on a point that fails the check: the point of the final basis, one LU
+        // solve on the caller's data (what the Python front does), checked again.
+        std::vector<double> work(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
+        std::vector<double> zb(static_cast<std::size_t>(n));
+        std::vector<double> y(static_cast<std::size_t>(k)), xb(static_cast<std::size_t>(k));
+        for (idx i = 0; i < k; ++i) y[i] = -q[basic[i]];
+        bool ok = lemke::solve_gathered(A, basic.data(), work.data(), y.data(), xb.data(), k);
+        double residual = 0.0;
+        if (ok) {
+            for (idx i = 0; i < n; ++i) zb[i] = 0.0;
+            for (idx i = 0; i < k; ++i) zb[basic[i]] = lemke::pmax(xb[i], 0.0);
+            ok = lemke::check_rows(A, q, zb.data(), o.tol, wv, buf.data() + L.row_scale(),
+                                   work.data(), false, residual);
         }
-    } else if (r.code == LEMKE_SOLVED && !r.ok) {
-        status = LEMKE_NUMERICAL_FAILURE;
+        if (ok) {
+            for (idx i = 0; i < n; ++i) x[i] = zb[i];
+            r.residual = residual;
+        } else {
+            status = LEMKE_NUMERICAL_FAILURE;
+        }
+    } else if (status == LEMKE_RAY_TERMINATION && !r.ok) {
+        status = LEMKE_NUMERICAL_FAILURE;  // a ray that failed the ray check proves nothing
     }
     if (z) for (idx i = 0; i < n; ++i) z[i] = x[i];
     if (w) for (idx i = 0; i < n; ++i) w[i] = wv[i];

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "lemke/lcp.hpp"
+#include "lemke/unrevised.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -50,10 +51,136 @@ static std::tuple<int, std::int64_t, std::int64_t, bool, double, std::int64_t, i
     return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
 }
 
+using FlagsIn = nb::ndarray<nb::ro, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Flags = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+// A 1-D array of bool or uint8 (one byte a flag).
+template <class A>
+static bool is_flags(const A& a) {
+    return a.dtype() == nb::dtype<bool>() || a.dtype() == nb::dtype<std::uint8_t>();
+}
+
+// unrevised.solve(M, q, d, R, C, z_start, no_matrix(), ...) (for tests against the numba
+// kernel): (status, pivots). z_start: n flags or empty (all w basic). Mis-sized or mistyped
+// arrays raise ValueError.
+static std::tuple<int, std::int64_t> unrevised_solve(Matrix M, Vector q, Vector d, Vector R,
+                                                     Vector C, FlagsIn z_start,
+                                                     std::int64_t max_pivots, double pivot_tol,
+                                                     double tie_tol, Buffer x_out, Buffer ray_out,
+                                                     Flags z_basic_out) {
+    using lemke::idx;
+    idx n = static_cast<idx>(q.shape(0));
+    auto is = [](std::size_t got, idx want) { return static_cast<idx>(got) == want; };
+    if (!is(M.shape(0), n) || !is(M.shape(1), n) || !is(d.shape(0), n) || !is(R.shape(0), n) ||
+        !is(C.shape(0), n) || !(z_start.shape(0) == 0 || is(z_start.shape(0), n)) ||
+        !is(x_out.shape(0), n + 1) || !is(ray_out.shape(0), n + 1) ||
+        !is(z_basic_out.shape(0), n))
+        throw nb::value_error("unrevised_solve: M must be n x n, q, d, R, C and z_basic_out "
+                              "of length n, z_start of length n or 0, x_out and ray_out n + 1");
+    if (!is_flags(z_start) || !is_flags(z_basic_out))
+        throw nb::value_error("unrevised_solve: z_start and z_basic_out must be bool or uint8 "
+                              "(z_basic_out writable)");
+    const auto* zs = z_start.shape(0) ? static_cast<const std::uint8_t*>(z_start.data()) : nullptr;
+    auto* zb = static_cast<std::uint8_t*>(z_basic_out.data());
+    idx pivots = 0;
+    lemke::Status status;
+    {
+        nb::gil_scoped_release release;
+        status = lemke::unrevised_solve(lemke::Mat<const double>(M.data(), n, n), q.data(),
+                                        d.data(), R.data(), C.data(), zs, max_pivots, pivot_tol,
+                                        tie_tol, x_out.data(), ray_out.data(), zb, pivots);
+    }
+    return {static_cast<int>(status), pivots};
+}
+
+using Tuple7 = std::tuple<int, std::int64_t, std::int64_t, bool, double, std::int64_t, int>;
+
+// cold.solve_one's arguments and return value, for either method: k = -1 goes on after
+// first_run's stage -1 (beta = [code, pivots]), k < -1 restarts from the warm basis
+// beta[:-2 - k] whose point first_run tried.
+static Tuple7 solve_one(int method, Matrix M, Vector q, Vector d, Indices beta, std::int64_t k,
+                        std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol,
+                        Buffer buf, IndexOut basic) {
+    using lemke::idx;
+    idx n = static_cast<idx>(q.shape(0));
+    lemke::BufferLayout L{n};
+    bool own = basic.shape(0) == 0 && n > 0;
+    idx kb = k >= 0 ? k : (k == -1 ? 0 : -2 - k);
+    bool sizes_ok = static_cast<idx>(M.shape(0)) == n && static_cast<idx>(M.shape(1)) == n &&
+                    (d.shape(0) == 0 || static_cast<idx>(d.shape(0)) == n) &&
+                    (method == 0 || method == 1) && kb <= n &&
+                    static_cast<idx>(beta.shape(0)) >= (k == -1 ? 2 : kb) &&
+                    static_cast<idx>(buf.shape(0)) >= L.length() + (own ? n : 0) &&
+                    (own || n == 0 || static_cast<idx>(basic.shape(0)) >= n);
+    if (!sizes_ok) return {lemke::NOT_FINITE, 0, 0, false, 0.0, 0, 2};
+    const idx* b = beta.data();
+    if (k != -1)
+        for (idx i = 0; i < kb; ++i)
+            if (b[i] < 0 || b[i] >= n) return {lemke::NOT_FINITE, 0, 0, false, 0.0, 0, 2};
+    double* out = buf.data();
+    idx* basic_out = own ? reinterpret_cast<idx*>(out + L.length()) : basic.data();
+    lemke::RunResult r;
+    {
+        nb::gil_scoped_release release;
+        r = lemke::solve_one(static_cast<lemke::Method>(method),
+                             lemke::Mat<const double>(M.data(), n, n), q.data(),
+                             d.shape(0) ? d.data() : nullptr, b, k, max_pivots, pivot_tol,
+                             tie_tol, tol, out, basic_out);
+    }
+    return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
+}
+
+using Flat = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using FlatOut = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IntOut2 = nb::ndarray<std::int64_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using FloatOut2 = nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+
+// cold.batch's arguments: problems lo..hi-1 laid end to end (see lemke::batch). Every
+// offset is checked against its array before the GIL is released (ValueError otherwise).
+static void batch(int method, Flat Ms, Indices mstart, Flat qs, Indices qoff, Indices beta,
+                  Indices boff, std::int64_t lo, std::int64_t hi, Indices max_pivots,
+                  double pivot_tol, double tie_tol, double tol, FlatOut bufs, Indices buff,
+                  IndexOut basics, IntOut2 out_i, FloatOut2 out_f) {
+    using lemke::idx;
+    idx nb_ = static_cast<idx>(qoff.shape(0)) - 1;
+    if (method != 0 && method != 1) throw nb::value_error("batch: method must be 0 or 1");
+    if (lo < 0 || hi < lo || hi > nb_ || static_cast<idx>(mstart.shape(0)) < hi ||
+        static_cast<idx>(boff.shape(0)) < hi + 1 || static_cast<idx>(buff.shape(0)) < hi + 1 ||
+        static_cast<idx>(max_pivots.shape(0)) < hi || static_cast<idx>(out_i.shape(0)) < hi ||
+        out_i.shape(1) != 5 || static_cast<idx>(out_f.shape(0)) < hi || out_f.shape(1) != 2)
+        throw nb::value_error("batch: offsets and outputs do not cover the problems");
+    const idx *qo = qoff.data(), *ms = mstart.data(), *bo = boff.data(), *bf = buff.data();
+    const idx* be = beta.data();
+    for (idx b = lo; b < hi; ++b) {
+        idx n = qo[b + 1] - qo[b];
+        bool ok = n >= 0 && qo[b] >= 0 && qo[b + 1] <= static_cast<idx>(qs.shape(0)) &&
+                  qo[b + 1] <= static_cast<idx>(basics.shape(0)) && ms[b] >= 0 &&
+                  ms[b] + n * n <= static_cast<idx>(Ms.shape(0)) && bo[b] >= 0 &&
+                  bo[b + 1] >= bo[b] && bo[b + 1] <= static_cast<idx>(beta.shape(0)) &&
+                  bo[b + 1] - bo[b] <= n && bf[b] >= 0 &&
+                  bf[b + 1] - bf[b] >= lemke::BufferLayout{n}.length() &&
+                  bf[b + 1] <= static_cast<idx>(bufs.shape(0));
+        if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
+        for (idx i = bo[b]; i < bo[b + 1]; ++i)
+            if (be[i] < 0 || be[i] >= n) throw nb::value_error("batch: a basis index is out of range");
+    }
+    nb::gil_scoped_release release;
+    lemke::batch(static_cast<lemke::Method>(method), Ms.data(), ms, qs.data(), qo, be, bo, lo, hi,
+                 max_pivots.data(), pivot_tol, tie_tol, tol, bufs.data(), bf, basics.data(),
+                 out_i.data(), out_f.data());
+}
+
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
     m.def("first_run", &first_run, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a, "basic"_a);
+    m.def("unrevised_solve", &unrevised_solve, "M"_a, "q"_a, "d"_a, "R"_a, "C"_a, "z_start"_a,
+          "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "x_out"_a, "ray_out"_a, "z_basic_out"_a);
+    m.def("solve_one", &solve_one, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
+          "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a, "basic"_a);
+    m.def("batch", &batch, "method"_a, "Ms"_a, "mstart"_a, "qs"_a, "qoff"_a, "beta"_a, "boff"_a,
+          "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "bufs"_a,
+          "buff"_a, "basics"_a, "out_i"_a, "out_f"_a);
     m.attr("BUFFER_LENGTH_PER_N") = 6;
     m.attr("BUFFER_LENGTH_FIXED") = 2;
 }

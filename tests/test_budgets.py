@@ -323,7 +323,7 @@ def test_batch_progress_with_one_worker_reports_along_the_way(monkeypatch):
     is reported (the kernel here waits for the report of a chunk before the next, so that
     a calling thread slow to wake on a loaded machine does not merge reports)."""
     import lemke._batch as batch_module
-    kernel = batch_module.cold.batch
+    kernel = batch_module._BATCH
     spans, seen, cond = [], [0], threading.Condition()
 
     def stepping(*args):
@@ -341,7 +341,7 @@ def test_batch_progress_with_one_worker_reports_along_the_way(monkeypatch):
 
     M, q = _batch(B=640)
     ref = lemke.solve_lcp_batch(M, q, workers=1)
-    monkeypatch.setattr(batch_module.cold, "batch", stepping)
+    monkeypatch.setattr(batch_module, "_BATCH", stepping)
     calls = []
     r = lemke.solve_lcp_batch(M, q, workers=1, progress=progress)
     assert spans == [(lo, lo + 10) for lo in range(0, 640, 10)]

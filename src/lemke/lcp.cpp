@@ -4,7 +4,9 @@
 #include <vector>
 
 #include "certify.hpp"
+#include "pivoting.hpp"
 #include "tableau.hpp"
+#include "unrevised.hpp"
 
 namespace lemke {
 
@@ -68,11 +70,10 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
 // The first stage of a warm start. Returns 0 (the old basis solves it), 1 (its point fails),
 // 2 (its block is singular), -1 (not finite).
 int old_basis(Mat<const double> M, const double* q, const double* d, const idx* beta, idx k,
-              double tol, const Views& v, idx* basic, double& residual,
+              double tol, const Views& v, idx* basic, double& residual, double& m_max,
               std::vector<double>& work) {
     idx n = M.rows;
     residual = 0.0;
-    double m_max;
     if (!finite_absmax(M, m_max) || !all_finite(q, n)) return -1;
     work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
     equilibrate(M, q, v.R, v.C, work.data());
@@ -99,8 +100,8 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     idx n = M.rows;
     Views v(buf, n);
     if (k > 0) {
-        double residual;
-        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
+        double residual, m_max;
+        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
         if (found == 0) {
             out.code = SOLVED;
             out.k = k;
@@ -150,6 +151,390 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     out.k = kk;
     out.ok = ok;
     return out;
+}
+
+namespace {
+
+constexpr int RETRIES = 4;
+constexpr double PERTURBATION = 1e-6;
+
+idx basic_indices(const std::uint8_t* z_basic, idx n, idx* basic) {
+    idx k = 0;
+    for (idx i = 0; i < n; ++i)
+        if (z_basic[i]) basic[k++] = i;
+    return k;
+}
+
+// One run of the method from the all-w basis (cold.pivot_once).
+Status pivot_once(Method method, Mat<const double> M, const double* q, double tie_tol,
+                  idx max_pivots, double pivot_tol, const Views& v, std::uint8_t* z_basic,
+                  bool careful, idx& pivots) {
+    if (method == TABLEAU)
+        return tableau_solve(M, q, v.cov, v.R, v.C, max_pivots, pivot_tol, tie_tol, v.x, v.ray,
+                             z_basic, careful, pivots);
+    return unrevised_solve(M, q, v.cov, v.R, v.C, nullptr, max_pivots, pivot_tol, tie_tol, v.x,
+                           v.ray, z_basic, pivots);
+}
+
+struct Run {
+    int code;
+    idx pivots;
+    idx recoveries;
+    bool ok;
+    double residual;
+};
+
+// pivot_once, then the recoveries from a cycle (exact ties; then a perturbed covering
+// vector); start 1 goes on after first_run's run (code after pivots). Then the check.
+Run run_checked(Method method, Mat<const double> M, const double* q, idx max_pivots,
+                double pivot_tol, double tie_tol, double tol, const Views& v,
+                std::uint8_t* z_basic, bool careful, int start, int code, idx pivots,
+                std::vector<double>& work) {
+    idx n = M.rows;
+    idx recoveries = start - 1;
+    double tt = tie_tol;
+    for (int attempt = start; attempt < 3; ++attempt) {
+        if (attempt > 0) {
+            if (code != CYCLING || (attempt == 1 && tie_tol <= 0.0)) continue;
+            tt = 0.0;
+            if (attempt == 2)
+                for (idx i = 0; i < n; ++i)
+                    v.cov[i] *= 1.0 + PERTURBATION * unit_random(label_key(i));
+        }
+        recoveries += 1;
+        idx p = 0;
+        code = pivot_once(method, M, q, tt, max_pivots - pivots, pivot_tol, v, z_basic, careful, p);
+        pivots += p;
+    }
+    work.resize(static_cast<std::size_t>(2 * n));
+    Run r;
+    r.ok = check_rows(M, q, v.x, tol, v.w, v.R, work.data(), false, r.residual);
+    r.code = r.ok ? SOLVED : code;
+    r.pivots = pivots;
+    r.recoveries = recoveries;
+    return r;
+}
+
+// The covering vector of recovery run `step` into cov; returns whether it uses exact tests.
+bool retry_covering(int step, const double* q, const double* R, double* cov, idx n) {
+    if (step == 1) {
+        double top = 0.0;
+        for (idx i = 0; i < n; ++i) top = pmax(top, R[i] * std::fabs(q[i]));
+        for (idx i = 0; i < n; ++i)
+            cov[i] = top > 0.0 ? pmax(R[i] * std::fabs(q[i]), 1e-3 * top) / R[i] : 1.0 / R[i];
+        return true;
+    }
+    if (step == 2) {
+        for (idx i = 0; i < n; ++i) cov[i] = (1.0 + unit_random(label_key(i))) / R[i];
+        return false;
+    }
+    for (idx i = 0; i < n; ++i) cov[i] = 1.0 / R[i];
+    return false;
+}
+
+// The point of the complementary basis with z_i basic where z_basic[i] into z (and w), and
+// the verdict of its check (cold.basis_point_checked).
+bool basis_point_checked(Mat<const double> M, const double* q, const std::uint8_t* z_basic,
+                         double tol, const double* R, double* z, double* w, double& residual) {
+    idx n = M.rows;
+    std::vector<idx> beta(static_cast<std::size_t>(n));
+    idx k = basic_indices(z_basic, n, beta.data());
+    std::vector<double> work(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
+    residual = 0.0;
+    if (!basis_point(M, q, beta.data(), k, z, work.data())) return false;
+    return check_rows(M, q, z, tol, w, R, work.data(), false, residual);
+}
+
+bool basis_checks(Mat<const double> M, const double* q, const std::uint8_t* z_basic, double tol,
+                  const double* R) {
+    idx n = M.rows;
+    std::vector<double> zw(static_cast<std::size_t>(2 * n));
+    double residual;
+    return basis_point_checked(M, q, z_basic, tol, R, zw.data(), zw.data() + n, residual);
+}
+
+// Lemke's method restarted from the complementary basis z_start (beta[:k]) by the unrevised
+// method with the covering vector c e_alpha - M[:, beta] 1 (cold.restart), its point checked.
+idx restart(Mat<const double> M, const double* q, const std::uint8_t* z_start, const idx* beta,
+            idx k, double m_max, idx max_pivots, double pivot_tol, double tie_tol, double tol,
+            const Views& v, std::uint8_t* z_basic, bool& ok, double& residual) {
+    idx n = M.rows;
+    double m_scale = m_max > 0.0 ? m_max : 1.0;
+    for (idx i = 0; i < n; ++i) {
+        double acc = z_start[i] ? 0.0 : m_scale;
+        const double* row = M.row(i);
+        for (idx j = 0; j < k; ++j) acc -= row[beta[j]];
+        v.cov[i] = acc;
+    }
+    idx pivots = 0;
+    Status code = unrevised_solve(M, q, v.cov, v.R, v.C, z_start, max_pivots, pivot_tol, tie_tol,
+                                  v.x, v.ray, z_basic, pivots);
+    ok = false;
+    residual = 0.0;
+    if (code == NUMERICAL_FAILURE && pivots == 0) return pivots;
+    std::vector<double> work(static_cast<std::size_t>(2 * n));
+    ok = check_rows(M, q, v.x, tol, v.w, v.R, work.data(), false, residual);
+    return pivots;
+}
+
+// The cold solve with its recoveries (cold.checked). Returns code, pivots, k (basic z's into
+// basic), ok, residual, recoveries in a RunResult (stage 2).
+RunResult checked(Method method, Mat<const double> M, const double* q, const double* d,
+                  idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,
+                  idx* basic, int first_code, idx first_pivots, bool scaled) {
+    thread_local std::vector<double> work;
+    idx n = M.rows;
+    RunResult out;
+    Views v(buf, n);
+    std::vector<std::uint8_t> z_basic(static_cast<std::size_t>(n));
+    int start = 0;
+    if (first_code < 0) {
+        int code = prologue(M, q, d, v, scaled, work);
+        if (code < 0) {
+            out.code = code;
+            out.ok = code == TRIVIAL;
+            return out;
+        }
+    } else {
+        start = 1;
+        for (idx i = 0; i < n; ++i) z_basic[i] = basic[i] != 0;
+    }
+    int code = MAX_PIVOTS;
+    bool ok = false;
+    double residual = 0.0;
+    idx pivots = 0, recoveries = 0;
+    Method other = method == TABLEAU ? UNREVISED : TABLEAU;
+    BufferLayout L{n};
+    std::vector<double> buf2;  // the recovery runs' own, allocated only when one runs
+    std::vector<std::uint8_t> z_basic2;
+    bool have_ray = false, ray_known = false, ray_ok = false;
+    for (int step = -1; step < RETRIES; ++step) {
+        Method run_method = method;
+        double ptol = pivot_tol, ttol = tie_tol;
+        bool careful = false;
+        int run_start = start, run_code = first_code;
+        idx run_pivots = first_pivots;
+        double* run_buf = buf;
+        std::uint8_t* run_basic = z_basic.data();
+        if (step >= 0) {
+            if (d != nullptr || (code == SOLVED && ok) || pivots >= max_pivots) break;
+            if (step == 0 && code == RAY_TERMINATION) {
+                ray_known = true;
+                ray_ok = ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
+                if (ray_ok) break;
+            }
+            if (step == 0) {
+                buf2.assign(static_cast<std::size_t>(L.length()), 0.0);
+                z_basic2.assign(static_cast<std::size_t>(n), 0);
+            }
+            std::copy(buf, buf + L.length(), buf2.data());
+            Views v2(buf2.data(), n);
+            bool exact = retry_covering(step, q, v.R, v2.cov, n);
+            run_method = step == RETRIES - 1 ? other : method;
+            ptol = exact ? 0.0 : pivot_tol;
+            ttol = exact ? 0.0 : tie_tol;
+            run_buf = buf2.data();
+            run_basic = z_basic2.data();
+            careful = true;
+            run_start = 0;
+            run_code = CYCLING;
+            run_pivots = 0;
+        }
+        Views rv(run_buf, n);
+        Run r = run_checked(run_method, M, q, max_pivots - pivots, ptol, ttol, tol, rv, run_basic,
+                            careful, run_start, run_code, run_pivots, work);
+        pivots += r.pivots;
+        if (step == -1) {
+            code = r.code;
+            ok = r.ok;
+            residual = r.residual;
+            recoveries = r.recoveries;
+            if (code == SOLVED && !ok && d == nullptr) {
+                // Solved on a point that fails the check: the point of its final basis first.
+                std::vector<double> zw(static_cast<std::size_t>(2 * n));
+                double rb;
+                bool okb = basis_point_checked(M, q, z_basic.data(), tol, v.R, zw.data(),
+                                               zw.data() + n, rb);
+                if (okb) {
+                    for (idx i = 0; i < n; ++i) {
+                        v.x[i] = zw[i];
+                        v.w[i] = zw[n + i];
+                    }
+                    v.x[n] = 0.0;
+                    ok = okb;
+                    residual = rb;
+                } else if (n >= RESTART_FROM && pivots < max_pivots) {
+                    // Then Lemke's method restarted from that basis, kept only when it passes.
+                    buf2.assign(buf, buf + L.length());
+                    z_basic2.assign(static_cast<std::size_t>(n), 0);
+                    std::vector<idx> beta(static_cast<std::size_t>(n));
+                    idx kb = basic_indices(z_basic.data(), n, beta.data());
+                    double m_max;
+                    finite_absmax(M, m_max);
+                    bool ok3;
+                    double r3;
+                    Views v2(buf2.data(), n);
+                    idx p3 = restart(M, q, z_basic.data(), beta.data(), kb, m_max,
+                                     max_pivots - pivots, pivot_tol, tie_tol, tol, v2,
+                                     z_basic2.data(), ok3, r3);
+                    pivots += p3;
+                    recoveries += 1;
+                    if (ok3) {
+                        std::copy(buf2.begin(), buf2.end(), buf);
+                        z_basic = z_basic2;
+                        ok = ok3;
+                        residual = r3;
+                    }
+                }
+            }
+            continue;
+        }
+        recoveries += r.recoveries + 1;
+        bool take = r.code == SOLVED && (r.ok || code != SOLVED);
+        if (!take && r.code == SOLVED && code == SOLVED && !ok &&
+            !basis_checks(M, q, z_basic.data(), tol, v.R) &&
+            basis_checks(M, q, z_basic2.data(), tol, v.R))
+            take = true;  // both failed the check, only this one's basis gives a point
+        if (!take && !have_ray && r.code == RAY_TERMINATION &&
+            ray_check(M, q, rv.cov, rv.x, rv.x[n], rv.ray, tol, rv.R, rv.C)) {
+            take = have_ray = true;
+            ray_known = ray_ok = true;
+        } else if (take) {
+            have_ray = false;
+        }
+        if (take) {
+            std::copy(buf2.begin(), buf2.end(), buf);
+            z_basic = z_basic2;
+            code = r.code;
+            ok = r.ok;
+            residual = r.residual;
+        }
+    }
+    if (code == RAY_TERMINATION)
+        ok = ray_known ? ray_ok : ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
+    out.code = code;
+    out.pivots = pivots;
+    out.k = basic_indices(z_basic.data(), n, basic);
+    out.ok = ok;
+    out.residual = residual;
+    out.recoveries = recoveries;
+    return out;
+}
+
+}  // namespace
+
+RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
+                    const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
+                    double tol, double* buf, idx* basic) {
+    thread_local std::vector<double> work;
+    idx n = M.rows;
+    Views v(buf, n);
+    idx pivots = 0;
+    int first_code = -1;
+    idx first_pivots = 0;
+    bool scaled = false;
+    if (k == -1) {
+        first_code = static_cast<int>(beta[0]);
+        first_pivots = beta[1];
+    } else if (k != 0) {
+        bool tried = k < 0;
+        if (tried) k = -2 - k;
+        // the warm start's stages (cold.warm_stages)
+        int found;
+        double m_max, residual = 0.0;
+        if (tried) {
+            found = 1;
+            finite_absmax(M, m_max);
+        } else {
+            found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
+        }
+        RunResult out;
+        if (found == 0) {
+            out.code = SOLVED;
+            out.k = k;
+            out.ok = true;
+            out.residual = residual;
+            out.stage = 0;
+            return out;
+        }
+        if (found < 0) {
+            out.code = NOT_FINITE;
+            return out;
+        }
+        if (found != 2 && n >= RESTART_FROM) {
+            std::vector<std::uint8_t> flags(static_cast<std::size_t>(2 * n), 0);
+            std::uint8_t* z_start = flags.data();
+            std::uint8_t* z_basic = flags.data() + n;
+            for (idx i = 0; i < k; ++i) z_start[beta[i]] = 1;
+            bool ok;
+            pivots = restart(M, q, z_start, beta, k, m_max, max_pivots, pivot_tol, tie_tol, tol,
+                             v, z_basic, ok, residual);
+            if (ok) {
+                out.code = SOLVED;
+                out.pivots = pivots;
+                out.k = basic_indices(z_basic, n, basic);
+                out.ok = true;
+                out.residual = residual;
+                out.stage = 1;
+                return out;
+            }
+        }
+        scaled = true;
+    }
+    RunResult out = checked(method, M, q, d, std::max<idx>(0, max_pivots - pivots), pivot_tol,
+                            tie_tol, tol, buf, basic, first_code, first_pivots, scaled);
+    out.pivots += pivots;
+    out.stage = 2;
+    return out;
+}
+
+RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
+                const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
+                double tol, double* buf, idx* basic) {
+    if (method != TABLEAU)
+        return solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
+    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
+    if (r.stage >= 0) return r;
+    idx n = M.rows;
+    if (r.stage == -1 && r.code == RAY_TERMINATION) {
+        Views v(buf, n);
+        if (ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C)) {
+            idx kk = 0;  // the flags in basic to indices, in place (kk <= i)
+            for (idx i = 0; i < n; ++i)
+                if (basic[i] != 0) basic[kk++] = i;
+            r.k = kk;
+            r.ok = true;
+            r.stage = 2;
+            return r;
+        }
+    }
+    if (r.stage == -1) {
+        idx resume[2] = {r.code, r.pivots};
+        return solve_one(method, M, q, d, resume, -1, max_pivots, pivot_tol, tie_tol, tol, buf,
+                         basic);
+    }
+    return solve_one(method, M, q, d, beta, -2 - k, max_pivots, pivot_tol, tie_tol, tol, buf,
+                     basic);
+}
+
+void batch(Method method, const double* Ms, const idx* mstart, const double* qs, const idx* qoff,
+           const idx* beta, const idx* boff, idx lo, idx hi, const idx* max_pivots,
+           double pivot_tol, double tie_tol, double tol, double* bufs, const idx* buff,
+           idx* basics, idx* out_i, double* out_f) {
+    for (idx b = lo; b < hi; ++b) {
+        idx n = qoff[b + 1] - qoff[b];
+        Mat<const double> M(Ms + mstart[b], n, n);
+        RunResult r = solve(method, M, qs + qoff[b], nullptr, beta + boff[b], boff[b + 1] - boff[b],
+                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b]);
+        idx* oi = out_i + 5 * b;
+        oi[0] = r.code;
+        oi[1] = r.pivots;
+        oi[2] = r.k;
+        oi[3] = r.recoveries;
+        oi[4] = r.stage;
+        out_f[2 * b] = r.ok ? 1.0 : 0.0;
+        out_f[2 * b + 1] = r.residual;
+    }
 }
 
 }  // namespace lemke

@@ -36,11 +36,42 @@ struct RunResult {
     int stage = 2;       // 0 warm basis solved it; 2 cold; -1 go on in the full driver; -2 restart
 };
 
+enum Method : int { TABLEAU = 0, UNREVISED = 1 };
+
 // What solve_lcp runs first (tableau method), cold (k == 0) or warm from the basic z's
 // beta[:k]. d: the covering vector (nullptr: all ones). buf: BufferLayout(n).length()
 // doubles; basic: n int64 (the basic z's, or on stage -1 the final flags).
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
                     idx k, idx max_pivots, double pivot_tol, double tie_tol, double tol,
                     double* buf, idx* basic);
+
+// What solve_lcp runs for one problem, and every batch per problem (cold.solve_one): a warm
+// start's stages from beta[:k] when k > 0, then, unless they solved it, the cold solve with
+// its recoveries (cycles; failed checks: the final basis's point, a restart from it at
+// n >= RESTART_FROM, the ladder of covering vectors and the other method) and the checks.
+// k = -1: go on after first_run's stage -1 (its code beta[0] after beta[1] pivots, its
+// flags in `basic`); k < -1: restart from the warm basis beta[:-2 - k] whose point
+// first_run tried (stage -2).
+RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
+                    const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
+                    double tol, double* buf, idx* basic);
+
+// The first run and, when it does not settle the solve, solve_one from where it stopped: the
+// path of solve_lcp for one problem (and of a batch's problem), by either method. A first
+// run that ended on a ray whose point failed the check gets the ray check here, as
+// solve_one would give it.
+RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
+                const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
+                double tol, double* buf, idx* basic);
+
+// solve() on problems lo..hi-1 laid end to end (cold.batch's layout): problem b has
+// n = qoff[b + 1] - qoff[b], q = qs + qoff[b], M the n x n row-major block at Ms + mstart[b],
+// warm start beta[boff[b]..boff[b + 1]), buffer bufs + buff[b], basic z's basics + qoff[b],
+// pivot cap max_pivots[b]. Row b of out_i gets (code, pivots, k, recoveries, stage), of
+// out_f (ok, residual).
+void batch(Method method, const double* Ms, const idx* mstart, const double* qs, const idx* qoff,
+           const idx* beta, const idx* boff, idx lo, idx hi, const idx* max_pivots,
+           double pivot_tol, double tie_tol, double tol, double* bufs, const idx* buff,
+           idx* basics, idx* out_i, double* out_f);
 
 }  // namespace lemke

@@ -253,4 +253,122 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y,
     return all_finite(x, k);
 }
 
+void matvec(Mat<const double> G, idx k, const double* x, double* out) {
+    for (idx r = 0; r < k; ++r) out[r] = dot(G.row(r), x, k);
+}
+
+namespace {
+
+// y[lo:k] -= f x[lo:k] (linalg._row_update): no reduction, so it vectorizes without
+// reordering anything.
+LEMKE_CLONES
+void row_update(double* y, double f, const double* x, idx lo, idx k) {
+    for (idx c = lo; c < k; ++c) y[c] -= f * x[c];
+}
+
+// Every row r of G[:k, :k] but j and j + 1 with f = fg[r], g = fg[k + r] not both zero:
+// G[r, c] = (G[r, c] - f G[j, c]) - g G[j + 1, c], the pivot rows read from their copy in S
+// (2k doubles) (linalg._update_all_pair).
+LEMKE_CLONES
+void update_all_pair(Mat<double> G, const double* fg, idx j, idx k, double* S) {
+    const double* gj = G.row(j);
+    const double* gj1 = G.row(j + 1);
+    for (idx c = 0; c < k; ++c) {
+        S[c] = gj[c];
+        S[k + c] = gj1[c];
+    }
+    const double* s1 = S + k;
+    for (idx r = 0; r < k; ++r) {
+        if (r == j || r == j + 1) continue;
+        double f = fg[r], g = fg[k + r];
+        if (f != 0.0 || g != 0.0) {
+            double* gr = G.row(r);
+            for (idx c = 0; c < k; ++c) gr[c] = (gr[c] - f * S[c]) - g * s1[c];
+        }
+    }
+}
+
+bool block_finite(Mat<const double> G, idx k) {
+    bool finite = true;
+    for (idx r = 0; r < k; ++r) finite &= all_finite(G.row(r), k);
+    return finite;
+}
+
+}  // namespace
+
+bool invert_in_place(Mat<double> G, idx k, double* work, idx* piv) {
+    if (k < 0 || k > G.rows || k > G.cols) return false;
+    if (!block_finite(G, k)) return false;
+    double* fg = work;     // a pass's multipliers f (k) and g (k)
+    double* S = work + 2 * k;  // its pivot rows
+    idx j = 0;
+    while (j < k) {
+        // Pivot j: the largest entry of column j (up to date) in rows j..k-1.
+        idx p = pivot_row(G, j, k, 0.0);
+        if (p < 0) return false;
+        piv[j] = p;
+        swap_rows(G, j, p, k);
+        double* rowj = G.row(j);
+        double d = 1.0 / rowj[j];
+        rowj[j] = 1.0;
+        for (idx c = 0; c < k; ++c) rowj[c] *= d;
+        if (j + 1 == k) {  // the last pivot alone
+            for (idx r = 0; r < j; ++r) {
+                double* rowr = G.row(r);
+                double f = rowr[j];
+                if (f != 0.0) {
+                    rowr[j] = 0.0;
+                    row_update(rowr, f, rowj, 0, k);
+                }
+            }
+            break;
+        }
+        // Pivot j + 1 from column j + 1 as pivot j will leave it: G[r, j + 1] - G[r, j] h.
+        double h = rowj[j + 1];
+        p = pivot_row(G, j + 1, k, h);
+        if (p < 0) return false;
+        piv[j + 1] = p;
+        swap_rows(G, j + 1, p, k);
+        double* row1 = G.row(j + 1);
+        double f1 = row1[j];
+        row1[j] = 0.0;
+        row_update(row1, f1, rowj, 0, k);
+        double d1 = 1.0 / row1[j + 1];
+        row1[j + 1] = 1.0;
+        for (idx c = 0; c < k; ++c) row1[c] *= d1;
+        // Every other row: both eliminations in one pass (multipliers first).
+        for (idx r = 0; r < k; ++r) {
+            if (r == j || r == j + 1) continue;
+            double f = G(r, j);
+            fg[r] = f;
+            fg[k + r] = G(r, j + 1) - f * h;
+        }
+        update_all_pair(G, fg, j, k, S);
+        for (idx r = 0; r < k; ++r) {
+            if (r == j || r == j + 1) continue;
+            double f = fg[r], g = fg[k + r];
+            if (f != 0.0 || g != 0.0) {
+                G(r, j) = -f * rowj[j] - g * row1[j];
+                G(r, j + 1) = -g * row1[j + 1];
+            }
+        }
+        // Row j last (the pass above read it as pivot j left it).
+        rowj[j + 1] = 0.0;
+        row_update(rowj, h, row1, 0, k);
+        j += 2;
+    }
+    // The rows were swapped on the way: swap the inverse's columns back, in reverse order.
+    for (idx jj = k - 1; jj >= 0; --jj) {
+        idx p = piv[jj];
+        if (p != jj) {
+            for (idx r = 0; r < k; ++r) {
+                double t = G(r, jj);
+                G(r, jj) = G(r, p);
+                G(r, p) = t;
+            }
+        }
+    }
+    return block_finite(G, k);
+}
+
 }  // namespace lemke

@@ -71,4 +71,15 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 // overwritten; x gets the solution. Returns whether the block is non-singular and x finite.
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
 
+// out[:k] = G[:k, :k] x[:k], each row by `dot` (linalg.matvec).
+void matvec(Mat<const double> G, idx k, const double* x, double* out);
+
+// Replace G[:k, :k] by its inverse (linalg.invert_in_place, the same operations in the same
+// order): Gauss-Jordan elimination with partial pivoting, two pivots per pass over the rows,
+// the inverse's columns swapped back at the end. G may be larger than k x k. work: 4k
+// doubles (a pass's multipliers, its pivot rows), piv: k. False when the block is not
+// finite, a pivot is exactly zero or NaN, or the inverse is not finite (G then holds what
+// the elimination left, as numba's does).
+bool invert_in_place(Mat<double> G, idx k, double* work, idx* piv);
+
 }  // namespace lemke

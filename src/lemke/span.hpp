@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <type_traits>
 
 namespace lemke {
 
@@ -47,6 +48,10 @@ struct Mat {
     idx rows = 0, cols = 0, ld = 0;
     Mat() = default;
     Mat(T* data, idx r, idx c) : p(data), rows(r), cols(c), ld(c) {}
+    // A read-only view of a writable matrix.
+    template <class U, class = typename std::enable_if<std::is_same<const U, T>::value &&
+                                                       !std::is_same<U, T>::value>::type>
+    Mat(const Mat<U>& o) : p(o.p), rows(o.rows), cols(o.cols), ld(o.ld) {}
     T& operator()(idx i, idx j) const {
         LEMKE_CHECK_INDEX(i, rows, "matrix row");
         LEMKE_CHECK_INDEX(j, cols, "matrix column");

@@ -205,16 +205,20 @@ Status tableau_solve(Mat<const double> M, const double* q, const double* d, cons
     nonbasic[n] = 2 * n;
     Status status = tableau_lemke(w, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
                                   z_basic_out, careful, pivots);
-    double z0_factor = 1.0 / d_scale;
+    unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED, n);
+    return status;
+}
+
+void unscale(double* x_out, double* ray_out, const double* C, double z0_factor, bool solved,
+             idx n) {
     for (idx i = 0; i < n; ++i) {
         x_out[i] *= C[i];
         ray_out[i] *= C[i];
     }
     x_out[n] *= z0_factor;
     ray_out[n] *= z0_factor;
-    if (status == SOLVED)
+    if (solved)
         for (idx i = 0; i < n + 1; ++i) x_out[i] = pmax(x_out[i], 0.0);
-    return status;
 }
 
 }  // namespace lemke

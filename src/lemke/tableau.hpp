@@ -38,6 +38,11 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
                      double* x_out, double* ray_out, std::uint8_t* z_basic_out, bool careful,
                      idx& pivots);
 
+// Back to the caller's units (tableau.unscale): z and its ray times the column scales C,
+// z0 and its ray entry times z0_factor; a solved x is clamped at 0.
+void unscale(double* x_out, double* ray_out, const double* C, double z0_factor, bool solved,
+             idx n);
+
 // A cold run from (M, q, d) with q not >= 0, on the system equilibrated by (R, C); x_out
 // and ray_out in the caller's units.
 Status tableau_solve(Mat<const double> M, const double* q, const double* d, const double* R,

@@ -2,7 +2,7 @@
 // answers, random problems checked by an independent complementarity check, warm starts,
 // and every kind of bad argument. With an argument, a file of problems written by
 // tests/test_capi.py ("n", then M row-major, then q, per problem): each is solved and one
-// line "status pivots" printed per problem, so the test can compare them with Python's.
+// line "status pivots checked z..." printed per problem, so the test can compare them with Python's.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -164,7 +164,9 @@ static int table(const char* path) {
         int s = lemke_lcp_solve(n, M.data(), q.data(), nullptr, nullptr, 0, z.data(), w.data(),
                                 nullptr, nullptr, &info);
         bool checked = s != LEMKE_SOLVED || complementary(n, M.data(), q.data(), z.data());
-        std::printf("%d %lld %d\n", s, (long long)info.pivots, checked ? 1 : 0);
+        std::printf("%d %lld %d", s, (long long)info.pivots, checked ? 1 : 0);
+        for (long long i = 0; i < n; ++i) std::printf(" %.17g", z[i]);
+        std::printf("\n");
     }
     std::fclose(f);
     return 0;

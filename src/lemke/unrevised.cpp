@@ -1,0 +1,423 @@
+#include "unrevised.hpp"
+
+#include "multiversion.hpp"
+#include "tableau.hpp"
+
+namespace lemke {
+
+void UnrevisedWork::layout(idx size, idx block_max) {
+    n = size;
+    kmax = block_max;
+    f.resize(static_cast<std::size_t>(n * (n + 1) + n + n * kmax + kmax * kmax + 15 * n +
+                                      4 * kmax + 1));
+    i.resize(static_cast<std::size_t>(6 * n + 1 + kmax + 1));
+    flags.resize(static_cast<std::size_t>(n + 1));
+}
+
+namespace {
+
+constexpr idx REFACTOR_EVERY = 200;
+constexpr double RESIDUAL_TOL = 1e-12;
+constexpr idx CHECK_EVERY = 8;         // pivots between two checks of the values (drift)
+constexpr double UPDATE_PIVOT = 1e-13;  // an update's pivot at or below this: refactor
+
+// G[r, :k] += a[r] x[:k] for every r < k (but those with a[r] == 0 when skip_zero)
+// (unrevised.add_rows). Compiled per instruction set: with the row products, the update of
+// G is a pivot's O(k^2) part.
+LEMKE_CLONES
+void add_rows(Mat<double> G, idx k, const double* a, const double* x, bool skip_zero) {
+    for (idx r = 0; r < k; ++r) {
+        double f = a[r];
+        if (f != 0.0 || !skip_zero) {
+            double* g = G.row(r);
+            for (idx c = 0; c < k; ++c) g[c] += f * x[c];
+        }
+    }
+}
+
+// out[:k] = x[:k] G[:k, :k], row by row of G (unrevised._row_times).
+LEMKE_CLONES
+void row_times(const double* x, Mat<const double> G, idx k, double* out) {
+    for (idx c = 0; c < k; ++c) out[c] = 0.0;
+    for (idx p = 0; p < k; ++p) {
+        double xp = x[p];
+        if (xp != 0.0) {
+            const double* g = G.row(p);
+            for (idx c = 0; c < k; ++c) out[c] += xp * g[c];
+        }
+    }
+}
+
+// One run's state: views of the workspace and the sizes (the numba kernel's locals).
+struct Run {
+    idx n, kmax, k = 0;
+    ColumnSource src;
+    const double* q;
+    const std::uint8_t* z_start;
+    Mat<double> AB, G;
+    double *zb, *wv, *dzb, *dw, *lz, *lw, *tmp, *tmp2, *row, *keys, *rv, *rc, *acol, *lcol,
+        *coef, *inv_work;
+    double z0_max = 0.0;
+    idx *alist, *blist, *apos, *bpos, *cand, *rlab, *piv;
+
+    Run(UnrevisedWork& w, const ColumnSource& s)
+        : n(w.n), kmax(w.kmax), src(s), q(w.qs()), z_start(w.z_start()), AB(w.AB()), G(w.G()) {
+        double** v[] = {&zb, &wv, &dzb, &dw, &lz, &lw, &tmp, &tmp2, &row, &keys, &rv, &rc,
+                        &acol, &lcol, &coef};
+        for (idx j = 0; j < 15; ++j) *v[j] = w.vec(j);
+        inv_work = w.inv_work();
+        alist = w.alist();
+        blist = w.blist();
+        apos = w.apos();
+        bpos = w.bpos();
+        cand = w.cand();
+        rlab = w.rlab();
+        piv = w.piv();
+    }
+
+    // out = column e of A (e = n: the covering column). The one place that reads A.
+    void fetch_column(idx e, double* out) const {
+        for (idx i = 0; i < n; ++i) out[i] = src.A(i, e);
+    }
+
+    void set_column(idx j, const double* col) const {
+        for (idx r = 0; r < n; ++r) AB(r, j) = col[r];
+    }
+
+    // G[:k, :k] = H^-1, H = AB[alist[:k], :k].
+    bool invert() const {
+        for (idx r = 0; r < k; ++r) {
+            const double* s = AB.row(alist[r]);
+            double* g = G.row(r);
+            for (idx c = 0; c < k; ++c) g[c] = s[c];
+        }
+        return invert_in_place(G, k, inv_work, piv);
+    }
+
+    // wv = q + AB[:, :k] zb; the residual over alpha, row-wise relative (unrevised._all_w).
+    double all_w() const {
+        double res = 0.0;
+        for (idx i = 0; i < n; ++i) {
+            double mz, size;
+            row_dot_and_size(AB.row(i), zb, k, mz, size);
+            double w = q[i] + mz;
+            wv[i] = w;
+            if (apos[i] >= 0) {
+                size += std::fabs(q[i]);
+                if (std::fabs(w) > res * size) res = std::fabs(w) / size;
+            }
+        }
+        return res;
+    }
+
+    // zb = -G q_alpha, every wv; one refinement when the residual is above RESIDUAL_TOL.
+    double basic_point() const {
+        for (idx r = 0; r < k; ++r) tmp[r] = -q[alist[r]];
+        for (idx r = 0; r < k; ++r) zb[r] = dot(G.row(r), tmp, k);
+        double res = all_w();
+        if (res > RESIDUAL_TOL) {
+            for (idx r = 0; r < k; ++r) tmp[r] = wv[alist[r]];
+            matvec(G, k, tmp, tmp2);
+            for (idx c = 0; c < k; ++c) zb[c] -= tmp2[c];
+            res = all_w();
+        }
+        return res;
+    }
+
+    void advance(double t) const {
+        for (idx p = 0; p < k; ++p) zb[p] += t * dzb[p];
+        for (idx i = 0; i < n; ++i)
+            if (apos[i] < 0) wv[i] += t * dw[i];
+    }
+
+    void place(double t, idx entering) const {
+        if (entering >= n) zb[bpos[entering - n]] = t;
+        else wv[entering] = t;
+    }
+
+    // How far the values are from the basis's, row by row relative (unrevised.drift).
+    double drift() const {
+        double res = 0.0;
+        for (idx i = 0; i < n; ++i) {
+            double mz, size;
+            row_dot_and_size(AB.row(i), zb, k, mz, size);
+            size += std::fabs(q[i]);
+            double w = q[i] + mz - (apos[i] < 0 ? wv[i] : 0.0);
+            if (std::fabs(w) > res * size) res = std::fabs(w) / size;
+        }
+        return res;
+    }
+
+    // The change of every basic variable per unit of the non-basic `label`: dz (k, beta
+    // order), dwv (n, at the basic w's). col: label's column of A when it is a z (or z0).
+    void direction(const double* col, idx label, double* dz, double* dwv) const {
+        if (label < n) {  // a w leaves zero: H dz = e_p
+            idx p = apos[label];
+            for (idx r = 0; r < k; ++r) dz[r] = G(r, p);
+            for (idx i = 0; i < n; ++i)
+                if (apos[i] < 0) dwv[i] = dot(AB.row(i), dz, k);
+        } else {  // a z (or z0) enters: H dz = -A[alpha, e]
+            for (idx r = 0; r < k; ++r) tmp[r] = -col[alist[r]];
+            matvec(G, k, tmp, dz);
+            for (idx i = 0; i < n; ++i)
+                if (apos[i] < 0) dwv[i] = col[i] + dot(AB.row(i), dz, k);
+        }
+    }
+
+    // The basic variables in pair order (z0 last) into rlab, rv, rc; returns how many.
+    idx gather() const {
+        idx m = 0;
+        for (idx i = 0; i < n + 1; ++i) {
+            if (bpos[i] >= 0) {
+                rlab[m] = n + i;
+                rv[m] = zb[bpos[i]];
+                rc[m] = dzb[bpos[i]];
+                ++m;
+            } else if (i < n && apos[i] < 0) {
+                rlab[m] = i;
+                rv[m] = wv[i];
+                rc[m] = dw[i];
+                ++m;
+            }
+        }
+        return m;
+    }
+
+    // The leaving variable's position in (rlab, rv, rc), -1 when nothing blocks.
+    idx ratio_test(idx m, double pivot_tol, double tie_tol) {
+        idx art = 2 * n;
+        idx r_art = m > 0 && rlab[m - 1] == art ? m - 1 : -1;
+        if (r_art >= 0) z0_max = pmax(z0_max, rv[r_art]);
+        double cmax = 0.0;
+        for (idx i = 0; i < m; ++i) cmax = pmax(cmax, std::fabs(rc[i]));
+        idx nc = blocking_rows(rv, rv, rc, m, -pivot_tol * cmax, tie_tol, cand, r_art, z0_max);
+        if (nc <= 1) return nc == 1 ? cand[0] : -1;
+        for (idx c = 0; c < nc; ++c)
+            if (rlab[cand[c]] == art) return cand[c];
+        // Column j of the basis inverse relative to the starting basis: the unit vector of
+        // its pair-j variable when that is basic, else minus its direction.
+        for (idx j = 0; j < n; ++j) {
+            bool zs = z_start[j] != 0;
+            idx lab = zs ? n + j : j;
+            bool basic = zs ? bpos[j] >= 0 : apos[j] < 0;
+            if (!basic) {
+                if (lab >= n) fetch_column(lab - n, lcol);
+                direction(lcol, lab, lz, lw);
+            }
+            for (idx c = 0; c < nc; ++c) {
+                idx cl = rlab[cand[c]];
+                double b;
+                if (basic) b = cl == lab ? 1.0 : 0.0;
+                else b = -(cl >= n ? lz[bpos[cl - n]] : lw[cl]);
+                keys[c] = lex_key(b, rc[cand[c]], pivot_tol);
+            }
+            nc = keep_lowest(cand, keys, nc, tie_tol);
+            if (nc == 1) return cand[0];
+        }
+        return nc > 0 ? largest_pivot(cand, rc, nc) : -1;
+    }
+
+    // The index sets, AB and G for `entering` replacing `leaving` (one of four cases);
+    // false when the update's pivot is too small to trust. Changes k where H grows or shrinks
+    // after the update (the caller's k += 1 / k -= 1).
+    bool update_basis(idx entering, idx leaving) {
+        if (entering >= n && leaving < n) {
+            // z_e enters, w_i leaves: H gains row i and column e.
+            idx e = entering - n, i = leaving;
+            double s = dw[i];
+            row_times(AB.row(i), G, k, row);
+            for (idx p = 0; p < k; ++p) {
+                coef[p] = -dzb[p] / s;
+                G(p, k) = dzb[p] / s;
+            }
+            add_rows(G, k, coef, row, false);
+            for (idx c = 0; c < k; ++c) G(k, c) = -row[c] / s;
+            G(k, k) = 1.0 / s;
+            alist[k] = i;
+            apos[i] = k;
+            blist[k] = e;
+            bpos[e] = k;
+            set_column(k, acol);
+            return std::fabs(s) > UPDATE_PIVOT;
+        }
+        if (entering >= n) {
+            // z_e replaces z_l as column p of H (Sherman-Morrison).
+            idx e = entering - n, l = leaving - n;
+            idx p = bpos[l];
+            double pv = -dzb[p];
+            for (idx c = 0; c < k; ++c) row[c] = G(p, c) / pv;
+            for (idx r = 0; r < k; ++r) coef[r] = dzb[r] + (r == p ? 1.0 : 0.0);
+            add_rows(G, k, coef, row, true);
+            blist[p] = e;
+            bpos[l] = -1;
+            bpos[e] = p;
+            set_column(p, acol);
+            return std::fabs(pv) > UPDATE_PIVOT;
+        }
+        if (leaving < n) {
+            // w_j enters, w_i leaves: row p of H becomes A[i, beta].
+            idx j = entering, i = leaving;
+            idx p = apos[j];
+            row_times(AB.row(i), G, k, row);
+            double pv = row[p];
+            row[p] -= 1.0;
+            for (idx r = 0; r < k; ++r) coef[r] = -(dzb[r] / pv);
+            add_rows(G, k, coef, row, true);
+            alist[p] = i;
+            apos[j] = -1;
+            apos[i] = p;
+            return std::fabs(pv) > UPDATE_PIVOT;
+        }
+        // w_j enters, z_l leaves: H loses row p and column m; the last row and column move
+        // into the freed slots.
+        idx j = entering, l = leaving - n;
+        idx p = apos[j], m = bpos[l];
+        double pv = G(m, p);
+        for (idx r = 0; r < k; ++r) coef[r] = r != m ? -(G(r, p) / pv) : 0.0;
+        for (idx c = 0; c < k; ++c) row[c] = G(m, c);
+        add_rows(G, k, coef, row, true);
+        idx last = k - 1;
+        for (idx c = 0; c < k; ++c) G(m, c) = G(last, c);
+        for (idx r = 0; r < last; ++r) G(r, p) = G(r, last);
+        for (idx r = 0; r < n; ++r) AB(r, m) = AB(r, last);
+        zb[m] = zb[last];
+        idx bl = blist[last];
+        blist[m] = bl;
+        bpos[bl] = m;
+        bpos[l] = -1;
+        idx al = alist[last];
+        alist[p] = al;
+        apos[al] = p;
+        apos[j] = -1;
+        return std::fabs(pv) > UPDATE_PIVOT;
+    }
+};
+
+}  // namespace
+
+Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots,
+                       double pivot_tol, double tie_tol, double* x_out, double* ray_out,
+                       std::uint8_t* z_basic_out, idx& pivots) {
+    Run u(w, src);
+    idx n = u.n;
+    idx art = 2 * n;
+    for (idx i = 0; i < n; ++i) u.apos[i] = -1;
+    for (idx i = 0; i < n + 1; ++i) u.bpos[i] = -1;
+    for (idx i = 0; i < n; ++i) {
+        if (u.z_start[i]) {
+            idx k = u.k;
+            u.alist[k] = i;
+            u.blist[k] = i;
+            u.apos[i] = k;
+            u.bpos[i] = k;
+            u.fetch_column(i, u.acol);
+            u.set_column(k, u.acol);
+            u.k = k + 1;
+        }
+    }
+    for (idx i = 0; i < n + 1; ++i) ray_out[i] = 0.0;
+    for (idx i = 0; i < n + 1; ++i) x_out[i] = 0.0;
+
+    Status status = MAX_PIVOTS;
+    pivots = 0;
+    if (u.k > 0 && !u.invert()) {  // (k == 0: numba's empty G0 matches, nothing to invert)
+        status = NUMERICAL_FAILURE;
+        max_pivots = 0;
+    }
+    u.basic_point();
+    idx since_refactor = 0, since_check = 0;
+    idx entering = art;
+    std::uint64_t h = 0;
+    for (idx i = 0; i < n; ++i) h ^= label_key(u.bpos[i] >= 0 ? n + i : i);
+    Detector detector;
+    while (pivots < max_pivots) {
+        if (entering >= n) u.fetch_column(entering - n, u.acol);
+        u.direction(u.acol, entering, u.dzb, u.dw);
+        idx m = u.gather();
+        idx r, leaving;
+        if (pivots == 0) {
+            // z0 rises until every basic variable is >= 0.
+            r = first_row(u.rv, u.rc, m, tie_tol);
+            if (r < 0) {
+                status = NUMERICAL_FAILURE;
+                break;
+            }
+            leaving = u.rlab[r];
+        } else {
+            r = u.ratio_test(m, pivot_tol, tie_tol);
+            leaving = r >= 0 ? u.rlab[r] : -1;
+            if (leaving < 0) {
+                status = RAY_TERMINATION;
+                if (entering >= n) ray_out[entering - n] = 1.0;
+                for (idx p = 0; p < u.k; ++p) ray_out[u.blist[p]] = u.dzb[p];
+                break;
+            }
+        }
+        double pv = leaving >= n ? u.dzb[u.bpos[leaving - n]] : u.dw[leaving];
+        if (!(std::fabs(pv) < INF)) {  // a NaN or infinite pivot: give up
+            status = NUMERICAL_FAILURE;
+            break;
+        }
+        if (entering >= n && leaving < n && u.k >= u.kmax) {
+            status = NUMERICAL_FAILURE;  // H would outgrow M's rank: rounding, not a pivot
+            break;
+        }
+        double t = -u.rv[r] / u.rc[r];
+        u.advance(t);
+        bool ok = u.update_basis(entering, leaving);
+        if (entering >= n && leaving < n) u.k += 1;
+        else if (entering < n && leaving >= n) u.k -= 1;
+        u.place(t, entering);
+        ++pivots;
+        ++since_refactor;
+        ++since_check;
+        bool refresh = !ok || since_refactor >= REFACTOR_EVERY;
+        if (!refresh && since_check >= CHECK_EVERY) {
+            since_check = 0;
+            refresh = u.drift() > RESIDUAL_TOL;
+        }
+        if (refresh) {
+            since_refactor = 0;
+            since_check = 0;
+            if (u.k > 0 && !u.invert()) {
+                status = NUMERICAL_FAILURE;
+                break;
+            }
+            u.basic_point();
+        }
+        if (leaving == art) {
+            status = SOLVED;
+            break;
+        }
+        h ^= label_key(leaving) ^ label_key(entering);
+        if (detector.repeats(h)) {
+            status = CYCLING;
+            break;
+        }
+        entering = leaving < n ? leaving + n : leaving - n;
+    }
+    if (status != NUMERICAL_FAILURE) u.basic_point();  // the point from the basis inverse
+    for (idx p = 0; p < u.k; ++p) x_out[u.blist[p]] = u.zb[p];
+    for (idx i = 0; i < n; ++i) z_basic_out[i] = u.bpos[i] >= 0 ? 1 : 0;
+    return status;
+}
+
+Status unrevised_solve(Mat<const double> M, const double* q, const double* d, const double* R,
+                       const double* C, const std::uint8_t* z_start, idx max_pivots,
+                       double pivot_tol, double tie_tol, double* x_out, double* ray_out,
+                       std::uint8_t* z_basic_out, idx& pivots) {
+    thread_local UnrevisedWork w;
+    idx n = M.rows;
+    w.layout(n, n);
+    Mat<double> A = w.A();
+    double d_scale = scaled_into(M, q, d, R, C, A, w.qs());
+    std::uint8_t* zs = w.z_start();
+    for (idx i = 0; i < n; ++i) zs[i] = z_start && z_start[i] ? 1 : 0;
+    ColumnSource src{A};
+    Status status = unrevised_lemke(w, src, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
+                                    z_basic_out, pivots);
+    unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED, n);
+    return status;
+}
+
+}  // namespace lemke

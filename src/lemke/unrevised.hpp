@@ -1,0 +1,71 @@
+// Lemke's method without a tableau: the "unrevised" method of Dai & Drumwright (the port of
+// lemke/kernels/unrevised.py, whose docstring states the method). Only the index sets are
+// kept: alpha (the non-basic w's, H's rows) and beta (the basic z's, H's columns; n stands
+// for z0), the inverse G of the block H = A[alpha, beta] of A = [M | d], updated per pivot,
+// and the basic values, updated in place and checked against the block every CHECK_EVERY
+// pivots. Labels: 0..n-1 for w, n..2n-1 for z, 2n for z0.
+//
+// Only the dense path is ported (M given; numba's Fs empty, G0 empty). The columns of A
+// come through one function (fetch_column, over a ColumnSource), and H's arrays are sized
+// by kmax (its largest possible size), so that the factored form M = Fs Fs' (A = d alone,
+// kmax = min(n, rank + 1)) can be added there.
+#pragma once
+#include <vector>
+
+#include "pivoting.hpp"
+
+namespace lemke {
+
+// Where the columns of A = [M | d] come from: the dense A (n x (n + 1)) in the scaled units.
+// (The factored form would add Fs here and compute column e < n as Fs Fs[e]'.)
+struct ColumnSource {
+    Mat<const double> A;
+};
+
+// The unrevised method's workspace, laid out once per size (one per thread, reused).
+// f:     A (n x (n + 1)) and qs (n): the scaled system;
+//        AB (n x kmax): AB[:, c] = A[:, blist[c]];  G (kmax x kmax): H^-1;
+//        15 vectors of n: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys, rv, rc, acol, lcol,
+//        coef;  then 4 kmax: invert_in_place's work.
+// i:     alist (n), blist (n), apos (n), bpos (n + 1), cand (n), rlab (n), piv (kmax).
+// flags: z_start (n).
+struct UnrevisedWork {
+    std::vector<double> f;
+    std::vector<idx> i;
+    std::vector<std::uint8_t> flags;
+    idx n = -1, kmax = -1;
+    void layout(idx size, idx block_max);
+    Mat<double> A() { return Mat<double>(f.data(), n, n + 1); }
+    double* qs() { return f.data() + n * (n + 1); }
+    Mat<double> AB() { return Mat<double>(qs() + n, n, kmax); }
+    Mat<double> G() { return Mat<double>(qs() + n + n * kmax, kmax, kmax); }
+    double* vec(idx which) { return qs() + n + n * kmax + kmax * kmax + which * n; }  // < 15
+    double* inv_work() { return vec(15); }
+    idx* alist() { return i.data(); }
+    idx* blist() { return alist() + n; }
+    idx* apos() { return blist() + n; }
+    idx* bpos() { return apos() + n; }
+    idx* cand() { return bpos() + n + 1; }
+    idx* rlab() { return cand() + n; }
+    idx* piv() { return rlab() + n; }
+    std::uint8_t* z_start() { return flags.data(); }
+};
+
+// One run on the scaled system in `w` (qs and z_start set) with columns from `src`: Lemke's
+// method from the basis z_start (numba's unrevised.lemke with G0 empty). Returns the status,
+// pivots in `pivots`; x_out (n + 1) gets z and z0, ray_out (n + 1) the ray on
+// RAY_TERMINATION, z_basic_out (n) the final basic z's; all in the scaled units.
+Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots,
+                       double pivot_tol, double tie_tol, double* x_out, double* ray_out,
+                       std::uint8_t* z_basic_out, idx& pivots);
+
+// Lemke's method from the basis z_start (n flags; nullptr: all w basic) on (M, q) with
+// covering vector d, on the system equilibrated by (R, C), as numba's unrevised.solve(M, q, d,
+// R, C, z_start, no_matrix(), ...): returns the status, pivots in `pivots`; x_out (n + 1)
+// z and z0 and ray_out (n + 1) in the caller's units, z_basic_out (n) the final basic z's.
+Status unrevised_solve(Mat<const double> M, const double* q, const double* d, const double* R,
+                       const double* C, const std::uint8_t* z_start, idx max_pivots,
+                       double pivot_tol, double tie_tol, double* x_out, double* ray_out,
+                       std::uint8_t* z_basic_out, idx& pivots);
+
+}  // namespace lemke
