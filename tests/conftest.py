@@ -14,18 +14,13 @@ BOUNDSCHECK_TEST = "test_degenerate_families_under_bounds_checking"
 _boundscheck = {}  # "child": the running child process, "cache": its fresh numba cache directory
 
 
-def pytest_configure(config):
-    # Registered only: nothing deselects it by default, so a plain ``pytest`` runs the slow
-    # tests too; ``pytest -m "not slow"`` leaves them out.
-    config.addinivalue_line("markers", "slow: a test that takes tens of seconds (it still runs by default)")
-
-
 @pytest.fixture(params=lemke.METHODS)
 def method(request):
     """Every test that takes ``method`` runs once per Lemke method."""
     return request.param
 
 
+@pytest.hookimpl(trylast=True)  # after -m and -k have deselected: `-m "not slow"` starts no child
 def pytest_collection_modifyitems(config, items):
     """Start the bounds-checked child process (tests/boundscheck_run.py) as soon as its test is
     selected, so that it compiles every kernel with bounds checks beside the rest of the suite

@@ -504,6 +504,7 @@ def _example():
     return sys.modules["box_pile"]
 
 
+@pytest.mark.slow
 def test_example_writes_png(tmp_path):
     pytest.importorskip("matplotlib")
     bp = _example()

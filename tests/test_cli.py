@@ -247,6 +247,7 @@ def _lemke(*argv, cwd=ROOT):
                           cwd=cwd, timeout=300, env=dict(os.environ, PYTHONPATH=str(ROOT)))
 
 
+@pytest.mark.slow
 def test_python_dash_m_in_a_subprocess(tmp_path):
     done = _lemke("solve", "--json")
     assert done.returncode == 0, done.stderr

@@ -417,6 +417,7 @@ print("END", flush=True)
 """
 
 
+@pytest.mark.slow
 def test_option_values_do_not_crash(tmp_path):
     """Every value Options accepts for tie_tol, pivot_tol and tol (0, the tiniest, 0.5 and
     the largest double below 1) and max_pivots 0, 1, 2, in every combination, through

@@ -14,9 +14,9 @@ import scipy.io
 import lemke
 from lemke import Problem, ProblemFormatError, problems
 from lemke._io import FORMATS, matfile, npzfile, qps, siconos
+from siconos_mlcp import LARGE_MLCP, unpacked
 
 DATA = Path(__file__).parent / "data"
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "data"  # ../shared/data from the repo root
 SICONOS_LCP = sorted((DATA / "siconos" / "lcp").glob("*.dat"))
 SICONOS_MLCP = sorted((DATA / "siconos" / "mlcp").glob("*.dat"))
 HOLDS = {"json": ("lcp", "mlcp", "qp", "bimatrix", "blcp"), "npz": ("lcp", "mlcp", "qp", "bimatrix", "blcp"),
@@ -156,23 +156,19 @@ def test_siconos_mlcp_files_load_and_both_storages_agree(path, tmp_path):
         same_problem(p, lemke.read_problem(other))
 
 
-def _shared(*parts):
-    folder = SHARED.joinpath(*parts)
-    if not folder.is_dir():
-        pytest.skip(f"{folder} is not available")
-    return folder
-
-
-@pytest.mark.parametrize("kind", ["lcp", "mlcp"])
-def test_shared_siconos_files_load(kind):
-    files = sorted(_shared("peer-lcp", "siconos", kind).glob("*.dat"))
-    assert files
+@pytest.mark.parametrize("kind, count", [("lcp", 20), ("mlcp", 18)])
+def test_siconos_files_load(kind, count, tmp_path):
+    """Every Siconos file of the kind, with the two large MLCP files (compressed in tests/data)."""
+    files = sorted((DATA / "siconos" / kind).glob("*.dat"))
+    if kind == "mlcp":
+        files += [unpacked(path, tmp_path) for path in LARGE_MLCP]
+    assert len(files) == count
     for path in files:
         assert lemke.read_problem(path).kind == kind, path
 
 
-def test_shared_maros_meszaros_files_load_and_round_trip_through_qps(tmp_path):
-    files = sorted(_shared("maros-meszaros").glob("*.mat"))
+def test_maros_meszaros_files_load_and_round_trip_through_qps(tmp_path):
+    files = sorted((DATA / "maros-meszaros").glob("*.mat"))
     assert len(files) == 62
     for path in files:
         p = lemke.read_problem(path)
@@ -184,12 +180,9 @@ def test_shared_maros_meszaros_files_load_and_round_trip_through_qps(tmp_path):
 
 
 def test_maros_meszaros_conventions():
-    # HS21 (README of the shared data): P = diag(0.02, 2), r = -100, 10 x1 - x2 >= 10,
+    # HS21 (tests/data/maros-meszaros/README.md): P = diag(0.02, 2), r = -100, 10 x1 - x2 >= 10,
     # 2 <= x1 <= 50, -50 <= x2 <= 50; the optimum -99.96 at (2, 0) counts r.
-    path = SHARED / "maros-meszaros" / "HS21.mat"
-    if not path.exists():
-        pytest.skip(f"{path} is not available")
-    p = lemke.read_problem(path)
+    p = lemke.read_problem(DATA / "maros-meszaros" / "HS21.mat")
     same_problem(p, problems.hs21())
     assert p.objective([2.0, 0.0]) == pytest.approx(-99.96)
 

@@ -1,4 +1,6 @@
 """solve_mlcp: the Siconos MLCP files, small cases with known answers, bad input."""
+import gzip
+import hashlib
 from pathlib import Path
 
 import numpy as np
@@ -6,12 +8,11 @@ import pytest
 
 import lemke
 from helpers import assert_lcp_solution
-from siconos_mlcp import read_mlcp
+from siconos_mlcp import LARGE_MLCP, read_mlcp
 
 HERE = Path(__file__).resolve().parent
 FILES = sorted((HERE / "data" / "siconos" / "mlcp").glob("*.dat"))
-SHARED = HERE.parent.parent / "shared" / "data" / "peer-lcp" / "siconos" / "mlcp"
-BIG = sorted(SHARED.glob("deltasigma*.dat"))  # left out of tests/data for size
+BIG = LARGE_MLCP  # deltasigma*_mlcp.dat, gzip-compressed in tests/data/siconos/mlcp-large
 
 
 def assert_mlcp_solution(A, B, C, D, a, b, res, rtol=1e-8):
@@ -29,7 +30,7 @@ def assert_mlcp_solution(A, B, C, D, a, b, res, rtol=1e-8):
         assert np.max(np.abs(v * w)) <= rtol * scale * xs * xs
 
 
-@pytest.mark.parametrize("path", FILES + BIG, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", FILES + BIG, ids=lambda p: p.name.split(".")[0])
 def test_siconos_mlcp_files(path, method):
     A, B, C, D, a, b = read_mlcp(path)
     res = lemke.solve_mlcp(A, B, C, D, a, b, method=method)
@@ -38,7 +39,14 @@ def test_siconos_mlcp_files(path, method):
 
 
 def test_all_shared_files_are_here():
+    # Siconos' numerics/src/MLCP/test/data has 18 files: 16 here, the 2 large ones compressed
     assert len(FILES) == 16
+    assert [p.name for p in BIG] == ["deltasigma2_mlcp.dat.gz", "deltasigma_mlcp.dat.gz"]
+    # the SHA-256 of Siconos' files (tests/data/README.md): the compressed copies are unchanged
+    assert [hashlib.sha256(gzip.decompress(p.read_bytes())).hexdigest() for p in BIG] == [
+        "78ea588ee8a09415c66f7a1d8c5f84ecf015da8e86a0ee45624eb4d933f0e469",
+        "a3ea1d37e5d2fbc2986b592d8b4504259626b5d054d732fe34153ebc87846bed",
+    ]
 
 
 def test_known_answer():
