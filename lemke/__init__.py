@@ -11,61 +11,45 @@ method), the checks :func:`is_lcp_solution` and :func:`is_lcp_ray`; problems as 
 (:class:`Problem`) and in files (:func:`read_problem`, :func:`write_problem`,
 :func:`write_result`, :class:`ProblemFormatError`).
 """
-from ._batch import solve_lcp_batch, solve_lcp_many
-from ._dask import solve_lcp_batch_dask
-from ._blcp import BLCPResult, BoxWarmStart, solve_blcp
-from ._io import ProblemFormatError, read_problem, result_to_dict, write_problem, write_result
-from ._games import BimatrixResult, GameBasis, PathsResult, lemke_paths, solve_bimatrix
-from ._certify import is_lcp_ray, is_lcp_solution, lcp_residual
-from ._lcp import METHODS, solve_lcp
-from ._mlcp import MLCPResult, solve_mlcp
-from ._options import Options
-from ._pivot_column import pivot_column
-from ._problem import Problem
-from ._qp import Certificate, QPResult, solve_qp, solve_qpsolvers_problem
-from ._result import LCPBatchResult, LCPManyResult, LCPResult, WarmStart, WarmStartBatch
-from ._status import Status
-from ._validate import DensifyWarning
+import importlib as _importlib
+
 from ._version import __version__
 
+#: Where each public name lives.  The modules are imported when a name is first used
+#: (PEP 562), so ``import lemke`` itself loads neither numpy nor the kernels: a command
+#: or a notebook pays only for what it calls.
+_EXPORTS = {
+    "solve_lcp_batch": "_batch", "solve_lcp_many": "_batch",
+    "solve_lcp_batch_dask": "_dask",
+    "BLCPResult": "_blcp", "BoxWarmStart": "_blcp", "solve_blcp": "_blcp",
+    "ProblemFormatError": "_io", "read_problem": "_io", "result_to_dict": "_io",
+    "write_problem": "_io", "write_result": "_io",
+    "BimatrixResult": "_games", "GameBasis": "_games", "PathsResult": "_games",
+    "lemke_paths": "_games", "solve_bimatrix": "_games",
+    "is_lcp_ray": "_certify", "is_lcp_solution": "_certify", "lcp_residual": "_certify",
+    "METHODS": "_lcp", "solve_lcp": "_lcp",
+    "MLCPResult": "_mlcp", "solve_mlcp": "_mlcp",
+    "Options": "_options",
+    "pivot_column": "_pivot_column",
+    "Problem": "_problem",
+    "Certificate": "_qp", "QPResult": "_qp", "solve_qp": "_qp", "solve_qpsolvers_problem": "_qp",
+    "LCPBatchResult": "_result", "LCPManyResult": "_result", "LCPResult": "_result",
+    "WarmStart": "_result", "WarmStartBatch": "_result",
+    "Status": "_status",
+    "DensifyWarning": "_validate",
+}
 
-__all__ = [
-    "METHODS",
-    "BLCPResult",
-    "BoxWarmStart",
-    "BimatrixResult",
-    "GameBasis",
-    "Certificate",
-    "DensifyWarning",
-    "LCPBatchResult",
-    "LCPManyResult",
-    "LCPResult",
-    "MLCPResult",
-    "Options",
-    "PathsResult",
-    "Problem",
-    "ProblemFormatError",
-    "QPResult",
-    "Status",
-    "WarmStart",
-    "WarmStartBatch",
-    "is_lcp_ray",
-    "is_lcp_solution",
-    "lcp_residual",
-    "lemke_paths",
-    "pivot_column",
-    "read_problem",
-    "result_to_dict",
-    "solve_bimatrix",
-    "solve_blcp",
-    "solve_lcp",
-    "solve_lcp_batch",
-    "solve_lcp_batch_dask",
-    "solve_lcp_many",
-    "solve_mlcp",
-    "solve_qp",
-    "solve_qpsolvers_problem",
-    "write_problem",
-    "write_result",
-    "__version__",
-]
+__all__ = sorted(_EXPORTS) + ["__version__"]
+
+
+def __getattr__(name):
+    where = _EXPORTS.get(name)
+    if where is None:
+        raise AttributeError(f"module 'lemke' has no attribute {name!r}")
+    value = getattr(_importlib.import_module("." + where, __name__), name)
+    globals()[name] = value  # the next read is a plain attribute
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_EXPORTS))
