@@ -3,9 +3,10 @@ a proof -- for every kind, on the caller's data.
 
 The same functions serve the solvers (to accept or downgrade a result), the tests and the
 benchmarks, so every part of the project judges answers the same way.  The kernels keep a
-fused copy of the LCP test for speed (``kernels/certify.py``, which *is* the LCP rule below:
-``check_lcp`` calls it, and ``tests/test_certify.py`` checks that the fused check inside a
-solve gives the verdict of ``is_lcp_solution``).
+fused copy of the LCP test for speed (``kernels/certify.py``, in the C++ core
+``src/lemke/certify.cpp``, which *is* the LCP rule below: ``check_lcp`` calls it, and
+``tests/test_certify.py`` checks that the fused check inside a solve gives the verdict of
+``is_lcp_solution``).
 
 **The recipe.**  Every test compares a quantity that is zero (or non-negative) in exact
 arithmetic with ``tol`` (``Options.tol``, default 1e-9) times the size of the terms it is
@@ -34,16 +35,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _core
 from ._result import Value
 from ._validate import square_matrix, vector
-from .kernels import certify
-from .kernels import linalg as klinalg
 from .kernels.certify import CERTIFIABLE
 
 EPS = float(np.finfo(np.float64).eps)
 #: The rounding allowance of ``E x + e`` in check_mlcp: x86's long double epsilon, in which
-#: it was once computed; the double-double sums (``kernels.linalg.residual2``) are more
-#: accurate than that, on every platform alike.
+#: it was once computed; the double-double sums (``residual2`` of the C++ core, the port of
+#: ``kernels.linalg.residual2``) are more accurate than that, on every platform alike.
 EPS_EXT = 2.0 ** -63
 RAY_SLACK = 10.0  # directions (rays, Farkas vectors, descent) get 10x the point's allowance
 
@@ -56,7 +56,7 @@ def lcp_residual(z: np.ndarray, w: np.ndarray) -> float:
 def check_lcp(M: np.ndarray, q: np.ndarray, z: np.ndarray, tol: float):
     """``(w, is_solution, residual)`` for float64 arrays of matching shapes; w = M z + q."""
     w = np.empty_like(q)
-    ok, residual = certify.lcp_check(M, q, z, tol, w)
+    ok, residual = _core.lcp_check(M, q, z, tol, w)
     return w, bool(ok), float(residual)
 
 
@@ -87,7 +87,7 @@ def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
     n = M.shape[0]
     q, d, z = (vector(a, n, name) for a, name in ((q, "q"), (d, "d"), (z, "z")))
     ray = vector(ray, n + 1, "ray")
-    return bool(certify.lcp_ray_check(M, q, d, z, float(z0), ray, float(tol)))
+    return bool(_core.lcp_ray_check(M, q, d, z, float(z0), ray, float(tol)))
 
 
 # ----------------------------------------------------------------------------- MLCP
@@ -97,13 +97,24 @@ def check_mlcp(E, e, n, x, tol):
     rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
     equations, with the tolerances taken from the whole stacked system and ``E x + e``
     summed in double-double (its rounding allowance, EPS_EXT, is that of x86's long
-    double)."""
+    double).  In the C++ core (``check_mlcp`` in ``src/lemke/certify.cpp``): the numbers of
+    :func:`_check_mlcp_numpy`, bit for bit."""
+    c = np.ascontiguousarray
+    y = np.empty(e.size)
+    ok, residual = _core.check_mlcp(c(E, dtype=np.float64), c(e, dtype=np.float64), int(n),
+                                    c(x, dtype=np.float64), float(tol), y)
+    return y[n:], ok, residual
+
+
+def _check_mlcp_numpy(E, e, n, x, tol, residual2):
+    """:func:`check_mlcp` in numpy, ``residual2(E, x, e, y)`` summing ``E x + e`` (the
+    reference of the core's bits, for the tests)."""
     N = e.size
     # In double-double, so that the test needs no allowance for rounding in computing E x
     # beyond EPS_EXT (an allowance of eps would grow with |x| and pass any huge x).
     y = np.empty(N)
     c = np.ascontiguousarray
-    klinalg.residual2(c(E, dtype=np.float64), c(x, dtype=np.float64), c(e, dtype=np.float64), y)
+    residual2(c(E, dtype=np.float64), c(x, dtype=np.float64), c(e, dtype=np.float64), y)
     e_max, E_max = absmax(e), absmax(E)
     s_z = tol * max(absmax(x), e_max / E_max if E_max > 0.0 else 0.0)
     s_w = tol * max(e_max, E_max) + 4.0 * N * EPS_EXT * E_max * absmax(x)

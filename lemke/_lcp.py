@@ -8,7 +8,7 @@ from ._certify import check_lcp
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import cold, linalg
+from .kernels import cold
 
 METHODS = tuple(cold.METHODS)
 #: The C++ core's LCP driver (src/lemke/lcp.cpp), the port of the numba kernels of
@@ -204,7 +204,7 @@ def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
     if status == Status.SOLVED:
         # Recompute the point of the final basis from the caller's data: one dense solve,
         # more accurate than a tableau that went through many pivots.
-        zb = _point_of_basis(linalg.principal_block(M, basic), q, basic)
+        zb = _point_of_basis(_core.principal_block(M, basic), q, basic)
         if zb is not None:
             wb, ok, rb = check_lcp(M, q, zb, opts.tol)
             if ok:

@@ -21,14 +21,13 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from . import _validate
+from . import _core, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp
 from ._options import as_options
 from ._reductions.mlcp_lcp import MLCPToLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import mlcp as kmlcp
 
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
 LARGE_PIVOT_TOL = 1e-7  # the pivot tolerance of the last try after numerical failures
@@ -145,10 +144,10 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
     N = e.size
     m = N - n
     red = MLCPToLCP(E, e, n)
-    if red.code != kmlcp.OK:
+    if red.code != _core.MLCP_OK:
         x = np.zeros(N)
         w, _, residual = check_mlcp(E, e, n, x, opts.tol)
-        status = Status.PRIMAL_INFEASIBLE if red.code == kmlcp.INCONSISTENT else Status.NUMERICAL_FAILURE
+        status = Status.PRIMAL_INFEASIBLE if red.code == _core.MLCP_INCONSISTENT else Status.NUMERICAL_FAILURE
         return _result(x, w, n, status, 0, residual, None, None)
 
     lcp_ws = None

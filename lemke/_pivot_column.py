@@ -11,8 +11,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import _core
 from ._validate import real_array
-from .kernels import linalg
 
 _EPS = np.finfo(np.float64).eps
 _LABEL = re.compile(r"([wz])([1-9][0-9]*)\Z")
@@ -111,14 +111,15 @@ def _index_sets(n: int, basic, nonbasic) -> _IndexSets:
 def _solve_block(A: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """``A^{-1} rhs``; LinAlgError when ``A`` is singular to working precision.
 
-    With the kernels' own single-threaded elimination (``kernels.linalg``: no LAPACK, so no
-    BLAS thread pool): the inverse gives the exact 1-norm condition number, and the solve
+    With the core's own single-threaded elimination (``invert_in_place`` and ``linalg_solve``
+    of ``src/lemke/linalg.cpp``, the ports of ``kernels.linalg``'s: no LAPACK, so no BLAS
+    thread pool): the inverse gives the exact 1-norm condition number, and the solve
     is an LU solve with partial pivoting."""
     m = A.shape[0]
     if m == 0:
         return np.zeros_like(rhs)
     inv = np.array(A, dtype=np.float64, order="C")
-    if not linalg.invert_in_place(inv, m):
+    if not _core.invert_in_place(inv, m):
         raise np.linalg.LinAlgError(
             f"the block M^(alpha beta) ({m} x {m}) is singular: these basic variables do not form a basis"
         )
@@ -132,7 +133,7 @@ def _solve_block(A: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     A = np.ascontiguousarray(A, dtype=np.float64)
     x = np.empty_like(rhs)
     for j in range(rhs.shape[1]):
-        ok, x[:, j] = linalg.solve(A, np.ascontiguousarray(rhs[:, j]))
+        ok, x[:, j] = _core.linalg_solve(A, np.ascontiguousarray(rhs[:, j]))
         if not ok:
             raise np.linalg.LinAlgError(f"the block M^(alpha beta) ({m} x {m}) is singular to working precision")
     return x

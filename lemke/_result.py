@@ -16,9 +16,10 @@ from operator import itemgetter
 
 import numpy as np
 
+from . import _core
 from ._status import Status
 from ._validate import kernel_array
-from .kernels import carry, cold
+from .kernels import cold
 
 
 @dataclass(frozen=True)
@@ -101,9 +102,9 @@ class WarmStart:
         return WarmStart._trusted(m, tuple(compress(range(m), flags)))
 
     def _relabel_ids(self, old, new):
-        """:meth:`relabel` for labels given as 1-D integer arrays: one kernel call
-        (``kernels.carry``), no Python object per row; None for other arrays (the general
-        path takes them)."""
+        """:meth:`relabel` for labels given as 1-D integer arrays: one call of the C++ core
+        (``relabel_ids``, the port of ``kernels.carry``), no Python object per row; None for
+        other arrays (the general path takes them)."""
         if old.ndim != 1 or new.ndim != 1 or old.dtype.kind not in "iu" or new.dtype.kind not in "iu":
             return None
         if old.size != self.n:
@@ -116,7 +117,7 @@ class WarmStart:
         if beta is None:  # kept, as solve_lcp keeps it
             beta = self.__dict__["_beta"] = np.array(self.z_basic, dtype=np.int64)
         out = np.empty(new.size, dtype=np.int64)
-        count = carry.relabel_ids(old, new, beta, out)
+        count = _core.relabel_ids(old, new, beta, out)
         if count < 0:
             raise ValueError(f"{'old' if count == -1 else 'new'}_labels holds a label twice")
         ws = WarmStart._trusted(new.size, tuple(out[:count].tolist()))

@@ -7,7 +7,8 @@ The mixed LCP in Siconos' form: find u (free, n of them) and v (m of them) with
 1. equilibrate E (row and column scaling; a pair's row and column get the same factor,
    which keeps v ⊥ w);
 2. exchange pivots make every u basic and every equation's slack non-basic
-   (``kernels.mlcp``): the free variables enter and stay basic, never split into two signs;
+   (``kernels.mlcp``, in the C++ core ``src/lemke/mlcp.cpp``): the free variables enter and
+   stay basic, never split into two signs;
 3. what is left is an LCP in the m pairs (some swapped: v_k basic, w_k the LCP's variable).
 
 Its recovery maps the LCP's answer back, or recomputes the point of the final basis from
@@ -17,9 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import _core
 from .._certify import absmax as _size
-from ..kernels import linalg as klinalg
-from ..kernels import mlcp as kmlcp
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 EPS = float(np.finfo(np.float64).eps)
@@ -28,15 +28,16 @@ EPS = float(np.finfo(np.float64).eps)
 def equilibrate(E, n, iterations=10):
     """Scaling vectors ``(r, s)`` that bring every row and column of ``r E s`` near size 1
     (Ruiz's method): free rows and columns get their own factors, and a pair's row and
-    column the same one, so that v ⊥ w is kept.  The sweeps run in a kernel
-    (``kernels.mlcp.equilibrate``, numpy's operations in numpy's order: the same bits);
+    column the same one, so that v ⊥ w is kept.  The sweeps run in the C++ core
+    (``mlcp_equilibrate``, the port of ``kernels.mlcp.equilibrate``: numpy's operations in
+    numpy's order, the same bits);
     ``_equilibrate_numpy`` is the same in numpy, for the tests."""
     N = E.shape[0]
     r = np.ones(N)
     s = np.ones(N)
     if N == 0:  # an empty system: nothing to scale (and max over no entries is undefined)
         return r, s
-    kmlcp.equilibrate(np.ascontiguousarray(E, dtype=np.float64), n, iterations, r, s)
+    _core.mlcp_equilibrate(np.ascontiguousarray(E, dtype=np.float64), n, iterations, r, s)
     return r, s
 
 
@@ -69,7 +70,7 @@ class MLCPToLCP:
     LCP in its m pairs.
 
     ``apply``: building it equilibrates E and makes every free variable basic by exchange
-    pivots; ``code`` says whether that worked (``kernels.mlcp.OK``, ``INCONSISTENT``: the
+    pivots; ``code`` says whether that worked (``_core.MLCP_OK``, ``MLCP_INCONSISTENT``: the
     equations contradict each other, ``SINGULAR``), and ``M, q`` is the LCP left
     (``M_clean`` the same with its rounding noise zeroed).  ``recover``: :meth:`point` turns
     the LCP's z (or a direction) into the MLCP's x; :meth:`to_reduced`/:meth:`v_basic`
@@ -85,11 +86,11 @@ class MLCPToLCP:
         T[:, N] = e * self.r
         self.row_label = np.empty(N, dtype=np.int64)
         self.col_label = np.empty(N, dtype=np.int64)
-        self.code, self.bad_row = kmlcp.reduce(
+        self.code, self.bad_row = _core.mlcp_reduce(
             T, n, RANK_TOL, _size(T[:, N]), self.row_label, self.col_label
         )
         self.T = T
-        if self.code != kmlcp.OK:
+        if self.code != _core.MLCP_OK:
             return
         # Constants that cancel to zero in exact arithmetic come out at rounding level: a
         # -1e-16 would make Lemke's method start where the exchanged point already solves
@@ -180,7 +181,8 @@ def _all_but(n, drop):
 
 def refined_solve(K, rhs, steps=2, given=None, low=False):
     """Solve K x = rhs with iterative refinement whose residuals are summed in double-double
-    (``kernels.linalg.refined_solve``: one LU factorization on one thread, reused by every
+    (``refined_solve`` of the C++ core, the port of ``kernels.linalg.refined_solve``: one LU
+    factorization on one thread, reused by every
     step; x carried in double-double, so that it comes out as the rounding of the exact
     solution): on a degenerate basis a variable that is zero comes out zero to the last
     digits instead of at cond(K) eps.  ``given``: the values of K's last ``given.size``
@@ -191,7 +193,7 @@ def refined_solve(K, rhs, steps=2, given=None, low=False):
     x = np.empty(k if given is None else k + given.size)  # the kernel checks K's shape
     x[k:] = () if given is None else given
     lo = np.empty(k)
-    ok = klinalg.refined_solve(np.ascontiguousarray(K, dtype=np.float64),
+    ok = _core.refined_solve(np.ascontiguousarray(K, dtype=np.float64),
                                np.ascontiguousarray(rhs, dtype=np.float64), steps, x, lo)
     if not ok:
         return None

@@ -59,6 +59,78 @@ bool check_rows(Mat<const double> M, const double* q, const double* z, double to
     return ok;
 }
 
+bool lcp_check(Mat<const double> M, const double* q, const double* z, double tol, double* w,
+               double& residual) {
+    idx n = M.rows;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(6 * n));
+    double* R = work.data();
+    double* C = R + n;
+    double* scratch = C + n;  // equilibrate's 2n, then check_rows' 2n
+    equilibrate(M, q, R, C, scratch);
+    return check_rows(M, q, z, tol, w, R, scratch + 2 * n, false, residual);
+}
+
+bool lcp_ray_check(Mat<const double> M, const double* q, const double* d, const double* z,
+                   double z0, const double* ray, double tol) {
+    idx n = M.rows;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(4 * n));
+    double* R = work.data();
+    double* C = R + n;
+    equilibrate(M, q, R, C, C + n);
+    return ray_check(M, q, d, z, z0, ray, tol, R, C);
+}
+
+namespace {
+
+// numpy's np.abs(a).max() (0 for no entries): a NaN anywhere gives NaN (the first one's
+// absolute value, as numpy's reduction returns the NaN it meets).
+double np_absmax(const double* a, idx k, double m = 0.0) {
+    for (idx i = 0; i < k; ++i) {
+        double v = std::fabs(a[i]);
+        if (v != v) return v;
+        m = pmax(m, v);
+    }
+    return m;
+}
+
+}  // namespace
+
+bool check_mlcp(Mat<const double> E, const double* e, idx n, const double* x, double tol,
+                double* y, double& residual) {
+    idx N = E.rows;
+    residual2(E, x, N, e, y);
+    double e_max = np_absmax(e, N);
+    double E_max = 0.0;
+    for (idx r = 0; r < N && E_max == E_max; ++r) E_max = np_absmax(E.row(r), N, E_max);
+    double x_max = np_absmax(x, N);
+    double s_z = tol * pmax(x_max, E_max > 0.0 ? e_max / E_max : 0.0);
+    double s_w = tol * pmax(e_max, E_max) + 4.0 * static_cast<double>(N) * EPS_EXT * E_max * x_max;
+    double res_eq = np_absmax(y, n);
+    // A point so large that rounding it to double moves E x by far more than the tolerance
+    // cannot be certified.
+    bool certifiable = EPS * E_max * x_max <= CERTIFIABLE * tol * pmax(e_max, E_max);
+    bool all = true;
+    double mins = 0.0;
+    bool mins_nan = false;
+    for (idx i = n; i < N; ++i) {
+        double v = x[i], w = y[i];
+        all &= v >= -s_z && w >= -s_w && (v <= s_z || std::fabs(w) <= s_w);
+        double m = std::fabs(v <= w || v != v ? v : w);  // np.minimum's NaN rule
+        if (!mins_nan) {
+            if (m != m) {
+                mins = m;
+                mins_nan = true;
+            } else {
+                mins = pmax(mins, m);
+            }
+        }
+    }
+    residual = pmax(res_eq, mins);
+    return certifiable && res_eq <= s_w && all;
+}
+
 bool ray_check(Mat<const double> M, const double* q, const double* d, const double* z, double z0,
                const double* ray, double tol, const double* R, const double* C) {
     idx n = M.rows;

@@ -1,5 +1,7 @@
 #include "linalg.hpp"
 
+#include <vector>
+
 #include "multiversion.hpp"
 
 namespace lemke {
@@ -251,6 +253,217 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y,
         x[r] = acc / A(r, r);
     }
     return all_finite(x, k);
+}
+
+void residual2(Mat<const double> E, const double* x, idx k, const double* e, double* y) {
+    for (idx r = 0; r < E.rows; ++r) {
+        const double* er = E.row(r);
+        double s = e[r], err = 0.0;
+        for (idx c = 0; c < k; ++c) {
+            double a = er[c];
+            if (a != 0.0) acc2(s, err, a, x[c]);  // a zero adds nothing
+        }
+        y[r] = s + err;
+    }
+}
+
+namespace {
+
+// The columns c in lo..k-1 where x[c] or u[c] is not zero, into list; their count, or -1
+// when they are a quarter of the range or more (linalg._nonzero_columns).
+idx nonzero_columns(const double* x, const double* u, idx lo, idx k, idx* list) {
+    idx m = 0;
+    for (idx c = lo; c < k; ++c)
+        if (x[c] != 0.0 || u[c] != 0.0) list[m++] = c;
+    return 4 * m < k - lo ? m : -1;
+}
+
+// x = U^-1 y with U the upper triangle of A (linalg._back_substitute); whether x is finite.
+bool back_substitute(Mat<const double> A, const double* y, double* x, idx k) {
+    for (idx r = k - 1; r >= 0; --r) {
+        const double* ar = A.row(r);
+        double acc = y[r];
+        for (idx c = r + 1; c < k; ++c) acc -= ar[c] * x[c];
+        x[r] = acc / ar[r];
+    }
+    return all_finite(x, k);
+}
+
+// linalg._eliminate: A x = y in place (x starts at 0), two pivots per pass. piv: nullptr,
+// or 2k entries: the first k get each step's pivot row (for lu_solve), the second k list
+// the pivot rows' non-zero columns, whose updates alone are made when they are under a
+// quarter of the row.
+bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv) {
+    bool finite = all_finite(y, k);
+    for (idx r = 0; r < k; ++r) finite &= all_finite(A.row(r), k);
+    if (!finite) return false;
+    idx j = 0;
+    while (j < k) {
+        idx p = pivot_row(A, j, k, 0.0);
+        if (p < 0) return false;
+        if (piv) piv[j] = p;
+        swap_rows(A, j, p, k);
+        double t = y[j]; y[j] = y[p]; y[p] = t;
+        double inv = 1.0 / A(j, j);
+        if (j + 1 == k) break;
+        for (idx r = j + 1; r < k; ++r) A(r, j) *= inv;
+        double h = A(j, j + 1);
+        p = pivot_row(A, j + 1, k, h);
+        if (p < 0) return false;
+        if (piv) piv[j + 1] = p;
+        swap_rows(A, j + 1, p, k);
+        t = y[j + 1]; y[j + 1] = y[p]; y[p] = t;
+        double l1 = A(j + 1, j);
+        for (idx c = j + 1; c < k; ++c) A(j + 1, c) -= l1 * A(j, c);
+        y[j + 1] -= l1 * y[j];
+        double inv1 = 1.0 / A(j + 1, j + 1);
+        idx m = -1;
+        const double* aj = A.row(j);
+        const double* aj1 = A.row(j + 1);
+        if (piv) m = nonzero_columns(aj, aj1, j + 2, k, piv + k);
+        for (idx r = j + 2; r < k; ++r) {
+            double f = A(r, j);
+            double g = (A(r, j + 1) - f * h) * inv1;
+            A(r, j + 1) = g;
+            if (f != 0.0 || g != 0.0) {
+                if (m >= 0) {
+                    double* ar = A.row(r);
+                    for (idx s = 0; s < m; ++s) {
+                        idx c = piv[k + s];
+                        ar[c] = (ar[c] - f * aj[c]) - g * aj1[c];
+                    }
+                }
+                y[r] = (y[r] - f * y[j]) - g * y[j + 1];
+            }
+        }
+        if (m < 0) {
+            for (idx r = j + 2; r < k; ++r) {
+                double f = A(r, j), g = A(r, j + 1);
+                if (f != 0.0 || g != 0.0) {
+                    double* ar = A.row(r);
+                    for (idx c = j + 2; c < k; ++c) ar[c] = (ar[c] - f * aj[c]) - g * aj1[c];
+                }
+            }
+        }
+        j += 2;
+    }
+    return back_substitute(A, y, x, k);
+}
+
+// Solve again with the factors eliminate left in A and piv (linalg._lu_solve): y is
+// overwritten; each row of y gets the operations it got there.
+bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k) {
+    for (idx j = 0; j < k; ++j) {
+        idx p = piv[j];
+        double t = y[j]; y[j] = y[p]; y[p] = t;
+    }
+    for (idx j = 0; j + 1 < k; j += 2) {
+        y[j + 1] -= A(j + 1, j) * y[j];
+        for (idx r = j + 2; r < k; ++r) {
+            double f = A(r, j), g = A(r, j + 1);
+            if (f != 0.0 || g != 0.0) y[r] = (y[r] - f * y[j]) - g * y[j + 1];
+        }
+    }
+    return back_substitute(A, y, x, k);
+}
+
+// The work of solve and refined_solve, one per thread: A (k x k), y, d, and the pivots.
+struct SolveWork {
+    std::vector<double> f;
+    std::vector<idx> piv;
+    void layout(idx k) {
+        f.resize(static_cast<std::size_t>(k * (k + 2)));
+        piv.resize(static_cast<std::size_t>(2 * k));
+    }
+};
+
+thread_local SolveWork solve_work;
+
+}  // namespace
+
+bool solve(Mat<const double> H, const double* b, double* x, idx k) {
+    for (idx i = 0; i < k; ++i) x[i] = 0.0;
+    if (H.rows != k || H.cols != k) return false;
+    SolveWork& w = solve_work;
+    w.layout(k);
+    Mat<double> A(w.f.data(), k, k);
+    double* y = w.f.data() + k * k;
+    for (idx r = 0; r < k; ++r) {
+        const double* hr = H.row(r);
+        for (idx c = 0; c < k; ++c) A(r, c) = hr[c];
+        y[r] = b[r];
+    }
+    return eliminate(A, y, x, k, nullptr);
+}
+
+bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo) {
+    idx k = K.rows, j = K.cols - K.rows;
+    if (j < 0 || !all_finite(x + k, j)) return false;
+    SolveWork& w = solve_work;
+    w.layout(k);
+    Mat<double> A(w.f.data(), k, k);
+    double* y = w.f.data() + k * k;
+    double* d = y + k;
+    idx* piv = w.piv.data();
+    for (idx i = 0; i < k; ++i) d[i] = 0.0;
+    for (idx r = 0; r < k; ++r) {
+        const double* kr = K.row(r);
+        for (idx c = 0; c < k; ++c) A(r, c) = kr[c];
+        y[r] = rhs[r];
+    }
+    if (j > 0) {  // y = rhs - K[:, k:] x[k:] (residual2 of the given columns and -x[k:])
+        for (idx r = 0; r < k; ++r) {
+            const double* kr = K.row(r) + k;
+            double s = rhs[r], err = 0.0;
+            for (idx c = 0; c < j; ++c) {
+                double a = kr[c];
+                if (a != 0.0) acc2(s, err, a, -x[k + c]);
+            }
+            y[r] = s + err;
+        }
+    }
+    double* xs = x;
+    for (idx i = 0; i < k; ++i) xs[i] = 0.0;
+    if (!eliminate(A, y, xs, k, piv)) return false;
+    for (idx i = 0; i < k; ++i) lo[i] = 0.0;
+    for (idx step = 0; step < steps; ++step) {
+        for (idx r = 0; r < k; ++r) {  // rhs - K (x + lo), in double-double
+            const double* kr = K.row(r);
+            double s = rhs[r], err = 0.0;
+            for (idx c = 0; c < k + j; ++c) {
+                double a = kr[c];
+                if (a != 0.0) {
+                    acc2(s, err, -a, x[c]);
+                    if (c < k) err -= a * lo[c];
+                }
+            }
+            y[r] = s + err;
+        }
+        if (!lu_solve(A, piv, y, d, k)) return false;
+        for (idx r = 0; r < k; ++r) {  // (xs, lo) += d
+            double t, e;
+            two_sum(xs[r], d[r], t, e);
+            e += lo[r];
+            xs[r] = t + e;
+            lo[r] = e - (xs[r] - t);
+        }
+    }
+    return all_finite(xs, k);
+}
+
+bool invert_in_place(Mat<double> G, idx k) {
+    if (k < 0) return false;
+    SolveWork& w = solve_work;
+    w.f.resize(static_cast<std::size_t>(4 * k));
+    w.piv.resize(static_cast<std::size_t>(k));
+    return invert_in_place(G, k, w.f.data(), w.piv.data());
+}
+
+void principal_block(Mat<const double> M, const idx* index, idx k, double* out) {
+    for (idx r = 0; r < k; ++r) {
+        const double* row = M.row(index[r]);
+        for (idx c = 0; c < k; ++c) out[r * k + c] = row[index[c]];
+    }
 }
 
 void matvec(Mat<const double> G, idx k, const double* x, double* out) {

@@ -71,6 +71,53 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 // overwritten; x gets the solution. Returns whether the block is non-singular and x finite.
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
 
+// --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
+// residual2, solve, refined_solve, principal_block). std::fma only here, where numba calls
+// its explicit `fma` intrinsic (llvm.fma): a b + c rounded once on every instruction set.
+
+// (p, e) with p = fl(a b) and a b = p + e exactly (unless a b over- or underflows).
+inline void two_product(double a, double b, double& p, double& e) {
+    p = a * b;
+    e = std::fma(a, b, -p);
+}
+
+// (s, e) with s = fl(a + b) and a + b = s + e exactly (Knuth).
+inline void two_sum(double a, double b, double& s, double& e) {
+    s = a + b;
+    double z = s - a;
+    e = (a - (s - z)) + (b - z);
+}
+
+// (hi, lo) += a b in double-double (Ogita, Rump and Oishi's Dot2, one term).
+inline void acc2(double& hi, double& lo, double a, double b) {
+    double p, e, s, f;
+    two_product(a, b, p, e);
+    two_sum(hi, p, s, f);
+    hi = s;
+    lo = lo + (e + f);
+}
+
+// y[r] = E[r, :k] x + e[r] for every row r of E, each row summed in double-double (zeros
+// of E skipped) and then rounded (linalg.residual2). E.cols >= k.
+void residual2(Mat<const double> E, const double* x, idx k, const double* e, double* y);
+
+// H x = b for the k x k H by the elimination of linalg.solve (two pivots per pass, no
+// refinement): x gets the solution (zeros first; what the elimination left when it fails).
+// Returns ok: H and b finite, no exactly zero or NaN pivot, x finite.
+bool solve(Mat<const double> H, const double* b, double* x, idx k);
+
+// linalg.refined_solve: K is k x (k + j), x has k + j entries (the last j given, finite),
+// lo k. One LU of K[:, :k] (the sparse row updates where the pivot rows are mostly zero),
+// then `steps` steps of refinement with residuals in double-double and x carried in
+// double-double (x[:k] + lo). Returns ok (x[:k] is garbage when not).
+bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo);
+
+// invert_in_place with its work arrays from this thread's workspace.
+bool invert_in_place(Mat<double> G, idx k);
+
+// out (k x k, row-major) = M[index][:, index] (linalg.principal_block).
+void principal_block(Mat<const double> M, const idx* index, idx k, double* out);
+
 // out[:k] = G[:k, :k] x[:k], each row by `dot` (linalg.matvec).
 void matvec(Mat<const double> G, idx k, const double* x, double* out);
 

@@ -1,0 +1,220 @@
+#include "mlcp.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include "linalg.hpp"
+
+namespace lemke {
+
+namespace {
+
+// The MLCP kernels' workspace, one per thread: the pivot row and its non-zero columns
+// (N + 1 each), the free columns and slack rows of a round (N each), where each non-basic
+// label sits (2N); equilibrate's row and column maxima (N each).
+struct MlcpWork {
+    std::vector<double> f;
+    std::vector<idx> i;
+    idx N = -1;
+    void layout(idx size) {
+        N = size;
+        f.resize(static_cast<std::size_t>(N + 1));
+        i.resize(static_cast<std::size_t>((N + 1) + N + N + 2 * N));
+    }
+    double* prow() { return f.data(); }
+    idx* nz() { return i.data(); }
+    idx* fcols() { return nz() + N + 1; }
+    idx* srows() { return fcols() + N; }
+    idx* col_of() { return srows() + N; }
+};
+
+thread_local MlcpWork mlcp_work;
+
+// Exchange the basic variable of row r with the non-basic one of column c (kmlcp.exchange):
+// where the pivot row has few non-zeros only those columns of the other rows are updated.
+// c = -1 is read as numba reads it, from the end (T's last column, col_label's last entry):
+// reduce can pass it when no free column is left in the row (the same bits as there).
+void exchange(Mat<double> T, idx r, idx c, idx* row_label, idx* col_label, double* prow,
+              idx* nz) {
+    idx rows = T.rows, cols = T.cols;
+    idx cT = c < 0 ? c + cols : c;
+    idx cL = c < 0 ? c + rows : c;
+    double* tr = T.row(r);
+    double inv = 1.0 / tr[cT];
+    idx m = 0;
+    for (idx k = 0; k < cols; ++k) {  // (prow[c] is not set to inv: the rows' entries c are overwritten)
+        double v = -tr[k] * inv;
+        prow[k] = v;
+        tr[k] = v;
+        if (v != 0.0 && k != c) nz[m++] = k;
+    }
+    tr[cT] = inv;
+    bool sparse = 4 * m < cols;
+    for (idx i = 0; i < rows; ++i) {
+        if (i == r) continue;
+        double* ti = T.row(i);
+        double f = ti[cT];
+        if (f == 0.0) continue;
+        if (sparse) {
+            for (idx t = 0; t < m; ++t) {
+                idx k = nz[t];
+                ti[k] += f * prow[k];
+            }
+        } else {
+            for (idx k = 0; k < cols; ++k) ti[k] += f * prow[k];
+        }
+        ti[cT] = f * inv;
+    }
+    idx tmp = row_label[r];
+    row_label[r] = col_label[cL];
+    col_label[cL] = tmp;
+}
+
+// The free variable of column c enters in place of the slack of an equation, the one with
+// the largest entry in that column, if that entry exceeds rank_tol (kmlcp.enter_free).
+void enter_free(Mat<double> T, idx c, idx n, double rank_tol, idx* row_label, idx* col_label,
+                double* prow, idx* nz) {
+    double best = 0.0;
+    idx r_best = -1;
+    for (idx r = 0; r < T.rows; ++r) {
+        if (row_label[r] < n && std::fabs(T(r, c)) > best) {
+            best = std::fabs(T(r, c));
+            r_best = r;
+        }
+    }
+    if (r_best >= 0 && best > rank_tol) exchange(T, r_best, c, row_label, col_label, prow, nz);
+}
+
+}  // namespace
+
+void mlcp_equilibrate(Mat<const double> E, idx n, idx iterations, double* r, double* s) {
+    idx N = E.rows;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(2 * N));
+    double* rows = work.data();
+    double* cols = rows + N;
+    for (idx it = 0; it < iterations; ++it) {
+        for (idx i = 0; i < N; ++i) {
+            rows[i] = -INF;
+            cols[i] = -INF;
+        }
+        for (idx i = 0; i < N; ++i) {
+            const double* ei = E.row(i);
+            double ri = r[i];
+            for (idx j = 0; j < N; ++j) {
+                double v = std::fabs(ei[j]) * ri * s[j];
+                if (v > rows[i] || v != v) rows[i] = v;
+                if (v > cols[j] || v != v) cols[j] = v;
+            }
+        }
+        bool done = true;
+        for (idx i = 0; i < N; ++i) {
+            if (rows[i] == 0.0) rows[i] = 1.0;
+            if (cols[i] == 0.0) cols[i] = 1.0;
+            if (!(std::fabs(rows[i] - 1.0) < 0.1 && std::fabs(cols[i] - 1.0) < 0.1)) done = false;
+        }
+        for (idx i = 0; i < n; ++i) {
+            r[i] /= std::sqrt(rows[i]);
+            s[i] /= std::sqrt(cols[i]);
+        }
+        for (idx i = n; i < N; ++i) {
+            double a = rows[i], b = cols[i];
+            double f = 1.0 / std::sqrt(a >= b || a != a ? a : b);
+            r[i] *= f;
+            s[i] *= f;
+        }
+        if (done) break;
+    }
+}
+
+ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, idx* row_label,
+                         idx* col_label) {
+    idx N = T.rows;
+    MlcpWork& w = mlcp_work;
+    w.layout(N);
+    double* prow = w.prow();
+    idx* nz = w.nz();
+    for (idx i = 0; i < N; ++i) {
+        row_label[i] = i;
+        col_label[i] = N + i;
+    }
+    auto is_free = [N, n](idx label) { return N <= label && label < N + n; };
+    // 1. u_c enters in place of the slack of an equation (column by column, largest pivot).
+    for (idx c = 0; c < n; ++c) enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz);
+
+    // 2. Swap a pair k to make room: 2 x 2 exchanges while slacks and free columns remain.
+    idx* fcols = w.fcols();
+    idx* srows = w.srows();
+    idx* col_of = w.col_of();
+    auto col = [&T](idx j) { return j < 0 ? j + T.cols : j; };  // numba's negative index
+    while (true) {
+        idx nf = 0;
+        for (idx l = 0; l < 2 * N; ++l) col_of[l] = -1;
+        for (idx c = 0; c < N; ++c) {
+            idx lc = col_label[c];
+            col_of[lc] = c;
+            if (is_free(lc)) fcols[nf++] = c;
+        }
+        idx ns = 0;
+        for (idx r = 0; r < N; ++r)
+            if (row_label[r] < n) srows[ns++] = r;
+        // Rows of pair variables: for each, its largest entry over the free columns.
+        double best = 0.0;
+        idx r_best = -1, k_col = -1, k_row = -1;
+        for (idx i = 0; i < N; ++i) {
+            idx li = row_label[i];
+            if (li < n || is_free(li)) continue;  // a slack or a free variable
+            const double* ti = T.row(i);
+            double rmax = 0.0;
+            for (idx t = 0; t < nf; ++t) rmax = pmax(rmax, std::fabs(ti[fcols[t]]));
+            if (rmax <= rank_tol) continue;
+            // This row's pair partner is non-basic in some column j.
+            idx j = col_of[li >= N ? li - N : li + N];
+            idx jT = col(j);
+            for (idx t = 0; t < ns; ++t) {
+                idx r = srows[t];
+                double v = std::fabs(T(r, jT));
+                if (v > rank_tol && v * rmax > best) {
+                    best = v * rmax;
+                    r_best = r;
+                    k_col = j;
+                    k_row = i;
+                }
+            }
+        }
+        if (r_best < 0) break;
+        exchange(T, r_best, k_col, row_label, col_label, prow, nz);
+        idx c_best = -1;
+        double cbest = 0.0;
+        const double* tk = T.row(k_row);
+        for (idx c = 0; c < N; ++c) {
+            if (is_free(col_label[c]) && std::fabs(tk[c]) > cbest) {
+                cbest = std::fabs(tk[c]);
+                c_best = c;
+            }
+        }
+        exchange(T, k_row, c_best, row_label, col_label, prow, nz);
+        // The 1-step pivot may now succeed in a column that failed before.
+        for (idx c = 0; c < N; ++c)
+            if (is_free(col_label[c])) enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz);
+    }
+
+    // 3. What remains must be redundant: zero rows (slacks) and zero columns (free variables).
+    for (idx r = 0; r < N; ++r) {
+        if (row_label[r] >= n) continue;
+        const double* tr = T.row(r);
+        for (idx c = 0; c < N; ++c)
+            if (col_label[c] >= n && std::fabs(tr[c]) > rank_tol) return {MLCP_SINGULAR, r};
+        if (std::fabs(tr[N]) > rank_tol * e_size) return {MLCP_INCONSISTENT, r};
+    }
+    for (idx c = 0; c < N; ++c) {
+        if (!is_free(col_label[c])) continue;
+        for (idx r = 0; r < N; ++r) {
+            idx lr = row_label[r];
+            if (lr >= n && !is_free(lr) && std::fabs(T(r, c)) > rank_tol) return {MLCP_SINGULAR, r};
+        }
+    }
+    return {MLCP_OK, -1};
+}
+
+}  // namespace lemke

@@ -1,0 +1,28 @@
+// From a mixed LCP to a plain LCP (the port of lemke/kernels/mlcp.py, whose docstring
+// states the method): the Ruiz scaling of the stacked E, and the exchange pivots that make
+// every free variable basic on the dictionary T = [E | e].
+#pragma once
+#include "span.hpp"
+
+namespace lemke {
+
+constexpr int MLCP_OK = 0;
+constexpr int MLCP_INCONSISTENT = 1;  // an equation reads 0 = c with c != 0
+constexpr int MLCP_SINGULAR = 2;      // no exchange makes the free block nonsingular
+
+// kmlcp.equilibrate: `iterations` Ruiz sweeps on the N x N E (n free rows and columns
+// first) into r and s (all ones on entry), numpy's operations in numpy's order.
+void mlcp_equilibrate(Mat<const double> E, idx n, idx iterations, double* r, double* s);
+
+struct ReduceResult {
+    int code;  // MLCP_OK, MLCP_INCONSISTENT or MLCP_SINGULAR
+    idx row;   // the offending row, -1 when OK
+};
+
+// kmlcp.reduce on T (N x (N + 1)): exchanges until every free variable is basic.
+// row_label, col_label (N each) get the labels of the rows' basic and the columns'
+// non-basic variables.
+ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, idx* row_label,
+                         idx* col_label);
+
+}  // namespace lemke

@@ -1,0 +1,202 @@
+// lemke._core's support functions: what the Python fronts call besides the LCP driver (the
+// checks of _certify, the dense solves of _pivot_column and the MLCP reduction, the MLCP
+// exchanges, WarmStart.relabel's hash tables, _lcp's principal block), each with the
+// arguments and results of the numba kernel it ports. Sizes are checked here: a mis-sized
+// array raises ValueError (or gives False where the numba kernel does), an array of the
+// wrong dtype or layout TypeError (outputs are never converted: they must be float64 or
+// int64, C-contiguous and writable), so no call reads or writes out of bounds. The GIL is
+// released around the work.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/tuple.h>
+
+#include <cstdint>
+#include <tuple>
+
+#include "lemke/carry.hpp"
+#include "lemke/certify.hpp"
+#include "lemke/linalg.hpp"
+#include "lemke/mlcp.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace {
+
+using lemke::idx;
+
+using In2 = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using In1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Out2 = nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using Out1 = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IdxIn = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IdxOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
+using NewMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
+
+template <class A>
+idx len(const A& a, std::size_t d = 0) {
+    return static_cast<idx>(a.shape(d));
+}
+
+template <class A>
+lemke::Mat<const double> mat(const A& a) {
+    return lemke::Mat<const double>(a.data(), len(a, 0), len(a, 1));
+}
+
+// A new float64 array of `count` entries owned by Python (freed with its last reference).
+double* new_block(idx count, nb::capsule& owner) {
+    double* data = new double[count > 0 ? count : 1];
+    owner = nb::capsule(data, [](void* p) noexcept { delete[] static_cast<double*>(p); });
+    return data;
+}
+
+// certify.lcp_check(M, q, z, tol, w): w = M z + q, (ok, residual).
+std::tuple<bool, double> lcp_check(In2 M, In1 q, In1 z, double tol, Out1 w) {
+    idx n = len(q);
+    if (len(M, 0) != n || len(M, 1) != n || len(z) != n || len(w) != n)
+        throw nb::value_error("lcp_check: M must be n x n, q, z and w of length n");
+    double residual = 0.0;
+    bool ok;
+    {
+        nb::gil_scoped_release release;
+        ok = lemke::lcp_check(mat(M), q.data(), z.data(), tol, w.data(), residual);
+    }
+    return {ok, residual};
+}
+
+// certify.lcp_ray_check(M, q, d, z, z0, ray, tol): whether the ray is a secondary ray.
+bool lcp_ray_check(In2 M, In1 q, In1 d, In1 z, double z0, In1 ray, double tol) {
+    idx n = len(q);
+    if (len(M, 0) != n || len(M, 1) != n || len(d) != n || len(z) != n || len(ray) != n + 1)
+        throw nb::value_error("lcp_ray_check: M must be n x n, q, d and z of length n, ray n + 1");
+    nb::gil_scoped_release release;
+    return lemke::lcp_ray_check(mat(M), q.data(), d.data(), z.data(), z0, ray.data(), tol);
+}
+
+// linalg.residual2(E, x, e, y): y = E x + e in double-double.
+void residual2(In2 E, In1 x, In1 e, Out1 y) {
+    idx rows = len(E, 0);
+    if (len(E, 1) != len(x) || len(e) != rows || len(y) != rows)
+        throw nb::value_error("residual2: E must be r x len(x), e and y of length r");
+    nb::gil_scoped_release release;
+    lemke::residual2(mat(E), x.data(), len(x), e.data(), y.data());
+}
+
+// _certify.check_mlcp's numbers: y = E x + e (double-double), (ok, residual).
+std::tuple<bool, double> check_mlcp(In2 E, In1 e, std::int64_t n, In1 x, double tol, Out1 y) {
+    idx N = len(e);
+    if (len(E, 0) != N || len(E, 1) != N || len(x) != N || len(y) != N || n < 0 || n > N)
+        throw nb::value_error("check_mlcp: E must be N x N, e, x and y of length N, 0 <= n <= N");
+    double residual = 0.0;
+    bool ok;
+    {
+        nb::gil_scoped_release release;
+        ok = lemke::check_mlcp(mat(E), e.data(), n, x.data(), tol, y.data(), residual);
+    }
+    return {ok, residual};
+}
+
+// linalg.refined_solve(K, rhs, steps, x, lo) -> ok; False on mismatched sizes, as there.
+bool refined_solve(In2 K, In1 rhs, std::int64_t steps, Out1 x, Out1 lo) {
+    idx k = len(rhs), cols = len(K, 1);
+    if (len(K, 0) != k || cols < k || len(x) != cols || len(lo) != k) return false;
+    nb::gil_scoped_release release;
+    return lemke::refined_solve(mat(K), rhs.data(), steps, x.data(), lo.data());
+}
+
+// linalg.solve(H, b) -> (ok, x); False (x zeros) when H is not len(b) x len(b), as there.
+std::tuple<bool, NewVector> linalg_solve(In2 H, In1 b) {
+    idx k = len(b);
+    nb::capsule owner;
+    double* x = new_block(k, owner);
+    bool ok;
+    {
+        nb::gil_scoped_release release;
+        ok = lemke::solve(mat(H), b.data(), x, k);
+    }
+    return {ok, NewVector(x, {static_cast<std::size_t>(k)}, owner)};
+}
+
+// linalg.invert_in_place(G, k) -> ok: G[:k, :k] replaced by its inverse.
+bool invert_in_place(Out2 G, std::int64_t k) {
+    idx rows = len(G, 0), cols = len(G, 1);
+    if (k < 0 || k > rows || k > cols) return false;
+    nb::gil_scoped_release release;
+    return lemke::invert_in_place(lemke::Mat<double>(G.data(), rows, cols), k);
+}
+
+// linalg.principal_block(M, idx) -> M[idx][:, idx] (a new C-contiguous array).
+NewMatrix principal_block(In2 M, IdxIn index) {
+    idx k = len(index);
+    const std::int64_t* ix = index.data();
+    for (idx i = 0; i < k; ++i)
+        if (ix[i] < 0 || ix[i] >= len(M, 0) || ix[i] >= len(M, 1))
+            throw nb::value_error("principal_block: an index is out of range");
+    nb::capsule owner;
+    double* out = new_block(k * k, owner);
+    {
+        nb::gil_scoped_release release;
+        lemke::principal_block(mat(M), ix, k, out);
+    }
+    return NewMatrix(out, {static_cast<std::size_t>(k), static_cast<std::size_t>(k)}, owner);
+}
+
+// mlcp.equilibrate(E, n, iterations, r, s): Ruiz scaling into r, s (all ones on entry).
+void mlcp_equilibrate(In2 E, std::int64_t n, std::int64_t iterations, Out1 r, Out1 s) {
+    idx N = len(E, 0);
+    if (len(E, 1) != N || len(r) != N || len(s) != N || n < 0 || n > N)
+        throw nb::value_error("mlcp_equilibrate: E must be N x N, r and s of length N, 0 <= n <= N");
+    nb::gil_scoped_release release;
+    lemke::mlcp_equilibrate(mat(E), n, iterations, r.data(), s.data());
+}
+
+// mlcp.reduce(T, n, rank_tol, e_size, row_label, col_label) -> (code, row).
+std::tuple<int, std::int64_t> mlcp_reduce(Out2 T, std::int64_t n, double rank_tol,
+                                          double e_size, IdxOut row_label, IdxOut col_label) {
+    idx N = len(T, 0);
+    if (len(T, 1) != N + 1 || len(row_label) != N || len(col_label) != N || n < 0 || n > N)
+        throw nb::value_error("mlcp_reduce: T must be N x (N + 1), the labels of length N, "
+                              "0 <= n <= N");
+    lemke::ReduceResult r;
+    {
+        nb::gil_scoped_release release;
+        r = lemke::mlcp_reduce(lemke::Mat<double>(T.data(), N, N + 1), n, rank_tol, e_size,
+                               row_label.data(), col_label.data());
+    }
+    return {r.code, r.row};
+}
+
+// carry.relabel_ids(old, new, basic, out) -> count (-1, -2: a label twice in old, new).
+std::int64_t relabel_ids(IdxIn old, IdxIn new_, IdxIn basic, IdxOut out) {
+    idx n = len(old), m = len(new_), nb_ = len(basic);
+    if (len(out) < m) throw nb::value_error("relabel_ids: out must have len(new) entries");
+    const std::int64_t* b = basic.data();
+    for (idx t = 0; t < nb_; ++t)
+        if (b[t] < 0 || b[t] >= n) throw nb::value_error("relabel_ids: a basic row is out of range");
+    nb::gil_scoped_release release;
+    return lemke::relabel_ids(old.data(), n, new_.data(), m, b, nb_, out.data());
+}
+
+}  // namespace
+
+void bind_support(nb::module_& m) {
+    m.def("lcp_check", &lcp_check, "M"_a, "q"_a, "z"_a, "tol"_a, nb::arg("w").noconvert());
+    m.def("lcp_ray_check", &lcp_ray_check, "M"_a, "q"_a, "d"_a, "z"_a, "z0"_a, "ray"_a, "tol"_a);
+    m.def("residual2", &residual2, "E"_a, "x"_a, "e"_a, nb::arg("y").noconvert());
+    m.def("check_mlcp", &check_mlcp, "E"_a, "e"_a, "n"_a, "x"_a, "tol"_a,
+          nb::arg("y").noconvert());
+    m.def("refined_solve", &refined_solve, "K"_a, "rhs"_a, "steps"_a, nb::arg("x").noconvert(),
+          nb::arg("lo").noconvert());
+    m.def("linalg_solve", &linalg_solve, "H"_a, "b"_a);
+    m.def("invert_in_place", &invert_in_place, nb::arg("G").noconvert(), "k"_a);
+    m.def("principal_block", &principal_block, "M"_a, "idx"_a);
+    m.def("mlcp_equilibrate", &mlcp_equilibrate, "E"_a, "n"_a, "iterations"_a,
+          nb::arg("r").noconvert(), nb::arg("s").noconvert());
+    m.def("mlcp_reduce", &mlcp_reduce, nb::arg("T").noconvert(), "n"_a, "rank_tol"_a,
+          "e_size"_a, nb::arg("row_label").noconvert(), nb::arg("col_label").noconvert());
+    m.def("relabel_ids", &relabel_ids, "old"_a, "new"_a, "basic"_a, nb::arg("out").noconvert());
+    m.attr("MLCP_OK") = lemke::MLCP_OK;
+    m.attr("MLCP_INCONSISTENT") = lemke::MLCP_INCONSISTENT;
+    m.attr("MLCP_SINGULAR") = lemke::MLCP_SINGULAR;
+}
