@@ -16,10 +16,10 @@ from ._options import as_options
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
 from ._validate import real_array
-from .kernels import cold
+from . import _layout
 
 #: The batch kernel: the C++ core's (src/lemke/lcp.cpp, ``lemke::batch``), the port of
-#: ``kernels.cold.batch`` (a module attribute, so that a test can stand another in).
+#: ``_core.batch`` (a module attribute, so that a test can stand another in).
 _BATCH = _core.batch
 
 _pool = None
@@ -247,7 +247,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     workers = _workers(workers)
     beta, boff, _ = _bases(warm_start, B, [n] * B)
 
-    L = cold.buffer_length(n)
+    L = _layout.buffer_length(n)
     bufs = np.empty((B, L))
     basics = np.empty((B, n), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
@@ -257,20 +257,20 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     mstart = np.zeros(B, dtype=np.int64) if M.shape[0] == 1 else np.arange(B, dtype=np.int64) * (n * n)
     qoff = np.arange(B + 1, dtype=np.int64) * n
     limits = np.full(B, opts.pivot_limit(n), dtype=np.int64)
-    _run(_BATCH, (cold.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
+    _run(_BATCH, (_layout.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs.reshape(-1),
           np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers,
          progress, "solve_lcp_batch")
 
-    f = cold.fields(n)
+    f = _layout.fields(n)
     z = np.ascontiguousarray(bufs[:, f["z"]])
     w = np.ascontiguousarray(bufs[:, f["w"]])
-    status = np.where(out_i[:, 0] == cold.TRIVIAL, 0, out_i[:, 0])
+    status = np.where(out_i[:, 0] == _layout.TRIVIAL, 0, out_i[:, 0])
     pivots = out_i[:, 1].copy()
     residual = out_f[:, 1].copy()
     # Everything but a checked solution (and q >= 0) goes through solve_lcp's own logic:
     # the recomputation from the final basis, the ray check, the downgrades.
-    for b in np.flatnonzero((out_i[:, 0] != cold.TRIVIAL) & ((out_i[:, 0] != 0) | (out_f[:, 0] == 0.0))):
+    for b in np.flatnonzero((out_i[:, 0] != _layout.TRIVIAL) & ((out_i[:, 0] != 0) | (out_f[:, 0] == 0.0))):
         code, piv, k, recoveries, _ = (int(v) for v in out_i[b])
         res = _outcome(M[0 if M.shape[0] == 1 else b], q[b], opts, code, piv, basics[b, :k],
                        bool(out_f[b, 0]), float(out_f[b, 1]), bufs[b].copy(), recoveries)
@@ -357,7 +357,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     workers = _workers(workers)
     if progress is not None:
         progress = _progress.check(progress)
-    # offsets: of q and the basic z's, of M, of the output buffers (cold.buffer_length)
+    # offsets: of q and the basic z's, of M, of the output buffers (_layout.buffer_length)
     if sizes is None:
         Ms, qs = list(M), list(q)
         B = len(Ms)
@@ -388,11 +388,11 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     basics = np.empty(int(qoff[-1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
-    _run(_BATCH, (cold.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
+    _run(_BATCH, (_layout.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
          progress, "solve_lcp_many")
     code = out_i[:, 0]
-    for b in np.flatnonzero(code == cold.NOT_FINITE).tolist():
+    for b in np.flatnonzero(code == _layout.NOT_FINITE).tolist():
         n, m, o = sizes[b], int(mstart[b]), int(qoff[b])
         _checked(b, Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n])  # raises, naming the entry
     # Everything but a checked solution (and q >= 0), or a checked ray, goes through
@@ -400,7 +400,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     # from problem b's own copy of (M, q) in the flat arrays; the result builds the others
     # (lazily, from the shared buffers) only when its items are read.
     special = {}
-    for b in np.flatnonzero((out_f[:, 0] == 0.0) | ((code != 0) & (code != cold.TRIVIAL) & (code != _RAY))).tolist():
+    for b in np.flatnonzero((out_f[:, 0] == 0.0) | ((code != 0) & (code != _layout.TRIVIAL) & (code != _RAY))).tolist():
         c, pivots, k, recoveries, _ = out_i[b].tolist()
         n, m, o, bo = sizes[b], int(mstart[b]), int(qoff[b]), int(buff[b])
         special[b] = _outcome(Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n], opts, c, pivots,
@@ -414,12 +414,12 @@ _RAY = int(Status.RAY_TERMINATION)
 
 def _offsets(sizes):
     """int64 (3, B + 1): row 0, 1, 2 from index 1 on the problems' n, n^2 and output buffer
-    lengths (``cold.BUFFER``), to be summed into offsets."""
+    lengths (``_layout.BUFFER``), to be summed into offsets."""
     off = np.zeros((3, len(sizes) + 1), dtype=np.int64)
     n_b = off[0, 1:]
     n_b[:] = sizes
     off[1, 1:] = n_b * n_b
-    off[2, 1:] = sum(length(n_b) for _, length in cold.BUFFER)
+    off[2, 1:] = sum(length(n_b) for _, length in _layout.BUFFER)
     return off
 
 

@@ -38,7 +38,9 @@ import numpy as np
 from . import _core
 from ._result import Value
 from ._validate import square_matrix, vector
-from .kernels.certify import CERTIFIABLE
+
+#: The certifiability bound (src/lemke/certify.hpp; the module docstring).
+CERTIFIABLE = _core.CERTIFIABLE
 
 EPS = float(np.finfo(np.float64).eps)
 #: The rounding allowance of ``E x + e`` in check_mlcp: x86's long double epsilon, in which

@@ -11,6 +11,7 @@ finished and ends the process."""
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import signal
@@ -21,7 +22,6 @@ from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
-from numba.core import event as numba_event
 
 from . import problems
 from ._io import EXTENSIONS, FORMATS, ProblemFormatError, read_problem, result_to_dict, write_result
@@ -429,20 +429,28 @@ COMPILE_NOTICE = ("lemke: compiling the numba kernels for their first use (they 
                   "disk: this happens once) ...")
 
 
-class _CompileNotice(numba_event.Listener):
-    """Says on stderr, once per process, that numba is compiling.  numba raises its
-    "numba:compile" event only on a cache miss, so a run whose kernels are all cached on
-    disk says nothing."""
+def _compile_notice():
+    """A context in which numba's first compile of a kernel says so on stderr, once per
+    process (numba raises its "numba:compile" event only on a cache miss, so a run whose
+    kernels are all cached says nothing): only where numba is loaded, by the fronts of
+    the kinds that still run numba kernels (the C++ core needs none)."""
+    if "numba" not in sys.modules:
+        return contextlib.nullcontext()
+    from numba.core import event
 
-    said = False
+    class Notice(event.Listener):
+        def on_start(self, ev):
+            if not _SAID[0]:
+                _SAID[0] = True
+                print(COMPILE_NOTICE, file=sys.stderr, flush=True)
 
-    def on_start(self, event):
-        if not _CompileNotice.said:
-            _CompileNotice.said = True
-            print(COMPILE_NOTICE, file=sys.stderr, flush=True)
+        def on_end(self, ev):
+            pass
 
-    def on_end(self, event):
-        pass
+    return event.install_listener("numba:compile", Notice())
+
+
+_SAID = [False]
 
 
 def _warm_up(kind: str, method: str) -> None:
@@ -450,7 +458,9 @@ def _warm_up(kind: str, method: str) -> None:
     install) before timing one: the times shown are those of the solves."""
     if (kind, method) not in _WARM:
         _WARM.add((kind, method))
-        Problem(kind, KINDS[kind].example).solve(method=method)
+        KINDS[kind].solve.load()  # the kind's front, and numba if it still needs it
+        with _compile_notice():
+            Problem(kind, KINDS[kind].example).solve(method=method)
 
 
 def _json(doc: dict) -> str:
@@ -501,7 +511,8 @@ def _run_one(src, args, options) -> dict:
                              f"(its methods: {', '.join(kind.methods)})")
         _warm_up(prob.kind, method)
         t0 = time.perf_counter()
-        res = prob.solve(method=method, options=options)
+        with _compile_notice():  # (a recovery path can need a kernel the example did not)
+            res = prob.solve(method=method, options=options)
     except (NotImplementedError, ValueError, TypeError) as exc:  # the solver refused the data
         return dict(row, error=f"{where}: {' '.join(str(exc).split())}")
     row.update(status=res.status.name, pivots=res.pivots, residual_=kind.residual(res),
@@ -530,8 +541,7 @@ def main(argv=None) -> int:
         if args.command == "problems":
             return _list_problems()
         if args.command == "solve":
-            with numba_event.install_listener("numba:compile", _CompileNotice()):
-                return _solve(args)
+            return _solve(args)
         raise _UsageError("no command given; try `lemke solve` or `lemke problems` (or --help)")
     except _UsageError as exc:
         print(f"lemke: error: {exc}", file=sys.stderr)

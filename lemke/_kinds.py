@@ -9,15 +9,41 @@ kind (a box LCP, a bimatrix game) is one :class:`Kind` here, its validation in
 """
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass
 from typing import Callable
 
 from . import _validate
-from ._blcp import solve_blcp
-from ._games import solve_bimatrix
-from ._lcp import METHODS, solve_lcp
-from ._mlcp import solve_mlcp
-from ._qp import solve_qp
+
+#: The LCP's methods (``lemke.METHODS``; a test checks that they agree).
+METHODS = ("tableau", "unrevised")
+
+
+class _Solver:
+    """A kind's solver, ``front.name``, imported at its first call: the registry (and with it
+    the command line and the file formats) loads no front and no kernel until a problem of
+    that kind is solved.  ``load()`` imports it without calling it."""
+
+    def __init__(self, front: str, name: str, positional=None, keyword=()):
+        self.front, self.name = front, name
+        self.positional, self.keyword = positional, tuple(keyword)
+        self._fn = None
+
+    def load(self):
+        if self._fn is None:
+            self._fn = getattr(importlib.import_module("." + self.front, __package__), self.name)
+        return self._fn
+
+    def __call__(self, *args, **kwargs):
+        # fields past the solver's positional arguments are its keyword arguments (a box
+        # LCP's findex)
+        if self.positional is not None and len(args) > self.positional:
+            kwargs.update(zip(self.keyword, args[self.positional:]))
+            args = args[:self.positional]
+        return self.load()(*args, **kwargs)
+
+    def __repr__(self):
+        return f"<solver lemke.{self.front}.{self.name}>"
 
 
 @dataclass(frozen=True)
@@ -38,7 +64,8 @@ class Kind:
         ``validate(*fields) -> {name: float64 array}`` (the given fields only), raising
         ``ValueError``/``TypeError``; the solver validates with the same function.
     solve : callable
-        The solver, ``solve(*fields, method=, options=, ...)``.
+        The solver, ``solve(*fields, method=, options=, ...)`` (a :class:`_Solver`: its
+        front is imported at the first call, or by ``solve.load()``).
     shape : callable
         ``shape(arrays) -> tuple`` of the problem's sizes.
     size_text : callable
@@ -91,7 +118,7 @@ LCP = Kind(
     required=("M", "q"),
     signature=frozenset({"M"}),
     validate=_validate.lcp_fields,
-    solve=solve_lcp,
+    solve=_Solver("_lcp", "solve_lcp"),
     shape=lambda a: (a["q"].size,),
     size_text=lambda s: f"n = {s[0]}",
     size_short=lambda s: str(s[0]),
@@ -107,7 +134,7 @@ MLCP = Kind(
     required=("A", "B", "C", "D", "a", "b"),
     signature=frozenset({"A", "B", "C", "D"}),
     validate=_validate.mlcp,
-    solve=solve_mlcp,
+    solve=_Solver("_mlcp", "solve_mlcp"),
     shape=lambda a: (a["a"].size, a["b"].size),
     size_text=lambda s: f"n = {s[0]} free, m = {s[1]} complementary",
     size_short=lambda s: f"{s[0]}+{s[1]}",
@@ -123,7 +150,7 @@ QP = Kind(
     required=("P", "q"),
     signature=frozenset({"P"}),
     validate=_validate.qp,
-    solve=solve_qp,
+    solve=_Solver("_qp", "solve_qp"),
     shape=lambda a: (a["q"].size,) + tuple(a[k].shape[0] if k in a else 0 for k in ("G", "A")),
     size_text=lambda s: (f"n = {s[0]}, {_plural(s[1], 'inequality', 'inequalities')}, "
                          f"{_plural(s[2], 'equality', 'equalities')}"),
@@ -142,7 +169,7 @@ BLCP = Kind(
     required=("M", "q", "lo", "hi"),
     signature=frozenset({"M", "lo", "hi"}),
     validate=_validate.blcp,
-    solve=lambda M, q, lo, hi, findex=None, **kw: solve_blcp(M, q, lo, hi, findex=findex, **kw),
+    solve=_Solver("_blcp", "solve_blcp", positional=4, keyword=("findex",)),
     shape=lambda a: (a["q"].size,),
     size_text=lambda s: f"n = {s[0]}, lo <= z <= hi",
     size_short=lambda s: str(s[0]),
@@ -159,7 +186,7 @@ BIMATRIX = Kind(
     required=("A", "B"),
     signature=frozenset({"A", "B"}),
     validate=_validate.bimatrix,
-    solve=solve_bimatrix,
+    solve=_Solver("_games", "solve_bimatrix"),
     shape=lambda a: a["A"].shape,
     size_text=lambda s: f"{s[0]} x {s[1]} actions",
     size_short=lambda s: f"{s[0]}x{s[1]}",

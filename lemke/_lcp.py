@@ -8,31 +8,31 @@ from ._certify import check_lcp
 from ._options import _DEFAULT, as_options
 from ._result import LCPResult, WarmStart
 from ._status import Status
-from .kernels import cold
+from . import _layout
 
-METHODS = tuple(cold.METHODS)
+METHODS = tuple(_layout.METHODS)
 #: The C++ core's LCP driver (src/lemke/lcp.cpp), the port of the numba kernels of
-#: kernels/cold.py with the same arguments, results and bits; module attributes, so that a
+#: kernels/_layout.py with the same arguments, results and bits; module attributes, so that a
 #: test can stand a lying kernel in.  ``_SOLVE_ONE``: a whole solve, warm or cold, with its
 #: recoveries, either method.
 _SOLVE_ONE = _core.solve_one
 #: The first stages of a solve by the tableau, cold or warm: the C++ core's port of
-#: ``cold.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
+#: ``_layout.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
 _FIRST_RUN = _core.first_run
 _F64 = np.dtype(np.float64)
 _NO_D = np.empty(0)
 _NO_BASIS = np.zeros(0, dtype=np.int64)
-_CODES = cold.METHODS
+_CODES = _layout.METHODS
 _ND = np.ndarray
 _I64 = np.dtype(np.int64)
 _SOLVED = Status.SOLVED
-_TRIVIAL = cold.TRIVIAL
+_TRIVIAL = _layout.TRIVIAL
 _RAY = int(Status.RAY_TERMINATION)
 _new = object.__new__
 _empty = np.empty
-#: cold.buffer_length(n) = _LEN_N * n + _LEN_1 (the layout's lengths are linear in n)
-_LEN_1 = cold.buffer_length(0)
-_LEN_N = cold.buffer_length(1) - _LEN_1
+#: _layout.buffer_length(n) = _LEN_N * n + _LEN_1 (the layout's lengths are linear in n)
+_LEN_1 = _layout.buffer_length(0)
+_LEN_N = _layout.buffer_length(1) - _LEN_1
 _PIVOT_TOL, _TIE_TOL, _TOL = _DEFAULT.pivot_tol, _DEFAULT.tie_tol, _DEFAULT.tol
 #: {method: the compiled entry point of its kernel for the fast path's argument types}
 _ENTRY: dict = {}
@@ -131,8 +131,8 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         except AttributeError:
             beta = ws.__dict__["_beta"] = np.array(ws.z_basic, dtype=np.int64)
         kb = len(beta)
-    # One buffer: cold.buffer_length(n) floats, then the n int64 of the basic z's (an empty
-    # ``basic`` argument tells the kernel so: cold.own_basic).
+    # One buffer: _layout.buffer_length(n) floats, then the n int64 of the basic z's (an empty
+    # ``basic`` argument tells the kernel so: _layout.own_basic).
     at = _LEN_N * n + _LEN_1
     buf = _empty(at + n)
     code, pivots, k, ok, residual, recoveries, stage = run(
@@ -152,7 +152,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
             f["warm_start"] = ws
         return res
     if stage < 0:
-        # A solve by the tableau that the lean kernel (cold.first_run) could not finish: a
+        # A solve by the tableau that the lean kernel (_layout.first_run) could not finish: a
         # cold run with a cycle, a ray to check or recovery runs to make (stage -1: the full
         # kernel goes on from there), or a warm start to restart from its old basis (-2).
         resume = stage == -1
@@ -162,7 +162,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         if ok and (code == 0 or code == _RAY):
             return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
                                    residual, recoveries, (buf, 0, None, at, n, k))
-    if code == cold.NOT_FINITE:
+    if code == _layout.NOT_FINITE:
         _validate.lcp(M, q)  # raises, saying where (a NaN, an infinity, the sizes)
         raise AssertionError("the kernel found a NaN or an infinity that validation did not")
     return _outcome(M, q, opts, code, pivots, buf[at : at + k].view(_I64), ok, residual, buf,
@@ -180,16 +180,16 @@ def _entry_point(method):
 
 def _views(buf, n):
     """The read-only views ``(z, z0, ray, w, cov, row_scale, col_scale)`` of a kernel's output
-    buffer (``kernels.cold.fields``)."""
+    buffer (``_layout.fields``)."""
     buf.setflags(write=False)
-    f = cold.fields(n)
-    return tuple(buf[f[name]] for name, _ in cold.BUFFER)
+    f = _layout.fields(n)
+    return tuple(buf[f[name]] for name, _ in _layout.BUFFER)
 
 
 
 def _outcome(M, q, opts, code, pivots, basic, ok, residual, buf, recoveries):
     """The result of a kernel's run that is not built lazily (neither solved and checked,
-    nor q >= 0, nor a checked ray), from its output buffer (see ``kernels.cold``), the
+    nor q >= 0, nor a checked ray), from its output buffer (see ``_layout``), the
     basic z's and the kernel's check of the point on the caller's data.
 
     A solved point that failed the check is recomputed from the final basis (one dense

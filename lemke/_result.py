@@ -19,7 +19,7 @@ import numpy as np
 from . import _core
 from ._status import Status
 from ._validate import kernel_array
-from .kernels import cold
+from . import _layout
 
 
 @dataclass(frozen=True)
@@ -229,7 +229,7 @@ class LCPResult(Outcome):
         ``lemke.kernels.linalg.equilibrate``).  In exact arithmetic they change nothing.
     recoveries : int
         How many times the solve was restarted after the method revisited a basis (see
-        ``lemke.kernels.cold``); 0 on almost every problem.
+        ``lemke._layout``); 0 on almost every problem.
     """
 
     z: np.ndarray
@@ -261,7 +261,7 @@ class LCPResult(Outcome):
     def _lazy(cls, status, pivots, residual, recoveries, src, warm_start=None) -> "LCPResult":
         """A result whose arrays are views of a kernel's output buffer, each made when first
         read (see :meth:`__getattr__`); ``src = (buf, o, basic, bo, n, k)``: the buffer of
-        problem size n starts at ``buf[o]`` (``kernels.cold.fields``), its basic z's are
+        problem size n starts at ``buf[o]`` (``_layout.fields``), its basic z's are
         ``basic[bo:bo + k]``.  ``solve_lcp`` gives each result a buffer of its own,
         ``solve_lcp_many`` one buffer for all.  ``status`` is SOLVED (``ray`` None, ``z0``
         0) or a checked RAY_TERMINATION (both read from the buffer).  ``warm_start``, when
@@ -371,10 +371,10 @@ class _FromBuffer:
 
 
 def _spans():
-    """``{field: (a, c, l, l0)}``: in the output buffer of size n (``kernels.cold.fields``,
+    """``{field: (a, c, l, l0)}``: in the output buffer of size n (``_layout.fields``,
     whose offsets and lengths are linear in n) the field starts at ``a n + c`` and holds
     ``l n + l0`` entries."""
-    f0, f1 = cold.fields(0), cold.fields(1)
+    f0, f1 = _layout.fields(0), _layout.fields(1)
     out = {}
     for name in ("z", "ray", "w", "covering", "row_scale", "col_scale"):
         s0, s1 = f0[name], f1[name]
@@ -516,7 +516,7 @@ class LCPManyResult(Sequence):
     def __init__(self, sizes, off, out_i, out_f, bufs, basics, ws, special):
         """``sizes`` (a list) and ``off`` (int64 (3, B + 1): the offsets of q and the basic
         z's, of M, of the output buffers), the kernels' ``out_i``, ``out_f``, ``bufs`` and
-        ``basics`` (``kernels.cold.batch``), the warm starts given (a list, or None) and
+        ``basics`` (``_core.batch``), the warm starts given (a list, or None) and
         ``special``: ``{b: LCPResult}``, the results built already (those not solved and
         checked, nor q >= 0, nor a checked ray: see ``_batch.solve_lcp_many``)."""
         for a in (off, out_i, out_f, bufs):
@@ -645,7 +645,7 @@ class LCPManyResult(Sequence):
     @cached_property
     def status(self) -> np.ndarray:
         code = self._out_i[:, 0]
-        return self._column(np.where(code == cold.TRIVIAL, 0, code), "status", int)
+        return self._column(np.where(code == _layout.TRIVIAL, 0, code), "status", int)
 
     @cached_property
     def success(self) -> np.ndarray:

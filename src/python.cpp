@@ -7,6 +7,7 @@
 
 #include <cstring>
 
+#include "lemke/certify.hpp"
 #include "lemke/lcp.hpp"
 #include "lemke/unrevised.hpp"
 
@@ -183,7 +184,18 @@ NB_MODULE(_core, m) {
     m.def("batch", &batch, "method"_a, "Ms"_a, "mstart"_a, "qs"_a, "qoff"_a, "beta"_a, "boff"_a,
           "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "bufs"_a,
           "buff"_a, "basics"_a, "out_i"_a, "out_f"_a);
-    m.attr("BUFFER_LENGTH_PER_N") = 6;
-    m.attr("BUFFER_LENGTH_FIXED") = 2;
+    // The layout of the output buffer and the driver's codes (lemke/_layout.py states them
+    // for the fronts; tests/test_structure.py checks that the two agree).
+    m.def("buffer_layout", [](std::int64_t n) {
+        lemke::BufferLayout L{n};
+        return std::make_tuple(L.z(), L.z0(), L.ray(), L.w(), L.covering(), L.row_scale(),
+                               L.col_scale(), L.length());
+    }, "n"_a);
+    m.attr("NOT_FINITE") = lemke::NOT_FINITE;
+    m.attr("TRIVIAL") = lemke::TRIVIAL;
+    m.attr("RESTART_FROM") = lemke::RESTART_FROM;
+    m.attr("TABLEAU") = static_cast<int>(lemke::TABLEAU);
+    m.attr("UNREVISED") = static_cast<int>(lemke::UNREVISED);
+    m.attr("CERTIFIABLE") = lemke::CERTIFIABLE;
     bind_support(m);
 }

@@ -9,7 +9,8 @@ from lemke.kernels import certify as kcertify
 
 
 def test_constants_are_shared():
-    assert _certify.CERTIFIABLE is kcertify.CERTIFIABLE
+    from lemke import _core
+    assert _certify.CERTIFIABLE is _core.CERTIFIABLE and _core.CERTIFIABLE == kcertify.CERTIFIABLE
 
 
 @pytest.mark.parametrize("seed", range(20))

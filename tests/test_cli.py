@@ -290,22 +290,35 @@ def test_siconos_relay_files_solve_as_box_lcps(capsys, name, z):
 
 def test_compiling_is_announced_once(capsys, monkeypatch):
     # numba raises "numba:compile" only when it compiles (a cache miss); here the event is
-    # raised by hand, twice, inside a solve.  The real thing, on an empty cache, is checked
-    # in the bounds-checked child process (test_boundscheck.py).
+    # raised by hand, twice in each of two solves' notice contexts.  The real thing is
+    # checked in the bounds-checked child process (test_boundscheck.py).
     from numba.core import event
 
-    def solve_that_compiles(args):
-        for _ in range(2):
-            with event.trigger_event("numba:compile", data={}):
-                pass
-        return 0
-
-    monkeypatch.setattr(_cli._CompileNotice, "said", False)
-    monkeypatch.setattr(_cli, "_solve", solve_that_compiles)
-    assert _cli.main(["solve"]) == 0 and _cli.main(["solve"]) == 0
+    monkeypatch.setattr(_cli, "_SAID", [False])
+    for _ in range(2):
+        with _cli._compile_notice():
+            for _ in range(2):
+                with event.trigger_event("numba:compile", data={}):
+                    pass
     out, err = capsys.readouterr()
     assert out == "" and err == _cli.COMPILE_NOTICE + "\n"
 
+
+def test_the_cli_loads_no_numba_for_an_lcp(tmp_path):
+    """``lemke solve`` on an LCP (the default problem, and a file) runs in the C++ core:
+    the process never imports numba, and says nothing about compiling."""
+    import subprocess
+    import sys
+    path = tmp_path / "p.json"
+    lemke.write_problem(problems.cps_447(), path)
+    code = ("import sys; from lemke._cli import main; rc = main(['solve', sys.argv[1]]); "
+            "assert 'numba' not in sys.modules, 'numba was imported'; sys.exit(rc)")
+    for args in ([], [str(path)]):
+        out = subprocess.run([sys.executable, "-c", code.replace("sys.argv[1]", repr(args[0])) if args
+                              else code.replace("'solve', sys.argv[1]", "'solve'")],
+                             capture_output=True, text=True, timeout=120)
+        assert out.returncode == 0, out.stderr
+        assert "SOLVED" in out.stdout and out.stderr == ""
 
 
 # --------------------------------------------------------------------------- keeps going

@@ -18,6 +18,7 @@ PACKAGE = Path(lemke.__file__).parent
 #: Layer of each module (dotted, relative to lemke); a module may import only lower layers
 #: (or, inside the kernels and _io packages, its siblings, acyclically).
 LAYERS = [
+    {"_layout"},
     {"_status", "_options", "_validate", "_version", "_progress", "kernels", "_core"},
     {"_result"},
     {"_certify"},
@@ -121,6 +122,20 @@ def test_kind_strings_only_in_the_registry_and_the_formats_declarations():
             if (isinstance(n, ast.Constant) and n.value in names and id(n) not in docstrings
                     and id(n) not in declared):
                 raise AssertionError(f"{module}:{n.lineno} spells the kind {n.value!r}")
+
+
+@pytest.mark.parametrize("n", [0, 1, 5, 100])
+def test_the_layout_is_the_cores(n):
+    """lemke/_layout.py states the C++ core's buffer layout and codes for the fronts."""
+    from lemke import _core, _layout
+    f = _layout.fields(n)
+    starts = tuple(f[name] if name == "z0" else f[name].start for name, _ in _layout.BUFFER)
+    assert _core.buffer_layout(n) == starts + (_layout.buffer_length(n),)
+    assert (_layout.NOT_FINITE, _layout.TRIVIAL, _layout.RESTART_FROM) == (
+        _core.NOT_FINITE, _core.TRIVIAL, _core.RESTART_FROM)
+    assert _layout.METHODS == {"tableau": _core.TABLEAU, "unrevised": _core.UNREVISED}
+    from lemke._kinds import KINDS
+    assert KINDS["lcp"].methods == tuple(_layout.METHODS) == lemke.METHODS
 
 
 @pytest.mark.parametrize("n", [0, 1, 5])

@@ -19,8 +19,6 @@ identity rows, infinities as +-1e20).
 from __future__ import annotations
 
 import numpy as np
-import scipy.io
-import scipy.sparse as sp
 
 from .._problem import FIELDS, Problem
 from . import matv5
@@ -124,6 +122,8 @@ def _read_qp(d: dict, kind: str, path) -> Problem:
 def write(problem: Problem, fh) -> None:
     out = {"kind": problem.kind}
     KINDS[problem.kind][1](problem, out)
+    import scipy.io  # (here: it costs 80 ms to import, and reading needs none of it)
+
     scipy.io.savemat(fh, out, do_compression=True)
 
 
@@ -134,6 +134,8 @@ def _write_plain(problem: Problem, out: dict) -> None:
 
 def _write_qp(problem: Problem, out: dict) -> None:
     """Maros-Meszaros' layout: l <= [G; A; I] x <= u, with the objective constant r."""
+    import scipy.sparse as sp
+
     n = problem.q.size
     G, h, A, b = problem.G, problem.h, problem.A, problem.b
     rows = [x for x in (G, A) if x is not None] + [np.eye(n)]

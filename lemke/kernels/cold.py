@@ -68,8 +68,6 @@ the check (z0 zero to rounding) is SOLVED: the check, not the path, decides.
 
 The number of restarts of both kinds is returned (``LCPResult.recoveries``).
 """
-import functools
-
 import numpy as np
 
 from . import inline_kernel, kernel, pivoting, tableau, unrevised
@@ -77,37 +75,10 @@ from .certify import lcp_check_early, lcp_check_sized, lcp_ray_check_scaled
 from .linalg import (borrow, copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix,
                      solve_gathered, solve_work)
 
-NOT_FINITE = -1  # M or q has a NaN or an infinity (or sizes that do not match): the front reports it
-TRIVIAL = -2  # q >= 0: z = 0 solves it, no pivot
-TABLEAU = 0
-UNREVISED = 1
-#: The methods by name, with the code the kernels dispatch on: the one method registry.
-METHODS = {"tableau": TABLEAU, "unrevised": UNREVISED}
+from .._layout import (BUFFER, METHODS, NOT_FINITE, RESTART_FROM, TABLEAU, TRIVIAL, UNREVISED,  # noqa: F401
+                       buffer_length, fields)
+
 PERTURBATION = 1e-6  # the relative size of the covering vector's perturbation (step 2)
-
-
-#: The fields of the output buffer, in order, with their lengths as functions of n.
-BUFFER = (("z", lambda n: n), ("z0", lambda n: 1), ("ray", lambda n: n + 1), ("w", lambda n: n),
-          ("covering", lambda n: n), ("row_scale", lambda n: n), ("col_scale", lambda n: n))
-
-
-@functools.lru_cache(maxsize=256)
-def fields(n):
-    """``{name: slice}`` of the output buffer for size n (``z0`` is an index), the one
-    statement of its layout in Python; :func:`layout` is the kernels' copy, and a test
-    checks that the two agree."""
-    out, at = {}, 0
-    for name, length in BUFFER:
-        k = length(n)
-        out[name] = at if name == "z0" else slice(at, at + k)
-        at += k
-    return out
-
-
-@functools.lru_cache(maxsize=256)
-def buffer_length(n):
-    """The length of the output buffer for size n."""
-    return sum(length(n) for _, length in BUFFER)
 
 
 @kernel
@@ -516,7 +487,7 @@ def basis_point_in(M, q, beta, k, z, work):
 #: settled into bases with 110 basic z's instead of 68 (restarts end in bases that keep
 #: more z's basic at zero), and every later zero-pivot step paid the larger LU: 78 us a
 #: step instead of 48 at n = 144.  So 100 stays.
-RESTART_FROM = 100
+#: (RESTART_FROM = 100: see lemke/_layout.py, which states it for the core and the fronts.)
 
 
 @inline_kernel
