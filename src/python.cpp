@@ -170,6 +170,8 @@ static void batch(int method, Flat Ms, Indices mstart, Flat qs, Indices qoff, In
                  out_i.data(), out_f.data());
 }
 
+void bind_games(nb::module_& m);  // src/python_games.cpp
+
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
     m.def("first_run", &first_run, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
@@ -183,4 +185,5 @@ NB_MODULE(_core, m) {
           "buff"_a, "basics"_a, "out_i"_a, "out_f"_a);
     m.attr("BUFFER_LENGTH_PER_N") = 6;
     m.attr("BUFFER_LENGTH_FIXED") = 2;
+    bind_games(m);
 }
