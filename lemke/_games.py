@@ -10,8 +10,9 @@ actions and ``m..m+n-1`` the column player's (as ``init_pivot`` in quantecon and
 own actions first, so this game is ``NormalFormGame((Player(A), Player(B.T)))``; in nashpy it
 is ``nash.Game(A, B)``.
 
-The kernels are in :mod:`lemke.kernels.games`, the exact arithmetic in
-:mod:`lemke._games_exact`.
+The kernels are the C++ core's games engine (``lemke._core``: src/lemke/games.cpp, the port
+of :mod:`lemke.kernels.games` with the same arguments, results and bits), the exact
+arithmetic in :mod:`lemke._games_exact`.
 """
 from __future__ import annotations
 
@@ -25,19 +26,25 @@ from fractions import Fraction
 
 import numpy as np
 
+from . import _core, _progress, _validate
 from . import _games_exact as ex
-from . import _progress, _validate
 from ._options import _DEFAULT, Options, as_options
 from ._result import LazyField, Outcome
 from ._status import Status
-from .kernels import games as kg
 from .kernels.pivoting import SOLVED
 
 METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
 _F64 = np.dtype(np.float64)
 _STATUSES = {int(s): s for s in Status}
-_STATE = kg.STATE  # the length of the kernel's path state, after the labels
+#: The games kernels of the C++ core (src/lemke/games.cpp: kernels/games.py's lemke_howson,
+#: trace and check, with the same arguments, results and bits); module attributes, so that
+#: a test can stand a lying kernel in.
+_LEMKE_HOWSON = _core.lemke_howson
+_TRACE = _core.games_trace
+_CHECK = _core.games_check
+_STATE = _core.GAMES_STATE  # the length of the kernel's path state, after the labels
+_NOT_FINITE = _core.GAMES_NOT_FINITE  # a payoff is not finite: nothing done
 
 
 @dataclass(frozen=True)
@@ -127,7 +134,7 @@ class BimatrixResult(Outcome):
     def _lazy(cls, buf, m, n, pivots, init_label, restarts) -> "BimatrixResult":
         """A solved floating-point result whose x, y, payoffs, regret and basis are read
         from the kernel's buffer on first access (``_FromKernel``; see
-        ``kernels.games.lemke_howson`` for its layout; ``exact``, ``exact_from`` and
+        ``kernels.games.lemke_howson`` for its layout, which the core's keeps; ``exact``, ``exact_from`` and
         ``walked_back`` are the class defaults): a small solve pays only for what is
         read."""
         res = object.__new__(cls)
@@ -278,13 +285,13 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
         if warm_start is not None:
             raise ValueError("warm_start is for method='lemke-howson'")
         return _trace(A, B, prior, opts, exact)
-    buf = np.empty(2 * (m + n) + 3 + _STATE)  # see kg.lemke_howson
-    code, pivots, restarts = kg.lemke_howson(
+    buf = np.empty(2 * (m + n) + 3 + _STATE)  # see kernels.games.lemke_howson
+    code, pivots, restarts = _LEMKE_HOWSON(
         A, B, k, _slack_start(m, n) if warm_start is None else _start(warm_start, m, n),
         params, buf)
     if code == SOLVED and not exact:  # the common case, without _finish's detours
         return BimatrixResult._lazy(buf, m, n, pivots, k, restarts)
-    if code == kg.NOT_FINITE:
+    if code == _NOT_FINITE:
         _as_payoffs(A, B)  # raises, naming the entry
     ibuf = buf[m + n + 3 :].view(np.int64)
     return _finish(A, B, k, GameBasis._trusted(m, n, ibuf), code, pivots, restarts,
@@ -340,7 +347,7 @@ def _trace(A, B, prior, opts, exact):
     p, q = _prior(p, m, "row player"), _prior(q, n, "column player")
     labels = np.empty(m + n + 2, dtype=np.int64)
     fbuf = np.empty(m + n + 3)
-    code, pivots = kg.trace(A, B, p, q, _max_pivots(opts), opts.pivot_tol, opts.tie_tol,
+    code, pivots = _TRACE(A, B, p, q, _max_pivots(opts), opts.pivot_tol, opts.tie_tol,
                             opts.tol, fbuf[:m], fbuf[m : m + n], labels, fbuf[m + n :])
     return _finish(A, B, 0, _trace_basis(labels, m, n), code, pivots, 0, "tracing", fbuf,
                    opts, exact, False)
@@ -371,9 +378,12 @@ def _start(warm_start, m, n):
     if not isinstance(warm_start, GameBasis) or (warm_start.m, warm_start.n) != (m, n):
         raise ValueError(f"warm_start must be a GameBasis of an {m} x {n} game")
     xs, ys = list(warm_start.x_basic), list(warm_start.y_basic)
-    if (len(xs) != n or len(ys) != m or len(set(xs)) != n or len(set(ys)) != m
+    if (len(xs) != n or len(ys) != m or len(set(xs + ys)) != m + n
             or min(xs + ys) < 0 or max(xs + ys) >= m + n):
-        raise ValueError("warm_start holds labels out of range or repeated")
+        # (a label basic in both polytopes is no vertex pair of a path: the kernels would
+        # enter a basic variable)
+        raise ValueError("warm_start holds labels out of range or repeated (each of the m + n "
+                         "labels must be basic in exactly one of x_basic, y_basic)")
     return np.array(xs + ys, dtype=np.int64)
 
 
@@ -428,7 +438,7 @@ def _resolve_float(A, B, basis, tol):
     x /= x.sum()
     y /= y.sum()
     out = np.empty(3)
-    return (x, y, out) if kg.check(A, B, x, y, tol, out) else None
+    return (x, y, out) if _CHECK(A, B, x, y, tol, out) else None
 
 
 def _certify(A, B, k, basis, pivots, restarts, method, cap, path=None):

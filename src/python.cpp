@@ -173,6 +173,8 @@ static void batch(int method, Flat Ms, Indices mstart, Flat qs, Indices qoff, In
                  out_i.data(), out_f.data());
 }
 
+void bind_games(nb::module_& m);  // src/python_games.cpp
+
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
     m.def("first_run", &first_run, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
@@ -198,4 +200,5 @@ NB_MODULE(_core, m) {
     m.attr("UNREVISED") = static_cast<int>(lemke::UNREVISED);
     m.attr("CERTIFIABLE") = lemke::CERTIFIABLE;
     bind_support(m);
+    bind_games(m);
 }

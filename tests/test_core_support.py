@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import collections
 import struct
+import importlib
 import sys
 from pathlib import Path
 
@@ -136,7 +137,7 @@ FRONTS = ["lemke._certify", "lemke._pivot_column", "lemke._reductions.mlcp_lcp",
 def recorder(monkeypatch):
     rec = _Recorder()
     for mod in FRONTS:
-        monkeypatch.setattr(sys.modules[mod], "_core", rec)
+        monkeypatch.setattr(importlib.import_module(mod), "_core", rec)  # (lemke imports lazily)
     return rec
 
 

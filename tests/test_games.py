@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 import lemke
-from lemke import _games, _games_exact
+from lemke import _core, _games, _games_exact
 from lemke.kernels import games as kernels_games
 from lemke._io import ProblemFormatError
 from lemke._io.nfg import read_nfg
@@ -266,7 +266,7 @@ def test_exact_continuation_when_the_float_basis_is_wrong(monkeypatch):
         ibuf[m + n : m + n + 3] = (k, 0, 1)  # one pivot made: no state to continue from
         return 0, 1, 0
 
-    monkeypatch.setattr(_games.kg, "lemke_howson", lying)
+    monkeypatch.setattr(_games, "_LEMKE_HOWSON", lying)
     A, B = STENGEL_A, STENGEL_B
     res = lemke.solve_bimatrix(A, B, init_label=1, exact=True)
     assert_exact_equilibrium(A, B, res)
@@ -292,8 +292,8 @@ def stopped_float_path(A, B, k, pivots):
     m, n = A.shape
     buf = np.empty(2 * (m + n) + 3 + kernels_games.STATE)
     params = np.array([float(pivots), 1e-9, 1e-11, 1e-9])
-    code, done, _ = kernels_games.lemke_howson(A, B, k, np.r_[np.arange(m, m + n), np.arange(m)],
-                                               params, buf)
+    code, done, _ = _core.lemke_howson(A, B, k, np.r_[np.arange(m, m + n), np.arange(m)],
+                                       params, buf)
     assert done == pivots
     return code, buf, _games._path_state(buf[m + n + 3 :].view(np.int64), m, n, k)
 
@@ -334,7 +334,7 @@ def test_exact_continuation_through_the_front(monkeypatch):
     simulated): the exact path continues from the stopped state, to the same equilibrium
     as a restart, with fewer exact pivots."""
     A, B, P = long_path_game()
-    real = kernels_games.lemke_howson
+    real = _games._LEMKE_HOWSON
     stop = P - 3
 
     def stopped(A, B, k, start, params, buf):
@@ -343,7 +343,7 @@ def test_exact_continuation_through_the_front(monkeypatch):
         code, pivots, restarts = real(A, B, k, start, short, buf)
         return kernels_games.NUMERICAL_FAILURE, pivots, restarts
 
-    monkeypatch.setattr(_games.kg, "lemke_howson", stopped)
+    monkeypatch.setattr(_games, "_LEMKE_HOWSON", stopped)
     res = lemke.solve_bimatrix(A, B, exact=True)
     assert_exact_equilibrium(A, B, res)
     assert res.exact_from == "continuation" and res.walked_back == 0
@@ -383,7 +383,7 @@ def test_exact_continuation_walks_back_from_a_wrong_pivot(monkeypatch):
         out[:] = buf
         return kernels_games.NUMERICAL_FAILURE, P, 0
 
-    monkeypatch.setattr(_games.kg, "lemke_howson", wrong_pivot)
+    monkeypatch.setattr(_games, "_LEMKE_HOWSON", wrong_pivot)
     res = lemke.solve_bimatrix(A, B, exact=True)
     assert_exact_equilibrium(A, B, res)
     assert res.exact_from == "continuation" and res.walked_back == 1
@@ -420,6 +420,8 @@ def test_bad_arguments():
         lemke.solve_bimatrix(A, B, method="tracing", prior=([1, 0], [1, 0]))
     with pytest.raises(ValueError, match="warm_start"):
         lemke.solve_bimatrix(A, B, warm_start=lemke.GameBasis(2, 2, (2, 3), (0, 1)))
+    with pytest.raises(ValueError, match="exactly one"):  # label 0 basic in both polytopes
+        lemke.solve_bimatrix(A, B, warm_start=lemke.GameBasis(3, 2, (0, 3), (0, 1, 2)))
     with pytest.raises(ValueError, match="non-finite"):
         lemke.solve_bimatrix(np.array([[np.nan, 1.0]]), np.array([[0.0, 1.0]]))  # the fast path
 

@@ -1,0 +1,726 @@
+#include "games.hpp"
+
+#include <algorithm>
+
+#include "multiversion.hpp"
+
+namespace lemke {
+namespace games {
+
+void GamesWork::reserve(idx nf, idx ni, idx nz) {
+    if (static_cast<idx>(f.size()) < nf) f.resize(static_cast<std::size_t>(nf));
+    if (static_cast<idx>(i.size()) < ni) i.resize(static_cast<std::size_t>(ni));
+    if (static_cast<idx>(z.size()) < nz) z.resize(static_cast<std::size_t>(nz));
+}
+
+namespace {
+
+// --- the condensed tableau: shared by both methods ------------------------------------------
+
+struct Range {
+    double lo, hi;
+    bool finite;
+};
+
+// games.payoff_range: four running minima, maxima and sums of v * 0, combined as there.
+Range payoff_range(Mat<const double> A) {
+    double lo0 = INF, lo1 = INF, lo2 = INF, lo3 = INF;
+    double hi0 = -INF, hi1 = -INF, hi2 = -INF, hi3 = -INF;
+    double z0 = 0.0, z1 = 0.0, z2 = 0.0, z3 = 0.0;
+    idx m = A.rows, n = A.cols;
+    for (idx i = 0; i < m; ++i) {
+        const double* a = A.row(i);
+        idx j = 0;
+        for (; j + 4 <= n; j += 4) {
+            double v0 = a[j], v1 = a[j + 1], v2 = a[j + 2], v3 = a[j + 3];
+            lo0 = pmin(lo0, v0); lo1 = pmin(lo1, v1); lo2 = pmin(lo2, v2); lo3 = pmin(lo3, v3);
+            hi0 = pmax(hi0, v0); hi1 = pmax(hi1, v1); hi2 = pmax(hi2, v2); hi3 = pmax(hi3, v3);
+            z0 = z0 + v0 * 0.0; z1 = z1 + v1 * 0.0; z2 = z2 + v2 * 0.0; z3 = z3 + v3 * 0.0;
+        }
+        for (; j < n; ++j) {
+            double v = a[j];
+            lo0 = pmin(lo0, v);
+            hi0 = pmax(hi0, v);
+            z0 += v * 0.0;
+        }
+    }
+    bool finite = (z0 + z1) + (z2 + z3) == 0.0;
+    return {pmin(pmin(lo0, lo1), pmin(lo2, lo3)), pmax(pmax(hi0, hi1), pmax(hi2, hi3)), finite};
+}
+
+double positive_scale(double lo, double hi) { return hi > lo ? pow2_scale(hi - lo) : 0.0; }
+
+// One condensed tableau and its labels (basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j]);
+// magb: running bounds on the values' sizes; start: the labels basic at the start, row by
+// row (the lexicographic keys are relative to them); wlab, wcol: see row_size.
+struct Tab {
+    Mat<double> T;
+    double* rhs;
+    double* magb;
+    idx* basis;
+    idx* nonbasic;
+    idx* pos;
+    std::uint8_t* inb;
+    const idx* start;
+    double* wlab;
+    double* wcol;
+};
+
+// The scratch that a pivot uses (col: the entering column; prow: the pivot row).
+struct Scratch {
+    double* col;
+    double* prow;
+    idx* cand;
+    double* keys;
+    double* scratch;
+    double* mags;
+};
+
+// games.exchange: the pivot on row r and column s (entering column in col). Rows whose
+// entry is zero are left alone, their entry s included (it keeps its sign of zero).
+LEMKE_CLONES
+void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
+              double* prow) {
+    idx n = T.rows, k = T.cols;
+    double inv = 1.0 / col[r];
+    double* tr = T.row(r);
+    for (idx j = 0; j < k; ++j) {
+        double v = -tr[j] * inv;
+        prow[j] = v;
+        tr[j] = v;
+    }
+    tr[s] = inv;
+    double rr = -rhs[r] * inv;
+    rhs[r] = rr;
+    magb[r] *= std::fabs(inv);
+    double mr = magb[r];
+    for (idx i = 0; i < n; ++i) {
+        double f = col[i];
+        if (i != r && f != 0.0) {
+            rhs[i] += f * rr;
+            magb[i] += std::fabs(f) * mr;
+            double* ti = T.row(i);
+            for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
+            ti[s] = f * inv;
+        }
+    }
+}
+
+// games.binv: entry i of the basis inverse's column for the label lab basic at the start.
+inline double binv(Mat<double> T, const idx* pos, const std::uint8_t* is_basic, idx lab, idx i) {
+    if (is_basic[lab]) return pos[lab] == i ? 1.0 : 0.0;
+    return -T(i, pos[lab]);
+}
+
+// games.row_size: |B^-1| |q0| of row i, read off the tableau row.
+double row_size(Mat<double> T, idx i, const idx* basis, const double* wlab, const double* wcol) {
+    double size = wlab[basis[i]];
+    const double* t = T.row(i);
+    for (idx c = 0; c < T.cols; ++c) size += std::fabs(t[c]) * wcol[c];
+    return size;
+}
+
+void column_weights(const idx* nonbasic, idx k, const double* wlab, double* wcol) {
+    for (idx c = 0; c < k; ++c) wcol[c] = wlab[nonbasic[c]];
+}
+
+// games.lex_break.
+idx lex_break(Mat<double> T, const double* c, const idx* pos, const std::uint8_t* is_basic,
+              const idx* start_basis, idx art, double pivot_tol, double tie_tol, idx* cand,
+              double* keys, idx nc) {
+    if (nc <= 1) return nc == 1 ? cand[0] : -1;
+    for (idx t = 0; t < nc; ++t)
+        if (cand[t] == art) return art;
+    for (idx j = 0; j < T.rows; ++j) {
+        idx lab = start_basis[j];
+        for (idx t = 0; t < nc; ++t) {
+            idx i = cand[t];
+            keys[t] = lex_key(binv(T, pos, is_basic, lab, i), c[i], pivot_tol);
+        }
+        nc = keep_lowest(cand, keys, nc, tie_tol);
+        if (nc == 1) return cand[0];
+    }
+    return nc > 0 ? largest_pivot(cand, c, nc) : -1;
+}
+
+// games.leaving_row.
+idx leaving_row(Tab& t, const double* col, bool has_free, const std::uint8_t* free, idx art,
+                double z0_max, double pivot_tol, double tie_tol, Scratch& w) {
+    idx n = t.T.rows;
+    const double* c = col;
+    if (has_free) {
+        for (idx i = 0; i < n; ++i) w.scratch[i] = free[t.basis[i]] ? 0.0 : col[i];
+        c = w.scratch;
+    }
+    bool exact_sizes = false;
+    for (idx i = 0; i < n; ++i) {
+        double v = t.rhs[i];
+        if (c[i] < 0.0 && v > 0.0 && v <= VALUE_ROUNDING * t.magb[i]) {
+            if (!exact_sizes) {
+                exact_sizes = true;
+                for (idx j = 0; j < n; ++j) w.mags[j] = t.rhs[j];
+            }
+            double size = row_size(t.T, i, t.basis, t.wlab, t.wcol);
+            w.mags[i] = size;
+            t.magb[i] = size;
+        }
+    }
+    double cmax = 0.0;  // pivoting.min_ratio
+    for (idx i = 0; i < n; ++i) cmax = pmax(cmax, std::fabs(c[i]));
+    idx nc = blocking_rows(t.rhs, exact_sizes ? w.mags : t.rhs, c, n, -pivot_tol * cmax, tie_tol,
+                           w.cand, art, z0_max);
+    return lex_break(t.T, c, t.pos, t.inb, t.start, art, pivot_tol, tie_tol, w.cand, w.keys, nc);
+}
+
+// games.step: one pivot, the label `entering` enters; returns the label that left, -1 when
+// nothing blocks, -2 when the pivot entry is not finite.
+idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art, double z0_max,
+         double pivot_tol, double tie_tol, Scratch& w) {
+    idx s = t.pos[entering];
+    idx rows = t.T.rows;
+    double* col = w.col;
+    double cmax = 0.0;
+    bool sized = false;
+    const double* T = t.T.p;
+    idx ld = t.T.ld;
+    for (idx i = 0; i < rows; ++i) {
+        double v = T[i * ld + s];
+        col[i] = v;
+        cmax = pmax(cmax, std::fabs(v));
+        double b = t.rhs[i];
+        sized |= (v < 0.0) & (b > 0.0) & (b <= VALUE_ROUNDING * t.magb[i]);
+    }
+    idx r;
+    if (has_free || art >= 0 || sized) {
+        r = leaving_row(t, col, has_free, free, art, z0_max, pivot_tol, tie_tol, w);
+    } else {
+        idx nc = blocking_rows(t.rhs, t.rhs, col, rows, -pivot_tol * cmax, tie_tol, w.cand, art,
+                               z0_max);
+        r = nc == 1 ? w.cand[0]
+                    : lex_break(t.T, col, t.pos, t.inb, t.start, art, pivot_tol, tie_tol, w.cand,
+                                w.keys, nc);
+    }
+    idx leaving = -1;
+    if (r >= 0 && !(std::fabs(col[r]) < INF)) {
+        leaving = -2;
+    } else if (r >= 0) {
+        t.magb[r] = row_size(t.T, r, t.basis, t.wlab, t.wcol);
+        exchange(t.T, t.rhs, t.magb, r, s, col, w.prow);
+        leaving = swap_labels(t.basis, t.nonbasic, t.pos, t.inb, r, s);
+        t.wcol[s] = t.wlab[leaving];
+    }
+    return leaving;
+}
+
+// games.place: pivot until the labels target[:count] are the basic ones. want: L flags.
+bool place(Tab& t, const idx* target, idx count, idx n_labels, double* col, double* prow,
+           std::uint8_t* want) {
+    idx n = t.T.rows;
+    bool done = true;
+    for (idx q = 0; q < count; ++q) done &= t.inb[target[q]] != 0;
+    if (done) return true;
+    for (idx l = 0; l < n_labels; ++l) want[l] = 0;
+    for (idx q = 0; q < count; ++q) want[target[q]] = 1;
+    for (idx q = 0; q < count; ++q) {
+        idx lab = target[q];
+        if (t.inb[lab]) continue;
+        idx s = t.pos[lab];
+        idx best = -1;
+        double big = 0.0;
+        for (idx i = 0; i < n; ++i) {
+            if (!want[t.basis[i]] && std::fabs(t.T(i, s)) > big) {
+                big = std::fabs(t.T(i, s));
+                best = i;
+            }
+        }
+        if (best < 0 || big < 1e-12) return false;
+        for (idx i = 0; i < n; ++i) col[i] = t.T(i, s);
+        exchange(t.T, t.rhs, t.magb, best, s, col, prow);
+        swap_labels(t.basis, t.nonbasic, t.pos, t.inb, best, s);
+    }
+    return true;
+}
+
+// pivoting.after_pivot with the keys of pivoting.label_keys: SOLVED when the artificial
+// label left, CYCLING when the basis repeats, else -1.
+inline int after_pivot(idx leaving, idx entering, idx artificial, std::uint64_t& h,
+                       Detector& detector) {
+    if (leaving == artificial) return SOLVED;
+    h ^= label_key(leaving) ^ label_key(entering);
+    if (detector.repeats(h)) return CYCLING;
+    return -1;
+}
+
+// --- the check on the caller's payoffs ------------------------------------------------------
+
+idx support(const double* v, idx len, idx* index) {
+    idx k = 0;
+    for (idx i = 0; i < len; ++i)
+        if (v[i] != 0.0) index[k++] = i;
+    return k;
+}
+
+struct Regrets {
+    double ra, rb, pa, pb;
+};
+
+// games.regrets: acc (n), index (max(m, n)) scratch.
+Regrets regrets(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
+                double* acc, idx* index) {
+    idx m = A.rows, n = A.cols;
+    idx k = support(y, n, index);
+    double best_a = -INF, pay_a = 0.0;
+    for (idx i = 0; i < m; ++i) {
+        const double* a = A.row(i);
+        double t = 0.0;
+        for (idx q = 0; q < k; ++q) {
+            idx j = index[q];
+            t += a[j] * y[j];
+        }
+        best_a = pmax(best_a, t);
+        pay_a += x[i] * t;
+    }
+    for (idx j = 0; j < n; ++j) acc[j] = 0.0;
+    k = support(x, m, index);
+    for (idx q = 0; q < k; ++q) {
+        idx i = index[q];
+        double xi = x[i];
+        const double* b = B.row(i);
+        for (idx j = 0; j < n; ++j) acc[j] += b[j] * xi;
+    }
+    double best_b = -INF, pay_b = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        best_b = pmax(best_b, acc[j]);
+        pay_b += y[j] * acc[j];
+    }
+    return {best_a - pay_a, best_b - pay_b, pay_a, pay_b};
+}
+
+double allowance(double lo, double hi, idx m, idx n, double tol) {
+    double big = pmax(std::fabs(lo), std::fabs(hi));
+    return tol * (hi - lo) + ROUNDING_SLACK * 2.2e-16 * static_cast<double>(m + n) * big;
+}
+
+// games.verdict.
+bool verdict(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
+             double allow_a, double allow_b, double* out, double* acc, idx* index) {
+    idx m = A.rows, n = A.cols;
+    bool ok = true;
+    double sx = 0.0;
+    for (idx i = 0; i < m; ++i) {
+        ok &= x[i] >= 0.0;
+        sx += x[i];
+    }
+    double sy = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        ok &= y[j] >= 0.0;
+        sy += y[j];
+    }
+    ok &= std::fabs(sx - 1.0) <= 1e-12 * static_cast<double>(m) &&
+          std::fabs(sy - 1.0) <= 1e-12 * static_cast<double>(n);
+    Regrets r = regrets(A, B, x, y, acc, index);
+    out[0] = pmax(r.ra, r.rb);
+    out[1] = r.pa;
+    out[2] = r.pb;
+    return ok && r.ra <= allow_a && r.rb <= allow_b;
+}
+
+// games.normalize: v / sum(v), negative rounding clamped to 0; false when nothing is left.
+bool normalize(double* v, idx len) {
+    double t = 0.0;
+    for (idx i = 0; i < len; ++i) {
+        v[i] = pmax(v[i], 0.0);
+        t += v[i];
+    }
+    if (!(t > 0.0) || !(t < INF)) return false;
+    for (idx i = 0; i < len; ++i) v[i] /= t;
+    return true;
+}
+
+// numba's int(x) of a float64 (x86's cvttsd2si: INT64_MIN when out of range or NaN).
+idx float_to_int(double x) {
+    if (x >= -9223372036854775808.0 && x < 9223372036854775808.0) return static_cast<idx>(x);
+    return INT64_MIN;
+}
+
+// --- Lemke-Howson ---------------------------------------------------------------------------
+
+// The work arrays of one Lemke-Howson solve (kernels/games.py's F, I, Z, U), laid out here
+// and only here.
+struct LHViews {
+    Tab P, Q;
+    Scratch w;
+    idx *slackP, *slackQ;
+    std::uint8_t* want;
+    double* acc;   // verdict's scratch (n)
+    idx* index;    // verdict's scratch (max(m, n))
+};
+
+LHViews lh_layout(GamesWork& g, idx m, idx n) {
+    idx L = m + n, big = std::max(m, n);
+    g.reserve(2 * m * n + 4 * L + 2 * L + 5 * big + n, 6 * L + 2 * big, 3 * L);
+    LHViews v;
+    double* f = g.f.data();
+    idx* i = g.i.data();
+    std::uint8_t* z = g.z.data();
+    v.P.T = Mat<double>(f, n, m);
+    f += n * m;
+    v.Q.T = Mat<double>(f, m, n);
+    f += m * n;
+    v.P.rhs = f; v.P.magb = f + n; f += 2 * n;
+    v.Q.rhs = f; v.Q.magb = f + m; f += 2 * m;
+    v.P.wlab = f; v.Q.wlab = f + L; f += 2 * L;
+    v.P.wcol = f; v.Q.wcol = f + m; f += L;
+    v.w.col = f; v.w.prow = f + big; v.w.scratch = f + 2 * big; v.w.keys = f + 3 * big;
+    v.w.mags = f + 4 * big; f += 5 * big;
+    v.acc = f;
+    v.P.basis = i; v.P.nonbasic = i + n; i += L;
+    v.Q.basis = i; v.Q.nonbasic = i + m; i += L;
+    v.P.pos = i; v.Q.pos = i + L; i += 2 * L;
+    v.slackP = i; v.slackQ = i + n; i += L;
+    v.w.cand = i; i += big;
+    v.index = i;
+    v.P.start = v.slackP;
+    v.Q.start = v.slackQ;
+    v.P.inb = z; v.Q.inb = z + L; v.want = z + 2 * L;
+    return v;
+}
+
+// games.tableau_setup: one tableau at the artificial equilibrium; get(r, c) is P[c, r].
+template <class Get>
+void tableau_setup(Get get, double lo, double f, Tab& t, idx first) {
+    idx rows = t.T.rows, cols = t.T.cols, L = rows + cols;
+    for (idx r = 0; r < rows; ++r) {
+        double* tr = t.T.row(r);
+        for (idx c = 0; c < cols; ++c) tr[c] = -(1.0 + (get(r, c) - lo) * f);
+        t.rhs[r] = 1.0;
+        idx lab = (first + r) % L;
+        t.basis[r] = lab;
+        t.pos[lab] = r;
+        t.inb[lab] = 1;
+    }
+    for (idx c = 0; c < cols; ++c) {
+        idx lab = (first + rows + c) % L;
+        t.nonbasic[c] = lab;
+        t.pos[lab] = c;
+        t.inb[lab] = 0;
+    }
+}
+
+// games.lh_path: one path dropping label k from the basis whose basic labels are startP
+// (n) and startQ (m).
+int lh_path(Mat<const double> A, Mat<const double> B, const double* scale, idx k,
+            const idx* startP, const idx* startQ, bool perturb, idx max_pivots,
+            double pivot_tol, double tie_tol, double* x, double* y, idx* basisP, idx* basisQ,
+            idx* state, LHViews& v, idx& pivots) {
+    idx m = A.rows, n = A.cols, L = m + n;
+    Tab& P = v.P;
+    Tab& Q = v.Q;
+    tableau_setup([&](idx r, idx c) { return B(c, r); }, scale[2], scale[3], P, m);
+    tableau_setup([&](idx r, idx c) { return A(r, c); }, scale[0], scale[1], Q, 0);
+    for (idx j = 0; j < n; ++j) v.slackP[j] = P.basis[j];
+    for (idx i = 0; i < m; ++i) v.slackQ[i] = Q.basis[i];
+    if (perturb) {
+        for (idx j = 0; j < n; ++j)
+            P.rhs[j] *= 1.0 + PERTURBATION * unit_random(label_key(m + j));
+        for (idx i = 0; i < m; ++i) Q.rhs[i] *= 1.0 + PERTURBATION * unit_random(label_key(i));
+    }
+    for (idx j = 0; j < n; ++j) P.magb[j] = std::fabs(P.rhs[j]);
+    for (idx i = 0; i < m; ++i) Q.magb[i] = std::fabs(Q.rhs[i]);
+    for (idx l = 0; l < L; ++l) P.wlab[l] = Q.wlab[l] = 0.0;
+    for (idx j = 0; j < n; ++j) P.wlab[m + j] = std::fabs(P.rhs[j]);
+    for (idx i = 0; i < m; ++i) Q.wlab[i] = std::fabs(Q.rhs[i]);
+    int status = MAX_PIVOTS;
+    pivots = 0;
+    if (!(place(P, startP, n, L, v.w.col, v.w.prow, v.want) &&
+          place(Q, startQ, m, L, v.w.col, v.w.prow, v.want))) {
+        status = NUMERICAL_FAILURE;
+        max_pivots = 0;
+    }
+    column_weights(P.nonbasic, m, P.wlab, P.wcol);
+    column_weights(Q.nonbasic, n, Q.wlab, Q.wcol);
+    std::uint64_t h = 0, hq = 0;
+    for (idx j = 0; j < n; ++j) h ^= label_key(P.basis[j]);
+    for (idx i = 0; i < m; ++i) hq ^= label_key(Q.basis[i] + L);
+    h ^= hq;
+    Detector detector;
+    idx* hist = state + 3;
+    idx entering = k;
+    idx side = P.inb[k] ? 1 : 0;  // the tableau where label k is non-basic
+    while (pivots < max_pivots) {
+        idx leaving = step(side == 0 ? P : Q, entering, false, nullptr, -1, 0.0, pivot_tol,
+                           tie_tol, v.w);
+        if (leaving < 0) {
+            status = NUMERICAL_FAILURE;  // P and Q are bounded: a ray is rounding
+            break;
+        }
+        hist[pivots & (HISTORY - 1)] = leaving;
+        pivots += 1;
+        idx shift = side == 0 ? 0 : L;
+        int stop = after_pivot(leaving + shift, entering + shift, k + shift, h, detector);
+        entering = leaving;
+        side = 1 - side;
+        if (stop >= 0) {
+            status = stop;
+            break;
+        }
+    }
+    state[0] = entering;
+    state[1] = side;
+    state[2] = pivots;
+    for (idx i = 0; i < m; ++i) x[i] = 0.0;
+    for (idx j = 0; j < n; ++j) y[j] = 0.0;
+    for (idx j = 0; j < n; ++j)
+        if (P.basis[j] < m) x[P.basis[j]] = P.rhs[j];
+    for (idx i = 0; i < m; ++i)
+        if (Q.basis[i] >= m) y[Q.basis[i] - m] = Q.rhs[i];
+    for (idx j = 0; j < n; ++j) basisP[j] = P.basis[j];
+    for (idx i = 0; i < m; ++i) basisQ[i] = Q.basis[i];
+    return status;
+}
+
+}  // namespace
+
+LHResult lemke_howson(Mat<const double> A, Mat<const double> B, idx k, const idx* start,
+                      const double* params, double* buf) {
+    idx m = A.rows, n = A.cols;
+    Range ra = payoff_range(A), rb = payoff_range(B);
+    if (!(ra.finite && rb.finite)) return {NOT_FINITE, 0, 0};
+    idx L = m + n;
+    idx max_pivots = float_to_int(params[0]);
+    double pivot_tol = params[1], tie_tol = params[2], tol = params[3];
+    double* x = buf;
+    double* y = buf + m;
+    double* out = buf + L;
+    idx* ibuf = reinterpret_cast<idx*>(buf + L + 3);
+    const idx* startP = start;
+    const idx* startQ = start + n;
+    idx* basisP = ibuf;
+    idx* basisQ = ibuf + n;
+    idx* state = ibuf + L;
+    double scale[4] = {ra.lo, positive_scale(ra.lo, ra.hi), rb.lo, positive_scale(rb.lo, rb.hi)};
+    thread_local GamesWork work;
+    LHViews v = lh_layout(work, m, n);
+    idx pivots = 0, restarts = 0;
+    int status = NUMERICAL_FAILURE;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        if (attempt == 1 && tie_tol == 0.0) continue;  // the first run had exact ties already
+        if (attempt > 0) restarts += 1;
+        double tt = attempt == 0 ? tie_tol : 0.0;
+        idx p = 0;
+        status = lh_path(A, B, scale, k, startP, startQ, attempt == 2, max_pivots - pivots,
+                         pivot_tol, tt, x, y, basisP, basisQ, state, v, p);
+        pivots += p;
+        if (status == SOLVED || status == MAX_PIVOTS || pivots >= max_pivots) break;
+    }
+    bool good = normalize(x, m) && normalize(y, n);
+    if (!good) {
+        out[0] = INF;
+        return {status == SOLVED ? static_cast<int>(NUMERICAL_FAILURE) : status, pivots, restarts};
+    }
+    bool ok = verdict(A, B, x, y, allowance(ra.lo, ra.hi, m, n, tol),
+                      allowance(rb.lo, rb.hi, m, n, tol), out, v.acc, v.index);
+    if (status == SOLVED && !ok) status = UNCHECKED;
+    return {status, pivots, restarts};
+}
+
+// --- the tracing procedure ------------------------------------------------------------------
+
+namespace {
+
+// The work arrays of one tracing run, laid out here and only here: the system (N = m + n + 2
+// rows, m + n + 3 columns, 2 (m + n) + 5 labels), the positive payoffs and the scratch.
+struct TraceViews {
+    Tab t;
+    Scratch w;
+    double *Ap, *Bp, *acc;
+    idx *start, *index;
+    std::uint8_t* free;
+};
+
+TraceViews trace_layout(GamesWork& g, idx m, idx n) {
+    idx L = m + n, N = L + 2, K = L + 3, labels = 2 * L + 5, big = std::max(m, n);
+    g.reserve(N * K + 3 * N + labels + K + N + K + 2 * N + 2 * m * n + n,
+              N + K + labels + 2 * N + big, 2 * labels);
+    TraceViews v;
+    double* f = g.f.data();
+    idx* i = g.i.data();
+    std::uint8_t* z = g.z.data();
+    v.t.T = Mat<double>(f, N, K); f += N * K;
+    v.t.rhs = f; v.t.magb = f + N; v.w.mags = f + 2 * N; f += 3 * N;
+    v.t.wlab = f; f += labels;
+    v.t.wcol = f; f += K;
+    v.w.col = f; f += N;
+    v.w.prow = f; f += K;
+    v.w.keys = f; v.w.scratch = f + N; f += 2 * N;
+    v.Ap = f; v.Bp = f + m * n; f += 2 * m * n;
+    v.acc = f;
+    v.t.basis = i; i += N;
+    v.t.nonbasic = i; i += K;
+    v.t.pos = i; i += labels;
+    v.start = i; v.t.start = i; i += N;
+    v.w.cand = i; i += N;
+    v.index = i;
+    v.t.inb = z; v.free = z + labels;
+    return v;
+}
+
+// games.positive_payoffs into out (m x n).
+void positive_payoffs(Mat<const double> A, double* out) {
+    Range r = payoff_range(A);
+    double f = positive_scale(r.lo, r.hi);
+    for (idx i = 0; i < A.rows; ++i)
+        for (idx j = 0; j < A.cols; ++j) out[i * A.cols + j] = 1.0 + (A(i, j) - r.lo) * f;
+}
+
+}  // namespace
+
+TraceResult trace(Mat<const double> A, Mat<const double> B, const double* p, const double* q,
+                  idx max_pivots, double pivot_tol, double tie_tol, double tol, double* x,
+                  double* y, idx* basis_out, double* out) {
+    idx m = A.rows, n = A.cols, L = m + n, N = L + 2, K = L + 3, labels = 2 * L + 5;
+    idx U = 2 * L, V = 2 * L + 1, Z0 = 2 * L + 2, E1 = 2 * L + 3, E2 = 2 * L + 4;
+    thread_local GamesWork work;
+    TraceViews v = trace_layout(work, m, n);
+    Tab& t = v.t;
+    Mat<double> T = t.T;
+    double* rhs = t.rhs;
+    positive_payoffs(A, v.Ap);
+    positive_payoffs(B, v.Bp);
+    for (idx e = 0; e < N * K; ++e) T.p[e] = 0.0;
+    for (idx r = 0; r < N; ++r) rhs[r] = 0.0;
+    for (idx i = 0; i < m; ++i) {
+        double aq = 0.0;
+        for (idx j = 0; j < n; ++j) {
+            T(i, m + j) = -v.Ap[i * n + j];
+            aq += v.Ap[i * n + j] * q[j];
+        }
+        T(i, L) = 1.0;
+        T(i, L + 2) = -aq;
+    }
+    for (idx j = 0; j < n; ++j) {
+        double bp = 0.0;
+        for (idx i = 0; i < m; ++i) {
+            T(m + j, i) = -v.Bp[i * n + j];
+            bp += v.Bp[i * n + j] * p[i];
+        }
+        T(m + j, L + 1) = 1.0;
+        T(m + j, L + 2) = -bp;
+    }
+    for (idx i = 0; i < m; ++i) T(L, i) = -1.0;
+    for (idx j = 0; j < n; ++j) T(L + 1, m + j) = -1.0;
+    T(L, L + 2) = -1.0;
+    T(L + 1, L + 2) = -1.0;
+    rhs[L] = 1.0;
+    rhs[L + 1] = 1.0;
+    idx *basis = t.basis, *nonbasic = t.nonbasic, *pos = t.pos;
+    std::uint8_t* inb = t.inb;
+    for (idx l = 0; l < labels; ++l) inb[l] = 0;
+    for (idx r = 0; r < L; ++r) basis[r] = L + r;
+    basis[L] = E1;
+    basis[L + 1] = E2;
+    for (idx c = 0; c < L; ++c) nonbasic[c] = c;
+    nonbasic[L] = U;
+    nonbasic[L + 1] = V;
+    nonbasic[L + 2] = Z0;
+    for (idx r = 0; r < N; ++r) {
+        pos[basis[r]] = r;
+        inb[basis[r]] = 1;
+    }
+    for (idx c = 0; c < K; ++c) pos[nonbasic[c]] = c;
+    // The best responses to the prior (the first on ties).
+    idx istar = 0;
+    double best = -INF;
+    for (idx i = 0; i < m; ++i) {
+        if (-T(i, L + 2) > best) {
+            best = -T(i, L + 2);
+            istar = i;
+        }
+    }
+    idx jstar = 0;
+    best = -INF;
+    for (idx j = 0; j < n; ++j) {
+        if (-T(m + j, L + 2) > best) {
+            best = -T(m + j, L + 2);
+            jstar = j;
+        }
+    }
+    double* col = v.w.col;
+    double* prow = v.w.prow;
+    double* magb = t.magb;
+    for (idx r = 0; r < N; ++r) magb[r] = std::fabs(rhs[r]);
+    const idx target[4] = {U, V, Z0, m + jstar};
+    const idx rows[4] = {istar, m + jstar, L, L + 1};
+    for (int s4 = 0; s4 < 4; ++s4) {
+        idx s = pos[target[s4]];
+        for (idx i = 0; i < N; ++i) col[i] = T(i, s);
+        exchange(T, rhs, magb, rows[s4], s, col, prow);
+        swap_labels(basis, nonbasic, pos, inb, rows[s4], s);
+    }
+    for (idx r = 0; r < N; ++r) v.start[r] = basis[r];  // the keys are relative to it
+    for (idx r = 0; r < N; ++r) magb[r] = std::fabs(rhs[r]);
+    double* wlab = t.wlab;
+    for (idx l = 0; l < labels; ++l) wlab[l] = 0.0;
+    for (idx r = 0; r < N; ++r) wlab[basis[r]] = std::fabs(rhs[r]);
+    column_weights(nonbasic, K, wlab, t.wcol);
+    std::uint8_t* free = v.free;
+    for (idx l = 0; l < labels; ++l) free[l] = 0;
+    free[U] = 1;
+    free[V] = 1;
+    std::uint64_t h = 0;
+    for (idx r = 0; r < N; ++r) h ^= label_key(basis[r]);
+    Detector detector;
+    int status = MAX_PIVOTS;
+    idx pivots = 0;
+    idx entering = istar;
+    double z0_max = 1.0;
+    while (pivots < max_pivots) {
+        idx art = inb[Z0] ? pos[Z0] : -1;
+        idx leaving = step(t, entering, true, free, art, z0_max, pivot_tol, tie_tol, v.w);
+        if (leaving < 0) {
+            status = leaving == -1 ? RAY_TERMINATION : NUMERICAL_FAILURE;
+            break;
+        }
+        pivots += 1;
+        int stop = after_pivot(leaving, entering, Z0, h, detector);
+        if (stop >= 0) {
+            status = stop;
+            break;
+        }
+        entering = leaving < L ? leaving + L : leaving - L;  // the complement
+    }
+    for (idx i = 0; i < m; ++i) x[i] = 0.0;
+    for (idx j = 0; j < n; ++j) y[j] = 0.0;
+    for (idx r = 0; r < N; ++r) {
+        idx lab = basis[r];
+        if (lab < m)
+            x[lab] = rhs[r];
+        else if (lab < L)
+            y[lab - m] = rhs[r];
+    }
+    for (idx r = 0; r < N; ++r) basis_out[r] = basis[r];
+    if (!(normalize(x, m) && normalize(y, n))) {
+        out[0] = INF;
+        return {status == SOLVED ? static_cast<int>(NUMERICAL_FAILURE) : status, pivots};
+    }
+    Range ra = payoff_range(A), rb = payoff_range(B);
+    bool ok = verdict(A, B, x, y, allowance(ra.lo, ra.hi, m, n, tol),
+                      allowance(rb.lo, rb.hi, m, n, tol), out, v.acc, v.index);
+    if (ok) return {SOLVED, pivots};
+    return {status == SOLVED ? UNCHECKED : status, pivots};
+}
+
+bool check(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
+           double tol, double* out) {
+    idx m = A.rows, n = A.cols;
+    Range ra = payoff_range(A), rb = payoff_range(B);
+    thread_local std::vector<double> acc;
+    thread_local std::vector<idx> index;
+    acc.resize(static_cast<std::size_t>(std::max<idx>(n, 1)));
+    index.resize(static_cast<std::size_t>(std::max<idx>(std::max(m, n), 1)));
+    return verdict(A, B, x, y, allowance(ra.lo, ra.hi, m, n, tol),
+                   allowance(rb.lo, rb.hi, m, n, tol), out, acc.data(), index.data());
+}
+
+}  // namespace games
+}  // namespace lemke

@@ -1,0 +1,71 @@
+// Bimatrix games (the port of lemke/kernels/games.py, whose docstring states the method):
+// Lemke-Howson on two condensed tableaux and the van den Elzen-Talman tracing procedure,
+// both choosing rows by the shared rule of pivoting.hpp, each answer checked by the
+// players' regrets on the caller's payoffs. The same floating-point operations in the same
+// order as the numba kernels, so the same bits.
+//
+// Convention: A and B (both m x n, row-major) are the payoffs of the row player and of the
+// column player; labels 0..m-1 are the row player's actions, m..m+n-1 the column player's.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "pivoting.hpp"
+
+namespace lemke {
+
+namespace games {
+
+constexpr int NOT_FINITE = -1;     // a payoff is NaN or infinite: nothing done
+constexpr int UNCHECKED = 7;       // every label present, at a point that fails the check
+constexpr double PERTURBATION = 1e-7;
+constexpr double ROUNDING_SLACK = 64.0;
+constexpr idx HISTORY = 64;        // leaving labels kept of a path's last pivots (power of 2)
+constexpr idx STATE = 3 + HISTORY; // the path state after the labels in the int64 part
+
+// The length (in doubles) of lemke_howson's output buffer for an m x n game.
+inline idx lh_buffer_length(idx m, idx n) { return 2 * (m + n) + 3 + STATE; }
+
+// The games engine's work arrays, one per thread and reused: the float, index and flag
+// arrays that lemke_howson and trace carve in games.cpp (LHViews / TraceViews, each laid
+// out in one function there). They only grow.
+struct GamesWork {
+    std::vector<double> f;
+    std::vector<idx> i;
+    std::vector<std::uint8_t> z;
+    void reserve(idx nf, idx ni, idx nz);
+};
+
+struct LHResult {
+    int status;
+    idx pivots;
+    idx restarts;
+};
+
+// games.lemke_howson: Lemke-Howson dropping label k (0 <= k < m + n), from the basic labels
+// `start` (n of P, then m of Q, each in [0, m + n)), params = (max_pivots, pivot_tol,
+// tie_tol, tol), checked on (A, B). buf (lh_buffer_length) gets [x | y | regret, row
+// payoff, column payoff], then as int64 the final basic labels of P and Q and the path
+// state (entering label, side, pivots, the last HISTORY leaving labels).
+LHResult lemke_howson(Mat<const double> A, Mat<const double> B, idx k, const idx* start,
+                      const double* params, double* buf);
+
+struct TraceResult {
+    int status;
+    idx pivots;
+};
+
+// games.trace: the tracing procedure from the prior (p, q). x (m), y (n), basis_out
+// (m + n + 2), out (3: regret, row payoff, column payoff).
+TraceResult trace(Mat<const double> A, Mat<const double> B, const double* p, const double* q,
+                  idx max_pivots, double pivot_tol, double tie_tol, double tol, double* x,
+                  double* y, idx* basis_out, double* out);
+
+// games.check: is (x, y) an equilibrium of (A, B)? out (3) gets (regret, row payoff, column
+// payoff).
+bool check(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
+           double tol, double* out);
+
+}  // namespace games
+
+}  // namespace lemke
