@@ -13,6 +13,8 @@
 namespace nb = nanobind;
 using namespace nb::literals;
 
+void bind_boxed(nb::module_& m);  // src/python_boxed.cpp
+
 using Matrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 using Vector = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using Buffer = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
@@ -183,4 +185,5 @@ NB_MODULE(_core, m) {
           "buff"_a, "basics"_a, "out_i"_a, "out_f"_a);
     m.attr("BUFFER_LENGTH_PER_N") = 6;
     m.attr("BUFFER_LENGTH_FIXED") = 2;
+    bind_boxed(m);
 }
