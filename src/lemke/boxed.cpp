@@ -1,5 +1,7 @@
 #include "boxed.hpp"
 
+#include <algorithm>
+
 #include "certify.hpp"
 #include "tableau.hpp"
 
@@ -637,7 +639,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     }
     BoxedWork& W = work();
     W.layout(n);
-    for (idx i = 0; i < 6 * n + 2; ++i) W.flags[static_cast<std::size_t>(i)] = 0;
+    std::fill(W.flags.begin(), W.flags.end(), std::uint8_t(0));
     std::uint8_t *z_basic = W.z_basic(), *z_hi = W.z_hi(), *is_basic = W.is_basic();
     std::uint8_t* want = W.want();
     double *qs = W.qs(), *los = W.los(), *his = W.his(), *s0 = W.s0(), *z0s = W.z0s();
