@@ -63,6 +63,36 @@ int lemke_lcp_solve(int64_t n, const double* M, const double* q, const lemke_opt
                     const int64_t* warm_basis, int64_t n_warm, double* z, double* w,
                     int64_t* basis_out, int64_t* n_basis_out, lemke_info* info);
 
+/* Solve the box LCP (lemke.solve_blcp): find z with lo <= z <= hi and w = M z + q such that
+ * w_i >= 0 where z_i = lo_i, w_i <= 0 where z_i = hi_i and w_i = 0 in between. M is n x n,
+ * row-major; lo may hold -INFINITY and hi +INFINITY; lo_i = hi_i fixes z_i. (ODE's and
+ * DART's dSolveLCP pose A x = b + w: pass M = A and q = -b.)
+ *
+ * findex (NULL: none) is the friction index of ODE, Bullet and DART, as solve_blcp takes it:
+ * findex[i] = -1 for an ordinary row; f = findex[i] >= 0 makes row i a friction row of the
+ * contact whose normal impulse is z_f, with lo[i] = -hi[i] (hi[i] = mu_i >= 0, finite),
+ * lo[f] >= 0, f not i and not itself a friction row; the bounds in force are
+ * lo[i] z_f <= z_i <= hi[i] z_f at the answer, solved exactly (Stewart and Trinkle's rows,
+ * an extended box LCP of size n + 2 n_friction).
+ *
+ * The runs are those of solve_blcp's one-call path, bit for bit (a cold run, then the other
+ * covering vectors and exact ties, each checked; with a friction index the answer judged on
+ * the caller's data); where they end without a checked answer, the final basis's point is
+ * recomputed and checked, and Lemke restarts once from that basis (Python's general path
+ * may take other steps there). options may be NULL; max_pivots < 0 means 100 (N + 1), N the
+ * size solved.
+ *
+ * Out (each may be NULL): z (n), w (n; w = M z + q at z), info (warm is always 0).
+ * Returns info->status: LEMKE_SOLVED only when z passed the check on the caller's data
+ * (with a friction index, on the bounds in force at z); LEMKE_RAY_TERMINATION on a ray
+ * that passed the ray check (for a monotone M: no solution); LEMKE_NOT_FINITE when M or q
+ * holds a NaN or an infinity or lo or hi a NaN; LEMKE_INVALID_ARGUMENT for a null pointer,
+ * n < 0, bad options, lo_i > hi_i, lo_i = +inf, hi_i = -inf, or a friction index (or a
+ * friction row's bounds) refused as above. */
+int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* lo,
+                     const double* hi, const int64_t* findex, const lemke_options* options,
+                     double* z, double* w, lemke_info* info);
+
 /* A short English name of a status code ("SOLVED", ...). Never NULL. */
 const char* lemke_status_name(int status);
 

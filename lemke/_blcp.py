@@ -3,7 +3,8 @@ r"""solve_blcp: box-constrained LCPs (lo <= z <= hi), with an optional friction 
 The box LCP: find z with lo <= z <= hi and w = M z + q such that w_i >= 0 where z_i = lo_i,
 w_i <= 0 where z_i = hi_i, and w_i = 0 where lo_i < z_i < hi_i; equivalently the natural
 map z - mid(lo, hi, z - w) is zero.  It is solved by Lemke's method with bounded variables
-(``lemke.kernels.boxed``): n pairs, each z_i at a bound or basic.
+(``lemke.kernels.boxed``, run by its C++ port ``lemke._core.boxed``, the same bits): n
+pairs, each z_i at a bound or basic.
 
 **Friction index** (``findex``, the convention of ODE and Bullet).  Row i with
 ``f = findex[i] >= 0`` is a friction row of the contact whose normal impulse is z_f; its
@@ -40,7 +41,7 @@ from ._options import _DEFAULT, as_options
 from . import _validate
 from ._result import LazyField, Outcome, lazy_state
 from ._status import Status
-from .kernels import boxed, entry_point
+from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
@@ -303,19 +304,15 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             and lo.ndim == 1 and hi.ndim == 1 and method == "bounded" and M.flags.c_contiguous):
         n = q.shape[0]
         if findex is None and warm_start is None:
-            # The common case: no copies, one kernel call that also validates the data;
-            # through the kernel's compiled entry point when every array is of the types it
-            # was compiled for (C-contiguous, aligned, writable), as solve_lcp's.
+            # The common case: no copies, one kernel call (the C++ core's boxed.solve, GIL
+            # released) that also validates the data.
             opts = _DEFAULT if options is None else as_options(options)
             if n < len(_NO):
                 buf = np.empty(6 * n + 1)
                 final = np.empty(n, dtype=np.int64)
-                run = boxed.solve
-                if M.flags.carray and q.flags.carray and lo.flags.carray and hi.flags.carray:
-                    run = _ENTRY.get(run) or _entry_point()
                 mp = opts.max_pivots
-                out = run(M, q, lo, hi, _NO[n], 0, 100 * (n + 1) if mp is None else mp,
-                          opts.pivot_tol, opts.tie_tol, opts.tol, buf, final)  # (pivot_limit inlined)
+                out = boxed.solve(M, q, lo, hi, _NO[n], 0, 100 * (n + 1) if mp is None else mp,
+                                  opts.pivot_tol, opts.tie_tol, opts.tol, buf, final)  # (pivot_limit inlined)
                 if out[0] == 0 and out[3]:  # solved and checked: the result, built lazily
                     res = _new(BLCPResult)  # (_lazy, inlined: the common case)
                     d = res.__dict__
@@ -390,18 +387,6 @@ def _from_final(res, M, q, lo, hi, findex, opts):
 
 _NO = [np.zeros(2 * n, dtype=np.bool_) for n in range(257)]  # no warm start, per size
 _ND = np.ndarray
-_ENTRY: dict = {}
-
-
-def _entry_point():
-    """``kernels.boxed.solve``'s compiled entry point for the fast path's argument types
-    (``kernels.entry_point``), once compiled; until then the kernel itself."""
-    a1 = np.empty(0)
-    run = entry_point(boxed.solve, np.empty((0, 0)), a1, a1, a1, _NO[0], 0, 0, 0.0, 0.0, 0.0, a1,
-                      np.empty(0, dtype=np.int64))
-    if run is not boxed.solve:
-        _ENTRY[boxed.solve] = run
-    return run
 _I64 = np.dtype(np.int64)
 _NO_FINDEX = np.empty(0, dtype=np.int64)
 _NO_WORK = np.empty(0)

@@ -7,6 +7,7 @@
 #include <new>
 #include <vector>
 
+#include "lemke/boxed.hpp"
 #include "lemke/certify.hpp"
 #include "lemke/lcp.hpp"
 
@@ -106,7 +107,170 @@ int solve(idx n, const double* M, const double* q, const lemke_options* options,
     return status;
 }
 
+// The box LCP (lemke_blcp_solve): _blcp._one_call's runs (cold), then the final basis's
+// point and one restart from that basis.
+int blcp(idx n, const double* M, const double* q, const double* lo, const double* hi,
+         const int64_t* findex, const lemke_options* options, double* z, double* w,
+         lemke_info* info) {
+    namespace bx = lemke::boxed;
+    lemke_options o;
+    lemke_default_options(&o);
+    if (options) o = *options;
+    if (n < 0 || (n > 0 && (!M || !q || !lo || !hi)) || !valid_tolerance(o.pivot_tol) ||
+        !valid_tolerance(o.tie_tol) || !valid_tolerance(o.tol) || n > (idx(1) << 26))
+        return LEMKE_INVALID_ARGUMENT;
+    bool friction = findex && n > 0;
+    idx nf = 0;
+    if (friction)
+        for (idx i = 0; i < n; ++i) nf += findex[i] >= 0;
+    idx N = n + 2 * nf;
+    std::vector<std::uint8_t> warm(static_cast<std::size_t>(2 * N), 0);
+    std::vector<double> buf(static_cast<std::size_t>(6 * N + 1 + (friction ? 6 * n : 0)));
+    std::vector<idx> ints(static_cast<std::size_t>(N + 2 * nf));
+    std::vector<double> work(static_cast<std::size_t>(nf > 0 ? N * N + 3 * N : 0));
+    lemke::Mat<const double> A(M, n, n);
+    double tol = o.tol;
+    idx buf_len = static_cast<idx>(buf.size()), ints_len = static_cast<idx>(ints.size());
+    idx work_len = static_cast<idx>(work.size());
+    double residual = 0.0;
+    auto front = [&](int phase) {
+        return bx::front(phase, A, q, lo, hi, friction ? findex : nullptr, friction ? n : 0,
+                         warm.data(), 2 * N, false, tol, buf.data(), buf_len, ints.data(),
+                         ints_len, work.data(), work_len, residual);
+    };
+    int code = front(bx::PREPARE);
+    if (code == bx::NOT_FINITE) return LEMKE_NOT_FINITE;
+    if (code != bx::NEED_RUN) return LEMKE_INVALID_ARGUMENT;  // BAD_BOUNDS, BAD_FINDEX
+    // The problem solved: the extended one with friction rows, else the caller's.
+    lemke::Mat<const double> Ae = A;
+    const double *qa = q, *la = lo, *ha = hi;
+    if (nf > 0) {
+        Ae = lemke::Mat<const double>(work.data(), N, N);
+        qa = work.data() + N * N;
+        la = qa + N;
+        ha = la + N;
+    }
+    idx* final = ints.data();
+    double* ext = buf.data();
+    bx::BoxLayout L{N};
+    idx limit = o.max_pivots < 0 ? 100 * (N + 1) : o.max_pivots;
+    double pt = o.pivot_tol, tt = o.tie_tol;
+    idx pivots = 0;
+    bx::SolveResult r = bx::solve(Ae, qa, la, ha, warm.data(), 0, limit, pt, tt, tol, ext, final);
+    pivots += std::max<idx>(r.pivots, 0);
+    bool done = r.code == 0 && r.ok;
+    bool ray = false;
+    if (!done) {
+        if (r.code == lemke::RAY_TERMINATION &&
+            bx::is_ray(Ae, qa, la, ha, ext + L.covering(), ext + L.z(), r.z0, ext + L.ray(), tol)) {
+            ray = true;
+        } else {
+            const double ties[2] = {tt, 0.0};
+            for (int mode = 1; mode <= 2; ++mode) {
+                idx left = limit - pivots;
+                if (left <= 0) break;
+                r = bx::solve(Ae, qa, la, ha, warm.data(), mode, left, pt, ties[mode - 1], tol,
+                              ext, final);
+                pivots += std::max<idx>(r.pivots, 0);
+                if (r.code == 0 && r.ok) {
+                    done = true;
+                    break;
+                }
+            }
+        }
+    }
+    residual = r.residual;
+    std::vector<std::uint8_t> zb(static_cast<std::size_t>(N)), zh(static_cast<std::size_t>(N));
+    std::vector<double> zp(static_cast<std::size_t>(N)), wp(static_cast<std::size_t>(N));
+    // The point of the final basis from the data, checked (the runs' point failed).
+    auto basis_point = [&](const bx::SolveResult& run) {
+        for (idx i = 0; i < N; ++i) zb[i] = zh[i] = 0;
+        for (idx i = 0; i < run.k; ++i) zb[final[i]] = 1;
+        for (idx i = run.k; i < run.m; ++i) zh[final[i]] = 1;
+        return bx::basis_point(Ae, qa, la, ha, zb.data(), zh.data(), false, zp.data());
+    };
+    if (!done && basis_point(r) &&
+        bx::box_check(Ae, qa, la, ha, zp.data(), tol, wp.data(), ext + L.row_scale(), 0, residual)) {
+        for (idx i = 0; i < N; ++i) {
+            ext[L.z() + i] = zp[i];
+            ext[L.w() + i] = wp[i];
+        }
+        done = true;
+        ray = false;
+    }
+    if (!done && !ray) {  // one restart from the final basis (its flags in zb, zh)
+        std::vector<double> kept(buf.begin(), buf.begin() + L.length());
+        std::vector<idx> kept_final(ints.begin(), ints.begin() + N);
+        std::vector<std::uint8_t> from(static_cast<std::size_t>(2 * N), 0);
+        for (idx i = 0; i < N; ++i) {
+            from[i] = zb[i];
+            from[N + i] = zh[i] && !zb[i];
+        }
+        bx::SolveResult again = bx::solve(Ae, qa, la, ha, from.data(), 1, limit, pt, tt, tol,
+                                          ext, final);
+        pivots += std::max<idx>(again.pivots, 0);
+        if (again.code == 0 && again.ok) {
+            r = again;
+            residual = r.residual;
+            done = true;
+        } else {
+            std::copy(kept.begin(), kept.end(), buf.begin());
+            std::copy(kept_final.begin(), kept_final.end(), ints.begin());
+        }
+    }
+    if (friction) {
+        // The answer mapped back and judged on the caller's data; when it fails, the point
+        // of the final basis from the extended data, judged again.
+        double res = residual;
+        bool mapped = front(bx::SOLVED_RUN) == 0;
+        if (done && !mapped && basis_point(r)) {
+            for (idx i = 0; i < N; ++i) ext[L.z() + i] = zp[i];
+            mapped = front(bx::SOLVED_RUN) == 0;
+        }
+        if (done && !mapped) done = false;
+        if (!done) residual = res;
+    }
+    int status = done ? LEMKE_SOLVED
+                 : ray ? LEMKE_RAY_TERMINATION
+                 : (r.code == LEMKE_MAX_PIVOTS || r.code == LEMKE_CYCLING) ? r.code
+                                                                            : LEMKE_NUMERICAL_FAILURE;
+    const double* zo = friction ? buf.data() + 6 * N + 1 : ext + L.z();
+    const double* wo = friction ? buf.data() + 6 * N + 1 + n : ext + L.w();
+    if (z) for (idx i = 0; i < n; ++i) z[i] = zo[i];
+    if (w) for (idx i = 0; i < n; ++i) w[i] = wo[i];
+    if (info) {
+        info->status = status;
+        info->pivots = pivots;
+        info->residual = residual;
+        info->warm = 0;
+    }
+    return status;
+}
+
 }  // namespace
+
+extern "C" int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* lo,
+                                const double* hi, const int64_t* findex,
+                                const lemke_options* options, double* z, double* w,
+                                lemke_info* info) {
+    if (info) {
+        info->status = LEMKE_INVALID_ARGUMENT;
+        info->pivots = 0;
+        info->residual = 0.0;
+        info->warm = 0;
+    }
+    try {
+        int s = blcp(n, M, q, lo, hi, findex, options, z, w, info);
+        if (info) info->status = s;
+        return s;
+    } catch (const std::bad_alloc&) {
+        if (info) info->status = LEMKE_OUT_OF_MEMORY;
+        return LEMKE_OUT_OF_MEMORY;
+    } catch (...) {
+        if (info) info->status = LEMKE_INVALID_ARGUMENT;
+        return LEMKE_INVALID_ARGUMENT;
+    }
+}
 
 extern "C" int lemke_lcp_solve(int64_t n, const double* M, const double* q,
                                const lemke_options* options, const int64_t* warm_basis,

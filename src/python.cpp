@@ -15,6 +15,7 @@ namespace nb = nanobind;
 using namespace nb::literals;
 
 void bind_support(nb::module_& m);  // src/python_support.cpp
+void bind_boxed(nb::module_& m);  // src/python_boxed.cpp
 
 using Matrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 using Vector = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
@@ -201,4 +202,5 @@ NB_MODULE(_core, m) {
     m.attr("CERTIFIABLE") = lemke::CERTIFIABLE;
     bind_support(m);
     bind_games(m);
+    bind_boxed(m);
 }

@@ -100,3 +100,62 @@ def test_problem_table_under_sanitizers(build, tmp_path):
         if status in (0, 2):
             np.testing.assert_allclose(z, py.z, rtol=1e-12, atol=1e-12 * max(1.0, np.abs(py.z).max(initial=0.0)))
     assert solved > 0.8 * len(cases)
+
+
+def _box_cases():
+    """Box LCPs of tests/test_blcp.py: the seeded family, the small integer fuzz, friction
+    contacts and the pile of examples/box_pile.py (with its friction index)."""
+    import test_blcp
+
+    for seed in range(120):
+        yield (*test_blcp.family(seed), None)
+    rng = np.random.default_rng(12)
+    for _ in range(200):
+        n = int(rng.integers(1, 7))
+        M = rng.integers(-2, 3, (n, n)).astype(float)
+        if rng.random() < 0.5:
+            M = M @ M.T
+        q = rng.integers(-2, 3, n).astype(float)
+        lo = rng.choice([-np.inf, -2.0, -1.0, 0.0], n)
+        hi = np.maximum(rng.choice([0.0, 1.0, 2.0, np.inf], n), lo)
+        yield M, q, lo, hi, None
+    for seed in range(10):
+        for k in (1, 3, 6):
+            M, q, lo, hi, findex, _ = test_blcp.contacts(seed, k)
+            yield M, q, lo, hi, findex
+    for A, b, lo, hi, fi in test_blcp.pile_steps()[::4]:
+        yield A, b, lo, hi, fi
+
+
+def test_box_lcps_under_sanitizers(build, tmp_path):
+    """lemke_blcp_solve on box LCPs (bounds of every kind, friction indices), under the
+    sanitizers: a SOLVED answer passes the C++ test's own check, every status is Python's,
+    and where Python's solve_blcp took the same number of pivots (its one-call path, which
+    the C API repeats) z is the same, bit for bit."""
+    cases = list(_box_cases())
+    path = tmp_path / "boxes.txt"
+    with path.open("w") as f:
+        for M, q, lo, hi, fi in cases:
+            n = len(q)
+            f.write(f"{n} {0 if fi is None else 1}\n")
+            for a in (M, q, lo, hi):
+                f.write(" ".join(repr(float(v)) for v in np.ravel(a)) + "\n")
+            if fi is not None:
+                f.write(" ".join(str(int(v)) for v in fi) + "\n")
+    r = _run([str(build / "lemke_capi_test"), "--blcp", str(path)])
+    assert r.returncode == 0, r.stderr[-3000:]
+    rows = [line.split() for line in r.stdout.splitlines()]
+    assert len(rows) == len(cases)
+    same = solved = 0
+    for (M, q, lo, hi, fi), row in zip(cases, rows):
+        status, pivots, checked = (int(v) for v in row[:3])
+        z = np.array([float.fromhex(v) for v in row[3:]])
+        assert checked == 1
+        py = lemke.solve_blcp(M, q, lo, hi, findex=fi)
+        assert status == int(py.status), (status, py)
+        solved += status == 0
+        if pivots == py.pivots:
+            assert z.tobytes() == py.z.tobytes()
+            same += 1
+    print(f"\n  box LCPs through the C API: {len(cases)}, {solved} solved, {same} bit for bit with Python")
+    assert solved > 0.8 * len(cases) and same > 0.95 * len(cases), (solved, same, len(cases))

@@ -4,8 +4,6 @@
 
 namespace lemke {
 
-namespace {
-
 // The largest z_i that counts as zero: min_j (t rows[j] + floors[j]) / |M_ji| over M_ji != 0.
 double zero_size(Mat<const double> M, const double* rows, idx i, double t, const double* floors) {
     double s = INF;
@@ -15,8 +13,6 @@ double zero_size(Mat<const double> M, const double* rows, idx i, double t, const
     }
     return s < INF ? s : 0.0;
 }
-
-}  // namespace
 
 bool check_rows(Mat<const double> M, const double* q, const double* z, double tol, double* w,
                 const double* R, double* work, bool early, double& residual) {

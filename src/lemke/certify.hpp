@@ -8,6 +8,10 @@ namespace lemke {
 
 constexpr double CERTIFIABLE = 1e3;
 
+// The largest z_i that counts as zero: zeroing it moves no w_j by more than that row's
+// allowance t rows[j] + floors[j] (certify.zero_size; also the box check's, boxed.cpp).
+double zero_size(Mat<const double> M, const double* rows, idx i, double t, const double* floors);
+
 // w = M z + q (all rows, or up to the first failed row when `early`) and the verdict;
 // residual = max |min(z_i, w_i)|. R: the row scales of equilibrate. work: 2n doubles.
 bool check_rows(Mat<const double> M, const double* q, const double* z, double tol, double* w,

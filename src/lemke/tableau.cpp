@@ -11,8 +11,6 @@ void TableauWork::layout(idx size) {
     flags.resize(static_cast<std::size_t>(2 * n + 1));
 }
 
-namespace {
-
 // The pivot on row r and column s (entering column in col), applied at once; the same
 // operations in the same order as the numba kernel's pivot_now, so the same bits. Compiled
 // per instruction set (multiversion.hpp): the row updates are the solve's hot loop.
@@ -46,6 +44,8 @@ void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const dou
         }
     }
 }
+
+namespace {
 
 // mags = the size |B^-1| |q| of the rows under the running bound that may be rounding.
 void careful_sizes(Mat<double> T, const double* col, const double* rhs, const idx* pos,

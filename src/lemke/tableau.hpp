@@ -30,6 +30,12 @@ struct TableauWork {
     idx* cand() { return start_basis() + n; }
 };
 
+// The pivot on row r and column s of T (entering column in col, prow: scratch of T.cols),
+// rhs and magb updated with it (numba's tableau.pivot_now: the same operations in the same
+// order). Also the box LCP engine's pivot (boxed.cpp).
+void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
+               double* prow);
+
 // One run from the tableau in `w` (T, rhs, basis, nonbasic set up): returns the status and
 // the pivots made. x_out (n + 1) gets z and z0, ray_out (n + 1) the ray on RAY_TERMINATION,
 // z_basic_out (n) the final basic z's. `careful`: exact sizes of the rows that may be

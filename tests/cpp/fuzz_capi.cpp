@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -59,6 +60,54 @@ int main(int argc, char** argv) {
         if (s == LEMKE_SOLVED)
             for (int64_t i = 0; i < told; ++i)
                 if (!(z[i] >= 0.0)) { ++bad; std::fprintf(stderr, "round %ld: z[%lld] < 0\n", r, (long long)i); break; }
+        // The box LCP on the same data: bounds from the specials (ordered or not), sometimes
+        // a friction index (valid pairs, or arbitrary entries).
+        auto lo = std::make_unique<double[]>(static_cast<std::size_t>(n + 1));
+        auto hi = std::make_unique<double[]>(static_cast<std::size_t>(n + 1));
+        auto findex = std::make_unique<int64_t[]>(static_cast<std::size_t>(n + 1));
+        int bstyle = pick(4);
+        for (int64_t i = 0; i < n; ++i) {
+            double a = specials[pick(15)], b = specials[pick(15)];
+            if (bstyle > 0 && a > b) std::swap(a, b);
+            if (bstyle == 2 && !(a == a)) a = -1.0;
+            if (bstyle == 2 && !(b == b)) b = 1.0;
+            lo[i] = a;
+            hi[i] = b;
+            findex[i] = -1;
+        }
+        if (pick(3) == 0) {
+            for (int64_t i = 1; i < n; i += 2) {
+                if (pick(2)) {
+                    findex[i] = i - 1;
+                    lo[i - 1] = 0.0;
+                    hi[i] = std::fabs(hi[i]);
+                    lo[i] = -hi[i];
+                }
+                if (pick(16) == 0) findex[i] = pick(static_cast<int>(n) + 3) - 2;
+            }
+        }
+        bool with_findex = pick(2) == 0;
+        s = lemke_blcp_solve(told, M.get(), q.get(), lo.get(), hi.get(),
+                             with_findex ? findex.get() : nullptr, pick(4) ? &o : nullptr,
+                             z.get(), w.get(), &info);
+        known = s == LEMKE_SOLVED || s == LEMKE_MAX_PIVOTS || s == LEMKE_RAY_TERMINATION ||
+                s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING || s == LEMKE_NOT_FINITE ||
+                s == LEMKE_INVALID_ARGUMENT;
+        if (!known || info.status != s) { ++bad; std::fprintf(stderr, "round %ld: box status %d\n", r, s); }
+        if (s == LEMKE_SOLVED) {
+            for (int64_t i = 0; i < told; ++i) {
+                double l = lo[i], h = hi[i];
+                if (with_findex && findex[i] >= 0) {
+                    l = -std::fabs(hi[i] * z[findex[i]]);
+                    h = std::fabs(hi[i] * z[findex[i]]);
+                }
+                if (!(z[i] >= l && z[i] <= h)) {
+                    ++bad;
+                    std::fprintf(stderr, "round %ld: box z[%lld] out of its bounds\n", r, (long long)i);
+                    break;
+                }
+            }
+        }
     }
     std::printf("fuzz: %ld rounds, %ld bad\n", rounds, bad);
     return bad ? 1 : 0;

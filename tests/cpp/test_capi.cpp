@@ -148,6 +148,205 @@ static void bad_arguments() {
     EXPECT(std::string_view(lemke_status_name(12345)) == "UNKNOWN");
 }
 
+// A box LCP's answer checked here, not by the library: lo <= z <= hi (with a friction index,
+// the bounds in force lo_i z_f, hi_i z_f) and w = M z + q (long double) with w_i <= tol off
+// the lower bound, w_i >= -tol off the upper one, tol relative to the data and z.
+static bool box_solution(int64_t n, const double* M, const double* q, const double* lo,
+                         const double* hi, const int64_t* findex, const double* z) {
+    double scale = 1.0, zmax = 1.0;
+    for (int64_t i = 0; i < n * n; ++i) scale = std::fmax(scale, std::fabs(M[i]));
+    for (int64_t i = 0; i < n; ++i) scale = std::fmax(scale, std::fabs(q[i]));
+    for (int64_t i = 0; i < n; ++i) zmax = std::fmax(zmax, std::fabs(z[i]));
+    double tol = 1e-8 * scale * zmax;
+    for (int64_t i = 0; i < n; ++i) {
+        double l = lo[i], h = hi[i];
+        if (findex && findex[i] >= 0) {
+            l = lo[i] * z[findex[i]];
+            h = hi[i] * z[findex[i]];
+        }
+        if (!std::isfinite(z[i]) || z[i] < l - tol || z[i] > h + tol) return false;
+        long double w = q[i];
+        for (int64_t j = 0; j < n; ++j) w += (long double)M[i * n + j] * z[j];
+        if (l == h) continue;
+        bool at_lo = z[i] <= l + tol, at_hi = z[i] >= h - tol;
+        if (!at_lo && w > tol) return false;
+        if (!at_hi && w < -tol) return false;
+    }
+    return true;
+}
+
+static void box_known_answers() {
+    // solve_blcp's docstring example: z = (2, -1).
+    const double M[4] = {2, 1, 1, 2};
+    const double q[2] = {-5, 1};
+    const double lo[2] = {0, -1}, hi[2] = {2, 1};
+    double z[2], w[2];
+    lemke_info info;
+    int s = lemke_blcp_solve(2, M, q, lo, hi, nullptr, nullptr, z, w, &info);
+    EXPECT(s == LEMKE_SOLVED && info.status == s && z[0] == 2.0 && z[1] == -1.0);
+    EXPECT(w[0] == -2.0 && w[1] == 1.0 && info.warm == 0);
+    // An LCP is the box LCP with lo = 0, hi = +inf: the same answer as lemke_lcp_solve.
+    const double Ml[9] = {0, -1, 2, 2, 0, -2, -1, 1, 0};
+    const double ql[3] = {-3, 6, -1};
+    const double zero[3] = {0, 0, 0}, inf[3] = {INFINITY, INFINITY, INFINITY};
+    double zl[3], zb[3];
+    lemke_lcp_solve(3, Ml, ql, nullptr, nullptr, 0, zl, nullptr, nullptr, nullptr, nullptr);
+    s = lemke_blcp_solve(3, Ml, ql, zero, inf, nullptr, nullptr, zb, nullptr, &info);
+    EXPECT(s == LEMKE_SOLVED && zb[0] == zl[0] && zb[1] == zl[1] && zb[2] == zl[2]);
+    // Free and fixed variables.
+    const double Mf[9] = {2, 1, 0, 1, 2, 1, 0, 1, 2};
+    const double qf[3] = {-1, 3, -2};
+    const double lof[3] = {-INFINITY, 0.5, 0.0}, hif[3] = {INFINITY, 0.5, INFINITY};
+    double zf[3], wf[3];
+    s = lemke_blcp_solve(3, Mf, qf, lof, hif, nullptr, nullptr, zf, wf, &info);
+    EXPECT(s == LEMKE_SOLVED && zf[1] == 0.5 && std::fabs(wf[0]) < 1e-12);
+    EXPECT(box_solution(3, Mf, qf, lof, hif, nullptr, zf));
+    // No solution (M = 0, w = q has the wrong sign at both bounds of z_0 >= 0): a checked ray.
+    const double Z[4] = {0, 0, 0, 0};
+    const double qn[2] = {-1, 1};
+    const double lo0[2] = {0, 0}, hiinf[2] = {INFINITY, INFINITY};
+    s = lemke_blcp_solve(2, Z, qn, lo0, hiinf, nullptr, nullptr, z, nullptr, &info);
+    EXPECT(s == LEMKE_RAY_TERMINATION);
+    // Friction (a normal row and its friction row, mu = 0.5): sticking and sliding.
+    const int64_t findex[2] = {-1, 0};
+    const double Mc[4] = {2.0, 0.5, 0.5, 1.0};
+    const double loc[2] = {0.0, -0.5}, hic[2] = {INFINITY, 0.5};
+    const double stick[2] = {-1.0, -0.2}, slide[2] = {-1.0, -2.0};
+    s = lemke_blcp_solve(2, Mc, stick, loc, hic, findex, nullptr, z, w, &info);
+    EXPECT(s == LEMKE_SOLVED && box_solution(2, Mc, stick, loc, hic, findex, z));
+    EXPECT(std::fabs(w[1]) < 1e-12 && std::fabs(z[1]) < 0.5 * z[0]);
+    s = lemke_blcp_solve(2, Mc, slide, loc, hic, findex, nullptr, z, w, &info);
+    EXPECT(s == LEMKE_SOLVED && box_solution(2, Mc, slide, loc, hic, findex, z));
+    EXPECT(std::fabs(z[1] - 0.5 * z[0]) < 1e-12 && w[1] < 0.0);
+    // n = 0.
+    s = lemke_blcp_solve(0, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr,
+                         nullptr, &info);
+    EXPECT(s == LEMKE_SOLVED);
+}
+
+static void box_random_problems() {
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> g(0.0, 1.0);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int solved = 0;
+    for (int t = 0; t < 200; ++t) {
+        int64_t n = 1 + t % 30;
+        bool friction = t % 3 == 0 && n >= 2;
+        std::vector<double> A(n * n), M(n * n), q(n), lo(n), hi(n), z(n), w(n);
+        std::vector<int64_t> findex(n, -1);
+        for (auto& a : A) a = g(rng);
+        for (int64_t i = 0; i < n; ++i)  // positive definite: always solvable
+            for (int64_t j = 0; j < n; ++j) {
+                double s = 0.0;
+                for (int64_t l = 0; l < n; ++l) s += A[i * n + l] * A[j * n + l];
+                M[i * n + j] = s + (i == j ? 0.01 : 0.0);
+            }
+        for (int64_t i = 0; i < n; ++i) {
+            q[i] = 3 * g(rng);
+            lo[i] = -2 * u(rng);
+            hi[i] = 2 * u(rng);
+            if (t % 4 == 1 && u(rng) < 0.3) lo[i] = -INFINITY;  // one-sided, free
+            if (t % 4 == 1 && u(rng) < 0.3) hi[i] = INFINITY;
+            if (u(rng) < 0.1) hi[i] = lo[i] = std::isfinite(lo[i]) ? lo[i] : 0.25;  // fixed
+        }
+        if (friction)  // pairs (normal 2c, friction 2c + 1)
+            for (int64_t c = 0; 2 * c + 1 < n; ++c) {
+                lo[2 * c] = 0.0;
+                hi[2 * c] = INFINITY;
+                double mu = u(rng);
+                lo[2 * c + 1] = -mu;
+                hi[2 * c + 1] = mu;
+                findex[2 * c + 1] = 2 * c;
+            }
+        lemke_info info;
+        int s = lemke_blcp_solve(n, M.data(), q.data(), lo.data(), hi.data(),
+                                 friction ? findex.data() : nullptr, nullptr, z.data(), w.data(),
+                                 &info);
+        EXPECT(s == LEMKE_SOLVED);
+        if (s != LEMKE_SOLVED) continue;
+        EXPECT(box_solution(n, M.data(), q.data(), lo.data(), hi.data(),
+                            friction ? findex.data() : nullptr, z.data()));
+        ++solved;
+    }
+    EXPECT(solved == 200);
+}
+
+static void box_bad_arguments() {
+    const double M[4] = {2, 1, 1, 2};
+    const double q[2] = {-1, -1};
+    const double lo[2] = {0, 0}, hi[2] = {1, 1};
+    double z[2];
+    lemke_info info;
+    EXPECT(lemke_blcp_solve(-1, M, q, lo, hi, nullptr, nullptr, z, nullptr, &info) ==
+           LEMKE_INVALID_ARGUMENT && info.status == LEMKE_INVALID_ARGUMENT);
+    EXPECT(lemke_blcp_solve(2, M, q, nullptr, hi, nullptr, nullptr, z, nullptr, nullptr) ==
+           LEMKE_INVALID_ARGUMENT);
+    EXPECT(lemke_blcp_solve(2, M, q, lo, nullptr, nullptr, nullptr, z, nullptr, nullptr) ==
+           LEMKE_INVALID_ARGUMENT);
+    const double bad_lo[2] = {2, 0};  // lo > hi
+    EXPECT(lemke_blcp_solve(2, M, q, bad_lo, hi, nullptr, nullptr, z, nullptr, nullptr) ==
+           LEMKE_INVALID_ARGUMENT);
+    const double inf_lo[2] = {INFINITY, 0}, inf_hi[2] = {INFINITY, 1};
+    EXPECT(lemke_blcp_solve(2, M, q, inf_lo, inf_hi, nullptr, nullptr, z, nullptr, nullptr) ==
+           LEMKE_INVALID_ARGUMENT);
+    const double nan_lo[2] = {std::nan(""), 0};
+    EXPECT(lemke_blcp_solve(2, M, q, nan_lo, hi, nullptr, nullptr, z, nullptr, nullptr) ==
+           LEMKE_NOT_FINITE);
+    const double qi[2] = {-1, INFINITY};
+    EXPECT(lemke_blcp_solve(2, M, qi, lo, hi, nullptr, nullptr, z, nullptr, nullptr) ==
+           LEMKE_NOT_FINITE);
+    const double flo[2] = {0, -1}, fhi[2] = {INFINITY, 1};
+    const int64_t self[2] = {-1, 1}, out[2] = {-1, 2}, chain[2] = {1, 0}, neg[2] = {-1, -2};
+    for (const int64_t* f : {self, out, chain, neg})
+        EXPECT(lemke_blcp_solve(2, M, q, flo, fhi, f, nullptr, z, nullptr, nullptr) ==
+               LEMKE_INVALID_ARGUMENT);
+    const int64_t ok[2] = {-1, 0};
+    const double asym_lo[2] = {0, -2};  // a friction row needs lo = -hi
+    EXPECT(lemke_blcp_solve(2, M, q, asym_lo, fhi, ok, nullptr, z, nullptr, nullptr) ==
+           LEMKE_INVALID_ARGUMENT);
+    EXPECT(lemke_blcp_solve(2, M, q, flo, fhi, ok, nullptr, z, nullptr, nullptr) == LEMKE_SOLVED);
+    lemke_options o;
+    lemke_default_options(&o);
+    o.tie_tol = -1.0;
+    EXPECT(lemke_blcp_solve(2, M, q, lo, hi, nullptr, &o, z, nullptr, nullptr) ==
+           LEMKE_INVALID_ARGUMENT);
+}
+
+// Solve every box LCP of a table file written by tests/test_capi.py ("n f", M, q, lo, hi,
+// and with f = 1 findex); print "status pivots checked" and z as hexadecimal floats.
+static int box_table(const char* path) {
+    std::FILE* f = std::fopen(path, "r");
+    if (!f) {
+        std::fprintf(stderr, "cannot open %s\n", path);
+        return 2;
+    }
+    long long n;
+    int has_findex;
+    while (std::fscanf(f, "%lld %d", &n, &has_findex) == 2) {
+        std::vector<double> M(n * n), q(n), lo(n), hi(n), z(n), w(n);
+        std::vector<int64_t> findex(n, -1);
+        for (auto* a : {&M, &q, &lo, &hi})
+            for (auto& v : *a) if (std::fscanf(f, "%lf", &v) != 1) return 2;
+        if (has_findex)
+            for (auto& v : findex) {
+                long long x;
+                if (std::fscanf(f, "%lld", &x) != 1) return 2;
+                v = x;
+            }
+        const int64_t* fi = has_findex ? findex.data() : nullptr;
+        lemke_info info;
+        int s = lemke_blcp_solve(n, M.data(), q.data(), lo.data(), hi.data(), fi, nullptr,
+                                 z.data(), w.data(), &info);
+        bool checked = s != LEMKE_SOLVED || box_solution(n, M.data(), q.data(), lo.data(),
+                                                         hi.data(), fi, z.data());
+        std::printf("%d %lld %d", s, (long long)info.pivots, checked ? 1 : 0);
+        for (auto v : z) std::printf(" %a", v);
+        std::printf("\n");
+    }
+    std::fclose(f);
+    return 0;
+}
+
 // Solve every problem of a table file; print "status pivots" per problem.
 static int table(const char* path) {
     std::FILE* f = std::fopen(path, "r");
@@ -173,10 +372,14 @@ static int table(const char* path) {
 }
 
 int main(int argc, char** argv) {
+    if (argc > 2 && std::string_view(argv[1]) == "--blcp") return box_table(argv[2]);
     if (argc > 1 && std::string_view(argv[1]) != "-") return table(argv[1]);
     known_answer();
     random_problems();
     bad_arguments();
+    box_known_answers();
+    box_random_problems();
+    box_bad_arguments();
     if (failures) {
         std::fprintf(stderr, "%d failure(s)\n", failures);
         return 1;

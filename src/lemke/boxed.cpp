@@ -1,0 +1,922 @@
+#include "boxed.hpp"
+
+#include <algorithm>
+
+#include "certify.hpp"
+#include "tableau.hpp"
+
+namespace lemke {
+namespace boxed {
+
+void BoxedWork::layout(idx size) {
+    n = size;
+    f.resize(static_cast<std::size_t>(n * (n + 1) + 20 * n + 6));
+    i.resize(static_cast<std::size_t>(6 * n + 3));
+    flags.resize(static_cast<std::size_t>(6 * n + 2));
+}
+
+double* BoxedWork::check_area(idx len) {
+    if (static_cast<idx>(chk.size()) < len + 1) chk.resize(static_cast<std::size_t>(len + 1));
+    return chk.data();
+}
+
+idx* BoxedWork::check_indices(idx len) {
+    if (static_cast<idx>(chk_i.size()) < len + 1) chk_i.resize(static_cast<std::size_t>(len + 1));
+    return chk_i.data();
+}
+
+namespace {
+
+BoxedWork& work() {
+    thread_local BoxedWork w;
+    return w;
+}
+
+// Whether z_i starts as a free variable (both bounds FAR away or infinite).
+inline bool far_both(const double* lo, const double* hi, idx i) {
+    return lo[i] <= -FAR && hi[i] >= FAR;
+}
+
+// Where each z starts (boxed.start_point), into z; at_hi updated.
+void start_point(const double* lo, const double* hi, std::uint8_t* at_hi, const double* q,
+                 bool guess, idx n, double* z) {
+    for (idx i = 0; i < n; ++i) {
+        if (far_both(lo, hi, i) && (guess || (lo[i] == -INF && hi[i] == INF))) {
+            z[i] = 0.0;
+            at_hi[i] = 0;
+            continue;
+        }
+        if (guess && lo[i] > -INF && hi[i] < INF) {
+            if (lo[i] <= -FAR) {
+                at_hi[i] = 1;
+            } else if (hi[i] >= FAR) {
+                at_hi[i] = 0;
+            } else {
+                at_hi[i] = q[i] < 0.0;
+            }
+        }
+        if (at_hi[i] && hi[i] < INF) {
+            z[i] = hi[i];
+        } else if (lo[i] > -INF) {
+            z[i] = lo[i];
+        } else if (hi[i] < INF) {
+            z[i] = hi[i];
+        } else {
+            z[i] = 0.0;
+        }
+    }
+}
+
+// Whether x[:n] has a non-zero entry (a NaN counts).
+inline bool nonzero(const double* x, idx n) {
+    for (idx i = 0; i < n; ++i)
+        if (x[i] != 0.0) return true;
+    return false;
+}
+
+bool trivial_start(const double* lo, const double* hi, const std::uint8_t* at_hi,
+                   const double* w, idx n) {
+    for (idx i = 0; i < n; ++i) {
+        if (lo[i] == hi[i]) continue;
+        if (far_both(lo, hi, i)) return false;
+        if ((w[i] < 0.0 && !at_hi[i]) || (w[i] > 0.0 && at_hi[i])) return false;
+    }
+    return true;
+}
+
+// The bounds of variable `lab` while basic (scaled units), boxed.bounds_of.
+inline void bounds_of(idx lab, idx n, const double* lo, const double* hi,
+                      const std::uint8_t* at_hi, double& lb, double& ub) {
+    if (lab >= 2 * n) {
+        lb = 0.0;
+        ub = INF;
+        return;
+    }
+    if (lab >= n) {
+        lb = lo[lab - n];
+        ub = hi[lab - n];
+        return;
+    }
+    if (lo[lab] == hi[lab]) {
+        lb = -INF;
+        ub = INF;
+        return;
+    }
+    if (at_hi[lab]) {
+        lb = -INF;
+        ub = 0.0;
+        return;
+    }
+    lb = 0.0;
+    ub = INF;
+}
+
+inline void step_values(double* x, const idx* basis, const double* col, idx n, idx e,
+                        double delta) {
+    for (idx i = 0; i < n; ++i) x[basis[i]] += col[i] * delta;
+    x[e] += delta;
+}
+
+// The run's views of the workspace (numba's borrowed arrays).
+struct Run {
+    idx n;
+    Mat<double> T;
+    double *x, *rhs, *magb, *prow, *col;
+    idx *basis, *nonbasic, *pos;
+    std::uint8_t* is_basic;
+    explicit Run(BoxedWork& w)
+        : n(w.n), T(w.T()), x(w.x()), rhs(w.rhs()), magb(w.magb()), prow(w.prow()),
+          col(w.col()), basis(w.basis()), nonbasic(w.nonbasic()), pos(w.pos()),
+          is_basic(w.is_basic()) {}
+};
+
+// Make the wanted z's basic in exchange for their w's (boxed.exchange); returns the pivots.
+idx exchange(Run& R, const std::uint8_t* want) {
+    idx n = R.n;
+    Mat<double> T = R.T;
+    const std::uint8_t* is_basic = R.is_basic;
+    const idx* pos = R.pos;
+    double* col = R.col;
+    idx done = 0;
+    while (true) {
+        double best = 0.0;
+        idx br = -1, bs = -1;
+        for (idx j = 0; j < n; ++j) {
+            if (want[j] && !is_basic[n + j] && is_basic[j]) {
+                double a = std::fabs(T(pos[j], pos[n + j]));
+                if (a > best) {
+                    best = a;
+                    br = pos[j];
+                    bs = pos[n + j];
+                }
+            }
+        }
+        if (best < EXCHANGE_TOL) {
+            for (idx i = 0; i < n; ++i) {
+                if (want[i] && is_basic[i]) {
+                    for (idx j = 0; j < n; ++j) {
+                        if (want[j] && !is_basic[n + j]) {
+                            double a = std::fabs(T(pos[i], pos[n + j]));
+                            if (a > best) {
+                                best = a;
+                                br = pos[i];
+                                bs = pos[n + j];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        if (br < 0 || best < EXCHANGE_TOL) return done;
+        for (idx i = 0; i < n; ++i) col[i] = T(i, bs);
+        idx e = R.nonbasic[bs];
+        idx leaving = R.basis[br];
+        step_values(R.x, R.basis, col, n, e, -R.x[leaving] / col[br]);
+        R.x[leaving] = 0.0;
+        pivot_now(T, R.rhs, R.magb, br, bs, col, R.prow);
+        swap_labels(R.basis, R.nonbasic, R.pos, R.is_basic, br, bs);
+        ++done;
+    }
+}
+
+// The rows of the ratio test (boxed.ratio_rows): returns the artificial variable's row
+// (-1 when not basic), cmax the largest |cc|.
+idx ratio_rows(const double* x, const idx* basis, const idx* pos, const std::uint8_t* is_basic,
+               const double* col, double sigma, idx e, idx n, const double* lo,
+               const double* hi, const double* rlo, const double* rhi, double* gaps, double* cc,
+               std::uint8_t* low, double& cmax) {
+    idx art_lab = 2 * n;
+    idx art = is_basic[art_lab] ? pos[art_lab] : -1;
+    for (idx i = 0; i < n; ++i) {
+        double c = sigma * col[i];
+        double v = x[basis[i]];
+        bool neg = c < 0.0;
+        double bnd = neg ? rlo[i] : rhi[i];
+        bool fin = std::fabs(bnd) < INF;
+        double a = std::fabs(c);
+        gaps[i] = fin ? (neg ? (v - bnd) : (bnd - v)) : INF;
+        cc[i] = fin ? -a : a;
+        low[i] = neg || !fin;
+    }
+    if (art >= 0) gaps[art] = x[art_lab];
+    gaps[n] = INF;
+    cc[n] = 0.0;
+    low[n] = 0;
+    if (e >= n && e < 2 * n) {
+        double lb = lo[e - n], ub = hi[e - n];
+        if (lb > -INF && ub < INF) {
+            gaps[n] = ub - lb;
+            cc[n] = -1.0;
+            low[n] = sigma < 0.0;
+        }
+    }
+    cmax = 0.0;
+    for (idx i = 0; i < n + 1; ++i) cmax = pmax(cmax, std::fabs(cc[i]));
+    return art;
+}
+
+// The blocking row among nc > 1 tied rows (boxed.ratio_ties); -1 when none is left.
+idx ratio_ties(Mat<const double> T, const idx* pos, const std::uint8_t* is_basic,
+               const idx* start_basis, const double* s0, idx n, double pivot_tol,
+               double tie_tol, const double* cc, const std::uint8_t* low, idx* cand,
+               double* keys, idx nc, idx art) {
+    for (idx c = 0; c < nc; ++c)
+        if (cand[c] == art) return art;
+    for (idx j = 0; j < n; ++j) {
+        idx lab = start_basis[j];
+        for (idx c = 0; c < nc; ++c) {
+            idx i = cand[c];
+            double b;
+            if (i == n) {
+                b = 0.0;
+            } else if (is_basic[lab]) {
+                b = pos[lab] == i ? 1.0 : 0.0;
+            } else {
+                b = -T(i, pos[lab]);
+            }
+            double sg = low[i] ? 1.0 : -1.0;
+            keys[c] = lex_key(sg * s0[j] * b, cc[i], pivot_tol);
+        }
+        nc = keep_lowest(cand, keys, nc, tie_tol);
+        if (nc == 1) return cand[0];
+    }
+    return nc > 0 ? largest_pivot(cand, cc, nc) : -1;
+}
+
+// Bounded-variable Lemke (boxed.lemke) from a complementary basis with z0's column in
+// T[:, n], z0 non-basic; lo, hi, at_hi the scaled bounds and flags; ray (2n + 1).
+Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::uint8_t* at_hi,
+                 const double* s0, idx max_pivots, double pivot_tol, double tie_tol,
+                 double* ray, idx& pivots_out) {
+    idx n = R.n;
+    Mat<double> T = R.T;
+    double* x = R.x;
+    double* col = R.col;
+    idx *basis = R.basis, *pos = R.pos;
+    std::uint8_t* is_basic = R.is_basic;
+    idx art_lab = 2 * n;
+    idx* start_basis = w.start_basis();
+    idx* cand = w.cand();
+    for (idx i = 0; i < n; ++i) start_basis[i] = basis[i];
+    double *keys = w.keys(), *gaps = w.gaps(), *cc = w.cc(), *rlo = w.rlo(), *rhi = w.rhi();
+    std::uint8_t* low = w.low();
+    for (idx i = 0; i < n; ++i) bounds_of(basis[i], n, lo, hi, at_hi, rlo[i], rhi[i]);
+    // keys 0..2n the labels, 2n + 1 + i z_i at hi (pivoting.label_key)
+    std::uint64_t h = 0;
+    for (idx i = 0; i < n; ++i) h ^= label_key(basis[i]);
+    for (idx i = 0; i < n; ++i)
+        if (at_hi[i] && !is_basic[n + i]) h ^= label_key(2 * n + 1 + i);
+    Detector detector;
+    for (idx i = 0; i < 2 * n + 1; ++i) ray[i] = 0.0;
+    pivots_out = 0;
+    // First pivot: z0 rises until every basic variable is within its bounds.
+    idx s = pos[art_lab];
+    for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+    double* need = gaps;
+    double* sc = cc;
+    for (idx i = 0; i < n; ++i) {
+        idx b = basis[i];
+        double lb, ub;
+        bounds_of(b, n, lo, hi, at_hi, lb, ub);
+        if (col[i] > 0.0) {
+            need[i] = x[b] - lb;
+            sc[i] = col[i];
+        } else if (col[i] < 0.0) {
+            need[i] = ub - x[b];
+            sc[i] = -col[i];
+        } else {
+            need[i] = 0.0;
+            sc[i] = 0.0;
+        }
+    }
+    idx r = first_row(need, sc, n, tie_tol);
+    if (r < 0) return NUMERICAL_FAILURE;
+    double t = -need[r] / sc[r];
+    step_values(x, basis, col, n, art_lab, t);
+    bool low_r = col[r] > 0.0;
+    idx pivots = 0;
+    double sigma = 1.0;
+    idx e = art_lab;
+    double z0_max = 0.0;
+    Status status = MAX_PIVOTS;
+    while (pivots < max_pivots) {
+        if (r == n) {  // bound flip of the entering z: no basis change
+            idx j = e - n;
+            at_hi[j] = !at_hi[j];
+            x[e] = at_hi[j] ? hi[j] : lo[j];
+            h ^= label_key(2 * n + 1 + j);
+            ++pivots;
+            e = j;
+            sigma = at_hi[j] ? -1.0 : 1.0;
+        } else {
+            idx leaving = basis[r];
+            if (!(std::fabs(col[r]) < INF) || col[r] == 0.0) {
+                status = NUMERICAL_FAILURE;
+                break;
+            }
+            double lb, ub;
+            bounds_of(leaving, n, lo, hi, at_hi, lb, ub);
+            x[leaving] = low_r ? lb : ub;
+            pivot_now(T, R.rhs, R.magb, r, s, col, R.prow);
+            swap_labels(basis, R.nonbasic, pos, is_basic, r, s);
+            bounds_of(e, n, lo, hi, at_hi, rlo[r], rhi[r]);
+            ++pivots;
+            h ^= label_key(leaving) ^ label_key(e);
+            if (e >= n && e < 2 * n && at_hi[e - n]) h ^= label_key(2 * n + 1 + e - n);
+            if (leaving == art_lab) {
+                x[art_lab] = 0.0;
+                status = SOLVED;
+                break;
+            }
+            if (leaving >= n) {  // a z left at a bound: its w enters, on that bound's side
+                idx j = leaving - n;
+                at_hi[j] = !low_r;
+                if (at_hi[j]) h ^= label_key(2 * n + 1 + j);
+                e = j;
+                sigma = low_r ? 1.0 : -1.0;
+            } else {  // a w reached 0: its z leaves the bound it sits at
+                e = n + leaving;
+                sigma = at_hi[leaving] ? -1.0 : 1.0;
+            }
+        }
+        if (detector.repeats(h)) {
+            status = CYCLING;
+            break;
+        }
+        s = pos[e];
+        for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+        if (is_basic[art_lab]) z0_max = pmax(z0_max, x[art_lab]);
+        double cmax;
+        idx art = ratio_rows(x, basis, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi, gaps,
+                             cc, low, cmax);
+        idx nc = blocking_rows(gaps, gaps, cc, n + 1, -pivot_tol * cmax, tie_tol, cand, art,
+                               z0_max);
+        if (nc <= 1) {
+            r = nc == 1 ? cand[0] : -1;
+        } else {
+            r = ratio_ties(T, pos, is_basic, start_basis, s0, n, pivot_tol, tie_tol, cc, low,
+                           cand, keys, nc, art);
+        }
+        if (r < 0) {
+            status = RAY_TERMINATION;
+            for (idx i = 0; i < n; ++i) ray[basis[i]] = sigma * col[i];
+            ray[e] = sigma;
+            break;
+        }
+        low_r = low[r] != 0;
+        double g = gaps[r];
+        double step = (cc[r] < 0.0 && g > 0.0 && g < INF) ? g / -cc[r] : 0.0;
+        step_values(x, basis, col, n, e, sigma * step);
+    }
+    pivots_out = pivots;
+    return status;
+}
+
+// The rows whose rounding box_check allows for; the check itself (see the header).
+bool box_check_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                  const double* z, double tol, double* w, const double* R, idx n_round,
+                  double& residual, double* work3) {
+    idx n = M.rows;
+    idx nr = n > n_round ? n : n_round;
+    double t = tol + static_cast<double>(nr + 2) * EPS;
+    double* rows = work3;
+    double* floors = work3 + n;
+    double* p = work3 + 2 * n;
+    bool p_zero = true;
+    for (idx i = 0; i < n; ++i) {
+        p[i] = pmin(pmax(0.0, lo[i]), hi[i]);
+        p_zero = p_zero && p[i] == 0.0;
+    }
+    double q_top = 0.0;
+    for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
+    double big = 0.0, data = 1.0;
+    bool z_zero = !nonzero(z, n);
+    for (idx i = 0; i < n; ++i) {
+        double mz = 0.0, size = 0.0;
+        if (!z_zero) row_dot_and_size(M.row(i), z, n, mz, size);
+        w[i] = q[i] + mz;
+        rows[i] = size + std::fabs(q[i]);
+        floors[i] = static_cast<double>(nr + 2) * EPS * q_top / R[i];
+        big = pmax(big, R[i] * size);
+        double psize = 0.0;
+        if (!p_zero) {
+            double pd;
+            row_dot_and_size(M.row(i), p, n, pd, psize);
+        }
+        data = pmax(data, R[i] * (std::fabs(q[i]) + psize));
+    }
+    bool ok = EPS * big <= CERTIFIABLE * t * data;
+    residual = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double zi = z[i], wi = w[i];
+        if (!(zi == zi && wi == wi)) {
+            ok = false;
+            residual = NAN;
+            continue;
+        }
+        residual = pmax(residual, std::fabs(zi - pmin(pmax(zi - wi, lo[i]), hi[i])));
+        if (lo[i] == hi[i]) {
+            if (zi != lo[i]) ok = false;
+            continue;
+        }
+        double s_w = t * rows[i] + floors[i];
+        double off = pmax(lo[i] - zi, zi - hi[i]);
+        if (wi > s_w) off = pmax(off, zi - lo[i]);
+        if (wi < -s_w) off = pmax(off, hi[i] - zi);
+        if (off > 0.0 && off > zero_size(M, rows, i, t, floors)) ok = false;
+    }
+    return ok;
+}
+
+// check_scales with its 4n doubles of work given.
+void check_scales_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                     double* R, double* C, double* work4) {
+    idx n = M.rows;
+    double* qs = work4;
+    double* p = work4 + n;
+    bool p_zero = true;
+    for (idx i = 0; i < n; ++i) {
+        p[i] = pmin(pmax(0.0, lo[i]), hi[i]);
+        p_zero = p_zero && p[i] == 0.0;
+    }
+    for (idx i = 0; i < n; ++i) qs[i] = p_zero ? q[i] : q[i] + dot(M.row(i), p, n);
+    equilibrate(M, qs, R, C, work4 + 2 * n);
+}
+
+}  // namespace
+
+int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi) {
+    idx n = M.rows;
+    double m_max;
+    bool finite = finite_absmax(M, m_max);
+    if (!(finite && all_finite(q, n))) return NOT_FINITE;
+    for (idx i = 0; i < n; ++i) {
+        if (!(lo[i] <= hi[i])) return (lo[i] != lo[i] || hi[i] != hi[i]) ? NOT_FINITE : BAD_BOUNDS;
+        if (lo[i] == INF || hi[i] == -INF) return BAD_BOUNDS;
+    }
+    return 0;
+}
+
+bool box_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+               const double* z, double tol, double* w, const double* R, idx n_round,
+               double& residual) {
+    double* work3 = work().check_area(3 * M.rows);
+    return box_check_in(M, q, lo, hi, z, tol, w, R, n_round, residual, work3);
+}
+
+void check_scales(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                  double* R, double* C) {
+    double* work4 = work().check_area(4 * M.rows);
+    check_scales_in(M, q, lo, hi, R, C, work4);
+}
+
+bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                 const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z) {
+    idx n = M.rows;
+    BoxedWork& W = work();
+    double* rhs = W.check_area(n * n + 3 * n);
+    idx* index = W.check_indices(n);
+    idx nb = 0;
+    for (idx i = 0; i < n; ++i) {
+        bool free = warm_rule && lo[i] == -INF && hi[i] == INF;
+        double v;
+        if (warm_rule) {
+            if (zh[i] && hi[i] < INF) {
+                v = hi[i];
+            } else if (lo[i] > -INF) {
+                v = lo[i];
+            } else if (hi[i] < INF) {
+                v = hi[i];
+            } else {
+                v = 0.0;
+            }
+        } else {
+            v = zh[i] ? hi[i] : lo[i];
+            if (!(std::fabs(v) < INF)) v = 0.0;
+        }
+        if (zb[i] || free) {
+            index[nb++] = i;
+            v = 0.0;  // no part in the right-hand side
+        }
+        z[i] = v;
+    }
+    if (nb > 0) {
+        for (idx c = 0; c < nb; ++c) {
+            idx r = index[c];
+            rhs[c] = -(q[r] + dot(M.row(r), z, n));
+        }
+        // linalg.solve_principal: A (nb x nb), y (a copy of the right-hand side), x.
+        double* A = rhs + n;
+        double* y = A + nb * nb;
+        double* xs = y + nb;
+        for (idx c = 0; c < nb; ++c) y[c] = rhs[c];
+        if (!solve_gathered(M, index, A, y, xs, nb)) return false;
+        for (idx c = 0; c < nb; ++c) z[index[c]] = xs[c];
+    }
+    if (!all_finite(z, n)) return false;
+    if (!warm_rule)
+        for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], lo[i]), hi[i]);
+    return true;
+}
+
+bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
+            const double* d, const double* z, double z0, const double* ray, double tol) {
+    idx n = M.rows;
+    if (!(all_finite(ray, n + 1) && std::fabs(z0) < INF && z0 >= 0.0)) return false;
+    double g = static_cast<double>(n + 3) * EPS;
+    double t = tol + g;
+    double* dz = work().check_area(n);
+    double top = 0.0;
+    for (idx i = 0; i < n; ++i) top = pmax(top, std::fabs(ray[i]));
+    for (idx i = 0; i < n; ++i) dz[i] = std::fabs(ray[i]) > g * top ? ray[i] : 0.0;
+    double dz0 = std::fabs(ray[n]) > g * pmax(top, 1.0) ? ray[n] : 0.0;
+    if (dz0 < 0.0 || (top == 0.0 && dz0 == 0.0)) return false;
+    double q_top = 0.0;
+    for (idx i = 0; i < n; ++i) q_top = pmax(q_top, std::fabs(q[i]));
+    double m_top;
+    finite_absmax(M, m_top);
+    for (idx i = 0; i < n; ++i) {
+        double mz, size, mdz, dsize;
+        row_dot_and_size(M.row(i), z, n, mz, size);
+        row_dot_and_size(M.row(i), dz, n, mdz, dsize);
+        double u = (mz + q[i]) + d[i] * z0;
+        double du = mdz + d[i] * dz0;
+        double su = t * ((size + std::fabs(q[i])) + std::fabs(d[i] * z0)) + g * q_top;
+        double sdu = t * (dsize + std::fabs(d[i] * dz0)) + g * top * m_top;
+        if (lo[i] == hi[i]) {
+            if (dz[i] != 0.0) return false;
+            continue;
+        }
+        bool at_lo = lo[i] > -INF && std::fabs(z[i] - lo[i]) <= t * pmax(std::fabs(lo[i]), 1.0) * 10;
+        bool at_hi = hi[i] < INF && std::fabs(z[i] - hi[i]) <= t * pmax(std::fabs(hi[i]), 1.0) * 10;
+        if (dz[i] != 0.0) {
+            if ((dz[i] > 0.0 && hi[i] < INF) || (dz[i] < 0.0 && lo[i] > -INF)) return false;
+            if (std::fabs(u) > su || std::fabs(du) > sdu) return false;
+        } else if (at_lo) {
+            if (u < -su || du < -sdu) return false;
+        } else if (at_hi) {
+            if (u > su || du > sdu) return false;
+        } else if (std::fabs(u) > su || std::fabs(du) > sdu) {
+            return false;
+        }
+    }
+    return true;
+}
+
+idx friction_rows(const idx* findex, idx n) {
+    idx nf = 0;
+    for (idx i = 0; i < n; ++i) {
+        idx f = findex[i];
+        if (f == -1) continue;
+        if (f < 0 || f >= n || f == i || findex[f] != -1) return BAD_FINDEX;
+        ++nf;
+    }
+    return nf;
+}
+
+void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
+            const idx* findex, idx nf, double* work_out, idx* F) {
+    idx n = M.rows;
+    idx N = n + 2 * nf;
+    Mat<double> Mx(work_out, N, N);
+    double* qx = work_out + N * N;
+    double* lox = qx + N;
+    double* hix = lox + N;
+    idx c = 0;
+    for (idx i = 0; i < n; ++i) {
+        if (findex[i] >= 0) {
+            F[c] = i;
+            F[nf + c] = findex[i];
+            ++c;
+        }
+    }
+    for (idx r = 0; r < N; ++r)
+        for (idx j = 0; j < N; ++j) Mx(r, j) = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        const double* row = M.row(i);
+        for (idx j = 0; j < n; ++j) Mx(i, j) = row[j];
+        for (idx cc = 0; cc < nf; ++cc) Mx(i, n + cc) = -row[F[cc]];
+        qx[i] = q[i];
+        lox[i] = lo[i];
+        hix[i] = hi[i];
+    }
+    for (idx cc = 0; cc < nf; ++cc) {
+        idx i = F[cc];
+        idx lam = n + nf + cc;
+        const double* row = M.row(i);
+        for (idx j = 0; j < n; ++j) Mx(n + cc, j) = -row[j];
+        for (idx d = 0; d < nf; ++d) Mx(n + cc, n + d) = row[F[d]];
+        Mx(i, lam) = 1.0;
+        Mx(n + cc, lam) = 1.0;
+        Mx(lam, F[nf + cc]) = hi[i];
+        Mx(lam, i) = -1.0;
+        Mx(lam, n + cc) = -1.0;
+        qx[n + cc] = -q[i];
+        qx[lam] = 0.0;
+        lox[n + cc] = 0.0;
+        lox[lam] = 0.0;
+        hix[n + cc] = INF;
+        hix[lam] = INF;
+        lox[i] = 0.0;
+        hix[i] = INF;
+    }
+}
+
+SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                  const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
+                  double tie_tol, double tol, double* buf, idx* final) {
+    idx n = M.rows;
+    BoxLayout L{n};
+    double *z = buf + L.z(), *w = buf + L.w(), *d = buf + L.covering();
+    double *Rs = buf + L.row_scale(), *Cs = buf + L.col_scale(), *ray = buf + L.ray();
+    const std::uint8_t* warm_basic = warm;
+    const std::uint8_t* warm_hi = warm + n;
+    SolveResult out;
+    int code = prologue(M, q, lo, hi);
+    if (code < 0) {
+        out.code = code;
+        return out;
+    }
+    BoxedWork& W = work();
+    W.layout(n);
+    std::fill(W.flags.begin(), W.flags.end(), std::uint8_t(0));
+    std::uint8_t *z_basic = W.z_basic(), *z_hi = W.z_hi(), *is_basic = W.is_basic();
+    std::uint8_t* want = W.want();
+    double *qs = W.qs(), *los = W.los(), *his = W.his(), *s0 = W.s0(), *z0s = W.z0s();
+    double *x = W.x(), *ray_lab = W.ray_lab();
+    Mat<double> T = W.T();
+    for (idx i = 0; i < n; ++i) z_hi[i] = warm_hi[i];
+    bool cold = true;
+    for (idx i = 0; i < n; ++i) cold = cold && !(warm_hi[i] || warm_basic[i]);
+    start_point(lo, hi, z_hi, q, cold, n, z0s);
+    for (idx i = 0; i < n; ++i)
+        z_hi[i] = ((z_hi[i] && hi[i] < INF) || (lo[i] == -INF && hi[i] < INF)) &&
+                  !(cold && far_both(lo, hi, i));
+    for (idx i = 0; i < n; ++i) qs[i] = q[i];
+    if (nonzero(z0s, n)) {
+        for (idx i = 0; i < n; ++i) {
+            double mz, size;
+            row_dot_and_size(M.row(i), z0s, n, mz, size);
+            qs[i] = q[i] + mz;
+        }
+    }
+    if (cold && trivial_start(lo, hi, z_hi, qs, n)) {
+        for (idx i = 0; i < n; ++i) {  // every w has its sign already: the start solves it
+            z[i] = z0s[i];
+            d[i] = 0.0;
+            z_basic[i] = 0;
+        }
+        for (idx i = 0; i < n + 1; ++i) ray[i] = 0.0;
+        equilibrate(M, qs, Rs, Cs, W.eq_work());
+        double residual;
+        bool ok = box_check(M, q, lo, hi, z, tol, w, Rs, 0, residual);
+        idx k = 0;
+        for (idx i = 0; i < n; ++i)
+            if (z_hi[i]) final[k++] = i;
+        out.code = ok ? SOLVED : NUMERICAL_FAILURE;
+        out.pivots = 0;
+        out.z0 = 0.0;
+        out.ok = ok;
+        out.residual = residual;
+        out.k = 0;
+        out.m = k;
+        return out;
+    }
+    equilibrate(M, qs, Rs, Cs, W.eq_work());
+    // The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C.
+    for (idx i = 0; i < 2 * n + 1; ++i) x[i] = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double r = Rs[i];
+        const double* mrow = M.row(i);
+        double* trow = T.row(i);
+        for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * Cs[j];
+        trow[n] = 0.0;
+        x[i] = qs[i] * r;
+        x[n + i] = z0s[i] / Cs[i];
+        los[i] = lo[i] / Cs[i];
+        his[i] = hi[i] / Cs[i];
+    }
+    idx *basis = W.basis(), *nonbasic = W.nonbasic(), *pos = W.pos();
+    for (idx i = 0; i < n; ++i) {
+        basis[i] = i;
+        nonbasic[i] = n + i;
+        pos[i] = i;
+        pos[n + i] = i;
+        is_basic[i] = 1;
+    }
+    nonbasic[n] = 2 * n;
+    pos[2 * n] = n;
+    double *rhs = W.rhs(), *magb = W.magb();
+    for (idx i = 0; i < n; ++i) {
+        rhs[i] = 0.0;
+        magb[i] = 0.0;
+    }
+    for (idx i = 0; i < n; ++i) want[i] = warm_basic[i];
+    for (idx i = 0; i < n; ++i) {
+        if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {
+            want[i] = 1;
+        } else if (lo[i] == hi[i]) {
+            want[i] = 0;
+        }
+    }
+    Run run(W);
+    idx pivots = exchange(run, want);
+    bool singular = false;
+    for (idx i = 0; i < n; ++i) {
+        if (want[i] && !is_basic[n + i]) {
+            if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {
+                z_hi[i] = 0;  // a free z left non-basic: it rests at 0 as if at a lower bound
+            } else {
+                singular = true;
+            }
+        }
+    }
+    if (singular) {
+        // The warm basis cannot be made basic: report the start point, nothing else.
+        for (idx i = 0; i < n + 1; ++i) ray[i] = 0.0;
+        for (idx i = 0; i < n; ++i) d[i] = 0.0;
+        for (idx i = 0; i < n; ++i) z[i] = z0s[i];
+        double residual;
+        bool ok = box_check(M, q, lo, hi, z, tol, w, Rs, 0, residual);
+        out.code = ok ? SOLVED : SINGULAR;
+        out.pivots = 0;
+        out.z0 = 0.0;
+        out.ok = ok;
+        out.residual = residual;
+        out.k = 0;
+        out.m = 0;
+        return out;
+    }
+    // The covering column, set in the current basis.
+    double rmax = 0.0;
+    for (idx i = 0; i < n; ++i) rmax = pmax(rmax, Rs[i]);
+    for (idx i = 0; i < n; ++i) s0[i] = 1.0;
+    bool infeasible = false;
+    for (idx i = 0; i < n; ++i) {
+        idx b = basis[i];
+        double lb, ub;
+        bounds_of(b, n, los, his, z_hi, lb, ub);
+        double v = x[b];
+        double mag;
+        if (b < n) {
+            mag = cov_mode == 0 ? Rs[b] / rmax : 1.0;
+        } else {
+            mag = 1.0;
+        }
+        if (cov_mode == 2) mag *= 1.0 + unit_random(label_key(i));
+        double sgn = 0.0;
+        if (v < lb) {
+            sgn = 1.0;
+        } else if (v > ub) {
+            sgn = -1.0;
+        } else if (b < n && lb == 0.0) {
+            sgn = 1.0;
+        } else if (b < n && ub == 0.0) {
+            sgn = -1.0;
+        }
+        if (v < lb || v > ub) infeasible = true;
+        T(i, n) = sgn * mag;
+        s0[i] = sgn < 0.0 ? -1.0 : 1.0;
+    }
+    for (idx i = 0; i < n; ++i) d[i] = 0.0;
+    for (idx i = 0; i < n; ++i)
+        if (basis[i] < n) d[basis[i]] = T(i, n) / Rs[basis[i]];
+    code = SOLVED;
+    double z0 = 0.0;
+    for (idx i = 0; i < 2 * n + 1; ++i) ray_lab[i] = 0.0;
+    if (infeasible) {
+        idx p = 0;
+        code = lemke_run(W, run, los, his, z_hi, s0, max_pivots - pivots, pivot_tol, tie_tol,
+                         ray_lab, p);
+        pivots += p;
+        z0 = x[2 * n];
+    }
+    // Back to the caller's units.
+    for (idx i = 0; i < n; ++i) {
+        z[i] = pmin(pmax(x[n + i] * Cs[i], lo[i]), hi[i]);
+        ray[i] = ray_lab[n + i] * Cs[i];
+        z_basic[i] = is_basic[n + i];
+    }
+    ray[n] = ray_lab[2 * n];
+    for (idx i = 0; i < n; ++i)
+        if (z_basic[i]) z_hi[i] = 0;
+    if (code != SOLVED)
+        for (idx i = 0; i < n; ++i) z[i] = x[n + i] * Cs[i];  // where it stopped, unclamped
+    double residual;
+    bool ok = box_check(M, q, lo, hi, z, tol, w, Rs, 0, residual);
+    if (ok) code = SOLVED;
+    idx k = 0;  // the final basis: the basic z's, then the non-basic z's at hi
+    for (idx i = 0; i < n; ++i)
+        if (z_basic[i]) final[k++] = i;
+    idx m = k;
+    for (idx i = 0; i < n; ++i)
+        if (z_hi[i]) final[m++] = i;
+    out.code = code;
+    out.pivots = pivots;
+    out.z0 = z0;
+    out.ok = ok;
+    out.residual = residual;
+    out.k = k;
+    out.m = m;
+    return out;
+}
+
+namespace {
+
+// The friction index's answer from the extended one zx, judged on the caller's data
+// (boxed.friction_check); out (6n): z, w, lo and hi in force, R, C.
+bool friction_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                    const idx* F, idx nf, const double* zx, idx N, double tol, double* out,
+                    double& residual) {
+    idx n = M.rows;
+    double *z = out, *w = out + n, *lo_in = out + 2 * n, *hi_in = out + 3 * n;
+    double *R = out + 4 * n, *C = out + 5 * n;
+    for (idx i = 0; i < n; ++i) {
+        z[i] = zx[i];
+        lo_in[i] = lo[i];
+        hi_in[i] = hi[i];
+    }
+    for (idx c = 0; c < nf; ++c) z[F[c]] = zx[F[c]] - zx[n + c];
+    for (idx c = 0; c < nf; ++c) {
+        idx i = F[c];
+        double mu = hi[i];
+        lo_in[i] = -mu * z[F[nf + c]];
+        hi_in[i] = mu * z[F[nf + c]];
+    }
+    check_scales(M, q, lo, hi, R, C);
+    for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], pmin(lo_in[i], hi_in[i])), hi_in[i]);
+    return box_check(M, q, lo_in, hi_in, z, tol, w, R, N, residual);
+}
+
+}  // namespace
+
+int front(int phase, Mat<const double> M, const double* q, const double* lo, const double* hi,
+          const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,
+          bool has_warm, double tol, double* buf, idx buf_len, idx* ints, idx ints_len,
+          double* work_in, idx work_len, double& residual) {
+    idx n = M.rows;
+    bool friction = findex_len > 0;
+    idx nf = 0;
+    residual = INF;
+    if (phase == PREPARE) {
+        int code = prologue(M, q, lo, hi);
+        if (code < 0) return code;
+        nf = friction_rows(findex, findex_len);
+        if (nf < 0) return BAD_FINDEX;
+        for (idx i = 0; i < findex_len; ++i) {
+            idx f = findex[i];
+            if (f >= 0 && !(hi[i] >= 0.0 && hi[i] < INF && lo[i] == -hi[i] && lo[f] >= 0.0))
+                return BAD_FINDEX;
+        }
+    } else {
+        for (idx i = 0; i < findex_len; ++i) nf += findex[i] >= 0;
+    }
+    idx N = n + 2 * nf;
+    if (buf_len != 6 * N + 1 + (friction ? 6 * n : 0) || ints_len != N + 2 * nf ||
+        work_len != (nf > 0 ? N * N + 3 * N : 0) || warm_len != 2 * N)
+        return BAD_FINDEX;  // (the front sizes them: never)
+    idx* F = ints + N;
+    if (phase != PREPARE) {
+        // F was written by PREPARE; refuse what it could not have written (the numba
+        // kernel trusts it).
+        for (idx c = 0; c < 2 * nf; ++c)
+            if (F[c] < 0 || F[c] >= n) return BAD_FINDEX;
+    }
+    double* z = buf;
+    if (phase == PREPARE) {
+        Mat<const double> A = M;
+        const double *qa = q, *la = lo, *ha = hi;
+        if (nf > 0) {
+            extend(M, q, lo, hi, findex, nf, work_in, F);
+            A = Mat<const double>(work_in, N, N);
+            qa = work_in + N * N;
+            la = qa + N;
+            ha = la + N;
+        }
+        if (!has_warm || !basis_point(A, qa, la, ha, warm, warm + N, true, z)) {
+            residual = INF;
+            return NEED_RUN;
+        }
+        BoxLayout L{N};
+        double *w = buf + L.w(), *d = buf + L.covering(), *R = buf + L.row_scale();
+        double* C = buf + L.col_scale();
+        check_scales(A, qa, la, ha, R, C);
+        bool ok = box_check(A, qa, la, ha, z, tol, w, R, 0, residual);
+        if (!ok) {
+            residual = INF;
+            return NEED_RUN;
+        }
+        for (idx i = 0; i < N; ++i) d[i] = 0.0;
+    }
+    if (friction) {
+        bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf + 6 * N + 1, residual);
+        if (!ok) {
+            residual = INF;
+            return UNDECIDED;
+        }
+    }
+    return SOLVED;
+}
+
+}  // namespace boxed
+}  // namespace lemke

@@ -1,0 +1,146 @@
+// Lemke's method for the box LCP with bounded variables (the port of
+// lemke/kernels/boxed.py, whose module docstring states the problem, the method, the rule,
+// the start, the equilibration and the check): n pairs, each z_i non-basic at a bound or
+// basic, bound flips without a basis change, the friction index solved exactly on an
+// extended box LCP (extend), and the one-call front of solve_blcp (front). Every function
+// here is the numba kernel of the same name, the same operations in the same order, so the
+// same bits.
+//
+// Labels: 0..n-1 the w's, n..2n-1 the z's, 2n the artificial z0. Flags are one byte each
+// (numba's bool arrays).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "pivoting.hpp"
+
+namespace lemke {
+namespace boxed {
+
+// The kernel's own codes (besides the pivoting Status codes).
+constexpr int NOT_FINITE = -1;   // M or q has a NaN or an infinity, or lo/hi a NaN
+constexpr int BAD_BOUNDS = -3;   // some lo_i > hi_i, or lo_i = +inf, or hi_i = -inf
+constexpr int SINGULAR = -4;     // a warm start's basis cannot be made basic
+constexpr int BAD_FINDEX = -5;   // a friction index the front refuses
+constexpr int UNDECIDED = -6;    // front: the friction check failed
+constexpr int NEED_RUN = -7;     // front: a run must decide
+constexpr int PREPARE = 0;       // front's phases
+constexpr int SOLVED_RUN = 1;
+constexpr double EXCHANGE_TOL = 1e-9;
+constexpr double FAR = 1e20;
+
+// The output buffer of one run (boxed.layout): [z | w | d | R | C | ray (n + 1)].
+struct BoxLayout {
+    idx n;
+    idx z() const { return 0; }
+    idx w() const { return n; }
+    idx covering() const { return 2 * n; }
+    idx row_scale() const { return 3 * n; }
+    idx col_scale() const { return 4 * n; }
+    idx ray() const { return 5 * n; }
+    idx length() const { return 6 * n + 1; }
+};
+
+// What solve returns: (code, pivots, z0, ok, residual, k, m) of boxed.solve.
+struct SolveResult {
+    int code = 0;
+    idx pivots = 0;
+    double z0 = 0.0;
+    bool ok = false;
+    double residual = INF;
+    idx k = 0, m = 0;
+};
+
+// The engine's workspace, laid out once per size (one per thread, reused; layout states
+// every offset):
+// f:     T (n x (n + 1)) | qs, los, his, s0, z0s (n each) | x, ray_lab (2n + 1 each) |
+//        the pivots' scratch rhs, magb (n each), prow (n + 1), col (n) |
+//        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n
+// i:     basis (n), nonbasic (n + 1), pos (2n + 1), start_basis (n), cand (n + 1)
+// flags: z_basic, z_hi (n each), is_basic (2n + 1), want (n), low (n + 1)
+// chk:   the checks' scratch, outside the run's arrays (box_check 3n; check_scales 4n;
+//        basis_point k (k + 2) + n; is_ray n), with chk_i (basis_point's n indices).
+struct BoxedWork {
+    std::vector<double> f, chk;
+    std::vector<idx> i, chk_i;
+    std::vector<std::uint8_t> flags;
+    idx n = -1;
+    void layout(idx size);
+    double* check_area(idx len);
+    idx* check_indices(idx len);
+    Mat<double> T() { return Mat<double>(f.data(), n, n + 1); }
+    double* qs() { return f.data() + n * (n + 1); }
+    double* los() { return qs() + n; }
+    double* his() { return los() + n; }
+    double* s0() { return his() + n; }
+    double* z0s() { return s0() + n; }
+    double* x() { return z0s() + n; }
+    double* ray_lab() { return x() + 2 * n + 1; }
+    double* rhs() { return ray_lab() + 2 * n + 1; }
+    double* magb() { return rhs() + n; }
+    double* prow() { return magb() + n; }
+    double* col() { return prow() + n + 1; }
+    double* keys() { return col() + n; }
+    double* gaps() { return keys() + n + 1; }
+    double* cc() { return gaps() + n + 1; }
+    double* rlo() { return cc() + n + 1; }
+    double* rhi() { return rlo() + n; }
+    double* eq_work() { return rhi() + n; }
+    idx* basis() { return i.data(); }
+    idx* nonbasic() { return basis() + n; }
+    idx* pos() { return nonbasic() + n + 1; }
+    idx* start_basis() { return pos() + 2 * n + 1; }
+    idx* cand() { return start_basis() + n; }
+    std::uint8_t* z_basic() { return flags.data(); }
+    std::uint8_t* z_hi() { return z_basic() + n; }
+    std::uint8_t* is_basic() { return z_hi() + n; }
+    std::uint8_t* want() { return is_basic() + 2 * n + 1; }
+    std::uint8_t* low() { return want() + n; }
+};
+
+// 0, NOT_FINITE or BAD_BOUNDS (boxed.prologue).
+int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi);
+
+// w = M z + q and the verdict on the caller's data (boxed.box_check); n_round: the size
+// whose rounding is allowed for (max with n).
+bool box_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+               const double* z, double tol, double* w, const double* R, idx n_round,
+               double& residual);
+
+// The scales box_check judges with when no run made them (boxed.check_scales).
+void check_scales(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                  double* R, double* C);
+
+// The point of a basis (zb basic, zh at hi) into z (boxed.basis_point); false when the
+// block is singular or the point not finite.
+bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                 const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z);
+
+// Whether (z, z0) + t ray is a ray of the augmented box problem (boxed.is_ray; the sizes
+// of d, z, ray are the binding's to check).
+bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
+            const double* d, const double* z, double z0, const double* ray, double tol);
+
+// The number of friction rows, or BAD_FINDEX (boxed.friction_rows).
+idx friction_rows(const idx* findex, idx n);
+
+// The extended box LCP of a friction index into work (N N + 3 N, N = n + 2 nf: Mx, qx, lox,
+// hix), F (2 nf) the friction rows then their normal rows (boxed.extend).
+void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
+            const idx* findex, idx nf, double* work, idx* F);
+
+// One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n.
+SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                  const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
+                  double tie_tol, double tol, double* buf, idx* final);
+
+// The kernel part of solve_blcp with a friction index and/or a warm start (boxed.front):
+// returns the code, residual in `residual`. findex_len is 0 or n (the binding checks);
+// the other lengths are checked here as the kernel checks them.
+int front(int phase, Mat<const double> M, const double* q, const double* lo, const double* hi,
+          const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,
+          bool has_warm, double tol, double* buf, idx buf_len, idx* ints, idx ints_len,
+          double* work, idx work_len, double& residual);
+
+}  // namespace boxed
+}  // namespace lemke

@@ -1,0 +1,210 @@
+// lemke._core.boxed: the box LCP engine (src/lemke/boxed.*) for the Python front
+// (lemke/_blcp.py). Each function takes the arguments of the numba kernel of the same name
+// in lemke/kernels/boxed.py and returns what it returns, so the front switches by importing
+// this submodule in place of the kernels' module. Sizes are checked before the GIL is
+// released: where the numba kernel checks a size itself the same code comes back, every
+// other mismatch (one the kernel would read past) raises ValueError. Output arrays are
+// never converted (a float32 or non-contiguous buffer raises instead of being copied).
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/tuple.h>
+
+#include "lemke/boxed.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace {
+
+using lemke::idx;
+using CMatrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using CVector = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using OutVector = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using CIndices = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using OutIndices = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using CFlags = nb::ndarray<nb::ro, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using NumpyVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
+using NumpyMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
+
+const std::uint8_t* flag_data(const CFlags& a, const char* fn, const char* name) {
+    if (a.dtype() != nb::dtype<bool>() && a.dtype() != nb::dtype<std::uint8_t>())
+        throw nb::value_error((std::string(fn) + ": " + name + " must be bool or uint8").c_str());
+    return static_cast<const std::uint8_t*>(a.data());
+}
+
+// Python's truth of a flag argument (True, False, numpy.bool_, 0, 1).
+bool truth(nb::handle h) {
+    int t = PyObject_IsTrue(h.ptr());
+    if (t < 0) nb::raise_python_error();
+    return t != 0;
+}
+
+// The problem's arrays: M n x n, q, lo, hi of length n (ValueError otherwise).
+idx problem_size(const CMatrix& M, const CVector& q, const CVector& lo, const CVector& hi,
+                 const char* fn) {
+    idx n = static_cast<idx>(q.shape(0));
+    if (static_cast<idx>(M.shape(0)) != n || static_cast<idx>(M.shape(1)) != n ||
+        static_cast<idx>(lo.shape(0)) != n || static_cast<idx>(hi.shape(0)) != n)
+        throw nb::value_error((std::string(fn) + ": M must be n x n and q, lo, hi of length n").c_str());
+    return n;
+}
+
+lemke::Mat<const double> mat(const CMatrix& M, idx n) {
+    return lemke::Mat<const double>(M.data(), n, n);
+}
+
+using SolveTuple = std::tuple<int, std::int64_t, double, bool, double, std::int64_t, std::int64_t>;
+
+SolveTuple solve(CMatrix M, CVector q, CVector lo, CVector hi, CFlags warm, int cov_mode,
+                 std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol,
+                 OutVector buf, OutIndices final) {
+    idx n = problem_size(M, q, lo, hi, "solve");
+    const std::uint8_t* wf = flag_data(warm, "solve", "warm");
+    if (static_cast<idx>(warm.shape(0)) < 2 * n ||
+        static_cast<idx>(buf.shape(0)) < lemke::boxed::BoxLayout{n}.length() ||
+        static_cast<idx>(final.shape(0)) < n)
+        return {lemke::boxed::NOT_FINITE, 0, 0.0, false, lemke::INF, 0, 0};  // (the kernel's)
+    lemke::boxed::SolveResult r;
+    {
+        nb::gil_scoped_release release;
+        r = lemke::boxed::solve(mat(M, n), q.data(), lo.data(), hi.data(), wf, cov_mode,
+                                max_pivots, pivot_tol, tie_tol, tol, buf.data(), final.data());
+    }
+    return {r.code, r.pivots, r.z0, r.ok, r.residual, r.k, r.m};
+}
+
+std::tuple<bool, double> box_check(CMatrix M, CVector q, CVector lo, CVector hi, CVector z,
+                                   double tol, OutVector w, CVector R, std::int64_t n_round) {
+    idx n = problem_size(M, q, lo, hi, "box_check");
+    if (static_cast<idx>(z.shape(0)) != n || static_cast<idx>(w.shape(0)) != n ||
+        static_cast<idx>(R.shape(0)) != n)
+        throw nb::value_error("box_check: z, w and R must be of length n");
+    double residual;
+    bool ok;
+    {
+        nb::gil_scoped_release release;
+        ok = lemke::boxed::box_check(mat(M, n), q.data(), lo.data(), hi.data(), z.data(), tol,
+                                     w.data(), R.data(), n_round, residual);
+    }
+    return {ok, residual};
+}
+
+void check_scales(CMatrix M, CVector q, CVector lo, CVector hi, OutVector R, OutVector C) {
+    idx n = problem_size(M, q, lo, hi, "check_scales");
+    if (static_cast<idx>(R.shape(0)) != n || static_cast<idx>(C.shape(0)) != n)
+        throw nb::value_error("check_scales: R and C must be of length n");
+    nb::gil_scoped_release release;
+    lemke::boxed::check_scales(mat(M, n), q.data(), lo.data(), hi.data(), R.data(), C.data());
+}
+
+bool basis_point(CMatrix M, CVector q, CVector lo, CVector hi, CFlags zb, CFlags zh,
+                 nb::handle warm_rule, OutVector z) {
+    idx n = problem_size(M, q, lo, hi, "basis_point");
+    const std::uint8_t* b = flag_data(zb, "basis_point", "zb");
+    const std::uint8_t* h = flag_data(zh, "basis_point", "zh");
+    if (static_cast<idx>(zb.shape(0)) < n || static_cast<idx>(zh.shape(0)) < n ||
+        static_cast<idx>(z.shape(0)) != n)
+        throw nb::value_error("basis_point: zb and zh must hold n flags, z be of length n");
+    bool rule = truth(warm_rule);
+    nb::gil_scoped_release release;
+    return lemke::boxed::basis_point(mat(M, n), q.data(), lo.data(), hi.data(), b, h, rule,
+                                     z.data());
+}
+
+bool is_ray(CMatrix M, CVector q, CVector lo, CVector hi, CVector d, CVector z, double z0,
+            CVector ray, double tol) {
+    idx n = problem_size(M, q, lo, hi, "is_ray");
+    if (static_cast<idx>(ray.shape(0)) != n + 1 || static_cast<idx>(d.shape(0)) != n ||
+        static_cast<idx>(z.shape(0)) != n)
+        return false;  // (the kernel's)
+    nb::gil_scoped_release release;
+    return lemke::boxed::is_ray(mat(M, n), q.data(), lo.data(), hi.data(), d.data(), z.data(),
+                                z0, ray.data(), tol);
+}
+
+// boxed.extend: the views (Mx, qx, lox, hix) of `work` (they keep it alive).
+std::tuple<NumpyMatrix, NumpyVector, NumpyVector, NumpyVector> extend(
+    CMatrix M, CVector q, CVector lo, CVector hi, CIndices findex, std::int64_t nf,
+    nb::object work_obj, OutIndices F) {
+    idx n = problem_size(M, q, lo, hi, "extend");
+    OutVector work;
+    if (!nb::try_cast(work_obj, work, false))
+        throw nb::value_error("extend: work must be a writable, C-contiguous float64 vector");
+    idx N = n + 2 * nf;
+    idx count = 0;
+    bool ok = nf >= 0 && static_cast<idx>(findex.shape(0)) == n;
+    for (idx i = 0; ok && i < n; ++i) {
+        idx f = findex.data()[i];
+        if (f >= 0) {
+            ++count;
+            ok = f < n;
+        }
+    }
+    if (!ok || count != nf || static_cast<idx>(work.shape(0)) < N * N + 3 * N ||
+        static_cast<idx>(F.shape(0)) < 2 * nf)
+        throw nb::value_error("extend: findex must be of length n with entries below n, nf of "
+                              "them >= 0, work of length >= N N + 3 N (N = n + 2 nf), F >= 2 nf");
+    {
+        nb::gil_scoped_release release;
+        lemke::boxed::extend(mat(M, n), q.data(), lo.data(), hi.data(), findex.data(), nf,
+                             work.data(), F.data());
+    }
+    double* p = work.data();
+    std::size_t Ns = static_cast<std::size_t>(N);
+    std::size_t rest = work.shape(0) - Ns * Ns - 2 * Ns;  // hix: the rest, as numba's slice
+    return {NumpyMatrix(p, {Ns, Ns}, work_obj), NumpyVector(p + Ns * Ns, {Ns}, work_obj),
+            NumpyVector(p + Ns * Ns + Ns, {Ns}, work_obj),
+            NumpyVector(p + Ns * Ns + 2 * Ns, {rest}, work_obj)};
+}
+
+std::tuple<int, double> front(int phase, CMatrix M, CVector q, CVector lo, CVector hi,
+                              CIndices findex, CFlags warm, nb::handle has_warm, double tol,
+                              OutVector buf, OutIndices ints, OutVector work) {
+    idx n = problem_size(M, q, lo, hi, "front");
+    const std::uint8_t* wf = flag_data(warm, "front", "warm");
+    idx fl = static_cast<idx>(findex.shape(0));
+    if (fl != 0 && fl != n) throw nb::value_error("front: findex must be of length n or 0");
+    bool hw = truth(has_warm);
+    double residual;
+    int code;
+    {
+        nb::gil_scoped_release release;
+        code = lemke::boxed::front(phase, mat(M, n), q.data(), lo.data(), hi.data(),
+                                   findex.data(), fl, wf, static_cast<idx>(warm.shape(0)), hw,
+                                   tol, buf.data(), static_cast<idx>(buf.shape(0)), ints.data(),
+                                   static_cast<idx>(ints.shape(0)), work.data(),
+                                   static_cast<idx>(work.shape(0)), residual);
+    }
+    return {code, residual};
+}
+
+}  // namespace
+
+void bind_boxed(nb::module_& m) {
+    nb::module_ b = m.def_submodule(
+        "boxed", "The box LCP engine (port of lemke.kernels.boxed): the same functions, "
+                 "arguments and return values.");
+    b.def("solve", &solve, "M"_a, "q"_a, "lo"_a, "hi"_a, "warm"_a, "cov_mode"_a, "max_pivots"_a,
+          "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a.noconvert(), "final"_a.noconvert());
+    b.def("box_check", &box_check, "M"_a, "q"_a, "lo"_a, "hi"_a, "z"_a, "tol"_a,
+          "w"_a.noconvert(), "R"_a, "n_round"_a = 0);
+    b.def("check_scales", &check_scales, "M"_a, "q"_a, "lo"_a, "hi"_a, "R"_a.noconvert(),
+          "C"_a.noconvert());
+    b.def("basis_point", &basis_point, "M"_a, "q"_a, "lo"_a, "hi"_a, "zb"_a, "zh"_a,
+          "warm_rule"_a, "z"_a.noconvert());
+    b.def("is_ray", &is_ray, "M"_a, "q"_a, "lo"_a, "hi"_a, "d"_a, "z"_a, "z0"_a, "ray"_a,
+          "tol"_a);
+    b.def("extend", &extend, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "nf"_a, "work"_a,
+          "F"_a.noconvert());
+    b.def("front", &front, "phase"_a, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "warm"_a,
+          "has_warm"_a, "tol"_a, "buf"_a.noconvert(), "ints"_a.noconvert(),
+          "work"_a.noconvert());
+    b.attr("NOT_FINITE") = lemke::boxed::NOT_FINITE;
+    b.attr("BAD_BOUNDS") = lemke::boxed::BAD_BOUNDS;
+    b.attr("SINGULAR") = lemke::boxed::SINGULAR;
+    b.attr("BAD_FINDEX") = lemke::boxed::BAD_FINDEX;
+    b.attr("UNDECIDED") = lemke::boxed::UNDECIDED;
+    b.attr("NEED_RUN") = lemke::boxed::NEED_RUN;
+    b.attr("PREPARE") = lemke::boxed::PREPARE;
+    b.attr("SOLVED_RUN") = lemke::boxed::SOLVED_RUN;
+}
