@@ -241,16 +241,6 @@ bool place(Tab& t, const idx* target, idx count, idx n_labels, double* col, doub
     return true;
 }
 
-// pivoting.after_pivot with the keys of pivoting.label_keys: SOLVED when the artificial
-// label left, CYCLING when the basis repeats, else -1.
-inline int after_pivot(idx leaving, idx entering, idx artificial, std::uint64_t& h,
-                       Detector& detector) {
-    if (leaving == artificial) return SOLVED;
-    h ^= label_key(leaving) ^ label_key(entering);
-    if (detector.repeats(h)) return CYCLING;
-    return -1;
-}
-
 // --- the check on the caller's payoffs ------------------------------------------------------
 
 idx support(const double* v, idx len, idx* index) {

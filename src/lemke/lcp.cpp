@@ -89,6 +89,22 @@ int old_basis(Mat<const double> M, const double* q, const double* d, const idx* 
     return 0;
 }
 
+// The result of a warm start's first stage when it decides the solve: found 0 (the old
+// basis solves it, 0 pivots, stage 0) or -1 (not finite).
+RunResult warm_verdict(int found, idx k, double residual) {
+    RunResult out;
+    if (found < 0) {
+        out.code = NOT_FINITE;
+        return out;
+    }
+    out.code = SOLVED;
+    out.k = k;
+    out.ok = true;
+    out.residual = residual;
+    out.stage = 0;
+    return out;
+}
+
 }  // namespace
 
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
@@ -102,18 +118,7 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     if (k > 0) {
         double residual, m_max;
         int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
-        if (found == 0) {
-            out.code = SOLVED;
-            out.k = k;
-            out.ok = true;
-            out.residual = residual;
-            out.stage = 0;
-            return out;
-        }
-        if (found < 0) {
-            out.code = NOT_FINITE;
-            return out;
-        }
+        if (found <= 0) return warm_verdict(found, k, residual);
         if (found == 1 && n >= RESTART_FROM) {
             out.stage = -2;
             return out;
@@ -448,19 +453,8 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
         } else {
             found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
         }
+        if (found <= 0) return warm_verdict(found, k, residual);
         RunResult out;
-        if (found == 0) {
-            out.code = SOLVED;
-            out.k = k;
-            out.ok = true;
-            out.residual = residual;
-            out.stage = 0;
-            return out;
-        }
-        if (found < 0) {
-            out.code = NOT_FINITE;
-            return out;
-        }
         if (found != 2 && n >= RESTART_FROM) {
             std::vector<std::uint8_t> flags(static_cast<std::size_t>(2 * n), 0);
             std::uint8_t* z_start = flags.data();

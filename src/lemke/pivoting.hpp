@@ -149,6 +149,16 @@ struct Detector {
     }
 };
 
+// The end of every pivot (pivoting.after_pivot): SOLVED when the artificial variable left,
+// else the fingerprint h updated for `entering` replacing `leaving` and CYCLING when the
+// basis repeats, else -1 (go on).
+inline int after_pivot(idx leaving, idx entering, idx artificial, std::uint64_t& h,
+                       Detector& detector) {
+    if (leaving == artificial) return SOLVED;
+    h ^= label_key(leaving) ^ label_key(entering);
+    return detector.repeats(h) ? CYCLING : -1;
+}
+
 // The labels of a basis: basis[r] (rows), nonbasic[s] (columns), pos[label] (its row or
 // column), is_basic[label].
 inline idx swap_labels(idx* basis, idx* nonbasic, idx* pos, std::uint8_t* is_basic, idx r, idx s) {

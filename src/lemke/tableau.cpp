@@ -135,13 +135,9 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         pivot_now(T, rhs, magb, r, s, col, prow);
         ++pivots;
         swap_labels(basis, nonbasic, pos, is_basic, r, s);
-        if (leaving == artificial) {
-            status = SOLVED;
-            break;
-        }
-        h ^= label_key(leaving) ^ label_key(entering);
-        if (detector.repeats(h)) {
-            status = CYCLING;
+        int stop = after_pivot(leaving, entering, artificial, h, detector);
+        if (stop >= 0) {
+            status = static_cast<Status>(stop);
             break;
         }
         s = pos[leaving < n ? leaving + n : leaving - n];  // the complement enters

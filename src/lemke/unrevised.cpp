@@ -385,13 +385,9 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
             }
             u.basic_point();
         }
-        if (leaving == art) {
-            status = SOLVED;
-            break;
-        }
-        h ^= label_key(leaving) ^ label_key(entering);
-        if (detector.repeats(h)) {
-            status = CYCLING;
+        int stop = after_pivot(leaving, entering, art, h, detector);
+        if (stop >= 0) {
+            status = static_cast<Status>(stop);
             break;
         }
         entering = leaving < n ? leaving + n : leaving - n;
