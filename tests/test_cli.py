@@ -516,3 +516,13 @@ def test_ctrl_c_stops_a_running_kernel_at_once(tmp_path, record_property, source
         assert [d["name"] for d in json.loads(stdout)] == finished
         assert [d["name"] for d in json.loads(out.read_text())] == finished
     assert os.listdir(tmp_path) == (["r.json"] if finished else [])
+
+
+def test_quiet_silences_the_progress_line(monkeypatch):
+    """Several sources on a terminal get a progress line on stderr; --quiet none."""
+    from lemke._cli import _parser, _Progress
+    monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
+    assert _Progress(3).on and not _Progress(1).on
+    args = _parser().parse_args(["solve", "a.json", "--quiet", "b.json"])
+    assert args.quiet and args.source == ["a.json", "b.json"]
+    assert not _Progress(3, args.quiet).on

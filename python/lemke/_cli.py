@@ -105,6 +105,8 @@ def _parser() -> argparse.ArgumentParser:
     s.add_argument("--tie-tol", type=_tolerance, metavar="X", help="tie threshold, relative (default: 1e-11)")
     s.add_argument("--json", action="store_true", help="print the result(s) as JSON on stdout (a list for several)")
     s.add_argument("--out", metavar="FILE", help="write the result(s) to FILE (.json, or .npz for one problem)")
+    s.add_argument("--quiet", action="store_true",
+                   help="no progress line on stderr (shown for several sources when stderr is a terminal)")
     sub.add_parser("problems", help="list the built-in problems")
     return p
 
@@ -246,11 +248,11 @@ def _table(rows: list[dict], left: int = 0) -> str:
 
 
 class _Progress:
-    """A one-line progress bar on stderr, only when stderr is a terminal."""
+    """A one-line progress bar on stderr, only when stderr is a terminal (and not --quiet)."""
 
-    def __init__(self, total: int):
+    def __init__(self, total: int, quiet: bool = False):
         self.total = total
-        self.on = total > 1 and sys.stderr.isatty()
+        self.on = total > 1 and not quiet and sys.stderr.isatty()
 
     def show(self, done: int, label: str) -> None:
         if self.on:
@@ -313,7 +315,7 @@ class _Run:
         self.rows: list[dict] = []
         self.lock = threading.Lock()
         self.reported = False
-        self.progress = _Progress(len(sources))
+        self.progress = _Progress(len(sources), getattr(args, "quiet", False))
 
     def work(self) -> int:
         """Solve every source, each reported as it ends, then the summary (the worker thread)."""
