@@ -540,6 +540,17 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 // l + l + 2, 0 + 1); then an epilogue of 4 lanes (from the main loop's sum in lane 0) up
 // to the last multiple of 4, halved the same way; then the rest one fused multiply-add
 // at a time. The starting lanes are -0.0 but lane 0 of part 0 (+0.0).
+// Compiled per instruction set with hardware fused multiply-adds (the baseline variant
+// calls libm's fma: the same bits, slower); every variant gives the same bits.
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(LEMKE_NO_CLONES) \
+    && !defined(__SANITIZE_ADDRESS__)
+#define LEMKE_FMA_CLONES \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define LEMKE_FMA_CLONES
+#endif
+
+LEMKE_FMA_CLONES
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
     const double* rr[4] = {r0, r1, r2, r3};
@@ -553,18 +564,21 @@ void dot4(const double* a, const double* r0, const double* r1, const double* r2,
     if (len >= 4) {
         if (len >= 32) {
             idx main_end = len & ~static_cast<idx>(31);
+            double acc[4][32];  // acc[q][8 u + l]: sum q, part u, lane l
+            for (int q = 0; q < 4; ++q)
+                for (int e = 0; e < 32; ++e) acc[q][e] = NEG_ZERO;
+            for (int q = 0; q < 4; ++q) acc[q][0] = 0.0;
+            for (idx j = 0; j < main_end; j += 32)
+                for (int q = 0; q < 4; ++q) {
+                    const double* rq = rr[q] + j;
+                    const double* aj = a + j;
+                    double* aq = acc[q];
+                    for (int e = 0; e < 32; ++e) aq[e] = std::fma(aj[e], rq[e], aq[e]);
+                }
             for (int q = 0; q < 4; ++q) {
-                double acc[4][8];
-                for (int u = 0; u < 4; ++u)
-                    for (int l = 0; l < 8; ++l) acc[u][l] = NEG_ZERO;
-                acc[0][0] = 0.0;
-                const double* rq = rr[q];
-                for (idx j = 0; j < main_end; j += 32)
-                    for (int u = 0; u < 4; ++u)
-                        for (int l = 0; l < 8; ++l)
-                            acc[u][l] = std::fma(a[j + 8 * u + l], rq[j + 8 * u + l], acc[u][l]);
+                const double* aq = acc[q];
                 double v[8], h4[4], h2[2];
-                for (int l = 0; l < 8; ++l) v[l] = ((acc[0][l] + acc[1][l]) + acc[2][l]) + acc[3][l];
+                for (int l = 0; l < 8; ++l) v[l] = ((aq[l] + aq[8 + l]) + aq[16 + l]) + aq[24 + l];
                 for (int l = 0; l < 4; ++l) h4[l] = v[l] + v[l + 4];
                 for (int l = 0; l < 2; ++l) h2[l] = h4[l] + h4[l + 2];
                 s[q] = h2[0] + h2[1];
