@@ -175,6 +175,7 @@ static void batch(int method, Flat Ms, Indices mstart, Flat qs, Indices qoff, In
 }
 
 void bind_games(nb::module_& m);  // src/python_games.cpp
+void bind_qp(nb::module_& m);     // src/python_qp.cpp
 
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
@@ -203,4 +204,5 @@ NB_MODULE(_core, m) {
     bind_support(m);
     bind_games(m);
     bind_boxed(m);
+    bind_qp(m);
 }

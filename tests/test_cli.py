@@ -290,8 +290,7 @@ def test_siconos_relay_files_solve_as_box_lcps(capsys, name, z):
 
 def test_compiling_is_announced_once(capsys, monkeypatch):
     # numba raises "numba:compile" only when it compiles (a cache miss); here the event is
-    # raised by hand, twice in each of two solves' notice contexts.  The real thing is
-    # checked in the bounds-checked child process (test_boundscheck.py).
+    # raised by hand, twice in each of two solves' notice contexts.
     from numba.core import event
 
     monkeypatch.setattr(_cli, "_SAID", [False])

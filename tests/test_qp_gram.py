@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import lemke
-from lemke import Status, _qp
+from lemke import Status, _core, _qp
 from lemke.kernels import qp as kqp
 from lemke.problems import random_convex_qp
 from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
@@ -27,8 +27,8 @@ REFS = references(DATA / "README.md")
 
 @pytest.fixture
 def gram_calls(monkeypatch):
-    """The codes the kernel of the factored path (``kqp.solve_gram``) returned during the
-    test, in order; ``dense_calls`` those of the dense fused kernel (``kqp.solve``)."""
+    """The codes the kernel of the factored path (``_core.qp_solve_gram``) returned during the
+    test, in order; ``dense_calls`` those of the dense fused kernel (``_core.qp_solve``)."""
     return _recorder(monkeypatch, "solve_gram")
 
 
@@ -38,15 +38,17 @@ def dense_calls(monkeypatch):
 
 
 def _recorder(monkeypatch, name):
+    """Record the codes of the core's kernel ``qp_<name>`` (the front calls the C++ core's
+    port of ``kernels.qp.<name>``, looked up on ``_core`` at each call)."""
     codes = []
-    kernel = getattr(kqp, name)
+    kernel = getattr(_core, "qp_" + name)
 
     def recording(*args):
         out = kernel(*args)
         codes.append(out[0])
         return out
 
-    monkeypatch.setattr(kqp, name, recording)
+    monkeypatch.setattr(_core, "qp_" + name, recording)
     return codes
 
 

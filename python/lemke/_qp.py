@@ -29,10 +29,11 @@ from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import Outcome, WarmStart
 from ._status import Status
-from .kernels import cold, entry_point, linalg as klinalg, qp as kqp
+from . import _core
+from ._layout import METHODS as _METHOD_NAMES
 
 EPS = float(np.finfo(np.float64).eps)
-BOX_FIRST = 16  # box-only QPs: below, plain data goes to kqp.solve_box; from here, solve_blcp first
+BOX_FIRST = 16  # box-only QPs: below, plain data goes to kernels.qp.solve_box; from here, solve_blcp first
 
 
 @dataclass(frozen=True, eq=False)
@@ -231,9 +232,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                 tried = True
             else:  # _solve_definite, inline
                 p, m = len(Ak), len(Gk)
-                out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
+                out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
                 mp = opts.max_pivots
-                code, pivots, k, pairs = (_ENTRY.get(kqp.solve) or _entry_point(kqp.solve))(
+                code, pivots, k, pairs = _core.qp_solve(
                     P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method], -1 if mp is None else mp,
                     opts.pivot_tol, opts.tie_tol, opts.tol, out)
                 if code == _OK:
@@ -501,14 +502,14 @@ def _solve_box_small(args, opts):
     and the basis are read from the kernel's buffer when first read."""
     P, q, G, h, A, b, lb, ub = args
     n = q.shape[0]
-    out = np.empty(7 * n + 5)  # kqp.box_out_size
+    out = np.empty(7 * n + 5)  # kernels.qp.box_out_size
     final = np.empty(3 * n, _I64)
     mp = opts.max_pivots
-    run = _ENTRY.get(kqp.solve_box) or _box_entry_point()
+    run = _ENTRY.get("solve_box") or _box_entry_point()
     code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
                              100 * (n + 1) if mp is None else mp,  # (solve_blcp's default)
                              opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
-    if code != kqp.OK:
+    if code != _OK:
         return None
     out.setflags(False)
     res = _new(QPResult)
@@ -533,11 +534,13 @@ def _box_small_fields(out, n, final, k, pairs):
 def _box_entry_point():
     """``kernels.qp.solve_box``'s compiled entry point for the plain types of
     :func:`solve_qp`'s first lines."""
+    from .kernels import entry_point, qp as kqp  # the box LCP is not in the core yet (numba)
+
     a1, a2 = np.empty(0), np.empty((0, 0))
     run = entry_point(kqp.solve_box, a2, a1, a2, a1, a2, a1, a1, a1, _NO_WARM[0], 0, 0.0, 0.0,
                       0.0, a1, np.empty(0, dtype=np.int64))
     if run is not kqp.solve_box:
-        _ENTRY[kqp.solve_box] = run
+        _ENTRY["solve_box"] = run
     return run
 
 
@@ -556,8 +559,8 @@ def _box_screened(P, q, lb, ub):
     plain = _plain_args(P, q, None, None, None, None, lb, ub)
     if plain is None:
         return None
-    ok, Ps, lo, up = kqp.screen(*plain)
-    if not ok or not kqp.cholesky(Ps, np.empty_like(Ps)):
+    ok, Ps, lo, up = _core.qp_screen(*plain)
+    if not ok or not _core.qp_cholesky(Ps, np.empty_like(Ps)):
         return None
     return Ps, plain[1], lo, up
 
@@ -591,7 +594,7 @@ def _solve_definite(args, method, opts):
     """The fused cold path for a positive definite P (``kernels.qp``): one kernel call that
     screens the data, factors P, solves the LCP of the inequality multipliers and checks
     the KKT point on the data; with m >= 4n inequalities, first its LCP in factored form
-    (``kqp.solve_gram``, the kernel's step 7, whatever ``method``; also for a P that is
+    (``_core.qp_solve_gram``, the kernel's step 7, whatever ``method``; also for a P that is
     semidefinite to rounding; and, step 8, for a P that is not definite whose flat
     directions the equalities can pin).  None when it does not apply (data that needs the full
     validation, P only semidefinite, dependent equalities) or did not end solved and
@@ -599,28 +602,26 @@ def _solve_definite(args, method, opts):
     infeasible and unbounded QPs."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
+    out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
     max_pivots = opts.max_pivots
     if max_pivots is None:
         max_pivots = -1
     code = None
     absent = _ABSENT.get(n) or _absent(n)
-    if m + n * ((lb is not absent[2]) + (ub is not absent[3])) >= kqp.GRAM_RATIO * n:
+    if m + n * ((lb is not absent[2]) + (ub is not absent[3])) >= _GRAM_RATIO * n:
         # at most that many inequalities: perhaps many more than variables (the kernel's
         # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
-        code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
-                                                opts.pivot_tol, opts.tie_tol, opts.tol, out,
-                                                _basis_view(out, n, p, m), False)
-    if code != kqp.OK:
-        tried = code is not None and code != kqp.NOT_APPLICABLE  # step 7 ran
-        # through the compiled entry point (the arrays are of its types: _plain_args and
-        # solve_qp's first lines make them C-contiguous, aligned and writable)
-        run = _ENTRY.get(kqp.solve) or _entry_point(kqp.solve)
-        code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], max_pivots,
-                                     opts.pivot_tol, opts.tie_tol, opts.tol, out)
-        if code == kqp.NOT_DEFINITE and not tried:
+        code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
+                                                     opts.pivot_tol, opts.tie_tol, opts.tol, out,
+                                                     _basis_view(out, n, p, m), False)
+    if code != _OK:
+        tried = code is not None and code != _NOT_APPLICABLE  # step 7 ran
+        code, pivots, k, pairs = _core.qp_solve(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method],
+                                                max_pivots, opts.pivot_tol, opts.tie_tol,
+                                                opts.tol, out)
+        if code == _NOT_DEFINITE and not tried:
             return _solve_semidefinite(args, opts)
-    if code != kqp.OK:
+    if code != _OK:
         return None
     return _fused_result(out, n, p, m, k, pairs, pivots)
 
@@ -628,21 +629,21 @@ def _solve_definite(args, method, opts):
 def _solve_semidefinite(args, opts):
     """The kernel's step 8 for a P that the fused kernel found not definite: its proximal
     factor and the factored path, where the equalities can pin P's flat directions
-    (``kqp.solve_gram`` with ``semidefinite``; NOT_APPLICABLE where they cannot).  None
+    (``_core.qp_solve_gram`` with ``semidefinite``; NOT_APPLICABLE where they cannot).  None
     when it does not end solved and checked."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
     if np.count_nonzero(P.diagonal() == 0.0) > p + np.count_nonzero(lb == ub):
         # more zero diagonal entries (flat directions) than equality rows: the kernel would
-        # decline at once (kqp.zero_diagonal); a linear program, say, neither calls nor
+        # decline at once (kernels.qp.zero_diagonal); a linear program, say, neither calls nor
         # compiles it
         return None
-    out = np.empty(4 * n + p + 2 * m + 4)  # kqp.out_size, then the basis (m + 2n)
+    out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
-    code, pivots, k, pairs = kqp.solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, opts.pivot_tol,
-                                            opts.tie_tol, opts.tol, out, _basis_view(out, n, p, m),
-                                            True)
-    if code != kqp.OK:
+    code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
+                                                 opts.pivot_tol, opts.tie_tol, opts.tol, out,
+                                                 _basis_view(out, n, p, m), True)
+    if code != _OK:
         return None
     return _fused_result(out, n, p, m, k, pairs, pivots)
 
@@ -663,8 +664,8 @@ def _fused_result(out, n, p, m, k, pairs, pivots):
 
 
 def _basis_view(out, n, p, m):
-    """The int64 view of the fused kernels' basis, after ``kqp.out_size(n, p, m)`` entries of
-    ``out`` (``kqp.solve`` makes the same view inside)."""
+    """The int64 view of the fused kernels' basis, after ``qp.out_size(n, p, m)`` entries of
+    ``out`` (``_core.qp_solve`` makes the same view inside)."""
     return out[2 * n + p + m + 4:].view(_I64)
 
 
@@ -672,20 +673,10 @@ _new = object.__new__
 _DEFAULT_OPTIONS = as_options(None)
 _SOLVED = Status.SOLVED
 _I64 = np.dtype(np.int64)
-_METHOD_CODES = dict(cold.METHODS)
-_OK, _NOT_DEFINITE, _GRAM_RATIO = kqp.OK, kqp.NOT_DEFINITE, kqp.GRAM_RATIO
-_ENTRY: dict = {}
-
-
-def _entry_point(dispatcher):
-    """The compiled entry point of the fused kernel ``dispatcher`` (``kqp.solve``) for the
-    argument types :func:`_plain_args` gives (``kernels.entry_point``), once compiled; until
-    then the kernel itself."""
-    a1, a2 = np.empty(0), np.empty((0, 0))
-    run = entry_point(dispatcher, a2, a1, a2, a1, a2, a1, a1, a1, 0, 0, 0.0, 0.0, 0.0, a1)
-    if run is not dispatcher:
-        _ENTRY[dispatcher] = run
-    return run
+_METHOD_CODES = dict(_METHOD_NAMES)
+_OK, _NOT_DEFINITE, _GRAM_RATIO = _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_GRAM_RATIO
+_NOT_APPLICABLE = _core.QP_NOT_APPLICABLE
+_ENTRY: dict = {}  # "solve_box" -> kernels.qp.solve_box's compiled entry point (numba)
 
 
 def _fused_fields(out, n, p, m, k, pairs):
@@ -730,7 +721,8 @@ def kkt(data, x, y, z, z_box, tol):
     stats = np.empty(4)
     c = np.ascontiguousarray
     P, q, G, h, A, b, lb, ub = data
-    ok = kqp.kkt_check(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol, stats)
+    ok = _core.qp_kkt_check(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol,
+                            stats)
     return (bool(ok), *stats.tolist())
 
 
@@ -809,7 +801,7 @@ def _polished(qp, point, basis, tol):
     exact_lo[n:] = lo[f:]
     KB = np.hstack([qp.P[B], qp.A[:, B].T, GS[:, B].T])
     zb = np.empty(B.size)
-    klinalg.residual2(np.hstack([KB, KB]), np.concatenate([x, sol[f:], exact_lo]), qp.q[B], zb)
+    _core.residual2(np.hstack([KB, KB]), np.concatenate([x, sol[f:], exact_lo]), qp.q[B], zb)
     # A multiplier at the solve's rounding level (eps times the largest) is zero: left in,
     # it would fail the row-wise test in a stationarity row whose terms are all that small.
     mult = np.concatenate([sol[f:], -zb])

@@ -428,6 +428,32 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
 
 }  // namespace
 
+RunResult checked_once(Method method, Mat<const double> M, const double* q, const double* d,
+                       idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,
+                       idx* basic) {
+    thread_local std::vector<double> work;
+    thread_local std::vector<std::uint8_t> z_basic;
+    idx n = M.rows;
+    RunResult out;
+    Views v(buf, n);
+    int code = prologue(M, q, d, v, false, work);
+    if (code < 0) {
+        out.code = code;
+        out.ok = code == TRIVIAL;
+        return out;
+    }
+    z_basic.assign(static_cast<std::size_t>(n), 0);
+    Run r = run_checked(method, M, q, max_pivots, pivot_tol, tie_tol, tol, v, z_basic.data(),
+                        false, 0, CYCLING, 0, work);
+    out.code = r.code;
+    out.pivots = r.pivots;
+    out.k = basic_indices(z_basic.data(), n, basic);
+    out.ok = r.ok;
+    out.residual = r.residual;
+    out.recoveries = r.recoveries;
+    return out;
+}
+
 RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
                     const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
                     double tol, double* buf, idx* basic) {

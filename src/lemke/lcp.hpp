@@ -64,6 +64,14 @@ RunResult solve(Method method, Mat<const double> M, const double* q, const doubl
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
                 double tol, double* buf, idx* basic);
 
+// cold.checked_once: checked() with the covering vector d given (so no recovery runs after a
+// failed check) and a ray not judged (ok false): the prologue, one run of `method` with the
+// recoveries from a cycle, the check. For kernels.qp's multiplier LCP. buf:
+// BufferLayout(n).length() doubles; basic: n int64 (the basic z's, k of them).
+RunResult checked_once(Method method, Mat<const double> M, const double* q, const double* d,
+                       idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,
+                       idx* basic);
+
 // solve() on problems lo..hi-1 laid end to end (cold.batch's layout): problem b has
 // n = qoff[b + 1] - qoff[b], q = qs + qoff[b], M the n x n row-major block at Ms + mstart[b],
 // warm start beta[boff[b]..boff[b + 1]), buffer bufs + buff[b], basic z's basics + qoff[b],

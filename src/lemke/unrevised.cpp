@@ -1,14 +1,17 @@
 #include "unrevised.hpp"
 
+#include <algorithm>
+
 #include "multiversion.hpp"
 #include "tableau.hpp"
 
 namespace lemke {
 
-void UnrevisedWork::layout(idx size, idx block_max) {
+void UnrevisedWork::layout(idx size, idx block_max, idx a_cols) {
     n = size;
     kmax = block_max;
-    f.resize(static_cast<std::size_t>(n * (n + 1) + n + n * kmax + kmax * kmax + 15 * n +
+    acols = a_cols;
+    f.resize(static_cast<std::size_t>(n * acols + n + n * kmax + kmax * kmax + 15 * n +
                                       4 * kmax + 1));
     i.resize(static_cast<std::size_t>(6 * n + 1 + kmax + 1));
     flags.resize(static_cast<std::size_t>(n + 1));
@@ -75,9 +78,18 @@ struct Run {
         piv = w.piv();
     }
 
-    // out = column e of A (e = n: the covering column). The one place that reads A.
+    // out = column e of A (e = n: the covering column). The one place that reads A: the
+    // dense A, or with Fs, d (e = n) or the column Fs Fs[e]' of M (unrevised.fetch_column).
     void fetch_column(idx e, double* out) const {
-        for (idx i = 0; i < n; ++i) out[i] = src.A(i, e);
+        if (src.Fs.rows == 0) {
+            for (idx i = 0; i < n; ++i) out[i] = src.A(i, e);
+        } else if (e == n) {
+            for (idx i = 0; i < n; ++i) out[i] = src.A(i, 0);
+        } else {
+            idx r = src.Fs.cols;
+            const double* fe = src.Fs.row(e);
+            for (idx i = 0; i < n; ++i) out[i] = dot(src.Fs.row(i), fe, r);
+        }
     }
 
     void set_column(idx j, const double* col) const {
@@ -404,16 +416,35 @@ Status unrevised_solve(Mat<const double> M, const double* q, const double* d, co
                        std::uint8_t* z_basic_out, idx& pivots) {
     thread_local UnrevisedWork w;
     idx n = M.rows;
-    w.layout(n, n);
+    w.layout(n, n, n + 1);
     Mat<double> A = w.A();
     double d_scale = scaled_into(M, q, d, R, C, A, w.qs());
     std::uint8_t* zs = w.z_start();
     for (idx i = 0; i < n; ++i) zs[i] = z_start && z_start[i] ? 1 : 0;
-    ColumnSource src{A};
+    ColumnSource src{A, Mat<const double>()};
     Status status = unrevised_lemke(w, src, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
                                     z_basic_out, pivots);
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED, n);
     return status;
+}
+
+Status unrevised_factored(Mat<const double> Fs, const double* d, const double* q,
+                          idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
+                          double* ray_out, std::uint8_t* z_basic_out, idx& pivots) {
+    thread_local UnrevisedWork w;
+    idx n = Fs.rows;
+    w.layout(n, std::min<idx>(n, Fs.cols + 1), 1);
+    Mat<double> A = w.A();
+    double* qs = w.qs();
+    std::uint8_t* zs = w.z_start();
+    for (idx i = 0; i < n; ++i) {
+        A(i, 0) = d[i];
+        qs[i] = q[i];
+        zs[i] = 0;
+    }
+    ColumnSource src{A, Fs};
+    return unrevised_lemke(w, src, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
+                           pivots);
 }
 
 }  // namespace lemke

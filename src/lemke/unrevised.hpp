@@ -5,10 +5,10 @@
 // and the basic values, updated in place and checked against the block every CHECK_EVERY
 // pivots. Labels: 0..n-1 for w, n..2n-1 for z, 2n for z0.
 //
-// Only the dense path is ported (M given; numba's Fs empty, G0 empty). The columns of A
-// come through one function (fetch_column, over a ColumnSource), and H's arrays are sized
-// by kmax (its largest possible size), so that the factored form M = Fs Fs' (A = d alone,
-// kmax = min(n, rank + 1)) can be added there.
+// Both forms of numba's kernel with G0 empty: M dense (A = [M | d], kmax = n) and M in
+// factored form M = Fs Fs' (A = d alone, n x 1; a column Fs Fs[e]' computed when z_e
+// enters; kmax = min(n, r + 1)). The columns of A come through one function (fetch_column,
+// over a ColumnSource), and H's arrays are sized by kmax (its largest possible size).
 #pragma once
 #include <vector>
 
@@ -16,14 +16,15 @@
 
 namespace lemke {
 
-// Where the columns of A = [M | d] come from: the dense A (n x (n + 1)) in the scaled units.
-// (The factored form would add Fs here and compute column e < n as Fs Fs[e]'.)
+// Where the columns of A = [M | d] come from, in the scaled units: the dense A (n x (n + 1))
+// when Fs has no rows; else M = Fs Fs' (Fs n x r) and A is d alone (n x 1).
 struct ColumnSource {
     Mat<const double> A;
+    Mat<const double> Fs;
 };
 
 // The unrevised method's workspace, laid out once per size (one per thread, reused).
-// f:     A (n x (n + 1)) and qs (n): the scaled system;
+// f:     A (n x acols: n + 1 dense, 1 factored) and qs (n): the scaled system;
 //        AB (n x kmax): AB[:, c] = A[:, blist[c]];  G (kmax x kmax): H^-1;
 //        15 vectors of n: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys, rv, rc, acol, lcol,
 //        coef;  then 4 kmax: invert_in_place's work.
@@ -33,10 +34,10 @@ struct UnrevisedWork {
     std::vector<double> f;
     std::vector<idx> i;
     std::vector<std::uint8_t> flags;
-    idx n = -1, kmax = -1;
-    void layout(idx size, idx block_max);
-    Mat<double> A() { return Mat<double>(f.data(), n, n + 1); }
-    double* qs() { return f.data() + n * (n + 1); }
+    idx n = -1, kmax = -1, acols = -1;
+    void layout(idx size, idx block_max, idx a_cols);
+    Mat<double> A() { return Mat<double>(f.data(), n, acols); }
+    double* qs() { return f.data() + n * acols; }
     Mat<double> AB() { return Mat<double>(qs() + n, n, kmax); }
     Mat<double> G() { return Mat<double>(qs() + n + n * kmax, kmax, kmax); }
     double* vec(idx which) { return qs() + n + n * kmax + kmax * kmax + which * n; }  // < 15
@@ -67,5 +68,13 @@ Status unrevised_solve(Mat<const double> M, const double* q, const double* d, co
                        const double* C, const std::uint8_t* z_start, idx max_pivots,
                        double pivot_tol, double tie_tol, double* x_out, double* ray_out,
                        std::uint8_t* z_basic_out, idx& pivots);
+
+// numba's unrevised.lemke(d[:, None], Fs, q, false_flags(n), no_matrix(), ...): Lemke's
+// method from the all-w basis on LCP(Fs Fs', q) with covering vector d, M never formed
+// (the LCP of kernels.qp.gram_lcp, whose units it takes as given: no scaling here).
+// Outputs as unrevised_lemke.
+Status unrevised_factored(Mat<const double> Fs, const double* d, const double* q,
+                          idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
+                          double* ray_out, std::uint8_t* z_basic_out, idx& pivots);
 
 }  // namespace lemke

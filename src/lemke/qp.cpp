@@ -1,0 +1,1008 @@
+#include "qp.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "lcp.hpp"
+#include "pivoting.hpp"
+#include "unrevised.hpp"
+
+namespace lemke {
+namespace qp {
+
+namespace {
+
+// The QP kernels' workspace, one per thread, laid out in one place (QPWork::layout) for a
+// QP with p equality rows and m inequality rows (qp.rows_of) of n variables, r = n - p:
+// (screen's Ps, lo, up come first, in a block of their own: the bounds decide p and m.)
+//   f:  L (n x n), Pd (n x n, the proximal copy), E (p x n),
+//       C (m x n), f (p), d (m), V (pv x n, pv = min(p, n)), beta (pv), c, v (n), g (m);
+//       the fused path's LCP: M (m x m, only when dense), zz, ones (m), yy (p),
+//       buf (6m + 2: cold's buffer); the factored path (gram_lcp keeps its own: it is
+//       bound alone too): K2, V2 (kr x r, kr = min(m, r)), beta2 (kr), rd (n), rpE (p),
+//       rpS (kr), xi, dx (n), dy (p), dz, zg (m), cc, va (n), zS (kr); the sums' s, err,
+//       size (n) and kkt_check's 4n.
+//   i:  ekind (p), ckind (m), up_row (n), S (m), lcp basic (m).
+//   b:  mlcp_basis's flags (m + 2n), gram's flags (m).
+struct QPWork {
+    std::vector<double> f;
+    std::vector<idx> i;
+    std::vector<std::uint8_t> b;
+    idx n = 0, p = 0, m = 0, r = 0, pv = 0, kr = 0;
+    Mat<double> L, Pd, E, C, V, M, K2, V2;
+    double *fv, *d, *beta, *c, *v, *g, *zz, *ones, *yy, *buf, *beta2, *rd, *rpE, *rpS, *xi, *dx, *dy, *dz, *zg, *cc, *va, *zS, *s, *err, *size, *kkt;
+    idx *ekind, *ckind, *up_row, *S, *lcp_basic;
+    std::uint8_t *bflags, *gflags;
+
+    void layout(idx n_, idx p_, idx m_, bool dense) {
+        n = n_;
+        p = p_;
+        m = m_;
+        r = std::max<idx>(n - p, 0);
+        pv = std::min(p, n);
+        kr = std::min(m, r);
+        idx total = 2 * n * n + p * n + m * n + p + m + pv * n + pv + 2 * n + m +
+                    (dense ? m * m : 0) + 2 * m + p + 6 * m + 2 + 2 * kr * r + kr + n + p + kr + 2 * n + p + 2 * m + 2 * n + kr + 3 * n +
+                    4 * n + 1;
+        f.resize(static_cast<std::size_t>(total));
+        i.resize(static_cast<std::size_t>(p + 3 * m + n + 1));
+        b.resize(static_cast<std::size_t>(2 * m + 2 * n + 1));
+        Carver cv(f.data());
+        auto mat = [&](idx rows, idx cols) { return Mat<double>(cv.take(rows * cols).data(), rows, cols); };
+        auto vec = [&](idx len) { return cv.take(len).data(); };
+        L = mat(n, n);
+        Pd = mat(n, n);
+        E = mat(p, n);
+        C = mat(m, n);
+        fv = vec(p);
+        d = vec(m);
+        V = mat(pv, n);
+        beta = vec(pv);
+        c = vec(n);
+        v = vec(n);
+        g = vec(m);
+        M = mat(dense ? m : 0, dense ? m : 0);
+        zz = vec(m);
+        ones = vec(m);
+        yy = vec(p);
+        buf = vec(6 * m + 2);
+        K2 = mat(kr, r);
+        V2 = mat(kr, r);
+        beta2 = vec(kr);
+        rd = vec(n);
+        rpE = vec(p);
+        rpS = vec(kr);
+        xi = vec(n);
+        dx = vec(n);
+        dy = vec(p);
+        dz = vec(m);
+        zg = vec(m);
+        cc = vec(n);
+        va = vec(n);
+        zS = vec(kr);
+        s = vec(n);
+        err = vec(n);
+        size = vec(n);
+        kkt = vec(4 * n);
+        idx* ip = i.data();
+        ekind = ip;
+        ckind = ip + p;
+        up_row = ckind + m;
+        S = up_row + n;
+        lcp_basic = S + m;
+        bflags = b.data();
+        gflags = bflags + m + 2 * n;
+    }
+};
+
+QPWork& work() {
+    thread_local QPWork w;
+    return w;
+}
+
+const double NEG_ZERO = -0.0;
+
+// ----------------------------------------------------------------------------- factors
+
+void forward(Mat<const double> L, double* r) {
+    idx n = L.rows;
+    idx s = 0;
+    while (s < n && r[s] == 0.0) ++s;
+    const double* rs = r + s;
+    for (idx j = s; j < n; ++j) {
+        const double* Lj = L.row(j);
+        r[j] = (r[j] - dot(Lj + s, rs, j - s)) / Lj[j];
+    }
+}
+
+void backward_transposed(Mat<const double> L, double* r) {
+    idx n = L.rows;
+    for (idx j = n - 1; j >= 0; --j) {
+        double xj = r[j] / L(j, j);
+        r[j] = xj;
+        const double* Lj = L.row(j);
+        for (idx k = 0; k < j; ++k) r[k] -= xj * Lj[k];
+    }
+}
+
+// x := H_k x (x of V.cols entries).
+void householder_apply(Mat<const double> V, const double* beta, idx k, double* x) {
+    idx n = V.cols;
+    const double* v = V.row(k) + k;
+    double* r = x + k;
+    double s = beta[k] * dot(v, r, n - k);
+    if (s != 0.0)
+        for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+}
+
+// ----------------------------------------------------------------------------- compensated sums
+
+struct Dot2 {
+    double sum, size, norm;
+};
+
+Dot2 dot2(const double* x, const double* y, idx n, double c) {
+    double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        acc2(s, err, x[j], y[j]);
+        size += std::fabs(x[j] * y[j]);
+        norm += std::fabs(x[j]);
+    }
+    return {s + err, size, norm};
+}
+
+void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
+    for (idx j = 0; j < n; ++j) {
+        double p, e, t, f;
+        two_product(a, x[j], p, e);
+        two_sum(s[j], p, t, f);
+        s[j] = t;
+        err[j] += e + f;
+        size[j] += std::fabs(p);
+    }
+}
+
+// axpy2 of every row of M with coefficient coef[i] (qp.axpy2_matrix, axpy2_rows).
+void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coef,
+                  Mat<const double> M) {
+    for (idx i = 0; i < M.rows; ++i) axpy2(s, err, size, n, coef[i], M.row(i));
+}
+
+// ----------------------------------------------------------------------------- rows
+
+struct Rows {
+    Mat<double> E, C;
+    double *f, *d;
+    idx *ekind, *ckind;
+    idx p, m, m_g;
+};
+
+// The counts of qp.rows_of: (p, m).
+void row_counts(const Data& dt, const double* lb, const double* ub, idx& p, idx& m) {
+    idx n = dt.n();
+    idx n_fix = 0, n_up = 0, n_lo = 0;
+    for (idx j = 0; j < n; ++j) {
+        if (lb[j] == ub[j]) {
+            ++n_fix;
+        } else {
+            if (ub[j] < INF) ++n_up;
+            if (lb[j] > -INF) ++n_lo;
+        }
+    }
+    idx m_g = 0;
+    for (idx i = 0; i < dt.m0(); ++i)
+        if (dt.h[i] < INF) ++m_g;
+    m = m_g + n_up + n_lo;
+    p = dt.p0() + n_fix;
+}
+
+Rows rows_of(const Data& dt, const double* lb, const double* ub, QPWork& w) {
+    idx n = dt.n();
+    Rows R{w.E, w.C, w.fv, w.d, w.ekind, w.ckind, w.p, w.m, 0};
+    for (idx t = 0; t < w.p * n; ++t) R.E.p[t] = 0.0;
+    for (idx t = 0; t < w.m * n; ++t) R.C.p[t] = 0.0;
+    for (idx t = 0; t < w.p; ++t) R.ekind[t] = -1;
+    for (idx t = 0; t < w.m; ++t) R.ckind[t] = -1;
+    idx p0 = dt.p0();
+    for (idx i = 0; i < p0; ++i) {
+        double* Ei = R.E.row(i);
+        const double* Ai = dt.A.row(i);
+        for (idx t = 0; t < n; ++t) Ei[t] = Ai[t];
+        R.f[i] = dt.b[i];
+    }
+    idx k = p0;
+    for (idx j = 0; j < n; ++j) {
+        if (lb[j] == ub[j]) {
+            R.E(k, j) = 1.0;
+            R.f[k] = lb[j];
+            R.ekind[k] = j;
+            ++k;
+        }
+    }
+    k = 0;
+    for (idx i = 0; i < dt.m0(); ++i) {
+        if (dt.h[i] < INF) {
+            double* Ck = R.C.row(k);
+            const double* Gi = dt.G.row(i);
+            for (idx t = 0; t < n; ++t) Ck[t] = Gi[t];
+            R.d[k] = dt.h[i];
+            R.ckind[k] = -1 - i;
+            ++k;
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        if (lb[j] != ub[j] && ub[j] < INF) {
+            R.C(k, j) = 1.0;
+            R.d[k] = ub[j];
+            R.ckind[k] = j;
+            ++k;
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        if (lb[j] != ub[j] && lb[j] > -INF) {
+            R.C(k, j) = -1.0;
+            R.d[k] = -lb[j];
+            R.ckind[k] = n + j;
+            ++k;
+        }
+    }
+    return R;
+}
+
+// qp.mlcp_basis: the basis as solve_qp's KKT-MLCP numbers it, into out; (k, pairs).
+void mlcp_basis(const double* lb, const double* ub, idx n, idx m_g, const idx* ckind, idx m,
+                const idx* lcp_basic, idx kb, idx* out, std::uint8_t* flags, idx& k_out,
+                idx& pairs) {
+    for (idx t = 0; t < m + 2 * n; ++t) flags[t] = 0;
+    std::uint8_t* on = flags;
+    std::uint8_t* lo_on = flags + m;
+    std::uint8_t* up_on = flags + m + n;
+    for (idx i = 0; i < kb; ++i) on[lcp_basic[i]] = 1;
+    for (idx i = m_g; i < m; ++i) {
+        idx j = ckind[i];
+        if (j < n) up_on[j] = on[i];
+        else lo_on[j - n] = on[i];
+    }
+    idx k = 0, pos = 0;
+    for (idx j = 0; j < n; ++j) {
+        bool lo = lb[j] > -INF, up = ub[j] < INF;
+        if ((lo || up) && lb[j] != ub[j]) {
+            if (!(lo ? lo_on[j] : up_on[j])) out[k++] = pos;
+            ++pos;
+        }
+    }
+    for (idx i = 0; i < m_g; ++i) {
+        if (on[i]) out[k++] = pos;
+        ++pos;
+    }
+    for (idx j = 0; j < n; ++j) {
+        if (lb[j] > -INF && ub[j] < INF && lb[j] != ub[j]) {
+            if (up_on[j]) out[k++] = pos;
+            ++pos;
+        }
+    }
+    k_out = k;
+    pairs = pos;
+}
+
+// qp.factors: steps 2 and 3 and g, given L (in w.L). Returns OK or DEPENDENT_EQUALITIES.
+int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows& R) {
+    idx n = dt.n();
+    R = rows_of(dt, lb, ub, w);
+    idx p = R.p, m = R.m;
+    idx m_g = 0;
+    while (m_g < m && R.ckind[m_g] < 0) ++m_g;
+    R.m_g = m_g;
+    double* c = w.c;
+    for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
+    if (p > n) return DEPENDENT_EQUALITIES;
+    Mat<const double> L = w.L;
+    forward_rows(L, R.E);
+    idx m_u = m_g;
+    while (m_u < m && R.ckind[m_u] < n) ++m_u;
+    forward_rows(L, Mat<double>(R.C.p, m_u, n));
+    idx* up_row = w.up_row;
+    for (idx j = 0; j < n; ++j) up_row[j] = -1;
+    for (idx i = m_g; i < m_u; ++i) up_row[R.ckind[i]] = i;
+    for (idx i = m_u; i < m; ++i) {
+        idx j = R.ckind[i] - n;
+        if (up_row[j] >= 0) {
+            double* Ci = R.C.row(i);
+            const double* Cu = R.C.row(up_row[j]);
+            for (idx t = 0; t < n; ++t) Ci[t] = -Cu[t];
+        } else {
+            forward(L, R.C.row(i));
+        }
+    }
+    forward(L, c);
+    if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
+    for (idx k = 0; k < p; ++k) {
+        householder_apply(w.V, w.beta, k, c);
+        for (idx i = 0; i < m; ++i) householder_apply(w.V, w.beta, k, R.C.row(i));
+    }
+    double* v = w.v;
+    for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
+    idx r = n - p;
+    const double* c2 = c + p;
+    for (idx i = 0; i < m; ++i) {
+        const double* Fi = R.C.row(i);
+        w.g[i] = R.d[i] - dot(Fi, v, p) + dot(Fi + p, c2, r);
+    }
+    return OK;
+}
+
+// qp.point: x and yy from v (v1, v2 filled), c and zz (v is overwritten).
+void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c, double* v,
+           const double* zz, double* x, double* yy) {
+    idx p = R.p, m = R.m, n = L.rows;
+    for (idx k = 0; k < p; ++k) {
+        double acc = v[k] + c[k];
+        for (idx i = 0; i < m; ++i) acc += R.C(i, k) * zz[i];
+        yy[k] = acc;
+    }
+    for (idx k = p - 1; k >= 0; --k) {
+        double acc = yy[k];
+        for (idx j = k + 1; j < p; ++j) acc -= R.E(j, k) * yy[j];
+        yy[k] = acc / R.E(k, k);
+    }
+    for (idx k = 0; k < p; ++k) yy[k] = -yy[k];
+    for (idx k = p - 1; k >= 0; --k) householder_apply(w.V, w.beta, k, v);
+    backward_transposed(L, v);
+    for (idx t = 0; t < n; ++t) x[t] = v[t];
+}
+
+struct Outs {
+    double *x, *y, *z, *zb, *stats;
+};
+
+// qp.caller_form.
+void caller_form(const Outs& o, idx n, idx p0, idx m0, const double* yy, const double* zz,
+                 const Rows& R, bool snap) {
+    idx p = R.p, m = R.m, m_g = R.m_g;
+    if (snap) {
+        for (idx i = m_g; i < m; ++i) {
+            if (zz[i] > 0.0) {
+                idx j = R.ckind[i];
+                o.x[j < n ? j : j - n] = j < n ? R.d[i] : -R.d[i];
+            }
+        }
+        for (idx k = p0; k < p; ++k) o.x[R.ekind[k]] = R.f[k];
+    }
+    for (idx i = 0; i < m0; ++i) o.z[i] = 0.0;
+    for (idx j = 0; j < n; ++j) o.zb[j] = 0.0;
+    for (idx i = 0; i < p0; ++i) o.y[i] = yy[i];
+    for (idx k = p0; k < p; ++k) o.zb[R.ekind[k]] = yy[k];
+    for (idx i = 0; i < m_g; ++i) o.z[-1 - R.ckind[i]] = zz[i];
+    for (idx i = m_g; i < m; ++i) {
+        idx j = R.ckind[i];
+        if (j < n) o.zb[j] += zz[i];
+        else o.zb[j - n] -= zz[i];
+    }
+}
+
+Outs out_views(double* out, idx n, idx p0, idx m0) {
+    return {out, out + n, out + n + p0, out + n + p0 + m0, out + 2 * n + p0 + m0};
+}
+
+bool proximal_cholesky(Mat<const double> P, Mat<double> Pd, Mat<double> L) {
+    idx n = P.rows;
+    double top = 0.0;
+    for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
+    if (!(top > 0.0)) return false;
+    for (idx i = 0; i < n; ++i) {
+        for (idx j = 0; j < n; ++j) Pd(i, j) = P(i, j);
+        Pd(i, i) += PROXIMAL * top;
+    }
+    return cholesky(Pd, L);
+}
+
+// qp.active_solve. S (k), K2/V2/beta2 the QR of F2_S'; zz written at S (and zeroed).
+void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, idx k,
+                  Mat<const double> K2, Mat<const double> V2, const double* beta2,
+                  const double* rd, const double* rpE, const double* rpS, double* x, double* yy,
+                  double* zz) {
+    idx n = L.rows, p = R.p;
+    double* cc = w.cc;
+    for (idx t = 0; t < n; ++t) cc[t] = rd[t];
+    forward(L, cc);
+    for (idx j = 0; j < p; ++j) householder_apply(w.V, w.beta, j, cc);
+    double* v = w.va;
+    for (idx j = 0; j < p; ++j) v[j] = (rpE[j] - dot(R.E.row(j), v, j)) / R.E(j, j);
+    double* c2 = cc + p;
+    for (idx j = 0; j < k; ++j) householder_apply(V2, beta2, j, c2);
+    double* wv = v + p;
+    idx wl = n - p;
+    for (idx j = 0; j < k; ++j)
+        wv[j] = (rpS[j] - dot(R.C.row(S[j]), v, p) - dot(K2.row(j), wv, j)) / K2(j, j);
+    double* zS = w.zS;
+    for (idx j = k - 1; j >= 0; --j) {
+        double acc = -(wv[j] + c2[j]);
+        for (idx t = j + 1; t < k; ++t) acc -= K2(t, j) * zS[t];
+        zS[j] = acc / K2(j, j);
+    }
+    for (idx t = k; t < wl; ++t) wv[t] = -c2[t];
+    for (idx j = k - 1; j >= 0; --j) householder_apply(V2, beta2, j, wv);
+    for (idx i = 0; i < R.m; ++i) zz[i] = 0.0;
+    for (idx j = 0; j < k; ++j) zz[S[j]] = zS[j];
+    point(L, R, w, cc, v, zz, x, yy);
+}
+
+// qp.active_residuals (P the screened Ps, lb/ub the screened bounds).
+void active_residuals(const Data& dt, const double* lb, const double* ub, const Outs& o,
+                      const Rows& R, const idx* S, idx k, QPWork& w, double* rd, double* rpE,
+                      double* rpS) {
+    idx n = dt.n(), p0 = dt.p0();
+    double *s = w.s, *err = w.err, *size = w.size;
+    for (idx j = 0; j < n; ++j) {
+        s[j] = dt.q[j];
+        err[j] = 0.0;
+        size[j] = 0.0;
+    }
+    axpy2_matrix(s, err, size, n, o.x, dt.P);
+    axpy2_matrix(s, err, size, n, o.y, dt.A);
+    for (idx j = 0; j < k; ++j) {
+        idx i = R.ckind[S[j]];
+        if (i < 0) axpy2(s, err, size, n, o.z[-1 - i], dt.G.row(-1 - i));
+    }
+    for (idx j = 0; j < n; ++j) {
+        double t, e;
+        two_sum(s[j], o.zb[j], t, e);
+        rd[j] = t + (e + err[j]);
+    }
+    for (idx kk = 0; kk < R.p; ++kk) {
+        if (kk < p0) rpE[kk] = -dot2(dt.A.row(kk), o.x, n, -dt.b[kk]).sum;
+        else rpE[kk] = R.f[kk] - o.x[R.ekind[kk]];
+    }
+    for (idx j = 0; j < k; ++j) {
+        idx i = R.ckind[S[j]];
+        if (i < 0) rpS[j] = -dot2(dt.G.row(-1 - i), o.x, n, -dt.h[-1 - i]).sum;
+        else if (i < n) rpS[j] = ub[i] - o.x[i];
+        else rpS[j] = o.x[i - n] - lb[i - n];
+    }
+}
+
+// qp._gram: the factored LCP, the active set's point refined `steps` times, the check.
+Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows& R,
+            idx max_pivots, double pivot_tol, double tie_tol, double tol, const Outs& o,
+            idx* basic, idx steps) {
+    Result res;
+    idx n = dt.n(), p = R.p, m = R.m, r = n - p;
+    std::uint8_t* flags = w.gflags;
+    idx pivots = 0;
+    int status = gram_lcp(R.C, w.g, p, max_pivots, pivot_tol, tie_tol, flags, pivots);
+    res.pivots = pivots;
+    if (status != SOLVED) {
+        res.code = NOT_SOLVED;
+        return res;
+    }
+    idx k = 0;
+    for (idx i = 0; i < m; ++i)
+        if (flags[i]) ++k;
+    if (k > r) {
+        res.code = NOT_SOLVED;
+        return res;
+    }
+    idx* S = w.S;
+    k = 0;
+    for (idx i = 0; i < m; ++i)
+        if (flags[i]) S[k++] = i;
+    Mat<double> K2(w.K2.p, k, r), V2(w.V2.p, k, r);
+    for (idx j = 0; j < k; ++j) {
+        const double* Fi = R.C.row(S[j]) + p;
+        double* K2j = K2.row(j);
+        for (idx t = 0; t < r; ++t) K2j[t] = Fi[t];
+    }
+    if (qr_rows(K2, V2, w.beta2) <= RANK_TOL) {
+        res.code = NOT_SOLVED;
+        return res;
+    }
+    double *rd = w.rd, *rpE = w.rpE, *rpS = w.rpS;
+    for (idx t = 0; t < n; ++t) rd[t] = dt.q[t];
+    for (idx t = 0; t < p; ++t) rpE[t] = R.f[t];
+    for (idx j = 0; j < k; ++j) rpS[j] = R.d[S[j]];
+    double *xi = w.xi, *yy = w.yy, *zz = w.zg, *dx = w.dx, *dy = w.dy, *dz = w.dz;
+    Mat<const double> L = w.L;
+    active_solve(L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, xi, yy, zz);
+    idx p0 = dt.p0(), m0 = dt.m0();
+    for (idx step = 0; step < steps; ++step) {
+        for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
+        caller_form(o, n, p0, m0, yy, zz, R, false);
+        active_residuals(dt, lb, ub, o, R, S, k, w, rd, rpE, rpS);
+        active_solve(L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, dx, dy, dz);
+        for (idx t = 0; t < n; ++t) xi[t] += dx[t];
+        for (idx t = 0; t < p; ++t) yy[t] += dy[t];
+        for (idx j = 0; j < k; ++j) zz[S[j]] += dz[S[j]];
+    }
+    for (idx j = 0; j < k; ++j) zz[S[j]] = pmax(zz[S[j]], 0.0);
+    for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
+    caller_form(o, n, p0, m0, yy, zz, R, true);
+    mlcp_basis(lb, ub, n, R.m_g, R.ckind, m, S, k, basic, w.bflags, res.k, res.pairs);
+    Data checked = dt;
+    checked.lb = lb;
+    checked.ub = ub;
+    if (!kkt_check(checked, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+        res.code = CHECK_FAILED;
+        return res;
+    }
+    res.code = OK;
+    return res;
+}
+
+}  // namespace
+
+// ----------------------------------------------------------------------------- public pieces
+
+// qp._dot4, compiled by numba with fastmath {reassoc, contract}: LLVM vectorizes its four
+// sums. On this host (AVX-512, znver4: the loop vectorizer's choice in qp._dot4's
+// assembly) the main loop takes 8 lanes x 4 interleaved parts (32 terms a step) by fused
+// multiply-adds, its parts summed ((p0 + p1) + p2) + p3 and the lanes halved (l + l + 4,
+// l + l + 2, 0 + 1); then an epilogue of 4 lanes (from the main loop's sum in lane 0) up
+// to the last multiple of 4, halved the same way; then the rest one fused multiply-add
+// at a time. The starting lanes are -0.0 but lane 0 of part 0 (+0.0).
+// Compiled per instruction set with hardware fused multiply-adds (the baseline variant
+// calls libm's fma: the same bits, slower); every variant gives the same bits.
+#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(LEMKE_NO_CLONES) \
+    && !defined(__SANITIZE_ADDRESS__)
+#define LEMKE_FMA_CLONES \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define LEMKE_FMA_CLONES
+#endif
+
+LEMKE_FMA_CLONES
+void dot4(const double* a, const double* r0, const double* r1, const double* r2,
+          const double* r3, idx len, double* out) {
+    const double* rr[4] = {r0, r1, r2, r3};
+    double s[4] = {0.0, 0.0, 0.0, 0.0};
+    idx t = 0;
+    if (len <= 0) {
+        for (int q = 0; q < 4; ++q) out[q] = 0.0;
+        return;
+    }
+    bool epilogue = false;
+    if (len >= 4) {
+        if (len >= 32) {
+            idx main_end = len & ~static_cast<idx>(31);
+            double acc[4][32];  // acc[q][8 u + l]: sum q, part u, lane l
+            for (int q = 0; q < 4; ++q)
+                for (int e = 0; e < 32; ++e) acc[q][e] = NEG_ZERO;
+            for (int q = 0; q < 4; ++q) acc[q][0] = 0.0;
+            for (idx j = 0; j < main_end; j += 32)
+                for (int q = 0; q < 4; ++q) {
+                    const double* rq = rr[q] + j;
+                    const double* aj = a + j;
+                    double* aq = acc[q];
+                    for (int e = 0; e < 32; ++e) aq[e] = std::fma(aj[e], rq[e], aq[e]);
+                }
+            for (int q = 0; q < 4; ++q) {
+                const double* aq = acc[q];
+                double v[8], h4[4], h2[2];
+                for (int l = 0; l < 8; ++l) v[l] = ((aq[l] + aq[8 + l]) + aq[16 + l]) + aq[24 + l];
+                for (int l = 0; l < 4; ++l) h4[l] = v[l] + v[l + 4];
+                for (int l = 0; l < 2; ++l) h2[l] = h4[l] + h4[l + 2];
+                s[q] = h2[0] + h2[1];
+            }
+            t = main_end;
+            if (t != len && (len & 28) != 0) epilogue = true;
+        } else {
+            epilogue = true;
+        }
+    }
+    if (epilogue) {
+        idx end4 = len & ~static_cast<idx>(3);
+        for (int q = 0; q < 4; ++q) {
+            double acc[4] = {s[q], NEG_ZERO, NEG_ZERO, NEG_ZERO};
+            const double* rq = rr[q];
+            for (idx j = t; j < end4; j += 4)
+                for (int l = 0; l < 4; ++l) acc[l] = std::fma(a[j + l], rq[j + l], acc[l]);
+            double h2[2] = {acc[0] + acc[2], acc[1] + acc[3]};
+            s[q] = h2[0] + h2[1];
+        }
+        t = end4;
+    }
+    for (; t < len; ++t)
+        for (int q = 0; q < 4; ++q) s[q] = std::fma(a[t], rr[q][t], s[q]);
+    for (int q = 0; q < 4; ++q) out[q] = s[q];
+}
+
+void forward_rows(Mat<const double> L, Mat<double> R) {
+    idx n = L.rows, k = R.rows;
+    idx i = 0;
+    while (i + 4 <= k) {
+        double *r0 = R.row(i), *r1 = R.row(i + 1), *r2 = R.row(i + 2), *r3 = R.row(i + 3);
+        idx s = 0;
+        while (s < n && r0[s] == 0.0 && r1[s] == 0.0 && r2[s] == 0.0 && r3[s] == 0.0) ++s;
+        for (idx j = s; j < n; ++j) {
+            const double* Lj = L.row(j);
+            double d[4];
+            dot4(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
+            double inv = 1.0 / Lj[j];
+            r0[j] = (r0[j] - d[0]) * inv;
+            r1[j] = (r1[j] - d[1]) * inv;
+            r2[j] = (r2[j] - d[2]) * inv;
+            r3[j] = (r3[j] - d[3]) * inv;
+        }
+        i += 4;
+    }
+    for (; i < k; ++i) forward(L, R.row(i));
+}
+
+double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
+    idx p = WE.rows, n = WE.cols;
+    if (p > n) return 0.0;
+    double top = 0.0;
+    for (idx k = 0; k < p; ++k) top = pmax(top, std::sqrt(dot(WE.row(k), WE.row(k), n)));
+    double worst = INF;
+    for (idx k = 0; k < p; ++k) {
+        double* x = WE.row(k);
+        for (idx i = 0; i < k; ++i) householder_apply(V, beta, i, x);
+        double sigma = dot(x + k, x + k, n - k);
+        double norm = std::sqrt(sigma);
+        double* v = V.row(k);
+        for (idx t = 0; t < k; ++t) v[t] = 0.0;
+        for (idx t = k; t < n; ++t) v[t] = x[t];
+        double alpha = x[k] >= 0.0 ? -norm : norm;
+        v[k] -= alpha;
+        double vv = dot(v + k, v + k, n - k);
+        beta[k] = vv > 0.0 ? 2.0 / vv : 0.0;
+        x[k] = alpha;
+        for (idx t = k + 1; t < n; ++t) x[t] = 0.0;
+        worst = pmin(worst, top > 0.0 ? norm / top : 0.0);
+    }
+    return p ? worst : INF;
+}
+
+bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
+    idx n = dt.n();
+    Mat<double> Ps(Ps_, n, n);
+    bool finite = all_finite(dt.q, n);
+    finite &= all_finite(dt.P.p, n * n);
+    double top = absmax(dt.P.p, n * n);
+    double asym = 0.0;
+    const idx B = 32;
+    for (idx i0 = 0; i0 < n; i0 += B)
+        for (idx j0 = 0; j0 < i0 + 1; j0 += B)
+            for (idx i = i0; i < std::min(i0 + B, n); ++i)
+                for (idx j = j0; j < std::min(j0 + B, i + 1); ++j) {
+                    double a = dt.P(i, j), c = dt.P(j, i);
+                    asym = pmax(asym, std::fabs(a - c));
+                    Ps(i, j) = 0.5 * (a + c);
+                    Ps(j, i) = Ps(i, j);
+                }
+    idx m0 = dt.m0();
+    finite &= all_finite(dt.G.p, m0 * n);
+    for (idx i = 0; i < m0; ++i)
+        if (!(dt.h[i] > -INF)) return false;
+    idx p0 = dt.p0();
+    finite &= all_finite(dt.A.p, p0 * n);
+    finite &= all_finite(dt.b, p0);
+    if (!finite || asym > SYMMETRY_TOL * top) return false;
+    for (idx j = 0; j < n; ++j) {
+        double a = dt.lb[j], c = dt.ub[j];
+        if (!(a < INF && c > -INF && a <= c)) return false;
+        lo[j] = a > -INFINITY_BOUND ? a : -INF;
+        up[j] = c < INFINITY_BOUND ? c : INF;
+    }
+    return true;
+}
+
+bool cholesky(Mat<const double> P, Mat<double> L) {
+    idx n = P.rows;
+    double top = 0.0;
+    for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
+    double floor = DEFINITE_TOL * top;
+    if (!(top > 0.0)) return false;
+    for (idx i = 0; i < n; ++i) {
+        double* Li = L.row(i);
+        for (idx j = 0; j < i; ++j) Li[j] = (P(i, j) - dot(Li, L.row(j), j)) / L(j, j);
+        double d = P(i, i) - dot(Li, Li, i);
+        if (!(d > floor)) return false;
+        Li[i] = std::sqrt(d);
+        for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
+    }
+    return true;
+}
+
+bool kkt_check(const Data& dt, const double* x, const double* y, const double* z,
+               const double* zb, double tol, double* stats) {
+    idx n = dt.n();
+    double t = tol + 4.0 * EPS;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(4 * n + 1));
+    double* s = work.data();
+    double* err = s + n;
+    double* size = s + 2 * n;
+    double* allow = s + 3 * n;
+    for (idx j = 0; j < n; ++j) {
+        s[j] = dt.q[j];
+        err[j] = 0.0;
+        size[j] = std::fabs(dt.q[j]);
+    }
+    axpy2_matrix(s, err, size, n, x, dt.P);
+    double gap_hi = 0.0, gap_lo = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        acc2(gap_hi, gap_lo, x[j], s[j]);
+        gap_lo += x[j] * err[j];
+    }
+    double xPq_hi = gap_hi, xPq_lo = gap_lo;
+    axpy2_matrix(s, err, size, n, y, dt.A);
+    axpy2_matrix(s, err, size, n, z, dt.G);
+    bool ok = true;
+    double dual = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        double r, e;
+        two_sum(s[j], zb[j], r, e);
+        r += e + err[j];
+        allow[j] = t * (size[j] + std::fabs(zb[j]));
+        dual = pmax(dual, std::fabs(r));
+        if (!(std::fabs(r) <= allow[j])) ok = false;
+    }
+    double x_top = 0.0;
+    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
+    double floor = 4.0 * static_cast<double>(n + 2) * EPS * x_top;
+    double primal = 0.0;
+    for (idx i = 0; i < dt.p0(); ++i) {
+        Dot2 d = dot2(dt.A.row(i), x, n, -dt.b[i]);
+        primal = pmax(primal, std::fabs(d.sum));
+        acc2(gap_hi, gap_lo, dt.b[i], y[i]);
+        if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
+    }
+    for (idx i = 0; i < dt.m0(); ++i) {
+        if (!(dt.h[i] < INF)) continue;
+        Dot2 d = dot2(dt.G.row(i), x, n, -dt.h[i]);
+        double r = d.sum;
+        double sz = t * d.size + floor * d.norm;
+        primal = pmax(primal, r);
+        acc2(gap_hi, gap_lo, dt.h[i], z[i]);
+        double zi = z[i];
+        if (!(r <= sz && zi >= 0.0)) {
+            ok = false;
+        } else if (zi > 0.0 && -r > sz) {
+            const double* Gi = dt.G.row(i);
+            for (idx j = 0; j < n; ++j) {
+                if (std::fabs(zi * Gi[j]) > allow[j]) {
+                    ok = false;
+                    break;
+                }
+            }
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        double zj = zb[j];
+        bool lo = dt.lb[j] > -INF, up = dt.ub[j] < INF;
+        double s_lo = t * (std::fabs(dt.lb[j]) + std::fabs(x[j])) + floor;
+        double s_up = t * (std::fabs(dt.ub[j]) + std::fabs(x[j])) + floor;
+        if (lo) {
+            double r = dt.lb[j] - x[j];
+            primal = pmax(primal, r);
+            if (zj < 0.0) acc2(gap_hi, gap_lo, dt.lb[j], zj);
+            if (r > s_lo) ok = false;
+        }
+        if (up) {
+            double r = x[j] - dt.ub[j];
+            primal = pmax(primal, r);
+            if (zj > 0.0) acc2(gap_hi, gap_lo, dt.ub[j], zj);
+            if (r > s_up) ok = false;
+        }
+        bool active;
+        if (dt.lb[j] == dt.ub[j]) active = true;
+        else if (zj < 0.0) active = lo && x[j] - dt.lb[j] <= s_lo;
+        else if (zj > 0.0) active = up && dt.ub[j] - x[j] <= s_up;
+        else active = true;
+        if (!active && std::fabs(zj) > allow[j]) ok = false;
+        if (!(x[j] == x[j])) ok = false;
+    }
+    double obj_hi = xPq_hi, obj_lo = xPq_lo;
+    for (idx j = 0; j < n; ++j) acc2(obj_hi, obj_lo, dt.q[j], x[j]);
+    stats[0] = primal;
+    stats[1] = dual;
+    stats[2] = std::fabs(gap_hi + gap_lo);
+    stats[3] = 0.5 * (obj_hi + obj_lo);
+    return ok;
+}
+
+idx zero_diagonal(Mat<const double> P) {
+    idx k = 0;
+    for (idx j = 0; j < P.rows; ++j)
+        if (P(j, j) == 0.0) ++k;
+    return k;
+}
+
+idx flat_directions(Mat<const double> P, Mat<const double> L) {
+    double top = 0.0;
+    for (idx j = 0; j < P.rows; ++j) top = pmax(top, P(j, j));
+    idx flat = 0;
+    for (idx j = 0; j < P.rows; ++j)
+        if (L(j, j) * L(j, j) < FLAT * top) ++flat;
+    return flat;
+}
+
+idx equalities(idx p0, const double* lb, const double* ub, idx n) {
+    idx p = p0;
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] == ub[j]) ++p;
+    return p;
+}
+
+idx inequalities(const double* h, idx m0, const double* lb, const double* ub, idx n) {
+    idx m = 0;
+    for (idx i = 0; i < m0; ++i)
+        if (h[i] < INF) ++m;
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] != ub[j]) m += static_cast<idx>(ub[j] < INF) + static_cast<idx>(lb[j] > -INF);
+    return m;
+}
+
+int gram_lcp(Mat<const double> C, const double* g, idx p, idx max_pivots, double pivot_tol,
+             double tie_tol, std::uint8_t* flags, idx& pivots) {
+    idx m = C.rows;
+    idx r = C.cols - p;
+    pivots = 0;
+    for (idx i = 0; i < m; ++i) flags[i] = 0;
+    double g_min = 0.0;
+    for (idx i = 0; i < m; ++i) g_min = pmin(g_min, g[i]);
+    if (g_min >= 0.0) return SOLVED;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(m * (r + 4) + 2));
+    Mat<double> Fs(work.data(), m, r);
+    double* dcol = work.data() + m * r;
+    double* gs = dcol + m;
+    double* lx = gs + m;
+    double* lray = lx + m + 1;
+    for (idx i = 0; i < m; ++i) {
+        const double* Fi = C.row(i);
+        double norm2 = dot(Fi + p, Fi + p, r);
+        bool keep = norm2 > RANK_TOL * RANK_TOL * (norm2 + dot(Fi, Fi, p));
+        double s = keep ? pow2_rsqrt(norm2) : 1.0;
+        double* Fsi = Fs.row(i);
+        for (idx t = 0; t < r; ++t) Fsi[t] = keep ? s * Fi[p + t] : 0.0;
+        gs[i] = s * g[i];
+        dcol[i] = 1.0;
+    }
+    idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
+    Status st = unrevised_factored(Fs, dcol, gs, cap, pivot_tol, tie_tol, lx, lray, flags, pivots);
+    return st;
+}
+
+Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
+             double tol, double* out, idx* basic) {
+    Result res;
+    idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
+    idx k0 = 2 * n + p0 + m0 + 4;
+    for (idx t = 0; t < k0; ++t) out[t] = 0.0;
+    QPWork& w = work();
+    // the sizes first (screen's bounds decide them): the workspace's layout, then screen
+    thread_local std::vector<double> scr;
+    scr.resize(static_cast<std::size_t>(n * (n + 2) + 1));
+    double* Ps = scr.data();
+    double* lo = Ps + n * n;
+    double* up = lo + n;
+    if (!screen(dt, Ps, lo, up)) {
+        res.code = BAD_INPUT;
+        return res;
+    }
+    idx p, m;
+    row_counts(dt, lo, up, p, m);
+    w.layout(n, p, m, true);
+    Data ds = dt;
+    ds.P = Mat<const double>(Ps, n, n);
+    ds.lb = lo;
+    ds.ub = up;
+    Outs o = out_views(out, n, p0, m0);
+    if (!cholesky(ds.P, w.L)) {
+        res.code = NOT_DEFINITE;
+        return res;
+    }
+    Rows R;
+    int code = factors(ds, lo, up, w, R);
+    if (code != OK) {
+        res.code = code;
+        return res;
+    }
+    idx r = n - p;
+    for (idx i = 0; i < m; ++i) {
+        w.zz[i] = 0.0;
+        w.ones[i] = 1.0;
+    }
+    for (idx i = 0; i < m; ++i) {
+        const double* F2i = R.C.row(i) + p;
+        for (idx j = 0; j <= i; ++j) {
+            w.M(i, j) = dot(F2i, R.C.row(j) + p, r);
+            w.M(j, i) = w.M(i, j);
+        }
+    }
+    idx pivots = 0, k_basic = 0;
+    idx* lcp_basic = basic;
+    if (m > 0) {
+        idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
+        RunResult rr = checked_once(method == TABLEAU ? TABLEAU : UNREVISED, w.M, w.g, w.ones, cap,
+                                    pivot_tol, tie_tol, tol, w.buf, lcp_basic);
+        pivots = rr.pivots;
+        k_basic = rr.k;
+        if (!(rr.code == SOLVED || rr.code == TRIVIAL) || !rr.ok) {
+            res.code = NOT_SOLVED;
+            res.pivots = pivots;
+            return res;
+        }
+        for (idx i = 0; i < m; ++i) w.zz[i] = pmax(w.buf[i], 0.0);
+    }
+    // mlcp_basis reads the LCP's basis whole before it writes there (they share `basic`)
+    idx* lb_copy = w.lcp_basic;
+    for (idx i = 0; i < k_basic; ++i) lb_copy[i] = lcp_basic[i];
+    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k_basic, basic, w.bflags, res.k, res.pairs);
+    double* v = w.v;
+    for (idx t = p; t < n; ++t) v[t] = -w.c[t];
+    for (idx i = 0; i < m; ++i) {
+        double zi = w.zz[i];
+        if (zi != 0.0) {
+            const double* Ci = R.C.row(i);
+            for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
+        }
+    }
+    point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
+    caller_form(o, n, p0, m0, w.yy, w.zz, R, true);
+    res.pivots = pivots;
+    if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+        res.code = CHECK_FAILED;
+        return res;
+    }
+    res.code = OK;
+    return res;
+}
+
+Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_tol, double tol,
+                  double* out, idx out_len, idx* basic, bool semidefinite) {
+    Result res;
+    idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
+    for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
+    thread_local std::vector<double> scr;
+    scr.resize(static_cast<std::size_t>(n * (n + 2) + 1));
+    double* Ps = scr.data();
+    double* lo = Ps + n * n;
+    double* up = lo + n;
+    if (!screen(dt, Ps, lo, up)) {
+        res.code = BAD_INPUT;
+        return res;
+    }
+    Data ds = dt;
+    ds.P = Mat<const double>(Ps, n, n);
+    ds.lb = lo;
+    ds.ub = up;
+    Outs o = out_views(out, n, p0, m0);
+    bool few = inequalities(dt.h, m0, lo, up, n) < GRAM_RATIO * n;
+    if (few && !semidefinite) {
+        res.code = NOT_APPLICABLE;
+        return res;
+    }
+    idx p, m;
+    row_counts(dt, lo, up, p, m);
+    QPWork& w = work();
+    w.layout(n, p, m, false);
+    bool definite = semidefinite ? false : cholesky(ds.P, w.L);
+    if (!definite) {
+        if (few && zero_diagonal(ds.P) > equalities(p0, lo, up, n)) {
+            res.code = NOT_APPLICABLE;
+            return res;
+        }
+        if (!proximal_cholesky(ds.P, w.Pd, w.L)) {
+            res.code = NOT_DEFINITE;
+            return res;
+        }
+        if (few && flat_directions(ds.P, w.L) > equalities(p0, lo, up, n)) {
+            res.code = NOT_APPLICABLE;
+            return res;
+        }
+    }
+    Rows R;
+    int code = factors(ds, lo, up, w, R);
+    if (code != OK) {
+        res.code = code;
+        return res;
+    }
+    return gram(ds, lo, up, w, R, max_pivots, pivot_tol, tie_tol, tol, o, basic,
+                definite ? REFINE : REFINE_PROXIMAL);
+}
+
+}  // namespace qp
+}  // namespace lemke

@@ -1,0 +1,98 @@
+// The QP kernels (the port of lemke/kernels/qp.py, whose docstring states the method): the
+// fused cold path of a strictly convex QP (screen, Cholesky, the rows' substitutions, the
+// QR of the equalities, the multiplier LCP by lemke::checked_once, the point, the KKT check
+// on the caller's data) and the path for many more inequalities than variables (the LCP in
+// factored form by the unrevised method, the active set's point refined in double-double).
+// The same operations in the same order as the numba kernels, so the same bits; the one
+// sum numba compiles with fastmath (qp._dot4, in forward_rows) is written out here as LLVM
+// vectorizes it (see dot4 in qp.cpp).
+#pragma once
+#include <cstdint>
+
+#include "linalg.hpp"
+
+namespace lemke {
+namespace qp {
+
+constexpr int OK = 0;
+constexpr int NOT_DEFINITE = 1;
+constexpr int DEPENDENT_EQUALITIES = 2;
+constexpr int NOT_SOLVED = 3;
+constexpr int CHECK_FAILED = 4;
+constexpr int BAD_INPUT = 5;
+constexpr int NOT_APPLICABLE = 6;
+
+constexpr double INFINITY_BOUND = 1e20;  // qp.INFINITY
+constexpr double SYMMETRY_TOL = 1e-10;
+constexpr double DEFINITE_TOL = 1e-12;
+constexpr double RANK_TOL = 1e-10;
+constexpr double STRICT_TOL = 1e-12;
+constexpr idx GRAM_RATIO = 4;
+constexpr double PROXIMAL = 1e-6;
+constexpr double FLAT = 1e-3;
+constexpr idx REFINE = 2;
+constexpr idx REFINE_PROXIMAL = 3;
+
+// The caller's QP, qpsolvers' form: P (n x n), q, G (m0 x n), h, A (p0 x n), b, lb, ub.
+struct Data {
+    Mat<const double> P;
+    const double* q;
+    Mat<const double> G;
+    const double* h;
+    Mat<const double> A;
+    const double* b;
+    const double* lb;
+    const double* ub;
+    idx n() const { return P.rows; }
+    idx m0() const { return G.rows; }
+    idx p0() const { return A.rows; }
+};
+
+struct Result {
+    int code = OK;
+    idx pivots = 0;
+    idx k = 0;
+    idx pairs = 0;
+};
+
+// qp.screen on data of matching shapes (the caller compares them): whether the values are
+// plainly valid; Ps (n x n) = (P + P')/2, lo and up the bounds with |entries| >= 1e20
+// infinite. Ps, lo, up are complete only when true.
+bool screen(const Data& d, double* Ps, double* lo, double* up);
+
+// qp.cholesky: L (n x n, lower, zeros above) with L L' = P; false when a pivot is not
+// clearly positive.
+bool cholesky(Mat<const double> P, Mat<double> L);
+
+// qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check; stats (4) gets
+// (primal, dual, gap, obj).
+bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
+               const double* zb, double tol, double* stats);
+
+// qp.solve on data of matching shapes: writes out[:2n + p0 + m0 + 4] (x, y, z, zb,
+// stats) and the basis (int64) after it (room for m0 + 2n); method 0 tableau, 1 unrevised.
+Result solve(const Data& d, int method, idx max_pivots, double pivot_tol, double tie_tol,
+             double tol, double* out, idx* basic);
+
+// qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
+// zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
+// tail.
+Result solve_gram(const Data& d, idx max_pivots, double pivot_tol, double tie_tol, double tol,
+                  double* out, idx out_len, idx* basic, bool semidefinite);
+
+// Pieces bound for the oracle tests.
+void forward_rows(Mat<const double> L, Mat<double> R);
+// qp._dot4 as numba compiles it on this host (see qp.cpp): the four sums a' r_k.
+void dot4(const double* a, const double* r0, const double* r1, const double* r2,
+          const double* r3, idx len, double* out);
+double qr_rows(Mat<double> WE, Mat<double> V, double* beta);
+// qp.gram_lcp: (status, pivots); flags (m) the basic z's.
+int gram_lcp(Mat<const double> C, const double* g, idx p, idx max_pivots, double pivot_tol,
+             double tie_tol, std::uint8_t* flags, idx& pivots);
+idx zero_diagonal(Mat<const double> P);
+idx flat_directions(Mat<const double> P, Mat<const double> L);
+idx equalities(idx p0, const double* lb, const double* ub, idx n);
+idx inequalities(const double* h, idx m0, const double* lb, const double* ub, idx n);
+
+}  // namespace qp
+}  // namespace lemke

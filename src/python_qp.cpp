@@ -1,0 +1,239 @@
+// lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
+// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_gram) with the arguments and results of
+// the numba kernels of lemke/kernels/qp.py, and a few pieces for the oracle tests
+// (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts).
+// Sizes are checked here, before the GIL is released: where the numba kernel answers data
+// of mismatched shapes (screen: False; solve, solve_gram: BAD_INPUT) this answers the same;
+// where it would read or write out of bounds this raises ValueError. Arrays of the wrong
+// dtype or layout raise TypeError (outputs are never converted).
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/tuple.h>
+
+#include <cstdint>
+#include <tuple>
+
+#include "lemke/qp.hpp"
+#include "lemke/unrevised.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace {
+
+using lemke::idx;
+namespace qp = lemke::qp;
+
+using In2 = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using In1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Out2 = nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using Out1 = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IdxOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using FlagsOut = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
+using NewMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
+using Code4 = std::tuple<int, std::int64_t, std::int64_t, std::int64_t>;
+
+template <class A>
+idx len(const A& a, std::size_t d = 0) {
+    return static_cast<idx>(a.shape(d));
+}
+
+template <class A>
+lemke::Mat<const double> mat(const A& a) {
+    return lemke::Mat<const double>(a.data(), len(a, 0), len(a, 1));
+}
+
+qp::Data data(const In2& P, const In1& q, const In2& G, const In1& h, const In2& A, const In1& b,
+              const In1& lb, const In1& ub) {
+    return {mat(P), q.data(), mat(G), h.data(), mat(A), b.data(), lb.data(), ub.data()};
+}
+
+// The shapes screen compares (P n x n, G m x n and h m, A p x n and b p, lb and ub n).
+bool shapes_match(const In2& P, const In1& q, const In2& G, const In1& h, const In2& A,
+                  const In1& b, const In1& lb, const In1& ub) {
+    idx n = len(q);
+    return len(P, 0) == n && len(P, 1) == n && len(G, 1) == n && len(h) == len(G, 0) &&
+           len(A, 1) == n && len(b) == len(A, 0) && len(lb) == n && len(ub) == n;
+}
+
+std::tuple<bool, NewMatrix, NewVector, NewVector> screen(In2 P, In1 q, In2 G, In1 h, In2 A,
+                                                         In1 b, In1 lb, In1 ub) {
+    idx n = len(q);
+    double* block = new double[n * (n + 2) > 0 ? n * (n + 2) : 1];
+    nb::capsule owner(block, [](void* p) noexcept { delete[] static_cast<double*>(p); });
+    for (idx t = 0; t < n * (n + 2); ++t) block[t] = 0.0;
+    bool ok = false;
+    if (shapes_match(P, q, G, h, A, b, lb, ub)) {
+        nb::gil_scoped_release release;
+        ok = qp::screen(data(P, q, G, h, A, b, lb, ub), block, block + n * n, block + n * (n + 1));
+    }
+    std::size_t un = static_cast<std::size_t>(n);
+    return {ok, NewMatrix(block, {un, un}, owner), NewVector(block + n * n, {un}, owner),
+            NewVector(block + n * (n + 1), {un}, owner)};
+}
+
+bool cholesky(In2 P, Out2 L) {
+    idx n = len(P, 0);
+    if (len(P, 1) != n || len(L, 0) != n || len(L, 1) != n)
+        throw nb::value_error("qp_cholesky: P and L must be n x n");
+    nb::gil_scoped_release release;
+    return qp::cholesky(mat(P), lemke::Mat<double>(L.data(), n, n));
+}
+
+bool kkt_check(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 x, In1 y, In1 z,
+               In1 zb, double tol, Out1 stats) {
+    idx n = len(q);
+    if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(x) != n || len(y) != len(A, 0) ||
+        len(z) != len(G, 0) || len(zb) != n || len(stats) < 4)
+        throw nb::value_error("qp_kkt_check: P must be n x n, G m x n, A p x n, h and z of "
+                              "length m, b and y p, q, lb, ub, x, zb n, stats at least 4");
+    nb::gil_scoped_release release;
+    return qp::kkt_check(data(P, q, G, h, A, b, lb, ub), x.data(), y.data(), z.data(), zb.data(),
+                         tol, stats.data());
+}
+
+Code4 solve(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method,
+            std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out) {
+    idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
+    idx k0 = 2 * n + p0 + m0 + 4;
+    if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < k0 + m0 + 2 * n) {
+        // numba's kernel: out[:k0] = 0 (clamped to out), then BAD_INPUT from the screen; a
+        // buffer without room for the basis gets the same answer (it would be written past)
+        double* o = out.data();
+        for (idx t = 0; t < k0 && t < len(out); ++t) o[t] = 0.0;
+        return {qp::BAD_INPUT, 0, 0, 0};
+    }
+    qp::Result r;
+    {
+        nb::gil_scoped_release release;
+        r = qp::solve(data(P, q, G, h, A, b, lb, ub), method, max_pivots, pivot_tol, tie_tol, tol,
+                      out.data(), reinterpret_cast<idx*>(out.data() + k0));
+    }
+    return {r.code, r.pivots, r.k, r.pairs};
+}
+
+Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
+                 std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
+                 IdxOut basic, bool semidefinite) {
+    idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
+    idx k0 = 2 * n + p0 + m0 + 4;
+    double* o = out.data();
+    if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < k0 || len(basic) < m0 + 2 * n) {
+        for (idx t = 0; t < len(out); ++t) o[t] = 0.0;
+        return {qp::BAD_INPUT, 0, 0, 0};
+    }
+    qp::Result r;
+    {
+        nb::gil_scoped_release release;
+        r = qp::solve_gram(data(P, q, G, h, A, b, lb, ub), max_pivots, pivot_tol, tie_tol, tol, o,
+                           len(out), basic.data(), semidefinite);
+    }
+    return {r.code, r.pivots, r.k, r.pairs};
+}
+
+// For the tests: the pieces whose bits the solves depend on.
+void forward_rows(In2 L, Out2 R) {
+    idx n = len(L, 0);
+    if (len(L, 1) != n || len(R, 1) != n)
+        throw nb::value_error("qp_forward_rows: L must be n x n, R k x n");
+    nb::gil_scoped_release release;
+    qp::forward_rows(mat(L), lemke::Mat<double>(R.data(), len(R, 0), n));
+}
+
+std::tuple<double, double, double, double> dot4(In1 a, In1 r0, In1 r1, In1 r2, In1 r3) {
+    idx k = len(a);
+    if (len(r0) < k || len(r1) < k || len(r2) < k || len(r3) < k)
+        throw nb::value_error("qp_dot4: r0..r3 must be at least as long as a");
+    double o[4];
+    qp::dot4(a.data(), r0.data(), r1.data(), r2.data(), r3.data(), k, o);
+    return {o[0], o[1], o[2], o[3]};
+}
+
+double qr_rows(Out2 WE, Out2 V, Out1 beta) {
+    idx p = len(WE, 0), n = len(WE, 1);
+    if (p <= n && (len(V, 0) < p || len(V, 1) != n || len(beta) < p))
+        throw nb::value_error("qp_qr_rows: V must be p x n and beta of length p (WE p x n)");
+    nb::gil_scoped_release release;
+    return qp::qr_rows(lemke::Mat<double>(WE.data(), p, n),
+                       lemke::Mat<double>(V.data(), len(V, 0), len(V, 1)), beta.data());
+}
+
+bool is_flags(const FlagsOut& a) {
+    return a.dtype() == nb::dtype<bool>() || a.dtype() == nb::dtype<std::uint8_t>();
+}
+
+std::tuple<int, std::int64_t> gram_lcp(In2 C, In1 g, std::int64_t p, std::int64_t max_pivots,
+                                       double pivot_tol, double tie_tol, FlagsOut flags) {
+    idx m = len(C, 0);
+    if (len(g) != m || p < 0 || p > len(C, 1) || len(flags) != m || !is_flags(flags))
+        throw nb::value_error("qp_gram_lcp: C m x n, g and flags (bool) of length m, 0 <= p <= n");
+    idx pivots = 0;
+    int status;
+    {
+        nb::gil_scoped_release release;
+        status = qp::gram_lcp(mat(C), g.data(), p, max_pivots, pivot_tol, tie_tol,
+                              static_cast<std::uint8_t*>(flags.data()), pivots);
+    }
+    return {status, pivots};
+}
+
+// unrevised.lemke(d[:, None], Fs, q, false_flags(n), no_matrix(), ...): (status, pivots).
+std::tuple<int, std::int64_t> unrevised_factored(In2 Fs, In1 d, In1 q, std::int64_t max_pivots,
+                                                 double pivot_tol, double tie_tol, Out1 x_out,
+                                                 Out1 ray_out, FlagsOut z_basic_out) {
+    idx n = len(q);
+    if (n == 0 || len(Fs, 0) != n || len(d) != n || len(x_out) != n + 1 ||
+        len(ray_out) != n + 1 || len(z_basic_out) != n || !is_flags(z_basic_out))
+        throw nb::value_error("unrevised_factored: Fs n x r (n > 0), d, q and z_basic_out "
+                              "(bool) of length n, x_out and ray_out n + 1");
+    idx pivots = 0;
+    lemke::Status status;
+    {
+        nb::gil_scoped_release release;
+        status = lemke::unrevised_factored(mat(Fs), d.data(), q.data(), max_pivots, pivot_tol,
+                                           tie_tol, x_out.data(), ray_out.data(),
+                                           static_cast<std::uint8_t*>(z_basic_out.data()), pivots);
+    }
+    return {static_cast<int>(status), pivots};
+}
+
+}  // namespace
+
+void bind_qp(nb::module_& m) {
+    m.def("qp_screen", &screen, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a);
+    m.def("qp_cholesky", &cholesky, "P"_a, nb::arg("L").noconvert());
+    m.def("qp_kkt_check", &kkt_check, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "x"_a, "y"_a, "z"_a, "zb"_a, "tol"_a, nb::arg("stats").noconvert());
+    m.def("qp_solve", &solve, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "method"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
+          nb::arg("out").noconvert());
+    m.def("qp_solve_gram", &solve_gram, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, nb::arg("out").noconvert(),
+          nb::arg("basic").noconvert(), "semidefinite"_a);
+    m.def("qp_forward_rows", &forward_rows, "L"_a, nb::arg("R").noconvert());
+    m.def("qp_dot4", &dot4, "a"_a, "r0"_a, "r1"_a, "r2"_a, "r3"_a);
+    m.def("qp_qr_rows", &qr_rows, nb::arg("WE").noconvert(), nb::arg("V").noconvert(),
+          nb::arg("beta").noconvert());
+    m.def("qp_gram_lcp", &gram_lcp, "C"_a, "g"_a, "p"_a, "max_pivots"_a, "pivot_tol"_a,
+          "tie_tol"_a, nb::arg("flags").noconvert());
+    m.def("unrevised_factored", &unrevised_factored, "Fs"_a, "d"_a, "q"_a, "max_pivots"_a,
+          "pivot_tol"_a, "tie_tol"_a, nb::arg("x_out").noconvert(),
+          nb::arg("ray_out").noconvert(), nb::arg("z_basic_out").noconvert());
+    m.def("qp_zero_diagonal", [](In2 P) {
+        if (len(P, 0) != len(P, 1)) throw nb::value_error("qp_zero_diagonal: P must be square");
+        return qp::zero_diagonal(mat(P));
+    }, "P"_a);
+    m.def("qp_equalities", [](In2 A, In1 lb, In1 ub) {
+        if (len(lb) != len(ub)) throw nb::value_error("qp_equalities: lb and ub of one length");
+        return qp::equalities(len(A, 0), lb.data(), ub.data(), len(lb));
+    }, "A"_a, "lb"_a, "ub"_a);
+    m.def("qp_inequalities", [](In1 h, In1 lb, In1 ub) {
+        if (len(lb) != len(ub)) throw nb::value_error("qp_inequalities: lb and ub of one length");
+        return qp::inequalities(h.data(), len(h), lb.data(), ub.data(), len(lb));
+    }, "h"_a, "lb"_a, "ub"_a);
+    m.attr("QP_OK") = qp::OK;
+    m.attr("QP_NOT_DEFINITE") = qp::NOT_DEFINITE;
+    m.attr("QP_NOT_APPLICABLE") = qp::NOT_APPLICABLE;
+    m.attr("QP_GRAM_RATIO") = qp::GRAM_RATIO;
+}
