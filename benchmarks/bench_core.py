@@ -13,7 +13,10 @@ checked (``w = M z + q`` recomputed here):
 - **core**: ``solve_lcp`` as shipped (the tableau's first run in the C++ core);
 - **numba**: the same front with the numba kernel ``cold.first_run`` put back (the kernel
   the core ports: the last numba code path, in the same process, on the same data);
-- **quantecon**: ``quantecon.optimize.lcp_lemke`` (cold).
+- **quantecon**: ``quantecon.optimize.lcp_lemke`` (cold);
+
+and, in the same rounds, the unrevised method and the box LCP engine (lo = 0, hi = inf) on
+the same problem, both in the core.
 
 Then the 0-pivot warm re-solve (q moved by 1e-9, the old basis still solves it) by core and
 numba, and the fixed cost at n = 1 with q >= 0 (no pivot) and q < 0 (one pivot).  The table
@@ -63,7 +66,9 @@ def checked(M, q, z):
 
 def problem(n, rng):
     A = rng.standard_normal((n, n))
-    return A @ A.T + 0.1 * np.eye(n), rng.standard_normal(n)
+    q = rng.standard_normal(n)
+    q[0] = -1.0 - abs(q[0])  # at least one negative entry: never the trivial z = 0
+    return A @ A.T + 0.1 * np.eye(n), q
 
 
 def time_calls(calls, budget):
@@ -114,7 +119,14 @@ def main(argv=None):
         assert rn.pivots == r.pivots and rn.z.tobytes() == r.z.tobytes(), n
         qe = lcp_lemke(M, q)
         checked(M, q, qe.z)
+        inf = np.full(n, np.inf)
+        zero = np.zeros(n)
+        rb = lemke.solve_blcp(M, q, zero, inf)
+        assert rb.success
+        checked(M, q, rb.z)
         t = time_calls({
+            "unrevised": lambda: lemke.solve_lcp(M, q, method="unrevised"),
+            "box": lambda: lemke.solve_blcp(M, q, zero, inf),
             "core": lambda: with_kernel(core, lambda: lemke.solve_lcp(M, q)),
             "numba": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M, q)),
             "quantecon": lambda: lcp_lemke(M, q),
@@ -152,11 +164,15 @@ def main(argv=None):
     a("")
     a("## Cold solves (medians, microseconds)")
     a("")
-    a("| n | pivots | core | numba | quantecon | core/numba | core/quantecon |")
-    a("|---|---|---|---|---|---|---|")
+    a("| n | pivots | core | numba | quantecon | core/numba | core/quantecon | unrevised/tableau | box LCP/LCP |")
+    a("|---|---|---|---|---|---|---|---|---|")
     for n, piv, t in rows_cold:
         a(f"| {n} | {piv} | {t['core']*1e6:.2f} | {t['numba']*1e6:.2f} | {t['quantecon']*1e6:.2f} | "
-          f"{t['core']/t['numba']:.2f} | {t['core']/t['quantecon']:.2f} |")
+          f"{t['core']/t['numba']:.2f} | {t['core']/t['quantecon']:.2f} | "
+          f"{t['unrevised']/t['core']:.2f} | {t['box']/t['core']:.2f} |")
+    a("")
+    a("(unrevised: `solve_lcp(method=\"unrevised\")`; box LCP: `solve_blcp` with lo = 0, hi = inf, the same "
+      "LCP through the box engine; both in the core, timed in the same interleaved rounds.)")
     a("")
     a("## 0-pivot warm re-solves (q moved by 1e-9)")
     a("")
