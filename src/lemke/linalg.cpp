@@ -38,6 +38,7 @@ double dot(const double* x, const double* y, idx k) {
     return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
 }
 
+LEMKE_CLONES
 bool finite_absmax(Mat<const double> M, double& m_max) {
     idx n = M.rows;
     bool finite = true;
@@ -154,6 +155,7 @@ void equilibrate(Mat<const double> M, const double* q, double* R, double* C, dou
     }
 }
 
+LEMKE_CLONES
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,
                    const double* C, Mat<double> A, double* qs) {
     idx n = M.rows;
@@ -201,6 +203,7 @@ void swap_rows(Mat<double> A, idx i, idx j, idx k) {
 
 }  // namespace
 
+LEMKE_CLONES
 bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y, double* x,
                     idx k) {
     Mat<double> A(a, k, k);
@@ -293,6 +296,7 @@ bool back_substitute(Mat<const double> A, const double* y, double* x, idx k) {
 // or 2k entries: the first k get each step's pivot row (for lu_solve), the second k list
 // the pivot rows' non-zero columns, whose updates alone are made when they are under a
 // quarter of the row.
+LEMKE_CLONES
 bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv) {
     bool finite = all_finite(y, k);
     for (idx r = 0; r < k; ++r) finite &= all_finite(A.row(r), k);

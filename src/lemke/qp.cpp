@@ -1,5 +1,7 @@
 #include "qp.hpp"
 
+#include "multiversion.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -606,6 +608,7 @@ void dot4(const double* a, const double* r0, const double* r1, const double* r2,
     for (int q = 0; q < 4; ++q) out[q] = s[q];
 }
 
+LEMKE_CLONES
 void forward_rows(Mat<const double> L, Mat<double> R) {
     idx n = L.rows, k = R.rows;
     idx i = 0;
@@ -628,6 +631,7 @@ void forward_rows(Mat<const double> L, Mat<double> R) {
     for (; i < k; ++i) forward(L, R.row(i));
 }
 
+LEMKE_CLONES
 double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     idx p = WE.rows, n = WE.cols;
     if (p > n) return 0.0;
@@ -687,6 +691,7 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     return true;
 }
 
+LEMKE_CLONES
 bool cholesky(Mat<const double> P, Mat<double> L) {
     idx n = P.rows;
     double top = 0.0;
