@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "boxed.hpp"
 #include "lcp.hpp"
 #include "pivoting.hpp"
 #include "unrevised.hpp"
@@ -1002,6 +1003,77 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     }
     return gram(ds, lo, up, w, R, max_pivots, pivot_tol, tie_tol, tol, o, basic,
                 definite ? REFINE : REFINE_PROXIMAL);
+}
+
+void box_basis(const double* lo, const double* up, idx n, const idx* final, idx k, idx m,
+               idx* out, idx& count, idx& pairs) {
+    thread_local std::vector<std::uint8_t> work;
+    work.resize(static_cast<std::size_t>(2 * n + 1));
+    std::uint8_t* flags = work.data();
+    for (idx j = 0; j < 2 * n; ++j) flags[j] = 0;
+    for (idx i = 0; i < k; ++i) flags[final[i]] = 1;
+    for (idx i = k; i < m; ++i) flags[n + final[i]] = 1;
+    idx cnt = 0, pos = 0;
+    for (idx j = 0; j < n; ++j) {
+        bool lo_f = lo[j] > -INF, up_f = up[j] < INF;
+        if ((lo_f || up_f) && !(lo_f && up_f && lo[j] == up[j])) {
+            if (flags[j] || (lo_f && flags[n + j])) out[cnt++] = pos;
+            ++pos;
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        if (lo[j] > -INF && up[j] < INF && lo[j] != up[j]) {
+            if (flags[n + j]) out[cnt++] = pos;
+            ++pos;
+        }
+    }
+    count = cnt;
+    pairs = pos;
+}
+
+Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, double pivot_tol,
+                 double tie_tol, double tol, double* out, idx* final) {
+    Result res;
+    idx n = dt.n();
+    thread_local std::vector<double> scr;
+    scr.resize(static_cast<std::size_t>(n * (2 * n + 2) + 1));
+    double* Ps = scr.data();
+    double* lo = Ps + n * n;
+    double* up = lo + n;
+    double* Lw = up + n;
+    if (!screen(dt, Ps, lo, up)) {
+        res.code = BAD_INPUT;
+        return res;
+    }
+    Mat<const double> P(Ps, n, n);
+    if (!cholesky(P, Mat<double>(Lw, n, n))) {
+        res.code = NOT_DEFINITE;
+        return res;
+    }
+    double* buf = out;
+    boxed::SolveResult r = boxed::solve(P, dt.q, lo, up, warm, 0, max_pivots, pivot_tol,
+                                        tie_tol, tol, buf, final);
+    res.pivots = r.pivots;
+    if (!(r.code == SOLVED && r.ok)) {
+        res.code = NOT_SOLVED;
+        return res;
+    }
+    const double* x = buf;
+    const double* w = buf + n;
+    double* zb = out + 6 * n + 1;
+    for (idx j = 0; j < n; ++j) zb[j] = -w[j];
+    Data ds = dt;
+    ds.P = P;
+    ds.lb = lo;
+    ds.ub = up;
+    // (numba's kernel passes b and h as y and z: empty for a box-only QP)
+    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + 7 * n + 1)) {
+        res.code = CHECK_FAILED;
+        return res;
+    }
+    box_basis(lo, up, n, final, r.k, r.m, final + n, res.k, res.pairs);
+    res.code = OK;
+    return res;
 }
 
 }  // namespace qp
