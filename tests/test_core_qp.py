@@ -3,7 +3,7 @@
 output buffers of ``solve`` (both methods), ``solve_gram`` (definite and semidefinite),
 ``solve_box`` (and ``box_basis``; on box-only QPs of fewer than BOX_FIRST variables),
 ``screen``, ``cholesky`` and ``kkt_check``, and of the pieces whose bits they depend on
-(``_dot4`` as numba vectorizes it, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
+(``_dot4``, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
 unrevised method in factored form), on the Maros-Meszaros files, the QP tests' generators
 (tests/test_qp.py, test_qp_gram.py, test_qp_conventions.py) and random dense convex QPs:
 equalities, inequalities, finite and infinite bounds, fixed variables, P definite and
@@ -247,12 +247,16 @@ def test_screen_refuses_alike():
                            np.zeros(4))
 
 
-def test_dot4_as_numba_vectorizes_it():
+def test_dot4_in_a_fixed_order():
+    """qp._dot4 and qp::dot4: each sum linalg.dot's fixed order (eight lanes, no fused
+    multiply-add), so numba's, the core's and linalg.dot's bits agree on every host."""
     rng = np.random.default_rng(1)
     for k in list(range(0, 80)) + [95, 96, 97, 127, 128, 129, 255, 300]:
         a = rng.standard_normal(k) * 10.0 ** rng.integers(-3, 3, k)
         rs = [rng.standard_normal(k) for _ in range(4)]
-        assert np.array(kqp._dot4(a, *rs)).tobytes() == np.array(_core.qp_dot4(a, *rs)).tobytes(), k
+        ref = np.array([linalg.dot(a, r, k) for r in rs])
+        assert np.array(kqp._dot4(a, *rs)).tobytes() == ref.tobytes(), k
+        assert np.array(_core.qp_dot4(a, *rs)).tobytes() == ref.tobytes(), k
 
 
 def test_forward_rows_and_qr_rows():

@@ -6,6 +6,7 @@
 
 #include "boxed.hpp"
 #include "lcp.hpp"
+#include "multiversion.hpp"
 #include "pivoting.hpp"
 #include "unrevised.hpp"
 
@@ -101,8 +102,6 @@ QPWork& work() {
     thread_local QPWork w;
     return w;
 }
-
-const double NEG_ZERO = -0.0;
 
 // ----------------------------------------------------------------------------- factors
 
@@ -534,77 +533,24 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 
 // ----------------------------------------------------------------------------- public pieces
 
-// qp._dot4, compiled by numba with fastmath {reassoc, contract}: LLVM vectorizes its four
-// sums. On this host (AVX-512, znver4: the loop vectorizer's choice in qp._dot4's
-// assembly) the main loop takes 8 lanes x 4 interleaved parts (32 terms a step) by fused
-// multiply-adds, its parts summed ((p0 + p1) + p2) + p3 and the lanes halved (l + l + 4,
-// l + l + 2, 0 + 1); then an epilogue of 4 lanes (from the main loop's sum in lane 0) up
-// to the last multiple of 4, halved the same way; then the rest one fused multiply-add
-// at a time. The starting lanes are -0.0 but lane 0 of part 0 (+0.0).
-// Compiled per instruction set with hardware fused multiply-adds (the baseline variant
-// calls libm's fma: the same bits, slower); every variant gives the same bits.
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(LEMKE_NO_CLONES) \
-    && !defined(__SANITIZE_ADDRESS__)
-#define LEMKE_FMA_CLONES \
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define LEMKE_FMA_CLONES
-#endif
-
-LEMKE_FMA_CLONES
+// qp._dot4: the four sums a' r_q in one pass over a, each in linalg's fixed order (dot,
+// row_dot_and_size): eight running sums, lane j mod 8 of the first 8 floor(len / 8) terms,
+// the rest into lane 0, combined ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)); no
+// fused multiply-add (-ffp-contract=off), so the same bits on every instruction set.
+LEMKE_CLONES
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
     const double* rr[4] = {r0, r1, r2, r3};
-    double s[4] = {0.0, 0.0, 0.0, 0.0};
-    idx t = 0;
-    if (len <= 0) {
-        for (int q = 0; q < 4; ++q) out[q] = 0.0;
-        return;
-    }
-    bool epilogue = false;
-    if (len >= 4) {
-        if (len >= 32) {
-            idx main_end = len & ~static_cast<idx>(31);
-            double acc[4][32];  // acc[q][8 u + l]: sum q, part u, lane l
-            for (int q = 0; q < 4; ++q)
-                for (int e = 0; e < 32; ++e) acc[q][e] = NEG_ZERO;
-            for (int q = 0; q < 4; ++q) acc[q][0] = 0.0;
-            for (idx j = 0; j < main_end; j += 32)
-                for (int q = 0; q < 4; ++q) {
-                    const double* rq = rr[q] + j;
-                    const double* aj = a + j;
-                    double* aq = acc[q];
-                    for (int e = 0; e < 32; ++e) aq[e] = std::fma(aj[e], rq[e], aq[e]);
-                }
-            for (int q = 0; q < 4; ++q) {
-                const double* aq = acc[q];
-                double v[8], h4[4], h2[2];
-                for (int l = 0; l < 8; ++l) v[l] = ((aq[l] + aq[8 + l]) + aq[16 + l]) + aq[24 + l];
-                for (int l = 0; l < 4; ++l) h4[l] = v[l] + v[l + 4];
-                for (int l = 0; l < 2; ++l) h2[l] = h4[l] + h4[l + 2];
-                s[q] = h2[0] + h2[1];
-            }
-            t = main_end;
-            if (t != len && (len & 28) != 0) epilogue = true;
-        } else {
-            epilogue = true;
-        }
-    }
-    if (epilogue) {
-        idx end4 = len & ~static_cast<idx>(3);
-        for (int q = 0; q < 4; ++q) {
-            double acc[4] = {s[q], NEG_ZERO, NEG_ZERO, NEG_ZERO};
-            const double* rq = rr[q];
-            for (idx j = t; j < end4; j += 4)
-                for (int l = 0; l < 4; ++l) acc[l] = std::fma(a[j + l], rq[j + l], acc[l]);
-            double h2[2] = {acc[0] + acc[2], acc[1] + acc[3]};
-            s[q] = h2[0] + h2[1];
-        }
-        t = end4;
-    }
-    for (; t < len; ++t)
-        for (int q = 0; q < 4; ++q) s[q] = std::fma(a[t], rr[q][t], s[q]);
-    for (int q = 0; q < 4; ++q) out[q] = s[q];
+    double s[4][8] = {};
+    idx j = 0;
+    for (; j + 8 <= len; j += 8)
+        for (int q = 0; q < 4; ++q)
+            for (int l = 0; l < 8; ++l) s[q][l] += a[j + l] * rr[q][j + l];
+    for (; j < len; ++j)
+        for (int q = 0; q < 4; ++q) s[q][0] += a[j] * rr[q][j];
+    for (int q = 0; q < 4; ++q)
+        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
+                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
 }
 
 void forward_rows(Mat<const double> L, Mat<double> R) {

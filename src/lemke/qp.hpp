@@ -3,9 +3,8 @@
 // QR of the equalities, the multiplier LCP by lemke::checked_once, the point, the KKT check
 // on the caller's data) and the path for many more inequalities than variables (the LCP in
 // factored form by the unrevised method, the active set's point refined in double-double).
-// The same operations in the same order as the numba kernels, so the same bits; the one
-// sum numba compiles with fastmath (qp._dot4, in forward_rows) is written out here as LLVM
-// vectorizes it (see dot4 in qp.cpp).
+// The same operations in the same order as the numba kernels, so the same bits (every sum in
+// a fixed order without fused multiply-adds: the same bits on every instruction set).
 #pragma once
 #include <cstdint>
 
@@ -95,7 +94,7 @@ void box_basis(const double* lo, const double* up, idx n, const idx* final, idx 
 
 // Pieces bound for the oracle tests.
 void forward_rows(Mat<const double> L, Mat<double> R);
-// qp._dot4 as numba compiles it on this host (see qp.cpp): the four sums a' r_k.
+// qp._dot4: the four sums a' r_k, each in linalg's fixed order (dot).
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out);
 double qr_rows(Mat<double> WE, Mat<double> V, double* beta);
