@@ -1,5 +1,5 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
-// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_gram) with the arguments and results of
+// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_gram, qp_solve_box) with the arguments and results of
 // the numba kernels of lemke/kernels/qp.py, and a few pieces for the oracle tests
 // (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts).
 // Sizes are checked here, before the GIL is released: where the numba kernel answers data
@@ -132,6 +132,43 @@ Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
     return {r.code, r.pivots, r.k, r.pairs};
 }
 
+bool is_flags(const FlagsOut& a);
+
+// qp.solve_box: out of length at least 7n + 5, final (int64) at least 3n, warm (bool) at
+// least 2n. Shapes that do not match: BAD_INPUT with nothing written (numba's screen);
+// buffers too short: ValueError (numba's kernel would write past them).
+Code4 solve_box(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, FlagsOut warm,
+                std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
+                IdxOut final) {
+    idx n = len(q);
+    if (!shapes_match(P, q, G, h, A, b, lb, ub)) return {qp::BAD_INPUT, 0, 0, 0};
+    if (len(out) < 7 * n + 5 || len(final) < 3 * n || len(warm) < 2 * n || !is_flags(warm))
+        throw nb::value_error("qp_solve_box: out of length at least 7n + 5, final (int64) 3n, "
+                              "warm (bool) 2n");
+    qp::Result r;
+    {
+        nb::gil_scoped_release release;
+        r = qp::solve_box(data(P, q, G, h, A, b, lb, ub),
+                          static_cast<const std::uint8_t*>(warm.data()), max_pivots, pivot_tol,
+                          tie_tol, tol, out.data(), final.data());
+    }
+    return {r.code, r.pivots, r.k, r.pairs};
+}
+
+std::tuple<std::int64_t, std::int64_t> box_basis(In1 lo, In1 up, IdxOut final, std::int64_t k,
+                                                 std::int64_t m, IdxOut out) {
+    idx n = len(lo);
+    if (len(up) != n || k < 0 || m < k || m > len(final) || len(out) < 2 * n)
+        throw nb::value_error("qp_box_basis: lo and up of length n, 0 <= k <= m <= len(final), "
+                              "out at least 2n");
+    const std::int64_t* f = final.data();
+    for (idx i = 0; i < m; ++i)
+        if (f[i] < 0 || f[i] >= n) throw nb::value_error("qp_box_basis: final[:m] in [0, n)");
+    idx count = 0, pairs = 0;
+    qp::box_basis(lo.data(), up.data(), n, f, k, m, out.data(), count, pairs);
+    return {count, pairs};
+}
+
 // For the tests: the pieces whose bits the solves depend on.
 void forward_rows(In2 L, Out2 R) {
     idx n = len(L, 0);
@@ -211,6 +248,11 @@ void bind_qp(nb::module_& m) {
     m.def("qp_solve_gram", &solve_gram, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, nb::arg("out").noconvert(),
           nb::arg("basic").noconvert(), "semidefinite"_a);
+    m.def("qp_solve_box", &solve_box, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          nb::arg("warm").noconvert(), "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
+          nb::arg("out").noconvert(), nb::arg("final").noconvert());
+    m.def("qp_box_basis", &box_basis, "lo"_a, "up"_a, "final"_a, "k"_a, "m"_a,
+          nb::arg("out").noconvert());
     m.def("qp_forward_rows", &forward_rows, "L"_a, nb::arg("R").noconvert());
     m.def("qp_dot4", &dot4, "a"_a, "r0"_a, "r1"_a, "r2"_a, "r3"_a);
     m.def("qp_qr_rows", &qr_rows, nb::arg("WE").noconvert(), nb::arg("V").noconvert(),

@@ -1,8 +1,9 @@
 """The C++ QP kernels (``lemke._core.qp_*``, src/lemke/qp.cpp) against the numba kernels
 (``kernels.qp``) as their oracle, bit for bit: every returned number and every byte of the
 output buffers of ``solve`` (both methods), ``solve_gram`` (definite and semidefinite),
+``solve_box`` (and ``box_basis``; on box-only QPs of fewer than BOX_FIRST variables),
 ``screen``, ``cholesky`` and ``kkt_check``, and of the pieces whose bits they depend on
-(``_dot4`` as numba vectorizes it, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
+(``_dot4``, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
 unrevised method in factored form), on the Maros-Meszaros files, the QP tests' generators
 (tests/test_qp.py, test_qp_gram.py, test_qp_conventions.py) and random dense convex QPs:
 equalities, inequalities, finite and infinite bounds, fixed variables, P definite and
@@ -246,12 +247,16 @@ def test_screen_refuses_alike():
                            np.zeros(4))
 
 
-def test_dot4_as_numba_vectorizes_it():
+def test_dot4_in_a_fixed_order():
+    """qp._dot4 and qp::dot4: each sum linalg.dot's fixed order (eight lanes, no fused
+    multiply-add), so numba's, the core's and linalg.dot's bits agree on every host."""
     rng = np.random.default_rng(1)
     for k in list(range(0, 80)) + [95, 96, 97, 127, 128, 129, 255, 300]:
         a = rng.standard_normal(k) * 10.0 ** rng.integers(-3, 3, k)
         rs = [rng.standard_normal(k) for _ in range(4)]
-        assert np.array(kqp._dot4(a, *rs)).tobytes() == np.array(_core.qp_dot4(a, *rs)).tobytes(), k
+        ref = np.array([linalg.dot(a, r, k) for r in rs])
+        assert np.array(kqp._dot4(a, *rs)).tobytes() == ref.tobytes(), k
+        assert np.array(_core.qp_dot4(a, *rs)).tobytes() == ref.tobytes(), k
 
 
 def test_forward_rows_and_qr_rows():
@@ -319,3 +324,169 @@ def test_gram_lcp_bit_for_bit():
             bad += (tuple(map(int, r1)) != tuple(r2)) or f1.tobytes() != f2.tobytes()
             del m
     assert bad == 0
+
+
+# ----------------------------------------------------------------------------- box-only QPs
+
+def compare_box(args, warm=None, max_pivots=None):
+    """kqp.solve_box and _core.qp_solve_box on one box-only QP: the mismatches (empty: the
+    same bits: every returned value, every byte of out and final) and numba's code."""
+    n = args[1].shape[0]
+    warm = np.zeros(2 * n, bool) if warm is None else warm
+    mp = 100 * (n + 1) if max_pivots is None else max_pivots
+    rng = np.random.default_rng(n + 3)
+    fill = rng.standard_normal(7 * n + 5)
+    fill_final = rng.integers(-99, 99, 3 * n)
+    outs = []
+    for run in (kqp.solve_box, _core.qp_solve_box):
+        out, final = fill.copy(), fill_final.copy()  # the same bytes where neither writes
+        ret = run(*args, warm, mp, *TOL, out, final)
+        outs.append((tuple(int(v) for v in ret), out, final))
+    (r1, o1, f1), (r2, o2, f2) = outs
+    diff = [] if r1 == r2 else [f"returns numba {r1} core {r2}"]
+    return diff + _bytes_diff("out", o1, o2) + _bytes_diff("final", f1, f2), r1[0]
+
+
+def random_box(n, rng, kind, scale=1.0, definite=True):
+    """A box-only QP of n variables: P definite (or of rank n // 2), bounds by kind (0 box,
+    1 lower only, 2 upper only, 3 mixed with infinite and 1e20, 4 some fixed, 5 none)."""
+    B = rng.standard_normal((n, n if definite else max(n // 2, 1)))
+    P = scale * (B @ B.T / n + (0.05 * np.eye(n) if definite else 0.0))
+    q = scale * 3.0 * rng.standard_normal(n)
+    x0 = rng.standard_normal(n)
+    lb, ub = x0 - rng.uniform(0.0, 1.0, n), x0 + rng.uniform(0.0, 1.0, n)
+    if kind == 1:
+        ub[:] = np.inf
+    elif kind == 2:
+        lb[:] = -np.inf
+    elif kind == 3:
+        lb[rng.random(n) < 0.4] = -np.inf
+        ub[rng.random(n) < 0.3] = 1e20
+        lb[rng.random(n) < 0.2] = -1e21
+    elif kind == 4:
+        fix = rng.random(n) < 0.3
+        lb[fix] = ub[fix] = x0[fix]
+    elif kind == 5:
+        lb[:], ub[:] = -np.inf, np.inf
+    return P, q, None, None, None, None, lb, ub
+
+
+def box_families():
+    """(name, box-only problem) with n < BOX_FIRST."""
+    for n in range(1, _qp.BOX_FIRST):
+        for kind in range(6):
+            for t in range(3):
+                rng = np.random.default_rng([n, kind, t])
+                yield f"box/{n}/{kind}/{t}", random_box(n, rng, kind, scale=(1.0, 1e-3, 1e3)[t])
+        rng = np.random.default_rng([n, 99])
+        yield f"box_psd/{n}", random_box(n, rng, 0, definite=False)
+    import test_qp
+    for seed in range(60):  # test_qp's fuzz generator, without rows
+        rng = np.random.default_rng(seed)
+        n = int(rng.integers(1, _qp.BOX_FIRST))
+        bounds = ("lower", "box", "mixed")[seed % 3]
+        yield f"fuzz_box/{seed}", test_qp._fuzz_case(n, 0, 0, n if seed % 4 else n // 2, seed,
+                                                     bounds, (1e-4, 1.0, 1e4)[seed % 3])
+    for seed in range(12):  # test_qp.test_box_only_qps_through_the_box_kernel's QPs
+        rng = np.random.default_rng(seed)
+        n = int(rng.integers(1, 25))
+        B = rng.standard_normal((n, n if seed % 3 else max(1, n // 2)))
+        P = B @ B.T / n + (1e-2 * np.eye(n) if seed % 3 else 0.0)
+        q = 3.0 * rng.standard_normal(n)
+        lb = np.where(rng.random(n) < 0.8, -rng.uniform(0, 1, n), -np.inf)
+        ub = np.where(rng.random(n) < 0.8, rng.uniform(0, 1, n), np.inf)
+        lb[rng.random(n) < 0.1] = 0.0
+        ub[lb == 0.0] = 0.0
+        if seed % 3 == 0:
+            lb[~np.isfinite(lb)] = -2.0
+            ub[~np.isfinite(ub)] = 2.0
+        if n < _qp.BOX_FIRST:
+            yield f"test_qp_box/{seed}", (P, q, None, None, None, None, lb, ub)
+    c = np.array([5.0, -5.0, 1.0, 2.0, 3.0, -4.0])  # test_upper_bounds_and_fixed_variables
+    yield "fixed_and_one_sided", (np.eye(6), -c, None, None, None, None,
+                                  np.array([0.0, -1.0, 0.5, -np.inf, -np.inf, -1e20]),
+                                  np.array([1.0, 1.0, 0.5, np.inf, 2.0, 1e21]))
+    yield "hs21_box", (np.diag([0.02, 2.0]), np.zeros(2), None, None, None, None,
+                       np.array([2.0, -50.0]), np.array([50.0, 50.0]))
+    for name, problem in families():  # the other families' box-only QPs
+        P, q, G, h, A, b, lb, ub = problem
+        if (G is None or np.size(G) == 0) and (A is None or np.size(A) == 0) and (
+                lb is not None or ub is not None) and np.size(q) < _qp.BOX_FIRST:
+            yield name, (P, q, None, None, None, None, lb, ub)
+
+
+BOX_CASES = []
+for _name, _problem in box_families():
+    _args = plain(_problem)
+    if _args is not None:
+        BOX_CASES.append((_name, _args))
+
+
+def test_solve_box_bit_for_bit():
+    bad, codes = [], {}
+    for name, args in BOX_CASES:
+        diff, code = compare_box(args)
+        codes[code] = codes.get(code, 0) + 1
+        if diff:
+            bad.append(f"{name}: " + "; ".join(diff))
+    assert not bad, f"{len(bad)} of {len(BOX_CASES)}:\n" + "\n".join(bad[:20])
+    assert len(BOX_CASES) > 300 and codes.get(kqp.OK, 0) > 250, codes
+    assert codes.get(kqp.NOT_DEFINITE, 0) > 5, codes
+
+
+def test_solve_box_warm_and_capped_bit_for_bit():
+    """Warm starts (random basic and at-upper flags, and basic flags only) and pivot
+    caps 0, 1, 3 (NOT_SOLVED runs: the bytes the run left)."""
+    bad = 0
+    count = 0
+    for name, args in BOX_CASES[::2]:
+        n = args[1].shape[0]
+        rng = np.random.default_rng(n)
+        warms = [rng.random(2 * n) < 0.3, np.concatenate([rng.random(n) < 0.5, np.zeros(n, bool)])]
+        for cap in (0, 1, 3):
+            diff, _ = compare_box(args, max_pivots=cap)
+            bad += bool(diff)
+            count += 1
+        for warm in warms:
+            diff, _ = compare_box(args, warm=warm)
+            bad += bool(diff)
+            count += 1
+    assert bad == 0 and count > 200
+
+
+def test_solve_box_refuses_alike():
+    rng = np.random.default_rng(4)
+    base = plain(random_box(5, rng, 0))
+    for k, bad in [(0, np.nan), (1, np.inf), (6, np.nan), (6, np.inf), (7, -np.inf)]:
+        args = [np.array(a, dtype=float) for a in base]
+        if args[k].ndim == 2:
+            args[k][0, 0] = bad
+        else:
+            args[k][0] = bad
+        diff, code = compare_box(args)
+        assert not diff and code == kqp.BAD_INPUT
+    args = list(base)
+    args[6] = args[6][:-1]  # lb one short: BAD_INPUT, nothing written
+    diff, code = compare_box(args)
+    assert not diff and code == kqp.BAD_INPUT
+    with pytest.raises(ValueError):
+        _core.qp_solve_box(*base, np.zeros(10, bool), 600, *TOL, np.empty(7 * 5 + 4),
+                           np.empty(15, np.int64))
+
+
+def test_box_basis_bit_for_bit():
+    rng = np.random.default_rng(5)
+    for n in (1, 3, 8, 15):
+        for t in range(20):
+            lo = np.where(rng.random(n) < 0.7, -rng.uniform(0, 1, n), -np.inf)
+            up = np.where(rng.random(n) < 0.7, rng.uniform(0, 1, n), np.inf)
+            fix = rng.random(n) < 0.15
+            lo[fix] = up[fix] = 0.25
+            perm = rng.permutation(n)
+            m = int(rng.integers(0, n + 1))
+            k = int(rng.integers(0, m + 1))
+            final = np.concatenate([perm[:m], rng.integers(0, n, 3 * n - m)]).astype(np.int64)
+            o1, o2 = np.full(2 * n, -7, np.int64), np.full(2 * n, -7, np.int64)
+            r1 = kqp.box_basis(lo, up, final, k, m, o1)
+            r2 = _core.qp_box_basis(lo, up, final, k, m, o2)
+            assert tuple(map(int, r1)) == tuple(r2) and o1.tobytes() == o2.tobytes(), (n, t)

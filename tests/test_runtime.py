@@ -1,4 +1,5 @@
-"""How the package runs: lazy compilation, plain-Python kernels, threads, the command line."""
+"""How the package runs: on the C++ core (no solve compiles a numba kernel), the numba
+kernels (test oracles) as plain Python, threads, the command line."""
 import os
 import subprocess
 import sys
@@ -25,21 +26,95 @@ def test_import_compiles_nothing():
     assert out.strip() == "0"
 
 
-def test_kernels_run_as_plain_python():
+# Every solve of the package, on the paths its fronts take: an LCP (both methods), a batch,
+# a box LCP, an MLCP, QPs (the fused path, the factored path for m >= 4n, the small box
+# kernel, the box path through solve_blcp), a bimatrix game and its paths.
+_SOLVES = (
+    "import numpy as np, lemke\n"
+    "from lemke import problems\n"
+    "rng = np.random.default_rng(0)\n"
+    "M, q = problems.random_psd(12, rng)\n"
+    "for method in lemke.METHODS:\n"
+    "    assert lemke.solve_lcp(M, q, method=method).success\n"
+    "assert lemke.solve_lcp_batch(np.stack([M, M]), np.stack([q, q + 1.0])).z.shape == (2, 12)\n"
+    "assert lemke.solve_blcp(M, q, -np.ones(12), np.ones(12)).success\n"
+    "assert lemke.solve_mlcp(M[:3, :3], M[3:, 3:], M[:3, 3:], M[3:, :3], q[:3], q[3:]).success\n"
+    "n = 8\n"
+    "B = rng.standard_normal((n, n))\n"
+    "P, c = B @ B.T + 0.1 * np.eye(n), rng.standard_normal(n)\n"
+    "qps = [lemke.solve_qp(P, c, G=rng.standard_normal((5, n)), h=rng.uniform(0.1, 1, 5)),\n"
+    "       lemke.solve_qp(P, c, G=rng.standard_normal((40, n)), h=rng.uniform(0.1, 1, 40)),\n"
+    "       lemke.solve_qp(P, c, lb=-np.ones(n), ub=np.ones(n)),\n"
+    "       lemke.solve_qp(np.eye(20), np.ones(20), lb=np.zeros(20), ub=np.ones(20))]\n"
+    "for r in qps:\n"
+    "    assert r.success, r\n"
+    "    r.warm_start, r.z_box, r.obj\n"
+    "A, Bm = [[3.0, 0.0], [0.0, 2.0]], [[2.0, 0.0], [0.0, 3.0]]\n"
+    "assert lemke.solve_bimatrix(A, Bm).success\n"
+    "assert len(lemke.lemke_paths(A, Bm)) == 3\n"
+)
+
+
+def test_solves_compile_no_numba_kernel():
+    """The package runs on the C++ core: no solve compiles a numba kernel (numba's compile
+    events, recorded around the solves; and every dispatcher of lemke.kernels, imported
+    afterwards, has no signature, compiled or loaded from numba's cache).  The numba
+    kernels are the core's test oracles (tests/test_core_*.py) only."""
     code = (
-        "import numpy as np, lemke\n"
-        "from lemke import problems\n"
-        "from lemke.kernels import tableau\n"
-        "assert not hasattr(tableau.lemke, 'signatures')  # really not compiled\n"
-        "rng = np.random.default_rng(0)\n"
-        "for M, q in [problems.random_psd(12, rng), problems.contact_like(15, rng), (problems.murty(5).M, problems.murty(5).q), ([[-1.0]], [-1.0])]:\n"
-        "    r = lemke.solve_lcp(M, q)\n"
-        "    print(r.status.name, r.pivots, repr(r.z.tolist()))\n"
+        "import importlib, pkgutil, sys\n"
+        "import numba\n"
+        "from numba.core import event, registry\n"
+        "with event.install_recorder('numba:compile') as rec:\n"
+        + "".join("    " + line + "\n" for line in _SOLVES.splitlines())
+        + "imported = sorted(m for m in sys.modules if m.startswith('lemke.kernels.'))\n"
+        "import lemke.kernels\n"
+        "count = dispatchers = 0\n"
+        "for info in pkgutil.iter_modules(lemke.kernels.__path__):\n"
+        "    mod = importlib.import_module('lemke.kernels.' + info.name)\n"
+        "    for f in vars(mod).values():\n"
+        "        if isinstance(f, registry.CPUDispatcher):\n"
+        "            dispatchers += 1\n"
+        "            count += len(f.signatures)\n"
+        "with event.install_recorder('numba:compile') as probe:\n"
+        "    numba.njit(lambda x: x + 1)(1)\n"
+        "print(len(rec.buffer), count, dispatchers, len(probe.buffer) > 0, imported)\n"
+    )
+    events, signatures, dispatchers, probe_works, imported = run_python(code).split(" ", 4)
+    assert probe_works == "True"  # the recorder sees a compilation
+    assert int(dispatchers) > 100
+    assert (events, signatures) == ("0", "0"), imported
+
+
+def test_kernels_run_as_plain_python():
+    """The numba kernels (the core's oracles) run as plain Python with NUMBA_DISABLE_JIT,
+    with the bits they have compiled and the core's: kernels.qp.solve_box on a few box-only
+    QPs (screen, Cholesky, the box LCP, the KKT check, the basis) against _core.qp_solve_box."""
+    code = (
+        "import hashlib, numpy as np\n"
+        "from lemke import _core\n"
+        "from lemke.kernels import qp, tableau\n"
+        "compiled = hasattr(tableau.lemke, 'signatures')\n"
+        "rng = np.random.default_rng(3)\n"
+        "for n in (1, 4, 9):\n"
+        "    B = rng.standard_normal((n, n))\n"
+        "    args = [B @ B.T / n + 0.1 * np.eye(n), 3.0 * rng.standard_normal(n), np.zeros((0, n)),\n"
+        "            np.zeros(0), np.zeros((0, n)), np.zeros(0), -rng.uniform(0, 1, n),\n"
+        "            np.where(rng.random(n) < 0.7, rng.uniform(0, 1, n), np.inf)]\n"
+        "    bits = []\n"
+        "    for run in (qp.solve_box, _core.qp_solve_box):\n"
+        "        out, final = np.zeros(7 * n + 5), np.zeros(3 * n, np.int64)\n"
+        "        ret = tuple(int(v) for v in run(*args, np.zeros(2 * n, bool), 100 * (n + 1),\n"
+        "                                        1e-11, 1e-11, 1e-9, out, final))\n"
+        "        bits.append((ret, hashlib.sha1(out.tobytes() + final.tobytes()).hexdigest()))\n"
+        "    assert bits[0] == bits[1], (n, bits)\n"
+        "    print(bits[0][0][0], bits[0][1])\n"
+        "print(compiled)\n"
     )
     plain = run_python(code, NUMBA_DISABLE_JIT="1")
-    jitted = run_python(code.replace("assert not hasattr(tableau.lemke, 'signatures')  # really not compiled\n", ""))
-    assert plain == jitted
-    assert plain.count("SOLVED") == 3 and "RAY_TERMINATION" in plain
+    jitted = run_python(code)
+    assert plain.splitlines()[-1] == "False" and jitted.splitlines()[-1] == "True"
+    assert plain.splitlines()[:-1] == jitted.splitlines()[:-1]
+    assert [line.split()[0] for line in plain.splitlines()[:-1]] == ["0", "0", "0"]
 
 
 def test_threads_give_the_same_answers():

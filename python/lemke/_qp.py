@@ -33,7 +33,7 @@ from . import _core
 from ._layout import METHODS as _METHOD_NAMES
 
 EPS = float(np.finfo(np.float64).eps)
-BOX_FIRST = 16  # box-only QPs: below, plain data goes to kernels.qp.solve_box; from here, solve_blcp first
+BOX_FIRST = 16  # box-only QPs: below, plain data goes to _core.qp_solve_box; from here, solve_blcp first
 
 
 @dataclass(frozen=True, eq=False)
@@ -492,7 +492,8 @@ def _solve_box(P, q, lb, ub, opts):
 
 def _solve_box_small(args, opts):
     """A box-only QP with plain data (as :func:`solve_qp`'s first lines take it) of fewer
-    than BOX_FIRST variables in one kernel call, ``kernels.qp.solve_box``: the screen and P
+    than BOX_FIRST variables in one kernel call, ``_core.qp_solve_box`` (the port of
+    ``kernels.qp.solve_box``, src/lemke/qp.cpp): the screen and P
     definite as the fused path's, one run of the box kernel (as :func:`_solve_box`'s first
     run), its natural-map check, then the fused path's KKT check (``kernels.qp.kkt_check``
     at ``min(tol, STRICT_TOL)``: what the fused path answered these QPs with before).  The box LCP has n
@@ -505,10 +506,9 @@ def _solve_box_small(args, opts):
     out = np.empty(7 * n + 5)  # kernels.qp.box_out_size
     final = np.empty(3 * n, _I64)
     mp = opts.max_pivots
-    run = _ENTRY.get("solve_box") or _box_entry_point()
-    code, pivots, k, pairs = run(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
-                             100 * (n + 1) if mp is None else mp,  # (solve_blcp's default)
-                             opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
+    code, pivots, k, pairs = _core.qp_solve_box(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
+                                                100 * (n + 1) if mp is None else mp,  # (solve_blcp's)
+                                                opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
     if code != _OK:
         return None
     out.setflags(False)
@@ -524,24 +524,12 @@ def _solve_box_small(args, opts):
 
 def _box_small_fields(out, n, final, k, pairs):
     """The deferred fields of a result of :func:`_solve_box_small` (the basis numbered as
-    :func:`_box_basis` numbers it, by the kernel: ``kernels.qp.box_basis``)."""
+    :func:`_box_basis` numbers it, by the kernel: ``qp::box_basis``, the port of
+    ``kernels.qp.box_basis``)."""
     primal, dual, gap, obj = out[7 * n + 1:].tolist()
     return {"y": _EMPTY, "z": _EMPTY, "z_box": out[6 * n + 1:7 * n + 1], "obj": obj,
             "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
             "warm_start": WarmStart._trusted(pairs, tuple(final[n:n + k].tolist()))}
-
-
-def _box_entry_point():
-    """``kernels.qp.solve_box``'s compiled entry point for the plain types of
-    :func:`solve_qp`'s first lines."""
-    from .kernels import entry_point, qp as kqp  # the box LCP is not in the core yet (numba)
-
-    a1, a2 = np.empty(0), np.empty((0, 0))
-    run = entry_point(kqp.solve_box, a2, a1, a2, a1, a2, a1, a1, a1, _NO_WARM[0], 0, 0.0, 0.0,
-                      0.0, a1, np.empty(0, dtype=np.int64))
-    if run is not kqp.solve_box:
-        _ENTRY["solve_box"] = run
-    return run
 
 
 _EMPTY = np.zeros(0)
@@ -676,7 +664,6 @@ _I64 = np.dtype(np.int64)
 _METHOD_CODES = dict(_METHOD_NAMES)
 _OK, _NOT_DEFINITE, _GRAM_RATIO = _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_GRAM_RATIO
 _NOT_APPLICABLE = _core.QP_NOT_APPLICABLE
-_ENTRY: dict = {}  # "solve_box" -> kernels.qp.solve_box's compiled entry point (numba)
 
 
 def _fused_fields(out, n, p, m, k, pairs):

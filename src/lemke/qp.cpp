@@ -6,7 +6,9 @@
 #include <cmath>
 #include <vector>
 
+#include "boxed.hpp"
 #include "lcp.hpp"
+#include "multiversion.hpp"
 #include "pivoting.hpp"
 #include "unrevised.hpp"
 
@@ -102,8 +104,6 @@ QPWork& work() {
     thread_local QPWork w;
     return w;
 }
-
-const double NEG_ZERO = -0.0;
 
 // ----------------------------------------------------------------------------- factors
 
@@ -535,77 +535,24 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 
 // ----------------------------------------------------------------------------- public pieces
 
-// qp._dot4, compiled by numba with fastmath {reassoc, contract}: LLVM vectorizes its four
-// sums. On this host (AVX-512, znver4: the loop vectorizer's choice in qp._dot4's
-// assembly) the main loop takes 8 lanes x 4 interleaved parts (32 terms a step) by fused
-// multiply-adds, its parts summed ((p0 + p1) + p2) + p3 and the lanes halved (l + l + 4,
-// l + l + 2, 0 + 1); then an epilogue of 4 lanes (from the main loop's sum in lane 0) up
-// to the last multiple of 4, halved the same way; then the rest one fused multiply-add
-// at a time. The starting lanes are -0.0 but lane 0 of part 0 (+0.0).
-// Compiled per instruction set with hardware fused multiply-adds (the baseline variant
-// calls libm's fma: the same bits, slower); every variant gives the same bits.
-#if defined(__GNUC__) && defined(__x86_64__) && defined(__linux__) && !defined(LEMKE_NO_CLONES) \
-    && !defined(__SANITIZE_ADDRESS__)
-#define LEMKE_FMA_CLONES \
-    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define LEMKE_FMA_CLONES
-#endif
-
-LEMKE_FMA_CLONES
+// qp._dot4: the four sums a' r_q in one pass over a, each in linalg's fixed order (dot,
+// row_dot_and_size): eight running sums, lane j mod 8 of the first 8 floor(len / 8) terms,
+// the rest into lane 0, combined ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)); no
+// fused multiply-add (-ffp-contract=off), so the same bits on every instruction set.
+LEMKE_CLONES
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
     const double* rr[4] = {r0, r1, r2, r3};
-    double s[4] = {0.0, 0.0, 0.0, 0.0};
-    idx t = 0;
-    if (len <= 0) {
-        for (int q = 0; q < 4; ++q) out[q] = 0.0;
-        return;
-    }
-    bool epilogue = false;
-    if (len >= 4) {
-        if (len >= 32) {
-            idx main_end = len & ~static_cast<idx>(31);
-            double acc[4][32];  // acc[q][8 u + l]: sum q, part u, lane l
-            for (int q = 0; q < 4; ++q)
-                for (int e = 0; e < 32; ++e) acc[q][e] = NEG_ZERO;
-            for (int q = 0; q < 4; ++q) acc[q][0] = 0.0;
-            for (idx j = 0; j < main_end; j += 32)
-                for (int q = 0; q < 4; ++q) {
-                    const double* rq = rr[q] + j;
-                    const double* aj = a + j;
-                    double* aq = acc[q];
-                    for (int e = 0; e < 32; ++e) aq[e] = std::fma(aj[e], rq[e], aq[e]);
-                }
-            for (int q = 0; q < 4; ++q) {
-                const double* aq = acc[q];
-                double v[8], h4[4], h2[2];
-                for (int l = 0; l < 8; ++l) v[l] = ((aq[l] + aq[8 + l]) + aq[16 + l]) + aq[24 + l];
-                for (int l = 0; l < 4; ++l) h4[l] = v[l] + v[l + 4];
-                for (int l = 0; l < 2; ++l) h2[l] = h4[l] + h4[l + 2];
-                s[q] = h2[0] + h2[1];
-            }
-            t = main_end;
-            if (t != len && (len & 28) != 0) epilogue = true;
-        } else {
-            epilogue = true;
-        }
-    }
-    if (epilogue) {
-        idx end4 = len & ~static_cast<idx>(3);
-        for (int q = 0; q < 4; ++q) {
-            double acc[4] = {s[q], NEG_ZERO, NEG_ZERO, NEG_ZERO};
-            const double* rq = rr[q];
-            for (idx j = t; j < end4; j += 4)
-                for (int l = 0; l < 4; ++l) acc[l] = std::fma(a[j + l], rq[j + l], acc[l]);
-            double h2[2] = {acc[0] + acc[2], acc[1] + acc[3]};
-            s[q] = h2[0] + h2[1];
-        }
-        t = end4;
-    }
-    for (; t < len; ++t)
-        for (int q = 0; q < 4; ++q) s[q] = std::fma(a[t], rr[q][t], s[q]);
-    for (int q = 0; q < 4; ++q) out[q] = s[q];
+    double s[4][8] = {};
+    idx j = 0;
+    for (; j + 8 <= len; j += 8)
+        for (int q = 0; q < 4; ++q)
+            for (int l = 0; l < 8; ++l) s[q][l] += a[j + l] * rr[q][j + l];
+    for (; j < len; ++j)
+        for (int q = 0; q < 4; ++q) s[q][0] += a[j] * rr[q][j];
+    for (int q = 0; q < 4; ++q)
+        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
+                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
 }
 
 LEMKE_CLONES
@@ -1007,6 +954,77 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     }
     return gram(ds, lo, up, w, R, max_pivots, pivot_tol, tie_tol, tol, o, basic,
                 definite ? REFINE : REFINE_PROXIMAL);
+}
+
+void box_basis(const double* lo, const double* up, idx n, const idx* final, idx k, idx m,
+               idx* out, idx& count, idx& pairs) {
+    thread_local std::vector<std::uint8_t> work;
+    work.resize(static_cast<std::size_t>(2 * n + 1));
+    std::uint8_t* flags = work.data();
+    for (idx j = 0; j < 2 * n; ++j) flags[j] = 0;
+    for (idx i = 0; i < k; ++i) flags[final[i]] = 1;
+    for (idx i = k; i < m; ++i) flags[n + final[i]] = 1;
+    idx cnt = 0, pos = 0;
+    for (idx j = 0; j < n; ++j) {
+        bool lo_f = lo[j] > -INF, up_f = up[j] < INF;
+        if ((lo_f || up_f) && !(lo_f && up_f && lo[j] == up[j])) {
+            if (flags[j] || (lo_f && flags[n + j])) out[cnt++] = pos;
+            ++pos;
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        if (lo[j] > -INF && up[j] < INF && lo[j] != up[j]) {
+            if (flags[n + j]) out[cnt++] = pos;
+            ++pos;
+        }
+    }
+    count = cnt;
+    pairs = pos;
+}
+
+Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, double pivot_tol,
+                 double tie_tol, double tol, double* out, idx* final) {
+    Result res;
+    idx n = dt.n();
+    thread_local std::vector<double> scr;
+    scr.resize(static_cast<std::size_t>(n * (2 * n + 2) + 1));
+    double* Ps = scr.data();
+    double* lo = Ps + n * n;
+    double* up = lo + n;
+    double* Lw = up + n;
+    if (!screen(dt, Ps, lo, up)) {
+        res.code = BAD_INPUT;
+        return res;
+    }
+    Mat<const double> P(Ps, n, n);
+    if (!cholesky(P, Mat<double>(Lw, n, n))) {
+        res.code = NOT_DEFINITE;
+        return res;
+    }
+    double* buf = out;
+    boxed::SolveResult r = boxed::solve(P, dt.q, lo, up, warm, 0, max_pivots, pivot_tol,
+                                        tie_tol, tol, buf, final);
+    res.pivots = r.pivots;
+    if (!(r.code == SOLVED && r.ok)) {
+        res.code = NOT_SOLVED;
+        return res;
+    }
+    const double* x = buf;
+    const double* w = buf + n;
+    double* zb = out + 6 * n + 1;
+    for (idx j = 0; j < n; ++j) zb[j] = -w[j];
+    Data ds = dt;
+    ds.P = P;
+    ds.lb = lo;
+    ds.ub = up;
+    // (numba's kernel passes b and h as y and z: empty for a box-only QP)
+    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + 7 * n + 1)) {
+        res.code = CHECK_FAILED;
+        return res;
+    }
+    box_basis(lo, up, n, final, r.k, r.m, final + n, res.k, res.pairs);
+    res.code = OK;
+    return res;
 }
 
 }  // namespace qp

@@ -3,9 +3,8 @@
 // QR of the equalities, the multiplier LCP by lemke::checked_once, the point, the KKT check
 // on the caller's data) and the path for many more inequalities than variables (the LCP in
 // factored form by the unrevised method, the active set's point refined in double-double).
-// The same operations in the same order as the numba kernels, so the same bits; the one
-// sum numba compiles with fastmath (qp._dot4, in forward_rows) is written out here as LLVM
-// vectorizes it (see dot4 in qp.cpp).
+// The same operations in the same order as the numba kernels, so the same bits (every sum in
+// a fixed order without fused multiply-adds: the same bits on every instruction set).
 #pragma once
 #include <cstdint>
 
@@ -80,9 +79,22 @@ Result solve(const Data& d, int method, idx max_pivots, double pivot_tol, double
 Result solve_gram(const Data& d, idx max_pivots, double pivot_tol, double tie_tol, double tol,
                   double* out, idx out_len, idx* basic, bool semidefinite);
 
+// qp.solve_box on data of matching shapes (a QP whose only constraints are bounds): screen,
+// P definite (cholesky), one boxed::solve run on the box LCP (Ps, q, lo, up) from warm (2n
+// flags), its natural-map verdict, zb = -w, kkt_check at min(tol, STRICT_TOL). Writes out
+// (7n + 5: boxed's buffer 6n + 1, zb n, stats 4) and final (3n: boxed's final basis, then
+// the basis as box_basis numbers it); Result's k and pairs are box_basis's (count, pairs).
+Result solve_box(const Data& d, const std::uint8_t* warm, idx max_pivots, double pivot_tol,
+                 double tie_tol, double tol, double* out, idx* final);
+
+// qp.box_basis: the box LCP's final basis (final[:k] basic, final[k:m] at upper) as the
+// KKT-MLCP numbers its pairs, into out (room for 2n); (count, pairs).
+void box_basis(const double* lo, const double* up, idx n, const idx* final, idx k, idx m,
+               idx* out, idx& count, idx& pairs);
+
 // Pieces bound for the oracle tests.
 void forward_rows(Mat<const double> L, Mat<double> R);
-// qp._dot4 as numba compiles it on this host (see qp.cpp): the four sums a' r_k.
+// qp._dot4: the four sums a' r_k, each in linalg's fixed order (dot).
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out);
 double qr_rows(Mat<double> WE, Mat<double> V, double* beta);

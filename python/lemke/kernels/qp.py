@@ -99,7 +99,6 @@ Cost: ``n^3/6`` (Cholesky) ``+ n^2 (p + m) / 2`` (substitutions) ``+ 2 n p (p + 
 last two terms are ``m (r + k)`` a pivot instead.
 """
 import numpy as np
-from numba import njit
 
 from . import boxed, cold, inline_kernel, kernel, pivoting, unrevised
 from .linalg import (absmax, acc2, borrow, copy, dot, false_flags, nan_probe, no_matrix, pow2_rsqrt,
@@ -225,21 +224,75 @@ def forward(L, r):
         r[j] = (r[j] - dot(Lj[s:], rs, j - s)) / Lj[j]
 
 
-@njit(cache=True, nogil=True, error_model="numpy", fastmath={"reassoc", "contract"})
+@kernel
 def _dot4(a, r0, r1, r2, r3):
-    """The four sums ``a' r_k`` in one pass over a (fastmath, as ``linalg.dot``; slices
-    indexed from 0, so that no negative-index wraparound stops vectorization)."""
-    s0 = 0.0
-    s1 = 0.0
-    s2 = 0.0
-    s3 = 0.0
-    for t in range(a.shape[0]):
-        at = a[t]
-        s0 += at * r0[t]
-        s1 += at * r1[t]
-        s2 += at * r2[t]
-        s3 += at * r3[t]
-    return s0, s1, s2, s3
+    """The four sums ``a' r_k`` in one pass over a, each in the fixed order of
+    ``linalg.row_dot_and_size`` (eight running sums: lane ``j mod 8`` of the first
+    ``8 floor(k / 8)`` terms, the rest into lane 0, combined ``((s0 + s1) + (s2 + s3)) +
+    ((s4 + s5) + (s6 + s7))``; no fastmath, no fused multiply-add), so the same bits on
+    every instruction set and in the C++ core (``qp::dot4``): ``linalg.dot(a, r_k, k)``
+    four times over, with a read once.  (Before, this was compiled with fastmath
+    ``reassoc`` and ``contract``: LLVM reordered the sums and fused the multiply-adds,
+    by the host's vector width.)"""
+    k = a.shape[0]
+    s00 = s01 = s02 = s03 = s04 = s05 = s06 = s07 = 0.0
+    s10 = s11 = s12 = s13 = s14 = s15 = s16 = s17 = 0.0
+    s20 = s21 = s22 = s23 = s24 = s25 = s26 = s27 = 0.0
+    s30 = s31 = s32 = s33 = s34 = s35 = s36 = s37 = 0.0
+    j = 0
+    while j + 8 <= k:
+        a0 = a[j]
+        a1 = a[j + 1]
+        a2 = a[j + 2]
+        a3 = a[j + 3]
+        a4 = a[j + 4]
+        a5 = a[j + 5]
+        a6 = a[j + 6]
+        a7 = a[j + 7]
+        s00 += a0 * r0[j]
+        s10 += a0 * r1[j]
+        s20 += a0 * r2[j]
+        s30 += a0 * r3[j]
+        s01 += a1 * r0[j + 1]
+        s11 += a1 * r1[j + 1]
+        s21 += a1 * r2[j + 1]
+        s31 += a1 * r3[j + 1]
+        s02 += a2 * r0[j + 2]
+        s12 += a2 * r1[j + 2]
+        s22 += a2 * r2[j + 2]
+        s32 += a2 * r3[j + 2]
+        s03 += a3 * r0[j + 3]
+        s13 += a3 * r1[j + 3]
+        s23 += a3 * r2[j + 3]
+        s33 += a3 * r3[j + 3]
+        s04 += a4 * r0[j + 4]
+        s14 += a4 * r1[j + 4]
+        s24 += a4 * r2[j + 4]
+        s34 += a4 * r3[j + 4]
+        s05 += a5 * r0[j + 5]
+        s15 += a5 * r1[j + 5]
+        s25 += a5 * r2[j + 5]
+        s35 += a5 * r3[j + 5]
+        s06 += a6 * r0[j + 6]
+        s16 += a6 * r1[j + 6]
+        s26 += a6 * r2[j + 6]
+        s36 += a6 * r3[j + 6]
+        s07 += a7 * r0[j + 7]
+        s17 += a7 * r1[j + 7]
+        s27 += a7 * r2[j + 7]
+        s37 += a7 * r3[j + 7]
+        j += 8
+    while j < k:
+        at = a[j]
+        s00 += at * r0[j]
+        s10 += at * r1[j]
+        s20 += at * r2[j]
+        s30 += at * r3[j]
+        j += 1
+    return (((s00 + s01) + (s02 + s03)) + ((s04 + s05) + (s06 + s07)),
+            ((s10 + s11) + (s12 + s13)) + ((s14 + s15) + (s16 + s17)),
+            ((s20 + s21) + (s22 + s23)) + ((s24 + s25) + (s26 + s27)),
+            ((s30 + s31) + (s32 + s33)) + ((s34 + s35) + (s36 + s37)))
 
 
 @kernel
