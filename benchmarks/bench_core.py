@@ -12,7 +12,8 @@ checked (``w = M z + q`` recomputed here):
 
 - **core**: ``solve_lcp`` as shipped (the tableau's first run in the C++ core);
 - **numba**: the same front with the numba kernel ``cold.first_run`` put back (the kernel
-  the core ports: the last numba code path, in the same process, on the same data);
+  the core ports, now in ``tests/oracle/``: the last numba code path, in the same process,
+  on the same data);
 - **quantecon**: ``quantecon.optimize.lcp_lemke`` (cold);
 
 and, in the same rounds, the unrevised method and the box LCP engine (lo = 0, hi = inf) on
@@ -33,16 +34,18 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# the former numba kernels, now the test oracles (tests/oracle/; numba from the test extra)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests"))
 from bench_lcp import machine_info, mark_end, report_head, report_parser  # noqa: E402
 
 import lemke  # noqa: E402
 from lemke import _lcp  # noqa: E402
-from lemke.kernels import cold  # noqa: E402
+from oracle import cold  # noqa: E402
 
 
 def numba_entry():
     """The numba first_run's compiled entry point for solve_lcp's fast-path types."""
-    from lemke.kernels import entry_point
+    from oracle import entry_point
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
     return entry_point(cold.first_run, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
 

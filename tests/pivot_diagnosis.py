@@ -17,7 +17,7 @@ Labels: 0..n-1 for w, n..2n-1 for z, 2n for z0.
 import numpy as np
 import scipy.linalg as sl
 
-from lemke.kernels.linalg import equilibrate
+from oracle.linalg import equilibrate
 
 
 def _system(M, q):

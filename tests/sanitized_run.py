@@ -42,6 +42,10 @@ import numpy as np
 HERE = Path(__file__).resolve().parent
 if str(HERE) not in sys.path:
     sys.path.insert(0, str(HERE))
+# An editable install (scikit-build-core's) finds lemke through a finder on sys.meta_path,
+# ahead of PYTHONPATH: take it out, so that the sanitized copy on PYTHONPATH is imported.
+sys.meta_path[:] = [f for f in sys.meta_path if "ScikitBuild" not in type(f).__name__
+                    and "skbc" not in type(f).__module__]
 
 import lemke  # noqa: E402
 

@@ -10,7 +10,7 @@ from siconos_dat import read_lcp
 
 import lemke
 from lemke import Status, problems
-from lemke.kernels.cold import RESTART_FROM
+from lemke._layout import RESTART_FROM
 
 DATA = Path(__file__).parent / "data"
 

@@ -5,7 +5,7 @@ import pytest
 
 import lemke
 from lemke import _certify
-from lemke.kernels import certify as kcertify
+from oracle import certify as kcertify
 
 
 def test_constants_are_shared():

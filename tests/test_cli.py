@@ -21,12 +21,11 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def run(capsys, *argv):
-    """``(exit code, stdout, stderr)`` of ``lemke argv`` run in this process.  The one-line
-    notice that numba is compiling (on a cold cache, e.g. in CI) is taken out of stderr: it
-    depends on which tests ran before; ``test_compiling_is_announced_once`` checks it."""
+    """``(exit code, stdout, stderr)`` of ``lemke argv`` run in this process (nothing is
+    compiled at run time: stderr holds only what the command says)."""
     code = _cli.main([str(a) for a in argv])
     out, err = capsys.readouterr()
-    return code, out, err.replace(_cli.COMPILE_NOTICE + "\n", "")
+    return code, out, err
 
 
 def one_error_line(err: str, *words):
@@ -288,21 +287,6 @@ def test_siconos_relay_files_solve_as_box_lcps(capsys, name, z):
     assert np.allclose(doc["z"], z, atol=1e-12)
 
 
-def test_compiling_is_announced_once(capsys, monkeypatch):
-    # numba raises "numba:compile" only when it compiles (a cache miss); here the event is
-    # raised by hand, twice in each of two solves' notice contexts.
-    from numba.core import event
-
-    monkeypatch.setattr(_cli, "_SAID", [False])
-    for _ in range(2):
-        with _cli._compile_notice():
-            for _ in range(2):
-                with event.trigger_event("numba:compile", data={}):
-                    pass
-    out, err = capsys.readouterr()
-    assert out == "" and err == _cli.COMPILE_NOTICE + "\n"
-
-
 def test_the_cli_loads_no_numba_for_an_lcp(tmp_path):
     """``lemke solve`` on an LCP (the default problem, and a file) runs in the C++ core:
     the process never imports numba, and says nothing about compiling."""
@@ -508,7 +492,7 @@ def test_ctrl_c_stops_a_running_kernel_at_once(tmp_path, record_property, source
     record_property("sigint_latency_s", latency)
     assert code == 130, stderr
     assert latency < 2.0
-    assert stderr.replace(_cli.COMPILE_NOTICE + "\n", "") == "lemke: interrupted\n"
+    assert stderr == "lemke: interrupted\n"
     if finished is None:
         assert stdout == "" and not out.exists()
     else:

@@ -27,7 +27,7 @@ import pytest
 
 import lemke
 from lemke import _blcp, _core
-from lemke.kernels import boxed as nboxed
+from oracle import boxed as nboxed
 
 cboxed = _core.boxed
 FUNCS = ("solve", "front", "box_check", "check_scales", "basis_point", "is_ray", "extend")

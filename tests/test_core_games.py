@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from lemke import _core
-from lemke.kernels import games as kg
+from oracle import games as kg
 
 sys.path.insert(0, str(Path(__file__).parent))
 import test_games as tg  # noqa: E402  (the games and generators of the front's tests)

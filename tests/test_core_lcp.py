@@ -13,7 +13,7 @@ import pytest
 
 import stress_cases
 from lemke import _core
-from lemke.kernels import cold
+from oracle import cold
 
 NO_D = np.empty(0)
 NO_I = np.zeros(0, dtype=np.int64)

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from lemke import _core, _qp
-from lemke.kernels import kernel, linalg, qp as kqp, unrevised
+from oracle import kernel, linalg, qp as kqp, unrevised
 
 HERE = Path(__file__).resolve().parent
 DATA = HERE / "data" / "maros-meszaros"

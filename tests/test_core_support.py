@@ -30,10 +30,10 @@ import pytest
 
 import lemke
 from lemke import _certify, _core
-from lemke.kernels import carry
-from lemke.kernels import certify as kcertify
-from lemke.kernels import linalg as klinalg
-from lemke.kernels import mlcp as kmlcp
+from oracle import carry
+from oracle import certify as kcertify
+from oracle import linalg as klinalg
+from oracle import mlcp as kmlcp
 
 sys.path.insert(0, str(Path(__file__).parent))
 import golden  # noqa: E402

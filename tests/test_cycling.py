@@ -205,7 +205,7 @@ def test_a_first_run_with_the_right_basis_needs_no_recovery_run(key):
     the point of its final basis (one LU solve on the data) is tried before any recovery
     run; where it passes, that is the answer: recoveries 0, and the pivots are the first
     run's.  The answer is checked here independently."""
-    from lemke.kernels import cold
+    from oracle import cold
     M, q = (np.ascontiguousarray(a, dtype=float) for a in problem(key))
     n = q.size
     buf = np.empty(cold.buffer_length(n) + n)
@@ -230,7 +230,7 @@ def test_a_first_run_one_basis_off_is_restarted_from_its_basis():
     the first run's basis was a few pivots off, and the restart's 20 pivots end it
     (recoveries 1).  The answer is checked here independently."""
     from lemke import Options
-    from lemke.kernels import cold, linalg
+    from oracle import cold, linalg
     o = Options()
     M, q = (np.ascontiguousarray(a, dtype=float) for a in problem("contact/mixed-step055"))
     n = q.size

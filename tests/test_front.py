@@ -11,7 +11,7 @@ from helpers import assert_lcp_solution, assert_ray
 
 import lemke
 from lemke import LCPResult, Status, WarmStart, _lcp, problems
-from lemke.kernels import cold
+from oracle import cold
 
 FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
           "row_scale", "col_scale", "recoveries")
@@ -221,7 +221,7 @@ def test_arrays_made_by_a_numba_kernel_take_the_fast_path_with_the_same_answer()
     """An array returned by a numba kernel has a float64 dtype object that is not numpy's
     own (``is`` fails, ``==`` holds): solve_lcp must accept it as it is and give the bits
     it gives for numpy's own arrays."""
-    from lemke.kernels.linalg import principal_block
+    from oracle.linalg import principal_block
 
     rng = np.random.default_rng(7)
     A = rng.standard_normal((5, 5))

@@ -14,7 +14,7 @@ from scipy.optimize import linprog
 
 import lemke
 from lemke import _core, _games, _games_exact
-from lemke.kernels import games as kernels_games
+from oracle import games as kernels_games
 from lemke._io import ProblemFormatError
 from lemke._io.nfg import read_nfg
 

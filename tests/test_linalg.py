@@ -1,4 +1,4 @@
-"""The kernels' own dense factorizations (``lemke.kernels.linalg``): single-threaded
+"""The kernels' own dense factorizations (``oracle.linalg``): single-threaded
 replacements for LAPACK, so that no kernel starts a BLAS thread pool."""
 from pathlib import Path
 
@@ -8,7 +8,7 @@ import pytest
 import lemke
 from helpers import assert_lcp_solution
 from lemke import problems
-from lemke.kernels import linalg
+from oracle import linalg
 
 
 def _matrix(rng, k, kind):

@@ -372,7 +372,7 @@ def test_fused_path_gives_up_after_one_failed_run():
 
     from lemke import _qp
     from lemke._options import as_options
-    from lemke.kernels import cold, qp as kqp
+    from oracle import cold, qp as kqp
 
     here = Path(__file__).resolve().parent
     sys.path.insert(0, str(here.parent / "benchmarks"))

@@ -13,7 +13,7 @@ import pytest
 
 import lemke
 from lemke import Status, _core, _qp
-from lemke.kernels import qp as kqp
+from oracle import qp as kqp
 from lemke.problems import random_convex_qp
 from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
 

@@ -8,7 +8,7 @@ import quadprog
 from helpers import enumerate_solutions
 from lemke._reductions.mlcp_lcp import MLCPToLCP
 from lemke._reductions.qp_mlcp import QPToMLCP
-from lemke.kernels import mlcp as kmlcp
+from oracle import mlcp as kmlcp
 
 
 def _random_qp(seed, n=6, m=4, p=2):

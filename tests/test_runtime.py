@@ -12,7 +12,10 @@ from lemke import _cli, problems
 
 
 def run_python(code, **env):
+    """Run ``code`` in a new interpreter, with tests/ on its path (the oracle package)."""
     e = dict(os.environ, **env)
+    here = os.path.dirname(os.path.abspath(__file__))
+    e["PYTHONPATH"] = os.pathsep.join([here] + [p for p in [e.get("PYTHONPATH")] if p])
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=e, timeout=300)
     assert out.returncode == 0, out.stderr
     return out.stdout
@@ -20,8 +23,8 @@ def run_python(code, **env):
 
 def test_import_compiles_nothing():
     out = run_python(
-        "import lemke, lemke.kernels.tableau as t, lemke.kernels.unrevised as u, lemke.kernels.pivoting as p, lemke.kernels.certify as c, lemke.kernels.linalg, lemke.kernels.cold as k\n"
-        "print(sum(len(f.signatures) for f in (t.solve, t.lemke, t.pivot, t.lex_ties, u.solve, u.ratio_test, p.min_ratio, p.keep_lowest, p.first_row, c.lcp_check, c.lcp_ray_check, lemke.kernels.linalg.dot, lemke.kernels.linalg.axpy, lemke.kernels.linalg.equilibrate, k.checked, k.batch)))"
+        "import lemke, oracle.tableau as t, oracle.unrevised as u, oracle.pivoting as p, oracle.certify as c, oracle.linalg, oracle.cold as k\n"
+        "print(sum(len(f.signatures) for f in (t.solve, t.lemke, t.pivot, t.lex_ties, u.solve, u.ratio_test, p.min_ratio, p.keep_lowest, p.first_row, c.lcp_check, c.lcp_ray_check, oracle.linalg.dot, oracle.linalg.axpy, oracle.linalg.equilibrate, k.checked, k.batch)))"
     )
     assert out.strip() == "0"
 
@@ -57,7 +60,7 @@ _SOLVES = (
 
 def test_solves_compile_no_numba_kernel():
     """The package runs on the C++ core: no solve compiles a numba kernel (numba's compile
-    events, recorded around the solves; and every dispatcher of lemke.kernels, imported
+    events, recorded around the solves; and every dispatcher of oracle, imported
     afterwards, has no signature, compiled or loaded from numba's cache).  The numba
     kernels are the core's test oracles (tests/test_core_*.py) only."""
     code = (
@@ -66,11 +69,11 @@ def test_solves_compile_no_numba_kernel():
         "from numba.core import event, registry\n"
         "with event.install_recorder('numba:compile') as rec:\n"
         + "".join("    " + line + "\n" for line in _SOLVES.splitlines())
-        + "imported = sorted(m for m in sys.modules if m.startswith('lemke.kernels.'))\n"
-        "import lemke.kernels\n"
+        + "imported = sorted(m for m in sys.modules if m.startswith('oracle.'))\n"
+        "import oracle\n"
         "count = dispatchers = 0\n"
-        "for info in pkgutil.iter_modules(lemke.kernels.__path__):\n"
-        "    mod = importlib.import_module('lemke.kernels.' + info.name)\n"
+        "for info in pkgutil.iter_modules(oracle.__path__):\n"
+        "    mod = importlib.import_module('oracle.' + info.name)\n"
         "    for f in vars(mod).values():\n"
         "        if isinstance(f, registry.CPUDispatcher):\n"
         "            dispatchers += 1\n"
@@ -92,7 +95,7 @@ def test_kernels_run_as_plain_python():
     code = (
         "import hashlib, numpy as np\n"
         "from lemke import _core\n"
-        "from lemke.kernels import qp, tableau\n"
+        "from oracle import qp, tableau\n"
         "compiled = hasattr(tableau.lemke, 'signatures')\n"
         "rng = np.random.default_rng(3)\n"
         "for n in (1, 4, 9):\n"

@@ -1,7 +1,8 @@
 """The package's structure, as ARCHITECTURE.md states it: imports only go down the layers
 (no cycle, no import back up, not even inside a function), the kind strings live in the
-registry and the file formats' declarations only, the kernels' buffer layout has one
-statement, and results behave like values."""
+registry and the file formats' declarations only, the core's buffer layout is the one
+_layout.py states, and results behave like values; and no module of the package imports
+numba (its kernels are the core's test oracles, in tests/oracle/)."""
 import ast
 import pickle
 from pathlib import Path
@@ -11,15 +12,15 @@ import pytest
 
 import lemke
 from lemke._kinds import KINDS
-from lemke.kernels import cold
+from oracle import cold
 
 PACKAGE = Path(lemke.__file__).parent
 
 #: Layer of each module (dotted, relative to lemke); a module may import only lower layers
-#: (or, inside the kernels and _io packages, its siblings, acyclically).
+#: (or, inside the _io and _reductions packages, its siblings, acyclically).
 LAYERS = [
     {"_layout"},
-    {"_status", "_options", "_validate", "_version", "_progress", "kernels", "_core"},
+    {"_status", "_options", "_validate", "_version", "_progress", "_core"},
     {"_result"},
     {"_certify"},
     {"_reductions", "_games_exact"},
@@ -174,34 +175,11 @@ def test_status_prints_its_name():
     assert len(repr(r)) < 120
 
 
-def _kernel_names():
-    """The names of every function decorated ``@kernel`` or ``@inline_kernel`` (or an
-    ``@njit(...)``) in lemke/kernels."""
-    names = set()
-    for path in (PACKAGE / "kernels").glob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.FunctionDef) and node.decorator_list:
-                names.add(node.name)
-    return names
-
-
-def _is_literal_number(node):
-    if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
-        node = node.operand
-    return isinstance(node, ast.Constant) and isinstance(node.value, (bool, int))
-
-
-def test_no_kernel_gets_a_literal_constant_argument():
-    """numba compiles a kernel, and all it calls, once more for every literal constant it
-    is passed (kernels/__init__.py): kernels pass np.int64(0), np.False_, np.True_."""
-    kernels = _kernel_names()
-    bad = []
-    for path in (PACKAGE / "kernels").glob("*.py"):
-        for node in ast.walk(ast.parse(path.read_text())):
-            if not isinstance(node, ast.Call):
-                continue
-            f = node.func
-            name = f.attr if isinstance(f, ast.Attribute) else f.id if isinstance(f, ast.Name) else None
-            if name in kernels and any(_is_literal_number(a) for a in node.args):
-                bad.append(f"{path.name}:{node.lineno} {name}")
-    assert not bad, "literal constants passed to kernels: " + ", ".join(bad)
+def test_the_package_does_not_import_numba():
+    """numba is a test dependency only (the oracles of tests/test_core_*.py): no module of
+    the package names it."""
+    bad = [str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py") if "numba" in
+           {(n.module or "").split(".")[0] for n in ast.walk(ast.parse(p.read_text()))
+            if isinstance(n, ast.ImportFrom)} | {a.name.split(".")[0] for n in
+            ast.walk(ast.parse(p.read_text())) if isinstance(n, ast.Import) for a in n.names}]
+    assert not bad, bad

@@ -11,7 +11,6 @@ finished and ends the process."""
 from __future__ import annotations
 
 import argparse
-import contextlib
 import json
 import os
 import signal
@@ -427,42 +426,12 @@ def _interrupted(run: _Run, still_running: bool) -> int:
 _WARM = set()
 
 
-COMPILE_NOTICE = ("lemke: compiling the numba kernels for their first use (they are cached on "
-                  "disk: this happens once) ...")
-
-
-def _compile_notice():
-    """A context in which numba's first compile of a kernel says so on stderr, once per
-    process (numba raises its "numba:compile" event only on a cache miss, so a run whose
-    kernels are all cached says nothing): only where numba is loaded, by the fronts of
-    the kinds that still run numba kernels (the C++ core needs none)."""
-    if "numba" not in sys.modules:
-        return contextlib.nullcontext()
-    from numba.core import event
-
-    class Notice(event.Listener):
-        def on_start(self, ev):
-            if not _SAID[0]:
-                _SAID[0] = True
-                print(COMPILE_NOTICE, file=sys.stderr, flush=True)
-
-        def on_end(self, ev):
-            pass
-
-    return event.install_listener("numba:compile", Notice())
-
-
-_SAID = [False]
-
-
 def _warm_up(kind: str, method: str) -> None:
-    """Load the kernels for a kind of problem (from numba's cache, or compile them, once per
-    install) before timing one: the times shown are those of the solves."""
+    """Load a kind's front and touch its code paths once before timing a problem of that
+    kind: the times shown are those of the solves."""
     if (kind, method) not in _WARM:
         _WARM.add((kind, method))
-        KINDS[kind].solve.load()  # the kind's front, and numba if it still needs it
-        with _compile_notice():
-            Problem(kind, KINDS[kind].example).solve(method=method)
+        Problem(kind, KINDS[kind].example).solve(method=method)
 
 
 def _json(doc: dict) -> str:
@@ -513,8 +482,7 @@ def _run_one(src, args, options) -> dict:
                              f"(its methods: {', '.join(kind.methods)})")
         _warm_up(prob.kind, method)
         t0 = time.perf_counter()
-        with _compile_notice():  # (a recovery path can need a kernel the example did not)
-            res = prob.solve(method=method, options=options)
+        res = prob.solve(method=method, options=options)
     except (NotImplementedError, ValueError, TypeError) as exc:  # the solver refused the data
         return dict(row, error=f"{where}: {' '.join(str(exc).split())}")
     row.update(status=res.status.name, pivots=res.pivots, residual_=kind.residual(res),

@@ -31,7 +31,8 @@ from . import _games_exact as ex
 from ._options import _DEFAULT, Options, as_options
 from ._result import LazyField, Outcome
 from ._status import Status
-from .kernels.pivoting import SOLVED
+
+SOLVED = int(Status.SOLVED)  # the core's code of a solved run
 
 METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)

@@ -155,10 +155,9 @@ def _caller_level() -> int:
 
 
 def kernel_array(a: np.ndarray) -> np.ndarray:
-    """``a`` as the kernels take it: C-contiguous and writable (a copy only when it is not).
-    numba compiles a kernel once per array type, and a read-only or strided array is
-    another type: normalizing here keeps one compiled kernel for every entry point (the
-    kernels never write to their input)."""
+    """``a`` as the core's bindings take it: C-contiguous and writable (a copy only when it is
+    not; the core never writes to its input, but some bindings take their inputs as plain,
+    writable arrays)."""
     return a if a.flags.c_contiguous and a.flags.writeable else np.array(a, order="C")
 
 

@@ -201,9 +201,12 @@ void swap_rows(Mat<double> A, idx i, idx j, idx k) {
     }
 }
 
+bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv);
+
 }  // namespace
 
-LEMKE_CLONES
+// The block M[index, index] gathered into a (k x k), then eliminate's solve (the dense
+// updates: no pivots kept).
 bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y, double* x,
                     idx k) {
     Mat<double> A(a, k, k);
@@ -212,50 +215,7 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y,
         for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
     }
     for (idx i = 0; i < k; ++i) x[i] = 0.0;
-    bool finite = all_finite(y, k);
-    for (idx r = 0; r < k; ++r) finite &= all_finite(A.row(r), k);
-    if (!finite) return false;
-    idx j = 0;
-    while (j < k) {
-        idx p = pivot_row(A, j, k, 0.0);
-        if (p < 0) return false;
-        swap_rows(A, j, p, k);
-        double t = y[j]; y[j] = y[p]; y[p] = t;
-        double inv = 1.0 / A(j, j);
-        if (j + 1 == k) break;
-        for (idx r = j + 1; r < k; ++r) A(r, j) *= inv;
-        double h = A(j, j + 1);
-        p = pivot_row(A, j + 1, k, h);
-        if (p < 0) return false;
-        swap_rows(A, j + 1, p, k);
-        t = y[j + 1]; y[j + 1] = y[p]; y[p] = t;
-        double l1 = A(j + 1, j);
-        for (idx c = j + 1; c < k; ++c) A(j + 1, c) -= l1 * A(j, c);
-        y[j + 1] -= l1 * y[j];
-        double inv1 = 1.0 / A(j + 1, j + 1);
-        for (idx r = j + 2; r < k; ++r) {
-            double f = A(r, j);
-            double g = (A(r, j + 1) - f * h) * inv1;
-            A(r, j + 1) = g;
-            if (f != 0.0 || g != 0.0) y[r] = (y[r] - f * y[j]) - g * y[j + 1];
-        }
-        for (idx r = j + 2; r < k; ++r) {
-            double f = A(r, j), g = A(r, j + 1);
-            if (f != 0.0 || g != 0.0) {
-                double* ar = A.row(r);
-                const double* aj = A.row(j);
-                const double* aj1 = A.row(j + 1);
-                for (idx c = j + 2; c < k; ++c) ar[c] = (ar[c] - f * aj[c]) - g * aj1[c];
-            }
-        }
-        j += 2;
-    }
-    for (idx r = k - 1; r >= 0; --r) {
-        double acc = y[r];
-        for (idx c = r + 1; c < k; ++c) acc -= A(r, c) * x[c];
-        x[r] = acc / A(r, r);
-    }
-    return all_finite(x, k);
+    return eliminate(A, y, x, k, nullptr);
 }
 
 void residual2(Mat<const double> E, const double* x, idx k, const double* e, double* y) {

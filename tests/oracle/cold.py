@@ -75,7 +75,7 @@ from .certify import lcp_check_early, lcp_check_sized, lcp_ray_check_scaled
 from .linalg import (borrow, copy, equilibrate, false_flags, finite_absmax, nan_probe, no_matrix,
                      solve_gathered, solve_work)
 
-from .._layout import (BUFFER, METHODS, NOT_FINITE, RESTART_FROM, TABLEAU, TRIVIAL, UNREVISED,  # noqa: F401
+from lemke._layout import (BUFFER, METHODS, NOT_FINITE, RESTART_FROM, TABLEAU, TRIVIAL, UNREVISED,  # noqa: F401
                        buffer_length, fields)
 
 PERTURBATION = 1e-6  # the relative size of the covering vector's perturbation (step 2)
