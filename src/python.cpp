@@ -23,6 +23,12 @@ using Buffer = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using Indices = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using IndexOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 
+// The length of an optional array argument (None: 0).
+template <class A>
+static lemke::idx len_of(const A& a) {
+    return a.is_valid() ? static_cast<lemke::idx>(a.shape(0)) : 0;
+}
+
 // cold.first_run's arguments and return value, for the tableau method: (code, pivots, k,
 // ok, residual, recoveries, stage). An empty `basic` means: the n int64 after the buffer's
 // fields (solve_lcp's single allocation).
@@ -33,23 +39,23 @@ static std::tuple<int, std::int64_t, std::int64_t, bool, double, std::int64_t, i
     using lemke::idx;
     idx n = static_cast<idx>(q.shape(0));
     lemke::BufferLayout L{n};
-    bool own = basic.shape(0) == 0 && n > 0;
+    idx d_len = len_of(d), beta_len = len_of(beta), basic_len = len_of(basic);
+    bool own = basic_len == 0 && n > 0;
     bool sizes_ok = static_cast<idx>(M.shape(0)) == n && static_cast<idx>(M.shape(1)) == n &&
-                    (d.shape(0) == 0 || static_cast<idx>(d.shape(0)) == n) &&
-                    k >= 0 && k <= n && static_cast<idx>(beta.shape(0)) >= k &&
+                    (d_len == 0 || d_len == n) && k >= 0 && k <= n && beta_len >= k &&
                     static_cast<idx>(buf.shape(0)) >= L.length() + (own ? n : 0) &&
-                    (own || n == 0 || static_cast<idx>(basic.shape(0)) >= n);
+                    (own || n == 0 || basic_len >= n);
     if (!sizes_ok) return {lemke::NOT_FINITE, 0, 0, false, 0.0, 0, 2};
-    const idx* b = beta.data();
+    const idx* b = beta_len ? beta.data() : nullptr;
     for (idx i = 0; i < k; ++i)
         if (b[i] < 0 || b[i] >= n) return {lemke::NOT_FINITE, 0, 0, false, 0.0, 0, 2};
     double* out = buf.data();
-    idx* basic_out = own ? reinterpret_cast<idx*>(out + L.length()) : basic.data();
+    idx* basic_out = own ? reinterpret_cast<idx*>(out + L.length()) : basic_len ? basic.data() : nullptr;
     lemke::RunResult r;
     {
         nb::gil_scoped_release release;
         r = lemke::first_run(lemke::Mat<const double>(M.data(), n, n), q.data(),
-                             d.shape(0) ? d.data() : nullptr, b, k, max_pivots, pivot_tol,
+                             d_len ? d.data() : nullptr, b, k, max_pivots, pivot_tol,
                              tie_tol, tol, out, basic_out);
     }
     return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
@@ -108,27 +114,27 @@ static Tuple7 solve_one(int method, Matrix M, Vector q, Vector d, Indices beta, 
     using lemke::idx;
     idx n = static_cast<idx>(q.shape(0));
     lemke::BufferLayout L{n};
-    bool own = basic.shape(0) == 0 && n > 0;
+    idx d_len = len_of(d), beta_len = len_of(beta), basic_len = len_of(basic);
+    bool own = basic_len == 0 && n > 0;
     idx kb = k >= 0 ? k : (k == -1 ? 0 : -2 - k);
     bool sizes_ok = static_cast<idx>(M.shape(0)) == n && static_cast<idx>(M.shape(1)) == n &&
-                    (d.shape(0) == 0 || static_cast<idx>(d.shape(0)) == n) &&
-                    (method == 0 || method == 1) && kb <= n &&
-                    static_cast<idx>(beta.shape(0)) >= (k == -1 ? 2 : kb) &&
+                    (d_len == 0 || d_len == n) && (method == 0 || method == 1) && kb <= n &&
+                    beta_len >= (k == -1 ? 2 : kb) &&
                     static_cast<idx>(buf.shape(0)) >= L.length() + (own ? n : 0) &&
-                    (own || n == 0 || static_cast<idx>(basic.shape(0)) >= n);
+                    (own || n == 0 || basic_len >= n);
     if (!sizes_ok) return {lemke::NOT_FINITE, 0, 0, false, 0.0, 0, 2};
-    const idx* b = beta.data();
+    const idx* b = beta_len ? beta.data() : nullptr;
     if (k != -1)
         for (idx i = 0; i < kb; ++i)
             if (b[i] < 0 || b[i] >= n) return {lemke::NOT_FINITE, 0, 0, false, 0.0, 0, 2};
     double* out = buf.data();
-    idx* basic_out = own ? reinterpret_cast<idx*>(out + L.length()) : basic.data();
+    idx* basic_out = own ? reinterpret_cast<idx*>(out + L.length()) : basic_len ? basic.data() : nullptr;
     lemke::RunResult r;
     {
         nb::gil_scoped_release release;
         r = lemke::solve_one(static_cast<lemke::Method>(method),
                              lemke::Mat<const double>(M.data(), n, n), q.data(),
-                             d.shape(0) ? d.data() : nullptr, b, k, max_pivots, pivot_tol,
+                             d_len ? d.data() : nullptr, b, k, max_pivots, pivot_tol,
                              tie_tol, tol, out, basic_out);
     }
     return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
@@ -179,12 +185,16 @@ void bind_qp(nb::module_& m);     // src/python_qp.cpp
 
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
-    m.def("first_run", &first_run, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
-          "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a, "basic"_a);
+    // d, beta and basic may be None (no covering vector, no warm start, the buffer's own
+    // basic z's): each array argument's conversion costs about 0.14 us.
+    m.def("first_run", &first_run, "method"_a, "M"_a, "q"_a, "d"_a.none(), "beta"_a.none(),
+          "k"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a,
+          "basic"_a.none());
     m.def("unrevised_solve", &unrevised_solve, "M"_a, "q"_a, "d"_a, "R"_a, "C"_a, "z_start"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "x_out"_a, "ray_out"_a, "z_basic_out"_a);
-    m.def("solve_one", &solve_one, "method"_a, "M"_a, "q"_a, "d"_a, "beta"_a, "k"_a,
-          "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a, "basic"_a);
+    m.def("solve_one", &solve_one, "method"_a, "M"_a, "q"_a, "d"_a.none(), "beta"_a.none(),
+          "k"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a,
+          "basic"_a.none());
     m.def("batch", &batch, "method"_a, "Ms"_a, "mstart"_a, "qs"_a, "qoff"_a, "beta"_a, "boff"_a,
           "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "bufs"_a,
           "buff"_a, "basics"_a, "out_i"_a, "out_f"_a);

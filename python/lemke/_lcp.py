@@ -20,8 +20,8 @@ _SOLVE_ONE = _core.solve_one
 #: ``_layout.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
 _FIRST_RUN = _core.first_run
 _F64 = np.dtype(np.float64)
-_NO_D = np.empty(0)
-_NO_BASIS = np.zeros(0, dtype=np.int64)
+_NO_D = None  # no covering vector (all ones); the core takes None for it, for no warm
+_NO_BASIS = None  # basis and for the buffer's own basic z's (an array costs 0.14 us a call)
 _CODES = _layout.METHODS
 _ND = np.ndarray
 _I64 = np.dtype(np.int64)
@@ -116,7 +116,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         opts = as_options(options)
         _validate.warm_start(ws, WarmStart, q.size,
                              "warm_start is for a problem of size {ws}, this one has n = {n}")
-        d = _NO_D if d is None else d
+        d = _NO_D if d is None else d  # (None: all ones)
         run = _FIRST_RUN if method == "tableau" else _SOLVE_ONE
         n = q.shape[0]
         mp, pivot_tol, tie_tol, tol = opts.max_pivots, opts.pivot_tol, opts.tie_tol, opts.tol
