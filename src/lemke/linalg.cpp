@@ -12,6 +12,20 @@ void row_dot_and_size(const double* row, const double* y, idx k, double& dot_out
     double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d va = simd::splat8(0.0), vs = simd::splat8(0.0);
+        for (; j + 8 <= k; j += 8) {
+            simd::v8d t = simd::load8(row + j) * simd::load8(y + j);
+            va += t;
+            vs += simd::abs8(t);
+        }
+        for (int l = 0; l < 8; ++l) {
+            a[l] = va[l];
+            s[l] = vs[l];
+        }
+    }
+#else
     for (; j + 8 <= k; j += 8) {
         for (int l = 0; l < 8; ++l) {
             double t = row[j + l] * y[j + l];
@@ -19,6 +33,7 @@ void row_dot_and_size(const double* row, const double* y, idx k, double& dot_out
             s[l] += std::fabs(t);
         }
     }
+#endif
     for (; j < k; ++j) {
         double t = row[j] * y[j];
         a[0] += t;
@@ -32,8 +47,16 @@ LEMKE_CLONES
 double dot(const double* x, const double* y, idx k) {
     double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d va = simd::splat8(0.0);
+        for (; j + 8 <= k; j += 8) va += simd::load8(x + j) * simd::load8(y + j);
+        for (int l = 0; l < 8; ++l) a[l] = va[l];
+    }
+#else
     for (; j + 8 <= k; j += 8)
         for (int l = 0; l < 8; ++l) a[l] += x[j + l] * y[j + l];
+#endif
     for (; j < k; ++j) a[0] += x[j] * y[j];
     return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
 }
@@ -91,6 +114,17 @@ double sweep(Mat<const double> M, const double* q, const double* R, const double
         double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         const double* row = M.row(i);
         idx j = 0;
+#ifdef LEMKE_SIMD
+        {
+            simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r);
+            for (; j + 8 <= n; j += 8) {
+                simd::v8d a = (simd::abs8(simd::load8(row + j)) * rr) * simd::load8(C + j);
+                vr = simd::max8(vr, a);
+                simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
+            }
+            for (int l = 0; l < 8; ++l) rm[l] = vr[l];
+        }
+#else
         for (; j + 8 <= n; j += 8) {
             for (int l = 0; l < 8; ++l) {
                 double a = std::fabs(row[j + l]) * r * C[j + l];
@@ -98,6 +132,7 @@ double sweep(Mat<const double> M, const double* q, const double* R, const double
                 cmax[j + l] = pmax(cmax[j + l], a);
             }
         }
+#endif
         for (; j < n; ++j) {
             double a = std::fabs(row[j]) * r * C[j];
             rm[0] = pmax(rm[0], a);

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 
+#include "simd.hpp"
 #include "span.hpp"
 
 namespace lemke {
@@ -44,8 +45,14 @@ inline bool all_finite(const double* x, idx k) {
 inline double absmax(const double* x, idx k) {
     double m[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d v = simd::splat8(0.0);
+    for (; j + 8 <= k; j += 8) v = simd::max8(v, simd::abs8(simd::load8(x + j)));
+    for (int l = 0; l < 8; ++l) m[l] = v[l];
+#else
     for (; j + 8 <= k; j += 8)
         for (int l = 0; l < 8; ++l) m[l] = pmax(m[l], std::fabs(x[j + l]));
+#endif
     for (; j < k; ++j) m[0] = pmax(m[0], std::fabs(x[j]));
     return pmax(pmax(pmax(m[0], m[1]), pmax(m[2], m[3])), pmax(pmax(m[4], m[5]), pmax(m[6], m[7])));
 }

@@ -6,8 +6,9 @@ namespace lemke {
 
 void TableauWork::layout(idx size) {
     n = size;
-    f.resize(static_cast<std::size_t>(n * (n + 1) + 7 * n + 1));
-    i.resize(static_cast<std::size_t>(6 * n + 2));
+    block = block_size(n);
+    f.resize(static_cast<std::size_t>(n * (n + 1) + 7 * n + 1 + block * (2 * n + 1)));
+    i.resize(static_cast<std::size_t>(6 * n + 2 + block));
     flags.resize(static_cast<std::size_t>(2 * n + 1));
 }
 
@@ -47,8 +48,103 @@ void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const dou
 
 namespace {
 
+// The pivots pending (numba's tableau with block > 1): the current tableau is
+// T + sum_p U[:, p] V[p] over the k pending, summed in pivot order. U is n x b, V b x m.
+struct Pending {
+    double* U;
+    double* V;
+    idx* act;
+    idx b, m, k;
+    double u(idx i, idx p) const { return U[i * b + p]; }
+    const double* v(idx p) const { return V + p * m; }
+};
+
+// The current T[i, j]: T[i, j] plus the k pending terms, in pivot order (tableau.entry).
+inline double entry(Mat<double> T, const Pending& P, idx i, idx j) {
+    double t = T(i, j);
+    for (idx p = 0; p < P.k; ++p) {
+        double f = P.u(i, p);
+        if (f != 0.0) t += f * P.v(p)[j];
+    }
+    return t;
+}
+
+// Apply the k pending pivots, row by row, four at a time (tableau.flush: the terms of a row
+// with a zero factor skipped, as an immediate update skips them).
+LEMKE_CLONES
+void flush(Mat<double> T, Pending& P) {
+    idx n = T.rows, m = T.cols;
+    idx* act = P.act;
+    for (idx i = 0; i < n; ++i) {
+        idx na = 0;
+        for (idx p = 0; p < P.k; ++p)
+            if (P.u(i, p) != 0.0) act[na++] = p;
+        double* ti = T.row(i);
+        idx c = 0;
+        for (; c + 4 <= na; c += 4) {
+            idx p0 = act[c], p1 = act[c + 1], p2 = act[c + 2], p3 = act[c + 3];
+            double a0 = P.u(i, p0), a1 = P.u(i, p1), a2 = P.u(i, p2), a3 = P.u(i, p3);
+            const double *v0 = P.v(p0), *v1 = P.v(p1), *v2 = P.v(p2), *v3 = P.v(p3);
+            for (idx j = 0; j < m; ++j)
+                ti[j] = (((ti[j] + a0 * v0[j]) + a1 * v1[j]) + a2 * v2[j]) + a3 * v3[j];
+        }
+        for (; c < na; ++c) {
+            idx p = act[c];
+            double a = P.u(i, p);
+            const double* v = P.v(p);
+            for (idx j = 0; j < m; ++j) ti[j] += a * v[j];
+        }
+    }
+    P.k = 0;
+}
+
+// The pivot on row r and column s with P.k pivots pending (tableau.pivot): the pivot row
+// and column made exact in T, the rank-one update kept pending; flushed when b are.
+inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
+                          const double* col, double* prow, Pending& P) {
+    idx n = T.rows, m = T.cols, k = P.k, b = P.b;
+    double inv = 1.0 / col[r];
+    double* tr = T.row(r);
+    for (idx j = 0; j < m; ++j) prow[j] = tr[j];
+    for (idx p = 0; p < k; ++p) {
+        double f = P.u(r, p);
+        if (f != 0.0) {
+            const double* v = P.v(p);
+            for (idx j = 0; j < m; ++j) prow[j] += f * v[j];
+        }
+    }
+    for (idx j = 0; j < m; ++j) prow[j] = -prow[j] * inv;
+    prow[s] = inv;
+    for (idx j = 0; j < m; ++j) tr[j] = prow[j];
+    rhs[r] = -rhs[r] * inv;
+    double rr = rhs[r];
+    magb[r] *= std::fabs(inv);
+    double mr = magb[r];
+    for (idx p = 0; p < k; ++p) {
+        P.U[r * b + p] = 0.0;
+        P.V[p * m + s] = 0.0;
+    }
+    for (idx i = 0; i < n; ++i) {
+        double f = col[i];
+        P.U[i * b + k] = f;
+        if (i != r) {
+            T(i, s) = f * inv;
+            if (f != 0.0) {
+                rhs[i] += f * rr;
+                magb[i] += std::fabs(f) * mr;
+            }
+        }
+    }
+    P.U[r * b + k] = 0.0;
+    double* vk = P.V + k * m;
+    for (idx j = 0; j < m; ++j) vk[j] = prow[j];
+    vk[s] = 0.0;
+    P.k = k + 1;
+    if (P.k == b) flush(T, P);
+}
+
 // mags = the size |B^-1| |q| of the rows under the running bound that may be rounding.
-void careful_sizes(Mat<double> T, const double* col, const double* rhs, const idx* pos,
+void careful_sizes(Mat<double> T, const Pending& P, const double* col, const double* rhs, const idx* pos,
                    const std::uint8_t* is_basic, const idx* start_basis, const double* q0,
                    const double* magb, double* mags) {
     idx n = T.rows;
@@ -59,7 +155,7 @@ void careful_sizes(Mat<double> T, const double* col, const double* rhs, const id
             double size = 0.0;
             for (idx j = 0; j < n; ++j) {
                 idx lab = start_basis[j];
-                double b = is_basic[lab] ? (pos[lab] == i ? 1.0 : 0.0) : T(i, pos[lab]);
+                double b = is_basic[lab] ? (pos[lab] == i ? 1.0 : 0.0) : entry(T, P, i, pos[lab]);
                 size += std::fabs(b) * std::fabs(q0[j]);
             }
             mags[i] = size;
@@ -67,7 +163,7 @@ void careful_sizes(Mat<double> T, const double* col, const double* rhs, const id
     }
 }
 
-idx lex_ties(Mat<double> T, const double* col, const idx* basis, const idx* pos,
+idx lex_ties(Mat<double> T, const Pending& P, const double* col, const idx* basis, const idx* pos,
              const std::uint8_t* is_basic, const idx* start_basis, idx artificial,
              double pivot_tol, double tie_tol, idx* cand, double* keys, idx nc) {
     idx n = T.rows;
@@ -77,7 +173,7 @@ idx lex_ties(Mat<double> T, const double* col, const idx* basis, const idx* pos,
         idx lab = start_basis[j];
         for (idx c = 0; c < nc; ++c) {
             idx i = cand[c];
-            double b = is_basic[lab] ? (pos[lab] == i ? 1.0 : 0.0) : -T(i, pos[lab]);
+            double b = is_basic[lab] ? (pos[lab] == i ? 1.0 : 0.0) : -entry(T, P, i, pos[lab]);
             keys[c] = lex_key(b, col[i], pivot_tol);
         }
         nc = keep_lowest(cand, keys, nc, tie_tol);
@@ -88,6 +184,9 @@ idx lex_ties(Mat<double> T, const double* col, const idx* basis, const idx* pos,
 
 }  // namespace
 
+// Compiled per instruction set too: the column copy, its maximum and the ratio test run
+// every pivot (a baseline SSE2 build of them was about a tenth of a solve at n = 48).
+LEMKE_CLONES
 Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double tie_tol,
                      double* x_out, double* ray_out, std::uint8_t* z_basic_out, bool careful,
                      idx& pivots) {
@@ -99,6 +198,7 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     idx *basis = w.basis(), *nonbasic = w.nonbasic(), *pos = w.pos();
     idx *start_basis = w.start_basis(), *cand = w.cand();
     std::uint8_t* is_basic = w.flags.data();
+    Pending P{w.U(), w.V(), w.act(), w.block, n + 1, 0};
     for (idx i = 0; i < 2 * n + 1; ++i) is_basic[i] = 0;
     for (idx i = 0; i < n; ++i) {
         start_basis[i] = basis[i];
@@ -132,7 +232,10 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
             status = NUMERICAL_FAILURE;
             break;
         }
-        pivot_now(T, rhs, magb, r, s, col, prow);
+        if (P.b == 1)
+            pivot_now(T, rhs, magb, r, s, col, prow);
+        else
+            pivot_delayed(T, rhs, magb, r, s, col, prow, P);
         ++pivots;
         swap_labels(basis, nonbasic, pos, is_basic, r, s);
         int stop = after_pivot(leaving, entering, artificial, h, detector);
@@ -141,16 +244,18 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
             break;
         }
         s = pos[leaving < n ? leaving + n : leaving - n];  // the complement enters
-        double cmax = 0.0;
-        for (idx i = 0; i < n; ++i) {
-            col[i] = T(i, s);
-            cmax = pmax(cmax, std::fabs(col[i]));
-        }
+        if (P.k == 0)
+            for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+        else
+            for (idx i = 0; i < n; ++i) col[i] = entry(T, P, i, s);
+        // max |col| (numba's running maximum: no NaN ever enters it, so eight lanes give
+        // the same number)
+        double cmax = absmax(col, n);
         if (is_basic[artificial]) z0_max = pmax(z0_max, rhs[pos[artificial]]);
         idx art = is_basic[artificial] ? pos[artificial] : -1;
         idx nc;
         if (careful) {
-            careful_sizes(T, col, rhs, pos, is_basic, start_basis, q0, magb, mags);
+            careful_sizes(T, P, col, rhs, pos, is_basic, start_basis, q0, magb, mags);
             nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
         } else {
             nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
@@ -158,7 +263,7 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;
         } else {
-            r = lex_ties(T, col, basis, pos, is_basic, start_basis, artificial, pivot_tol,
+            r = lex_ties(T, P, col, basis, pos, is_basic, start_basis, artificial, pivot_tol,
                          tie_tol, cand, keys, nc);
         }
         if (r < 0) {

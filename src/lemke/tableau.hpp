@@ -8,12 +8,17 @@
 
 namespace lemke {
 
+// Pivots kept pending before they are applied (numba's tableau.block_size): 1 (no delay)
+// while the tableau fits in the cache anyway. Any block gives the same bits.
+inline idx block_size(idx n) { return n < 400 ? 1 : 8; }
+
 // The tableau engine's workspace, laid out once per size (one per thread, reused).
 struct TableauWork {
-    std::vector<double> f;   // T (n x (n + 1)), rhs, col, q0, magb, mags, prow, keys
-    std::vector<idx> i;      // basis, nonbasic, pos, start_basis, cand
+    std::vector<double> f;   // T (n x (n + 1)), rhs, col, q0, magb, mags, prow, keys, U, V
+    std::vector<idx> i;      // basis, nonbasic, pos, start_basis, cand, act
     std::vector<std::uint8_t> flags;  // is_basic
     idx n = -1;
+    idx block = 1;
     void layout(idx size);
     Mat<double> T() { return Mat<double>(f.data(), n, n + 1); }
     double* rhs() { return f.data() + n * (n + 1); }
@@ -23,11 +28,14 @@ struct TableauWork {
     double* mags() { return magb() + n; }
     double* prow() { return mags() + n; }
     double* keys() { return prow() + n + 1; }
+    double* U() { return keys() + n; }        // n x block: the pending pivots' columns
+    double* V() { return U() + n * block; }   // block x (n + 1): their rows
     idx* basis() { return i.data(); }
     idx* nonbasic() { return basis() + n; }
     idx* pos() { return nonbasic() + n + 1; }
     idx* start_basis() { return pos() + 2 * n + 1; }
     idx* cand() { return start_basis() + n; }
+    idx* act() { return cand() + n; }
 };
 
 // The pivot on row r and column s of T (entering column in col, prow: scratch of T.cols),

@@ -1,0 +1,40 @@
+// Eight-lane vectors (GCC/clang vector extensions) for the loops that keep eight running
+// sums or maxima: each lane gets exactly the operations of the scalar code, in the same
+// order, so the bits do not depend on the vector width. The compiler leaves the scalar
+// forms of these loops scalar when a lane's update is a compare-and-select (pmax) or when
+// a store may alias a load; written on vectors they run in vector registers on every
+// instruction set (a 64-byte vector is split into the widest registers there are).
+#pragma once
+#include <cstdint>
+
+namespace lemke {
+namespace simd {
+
+#if defined(__GNUC__)
+#define LEMKE_SIMD 1
+// The helpers are always inlined: no vector crosses a call, so the ABI note about passing
+// 64-byte vectors without AVX-512 does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double v8d __attribute__((vector_size(64)));
+typedef std::int64_t v8l __attribute__((vector_size(64)));
+
+#define LEMKE_SIMD_INLINE inline __attribute__((always_inline))
+
+LEMKE_SIMD_INLINE v8d load8(const double* p) {
+    v8d v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+LEMKE_SIMD_INLINE void store8(double* p, v8d v) { __builtin_memcpy(p, &v, sizeof v); }
+LEMKE_SIMD_INLINE v8d splat8(double x) { return v8d{x, x, x, x, x, x, x, x}; }
+// |x| lane by lane (the sign bit cleared, as std::fabs).
+LEMKE_SIMD_INLINE v8d abs8(v8d x) {
+    const std::int64_t m = 0x7FFFFFFFFFFFFFFFLL;
+    return reinterpret_cast<v8d>(reinterpret_cast<v8l>(x) & v8l{m, m, m, m, m, m, m, m});
+}
+// pmax(a, b) lane by lane: b where b > a, else a (Python's max).
+LEMKE_SIMD_INLINE v8d max8(v8d a, v8d b) { return b > a ? b : a; }
+#endif
+
+}  // namespace simd
+}  // namespace lemke
