@@ -44,10 +44,23 @@ from oracle import cold  # noqa: E402
 
 
 def numba_entry():
-    """The numba first_run's compiled entry point for solve_lcp's fast-path types."""
+    """The numba first_run's compiled entry point for solve_lcp's fast-path types, behind
+    the front's calling convention (None for no covering vector, warm basis or basic
+    array: the numba kernel takes empty arrays there)."""
     from oracle import entry_point
     a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
-    return entry_point(cold.first_run, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
+    run = entry_point(cold.first_run, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
+    return same_wrapper(run, a1, i1)
+
+
+def same_wrapper(run, a1, i1):
+    """``run`` behind one Python wrapper that maps None to empty arrays: both the core and
+    the numba rows are called through one, so that neither carries a call the other does
+    not."""
+    def call(method, M, q, d, beta, k, mp, pt, tt, tol, buf, basic):
+        return run(method, M, q, a1 if d is None else d, i1 if beta is None else beta, k, mp, pt,
+                   tt, tol, buf, i1 if basic is None else basic)
+    return call
 
 
 def with_kernel(run, f):
@@ -110,7 +123,7 @@ def main(argv=None):
     from quantecon.optimize import lcp_lemke
 
     nb = numba_entry()
-    core = _lcp._FIRST_RUN
+    core = same_wrapper(_lcp._FIRST_RUN, None, None)  # (the core takes None itself)
     rng = np.random.default_rng(20261128)
     rows_cold, rows_warm = [], []
     for n in args.sizes:
