@@ -249,48 +249,44 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
 
 }  // namespace
 
-extern "C" int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* lo,
-                                const double* hi, const int64_t* findex,
-                                const lemke_options* options, double* z, double* w,
-                                lemke_info* info) {
+namespace {
+
+// An entry point's body with no exception across the C API: info reset first, the status
+// the body returns (or OUT_OF_MEMORY / INVALID_ARGUMENT for an exception) written to info.
+template <class Body>
+int guarded(lemke_info* info, Body body) {
     if (info) {
         info->status = LEMKE_INVALID_ARGUMENT;
         info->pivots = 0;
         info->residual = 0.0;
         info->warm = 0;
     }
+    int s;
     try {
-        int s = blcp(n, M, q, lo, hi, findex, options, z, w, info);
-        if (info) info->status = s;
-        return s;
+        s = body();
     } catch (const std::bad_alloc&) {
-        if (info) info->status = LEMKE_OUT_OF_MEMORY;
-        return LEMKE_OUT_OF_MEMORY;
+        s = LEMKE_OUT_OF_MEMORY;
     } catch (...) {
-        if (info) info->status = LEMKE_INVALID_ARGUMENT;
-        return LEMKE_INVALID_ARGUMENT;
+        s = LEMKE_INVALID_ARGUMENT;
     }
+    if (info) info->status = s;
+    return s;
+}
+
+}  // namespace
+
+extern "C" int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* lo,
+                                const double* hi, const int64_t* findex,
+                                const lemke_options* options, double* z, double* w,
+                                lemke_info* info) {
+    return guarded(info, [&] { return blcp(n, M, q, lo, hi, findex, options, z, w, info); });
 }
 
 extern "C" int lemke_lcp_solve(int64_t n, const double* M, const double* q,
                                const lemke_options* options, const int64_t* warm_basis,
                                int64_t n_warm, double* z, double* w, int64_t* basis_out,
                                int64_t* n_basis_out, lemke_info* info) {
-    if (info) {
-        info->status = LEMKE_INVALID_ARGUMENT;
-        info->pivots = 0;
-        info->residual = 0.0;
-        info->warm = 0;
-    }
-    try {
-        int s = solve(n, M, q, options, warm_basis, n_warm, z, w, basis_out, n_basis_out, info);
-        if (info) info->status = s;
-        return s;
-    } catch (const std::bad_alloc&) {
-        if (info) info->status = LEMKE_OUT_OF_MEMORY;
-        return LEMKE_OUT_OF_MEMORY;
-    } catch (...) {
-        if (info) info->status = LEMKE_INVALID_ARGUMENT;
-        return LEMKE_INVALID_ARGUMENT;
-    }
+    return guarded(info, [&] {
+        return solve(n, M, q, options, warm_basis, n_warm, z, w, basis_out, n_basis_out, info);
+    });
 }

@@ -817,6 +817,22 @@ int gram_lcp(Mat<const double> C, const double* g, idx p, idx max_pivots, double
     return st;
 }
 
+// screen into scr (Ps, then the bounds: n (n + 2) + 1 doubles) and ds = dt with the
+// screened P and bounds; false when screen refuses the data.
+static bool screened(const Data& dt, std::vector<double>& scr, Data& ds) {
+    idx n = dt.n();
+    scr.resize(static_cast<std::size_t>(n * (n + 2) + 1));
+    double* Ps = scr.data();
+    double* lo = Ps + n * n;
+    double* up = lo + n;
+    if (!screen(dt, Ps, lo, up)) return false;
+    ds = dt;
+    ds.P = Mat<const double>(Ps, n, n);
+    ds.lb = lo;
+    ds.ub = up;
+    return true;
+}
+
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic) {
     Result res;
@@ -826,21 +842,16 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     QPWork& w = work();
     // the sizes first (screen's bounds decide them): the workspace's layout, then screen
     thread_local std::vector<double> scr;
-    scr.resize(static_cast<std::size_t>(n * (n + 2) + 1));
-    double* Ps = scr.data();
-    double* lo = Ps + n * n;
-    double* up = lo + n;
-    if (!screen(dt, Ps, lo, up)) {
+    Data ds;
+    if (!screened(dt, scr, ds)) {
         res.code = BAD_INPUT;
         return res;
     }
+    const double* lo = ds.lb;
+    const double* up = ds.ub;
     idx p, m;
     row_counts(dt, lo, up, p, m);
     w.layout(n, p, m, true);
-    Data ds = dt;
-    ds.P = Mat<const double>(Ps, n, n);
-    ds.lb = lo;
-    ds.ub = up;
     Outs o = out_views(out, n, p0, m0);
     if (!cholesky(ds.P, w.L)) {
         res.code = NOT_DEFINITE;
@@ -909,18 +920,13 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
     thread_local std::vector<double> scr;
-    scr.resize(static_cast<std::size_t>(n * (n + 2) + 1));
-    double* Ps = scr.data();
-    double* lo = Ps + n * n;
-    double* up = lo + n;
-    if (!screen(dt, Ps, lo, up)) {
+    Data ds;
+    if (!screened(dt, scr, ds)) {
         res.code = BAD_INPUT;
         return res;
     }
-    Data ds = dt;
-    ds.P = Mat<const double>(Ps, n, n);
-    ds.lb = lo;
-    ds.ub = up;
+    const double* lo = ds.lb;
+    const double* up = ds.ub;
     Outs o = out_views(out, n, p0, m0);
     bool few = inequalities(dt.h, m0, lo, up, n) < GRAM_RATIO * n;
     if (few && !semidefinite) {
