@@ -37,10 +37,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._options import _DEFAULT, as_options
+from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _validate
 from ._result import LazyField, Outcome, lazy_state
-from ._status import Status
+from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
 
 METHODS = ("bounded",)
@@ -296,6 +296,9 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     >>> r.status.name, r.z.tolist()
     ('SOLVED', [2.0, -1.0])
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_blcp, M, q, lo, hi, findex=findex, method=method,
+                     warm_start=warm_start)
     if (type(M) is _ND and type(q) is _ND and type(lo) is _ND and type(hi) is _ND
             and (M.dtype is _F64 or M.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and (lo.dtype is _F64 or lo.dtype == _F64) and (hi.dtype is _F64 or hi.dtype == _F64)
@@ -476,7 +479,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                                                  ext, final)
             pivots += max(p, 0)
             rec += 1
-            if c == 0 and ok:
+            if c == 0 and ok or c in STOPPED:
                 break
         if not (c == 0 and ok):
             return None
@@ -578,7 +581,7 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
         as_blcp(M, q, lo, hi)  # raises, naming the entry
         raise ValueError("M and q must be finite")
     pivots = extra + max(run.pivots, 0)
-    if ladder and not (run.code == 0 and run.ok):
+    if ladder and not (run.code == 0 and run.ok) and run.code not in STOPPED:
         if not (run.code == Status.RAY_TERMINATION and is_box_ray(M, q, lo, hi, run.d, run.z, run.z0, run.ray, opts.tol)):
             for mode, tie in ((1, opts.tie_tol), (2, 0.0)):
                 left = opts.pivot_limit(n) - pivots
@@ -596,7 +599,7 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
         return _solved(run, n, lo, hi, rec, pivots)
     status = Status(run.code) if run.code >= 0 else Status.NUMERICAL_FAILURE
     z, w, residual = run.z, run.w, run.residual
-    if status == Status.SOLVED or not run.ok:
+    if (status == Status.SOLVED or not run.ok) and status not in STOPPED:
         point = _checked_point(M, q, lo, hi, *run.basis_flags(n), opts.tol, run.R)
         if point is not None:
             run.z, run.w, run.residual = point

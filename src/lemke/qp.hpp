@@ -20,6 +20,7 @@ constexpr int NOT_SOLVED = 3;
 constexpr int CHECK_FAILED = 4;
 constexpr int BAD_INPUT = 5;
 constexpr int NOT_APPLICABLE = 6;
+// 7 and 8: the LCP stopped by its budget (TIME_LIMIT, INTERRUPTED: pivoting.hpp's codes)
 
 constexpr double INFINITY_BOUND = 1e20;  // qp.INFINITY
 constexpr double SYMMETRY_TOL = 1e-10;
