@@ -713,11 +713,8 @@ def _check_warm(ws, n, friction=(), what="warm_start", problem="this one"):
     either kind of batch) is a ValueError, any other object a TypeError, naming ``what``."""
     if ws is not None:
         if not isinstance(ws, BoxWarmStart):
-            kind = type(ws).__name__
-            if kind in ("WarmStart", "WarmStartBatch", "BoxWarmStartBatch"):
-                raise ValueError(f"{what} must be a lemke.BoxWarmStart (a box LCP's basis), got a "
-                                 f"lemke.{kind}" + (" (an LCP's basis)" if kind == "WarmStart" else ""))
-            raise TypeError(f"{what} must be a lemke.BoxWarmStart, got {kind}")
+            _validate.wrong_kind(ws, what, "lemke.BoxWarmStart")
+            raise TypeError(f"{what} must be a lemke.BoxWarmStart, got {type(ws).__name__}")
         if ws.n != n:
             raise ValueError(f"{what} is for a problem of size {ws.n}, {problem} has n = {n}"
                              " (carry a basis to new rows with BoxWarmStart.take or .relabel)")
@@ -887,9 +884,9 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     ``tried`` already), else the extended problem by the general path and the answer
     judged on the caller's data here."""
     n = q.size
+    F0 = np.flatnonzero(findex >= 0)
+    _check_warm(warm_start, n + 2 * F0.size, tuple(F0.tolist()))
     if not tried:
-        F0 = np.flatnonzero(findex >= 0)
-        _check_warm(warm_start, n + 2 * F0.size, tuple(F0.tolist()))
         res = _one_call(*_kernel_arrays(M, q, lo, hi), _validate.kernel_array(findex),
                         warm_start, opts, validated=True)
         if res is not None:

@@ -14,19 +14,18 @@ and result type exact (``solve_lcp`` / ``solve_blcp``, ``solve_lcp_many`` /
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from . import _validate
-from ._batch import _run, _workers, _flat
+from ._batch import _flat, _packed, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
 from ._options import as_options
-from ._result import Value, _index
+from ._result import ManyItems, Value, _index
 from ._status import Status
 
 _ND = np.ndarray
@@ -142,7 +141,7 @@ def _new_sizes(sizes, m):
     return n
 
 
-class BLCPManyResult(Sequence):
+class BLCPManyResult(ManyItems):
     """The outcome of :func:`lemke.solve_blcp_many`: a sequence of :class:`BLCPResult`,
     item b what :func:`lemke.solve_blcp` gives for island b (bit for bit, whatever the
     number of workers), built when first read, with every island's answer also in flat,
@@ -182,25 +181,6 @@ class BLCPManyResult(Sequence):
         for b, res in special.items():
             self._items[b] = res
 
-    def __len__(self) -> int:
-        return len(self._items)
-
-    def __getitem__(self, b):
-        if isinstance(b, slice):
-            return self._all()[b]
-        b = _index(b, len(self._items))
-        if self._items[b] is None:
-            self._build(b, b + 1)
-        return self._items[b]
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def _all(self) -> list:
-        if None in self._items:
-            self._build(0, len(self._items))
-        return self._items
-
     def _build(self, lo, hi):
         """Items lo..hi-1 not built yet, as solve_blcp builds them (``_blcp._lazy``): views
         of the shared buffers, made when a field is first read."""
@@ -216,19 +196,6 @@ class BLCPManyResult(Sequence):
             items[b] = _lazy(bufs[bo[b]:bo[b + 1]], ints[io[b]:io[b + 1]], N, k, m, n,
                              los[qo[b]:qo[b + 1]], his[qo[b]:qo[b + 1]], bool(fr) and n > 0,
                              pivots, residual, rec, given[b] if stage == 0 else None)
-
-    def __eq__(self, other):
-        if isinstance(other, BLCPManyResult):
-            return self is other or self._all() == other._all()
-        if isinstance(other, list):
-            return self._all() == other
-        return NotImplemented
-
-    def __hash__(self) -> int:
-        return hash(tuple(self._all()))
-
-    def __repr__(self) -> str:
-        return f"BLCPManyResult(B={len(self)}, solved={int(self.success.sum())}/{len(self)})"
 
     # --- the flat fields ------------------------------------------------------------------
 
@@ -276,22 +243,9 @@ class BLCPManyResult(Sequence):
     def hi(self) -> np.ndarray:
         return self._gather("hi", 3, self._his)
 
-    def _column(self, values, field, convert):
-        v = values.copy()
-        for b, res in self._special.items():
-            v[b] = convert(getattr(res, field))
-        v.setflags(write=False)
-        return v
-
     @cached_property
     def status(self) -> np.ndarray:
         return self._column(np.zeros(len(self._items), dtype=np.int64), "status", int)
-
-    @cached_property
-    def success(self) -> np.ndarray:
-        v = self.status == Status.SOLVED
-        v.setflags(write=False)
-        return v
 
     @cached_property
     def pivots(self) -> np.ndarray:
@@ -496,11 +450,6 @@ def _ready_bound(v, q) -> bool:
     return type(v) is _ND and v.dtype == _F64 and v.shape == q.shape and v.flags.c_contiguous
 
 
-def _packed(M, q, sizes):
-    from ._batch import _packed as packed
-    return packed(M, q, sizes)
-
-
 def _packed_bound(v, total, name):
     """A packed bound: a scalar for every row, or a 1-D array of ``total`` numbers."""
     a = _validate.float64_array(v, name)
@@ -539,10 +488,7 @@ def _warm_states(warm_start, B, n_b, qoff, fmask, fis):
         state = warm_start.state
         _same_kinds(state, fmask, qoff)
         return _validate.kernel_array(state), np.ones(B, dtype=np.uint8), None
-    kind = type(warm_start).__name__
-    if kind in ("WarmStartBatch", "BoxWarmStart", "WarmStart"):
-        raise ValueError(f"warm_start must be a lemke.BoxWarmStartBatch or a sequence of BoxWarmStart "
-                         f"or None (one per island), got a lemke.{kind}")
+    _validate.wrong_kind(warm_start, "warm_start", "lemke.BoxWarmStartBatch or a sequence of BoxWarmStart")
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one BoxWarmStart (or None) per problem: {len(ws)} for {B} problems")
