@@ -208,9 +208,8 @@ def islands_part(quick, islands):
     for key in calls:
         kind, workers, warm = key
         r = res.get(key)
-        label = f"{'solve_blcp_many' if kind == 'box' else 'solve_lcp_many' if kind == 'lcp' else 'solve_blcp_many'}" \
-                f"{', ' + kind if kind not in ('box', 'lcp') else (', friction' if kind == 'box' else '')}" \
-                f"{', warm' if warm else ', cold'}"
+        label = {"box": "solve_blcp_many, friction", "lcp": "solve_lcp_many"}.get(
+            kind, "solve_blcp_many, no findex (lo = 0, hi = inf)") + (", warm" if warm else ", cold")
         out.append(f"| {label} | {workers} | {med[key] * 1e3:.2f} ms | {med[key] / islands * 1e6:.2f} us | "
                    f"{fast[key] / islands * 1e6:.2f} us | "
                    f"{'' if r is None else int(r.success.sum())} | {'' if r is None else int(r.pivots.sum())} |")
