@@ -26,6 +26,7 @@ LAYERS = [
     {"_reductions", "_games_exact"},
     {"_lcp", "_pivot_column", "_games", "_blcp"},
     {"_batch", "_mlcp"},
+    {"_blcp_many"},
     {"_qp", "_dask"},
     {"_kinds"},
     {"_problem"},

@@ -174,6 +174,7 @@ def _bases(warm_start, B, sizes):
             raise ValueError(f"warm_start[{b}] is for a problem of size {warm_start.n[b]}, problem {b} "
                              f"has n = {sizes[b]}")
         return warm_start.z_basic, warm_start.offsets, None  # (the core reads them in place)
+    _validate.wrong_kind(warm_start, "warm_start", "lemke.WarmStartBatch or a sequence of WarmStart")
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")

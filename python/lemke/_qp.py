@@ -262,6 +262,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     _validate.method(method, METHODS)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
+        _validate.wrong_kind(warm_start, "warm_start", "lemke.WarmStart")
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
     # Cold, the fast paths first (for data the first lines did not take, or a QP they did
     # not solve): a box-only QP of at least BOX_FIRST variables through the bounded kernel,
