@@ -63,6 +63,8 @@ def test_a_zero_budget_makes_no_pivot_anywhere():
     assert r.status == Status.TIME_LIMIT and r.pivots == 0
     b = lemke.solve_blcp(M, q, np.zeros(26), np.full(26, np.inf), options=zero)
     assert b.status == Status.TIME_LIMIT and b.pivots == 0
+    bm = lemke.solve_blcp_many([M, M[:5, :5]], [q, q[:5]], [np.zeros(26), np.zeros(5)], [np.full(26, np.inf), np.full(5, np.inf)], options=zero)
+    assert bm.status.tolist() == [Status.TIME_LIMIT] * 2
     many = lemke.solve_lcp_many([M, M[:5, :5]], [q, q[:5]], options=zero, workers=2)
     assert many.status.tolist() == [Status.TIME_LIMIT] * 2 and many.pivots.tolist() == [0, 0]
     batch = lemke.solve_lcp_batch(M, np.stack([q, q]), options=zero)

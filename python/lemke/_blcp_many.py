@@ -24,7 +24,7 @@ from ._batch import _flat, _packed, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
-from ._options import as_options
+from ._options import as_options, time_limited, timed
 from ._result import ManyItems, Value, _index
 from ._status import Status
 
@@ -318,6 +318,9 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     >>> again.pivots.tolist()
     [0, 0]
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_blcp_many, M, q, lo, hi, findex=findex, warm_start=warm_start,
+                     sizes=sizes, workers=workers)
     opts = as_options(options)
     workers = _workers(workers)
     if sizes is None:
