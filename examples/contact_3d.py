@@ -366,7 +366,10 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
     """Run the scene; returns the history (per step: rows, islands, contacts, pivots and
     seconds of the solves, cold pivots and seconds when ``cold``, the worst residual,
     whether the contact set changed; frames of the positions).  ``record``, a list, gets
-    each step's islands as (step, A, b, lo, hi, findex, labels, ext_labels) tuples (copies).
+    a dict per island and step: ``step``, the problem (``A``, ``b``, ``lo``, ``hi``,
+    ``findex``, copies), ``labels``, ``ext_labels``, the answer ``z``, ``start`` (the warm
+    start that gave it, None when it came cold), ``carried`` (the warm start carried by
+    label, None when none was) and ``final`` (the result's ``warm_start``).
     Sphere i (the stack bottom up) is released at step ``i * release * steps / bodies``."""
     sc = make_scene(bodies, mu=mu, seed=seed)
     sc.active = np.zeros(bodies, dtype=bool)
@@ -404,10 +407,12 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
                 cp += rc.pivots
             r, t = _timed(I, ws)
             secs += t
+            start = ws
             if not r.success and ws is not None:  # what an engine would do: cold once more
                 r2, t = _timed(I, None)
                 secs += t
-                r = r2 if r2.success else r
+                if r2.success:
+                    r, start = r2, None
             res, ok = check(I.A, I.b, I.lo, I.hi, I.findex, np.asarray(r.z))
             if not ok:
                 raise RuntimeError(f"step {s}: the answer fails the check (residual {res:.1e}): {r}")
@@ -423,8 +428,9 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
                 cp += rc.pivots
             rc = None
             if record is not None:
-                record.append((s, I.A.copy(), I.b.copy(), I.lo.copy(), I.hi.copy(),
-                               I.findex.copy(), I.labels.copy(), I.ext_labels.copy()))
+                record.append(dict(step=s, A=I.A.copy(), b=I.b.copy(), lo=I.lo.copy(), hi=I.hi.copy(),
+                                   findex=I.findex.copy(), labels=I.labels, ext_labels=I.ext_labels,
+                                   z=np.array(r.z), start=start, carried=ws, final=r.warm_start))
         carry.remember(isl, results)
         hist["changed"].append(prev_ids is None or not np.array_equal(ids, prev_ids))
         prev_ids = ids
