@@ -16,16 +16,15 @@ pyramid ``|z_t| <= mu z_n`` per tangent row, as ODE and DART build it.
 **Islands.**  Bodies that touch each other (not only the bin) form an island, a connected
 component of the contact graph; each island is its own box LCP (``lemke.solve_blcp``).
 **Labels.**  A contact's id is its pair of bodies and the feature (a wall of the bin, or the
-other sphere), ``label = 8 * id + role``; a row's role is 0 (normal), 1, 2 (the tangents).
-``lemke.solve_blcp`` solves a friction index on Stewart-Trinkle's extended problem (rows:
-the caller's, then a ``beta-`` row per tangent row, then a ``lambda`` row per tangent row:
-``lemke._blcp``'s docstring), whose basis the ``BoxWarmStart`` holds; those rows get roles
-3, 4 (beta-) and 5, 6 (lambda).  **Warm starts** are carried by label from the whole
-previous step to each island of this one (:func:`carry`): a row seen last step starts in its
-old state (basic, at its upper bound or at its lower bound), a new row at its lower bound,
-whether contacts appeared, vanished or islands merged or split.  With ``--warm same`` a
-warm start is used only when the island's rows are the previous step's (the policy of
-``box_pile.py``), with ``--warm none`` never.
+other sphere), a row's label ``3 * id + role`` with role 0 (normal), 1, 2 (the tangents).
+**Warm starts** are carried by label from the whole previous step (its islands end to end)
+to this step's islands (:func:`carry`, ``lemke.BoxWarmStartBatch.relabel``): a row seen last
+step starts in its old state (at a bound or basic; a friction row the state of its three
+variables in lemke's extended problem), a new row at its lower bound, whether contacts
+appeared or vanished and islands merged or split.  With ``--warm same`` a warm start is used
+only when the step's rows are the previous step's (the policy of ``box_pile.py``), with
+``--warm none`` never.  ``--islands one-call`` solves a step's islands in one
+``lemke.solve_blcp_many`` call (one thread) instead of one ``solve_blcp`` each.
 
 Every step's answer is checked here with numpy (:func:`check`): lo' <= z <= hi' with the
 coupled bounds, the natural-map residual ``max |z - clip(z - w, lo', hi')|`` relative to
@@ -56,7 +55,7 @@ import lemke  # noqa: E402
 
 G = 9.81
 RIGHT = 1e-8  # the check's bound on the relative natural-map residual
-ROLES = 8  # label = ROLES * contact id + role
+ROLES = 3  # label = ROLES * contact id + role
 
 
 @dataclass
@@ -191,17 +190,9 @@ class Island:
     lo: np.ndarray
     hi: np.ndarray
     findex: np.ndarray
-    labels: np.ndarray  # one per row of the caller's problem
-    ext_labels: np.ndarray  # one per row of the extended problem (the warm start's basis)
+    labels: np.ndarray  # one per row
     J: np.ndarray  # (3k, 6 nb)
     bodies: np.ndarray
-
-
-def extended_labels(labels, findex):
-    """The labels of the extended problem's rows (see the module docstring): the caller's
-    rows, then a beta- row and then a lambda row per friction row, in order."""
-    f = labels[findex >= 0]
-    return np.concatenate([labels, f + 2, f + 4])
 
 
 def build(sc: Scene):
@@ -249,7 +240,7 @@ def build(sc: Scene):
         findex = np.full(3 * k, -1, dtype=np.int64)
         findex[1::3] = findex[2::3] = 3 * kk
         labels = (ROLES * ids[c][:, None] + np.arange(3)).reshape(-1)
-        out.append(Island(A, bvec, lo, hi, findex, labels, extended_labels(labels, findex), J, bodies))
+        out.append(Island(A, bvec, lo, hi, findex, labels, J, bodies))
     return out, u_free, winv, (a, b, n, gap)
 
 
@@ -275,52 +266,24 @@ def advance(sc: Scene, isl, zs, u_free, winv, touching):
 # --------------------------------------------------------------------------- warm starts
 
 
-class Carry:
-    """The previous step's bases of all islands, by extended row label; :meth:`warm` gives an
-    island of this step its warm start (rows not seen last step at their lower bound).
+def carry(prev, isl):
+    """This step's warm starts (a ``lemke.BoxWarmStartBatch``, island by island) from the
+    last step's bases: ``prev = (batch, labels)``, the last step's islands end to end and
+    their row labels.  Each row keeps its state by label (a friction row its three
+    variables'); a new row starts at its lower bound (``BoxWarmStartBatch.relabel``)."""
+    if prev is None or not isl:
+        return None
+    batch, old = prev
+    return batch.relabel(old, np.concatenate([I.labels for I in isl]), [I.b.size for I in isl],
+                         findex=np.concatenate([I.findex for I in isl]))
 
-    This is ``BoxWarmStart.take`` / ``relabel`` done by hand on the extended problem's rows
-    (``lemke.BoxWarmStart`` has neither yet): the hook where the library's ``relabel`` goes
-    once it has one."""
 
-    def __init__(self):
-        self.labels = np.zeros(0, dtype=np.int64)
-        self.basic = np.zeros(1, dtype=bool)  # one more entry: a new row
-        self.upper = np.zeros(1, dtype=bool)
-
-    def remember(self, islands_, results):
-        labels, basic, upper = [], [], []
-        for I, r in zip(islands_, results):
-            ws = r.warm_start
-            nx = I.ext_labels.size
-            labels.append(I.ext_labels)
-            f = np.zeros((2, nx), dtype=bool)
-            if ws is not None and ws.n == nx:
-                f[0, list(ws.z_basic)] = True
-                f[1, list(ws.at_upper)] = True
-            basic.append(f[0])
-            upper.append(f[1])
-        lab = np.concatenate(labels) if labels else np.zeros(0, dtype=np.int64)
-        o = np.argsort(lab)
-        self.labels = lab[o]
-        self.basic = np.append(np.concatenate(basic)[o] if basic else [], False).astype(bool)
-        self.upper = np.append(np.concatenate(upper)[o] if upper else [], False).astype(bool)
-
-    def index(self, labels):
-        """Old row of each label, ``len(old)`` for a new one."""
-        j = np.searchsorted(self.labels, labels)
-        j = np.minimum(j, self.labels.size)
-        hit = j < self.labels.size
-        hit[hit] = self.labels[j[hit]] == labels[hit]
-        return np.where(hit, j, self.labels.size)
-
-    def warm(self, I: Island):
-        j = self.index(I.ext_labels)
-        basic, upper = self.basic[j], self.upper[j]
-        if not basic.any() and not upper.any():
-            return None  # nothing carried: cold
-        return lemke.BoxWarmStart(I.ext_labels.size, tuple(np.flatnonzero(basic).tolist()),
-                                  tuple(np.flatnonzero(upper).tolist()))
+def bases(isl, results):
+    """The step's final bases, for :func:`carry`: a result without one (not solved) is
+    carried as its island's cold start."""
+    ws = [r.warm_start if r.warm_start is not None else
+          lemke.BoxWarmStart.from_row_states(np.where(I.findex >= 0, 3, 0)) for I, r in zip(isl, results)]
+    return lemke.BoxWarmStartBatch.of(ws), np.concatenate([I.labels for I in isl])
 
 
 # --------------------------------------------------------------------------- the check
@@ -361,15 +324,26 @@ def _timed(I: Island, ws):
     return r, time.perf_counter() - t0
 
 
+def _cold(isl):
+    """Pivots and seconds of the step's islands solved cold, one by one."""
+    p = t = 0.0
+    for I in isl:
+        r, dt = _timed(I, None)
+        p += r.pivots
+        t += dt
+    return p, t
+
+
 def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, frames=3,
-             record=None, release=0.6):
+             record=None, release=0.6, islands="single"):
     """Run the scene; returns the history (per step: rows, islands, contacts, pivots and
     seconds of the solves, cold pivots and seconds when ``cold``, the worst residual,
     whether the contact set changed; frames of the positions).  ``record``, a list, gets
     a dict per island and step: ``step``, the problem (``A``, ``b``, ``lo``, ``hi``,
-    ``findex``, copies), ``labels``, ``ext_labels``, the answer ``z``, ``start`` (the warm
-    start that gave it, None when it came cold), ``carried`` (the warm start carried by
-    label, None when none was) and ``final`` (the result's ``warm_start``).
+    ``findex``, copies), ``labels``, the answer ``z``, ``start`` (the warm start that gave
+    it, None when it came cold), ``carried`` (the warm start carried by label, None when
+    none was), ``batch`` (the step's carried ``BoxWarmStartBatch``, or None) and ``final``
+    (the result's ``warm_start``).
     Sphere i (the stack bottom up) is released at step ``i * release * steps / bodies``."""
     sc = make_scene(bodies, mu=mu, seed=seed)
     sc.active = np.zeros(bodies, dtype=bool)
@@ -381,9 +355,8 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
                             "cold_secs", "residual", "changed", "warm_used", "refused")}
     hist["frames"] = []
     frame_at = set(np.linspace(steps / frames, steps, frames).astype(int).tolist())
-    carry = Carry()
-    prev_ids = None
-    order, rc = np.random.default_rng(seed), None
+    prev, prev_ids = None, None
+    order = np.random.default_rng(seed)
     for s in range(steps + 1):
         sc.active |= release_at <= s
         if s in frame_at:
@@ -392,27 +365,35 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
             break
         isl, u_free, winv, touching = build(sc)
         ids = np.sort(np.concatenate([I.labels for I in isl])) if isl else np.zeros(0, np.int64)
-        results, secs, piv, worst, used, refused = [], 0.0, 0, 0.0, 0, 0
-        cp = cs = 0.0
-        for I in isl:
-            ws = None
-            if warm == "relabel":
-                ws = carry.warm(I)
-            elif warm == "same" and prev_ids is not None and np.array_equal(ids, prev_ids):
-                ws = carry.warm(I)
-            used += ws is not None
-            if cold and order.random() < 0.5:  # the cold solve first: a random order per island
-                rc, t = _timed(I, None)
-                cs += t
-                cp += rc.pivots
-            r, t = _timed(I, ws)
-            secs += t
-            start = ws
-            if not r.success and ws is not None:  # what an engine would do: cold once more
+        same = prev_ids is not None and np.array_equal(ids, prev_ids)
+        batch = carry(prev, isl) if warm == "relabel" or (warm == "same" and same) else None
+        starts = [None] * len(isl) if batch is None else list(batch)
+        secs = cp = cs = 0.0
+        cold_first = cold and order.random() < 0.5  # the cold solves first: a random order per step
+        if cold_first:
+            cp, cs = _cold(isl)
+        if islands == "one-call" and isl:
+            t0 = time.perf_counter()
+            many = lemke.solve_blcp_many([I.A for I in isl], [I.b for I in isl], [I.lo for I in isl],
+                                         [I.hi for I in isl], findex=[I.findex for I in isl],
+                                         warm_start=batch, workers=1)
+            results = list(many)
+            secs += time.perf_counter() - t0
+        else:
+            results = []
+            for I, ws in zip(isl, starts):
+                r, t = _timed(I, ws)
+                secs += t
+                results.append(r)
+        piv, worst, refused = 0, 0.0, 0
+        for k, (I, r) in enumerate(zip(isl, results)):
+            if not r.success and starts[k] is not None:  # what an engine would do: cold once more
                 r2, t = _timed(I, None)
                 secs += t
+                piv += r.pivots
                 if r2.success:
-                    r, start = r2, None
+                    results[k] = r = r2
+                    starts[k] = None
             res, ok = check(I.A, I.b, I.lo, I.hi, I.findex, np.asarray(r.z))
             if not ok:
                 raise RuntimeError(f"step {s}: the answer fails the check (residual {res:.1e}): {r}")
@@ -421,17 +402,14 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
             refused += not r.success
             worst = max(worst, res)
             piv += r.pivots
-            results.append(r)
-            if cold and rc is None:
-                rc, t = _timed(I, None)
-                cs += t
-                cp += rc.pivots
-            rc = None
             if record is not None:
                 record.append(dict(step=s, A=I.A.copy(), b=I.b.copy(), lo=I.lo.copy(), hi=I.hi.copy(),
-                                   findex=I.findex.copy(), labels=I.labels, ext_labels=I.ext_labels,
-                                   z=np.array(r.z), start=start, carried=ws, final=r.warm_start))
-        carry.remember(isl, results)
+                                   findex=I.findex.copy(), labels=I.labels, z=np.array(r.z),
+                                   start=starts[k], carried=None if batch is None else batch[k],
+                                   batch=batch, final=r.warm_start))
+        if cold and not cold_first:
+            cp, cs = _cold(isl)
+        prev = bases(isl, results) if isl else None
         hist["changed"].append(prev_ids is None or not np.array_equal(ids, prev_ids))
         prev_ids = ids
         advance(sc, isl, [np.asarray(r.z) for r in results], u_free, winv, touching)
@@ -443,7 +421,7 @@ def simulate(bodies=20, steps=1000, mu=0.5, seed=0, warm="relabel", cold=True, f
         hist["cold_pivots"].append(cp)
         hist["cold_secs"].append(cs)
         hist["residual"].append(worst)
-        hist["warm_used"].append(used)
+        hist["warm_used"].append(sum(x is not None for x in starts))
         hist["refused"].append(refused)
     hist["scene"] = sc
     return hist
@@ -528,12 +506,13 @@ def main(argv=None):
     ap.add_argument("--mu", type=float, default=0.5)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--warm", choices=("relabel", "same", "none"), default="relabel")
+    ap.add_argument("--islands", choices=("single", "one-call"), default="single")
     ap.add_argument("--quick", action="store_true", help="60 steps, 8 spheres (for the tests)")
     ap.add_argument("--out", default="contact_3d.png")
     args = ap.parse_args(argv)
     if args.quick:
         args.steps, args.bodies = 60, 8
-    hist = simulate(args.bodies, args.steps, mu=args.mu, seed=args.seed, warm=args.warm)
+    hist = simulate(args.bodies, args.steps, mu=args.mu, seed=args.seed, warm=args.warm, islands=args.islands)
     plot(hist, args.out)
     s = summary(hist)
     print(f"{s['steps']} steps, {s['solved']} with contacts ({s['rows'][0]}-{s['rows'][1]} rows), "

@@ -61,32 +61,36 @@ def test_every_step_is_solved_and_passes_an_independent_check(run):
     assert len(set(hist["islands"])) >= 3
 
 
+def _by_step(record):
+    out = {}
+    for r in record:
+        out.setdefault(r["step"], []).append(r)
+    return out
+
+
 def test_warm_starts_are_carried_by_label_across_contact_changes(run):
     hist, record = run
-    by_step = {}
-    for r in record:
-        by_step.setdefault(r["step"], []).append(r)
+    by_step = _by_step(record)
     across_change = 0
     for s, isl in by_step.items():
         if s - 1 not in by_step:
             continue
-        state = {}  # last step's row states by extended label: a plain dict, independently
+        state = {}  # last step's row states by label, in a plain dict
         for r in by_step[s - 1]:
-            ws = r["final"]
-            for j, lab in enumerate(r["ext_labels"].tolist()):
-                state[lab] = (j in ws.z_basic, j in ws.at_upper)
+            state.update(zip(r["labels"].tolist(), r["final"].row_states().tolist()))
+        old = set(state)
         for r in isl:
-            want = [state.get(lab, (False, False)) for lab in r["ext_labels"].tolist()]
-            basic = tuple(j for j, (b, _) in enumerate(want) if b)
-            upper = tuple(j for j, (_, u) in enumerate(want) if u)
+            # a new row starts cold: at lo (code 0), a friction row with its variables at 0 (3)
+            want = [state.get(lab, 3 if f >= 0 else 0) for lab, f in zip(r["labels"].tolist(), r["findex"])]
             got = r["carried"]
-            if not basic and not upper:
-                assert got is None
-                continue
-            assert (got.n, got.z_basic, got.at_upper) == (r["ext_labels"].size, basic, upper)
-            old = {lab for q in by_step[s - 1] for lab in q["labels"].tolist()}
-            across_change += not set(r["labels"].tolist()) <= old
+            assert got.row_states().tolist() == want
+            assert got.friction == tuple(np.flatnonzero(r["findex"] >= 0).tolist())
+            across_change += not set(r["labels"].tolist()) <= old and any(lab in old for lab in r["labels"].tolist())
     assert across_change >= 1
+
+
+def _again(r, ws):
+    return lemke.solve_blcp(r["A"], r["b"], r["lo"], r["hi"], findex=r["findex"], warm_start=ws)
 
 
 def test_warm_z_is_bit_identical_to_a_fresh_solve_from_the_same_basis(run):
@@ -94,9 +98,27 @@ def test_warm_z_is_bit_identical_to_a_fresh_solve_from_the_same_basis(run):
     warm = 0
     for r in record:
         ws = r["start"]
-        fresh = None if ws is None else lemke.BoxWarmStart(ws.n, ws.z_basic, ws.at_upper)
-        again = lemke.solve_blcp(r["A"], r["b"], r["lo"], r["hi"], findex=r["findex"], warm_start=fresh)
+        fresh = None if ws is None else lemke.BoxWarmStart(ws.n, ws.z_basic, ws.at_upper, ws.friction)
+        again = _again(r, fresh)
         assert again.success
         assert np.asarray(again.z).tobytes() == r["z"].tobytes()
         warm += ws is not None
     assert warm >= len(record) // 2
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_islands_in_one_call_are_bit_identical_to_single_solves(run, workers):
+    hist, record = run
+    by_step = _by_step(record)
+    several = 0
+    for s, isl in by_step.items():
+        batch = isl[0]["batch"]
+        many = lemke.solve_blcp_many([r["A"] for r in isl], [r["b"] for r in isl], [r["lo"] for r in isl],
+                                     [r["hi"] for r in isl], findex=[r["findex"] for r in isl],
+                                     warm_start=batch, workers=workers)
+        for k, r in enumerate(isl):
+            one = _again(r, None if batch is None else batch[k])
+            assert many[k].status == one.status and many[k].pivots == one.pivots
+            assert np.asarray(many[k].z).tobytes() == np.asarray(one.z).tobytes()
+        several += len(isl) > 1
+    assert several >= 5
