@@ -483,18 +483,25 @@ def fmt_t(s):
     return bl._t(s)
 
 
+def method_section(doc):
+    """The report's "Method" lines: the module docstring from its fourth paragraph on, a
+    paragraph whose first line heads an indented block set as a bold heading."""
+    L = ["## Method", ""]
+    for para in doc.split("\n\n")[3:]:
+        lines = [ln.strip() for ln in para.strip().splitlines()]
+        if len(lines) > 1 and not para.startswith(" ") and para.splitlines()[1].startswith("    "):
+            lines[0] = f"**{lines[0]}.**"
+        L += [" ".join(lines).replace("``", "`"), ""]
+    return L
+
+
 def render(info, args, total_s, rows, scene_rows, scene_extra, profiles, ignored, dart_notes, missing):
     L = bl.report_head("Box LCPs: lemke.solve_blcp vs the engines' own solvers (DART, Bullet)",
                        "bench_engines.py", args, total_s, info,
                        extra_versions=f", pybullet {version('pybullet')}, dartpy {version('dartpy')}",
                        extra_lines=["- BLAS threads: " + ", ".join(f"`{v}={os.environ.get(v)}`"
                                                                    for v in BLAS_THREAD_VARS)])
-    L += ["## Method", ""]
-    for para in __doc__.split("\n\n")[3:]:
-        lines = [ln.strip() for ln in para.strip().splitlines()]
-        if len(lines) > 1 and not para.startswith(" ") and para.splitlines()[1].startswith("    "):
-            lines[0] = f"**{lines[0]}.**"
-        L += [" ".join(lines).replace("``", "`"), ""]
+    L += method_section(__doc__)
     L += ["## What each engine exposes to Python", ""]
     L += [f"- dartpy: {n}." for n in dart_notes]
     L += ["- dartpy: no symbol of DART's Lemke solver is in the module's dynamic symbol table "

@@ -1,5 +1,6 @@
 """Every script in examples/ runs as a user runs it, ``python examples/<name>.py`` with its
-default arguments (the ``examples`` extra installed; the ``test`` extra includes it), with
+default arguments, or with its quick mode where the default is a long run (``ARGS``; the
+``examples`` extra installed; the ``test`` extra includes it), with
 matplotlib's non-interactive Agg backend, in an empty folder: it writes its output there, and
 the committed pictures beside the scripts are never written over."""
 import hashlib
@@ -13,7 +14,9 @@ import pytest
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SCRIPTS = sorted(EXAMPLES.glob("*.py"))
 # What each example writes into its working folder when run without arguments.
-WRITES = {"box_pile.py": ["box_pile.png"]}
+WRITES = {"box_pile.py": ["box_pile.png"], "contact_3d.py": ["contact_3d.png"]}
+# The arguments each example gets (contact_3d's default is 1000 steps, about 30 s).
+ARGS = {"contact_3d.py": ["--quick"]}
 PNG = b"\x89PNG\r\n\x1a\n"
 
 
@@ -30,7 +33,7 @@ def test_every_example_is_run():
 def test_example_runs_and_writes_into_its_working_folder(script, tmp_path):
     committed = _files(EXAMPLES)
     env = dict(os.environ, MPLBACKEND="Agg")
-    done = subprocess.run([sys.executable, str(script)], cwd=tmp_path, env=env,
+    done = subprocess.run([sys.executable, str(script), *ARGS.get(script.name, [])], cwd=tmp_path, env=env,
                           capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, done.stderr[-4000:]
     assert sorted(p.name for p in tmp_path.iterdir()) == WRITES[script.name]
