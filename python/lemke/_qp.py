@@ -645,8 +645,12 @@ def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
     active set is the rows of G and the bounds tight or violated at x0 (``ACTIVE_TOL``,
     relative to the sizes of the terms).  The data is read after qpsolvers' conventions
     and the validation (rows with h = +inf dropped, bounds beyond 1e20 infinite)."""
-    (P, q, G, h, A, b, lb, ub), _ = qpsolvers_form(P, q, G, h, A, b, lb, ub)
-    d = _validate.qp(P, q, G, h, A, b, lb, ub)
+    plain = _plain_args(P, q, G, h, A, b, lb, ub)
+    if plain is not None:  # float64 arrays of the kernel's shapes: the kernel checks the values
+        d = dict(zip(("P", "q", "G", "h", "A", "b", "lb", "ub"), plain))
+    else:
+        (P, q, G, h, A, b, lb, ub), _ = qpsolvers_form(P, q, G, h, A, b, lb, ub)
+        d = _validate.qp(P, q, G, h, A, b, lb, ub)
     n = d["q"].size
     try:
         x0 = np.asarray(initvals, dtype=np.float64)
@@ -682,6 +686,8 @@ def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
     G = d.get("G")
     if G is not None and G.shape[0]:
         hh = d["h"]
+        if np.isposinf(hh).any():  # no constraint (qpsolvers' convention): not a pair
+            G, hh = G[~np.isposinf(hh)], hh[~np.isposinf(hh)]
         r = G @ x0 - hh
         scale = np.abs(hh) + np.abs(G) @ ax
         pairs.append(shifted.size + np.flatnonzero(r >= -ACTIVE_TOL * scale))
