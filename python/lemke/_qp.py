@@ -181,8 +181,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
-    tried = False
-    if (warm_start is None and initvals is None and type(P) is _ND and type(q) is _ND
+    tried = warm_tried = False
+    if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
+            and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
             and len(q) and type(method) is str and method in METHODS):
@@ -233,7 +234,13 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
             up = ub
         else:
             plain = False
-        if plain:
+        if plain and warm_start is not None:  # the fused kernel from the warm start
+            opts = _DEFAULT_OPTIONS if options is None else as_options(options)
+            res = _solve_warm((P, q, Gk, hk, Ak, bk, lo, up), method, opts, warm_start)
+            if res is not None:
+                return res
+            warm_tried = True
+        elif plain:
             opts = _DEFAULT_OPTIONS if options is None else as_options(options)
             if box and (lb is not None or ub is not None):
                 if n < BOX_FIRST:
@@ -278,7 +285,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         if warm_start is not None:
             raise ValueError("give warm_start or initvals, not both")
         warm_start = _initvals_start(initvals, P, q, G, h, A, b, lb, ub)
-    if warm_start is not None:
+    if warm_start is not None and not warm_tried:
         plain = _plain_args(P, q, G, h, A, b, lb, ub)
         if plain is not None:
             res = _solve_warm(plain, method, opts, warm_start)
