@@ -152,6 +152,9 @@ struct Dot2 {
     double sum, size, norm;
 };
 
+// (dot2 and axpy2_matrix: one variant per instruction set, so that the avx512f one runs
+// std::fma as an instruction, not a call into libm: fma is rounded once either way, the same bits)
+LEMKE_CLONES
 Dot2 dot2(const double* x, const double* y, idx n, double c) {
     double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
     for (idx j = 0; j < n; ++j) {
@@ -162,7 +165,7 @@ Dot2 dot2(const double* x, const double* y, idx n, double c) {
     return {s + err, size, norm};
 }
 
-void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
+inline void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
     for (idx j = 0; j < n; ++j) {
         double p, e, t, f;
         two_product(a, x[j], p, e);
@@ -174,6 +177,7 @@ void axpy2(double* s, double* err, double* size, idx n, double a, const double* 
 }
 
 // axpy2 of every row of M with coefficient coef[i] (qp.axpy2_matrix, axpy2_rows).
+LEMKE_CLONES
 void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coef,
                   Mat<const double> M) {
     for (idx i = 0; i < M.rows; ++i) axpy2(s, err, size, n, coef[i], M.row(i));
