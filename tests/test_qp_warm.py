@@ -187,3 +187,25 @@ def test_factor_cache_gives_the_same_bits_and_never_stale_data():
         copies = [a.copy() for a in (P, q, G, h, A, b, lb, ub)]
         lemke.solve_qp(*other)
         assert _bits(r) == _bits(lemke.solve_qp(*copies)), name
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_initvals_rule_same_in_kernel_and_front(seed):
+    """The kernel reads the rows active at x0 (qp::guess_rows) on plain data; the front's
+    _initvals_start (for the KKT-MLCP path) states the same rule: the same active set, so the
+    same solve, bit for bit."""
+    from lemke import _qp
+    rng = np.random.default_rng(100 + seed)
+    P, q, G, h, A, b, lb, ub = random_convex_qp(20, rng, 14, 3)
+    h[::5] = np.inf
+    cold = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
+    check(P, q, G, h, A, b, lb, ub, cold)
+    for scale in (0.0, 1e-3, 0.3):
+        x0 = cold.x + scale * rng.standard_normal(q.size)
+        via_kernel = lemke.solve_qp(P, q, G, h, A, b, lb, ub, initvals=x0)
+        ws = _qp._initvals_start(x0, P, q, G, h, A, b, lb, ub)
+        via_front = lemke.solve_qp(P, q, G, h, A, b, lb, ub, warm_start=ws)
+        check(P, q, G, h, A, b, lb, ub, via_kernel)
+        assert _bits(via_kernel) == _bits(via_front)
+        if scale == 0.0:
+            assert via_kernel.pivots == 0

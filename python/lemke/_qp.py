@@ -284,7 +284,13 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     if initvals is not None:
         if warm_start is not None:
             raise ValueError("give warm_start or initvals, not both")
-        warm_start = _initvals_start(initvals, P, q, G, h, A, b, lb, ub)
+        plain = _plain_args(P, q, G, h, A, b, lb, ub)
+        if plain is not None:  # the fused kernel reads the guess's active set itself
+            res = _solve_warm(plain, method, opts, None, _guess_vector(initvals, plain[1].shape[0]))
+            if res is not None:
+                return res
+            warm_tried = True
+        warm_start = _initvals_start(initvals, P, q, G, h, A, b, lb, ub)  # for the KKT-MLCP path
     if warm_start is not None and not warm_tried:
         plain = _plain_args(P, q, G, h, A, b, lb, ub)
         if plain is not None:
@@ -621,21 +627,27 @@ def _bad_warm(warm_start, pairs):
                       "per variable with both bounds): a basis of a QP with another structure")
 
 
-def _solve_warm(args, method, opts, warm_start):
-    """The fused kernel from a warm start (``_core.qp_solve_warm``): the warm start's active
-    set first (its KKT point on the new data, checked), else Lemke restarted from it or
-    cold; the factors of P, A, G reused when they are the last call's.  None when it does
-    not end solved and checked (P not definite, dependent equalities, ...): the caller then
-    takes the KKT-MLCP path from the same warm start.  A warm start with another number of
-    pairs is a ValueError."""
+def _solve_warm(args, method, opts, warm_start, x0=None):
+    """The fused kernel from a warm start (``_core.qp_solve_warm``), or from qpsolvers'
+    initvals x0 (``_core.qp_solve_guess``, which reads the rows active at x0 itself, the
+    rule of :func:`_initvals_start`): that active set first (its KKT point on the new data,
+    checked), else Lemke restarted from it or cold; the factors of P, A, G reused when they
+    are the last call's.  None when it does not end solved and checked (P not definite,
+    dependent equalities, ...): the caller then takes the KKT-MLCP path from the same start.
+    A warm start with another number of pairs is a ValueError."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
     out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
-    mp = opts.max_pivots
+    mp = -1 if opts.max_pivots is None else opts.max_pivots
+    if x0 is not None:
+        code, pivots, k, pairs = _core.qp_solve_guess(
+            P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
+            opts.tol, out, x0)
+        return _fused_result(out, n, p, m, k, pairs, pivots) if code == _OK else None
     warm = np.fromiter(warm_start.z_basic, dtype=_I64, count=len(warm_start.z_basic))
     code, pivots, k, pairs = _core.qp_solve_warm(
-        P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], -1 if mp is None else mp,
-        opts.pivot_tol, opts.tie_tol, opts.tol, out, warm, warm_start.n)
+        P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
+        opts.tol, out, warm, warm_start.n)
     if code == _BAD_WARM:
         raise _bad_warm(warm_start, pairs)
     if code != _OK:
@@ -643,7 +655,24 @@ def _solve_warm(args, method, opts, warm_start):
     return _fused_result(out, n, p, m, k, pairs, pivots)
 
 
-ACTIVE_TOL = 1e-9  # initvals: a row or bound within this (relative) of tight counts as active
+ACTIVE_TOL = 1e-9  # initvals: a row or bound within this (relative) of tight counts as active (qp::ACTIVE_TOL)
+
+
+def _guess_vector(initvals, n):
+    """initvals as a finite float64 vector of n entries (a column (n, 1) flattened), or a
+    ValueError naming it."""
+    try:
+        x0 = np.asarray(initvals, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"initvals must be a real vector of shape ({n},)") from None
+    if x0.ndim == 2 and x0.shape[1] == 1:
+        x0 = x0.reshape(-1)
+    if x0.shape != (n,):
+        raise ValueError(f"initvals must have shape ({n},) (one entry per variable), got {x0.shape}")
+    if not np.isfinite(x0).all():
+        bad = np.flatnonzero(~np.isfinite(x0))
+        raise ValueError(f"initvals has a non-finite entry at index {int(bad[0])}")
+    return np.ascontiguousarray(x0)
 
 
 def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
@@ -659,17 +688,7 @@ def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
         (P, q, G, h, A, b, lb, ub), _ = qpsolvers_form(P, q, G, h, A, b, lb, ub)
         d = _validate.qp(P, q, G, h, A, b, lb, ub)
     n = d["q"].size
-    try:
-        x0 = np.asarray(initvals, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(f"initvals must be a real vector of shape ({n},)") from None
-    if x0.ndim == 2 and x0.shape[1] == 1:
-        x0 = x0.reshape(-1)
-    if x0.shape != (n,):
-        raise ValueError(f"initvals must have shape ({n},) (one entry per variable), got {x0.shape}")
-    bad = np.flatnonzero(~np.isfinite(x0))
-    if bad.size:
-        raise ValueError(f"initvals has a non-finite entry at index {int(bad[0])}")
+    x0 = _guess_vector(initvals, n)
     lo = d.get("lb", np.full(n, -np.inf))
     up = d.get("ub", np.full(n, np.inf))
     lo = np.where(lo > -1e20, lo, -np.inf)

@@ -511,6 +511,45 @@ bool warm_rows(const double* lb, const double* ub, idx n, const Rows& R, const i
     return true;
 }
 
+// qpsolvers' initvals: the multiplier LCP's rows active at the primal guess x0 (sorted, into
+// beta): a row of G tight or violated to ACTIVE_TOL relative to its terms,
+// G_i x0 - h_i >= -ACTIVE_TOL (|h_i| + sum |G_ij x0_j|), a bound x0 is at or beyond,
+// x0_j - lb_j <= ACTIVE_TOL (|lb_j| + |x0_j|) (ub alike); of a variable within that of both
+// bounds, the nearer one (lb on a tie). _qp._initvals_start is the same rule in numpy.
+void guess_rows(const Data& ds, const double* lb, const double* ub, const Rows& R,
+                const double* x0, std::vector<idx>& beta) {
+    idx n = ds.n(), m = R.m;
+    beta.clear();
+    for (idx i = 0; i < m; ++i) {
+        idx kind = R.ckind[i];
+        bool on;
+        if (kind < 0) {
+            const double* Gi = ds.G.row(-1 - kind);
+            double hi = ds.h[-1 - kind];
+            double acc = -hi, scale = std::fabs(hi);
+            for (idx j = 0; j < n; ++j) {
+                double t = Gi[j] * x0[j];
+                acc += t;
+                scale += std::fabs(t);
+            }
+            on = acc >= -ACTIVE_TOL * scale;
+        } else {
+            idx j = kind < n ? kind : kind - n;
+            double xj = x0[j], ax = std::fabs(xj);
+            double d_up = ub[j] < INF ? ub[j] - xj : INF;
+            double d_lo = lb[j] > -INF ? xj - lb[j] : INF;
+            bool at_up = ub[j] < INF && d_up <= ACTIVE_TOL * (std::fabs(ub[j]) + ax);
+            bool at_lo = lb[j] > -INF && d_lo <= ACTIVE_TOL * (std::fabs(lb[j]) + ax);
+            if (at_up && at_lo) {
+                at_lo = d_lo <= d_up;
+                at_up = !at_lo;
+            }
+            on = kind < n ? at_up : at_lo;
+        }
+        if (on) beta.push_back(i);
+    }
+}
+
 struct Outs {
     double *x, *y, *z, *zb, *stats;
 };
@@ -1047,7 +1086,8 @@ static bool screened(const Data& dt, std::vector<double>& scr, Data& ds) {
 }
 
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
-             double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs) {
+             double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs,
+             const double* x0) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     idx k0 = 2 * n + p0 + m0 + 4;
@@ -1113,6 +1153,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         res.code = BAD_WARM;
         return res;
     }
+    if (x0 != nullptr) guess_rows(ds, lo, up, R, x0, beta);
     for (idx i = 0; i < m; ++i) {
         w.zz[i] = 0.0;
         w.ones[i] = 1.0;

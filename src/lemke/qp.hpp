@@ -32,6 +32,7 @@ constexpr double PROXIMAL = 1e-6;
 constexpr double FLAT = 1e-3;
 constexpr idx REFINE = 2;
 constexpr idx REFINE_PROXIMAL = 3;
+constexpr double ACTIVE_TOL = 1e-9;  // initvals: within this (relative) of tight is active
 
 // The caller's QP, qpsolvers' form: P (n x n), q, G (m0 x n), h, A (p0 x n), b, lb, ub.
 struct Data {
@@ -78,9 +79,11 @@ bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
 // (as mlcp_basis numbers them): the multiplier LCP is solved by lemke::solve from the
 // active rows they name (their point checked first; 0 pivots when it solves the LCP), not
 // by checked_once; BAD_WARM when warm_pairs is not this QP's count (Result.pairs).
+// x0 (not nullptr, n entries, finite: the caller checks): qpsolvers' initvals, a primal
+// guess whose active rows (guess_rows, ACTIVE_TOL) are the warm start instead.
 Result solve(const Data& d, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic, const idx* warm = nullptr, idx k_warm = 0,
-             idx warm_pairs = 0);
+             idx warm_pairs = 0, const double* x0 = nullptr);
 
 // qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
