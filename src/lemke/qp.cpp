@@ -727,64 +727,106 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
-// The warm start's own KKT point (solve's first stage from a warm start): the multipliers of
-// its active rows S from M_SS z_S = -g_S (the multiplier LCP's principal block, LU), a
-// quick look at the LCP (z_S >= 0, w = M z + g >= 0 off S, to tol relative to the terms),
-// then the point, caller_form and the KKT check on the data as for a solved LCP. true (Result
-// OK, 0 pivots, the basis written) when it passes; false leaves zz zero for the LCP.
+// The warm start's own KKT point (solve's first stage from a warm start), with a few
+// active-set updates: the multipliers of the active rows S from M_SS z_S = -g_S (the
+// multiplier LCP's principal block, LU), a look at the LCP (z_S >= 0 and w = M z + g >= 0
+// off S, each to tol relative to its terms); while that fails, at most ACTIVE_SET_STEPS
+// times and while the number of rows that move does not grow, S loses its rows with z < 0 and gains
+// those with w < 0 (a primal-dual active-set step: no pivoting rule, so no guarantee, only
+// a cheap try). A set that passes gives the
+// point, caller_form and the KKT check on the data as for a solved LCP: true (Result OK,
+// pivots the number of rows that entered or left S, the basis written; or CHECK_FAILED when
+// the point fails the KKT check); false (Result.pivots the updates tried) leaves zz zero for
+// the cold LCP, whose answer a failed warm start then gives bit for bit.
 bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
                 const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
-    idx n = ds.n(), p = R.p, m = R.m, kb = static_cast<idx>(beta.size());
-    if (kb > n - p) return false;  // more active rows than free directions: singular
+    idx n = ds.n(), p = R.p, m = R.m;
     thread_local std::vector<double> lu;
-    lu.resize(static_cast<std::size_t>(kb * (kb + 2)));
-    double* blk = lu.data();
-    double* y = blk + kb * kb;
-    double* zS = y + kb;
-    for (idx i = 0; i < kb; ++i) y[i] = -w.g[beta[i]];
-    if (!solve_gathered(w.M, beta.data(), blk, y, zS, kb)) return false;
+    thread_local std::vector<idx> S, next;
+    S.assign(beta.begin(), beta.end());
     double* zz = w.zz;
-    bool ok = true;
-    double top = 0.0;
-    for (idx i = 0; i < kb; ++i) top = pmax(top, std::fabs(zS[i]));
-    for (idx i = 0; i < kb; ++i) {
-        if (zS[i] < -tol * top) ok = false;
-        zz[beta[i]] = pmax(zS[i], 0.0);
-    }
     std::uint8_t* in_s = w.bflags;  // (mlcp_basis rewrites them)
-    for (idx i = 0; i < m; ++i) in_s[i] = 0;
-    for (idx i = 0; i < kb; ++i) in_s[beta[i]] = 1;
-    for (idx i = 0; ok && i < m; ++i) {
-        if (in_s[i]) continue;
-        const double* Mi = w.M.row(i);
-        double acc = w.g[i], size = std::fabs(w.g[i]);
-        for (idx j = 0; j < kb; ++j) {
-            double t = Mi[beta[j]] * zz[beta[j]];
-            acc += t;
-            size += std::fabs(t);
+    idx changes = 0, last = 0;
+    bool ok = false;
+    for (idx step = 0; step <= ACTIVE_SET_STEPS; ++step) {
+        idx kb = static_cast<idx>(S.size());
+        if (kb > n - p) break;  // more active rows than free directions: singular
+        lu.resize(static_cast<std::size_t>(kb * (kb + 2)));
+        double* blk = lu.data();
+        double* y = blk + kb * kb;
+        double* zS = y + kb;
+        for (idx i = 0; i < kb; ++i) y[i] = -w.g[S[i]];
+        if (kb > 0 && !solve_gathered(w.M, S.data(), blk, y, zS, kb)) break;
+        for (idx i = 0; i < m; ++i) {
+            zz[i] = 0.0;
+            in_s[i] = 0;
         }
-        if (acc < -tol * size) ok = false;
+        double top = 0.0;
+        for (idx i = 0; i < kb; ++i) top = pmax(top, std::fabs(zS[i]));
+        next.clear();
+        for (idx i = 0; i < kb; ++i) {
+            in_s[S[i]] = 1;
+            zz[S[i]] = pmax(zS[i], 0.0);
+            if (zS[i] < -tol * top) in_s[S[i]] = 2;  // leaves
+        }
+        idx moved = 0;
+        for (idx i = 0; i < m; ++i) {
+            if (in_s[i] == 2) {
+                ++moved;
+                continue;
+            }
+            if (in_s[i] == 1) {
+                next.push_back(i);
+                continue;
+            }
+            const double* Mi = w.M.row(i);
+            double acc = w.g[i], size = std::fabs(w.g[i]);
+            for (idx j = 0; j < kb; ++j) {
+                double t = Mi[S[j]] * zz[S[j]];
+                acc += t;
+                size += std::fabs(t);
+            }
+            if (acc < -tol * size) {  // enters
+                next.push_back(i);
+                ++moved;
+            }
+        }
+        if (moved == 0) {
+            ok = true;
+            break;
+        }
+        if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
+        last = moved;
+        changes += moved;
+        S.swap(next);
     }
+    idx kb = static_cast<idx>(S.size());
     if (ok) {
         double* v = w.v;
         for (idx t = p; t < n; ++t) v[t] = -w.c[t];
         for (idx j = 0; j < kb; ++j) {
-            double zi = zz[beta[j]];
+            double zi = zz[S[j]];
             if (zi != 0.0) {
-                const double* Ci = R.C.row(beta[j]);
+                const double* Ci = R.C.row(S[j]);
                 for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
             }
         }
         point(w.L, R, w, w.c, v, zz, o.x, w.yy);
         caller_form(o, n, ds.p0(), ds.m0(), w.yy, zz, R, true);
-        ok = kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+        if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+            // the LCP is solved and its point fails the check: what the cold LCP would give
+            // (x is unique, P definite), so the caller's fallback, not another LCP run
+            res.code = CHECK_FAILED;
+            res.pivots = changes;
+            return true;
+        }
     }
+    res.pivots = changes;
     if (!ok) {
         for (idx i = 0; i < m; ++i) zz[i] = 0.0;
         return false;
     }
-    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, beta.data(), kb, basic, w.bflags, res.k, res.pairs);
-    res.pivots = 0;
+    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, S.data(), kb, basic, w.bflags, res.k, res.pairs);
     res.code = OK;
     return true;
 }
@@ -1160,19 +1202,16 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     }
     idx pivots = 0, k_basic = 0;
     idx* lcp_basic = basic;
-    if (!beta.empty() && m > 0 &&
+    if ((warm != nullptr || x0 != nullptr) && m > 0 &&
         warm_point(ds, lo, up, w, R, beta, tol, o, basic, res)) return res;
     if (m > 0) {
         idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
         Method mt = method == TABLEAU ? TABLEAU : UNREVISED;
-        idx kb = static_cast<idx>(beta.size());
-        // cold: checked_once; warm: the old active set's point and check (0 pivots when it
-        // solves the new data), else Lemke restarted from it (m >= RESTART_FROM) or cold
-        RunResult rr = kb > 0 ? lemke::solve(mt, w.M, w.g, w.ones, beta.data(), kb, cap, pivot_tol,
-                                             tie_tol, tol, w.buf, lcp_basic)
-                              : checked_once(mt, w.M, w.g, w.ones, cap, pivot_tol, tie_tol, tol,
-                                             w.buf, lcp_basic);
-        pivots = rr.pivots;
+        // cold (also after a warm start that warm_point could not finish: measured on the MPC
+        // benchmark, Lemke restarted from the old basis cost more than the cold run)
+        RunResult rr = checked_once(mt, w.M, w.g, w.ones, cap, pivot_tol, tie_tol, tol, w.buf,
+                                    lcp_basic);
+        pivots = rr.pivots + res.pivots;
         k_basic = rr.k;
         if (!(rr.code == SOLVED || rr.code == TRIVIAL) || !rr.ok) {
             res.code = NOT_SOLVED;
