@@ -64,11 +64,204 @@ def natural_residual(M, q, lo, hi, z):
     return np.abs(z - np.clip(z - w, lo, hi)).max() / scale
 
 
+def contact_islands(seed, k):
+    """k 2-D contacts (a normal row and its friction row, findex), the Delassus matrix
+    M = J J' + 1e-6 I of a random Jacobian (tests/test_blcp.py's ``contacts``)."""
+    rng = np.random.default_rng(seed)
+    J = rng.standard_normal((2 * k, 3 * max(1, k // 2)))
+    M = J @ J.T + 1e-6 * np.eye(2 * k)
+    q = rng.standard_normal(2 * k)
+    mu = rng.uniform(0.0, 1.0, k)
+    lo, hi = np.zeros(2 * k), np.full(2 * k, np.inf)
+    findex = np.full(2 * k, -1, dtype=np.int64)
+    findex[1::2] = np.arange(0, 2 * k, 2)
+    lo[1::2], hi[1::2] = -mu, mu
+    return M, q, lo, hi, findex
+
+
+def interleaved(calls, budget, least=5):
+    """Median and fastest time of each call, in a random order drawn afresh every round."""
+    rng = np.random.default_rng(0)
+    times = {name: [] for name in calls}
+    names = list(calls)
+    t0 = time.perf_counter()
+    gc.disable()
+    try:
+        while time.perf_counter() - t0 < budget or len(times[names[0]]) < least:
+            rng.shuffle(names)
+            for name in names:
+                s = time.perf_counter()
+                calls[name]()
+                times[name].append(time.perf_counter() - s)
+    finally:
+        gc.enable()
+    return ({k: statistics.median(v) for k, v in times.items()},
+            {k: min(v) for k, v in times.items()})
+
+
+def warm_part(quick):
+    """Part (a), issue 32: a 0-pivot warm re-solve (the last answer's own basis, the same
+    problem) against the same call cold, box LCPs (the ``contact`` boxes, no friction
+    index) and contact islands with a friction index, n = 6 to 200; target warm <= 0.5x
+    cold at every n."""
+    rows = []
+    for n in (6, 12, 24, 50, 100, 200):
+        count = (2 if n >= 100 else 4) if quick else (4 if n >= 100 else 10)
+        for family in ("box", "friction"):
+            per_c, per_w, rat, rat_min, piv = [], [], [], [], []
+            k = 0
+            while len(rat) < count and k < 4 * count:
+                if family == "box":
+                    M, q = bl.make_problem(n, k)
+                    lo, hi = boxes(n, "contact")
+                    fi = None
+                else:
+                    M, q, lo, hi, fi = contact_islands(n * 1000 + k, n // 2)
+                k += 1
+                r = lemke.solve_blcp(M, q, lo, hi, findex=fi)
+                ws = r.warm_start
+                again = lemke.solve_blcp(M, q, lo, hi, findex=fi, warm_start=ws)
+                if not (r.success and again.success and again.pivots == 0):
+                    continue  # (a degenerate final basis whose own point fails the check)
+                med, fast = interleaved({
+                    "cold": lambda: lemke.solve_blcp(M, q, lo, hi, findex=fi),
+                    "warm": lambda: lemke.solve_blcp(M, q, lo, hi, findex=fi, warm_start=ws)},
+                    0.05 if quick else (0.15 if n < 100 else 0.4))
+                per_c.append(med["cold"])
+                per_w.append(med["warm"])
+                rat.append(med["warm"] / med["cold"])
+                rat_min.append(fast["warm"] / fast["cold"])
+                piv.append(r.pivots)
+            rows.append((family, n, len(rat), statistics.median(per_c), statistics.median(per_w),
+                         statistics.median(rat), statistics.median(rat_min), statistics.median(piv)))
+            print("warm", rows[-1], file=sys.stderr)
+    out = ["## Warm re-solves with 0 pivots (issue 32)", "", warm_part.__doc__.split("\n\n")[0].replace("\n    ", " "),
+           "Problems: *box*, the monotone family above with the ``contact`` boxes (no "
+           "friction index); *friction*, n/2 2-D contacts (a normal row, a friction row with "
+           "findex, M = J J' + 1e-6 I).  Per problem the median of interleaved calls; a problem "
+           "whose own final basis needs a pivot again (degenerate) is skipped.", "",
+           "| family | n | problems | cold | warm (0 pivots) | warm/cold | warm/cold min | cold pivots |",
+           "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for family, n, cnt, c, w, r, rm, p in rows:
+        out.append(f"| {family} | {n} | {cnt} | {c * 1e6:.1f} µs | {w * 1e6:.1f} µs | {r:.2f} | {rm:.2f} | {p:g} |")
+    out += ["", "Target warm/cold <= 0.5: " + ", ".join(
+        f"{family} n = {n} {r:.2f} (**{'met' if r <= 0.5 else 'missed'}**)" for family, n, _, _, _, r, _, _ in rows), ""]
+    return out
+
+
+def islands_part(quick, islands):
+    """Part (b), issue 32: the islands of a scene, box LCPs with friction (1-6 contacts, n =
+    2-12), in one ``solve_blcp_many`` call, against plain LCP islands of the same M and q
+    (z >= 0) in one ``solve_lcp_many`` call; both packed, the next step warm from the
+    last step's batch of bases (q moved by 1e-3 relative), the flat z and warm_start read;
+    target box/LCP <= 1.5 per island."""
+    rng = np.random.default_rng(3)
+    ks = rng.integers(1, 7, size=islands)
+    probs = [contact_islands(5000 + b, int(k)) for b, k in enumerate(ks)]
+    sizes = np.array([p[1].size for p in probs])
+    Mp = np.concatenate([p[0].ravel() for p in probs])
+    q0 = np.concatenate([p[1] for p in probs])
+    q1 = q0 + 1e-3 * np.abs(q0) * rng.standard_normal(q0.size)
+    lo = np.concatenate([p[2] for p in probs])
+    hi = np.concatenate([p[3] for p in probs])
+    fi = np.concatenate([p[4] for p in probs])
+    lo0, hi0 = np.zeros(q0.size), np.full(q0.size, np.inf)
+    box0 = lemke.solve_blcp_many(Mp, q0, lo, hi, findex=fi, sizes=sizes)
+    lcp0 = lemke.solve_lcp_many(Mp, q0, sizes=sizes)
+    bw, lw = box0.warm_start, lcp0.warm_start
+    res = {}
+
+    def box(workers, warm):
+        def f():
+            r = lemke.solve_blcp_many(Mp, q1, lo, hi, findex=fi, sizes=sizes,
+                                      warm_start=bw if warm else None, workers=workers)
+            r.z, r.warm_start
+            res[("box", workers, warm)] = r
+        return f
+
+    def lcp(workers, warm):
+        def f():
+            r = lemke.solve_lcp_many(Mp, q1, sizes=sizes, warm_start=lw if warm else None,
+                                     workers=workers)
+            r.z, r.warm_start
+            res[("lcp", workers, warm)] = r
+        return f
+
+    def plain_box(workers):  # box islands without a friction index (lo = 0, hi = inf)
+        def f():
+            r = lemke.solve_blcp_many(Mp, q1, lo0, hi0, sizes=sizes, workers=workers)
+            r.z, r.warm_start
+        return f
+
+    calls = {}
+    for workers in (1, 2):
+        for warm in (True, False):
+            calls[("box", workers, warm)] = box(workers, warm)
+            calls[("lcp", workers, warm)] = lcp(workers, warm)
+        calls[("box, no findex, cold", workers, False)] = plain_box(workers)
+    med, fast = interleaved(calls, 1.0 if quick else 6.0)
+    out = ["## 3. Islands of box LCPs with friction vs plain LCP islands (issue 32)", "",
+           islands_part.__doc__.split("\n\n")[0].replace("\n    ", " "), "",
+           f"{islands} islands, {int(sizes.sum())} rows; medians of interleaved rounds.", "",
+           "| how | workers | time | per island | per island (min) | solved | pivots |",
+           "|---|---:|---:|---:|---:|---:|---:|"]
+    for key in calls:
+        kind, workers, warm = key
+        r = res.get(key)
+        label = {"box": "solve_blcp_many, friction", "lcp": "solve_lcp_many"}.get(
+            kind, "solve_blcp_many, no findex (lo = 0, hi = inf)") + (", warm" if warm else ", cold")
+        out.append(f"| {label} | {workers} | {med[key] * 1e3:.2f} ms | {med[key] / islands * 1e6:.2f} us | "
+                   f"{fast[key] / islands * 1e6:.2f} us | "
+                   f"{'' if r is None else int(r.success.sum())} | {'' if r is None else int(r.pivots.sum())} |")
+    out.append("")
+    for workers in (1, 2):
+        for warm in (True, False):
+            ratio = med[("box", workers, warm)] / med[("lcp", workers, warm)]
+            out.append(f"- box/LCP per island, {'warm' if warm else 'cold'}, {workers} worker(s): "
+                       f"{ratio:.2f} (**{'met' if ratio <= 1.5 else 'missed'}**, target 1.5)")
+    out.append("")
+    return out
+
+
+def put_section(path, title, lines):
+    """Replace the section ``title`` (a ``## `` heading up to the next one) of a results file,
+    or append it."""
+    path = Path(path)
+    text = path.read_text() if path.exists() else ""
+    block = "\n".join(lines).rstrip() + "\n"
+    i = text.find(title)
+    if i < 0:
+        path.write_text(text.rstrip() + "\n\n" + block)
+        return
+    j = text.find("\n## ", i + len(title))
+    path.write_text(text[:i] + block + ("" if j < 0 else text[j:]))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--out", default=str(HERE / "RESULTS-blcp.md"))
+    ap.add_argument("--part", choices=("lcp", "warm", "islands"), default="lcp",
+                    help="lcp: against the LCP and the 2n reformulation (the default); warm: "
+                         "0-pivot warm re-solves (a section of --out); islands: solve_blcp_many "
+                         "against solve_lcp_many (a section of --islands-out)")
+    ap.add_argument("--islands", type=int, default=3000)
+    ap.add_argument("--islands-out", default=str(HERE / "RESULTS-islands.md"))
     args = ap.parse_args(argv)
+    if args.part != "lcp":
+        info = bl.machine_info()
+        load0, up0 = os.getloadavg()[0], _uptime()
+        t0 = time.perf_counter()
+        lines = warm_part(args.quick) if args.part == "warm" else islands_part(args.quick, args.islands)
+        lines[1:1] = ["", f"`python benchmarks/bench_blcp.py --part {args.part}"
+                      f"{' --quick' if args.quick else ''}` in {time.perf_counter() - t0:.0f} s, "
+                      f"{info['date']}, {info['cpu']} ({info['usable_cores']} usable cores), lemke commit "
+                      f"{info['commit']}; `uptime` at the start: {up0}; at the end: {_uptime()} "
+                      "(a shared machine: other processes make timings noisier)."]
+        title = lines[0]
+        put_section(args.out if args.part == "warm" else args.islands_out, title, lines)
+        print("\n".join(lines))
+        return
     t_start = time.perf_counter()
     load0 = os.getloadavg()[0]
     sizes = {12: 12, 48: 8, 200: 3}
@@ -169,6 +362,14 @@ def main(argv=None):
             "from Python only through a whole scene), so they were not timed.", ""]
     Path(args.out).write_text("\n".join(out))
     print("\n".join(out))
+
+
+def _uptime():
+    import subprocess
+    try:
+        return subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip()
+    except OSError:
+        return "load average %.2f, %.2f, %.2f" % os.getloadavg()
 
 
 if __name__ == "__main__":

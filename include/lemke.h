@@ -27,6 +27,8 @@ enum lemke_status {
                                     check (no solution when M is copositive-plus) */
     LEMKE_NUMERICAL_FAILURE = 3, /* the answer failed the check */
     LEMKE_CYCLING = 6,           /* a basis repeated */
+    LEMKE_TIME_LIMIT = 7,        /* stopped at options.time_limit (z: the unchecked point) */
+    LEMKE_INTERRUPTED = 8,       /* stopped by lemke_interrupt() (z: the unchecked point) */
     LEMKE_NOT_FINITE = -1,       /* M or q holds a NaN or an infinity */
     LEMKE_INVALID_ARGUMENT = -3, /* a null pointer, n < 0, a bad basis index, bad options */
     LEMKE_OUT_OF_MEMORY = -4
@@ -37,6 +39,8 @@ typedef struct lemke_options {
     double pivot_tol;   /* ratio-test threshold, relative (default 1e-11) */
     double tie_tol;     /* tie threshold, relative (default 1e-11) */
     double tol;         /* acceptance tolerance, relative (default 1e-9) */
+    double time_limit;  /* seconds of wall-clock time for the call; < 0 or INFINITY: none (the
+                           default, -1); kept to within some tens of microseconds */
 } lemke_options;
 
 typedef struct lemke_info {
@@ -92,6 +96,12 @@ int lemke_lcp_solve(int64_t n, const double* M, const double* q, const lemke_opt
 int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* lo,
                      const double* hi, const int64_t* findex, const lemke_options* options,
                      double* z, double* w, lemke_info* info);
+
+/* Stops every solve running in this process, in any thread, within some tens of
+ * microseconds: each returns LEMKE_INTERRUPTED (solves started afterwards are not
+ * affected). Async-signal-safe: a SIGINT handler of the program may call it. The library
+ * installs no signal handler of its own. */
+void lemke_interrupt(void);
 
 /* A short English name of a status code ("SOLVED", ...). Never NULL. */
 const char* lemke_status_name(int status);

@@ -4,6 +4,7 @@
 #include "lemke.h"
 
 #include <algorithm>
+#include <cmath>
 #include <new>
 #include <vector>
 
@@ -19,7 +20,10 @@ extern "C" void lemke_default_options(lemke_options* o) {
     o->pivot_tol = 1e-11;
     o->tie_tol = 1e-11;
     o->tol = 1e-9;
+    o->time_limit = -1.0;
 }
+
+extern "C" void lemke_interrupt(void) { lemke::interrupt_all(); }
 
 extern "C" const char* lemke_status_name(int status) {
     switch (status) {
@@ -28,6 +32,8 @@ extern "C" const char* lemke_status_name(int status) {
         case LEMKE_RAY_TERMINATION: return "RAY_TERMINATION";
         case LEMKE_NUMERICAL_FAILURE: return "NUMERICAL_FAILURE";
         case LEMKE_CYCLING: return "CYCLING";
+        case LEMKE_TIME_LIMIT: return "TIME_LIMIT";
+        case LEMKE_INTERRUPTED: return "INTERRUPTED";
         case LEMKE_NOT_FINITE: return "NOT_FINITE";
         case LEMKE_INVALID_ARGUMENT: return "INVALID_ARGUMENT";
         case LEMKE_OUT_OF_MEMORY: return "OUT_OF_MEMORY";
@@ -38,6 +44,10 @@ extern "C" const char* lemke_status_name(int status) {
 namespace {
 
 bool valid_tolerance(double t) { return t >= 0.0 && t < 1.0; }  // NaN fails
+bool valid_options(const lemke_options& o) {
+    return valid_tolerance(o.pivot_tol) && valid_tolerance(o.tie_tol) &&
+           valid_tolerance(o.tol) && !std::isnan(o.time_limit);
+}
 
 int solve(idx n, const double* M, const double* q, const lemke_options* options,
           const int64_t* warm, idx n_warm, double* z, double* w, int64_t* basis_out,
@@ -46,9 +56,9 @@ int solve(idx n, const double* M, const double* q, const lemke_options* options,
     lemke_default_options(&o);
     if (options) o = *options;
     if (n < 0 || (n > 0 && (!M || !q)) || n_warm < 0 || n_warm > n || (n_warm > 0 && !warm) ||
-        !valid_tolerance(o.pivot_tol) || !valid_tolerance(o.tie_tol) || !valid_tolerance(o.tol) ||
-        n > (idx(1) << 26))
+        !valid_options(o) || n > (idx(1) << 26))
         return LEMKE_INVALID_ARGUMENT;
+    lemke::DeadlineScope budget(o.time_limit);
     std::vector<std::uint8_t> seen(static_cast<std::size_t>(n), 0);
     for (idx i = 0; i < n_warm; ++i) {
         if (warm[i] < 0 || warm[i] >= n || seen[warm[i]]) return LEMKE_INVALID_ARGUMENT;
@@ -116,9 +126,9 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
     lemke_options o;
     lemke_default_options(&o);
     if (options) o = *options;
-    if (n < 0 || (n > 0 && (!M || !q || !lo || !hi)) || !valid_tolerance(o.pivot_tol) ||
-        !valid_tolerance(o.tie_tol) || !valid_tolerance(o.tol) || n > (idx(1) << 26))
+    if (n < 0 || (n > 0 && (!M || !q || !lo || !hi)) || !valid_options(o) || n > (idx(1) << 26))
         return LEMKE_INVALID_ARGUMENT;
+    lemke::DeadlineScope budget(o.time_limit);
     bool friction = findex && n > 0;
     idx nf = 0;
     if (friction)
@@ -160,7 +170,8 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
     pivots += std::max<idx>(r.pivots, 0);
     bool done = r.code == 0 && r.ok;
     bool ray = false;
-    if (!done) {
+    int stop = lemke::is_stop(r.code) ? r.code : 0;  // stopped by its budget: no more runs
+    if (!done && !stop) {
         if (r.code == lemke::RAY_TERMINATION &&
             bx::is_ray(Ae, qa, la, ha, ext + L.covering(), ext + L.z(), r.z0, ext + L.ray(), tol)) {
             ray = true;
@@ -174,6 +185,10 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
                 pivots += std::max<idx>(r.pivots, 0);
                 if (r.code == 0 && r.ok) {
                     done = true;
+                    break;
+                }
+                if (lemke::is_stop(r.code)) {
+                    stop = r.code;
                     break;
                 }
             }
@@ -198,7 +213,7 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
         done = true;
         ray = false;
     }
-    if (!done && !ray) {  // one restart from the final basis (its flags in zb, zh)
+    if (!done && !ray && !stop) {  // one restart from the final basis (its flags in zb, zh)
         std::vector<double> kept(buf.begin(), buf.begin() + L.length());
         std::vector<idx> kept_final(ints.begin(), ints.begin() + N);
         std::vector<std::uint8_t> from(static_cast<std::size_t>(2 * N), 0);
@@ -232,11 +247,17 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
     }
     int status = done ? LEMKE_SOLVED
                  : ray ? LEMKE_RAY_TERMINATION
+                 : stop ? stop
                  : (r.code == LEMKE_MAX_PIVOTS || r.code == LEMKE_CYCLING) ? r.code
                                                                             : LEMKE_NUMERICAL_FAILURE;
     const double* zo = friction ? buf.data() + 6 * N + 1 : ext + L.z();
     const double* wo = friction ? buf.data() + 6 * N + 1 + n : ext + L.w();
     if (z) for (idx i = 0; i < n; ++i) z[i] = zo[i];
+    if (z && status == LEMKE_SOLVED && !friction)
+        // A checked answer off a bound by less than the check's allowance (a run's point is
+        // not clamped when the run itself did not end solved): onto the bound, as the
+        // Python front's answer is (the fuzz found z = 0 for lo = 1e-300).
+        for (idx i = 0; i < n; ++i) z[i] = std::min(std::max(z[i], lo[i]), hi[i]);
     if (w) for (idx i = 0; i < n; ++i) w[i] = wo[i];
     if (info) {
         info->status = status;

@@ -7,6 +7,7 @@
 
 #include <cstring>
 
+#include "lemke/budget.hpp"
 #include "lemke/certify.hpp"
 #include "lemke/lcp.hpp"
 #include "lemke/unrevised.hpp"
@@ -205,6 +206,18 @@ NB_MODULE(_core, m) {
         return std::make_tuple(L.z(), L.z0(), L.ray(), L.w(), L.covering(), L.row_scale(),
                                L.col_scale(), L.length());
     }, "n"_a);
+    // Budgets (src/lemke/budget.hpp): the calling thread's deadline, the interrupt, and the
+    // SIGINT listener that long runs arm (chained to Python's handler).
+    lemke::enable_sigint_listener(true);
+    m.def("tighten_deadline", &lemke::tighten_thread_deadline, "seconds"_a,
+          "The calling thread's deadline: at most `seconds` from now; returns the one before.");
+    m.def("restore_deadline", &lemke::restore_thread_deadline, "deadline"_a,
+          "Sets the calling thread's deadline (steady-clock ns; 0: none).");
+    m.def("deadline", &lemke::thread_deadline, "The calling thread's deadline (0: none).");
+    m.def("interrupt", &lemke::interrupt_all, "Stop every running solve (INTERRUPTED).");
+    m.def("interrupts", &lemke::interrupts_seen, "How many interrupts so far.");
+    m.attr("TIME_LIMIT") = static_cast<int>(lemke::TIME_LIMIT);
+    m.attr("INTERRUPTED") = static_cast<int>(lemke::INTERRUPTED);
     m.attr("NOT_FINITE") = lemke::NOT_FINITE;
     m.attr("TRIVIAL") = lemke::TRIVIAL;
     m.attr("RESTART_FROM") = lemke::RESTART_FROM;

@@ -10,6 +10,7 @@
 #include <nanobind/stl/tuple.h>
 
 #include "lemke/boxed.hpp"
+#include "lemke/boxed_batch.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -178,6 +179,55 @@ std::tuple<int, double> front(int phase, CMatrix M, CVector q, CVector lo, CVect
     return {code, residual};
 }
 
+using Flat = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Bytes = nb::ndarray<const std::uint8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using States = nb::ndarray<const std::int8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using StatesOut = nb::ndarray<std::int8_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IntOut2 = nb::ndarray<std::int64_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+
+// lemke::boxed::batch (solve_blcp_many): islands lo..hi-1 laid end to end. Every offset is
+// checked against its array before the GIL is released (ValueError otherwise).
+void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
+           CIndices findex, Bytes fflag, States state, Bytes wflag, std::int64_t lo,
+           std::int64_t hi, CIndices max_pivots, double pivot_tol, double tie_tol, double tol,
+           OutVector bufs, CIndices buff, OutIndices ints, CIndices ioff, StatesOut state_out,
+           IntOut2 out_i, OutVector out_f) {
+    idx B = static_cast<idx>(qoff.shape(0)) - 1;
+    auto len = [](const auto& a) { return static_cast<idx>(a.shape(0)); };
+    if (lo < 0 || hi < lo || hi > B || len(mstart) < hi || len(fflag) < hi || len(wflag) < hi ||
+        len(buff) < hi + 1 || len(ioff) < hi + 1 || len(max_pivots) < hi ||
+        static_cast<idx>(out_i.shape(0)) < hi || out_i.shape(1) != 7 || len(out_f) < hi)
+        throw nb::value_error("batch: offsets and outputs do not cover the problems");
+    const idx *qo = qoff.data(), *ms = mstart.data(), *bf = buff.data(), *io = ioff.data();
+    const idx* fi = findex.data();
+    for (idx b = lo; b < hi; ++b) {
+        idx n = qo[b + 1] - qo[b];
+        bool ok = n >= 0 && qo[b] >= 0 && qo[b + 1] <= len(qs) && qo[b + 1] <= len(los) &&
+                  qo[b + 1] <= len(his) && qo[b + 1] <= len(state) && qo[b + 1] <= len(state_out) &&
+                  ms[b] >= 0 && ms[b] + n * n <= len(Ms) && (fflag.data()[b] == 0 || qo[b + 1] <= len(findex));
+        idx nf = 0;
+        if (ok && fflag.data()[b] != 0)
+            for (idx i = qo[b]; i < qo[b + 1]; ++i) nf += fi[i] >= 0;
+        idx N = n + 2 * nf;
+        ok = ok && bf[b] >= 0 && bf[b + 1] <= len(bufs) &&
+             bf[b + 1] - bf[b] == 6 * N + 1 + (fflag.data()[b] != 0 && n > 0 ? 6 * n : 0) &&
+             io[b] >= 0 && io[b + 1] <= len(ints) && io[b + 1] - io[b] == N + 2 * nf;
+        if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
+        if (wflag.data()[b] != 0)
+            for (idx i = qo[b]; i < qo[b + 1]; ++i) {
+                int c = state.data()[i];
+                bool f = fflag.data()[b] != 0 && fi[i] >= 0;
+                if (c < 0 || c > 29 || (c >= lemke::boxed::FRICTION_STATE) != f)
+                    throw nb::value_error("batch: a warm row state does not fit its row");
+            }
+    }
+    nb::gil_scoped_release release;
+    lemke::boxed::batch(Ms.data(), ms, qs.data(), los.data(), his.data(), qo, fi,
+                        fflag.data(), state.data(), wflag.data(), lo, hi, max_pivots.data(),
+                        pivot_tol, tie_tol, tol, bufs.data(), bf, ints.data(), io,
+                        state_out.data(), out_i.data(), out_f.data());
+}
+
 }  // namespace
 
 void bind_boxed(nb::module_& m) {
@@ -199,6 +249,10 @@ void bind_boxed(nb::module_& m) {
     b.def("front", &front, "phase"_a, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "warm"_a,
           "has_warm"_a, "tol"_a, "buf"_a.noconvert(), "ints"_a.noconvert(),
           "work"_a.noconvert());
+    b.def("batch", &batch, "Ms"_a, "mstart"_a, "qs"_a, "los"_a, "his"_a, "qoff"_a, "findex"_a,
+          "fflag"_a, "state"_a, "wflag"_a, "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a,
+          "tie_tol"_a, "tol"_a, "bufs"_a.noconvert(), "buff"_a, "ints"_a.noconvert(), "ioff"_a,
+          "state_out"_a.noconvert(), "out_i"_a.noconvert(), "out_f"_a.noconvert());
     b.attr("NOT_FINITE") = lemke::boxed::NOT_FINITE;
     b.attr("BAD_BOUNDS") = lemke::boxed::BAD_BOUNDS;
     b.attr("SINGULAR") = lemke::boxed::SINGULAR;

@@ -227,3 +227,31 @@ def assert_nash(A, B, x, y, rtol=1e-9):
         worst = payoff.max() - payoff[support].min()
         assert worst <= tol, (f"the {who} player's strategy {int(support[np.argmin(payoff[support])])} is in "
                               f"the support but {worst:.3g} short of a best response")
+
+
+def interrupt_child(code, *args, wait=1.0):
+    """Start ``python -c code *args`` (which prints "ready", then works until SIGINT and
+    prints "interrupted <time.time()>" from its KeyboardInterrupt handler), send SIGINT
+    after ``wait`` seconds and return ``(line, returncode, sent, exited)``: its last line,
+    its exit code, and the times the signal was sent and the process was seen to end."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    child = subprocess.Popen([sys.executable, "-c", code, *args], stdout=subprocess.PIPE, text=True)
+    try:
+        assert child.stdout.readline().strip() == "ready"
+        time.sleep(wait)
+        assert child.poll() is None, "the child ended before the interrupt"
+        sent = time.time()
+        child.send_signal(signal.SIGINT)
+        line = child.stdout.readline()
+        rc = child.wait(timeout=30)
+        exited = time.time()
+    finally:
+        if child.poll() is None:
+            child.kill()
+            child.wait()
+        child.stdout.close()
+    return line, rc, sent, exited

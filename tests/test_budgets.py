@@ -6,8 +6,6 @@ Every equilibrium is judged by helpers.assert_nash (plain numpy), every LCP solu
 helpers.assert_lcp_solution, never by lemke's own checks."""
 import os
 import pickle
-import signal
-import subprocess
 import sys
 import textwrap
 import threading
@@ -21,7 +19,7 @@ import scipy.sparse as sp
 
 import lemke
 from lemke import _validate
-from helpers import assert_lcp_solution, assert_nash
+from helpers import assert_lcp_solution, assert_nash, interrupt_child
 
 STENGEL_A = [[3, 3], [2, 5], [0, 6]]
 STENGEL_B = [[3, 2], [2, 6], [3, 1]]
@@ -265,20 +263,8 @@ CHILD = textwrap.dedent("""
 
 
 def test_ctrl_c_stops_lemke_paths_promptly():
-    child = subprocess.Popen([sys.executable, "-c", CHILD], stdout=subprocess.PIPE, text=True)
-    try:
-        assert child.stdout.readline().strip() == "ready"
-        time.sleep(2.0)
-        assert child.poll() is None  # still searching
-        sent = time.time()
-        child.send_signal(signal.SIGINT)
-        line = child.stdout.readline()
-        rc = child.wait(timeout=30)
-        exited = time.time() - sent
-    finally:
-        if child.poll() is None:
-            child.kill()
-            child.wait()
+    line, rc, sent, exited = interrupt_child(CHILD, wait=2.0)
+    exited -= sent
     assert line.startswith("interrupted"), line
     latency = float(line.split()[1]) - sent
     print(f"\nSIGINT to KeyboardInterrupt in lemke_paths: {latency * 1e3:.1f} ms, "

@@ -220,7 +220,7 @@ def test_bad_input_is_named(M, q, kw, exc, words):
 
 
 def test_status_messages():
-    assert [int(s) for s in Status] == [0, 1, 2, 3, 4, 5, 6]
+    assert [int(s) for s in Status] == [0, 1, 2, 3, 4, 5, 6, 7, 8]
     for s in Status:
         assert len(s.message) > 40
 

@@ -103,7 +103,7 @@ def test_warm_start_of_another_structure_is_refused(mpc):
         lemke.solve_qp(P.tolist(), q.tolist(), G.tolist(), h.tolist(), A.tolist(), b.tolist(),
                        warm_start=r.warm_start)
     box = lemke.solve_blcp(np.eye(2), [-1.0, 1.0], [0.0, 0.0], [1.0, 1.0]).warm_start
-    with pytest.raises(ValueError, match="warm_start is a BoxWarmStart"):
+    with pytest.raises(ValueError, match="warm_start must be a lemke.WarmStart, got a lemke.BoxWarmStart"):
         lemke.solve_qp(np.eye(2), [1.0, 1.0], lb=[0.0, 0.0], warm_start=box)
     with pytest.raises(TypeError, match="warm_start"):
         lemke.solve_qp(np.eye(2), [1.0, 1.0], warm_start=(1, 2))
@@ -209,3 +209,17 @@ def test_initvals_rule_same_in_kernel_and_front(seed):
         assert _bits(via_kernel) == _bits(via_front)
         if scale == 0.0:
             assert via_kernel.pivots == 0
+
+
+def test_time_limit_with_a_warm_start(mpc):
+    """Options(time_limit=) reaches the warm and initvals paths: a limit already passed stops
+    them (TIME_LIMIT), a generous one changes nothing."""
+    (P, G, h, A, lb, ub), steps = mpc
+    q, b = steps[5]
+    cold = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
+    for kw in (dict(warm_start=cold.warm_start), dict(initvals=cold.x)):
+        stopped = lemke.solve_qp(P, q, G, h, A, b, lb, ub, options={"time_limit": 1e-12}, **kw)
+        assert stopped.status == Status.TIME_LIMIT
+        r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, options={"time_limit": 60.0}, **kw)
+        check(P, q, G, h, A, b, lb, ub, r)
+        assert r.pivots == 0

@@ -19,13 +19,14 @@ PACKAGE = Path(lemke.__file__).parent
 #: Layer of each module (dotted, relative to lemke); a module may import only lower layers
 #: (or, inside the _io and _reductions packages, its siblings, acyclically).
 LAYERS = [
-    {"_layout"},
-    {"_status", "_options", "_validate", "_version", "_progress", "_core"},
+    {"_layout", "_core"},  # (the compiled core imports nothing of the package)
+    {"_status", "_options", "_validate", "_version", "_progress"},
     {"_result"},
     {"_certify"},
     {"_reductions", "_games_exact"},
     {"_lcp", "_pivot_column", "_games", "_blcp"},
     {"_batch", "_mlcp"},
+    {"_blcp_many"},
     {"_qp", "_dask"},
     {"_kinds"},
     {"_problem"},

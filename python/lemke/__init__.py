@@ -3,7 +3,8 @@
 Public API: :func:`solve_lcp` (methods in ``METHODS``), :func:`solve_lcp_batch` (many LCPs
 of one size in parallel threads), :func:`solve_lcp_many` (many of different sizes), :func:`solve_lcp_batch_dask` (a batch over a
 Dask cluster),
-:func:`solve_mlcp` (mixed LCPs), :func:`solve_qp` (convex QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
+:func:`solve_mlcp` (mixed LCPs), :func:`solve_blcp` / :func:`solve_blcp_many` (box LCPs, one or many islands, with
+:class:`BoxWarmStart` / :class:`BoxWarmStartBatch`), :func:`solve_qp` (convex QPs, with :class:`Certificate` when there is no optimum), their results :class:`LCPResult`,
 :class:`LCPBatchResult`, :class:`LCPManyResult` (with :class:`WarmStartBatch`), :class:`MLCPResult`, :class:`QPResult`, :class:`Status`,
 :class:`Options`, :class:`WarmStart`, :class:`PathsResult` (what :func:`lemke_paths` returns),
 :class:`DensifyWarning` (a large scipy.sparse input made dense), :func:`pivot_column` (one step of the unrevised
@@ -22,6 +23,8 @@ _EXPORTS = {
     "solve_lcp_batch": "_batch", "solve_lcp_many": "_batch",
     "solve_lcp_batch_dask": "_dask",
     "BLCPResult": "_blcp", "BoxWarmStart": "_blcp", "solve_blcp": "_blcp",
+    "BLCPManyResult": "_blcp_many", "BoxWarmStartBatch": "_blcp_many",
+    "solve_blcp_many": "_blcp_many",
     "ProblemFormatError": "_io", "read_problem": "_io", "result_to_dict": "_io",
     "write_problem": "_io", "write_result": "_io",
     "BimatrixResult": "_games", "GameBasis": "_games", "PathsResult": "_games",

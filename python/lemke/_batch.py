@@ -12,7 +12,7 @@ import numpy as np
 
 from . import _core, _progress, _validate
 from ._lcp import METHODS, _outcome
-from ._options import as_options
+from ._options import as_options, time_limited, timed
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
 from ._validate import real_array
@@ -54,7 +54,9 @@ def _run(kernel, args, tail, B, workers, progress=None, what=""):
     once, so a pool thread that is slow to wake (an idle core of a shared machine can take
     a millisecond) only takes fewer chunks.  Every problem is solved by the same kernel
     whatever the chunking and whichever thread runs it, so the results do not depend on
-    the number of workers.  ``progress`` (checked by ``_progress.check``): when neither
+    the number of workers.  The pool's threads take the caller's deadline (Options'
+    time_limit) and take no chunk after an interrupt (Ctrl-C; the call then raises
+    KeyboardInterrupt).  ``progress`` (checked by ``_progress.check``): when neither
     None nor False, the work goes through :func:`_run_reporting`, the reports named
     ``what``."""
     if progress is not None and progress is not False:
@@ -67,22 +69,31 @@ def _run(kernel, args, tail, B, workers, progress=None, what=""):
         return
     spans = iter(list(zip(bounds[:-1], bounds[1:])))
     lock = threading.Lock()
+    deadline, seen = _core.deadline(), _core.interrupts()  # the caller's budget, for the pool's
 
-    def take():
-        while True:
-            with lock:
-                span = next(spans, None)
-            if span is None:
-                return
-            kernel(*args, span[0], span[1], *tail)
+    def take(worker=True):
+        if worker:
+            _core.restore_deadline(deadline)
+        try:
+            while True:
+                with lock:
+                    span = next(spans, None) if _core.interrupts() == seen else None
+                if span is None:
+                    return
+                kernel(*args, span[0], span[1], *tail)
+        finally:
+            if worker:
+                _core.restore_deadline(0)
 
     pool = _executor()
     helpers = [pool.submit(take) for _ in range(min(workers, chunks) - 1)]
     try:
-        take()
+        take(False)
     finally:
         for f in helpers:
             f.result()
+    if next(spans, None) is not None:  # chunks left untaken: interrupted (Ctrl-C)
+        raise KeyboardInterrupt("the batch was interrupted")
 
 
 def _run_reporting(kernel, args, tail, B, workers, progress, what):
@@ -99,12 +110,15 @@ def _run_reporting(kernel, args, tail, B, workers, progress, what):
         spans = iter(list(zip(bounds[:-1], bounds[1:])))
         cond = threading.Condition()
         state = {"done": 0, "running": min(workers, chunks), "stop": False}
+        deadline, seen = _core.deadline(), _core.interrupts()
 
         def take():
+            _core.restore_deadline(deadline)
             try:
                 while True:
                     with cond:
-                        span = None if state["stop"] else next(spans, None)
+                        stop = state["stop"] or _core.interrupts() != seen
+                        span = None if stop else next(spans, None)
                     if span is None:
                         return
                     kernel(*args, span[0], span[1], *tail)
@@ -112,6 +126,7 @@ def _run_reporting(kernel, args, tail, B, workers, progress, what):
                         state["done"] += span[1] - span[0]
                         cond.notify_all()
             finally:
+                _core.restore_deadline(0)
                 with cond:
                     state["running"] -= 1
                     cond.notify_all()
@@ -134,6 +149,8 @@ def _run_reporting(kernel, args, tail, B, workers, progress, what):
                 state["stop"] = True
             for f in threads:
                 f.result()
+        if state["done"] < B:  # chunks left untaken: interrupted (Ctrl-C)
+            raise KeyboardInterrupt("the batch was interrupted")
 
 
 #: Chunks per worker: enough that a late thread leaves little for the others to wait on,
@@ -157,6 +174,7 @@ def _bases(warm_start, B, sizes):
             raise ValueError(f"warm_start[{b}] is for a problem of size {warm_start.n[b]}, problem {b} "
                              f"has n = {sizes[b]}")
         return warm_start.z_basic, warm_start.offsets, None  # (the core reads them in place)
+    _validate.wrong_kind(warm_start, "warm_start", "lemke.WarmStartBatch or a sequence of WarmStart")
     ws = list(warm_start)
     if len(ws) != B:
         raise ValueError(f"warm_start must hold one WarmStart (or None) per problem: {len(ws)} for {B} problems")
@@ -239,6 +257,9 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     >>> r.status.tolist(), r.z.round(6).tolist()
     ([0, 0], [[1.333333, 2.333333], [0.0, 0.5]])
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_lcp_batch, M, q, method=method, workers=workers,
+                     warm_start=warm_start, progress=progress)
     _validate.method(method, METHODS)
     opts = as_options(options)
     progress = _progress.check(progress)
@@ -352,6 +373,9 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     >>> nxt.pivots.tolist()  # the old bases still solve them
     [0, 0]
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_lcp_many, M, q, method=method, workers=workers,
+                     warm_start=warm_start, sizes=sizes, progress=progress)
     _validate.method(method, METHODS)
     opts = as_options(options)
     workers = _workers(workers)

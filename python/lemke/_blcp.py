@@ -34,13 +34,14 @@ evaluated at the final z.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from itertools import repeat
 
 import numpy as np
 
-from ._options import _DEFAULT, as_options
+from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _validate
 from ._result import LazyField, Outcome, lazy_state
-from ._status import Status
+from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
 
 METHODS = ("bounded",)
@@ -56,17 +57,27 @@ class BoxWarmStart:
     which non-basic z sit at their upper bounds (``at_upper``; the others at their lower
     bounds), sorted 0-based indices, for a problem of size n.  With a friction index the
     basis is that of the extended problem (see the module docstring), so n is larger than
-    the caller's n; pass it back for the same structure."""
+    the caller's n: ``n = rows + 2 len(friction)``, where ``friction`` lists (sorted) the
+    caller's friction rows; the extended variables are the caller's rows (β+ for a friction
+    row), then β- of each friction row in that order, then λ of each.  Pass it back for a
+    problem of the same size and the same friction rows (anything else is a ``ValueError``
+    naming ``warm_start``); when rows appear, vanish or move, carry it over with
+    :meth:`take` or :meth:`relabel`.
+
+    Each caller's row has a *state*: an ordinary row's z_i is at lo (the cold start's
+    state), at hi or basic; a friction row's state is that of its three variables (β+, β-,
+    λ).  :meth:`take` and :meth:`relabel` move these states with the rows."""
 
     n: int
     z_basic: tuple[int, ...]
     at_upper: tuple[int, ...]
+    friction: tuple[int, ...] = ()
 
     def __post_init__(self):
         n = self.n
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
             raise ValueError(f"BoxWarmStart.n must be a non-negative integer, got {n!r}")
-        for name in ("z_basic", "at_upper"):
+        for name in ("z_basic", "at_upper", "friction"):
             try:
                 idx = tuple(sorted(int(i) for i in getattr(self, name)))
             except (TypeError, ValueError):
@@ -76,14 +87,87 @@ class BoxWarmStart:
             object.__setattr__(self, name, idx)
         if set(self.z_basic) & set(self.at_upper):
             raise ValueError("BoxWarmStart: an index cannot be basic and at its upper bound")
+        nf = len(self.friction)
+        if nf and (n - 2 * nf <= self.friction[-1]):
+            raise ValueError(f"BoxWarmStart.friction: {nf} friction rows need n >= rows + {2 * nf} "
+                             f"with every friction row below rows; got n = {n}, rows {self.friction}")
         object.__setattr__(self, "n", int(n))
 
+    @property
+    def rows(self) -> int:
+        """The caller's number of rows (n less the two extended variables of each friction
+        row)."""
+        return self.n - 2 * len(self.friction)
+
+    def take(self, indices, findex=None) -> "BoxWarmStart":
+        """The basis carried to a problem whose row i is row ``indices[i]`` of this one (the
+        meaning of :meth:`lemke.WarmStart.take`), for when contacts come and go between
+        steps: a kept row keeps its state (at lo, at hi or basic; a friction row its three
+        variables'), a row of the old problem that no index names is dropped, and a new row
+        (``indices[i] == -1``) starts cold, at its lower bound (a new friction row: its β+,
+        β- and λ at 0).  ``len(indices)`` is the new number of rows.
+
+        ``findex``: the new problem's friction index (the one you pass to
+        :func:`solve_blcp`; only which rows are friction rows matters here), None for none.
+        Relabel it yourself as the rows move (``findex[i]`` names the new row of the
+        normal).  A kept row must keep its kind: a friction row stays a friction row, an
+        ordinary row an ordinary one (else ``ValueError`` naming ``findex``).
+
+        >>> BoxWarmStart(3, (0,), (2,)).take([2, -1, 0])   # old row 2 -> 0, new row 1, 0 -> 2
+        BoxWarmStart(n=3, z_basic=(2,), at_upper=(0,), friction=())
+        """
+        idx = _row_index(indices, self.rows, "indices")
+        return _take_codes(self.row_states(), idx, findex)
+
+    def relabel(self, old_labels, new_labels, findex=None) -> "BoxWarmStart":
+        """:meth:`take` by labels (the meaning of :meth:`lemke.WarmStart.relabel`): row j of
+        this problem carries label ``old_labels[j]``, row i of the new one
+        ``new_labels[i]``; a label not in ``old_labels`` is a new row (it starts cold, at its
+        lower bound), an old label not in ``new_labels`` a dropped row.  Labels are hashable
+        values distinct within each list; two 1-D integer numpy arrays are matched by
+        sorting, with no Python object per label.  ``findex``: as in :meth:`take`."""
+        return _take_codes(self.row_states(), _label_index(old_labels, new_labels, self.rows), findex)
+
+    def row_states(self) -> np.ndarray:
+        """The state of each of the caller's rows, one int8 code per row (the codes of
+        :class:`BoxWarmStartBatch`): an ordinary row 0 (z at lo), 1 (at hi) or 2 (basic); a
+        friction row ``3 + 9 s(β+) + 3 s(β-) + s(λ)`` with s in {0, 1, 2} the same way."""
+        d = self.__dict__
+        c = d.get("_codes")
+        if c is None:
+            s = np.zeros(self.n, dtype=np.int8)
+            s[list(self.at_upper)] = 1
+            s[list(self.z_basic)] = 2
+            rows, F = self.rows, np.array(self.friction, dtype=np.int64)
+            c = s[:rows].copy()
+            if F.size:
+                nf = F.size
+                c[F] = 3 + 9 * s[F] + 3 * s[rows:rows + nf] + s[rows + nf:]
+            c.setflags(write=False)
+            d["_codes"] = c
+        return c
+
     @classmethod
-    def _trusted(cls, n, z_basic, at_upper) -> "BoxWarmStart":
+    def from_row_states(cls, states) -> "BoxWarmStart":
+        """The warm start whose :meth:`row_states` are ``states`` (codes 0..29)."""
+        c = np.asarray(states)
+        if c.ndim != 1 or (c.size and c.dtype.kind not in "iu"):
+            raise TypeError("states must be a 1-D sequence of integer codes")
+        if c.size and (c.min() < 0 or c.max() > 29):
+            raise ValueError(f"states must be codes in [0, 29], got {int(c.min())} .. {int(c.max())}")
+        return _from_codes(c.astype(np.int8))
+
+    @classmethod
+    def _trusted(cls, n, z_basic, at_upper, friction=()) -> "BoxWarmStart":
         """Build from values the solver made itself (sorted, in range): no checks."""
         ws = object.__new__(cls)
-        ws.__dict__.update(n=n, z_basic=z_basic, at_upper=at_upper)
+        ws.__dict__.update(n=n, z_basic=z_basic, at_upper=at_upper, friction=friction)
         return ws
+
+    def __getstate__(self):
+        # the fields only, not the arrays kept with it
+        return {"n": self.n, "z_basic": self.z_basic, "at_upper": self.at_upper,
+                "friction": self.friction}
 
     def _kernel_flags(self):
         """Its basis as ``kernels.boxed.solve`` and ``front`` take it: 2n flags, the basic
@@ -103,6 +187,104 @@ class BoxWarmStart:
                 f[n:][idx[0][idx[1]:]] = True
             d["_flags"] = f
         return f
+
+
+def _row_index(indices, n, name):
+    """``indices`` as an int64 array of old rows in [-1, n) naming each old row at most
+    once, or a TypeError/ValueError naming ``name``."""
+    idx = np.asarray(indices)
+    if idx.ndim != 1 or (idx.size and idx.dtype.kind not in "iu"):
+        raise TypeError(f"{name} must be a 1-D sequence of integers")
+    idx = idx.astype(np.int64)
+    if idx.size and (idx.min() < -1 or idx.max() >= n):
+        raise ValueError(f"{name} must lie in [-1, {n}), got {idx.min()} .. {idx.max()}")
+    kept = idx[idx >= 0]
+    if np.unique(kept).size != kept.size:
+        raise ValueError(f"{name} name an old row twice")
+    return idx
+
+
+def _label_index(old_labels, new_labels, n):
+    """The old row of each new label (-1: a new one), as :meth:`BoxWarmStart.take` takes
+    it; ValueError when a list holds a label twice or ``old_labels`` has not n labels."""
+    if (type(old_labels) is np.ndarray and type(new_labels) is np.ndarray and old_labels.ndim == 1
+            and new_labels.ndim == 1 and old_labels.dtype.kind in "iu" and new_labels.dtype.kind in "iu"):
+        old, new = old_labels.astype(np.int64), new_labels.astype(np.int64)
+        if old.size != n:
+            raise ValueError(f"old_labels has {old.size} labels for a basis of {n} rows")
+        order = np.argsort(old, kind="stable")
+        srt = old[order]
+        if srt.size > 1 and (srt[1:] == srt[:-1]).any():
+            raise ValueError("old_labels holds a label twice")
+        if new.size > 1 and np.unique(new).size != new.size:
+            raise ValueError("new_labels holds a label twice")
+        pos = np.minimum(np.searchsorted(srt, new), max(n - 1, 0))
+        found = (srt[pos] == new) if n else np.zeros(new.size, dtype=bool)
+        return np.where(found, order[pos] if n else -1, -1).astype(np.int64)
+    old = list(old_labels)
+    if len(old) != n:
+        raise ValueError(f"old_labels has {len(old)} labels for a basis of {n} rows")
+    where = dict(zip(old, range(n)))
+    if len(where) != n:
+        raise ValueError("old_labels holds a label twice")
+    new = list(new_labels)
+    if len(set(new)) != len(new):
+        raise ValueError("new_labels holds a label twice")
+    return np.fromiter(map(where.get, new, repeat(-1)), np.int64, len(new))
+
+
+def _friction_mask(findex, m, name="findex"):
+    """Which of the m new rows are friction rows (``findex[i] >= 0``)."""
+    if findex is None:
+        return np.zeros(m, dtype=bool)
+    f = np.asarray(findex)
+    if f.shape != (m,) or (f.size and f.dtype.kind not in "iu"):
+        raise ValueError(f"{name} must be None or {m} integers (one per new row), got shape {f.shape}"
+                         f" and dtype {f.dtype}")
+    return f >= 0
+
+
+def _take_codes(codes, idx, findex):
+    """The warm start of the rows ``idx`` (-1: new) of the row states ``codes``, the new
+    rows' kinds from ``findex``."""
+    return _from_codes(_carried(codes, idx, findex))
+
+
+def _carried(codes, idx, findex):
+    """The row states ``codes`` carried to the new rows ``idx`` (-1: a new row, cold), the
+    new rows' kinds from ``findex`` (the rules of :meth:`BoxWarmStart.take`)."""
+    fric = _friction_mask(findex, idx.size)
+    new = np.append(codes, np.int8(0))[idx]
+    was = new >= 3
+    kept = idx >= 0
+    bad = np.flatnonzero(kept & (was != fric))
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(f"findex makes new row {i} {'a friction' if fric[i] else 'an ordinary'} row, "
+                         f"but old row {int(idx[i])}, carried to it, was {'a friction' if was[i] else 'an ordinary'}"
+                         " row: a row keeps its kind (pass the new problem's findex)")
+    new[~kept & fric] = 3  # a new friction row: beta+, beta-, lambda at 0
+    return new
+
+
+def _from_codes(c):
+    """The BoxWarmStart of the row states c (int8, codes 0..29)."""
+    rows = c.size
+    F = np.flatnonzero(c >= 3)
+    nf = F.size
+    s = np.zeros(rows + 2 * nf, dtype=np.int8)
+    s[:rows] = c
+    if nf:
+        e = c[F] - 3
+        s[F] = e // 9
+        s[rows:rows + nf] = (e // 3) % 3
+        s[rows + nf:] = e % 3
+    ws = BoxWarmStart._trusted(rows + 2 * nf, tuple(np.flatnonzero(s == 2).tolist()),
+                               tuple(np.flatnonzero(s == 1).tolist()), tuple(F.tolist()))
+    c = c.copy()
+    c.setflags(write=False)
+    ws.__dict__["_codes"] = c
+    return ws
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,7 +360,9 @@ class _BoxField(LazyField):
             raise AttributeError(f"'BLCPResult' object has no attribute {self.name!r}")
         buf, final, N, k, m, spans = src
         if self.name == "warm_start":
-            v = BoxWarmStart._trusted(N, *_split(final, k, m))
+            nf = (final.size - N) // 2  # (friction: ints, the friction rows after the basis)
+            v = BoxWarmStart._trusted(N, *_split(final, k, m),
+                                      tuple(final[N:N + nf].tolist()) if nf > 0 else ())
             v.__dict__["_final"] = (final[:m], k)  # for its flags, if it is passed back
             return v
         if buf.flags.writeable:  # the result's arrays are read-only, as the others'
@@ -296,6 +480,9 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     >>> r.status.name, r.z.tolist()
     ('SOLVED', [2.0, -1.0])
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_blcp, M, q, lo, hi, findex=findex, method=method,
+                     warm_start=warm_start)
     if (type(M) is _ND and type(q) is _ND and type(lo) is _ND and type(hi) is _ND
             and (M.dtype is _F64 or M.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and (lo.dtype is _F64 or lo.dtype == _F64) and (hi.dtype is _F64 or hi.dtype == _F64)
@@ -390,6 +577,7 @@ _ND = np.ndarray
 _I64 = np.dtype(np.int64)
 _NO_FINDEX = np.empty(0, dtype=np.int64)
 _NO_WORK = np.empty(0)
+_NEED_RUN, _UNDECIDED = boxed.NEED_RUN, boxed.UNDECIDED
 
 
 def _no_warm(N):
@@ -412,9 +600,9 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     if ws is None:
         warm = _no_warm(N)
     else:
-        if ws.n != N:
+        if ws.n != N or (ws.friction and not nf):
             if validated:
-                raise ValueError(f"warm_start is for a problem of size {ws.n}, this one has n = {N}")
+                _check_warm(ws, N, ())  # raises
             return None
         warm = ws._kernel_flags()
     buf = np.empty(6 * N + 1 + 6 * n if friction else 6 * N + 1)
@@ -425,6 +613,13 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     front = boxed.front
     code, residual = front(boxed.PREPARE, M, q, lo, hi, fi, warm, ws is not None, tol, buf, ints,
                            work)
+    if nf and ws is not None and (code == 0 or code == _NEED_RUN or code == _UNDECIDED):
+        # the data passed: F (the friction rows) is in ints
+        F = tuple(ints[N:N + nf].tolist())
+        if ws.friction != F:  # a basis of other friction rows
+            if validated:
+                _check_warm(ws, N, F)  # raises
+            return None
     if code == 0:  # the warm start's own point: 0 pivots
         return _lazy(buf, ints, N, 0, 0, n, lo, hi, friction, 0, residual, 0, ws)
     if code != boxed.NEED_RUN:
@@ -476,7 +671,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                                                  ext, final)
             pivots += max(p, 0)
             rec += 1
-            if c == 0 and ok:
+            if c == 0 and ok or c in STOPPED:
                 break
         if not (c == 0 and ok):
             return None
@@ -515,20 +710,29 @@ def as_blcp(M, q, lo, hi, findex=None):
     return d["M"], d["q"], d["lo"], d["hi"], d.get("findex")
 
 
-def _check_warm(ws, n):
+def _check_warm(ws, n, friction=(), what="warm_start", problem="this one"):
+    """``ws`` must be None or a BoxWarmStart of size n (extended, with a friction index) for
+    the friction rows ``friction`` (a tuple; None: not checked).  A WarmStart of an LCP (or
+    either kind of batch) is a ValueError, any other object a TypeError, naming ``what``."""
     if ws is not None:
         if not isinstance(ws, BoxWarmStart):
-            raise TypeError(f"warm_start must be a lemke.BoxWarmStart, got {type(ws).__name__}")
+            _validate.wrong_kind(ws, what, "lemke.BoxWarmStart")
+            raise TypeError(f"{what} must be a lemke.BoxWarmStart, got {type(ws).__name__}")
         if ws.n != n:
-            raise ValueError(f"warm_start is for a problem of size {ws.n}, this one has n = {n}")
+            raise ValueError(f"{what} is for a problem of size {ws.n}, {problem} has n = {n}"
+                             " (carry a basis to new rows with BoxWarmStart.take or .relabel)")
+        if friction is not None and ws.friction != friction:
+            raise ValueError(f"{what} is for friction rows {list(ws.friction)}, {problem} has "
+                             f"friction rows {list(friction)} (carry a basis to new rows with "
+                             "BoxWarmStart.take or .relabel)")
 
 
-def _solve(M, q, lo, hi, opts, warm_start, tried=False):
+def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=()):
     """A validated box LCP: a warm start if given (first in one kernel call, unless
     ``tried`` already), then the cold runs."""
     n = q.size
     extra, rec = 0, 0
-    _check_warm(warm_start, n)
+    _check_warm(warm_start, n, friction)
     if warm_start is not None:
         if not tried:
             res = _one_call(*_kernel_arrays(M, q, lo, hi), None, warm_start, opts, validated=True)
@@ -578,7 +782,7 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
         as_blcp(M, q, lo, hi)  # raises, naming the entry
         raise ValueError("M and q must be finite")
     pivots = extra + max(run.pivots, 0)
-    if ladder and not (run.code == 0 and run.ok):
+    if ladder and not (run.code == 0 and run.ok) and run.code not in STOPPED:
         if not (run.code == Status.RAY_TERMINATION and is_box_ray(M, q, lo, hi, run.d, run.z, run.z0, run.ray, opts.tol)):
             for mode, tie in ((1, opts.tie_tol), (2, 0.0)):
                 left = opts.pivot_limit(n) - pivots
@@ -596,7 +800,7 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
         return _solved(run, n, lo, hi, rec, pivots)
     status = Status(run.code) if run.code >= 0 else Status.NUMERICAL_FAILURE
     z, w, residual = run.z, run.w, run.residual
-    if status == Status.SOLVED or not run.ok:
+    if (status == Status.SOLVED or not run.ok) and status not in STOPPED:
         point = _checked_point(M, q, lo, hi, *run.basis_flags(n), opts.tol, run.R)
         if point is not None:
             run.z, run.w, run.residual = point
@@ -683,14 +887,15 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     ``tried`` already), else the extended problem by the general path and the answer
     judged on the caller's data here."""
     n = q.size
+    F0 = np.flatnonzero(findex >= 0)
+    _check_warm(warm_start, n + 2 * F0.size, tuple(F0.tolist()))
     if not tried:
-        _check_warm(warm_start, n + 2 * int(np.count_nonzero(findex >= 0)))
         res = _one_call(*_kernel_arrays(M, q, lo, hi), _validate.kernel_array(findex),
                         warm_start, opts, validated=True)
         if res is not None:
             return res
     Mx, qx, lox, hix, F, normal = friction_lcp(M, q, lo, hi, findex)
-    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True)
+    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None)
     k = F.size
     zx = inner.z
     z = zx[:n].copy()
@@ -731,6 +936,9 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
         boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, qx.size)  # w of the point returned
     for a in (z, w, lo_in, hi_in, R, C):
         a.setflags(write=False)
+    ws = inner.warm_start
+    if ws is not None and k:  # the extended problem's basis, for these friction rows
+        ws = BoxWarmStart._trusted(ws.n, ws.z_basic, ws.at_upper, tuple(F.tolist()))
     return BLCPResult(z, w, status, inner.pivots, float(residual),
                       inner.ray if status != Status.SOLVED else None, inner.z0, inner.covering,
-                      inner.warm_start, lo_in, hi_in, R, C, inner.recoveries)
+                      ws, lo_in, hi_in, R, C, inner.recoveries)

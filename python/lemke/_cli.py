@@ -60,6 +60,16 @@ class _IntermixedParser(_Parser):
             self._inside = False
 
 
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a number of seconds, got {text!r}") from None
+    if not value >= 0.0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {text}")
+    return value
+
+
 def _count(text: str) -> int:
     try:
         value = int(text)
@@ -99,6 +109,8 @@ def _parser() -> argparse.ArgumentParser:
                    help="method (default: tableau; lemke-howson for a game)")
     s.add_argument("--format", choices=FORMATS, help="read every file in this format (default: by extension and content)")
     s.add_argument("--max-pivots", type=_count, metavar="N", help="pivot limit (default: 100 (n + 1))")
+    s.add_argument("--time-limit", type=_seconds, metavar="SECONDS",
+                   help="time limit per source, in seconds (default: none)")
     s.add_argument("--tol", type=_tolerance, metavar="X", help="acceptance tolerance, relative (default: 1e-9)")
     s.add_argument("--pivot-tol", type=_tolerance, metavar="X", help="ratio-test threshold, relative (default: 1e-11)")
     s.add_argument("--tie-tol", type=_tolerance, metavar="X", help="tie threshold, relative (default: 1e-11)")
@@ -193,6 +205,8 @@ _STATUS_LINES = {
     Status.RAY_TERMINATION: "ended on a secondary ray: no solution found (none exists if M is copositive-plus)",
     Status.NUMERICAL_FAILURE: "the final point failed the check on the data (rounding); rescale, or loosen --tol",
     Status.CYCLING: "the method cycled, its restarts too; rescale or perturb the problem, or try another --method",
+    Status.TIME_LIMIT: "stopped at the time limit; raise --time-limit",
+    Status.INTERRUPTED: "interrupted before it ended",
     Status.PRIMAL_INFEASIBLE: "infeasible: the constraints contradict each other (the certificate is in --json)",
     Status.DUAL_INFEASIBLE: "unbounded below: no optimum (the direction is in --json's certificate)",
 }
@@ -268,7 +282,7 @@ class _Progress:
 # --------------------------------------------------------------------------- commands
 
 def _options(args) -> Options:
-    opts = {k: getattr(args, k) for k in ("max_pivots", "tol", "pivot_tol", "tie_tol") if getattr(args, k) is not None}
+    opts = {k: getattr(args, k) for k in ("max_pivots", "time_limit", "tol", "pivot_tol", "tie_tol") if getattr(args, k) is not None}
     return Options(**opts)
 
 
@@ -323,6 +337,8 @@ class _Run:
             with self.lock:
                 self.progress.show(k, src.name)
             row = _run_one(src, self.args, options)
+            if row.get("status") == "INTERRUPTED":  # Ctrl-C stopped it: not a finished row
+                raise KeyboardInterrupt
             with self.lock:
                 self.rows.append(row)
                 if "error" in row:

@@ -21,16 +21,17 @@ import functools
 import math
 import numbers
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from fractions import Fraction
 
 import numpy as np
 
 from . import _core, _progress, _validate
 from . import _games_exact as ex
-from ._options import _DEFAULT, Options, as_options
+from ._options import _DEFAULT, Options, as_options, time_limited, timed
+from ._options import deadline as deadline_scope
 from ._result import LazyField, Outcome
-from ._status import Status
+from ._status import STOPPED, Status
 
 SOLVED = int(Status.SOLVED)  # the core's code of a solved run
 
@@ -269,6 +270,9 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     Theory vol. 3 (2002).  A. H. van den Elzen, A. J. J. Talman, "A procedure for finding Nash
     equilibria in bi-matrix games", ZOR 35 (1991).
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_bimatrix, A, B, init_label=init_label, method=method,
+                     prior=prior, warm_start=warm_start, exact=exact)
     if not (type(A) is np.ndarray and type(B) is np.ndarray and (A.dtype is _F64 or A.dtype == _F64)
             and (B.dtype is _F64 or B.dtype == _F64) and A.ndim == 2 and A.shape == B.shape and A.size
             and A.flags.c_contiguous and B.flags.c_contiguous) or method != "lemke-howson":
@@ -304,7 +308,8 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
     exact certificate when asked, the exact method as the last resort of a cold float solve.
     ``ibuf``: the Lemke-Howson kernel's labels and path state (for the exact continuation)."""
     m, n = A.shape
-    if code != SOLVED and basis is not None and not exact:
+    stopped = code in STOPPED  # by its time limit or an interrupt: no more work
+    if code != SOLVED and basis is not None and not exact and not stopped:
         # The path ended with every label present (or broke down) at a point that fails the
         # check: re-solve the final basis' support system afresh (rounding of a long path).
         fixed = _resolve_float(A, B, basis, opts.tol)
@@ -313,10 +318,10 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
             code = SOLVED
             restarts += 1
     path = None if ibuf is None else _path_state(ibuf, m, n, k)
-    if exact:
+    if exact and not stopped:
         return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts), path)
     status = _STATUSES.get(code, Status.NUMERICAL_FAILURE)
-    if status != Status.SOLVED and method == "lemke-howson" and cold:
+    if status != Status.SOLVED and method == "lemke-howson" and cold and not stopped:
         # Last resort, never needed in the tests: the exact method cannot fail.
         res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts), path)
         if res.success:
@@ -599,7 +604,11 @@ def lemke_paths(A, B, *, exact=False, options=None, max_equilibria=None, time_li
     time_limit = _positive_seconds(time_limit, "time_limit")
     progress = _progress.check(progress)
     opts = as_options(options)
+    if opts.time_limit is not None:  # the options' limit, where the argument gives none
+        time_limit = opts.time_limit if time_limit is None else min(time_limit, opts.time_limit)
+        opts = replace(opts, time_limit=None)
     m, n = A.shape
+    interrupts = _core.interrupts()
     clock = time.perf_counter
     deadline = math.inf if time_limit is None else clock() + time_limit
     cap = math.inf if max_equilibria is None else max_equilibria
@@ -612,10 +621,13 @@ def lemke_paths(A, B, *, exact=False, options=None, max_equilibria=None, time_li
     stopped = None  # why the search stopped, None while it goes on or when it is complete
     start = None  # None: the artificial equilibrium
     complete = False
-    with _progress.Reporter(progress, "lemke_paths", unit="start",
-                            describe=lambda f, e, q: (e, f"{f} found, {q} queued")) as report:
+    with deadline_scope(time_limit), _progress.Reporter(
+            progress, "lemke_paths", unit="start",
+            describe=lambda f, e, q: (e, f"{f} found, {q} queued")) as report:
         while not complete and stopped is None:
             for k in range(m + n):
+                if _core.interrupts() != interrupts:  # Ctrl-C (seen here in any thread)
+                    raise KeyboardInterrupt("lemke_paths was interrupted")
                 if clock() >= deadline:
                     stopped = "time_limit"
                     break

@@ -5,7 +5,7 @@ import numpy as np
 
 from . import _core, _validate
 from ._certify import check_lcp
-from ._options import _DEFAULT, as_options
+from ._options import _DEFAULT, as_options, time_limited, timed
 from ._result import LCPResult, WarmStart
 from ._status import Status
 from . import _layout
@@ -88,6 +88,8 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start
     # (``is`` first, for speed; ``==`` for a float64 dtype that is not numpy's own object,
     # such as that of an array made by a numba kernel.)

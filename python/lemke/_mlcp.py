@@ -24,10 +24,10 @@ import numpy as np
 from . import _core, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp
-from ._options import as_options
+from ._options import as_options, time_limited, timed
 from ._reductions.mlcp_lcp import MLCPToLCP
 from ._result import Outcome, WarmStart
-from ._status import Status
+from ._status import STOPPED, Status
 
 MAX_RESTARTS = 3  # restarts from a final basis that misses on the caller's data
 LARGE_PIVOT_TOL = 1e-7  # the pivot tolerance of the last try after numerical failures
@@ -119,6 +119,8 @@ def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=N
     >>> r.status.name, r.u.round(6).tolist(), r.v.round(6).tolist()
     ('SOLVED', [1.666667], [0.666667])
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_mlcp, A, B, C, D, a, b, method=method, warm_start=warm_start)
     _validate.method(method, METHODS)
     E, e, n = _as_mlcp(A, B, C, D, a, b)
     m = e.size - n
@@ -161,7 +163,7 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
         res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws, opts.tol)
         pivots += p
         outcomes.append((M, o, res, out))
-        if out[2] or res.status == Status.MAX_PIVOTS:
+        if out[2] or res.status == Status.MAX_PIVOTS or res.status in STOPPED:
             break
         lcp_ws = None
     # The first solved try; else the first ray (for its certificate); else the first try.

@@ -27,9 +27,19 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     enough to be certified at all (in the row-equilibrated coordinates,
     ``eps max_i R_i |M_i.| |z| <= 1000 t max(max_i R_i |q_i|, 1)``: a z such as the
     |z| ~ 1e16 of a pivot on rounding noise answers a different problem).
+``time_limit`` (default None: none)
+    Seconds of wall-clock time for the whole call (a batch: for all its problems).  Every
+    engine looks at the clock every few tens of microseconds of work, so the limit is kept to
+    within about that much (plus one pivot on a very large problem); a solve that reaches it
+    ends with ``Status.TIME_LIMIT`` (distinct from ``MAX_PIVOTS``), its pivots so far and the
+    unchecked point where it stopped, and tries no recovery.  In a batch, the problems not
+    reached end so too, with 0 pivots.  Independently of it, Ctrl-C stops a running solve
+    (``Status.INTERRUPTED`` on its way out; from the main thread, Python's
+    ``KeyboardInterrupt``).
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import numbers
 from dataclasses import dataclass, fields, replace
@@ -44,8 +54,17 @@ class Options:
     pivot_tol: float = 1e-11
     tie_tol: float = 1e-11
     tol: float = 1e-9
+    time_limit: float | None = None
 
     def __post_init__(self):
+        tl = self.time_limit
+        if tl is not None:
+            if isinstance(tl, bool) or not isinstance(tl, numbers.Real):
+                raise TypeError(f"options.time_limit must be a number of seconds or None, got {tl!r}")
+            tl = float(tl)
+            if not tl >= 0.0:  # (NaN too)
+                raise ValueError(f"options.time_limit must be >= 0 seconds, got {tl}")
+            object.__setattr__(self, "time_limit", None if math.isinf(tl) else tl)
         mp = self.max_pivots
         if mp is not None:
             if isinstance(mp, bool) or not isinstance(mp, numbers.Integral):
@@ -65,6 +84,38 @@ class Options:
     def pivot_limit(self, n: int) -> int:
         """The pivot cap in force for a problem of size ``n``."""
         return 100 * (n + 1) if self.max_pivots is None else self.max_pivots
+
+
+def timed(opts: Options, solve, *args, **kwargs):
+    """``solve(*args, options=..., **kwargs)`` under ``opts.time_limit``: the calling thread's
+    deadline (read by every engine of the core, and handed by batches to their workers)
+    is tightened for the call, then restored; the call gets the options without the limit,
+    so that nested fronts do not start it again."""
+    with deadline(opts.time_limit):
+        return solve(*args, options=replace(opts, time_limit=None), **kwargs)
+
+
+@contextlib.contextmanager
+def deadline(seconds: float | None):
+    """The calling thread's deadline at most ``seconds`` from now (None: unchanged) while
+    the block runs: every engine of the core called from this thread in it reads it."""
+    if seconds is None:
+        yield
+        return
+    from . import _core
+
+    before = _core.tighten_deadline(seconds)
+    try:
+        yield
+    finally:
+        _core.restore_deadline(before)
+
+
+def time_limited(options) -> Options | None:
+    """``options`` as :class:`Options` when they set a time limit (the front then runs
+    itself through :func:`timed`), else None."""
+    opts = as_options(options)
+    return opts if opts.time_limit is not None else None
 
 
 def as_options(options: Options | Mapping[str, Any] | None) -> Options:

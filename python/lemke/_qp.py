@@ -19,16 +19,16 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from . import _validate
-from ._blcp import BoxWarmStart, solve_blcp
+from ._blcp import solve_blcp
 from ._certify import Certificate, absmax as _size, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
 from ._lcp import METHODS
 from ._mlcp import solve_stacked
-from ._options import as_options
+from ._options import as_options, time_limited, timed
 from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
-from ._result import Outcome, WarmStart, WarmStartBatch
-from ._status import Status
+from ._result import Outcome, WarmStart
+from ._status import STOPPED, Status
 from . import _core
 from ._layout import METHODS as _METHOD_NAMES
 
@@ -52,7 +52,9 @@ class QPResult(Outcome):
         ``1/2 x'P x + q'x``.
     status : Status
         ``SOLVED``, ``PRIMAL_INFEASIBLE`` or ``DUAL_INFEASIBLE`` (with ``certificate``),
-        ``MAX_PIVOTS`` or ``NUMERICAL_FAILURE``.
+        ``MAX_PIVOTS`` or ``NUMERICAL_FAILURE``; ``TIME_LIMIT`` or ``INTERRUPTED`` when
+        stopped (on the fused and box paths x and the multipliers are then zeros and the
+        residuals NaN).
     pivots : int
     primal_residual, dual_residual, duality_gap : float
         qpsolvers' formulas on the caller's data: ``max(|Ax - b|, [Gx - h]+, [lb - x]+,
@@ -181,6 +183,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
+    if options is not None and (timing := time_limited(options)):
+        return timed(timing, solve_qp, P, q, G, h, A, b, lb, ub, method=method,
+                     warm_start=warm_start, initvals=initvals)
     tried = warm_tried = False
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
             and type(P) is _ND and type(q) is _ND
@@ -269,6 +274,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                     d["certificate"] = None
                     d["_resolve"] = (_fused_fields, (out, n, p, m, k, pairs))
                     return res
+                if code in _STOP_CODES:
+                    return _stopped(code, pivots, n, len(Ak), len(Gk))
                 if code == _NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
@@ -277,9 +284,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     _validate.method(method, METHODS)
     opts = as_options(options)
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
-        if isinstance(warm_start, (BoxWarmStart, WarmStartBatch)):
-            raise ValueError(f"warm_start is a {type(warm_start).__name__}: solve_qp takes the "
-                             "WarmStart of a QPResult (result.warm_start)")
+        _validate.wrong_kind(warm_start, "warm_start", "lemke.WarmStart")
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
     if initvals is not None:
         if warm_start is not None:
@@ -520,6 +525,8 @@ def _solve_box(P, q, lb, ub, opts):
         lo = d.get("lb", np.full(n, -np.inf))
         up = d.get("ub", np.full(n, np.inf))
     r = solve_blcp(P, q, lo, up, options=opts)
+    if r.status in STOPPED:
+        return _stopped(int(r.status), r.pivots, n, 0, 0)
     if r.status != Status.SOLVED:
         return None
     empty = np.zeros(0)
@@ -551,6 +558,8 @@ def _solve_box_small(args, opts):
     code, pivots, k, pairs = _core.qp_solve_box(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
                                                 100 * (n + 1) if mp is None else mp,  # (solve_blcp's)
                                                 opts.pivot_tol, opts.tie_tol, opts.tol, out, final)
+    if code in _STOP_CODES:
+        return _stopped(code, pivots, n, 0, 0)
     if code != _OK:
         return None
     out.setflags(False)
@@ -643,13 +652,15 @@ def _solve_warm(args, method, opts, warm_start, x0=None):
         code, pivots, k, pairs = _core.qp_solve_guess(
             P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
             opts.tol, out, x0)
-        return _fused_result(out, n, p, m, k, pairs, pivots) if code == _OK else None
-    warm = np.fromiter(warm_start.z_basic, dtype=_I64, count=len(warm_start.z_basic))
-    code, pivots, k, pairs = _core.qp_solve_warm(
-        P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
-        opts.tol, out, warm, warm_start.n)
-    if code == _BAD_WARM:
-        raise _bad_warm(warm_start, pairs)
+    else:
+        warm = np.fromiter(warm_start.z_basic, dtype=_I64, count=len(warm_start.z_basic))
+        code, pivots, k, pairs = _core.qp_solve_warm(
+            P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
+            opts.tol, out, warm, warm_start.n)
+        if code == _BAD_WARM:
+            raise _bad_warm(warm_start, pairs)
+    if code in _STOP_CODES:
+        return _stopped(code, pivots, n, p, m)
     if code != _OK:
         return None
     return _fused_result(out, n, p, m, k, pairs, pivots)
@@ -749,6 +760,8 @@ def _solve_definite(args, method, opts):
         code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                      opts.pivot_tol, opts.tie_tol, opts.tol, out,
                                                      _basis_view(out, n, p, m), False)
+    if code in _STOP_CODES:
+        return _stopped(code, pivots, n, p, m)
     if code != _OK:
         tried = code is not None and code != _NOT_APPLICABLE  # step 7 ran
         code, pivots, k, pairs = _core.qp_solve(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method],
@@ -756,6 +769,8 @@ def _solve_definite(args, method, opts):
                                                 opts.tol, out)
         if code == _NOT_DEFINITE and not tried:
             return _solve_semidefinite(args, opts)
+    if code in _STOP_CODES:
+        return _stopped(code, pivots, n, p, m)
     if code != _OK:
         return None
     return _fused_result(out, n, p, m, k, pairs, pivots)
@@ -778,9 +793,26 @@ def _solve_semidefinite(args, opts):
     code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                  opts.pivot_tol, opts.tie_tol, opts.tol, out,
                                                  _basis_view(out, n, p, m), True)
+    if code in _STOP_CODES:
+        return _stopped(code, pivots, n, p, m)
     if code != _OK:
         return None
     return _fused_result(out, n, p, m, k, pairs, pivots)
+
+
+#: The fused kernels' codes of an LCP stopped by its budget (Status.TIME_LIMIT, INTERRUPTED).
+_STOP_CODES = frozenset(int(s) for s in STOPPED)
+
+
+def _stopped(code, pivots, n, p, m):
+    """The result of a fast path stopped by its time limit or an interrupt: no other path
+    is tried.  The kernels keep no point then: x and the multipliers are zeros, the
+    residuals and the objective NaN."""
+    x, y, z, z_box = np.zeros(n), np.zeros(p), np.zeros(m), np.zeros(n)
+    for a in (x, y, z, z_box):
+        a.setflags(write=False)
+    nan = float("nan")
+    return QPResult(x, y, z, z_box, nan, Status(code), int(pivots), nan, nan, nan, None, None)
 
 
 def _fused_result(out, n, p, m, k, pairs, pivots):
@@ -840,7 +872,7 @@ def _solve(qp, method, opts, warm_start, certify):
     status, certificate = r.status, None
     if certify and status == Status.SOLVED:
         x, y, z, z_box = _polished(qp, (x, y, z, z_box), r.warm_start, opts.tol)
-    if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS:
+    if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS and status not in STOPPED:
         status, certificate = _verdict(qp, r, method, opts)
     elif status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
         status = Status.NUMERICAL_FAILURE  # an auxiliary problem: no certificate sought

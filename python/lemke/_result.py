@@ -481,7 +481,80 @@ def _index(b, size) -> int:
     return b
 
 
-class LCPManyResult(Sequence):
+class ManyItems(Sequence):
+    """What a batch result of many problems shares (:class:`LCPManyResult`,
+    ``_blcp_many.BLCPManyResult``): a sequence of per-problem results held in ``_items``
+    (None until built by ``_build(lo, hi)``) that compares, hashes and adds as their list,
+    and flat columns read from the kernels' arrays with the results built already
+    (``_special``, ``{b: result}``) patched in."""
+
+    def __len__(self) -> int:
+        return len(self._items)
+
+    def __getitem__(self, b):
+        if isinstance(b, slice):
+            return self._all()[b]
+        b = _index(b, len(self._items))
+        res = self._items[b]
+        if res is None:
+            self._build(b, b + 1)
+            res = self._items[b]
+        return res
+
+    def __iter__(self):
+        return iter(self._all())
+
+    def _all(self) -> list:
+        """Every item, built now where not yet (one loop, the cheapest per problem)."""
+        items = self._items
+        if None in items:
+            self._build(0, len(items))
+        return items
+
+    def __eq__(self, other):
+        if isinstance(other, type(self)):
+            return self is other or self._all() == other._all()
+        if isinstance(other, list):
+            return self._all() == other
+        return NotImplemented
+
+    def __hash__(self) -> int:
+        return hash(tuple(self._all()))
+
+    def __add__(self, other):
+        if isinstance(other, (list, type(self))):
+            return list(self._all()) + list(other)
+        return NotImplemented
+
+    def __radd__(self, other):
+        if isinstance(other, list):
+            return other + self._all()
+        return NotImplemented
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}(B={len(self)}, solved={int(self.success.sum())}/{len(self)})"
+
+    def _column(self, values, field, convert):
+        v = values.copy()
+        for b, res in self._special.items():
+            v[b] = convert(getattr(res, field))
+        v.setflags(write=False)
+        return v
+
+    @cached_property
+    def success(self) -> np.ndarray:
+        v = self.status == Status.SOLVED
+        v.setflags(write=False)
+        return v
+
+    def __setstate__(self, state):  # (pickle loses the arrays' read-only flags)
+        self.__dict__.update(state)
+        for v in self.__dict__.values():
+            if isinstance(v, np.ndarray):
+                v.setflags(write=False)
+
+
+class LCPManyResult(ManyItems):
     """The outcome of :func:`lemke.solve_lcp_many`: a sequence of :class:`LCPResult`, item b
     what :func:`lemke.solve_lcp` gives for problem b (bit for bit), with every problem's
     answer also in flat arrays, each made by a few numpy calls when first read.
@@ -530,31 +603,6 @@ class LCPManyResult(Sequence):
         for b, res in special.items():
             self._items[b] = res
 
-    # --- the sequence of LCPResult --------------------------------------------------------
-
-    def __len__(self) -> int:
-        return len(self._items)
-
-    def __getitem__(self, b):
-        if isinstance(b, slice):
-            return self._all()[b]
-        b = _index(b, len(self._items))
-        res = self._items[b]
-        if res is None:
-            self._build(b, b + 1)
-            res = self._items[b]
-        return res
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def _all(self) -> list:
-        """Every item, built now where not yet (one loop, the cheapest per problem)."""
-        items = self._items
-        if None in items:
-            self._build(0, len(items))
-        return items
-
     def _build(self, lo, hi, _new=object.__new__, _SOLVED=Status.SOLVED,
                _RAY_TERMINATION=Status.RAY_TERMINATION, _RAY=int(Status.RAY_TERMINATION)):
         """Items lo..hi-1 not built yet, as solve_lcp builds them (``LCPResult._lazy``,
@@ -577,35 +625,6 @@ class LCPManyResult(Sequence):
             if stage == 0 and ws is not None:
                 f["warm_start"] = ws[b]  # the one given (it still solved the problem)
             items[b] = res
-
-    def __eq__(self, other):
-        if isinstance(other, LCPManyResult):
-            return self is other or self._all() == other._all()
-        if isinstance(other, list):
-            return self._all() == other
-        return NotImplemented
-
-    def __hash__(self) -> int:
-        return hash(tuple(self._all()))
-
-    def __add__(self, other):
-        if isinstance(other, (list, LCPManyResult)):
-            return list(self._all()) + list(other)
-        return NotImplemented
-
-    def __radd__(self, other):
-        if isinstance(other, list):
-            return other + self._all()
-        return NotImplemented
-
-    def __repr__(self) -> str:
-        return f"LCPManyResult(B={len(self)}, solved={int(self.success.sum())}/{len(self)})"
-
-    def __setstate__(self, state):  # (pickle loses the arrays' read-only flags)
-        self.__dict__.update(state)
-        for v in self.__dict__.values():
-            if isinstance(v, np.ndarray):
-                v.setflags(write=False)
 
     # --- the flat fields ------------------------------------------------------------------
 
@@ -635,23 +654,10 @@ class LCPManyResult(Sequence):
     def w(self) -> np.ndarray:
         return self._gather("w")
 
-    def _column(self, values, field, convert):
-        v = values.copy()
-        for b, res in self._special.items():
-            v[b] = convert(getattr(res, field))
-        v.setflags(write=False)
-        return v
-
     @cached_property
     def status(self) -> np.ndarray:
         code = self._out_i[:, 0]
         return self._column(np.where(code == _layout.TRIVIAL, 0, code), "status", int)
-
-    @cached_property
-    def success(self) -> np.ndarray:
-        v = self.status == Status.SOLVED
-        v.setflags(write=False)
-        return v
 
     @cached_property
     def pivots(self) -> np.ndarray:

@@ -5,7 +5,8 @@ from enum import IntEnum
 class Status(IntEnum):
     """How a solve ended.  ``0`` is the only success; the numbering follows SciPy and quantecon
     (0 solved, 1 iteration limit, 2 ray); 4 and 5 are the QP verdicts with a certificate; 6
-    says the method cycled."""
+    says the method cycled; 7 and 8 say the solve was stopped before it ended: by
+    ``Options(time_limit=...)`` or by an interrupt (Ctrl-C, ``lemke_interrupt``)."""
 
     SOLVED = 0
     MAX_PIVOTS = 1
@@ -14,6 +15,8 @@ class Status(IntEnum):
     PRIMAL_INFEASIBLE = 4
     DUAL_INFEASIBLE = 5
     CYCLING = 6
+    TIME_LIMIT = 7
+    INTERRUPTED = 8
 
     @property
     def message(self) -> str:
@@ -25,6 +28,10 @@ class Status(IntEnum):
     def __format__(self, spec: str) -> str:
         return format(self.name, spec)
 
+
+#: The statuses of a solve stopped by its budget (``Options.time_limit``) or an interrupt:
+#: fronts try no recovery after them.
+STOPPED = frozenset({Status.TIME_LIMIT, Status.INTERRUPTED})
 
 _MESSAGES = {
     Status.SOLVED: (
@@ -54,6 +61,14 @@ _MESSAGES = {
         "problem), and the restarts (exact ties only, then a perturbed covering vector) "
         "cycled too; result.recoveries counts them. Rescale or perturb the problem, or try "
         "the other method."
+    ),
+    Status.TIME_LIMIT: (
+        "Stopped at options.time_limit before reaching a solution; result.pivots says how far "
+        "it went and result.z is the unchecked point where it stopped. Raise the time limit."
+    ),
+    Status.INTERRUPTED: (
+        "Interrupted (Ctrl-C or an interrupt from another thread) before reaching a solution; "
+        "result.z is the unchecked point where it stopped."
     ),
     Status.PRIMAL_INFEASIBLE: (
         "No feasible point exists, and result.certificate proves it (for a QP, a Farkas "

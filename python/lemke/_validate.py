@@ -528,6 +528,19 @@ def warm_start(ws, cls, size: int, what: str) -> None:
     if ws is None:
         return
     if not isinstance(ws, cls):
+        wrong_kind(ws, "warm_start", "lemke.WarmStart")
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(ws).__name__}")
     if ws.n != size:
         raise ValueError(what.format(ws=ws.n, n=size))
+
+
+def wrong_kind(ws, what, want):
+    """A warm start of a box LCP (or a batch of either kind) where ``want`` is expected: a
+    ValueError naming ``what`` (a warm start, but of another kind of problem; any other
+    object is left to the caller's TypeError)."""
+    kind = type(ws).__name__
+    if kind in ("BoxWarmStart", "BoxWarmStartBatch", "WarmStartBatch", "WarmStart"):
+        box = kind.startswith("Box")
+        raise ValueError(f"{what} must be a {want}, got a lemke.{kind}"
+                         + ("" if box == ("Box" in want) else
+                            " (of a box LCP)" if box else " (of an LCP)"))

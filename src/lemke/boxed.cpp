@@ -299,7 +299,13 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     idx e = art_lab;
     double z0_max = 0.0;
     Status status = MAX_PIVOTS;
+    Poll poll;
+    std::int64_t work = n * (n + 1);
     while (pivots < max_pivots) {
+        if (int stop = poll.tick(work); stop >= 0) {
+            status = static_cast<Status>(stop);
+            break;
+        }
         if (r == n) {  // bound flip of the entering z: no basis change
             idx j = e - n;
             at_hi[j] = !at_hi[j];

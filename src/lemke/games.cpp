@@ -437,7 +437,13 @@ int lh_path(Mat<const double> A, Mat<const double> B, const double* scale, idx k
     idx* hist = state + 3;
     idx entering = k;
     idx side = P.inb[k] ? 1 : 0;  // the tableau where label k is non-basic
+    Poll poll;
+    std::int64_t work = (m + 1) * (n + 1) * 2;
     while (pivots < max_pivots) {
+        if (int stop = poll.tick(work); stop >= 0) {
+            status = stop;
+            break;
+        }
         idx leaving = step(side == 0 ? P : Q, entering, false, nullptr, -1, 0.0, pivot_tol,
                            tie_tol, v.w);
         if (leaving < 0) {
@@ -501,7 +507,8 @@ LHResult lemke_howson(Mat<const double> A, Mat<const double> B, idx k, const idx
         status = lh_path(A, B, scale, k, startP, startQ, attempt == 2, max_pivots - pivots,
                          pivot_tol, tt, x, y, basisP, basisQ, state, v, p);
         pivots += p;
-        if (status == SOLVED || status == MAX_PIVOTS || pivots >= max_pivots) break;
+        if (status == SOLVED || status == MAX_PIVOTS || is_stop(status) || pivots >= max_pivots)
+            break;
     }
     bool good = normalize(x, m) && normalize(y, n);
     if (!good) {
@@ -664,7 +671,13 @@ TraceResult trace(Mat<const double> A, Mat<const double> B, const double* p, con
     idx pivots = 0;
     idx entering = istar;
     double z0_max = 1.0;
+    Poll poll;
+    std::int64_t pivot_work = N * K;
     while (pivots < max_pivots) {
+        if (int stop = poll.tick(pivot_work); stop >= 0) {
+            status = stop;
+            break;
+        }
         idx art = inb[Z0] ? pos[Z0] : -1;
         idx leaving = step(t, entering, true, free, art, z0_max, pivot_tol, tie_tol, v.w);
         if (leaving < 0) {

@@ -145,7 +145,8 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     out.code = code;
     out.pivots = pivots;
     out.residual = residual;
-    if (code == CYCLING || (!ok && (code == RAY_TERMINATION || (d == nullptr && pivots < max_pivots)))) {
+    if (!is_stop(code) &&
+        (code == CYCLING || (!ok && (code == RAY_TERMINATION || (d == nullptr && pivots < max_pivots))))) {
         for (idx i = 0; i < n; ++i) basic[i] = z_basic[i];
         out.stage = -1;
         return out;
@@ -262,7 +263,7 @@ bool basis_checks(Mat<const double> M, const double* q, const std::uint8_t* z_ba
 // method with the covering vector c e_alpha - M[:, beta] 1 (cold.restart), its point checked.
 idx restart(Mat<const double> M, const double* q, const std::uint8_t* z_start, const idx* beta,
             idx k, double m_max, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-            const Views& v, std::uint8_t* z_basic, bool& ok, double& residual) {
+            const Views& v, std::uint8_t* z_basic, bool& ok, double& residual, int& code) {
     idx n = M.rows;
     double m_scale = m_max > 0.0 ? m_max : 1.0;
     for (idx i = 0; i < n; ++i) {
@@ -272,8 +273,8 @@ idx restart(Mat<const double> M, const double* q, const std::uint8_t* z_start, c
         v.cov[i] = acc;
     }
     idx pivots = 0;
-    Status code = unrevised_solve(M, q, v.cov, v.R, v.C, z_start, max_pivots, pivot_tol, tie_tol,
-                                  v.x, v.ray, z_basic, pivots);
+    code = unrevised_solve(M, q, v.cov, v.R, v.C, z_start, max_pivots, pivot_tol, tie_tol, v.x,
+                           v.ray, z_basic, pivots);
     ok = false;
     residual = 0.0;
     if (code == NUMERICAL_FAILURE && pivots == 0) return pivots;
@@ -322,7 +323,8 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
         double* run_buf = buf;
         std::uint8_t* run_basic = z_basic.data();
         if (step >= 0) {
-            if (d != nullptr || (code == SOLVED && ok) || pivots >= max_pivots) break;
+            if (d != nullptr || (code == SOLVED && ok) || pivots >= max_pivots || is_stop(code))
+                break;
             if (step == 0 && code == RAY_TERMINATION) {
                 ray_known = true;
                 ray_ok = ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
@@ -378,12 +380,17 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
                     finite_absmax(M, m_max);
                     bool ok3;
                     double r3;
+                    int code3;
                     Views v2(buf2.data(), n);
                     idx p3 = restart(M, q, z_basic.data(), beta.data(), kb, m_max,
                                      max_pivots - pivots, pivot_tol, tie_tol, tol, v2,
-                                     z_basic2.data(), ok3, r3);
+                                     z_basic2.data(), ok3, r3, code3);
                     pivots += p3;
                     recoveries += 1;
+                    if (!ok3 && is_stop(code3)) {
+                        ok = false;
+                        code = code3;  // the point stays the first run's, unchecked
+                    }
                     if (ok3) {
                         std::copy(buf2.begin(), buf2.end(), buf);
                         z_basic = z_basic2;
@@ -395,6 +402,10 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
             continue;
         }
         recoveries += r.recoveries + 1;
+        if (is_stop(r.code)) {  // stopped by its budget: the best answer so far stands
+            if (!(code == SOLVED && ok)) code = r.code;
+            break;
+        }
         bool take = r.code == SOLVED && (r.ok || code != SOLVED);
         if (!take && r.code == SOLVED && code == SOLVED && !ok &&
             !basis_checks(M, q, z_basic.data(), tol, v.R) &&
@@ -487,8 +498,16 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
             std::uint8_t* z_basic = flags.data() + n;
             for (idx i = 0; i < k; ++i) z_start[beta[i]] = 1;
             bool ok;
+            int code;
             pivots = restart(M, q, z_start, beta, k, m_max, max_pivots, pivot_tol, tie_tol, tol,
-                             v, z_basic, ok, residual);
+                             v, z_basic, ok, residual, code);
+            if (!ok && is_stop(code)) {  // the restart's point, unchecked
+                out.code = code;
+                out.pivots = pivots;
+                out.k = basic_indices(z_basic, n, basic);
+                out.stage = 1;
+                return out;
+            }
             if (ok) {
                 out.code = SOLVED;
                 out.pivots = pivots;
@@ -541,10 +560,18 @@ void batch(Method method, const double* Ms, const idx* mstart, const double* qs,
            const idx* beta, const idx* boff, idx lo, idx hi, const idx* max_pivots,
            double pivot_tol, double tie_tol, double tol, double* bufs, const idx* buff,
            idx* basics, idx* out_i, double* out_f) {
+    std::uint64_t seen = interrupts_seen();
     for (idx b = lo; b < hi; ++b) {
         idx n = qoff[b + 1] - qoff[b];
         Mat<const double> M(Ms + mstart[b], n, n);
-        RunResult r = solve(method, M, qs + qoff[b], nullptr, beta + boff[b], boff[b + 1] - boff[b],
+        RunResult r;
+        if (interrupts_seen() != seen) {  // interrupted: the rest are not run (zeros)
+            double* buf = bufs + buff[b];
+            for (idx i = 0; i < BufferLayout{n}.length(); ++i) buf[i] = 0.0;
+            for (idx i = 0; i < n; ++i) basics[qoff[b] + i] = 0;
+            r.code = INTERRUPTED;
+        } else
+        r = solve(method, M, qs + qoff[b], nullptr, beta + boff[b], boff[b + 1] - boff[b],
                             max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b]);
         idx* oi = out_i + 5 * b;
         oi[0] = r.code;

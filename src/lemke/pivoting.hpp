@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "budget.hpp"
 #include "linalg.hpp"
 
 namespace lemke {
@@ -17,7 +18,13 @@ enum Status : int {
     RAY_TERMINATION = 2,
     NUMERICAL_FAILURE = 3,
     CYCLING = 6,
+    TIME_LIMIT = 7,    // the thread's deadline passed (budget.hpp)
+    INTERRUPTED = 8,   // lemke_interrupt() or SIGINT (budget.hpp)
 };
+
+// A run stopped by its budget: drivers try nothing more.
+static_assert(TIME_LIMIT == STOP_TIME_LIMIT && INTERRUPTED == STOP_INTERRUPTED, "budget.hpp");
+inline bool is_stop(int code) { return code == TIME_LIMIT || code == INTERRUPTED; }
 
 constexpr double VALUE_ROUNDING = 1e-13;
 constexpr double Z0_ROUNDING = 1e-11;

@@ -671,7 +671,7 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     int status = gram_lcp(R.C, w.g, p, max_pivots, pivot_tol, tie_tol, flags, pivots);
     res.pivots = pivots;
     if (status != SOLVED) {
-        res.code = NOT_SOLVED;
+        res.code = is_stop(status) ? status : NOT_SOLVED;
         return res;
     }
     idx k = 0;
@@ -1134,6 +1134,8 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     idx k0 = 2 * n + p0 + m0 + 4;
     for (idx t = 0; t < k0; ++t) out[t] = 0.0;
+    if ((res.code = deadline_passed()) >= 0) return res;
+    res.code = OK;
     QPWork& w = work();
     // the sizes first (screen's bounds decide them): the workspace's layout, then screen
     thread_local std::vector<double> scr;
@@ -1180,7 +1182,10 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
             return res;
         }
         idx r = n - p;
-        for (idx i = 0; i < m; ++i) {
+        if ((res.code = deadline_passed()) >= 0) return res;  // (after the factorizations)
+        res.code = OK;
+        for (idx i = 0; i < m; ++i) {  // (a stop here leaves the cache empty: layout dropped it)
+            if ((i & 15) == 15 && (res.code = deadline_passed()) >= 0) return res;
             const double* F2i = R.C.row(i) + p;
             for (idx j = 0; j <= i; ++j) {
                 w.M(i, j) = dot(F2i, R.C.row(j) + p, r);
@@ -1214,7 +1219,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         pivots = rr.pivots + res.pivots;
         k_basic = rr.k;
         if (!(rr.code == SOLVED || rr.code == TRIVIAL) || !rr.ok) {
-            res.code = NOT_SOLVED;
+            res.code = is_stop(rr.code) ? rr.code : NOT_SOLVED;  // a stop ends the QP too
             res.pivots = pivots;
             return res;
         }
@@ -1249,6 +1254,8 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
+    if ((res.code = deadline_passed()) >= 0) return res;
+    res.code = OK;
     thread_local std::vector<double> scr;
     Data ds;
     if (!screened(dt, scr, ds)) {
@@ -1342,7 +1349,7 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
                                         tie_tol, tol, buf, final);
     res.pivots = r.pivots;
     if (!(r.code == SOLVED && r.ok)) {
-        res.code = NOT_SOLVED;
+        res.code = is_stop(r.code) ? r.code : NOT_SOLVED;
         return res;
     }
     const double* x = buf;

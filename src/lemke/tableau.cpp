@@ -225,7 +225,13 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         q0[i] = rhs[i];
         magb[i] = std::fabs(rhs[i]);
     }
+    Poll poll;
+    std::int64_t work = n * (n + 1);
     while (pivots < max_pivots) {
+        if (int stop = poll.tick(work); stop >= 0) {
+            status = static_cast<Status>(stop);
+            break;
+        }
         idx leaving = basis[r];
         idx entering = nonbasic[s];
         if (!(std::fabs(col[r]) < INF)) {

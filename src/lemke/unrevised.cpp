@@ -342,7 +342,13 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
     std::uint64_t h = 0;
     for (idx i = 0; i < n; ++i) h ^= label_key(u.bpos[i] >= 0 ? n + i : i);
     Detector detector;
+    Poll poll;
+    std::int64_t work = n * (n + 1);
     while (pivots < max_pivots) {
+        if (int stop = poll.tick(work); stop >= 0) {
+            status = static_cast<Status>(stop);
+            break;
+        }
         if (entering >= n) u.fetch_column(entering - n, u.acol);
         u.direction(u.acol, entering, u.dzb, u.dw);
         idx m = u.gather();

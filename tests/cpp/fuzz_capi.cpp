@@ -48,13 +48,14 @@ int main(int argc, char** argv) {
         lemke_default_options(&o);
         if (pick(8) == 0) o.max_pivots = pick(5);
         if (pick(16) == 0) o.tol = specials[pick(15)];
+        if (pick(16) == 0) o.time_limit = pick(2) ? specials[pick(15)] : 0.0;
         int64_t told = pick(32) == 0 ? n - 1 : n;  // sometimes a smaller n than the data
         lemke_info info;
         int s = lemke_lcp_solve(told, M.get(), q.get(), pick(4) ? &o : nullptr,
                                 pick(2) ? warm.get() : nullptr, nw, z.get(), w.get(),
                                 basis.get(), &k, &info);
         bool known = s == LEMKE_SOLVED || s == LEMKE_MAX_PIVOTS || s == LEMKE_RAY_TERMINATION ||
-                     s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING ||
+                     s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING || s == LEMKE_TIME_LIMIT ||
                      s == LEMKE_NOT_FINITE || s == LEMKE_INVALID_ARGUMENT;
         if (!known || info.status != s) { ++bad; std::fprintf(stderr, "round %ld: status %d\n", r, s); }
         if (s == LEMKE_SOLVED)
@@ -91,7 +92,7 @@ int main(int argc, char** argv) {
                              with_findex ? findex.get() : nullptr, pick(4) ? &o : nullptr,
                              z.get(), w.get(), &info);
         known = s == LEMKE_SOLVED || s == LEMKE_MAX_PIVOTS || s == LEMKE_RAY_TERMINATION ||
-                s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING || s == LEMKE_NOT_FINITE ||
+                s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING || s == LEMKE_TIME_LIMIT || s == LEMKE_NOT_FINITE ||
                 s == LEMKE_INVALID_ARGUMENT;
         if (!known || info.status != s) { ++bad; std::fprintf(stderr, "round %ld: box status %d\n", r, s); }
         if (s == LEMKE_SOLVED) {

@@ -3,11 +3,13 @@
 // and every kind of bad argument. With an argument, a file of problems written by
 // tests/test_capi.py ("n", then M row-major, then q, per problem): each is solved and one
 // line "status pivots checked z..." printed per problem, so the test can compare them with Python's.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "lemke.h"
@@ -312,6 +314,58 @@ static void box_bad_arguments() {
            LEMKE_INVALID_ARGUMENT);
 }
 
+// Budgets: Murty's problem at n = 26 takes 2^26 pivots (seconds): a time limit ends it with
+// TIME_LIMIT after some pivots (none with a zero budget), lemke_interrupt() from another
+// thread with INTERRUPTED; neither sticks to the next solve.
+static void budgets() {
+    const int64_t n = 26;
+    std::vector<double> M(n * n, 0.0), q(n), lo(n, 0.0), hi(n, INFINITY), z(n);
+    for (int64_t i = 0; i < n; ++i) {
+        M[i * n + i] = 1.0;
+        for (int64_t j = i + 1; j < n; ++j) M[i * n + j] = 2.0;
+        q[i] = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i + 1));
+    }
+    lemke_options o;
+    lemke_default_options(&o);
+    o.max_pivots = int64_t(1) << 40;
+    lemke_info info;
+    o.time_limit = 0.01;
+    EXPECT(lemke_lcp_solve(n, M.data(), q.data(), &o, nullptr, 0, z.data(), nullptr, nullptr,
+                           nullptr, &info) == LEMKE_TIME_LIMIT);
+    EXPECT(info.status == LEMKE_TIME_LIMIT && info.pivots > 0);
+    EXPECT(lemke_blcp_solve(n, M.data(), q.data(), lo.data(), hi.data(), nullptr, &o, z.data(),
+                            nullptr, &info) == LEMKE_TIME_LIMIT);
+    EXPECT(info.pivots > 0);
+    o.time_limit = 0.0;
+    EXPECT(lemke_lcp_solve(n, M.data(), q.data(), &o, nullptr, 0, z.data(), nullptr, nullptr,
+                           nullptr, &info) == LEMKE_TIME_LIMIT);
+    EXPECT(info.pivots == 0);
+    o.time_limit = std::nan("");
+    EXPECT(lemke_lcp_solve(n, M.data(), q.data(), &o, nullptr, 0, z.data(), nullptr, nullptr,
+                           nullptr, &info) == LEMKE_INVALID_ARGUMENT);
+    o.time_limit = -1.0;
+    std::thread stopper([] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        lemke_interrupt();
+    });
+    int s = lemke_lcp_solve(n, M.data(), q.data(), &o, nullptr, 0, z.data(), nullptr, nullptr,
+                            nullptr, &info);
+    stopper.join();
+    EXPECT(s == LEMKE_INTERRUPTED && info.pivots > 0);
+    EXPECT(std::string_view(lemke_status_name(LEMKE_INTERRUPTED)) == "INTERRUPTED");
+    o.max_pivots = -1;  // the next solve is not interrupted: n = 4 solves
+    int64_t small = 4;
+    std::vector<double> M4(small * small, 0.0), q4(small);
+    for (int64_t i = 0; i < small; ++i) {
+        M4[i * small + i] = 1.0;
+        for (int64_t j = i + 1; j < small; ++j) M4[i * small + j] = 2.0;
+        q4[i] = -(std::ldexp(1.0, small + 1) - std::ldexp(1.0, i + 1));
+    }
+    EXPECT(lemke_lcp_solve(small, M4.data(), q4.data(), &o, nullptr, 0, z.data(), nullptr,
+                           nullptr, nullptr, &info) == LEMKE_SOLVED);
+    EXPECT(complementary(small, M4.data(), q4.data(), z.data()));
+}
+
 // Solve every box LCP of a table file written by tests/test_capi.py ("n f", M, q, lo, hi,
 // and with f = 1 findex); print "status pivots checked" and z as hexadecimal floats.
 static int box_table(const char* path) {
@@ -380,6 +434,7 @@ int main(int argc, char** argv) {
     box_known_answers();
     box_random_problems();
     box_bad_arguments();
+    budgets();
     if (failures) {
         std::fprintf(stderr, "%d failure(s)\n", failures);
         return 1;

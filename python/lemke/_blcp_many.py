@@ -1,0 +1,524 @@
+"""solve_blcp_many: the islands of a contact scene, box LCPs with friction indices and warm
+starts, in one call (the C++ core's ``boxed.batch``, without the GIL), each exactly as
+:func:`lemke.solve_blcp` solves it.
+
+Why a function of its own rather than bounds in :func:`lemke.solve_lcp_many`: a box LCP
+is another problem (bounds, a friction index whose answer is checked on the coupled bounds,
+an extended problem per island), solved by another engine (``src/lemke/boxed.*``), with
+another result (the bounds in force) and another basis (each row at lo, at hi or basic:
+:class:`BoxWarmStart`, not :class:`WarmStart`).  Folding them into ``solve_lcp_many``
+would give one function two kinds of warm start and two kinds of result, and a
+``findex`` that means nothing without bounds; one function per kind keeps each signature
+and result type exact (``solve_lcp`` / ``solve_blcp``, ``solve_lcp_many`` /
+``solve_blcp_many``), and ``solve_lcp_many``'s packed fast path untouched.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from . import _validate
+from ._batch import _flat, _packed, _run, _workers
+from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
+                    _row_index, as_blcp, solve_blcp)
+from ._core import boxed
+from ._options import as_options
+from ._result import ManyItems, Value, _index
+from ._status import Status
+
+_ND = np.ndarray
+_F64 = np.dtype(np.float64)
+_I64 = np.dtype(np.int64)
+
+
+@dataclass(frozen=True, eq=False)
+class BoxWarmStartBatch(Value):
+    """The final bases of B box LCPs (the islands of a scene) in one value: island b has
+    ``n[b]`` rows, and ``state[offsets[b]:offsets[b + 1]]`` holds one int8 code per row,
+    its state as :meth:`BoxWarmStart.row_states` gives it (0 at lo, 1 at hi, 2 basic; a
+    friction row 3 + 9 s(β+) + 3 s(β-) + s(λ)).  The ``warm_start`` of
+    :func:`lemke.solve_blcp_many`'s result: pass it back whole and the kernels read its
+    codes as they are (no Python work per island).  ``batch[b]`` is island b's
+    :class:`BoxWarmStart` (made when asked); ``len`` and iteration work as on a list.
+
+    Because a row's state does not depend on the other rows, the whole scene's bases can be
+    carried over at once, even when the islands split or merge: :meth:`take` /
+    :meth:`relabel` map the rows of the whole scene (old islands end to end) to the new
+    scene's rows and cut them into the new islands' ``sizes``.
+
+    >>> BoxWarmStartBatch([2, 1], [2, 0, 1])[0]
+    BoxWarmStart(n=2, z_basic=(0,), at_upper=(), friction=())
+    """
+
+    n: np.ndarray
+    state: np.ndarray
+
+    def __post_init__(self):
+        n = np.array(self.n, copy=True)
+        s = np.array(self.state, copy=True)
+        if n.ndim != 1 or (n.size and n.dtype.kind not in "iu"):
+            raise TypeError("BoxWarmStartBatch.n must be a 1-D sequence of integers")
+        if s.ndim != 1 or (s.size and s.dtype.kind not in "iu"):
+            raise TypeError("BoxWarmStartBatch.state must be a 1-D sequence of integer codes")
+        n, s = n.astype(np.int64), s.astype(np.int8)
+        if (n < 0).any() or int(n.sum()) != s.size:
+            raise ValueError(f"BoxWarmStartBatch: n must hold sizes >= 0 summing to len(state) = {s.size}")
+        if s.size and (s.min() < 0 or s.max() > 29):
+            raise ValueError("BoxWarmStartBatch.state must hold codes in [0, 29]")
+        for name, v in (("n", n), ("state", s)):
+            v.setflags(write=False)
+            object.__setattr__(self, name, v)
+
+    @classmethod
+    def _trusted(cls, n, state) -> "BoxWarmStartBatch":
+        ws = object.__new__(cls)
+        for name, v in (("n", n), ("state", state)):
+            v.setflags(write=False)
+            ws.__dict__[name] = v
+        return ws
+
+    @classmethod
+    def of(cls, warm_starts) -> "BoxWarmStartBatch":
+        """The batch of a sequence of :class:`BoxWarmStart` (None is not allowed: a cold
+        island's state is all zeros, ``BoxWarmStart(n, (), ())``)."""
+        ws = list(warm_starts)
+        for b, w in enumerate(ws):
+            if not isinstance(w, BoxWarmStart):
+                raise TypeError(f"warm_starts[{b}] must be a lemke.BoxWarmStart, got {type(w).__name__}")
+        codes = [w.row_states() for w in ws]
+        return cls._trusted(np.array([c.size for c in codes], dtype=np.int64),
+                            np.concatenate(codes) if codes else np.zeros(0, np.int8))
+
+    def __reduce__(self):
+        return (BoxWarmStartBatch._trusted, (self.n.copy(), self.state.copy()))
+
+    @cached_property
+    def offsets(self) -> np.ndarray:
+        off = np.zeros(self.n.size + 1, dtype=np.int64)
+        np.cumsum(self.n, out=off[1:])
+        off.setflags(write=False)
+        return off
+
+    def __len__(self) -> int:
+        return self.n.size
+
+    def __getitem__(self, b) -> BoxWarmStart:
+        b = _index(b, self.n.size)
+        lo, hi = self.offsets[b: b + 2].tolist()
+        return _from_codes(self.state[lo:hi])
+
+    def __iter__(self):
+        return map(self.__getitem__, range(self.n.size))
+
+    def __repr__(self) -> str:
+        return f"BoxWarmStartBatch(B={self.n.size}, rows={self.state.size})"
+
+    def take(self, indices, sizes, findex=None) -> "BoxWarmStartBatch":
+        """The bases carried to a new scene: its row i (islands end to end, island b having
+        ``sizes[b]`` rows) is row ``indices[i]`` of this scene (its islands end to end), or
+        a new row (-1), which starts cold; ``findex``: the new scene's packed friction
+        index (only which rows are friction rows matters here), None for none.  The rules
+        of :meth:`BoxWarmStart.take`, row by row."""
+        idx = _row_index(indices, self.state.size, "indices")
+        return BoxWarmStartBatch._trusted(_new_sizes(sizes, idx.size), _carried(self.state, idx, findex))
+
+    def relabel(self, old_labels, new_labels, sizes, findex=None) -> "BoxWarmStartBatch":
+        """:meth:`take` by labels, one per row of the whole scene (e.g. contact ids): the
+        rules of :meth:`BoxWarmStart.relabel`."""
+        idx = _label_index(old_labels, new_labels, self.state.size)
+        return BoxWarmStartBatch._trusted(_new_sizes(sizes, idx.size), _carried(self.state, idx, findex))
+
+
+def _new_sizes(sizes, m):
+    n = np.array(sizes, copy=True)
+    if n.ndim != 1 or (n.size and n.dtype.kind not in "iu"):
+        raise TypeError("sizes must be a 1-D sequence of integers")
+    n = n.astype(np.int64)
+    if (n < 0).any() or int(n.sum()) != m:
+        raise ValueError(f"sizes must be >= 0 and sum to the {m} new rows, got a sum of {int(n.sum())}")
+    return n
+
+
+class BLCPManyResult(ManyItems):
+    """The outcome of :func:`lemke.solve_blcp_many`: a sequence of :class:`BLCPResult`,
+    item b what :func:`lemke.solve_blcp` gives for island b (bit for bit, whatever the
+    number of workers), built when first read, with every island's answer also in flat,
+    read-only arrays made by a few numpy calls when first read (no Python object per
+    island).
+
+    Attributes
+    ----------
+    offsets : ndarray of int64, shape (B + 1,)
+        Island b's entries of ``z``, ``w``, ``lo``, ``hi`` are ``offsets[b]:offsets[b + 1]``.
+    z, w : ndarray of float64, shape (sum of n_b,)
+    lo, hi : ndarray of float64, shape (sum of n_b,)
+        The bounds in force at z (with a friction index the coupled bounds
+        -mu_i z_f, mu_i z_f of the friction rows; else the caller's).
+    status : ndarray of int64, shape (B,)
+        :class:`Status` codes.
+    success : ndarray of bool, shape (B,)
+    pivots, recoveries : ndarray of int64, shape (B,)
+    residual : ndarray of float64, shape (B,)
+    warm_start : BoxWarmStartBatch
+        Every island's final basis (each item's ``warm_start``), to pass back whole next
+        step, or to carry over to new islands with its ``take`` / ``relabel``.
+    """
+
+    def __init__(self, sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state, fflag,
+                 los, his, given, special):
+        """The kernels' arrays (``boxed.batch``), the problems' flat bounds, the warm starts
+        given (a BoxWarmStartBatch, a list, or None) and ``special``: ``{b: BLCPResult}``,
+        the islands the general path solved."""
+        for a in (qoff, out_i, out_f, buff, ioff, state, fflag):
+            a.setflags(write=False)
+        self._sizes, self._qoff, self._out_i, self._out_f = sizes, qoff, out_i, out_f
+        self._bufs, self._buff, self._ints, self._ioff = bufs, buff, ints, ioff
+        self._state, self._fflag, self._los, self._his = state, fflag, los, his
+        self._given, self._special = given, special
+        self._items = [None] * len(sizes)
+        for b, res in special.items():
+            self._items[b] = res
+
+    def _build(self, lo, hi):
+        """Items lo..hi-1 not built yet, as solve_blcp builds them (``_blcp._lazy``): views
+        of the shared buffers, made when a field is first read."""
+        items, bufs, ints, los, his, given = (self._items, self._bufs, self._ints, self._los,
+                                              self._his, self._given)
+        qo, bo, io = self._qoff.tolist(), self._buff.tolist(), self._ioff.tolist()
+        for b, (code, pivots, k, m, rec, stage, N), residual, fr in zip(
+                range(lo, hi), self._out_i[lo:hi].tolist(), self._out_f[lo:hi].tolist(),
+                self._fflag[lo:hi].tolist()):
+            if items[b] is not None:
+                continue
+            n = qo[b + 1] - qo[b]
+            items[b] = _lazy(bufs[bo[b]:bo[b + 1]], ints[io[b]:io[b + 1]], N, k, m, n,
+                             los[qo[b]:qo[b + 1]], his[qo[b]:qo[b + 1]], bool(fr) and n > 0,
+                             pivots, residual, rec, given[b] if stage == 0 else None)
+
+    # --- the flat fields ------------------------------------------------------------------
+
+    @cached_property
+    def offsets(self) -> np.ndarray:
+        return self._qoff
+
+    @cached_property
+    def _where(self):
+        """Per row of the scene: where its z sits in the buffers, and whether its island has
+        a friction index (then its bounds in force are in the buffer too)."""
+        qo = self._qoff
+        n = np.diff(qo)
+        N = self._out_i[:, 6]
+        fr = (self._fflag != 0) & (n > 0)
+        start = self._buff[:-1] + np.where(fr, 6 * N + 1, 0)
+        at = np.arange(qo[-1], dtype=np.int64)
+        at += np.repeat(start - qo[:-1], n)
+        return at, np.repeat(n, n), np.repeat(fr, n)
+
+    def _gather(self, name, shift, flat=None):
+        at, n, fr = self._where
+        v = self._bufs.take(at + shift * n)
+        if flat is not None:
+            v = np.where(fr, v, flat)
+        qo = self._qoff
+        for b, res in self._special.items():
+            v[qo[b]:qo[b + 1]] = getattr(res, name)
+        v.setflags(write=False)
+        return v
+
+    @cached_property
+    def z(self) -> np.ndarray:
+        return self._gather("z", 0)
+
+    @cached_property
+    def w(self) -> np.ndarray:
+        return self._gather("w", 1)
+
+    @cached_property
+    def lo(self) -> np.ndarray:
+        return self._gather("lo", 2, self._los)
+
+    @cached_property
+    def hi(self) -> np.ndarray:
+        return self._gather("hi", 3, self._his)
+
+    @cached_property
+    def status(self) -> np.ndarray:
+        return self._column(np.zeros(len(self._items), dtype=np.int64), "status", int)
+
+    @cached_property
+    def pivots(self) -> np.ndarray:
+        return self._column(self._out_i[:, 1], "pivots", int)
+
+    @cached_property
+    def recoveries(self) -> np.ndarray:
+        return self._column(self._out_i[:, 4], "recoveries", int)
+
+    @cached_property
+    def residual(self) -> np.ndarray:
+        return self._column(self._out_f, "residual", float)
+
+    @cached_property
+    def warm_start(self) -> BoxWarmStartBatch:
+        return BoxWarmStartBatch._trusted(np.diff(self._qoff), self._state)
+
+
+def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, options=None,
+                    workers=None) -> BLCPManyResult:
+    r"""Solve the box LCPs of many islands (of different sizes, with friction indices and
+    warm starts) in one call, in parallel threads without the GIL: island b is
+    ``solve_blcp(M[b], q[b], lo[b], hi[b], findex=findex[b], warm_start=warm_start[b])``.
+
+    Parameters
+    ----------
+    M, q, lo, hi : sequences of (n_b, n_b), (n_b,), (n_b,) array_like, B of each
+        (a bound may be a scalar for its island).  Or, with ``sizes``, packed: 1-D arrays of
+        every M_b (row by row) and every q_b, lo_b, hi_b laid end to end (the layout of the
+        result's ``z``; a scalar bound applies to every row), with no Python object per
+        island.
+    findex : sequence of (n_b,) int array_like or None, or a packed int array, optional
+        Each island's friction index (as in :func:`solve_blcp`: -1 for an ordinary row,
+        ``findex[i] = f`` the island's own row f of the normal), None for an island without;
+        packed (with ``sizes``): one 1-D integer array of every island's, end to end, each
+        entry an index within its island.
+    warm_start : BoxWarmStartBatch, or sequence of BoxWarmStart or None, optional
+        The last step's ``result.warm_start`` (taken as it is: no Python work per island),
+        carried over with its ``take`` / ``relabel`` when the islands' rows changed, or one
+        :class:`BoxWarmStart` per island (None: cold).  Island b of a
+        :class:`BoxWarmStartBatch` is warm-started from ``warm_start[b]``.  Its sizes and
+        friction rows must match each island's (else ``ValueError`` naming
+        ``warm_start[b]``: a changed number of rows needs ``take`` / ``relabel``).
+    sizes : 1-D array_like of int, optional
+        The n_b of packed input.
+    options : Options or dict, optional
+    workers : int, optional
+        Threads (default: every usable core; 1 runs in the calling thread).  The answers do
+        not depend on it.
+
+    Returns
+    -------
+    BLCPManyResult
+        A sequence of :class:`BLCPResult` (item b bit for bit ``solve_blcp``'s for island b,
+        built when read) and flat arrays ``z``, ``w``, ``lo``, ``hi`` (island b's at
+        ``offsets[b]:offsets[b + 1]``), ``status``, ``success``, ``pivots``,
+        ``recoveries``, ``residual``, and ``warm_start``, a :class:`BoxWarmStartBatch`.
+
+    Examples
+    --------
+    >>> import numpy as np, lemke
+    >>> M = np.array([[2.0, 1.0], [1.0, 2.0]])
+    >>> r = lemke.solve_blcp_many([M, np.eye(1)], [np.array([-5.0, 1.0]), np.array([-3.0])],
+    ...                           [np.array([0.0, -1.0]), np.zeros(1)], [np.array([2.0, 1.0]), np.ones(1)])
+    >>> r.z.tolist(), r.offsets.tolist(), r.success.tolist()
+    ([2.0, -1.0, 1.0], [0, 2, 3], [True, True])
+    >>> again = lemke.solve_blcp_many([M, np.eye(1)], [np.array([-5.0, 1.0]), np.array([-3.0])],
+    ...                               [np.array([0.0, -1.0]), np.zeros(1)], [np.array([2.0, 1.0]), np.ones(1)],
+    ...                               warm_start=r.warm_start)
+    >>> again.pivots.tolist()
+    [0, 0]
+    """
+    opts = as_options(options)
+    workers = _workers(workers)
+    if sizes is None:
+        Ms, qs, los, his, fis = _islands(M, q, lo, hi, findex)
+        n_b = [len(x) for x in qs]
+        B = len(n_b)
+        mlen = np.zeros(B + 1, dtype=np.int64)
+        mlen[1:] = [x * x for x in n_b]
+        Mflat, qflat, loflat, hiflat = _flat(Ms), _flat(qs), _flat(los), _flat(his)
+        fflag = np.array([f is not None for f in fis], dtype=np.uint8)
+        fiflat = (np.concatenate([np.full(k, -1, np.int64) if f is None else f
+                                  for f, k in zip(fis, n_b)]) if fflag.any() else _NO_FINDEX)
+        sizes = n_b
+    else:
+        Mflat, qflat, off = _packed(M, q, sizes)
+        sizes = off[0, 1:].tolist()
+        B = len(sizes)
+        mlen = off[1]
+        total = len(qflat)
+        loflat, hiflat = (_packed_bound(x, total, name) for x, name in ((lo, "lo"), (hi, "hi")))
+        if findex is None:
+            fflag, fiflat = np.zeros(B, dtype=np.uint8), _NO_FINDEX
+        else:
+            fiflat = _validate.kernel_array(_packed_findex(findex, total))
+            fflag = np.ones(B, dtype=np.uint8)
+        fis = None
+    n_b = np.array(sizes, dtype=np.int64)
+    qoff = np.zeros(B + 1, dtype=np.int64)
+    np.cumsum(n_b, out=qoff[1:])
+    mstart = np.cumsum(mlen)[:-1]
+    # friction rows per island (the extended size N = n + 2 nf)
+    if fiflat.size:
+        fc = np.zeros(qoff[-1] + 1, dtype=np.int64)
+        np.cumsum(fiflat >= 0, out=fc[1:])
+        nf = (fc[qoff[1:]] - fc[qoff[:-1]]) * (fflag != 0)
+        fmask = (fiflat >= 0) & np.repeat(fflag != 0, n_b)
+    else:
+        nf, fmask = np.zeros(B, dtype=np.int64), None
+    state, wflag, given = _warm_states(warm_start, B, n_b, qoff, fmask, fis)
+    N = n_b + 2 * nf
+    fr = (fflag != 0) & (n_b > 0)
+    buff = np.zeros(B + 1, dtype=np.int64)
+    np.cumsum(6 * N + 1 + np.where(fr, 6 * n_b, 0), out=buff[1:])
+    ioff = np.zeros(B + 1, dtype=np.int64)
+    np.cumsum(N + 2 * nf, out=ioff[1:])
+    limits = np.empty(B, dtype=np.int64)
+    limits[:] = opts.pivot_limit(N)
+    bufs = np.empty(int(buff[-1]))
+    ints = np.empty(int(ioff[-1]), dtype=np.int64)
+    state_out = np.empty(int(qoff[-1]), dtype=np.int8)
+    out_i = np.empty((B, 7), dtype=np.int64)
+    out_f = np.empty(B)
+    _run(boxed.batch, (Mflat, mstart, qflat, loflat, hiflat, qoff, fiflat, fflag, state, wflag),
+         (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, ints, ioff, state_out,
+          out_i, out_f), B, workers)
+    special = {}
+    given = _Given(warm_start, given)
+    stage = out_i[:, 5]
+    for b in np.flatnonzero(stage < 0).tolist():
+        o0, o1, m0 = int(qoff[b]), int(qoff[b + 1]), int(mstart[b])
+        n = o1 - o0
+        args = (Mflat[m0:m0 + n * n].reshape(n, n), qflat[o0:o1], loflat[o0:o1], hiflat[o0:o1],
+                fiflat[o0:o1] if fflag[b] else None)
+        try:
+            if stage[b] == _BAD_DATA:
+                as_blcp(*args)  # raises, naming the entry
+            res = solve_blcp(*args[:4], findex=args[4], options=opts,
+                             warm_start=(given[b] if wflag[b] else None))
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(f"problem {b}: {exc}") from None
+        special[b] = res
+        state_out[o0:o1] = (res.warm_start.row_states() if res.warm_start is not None
+                            else np.zeros(n, np.int8))
+    return BLCPManyResult(sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state_out, fflag,
+                          loflat, hiflat, given, special)
+
+
+_NO_FINDEX = np.zeros(0, dtype=np.int64)
+_BAD_DATA = -2  # boxed.batch's stage for data the kernels refuse
+
+
+class _Given:
+    """Island b's warm start as given (made from a BoxWarmStartBatch when asked)."""
+
+    __slots__ = ("batch", "items")
+
+    def __init__(self, warm_start, items):
+        self.batch = warm_start if type(warm_start) is BoxWarmStartBatch else None
+        self.items = items
+
+    def __getitem__(self, b):
+        return self.batch[b] if self.items is None else self.items[b]
+
+
+def _islands(M, q, lo, hi, findex):
+    """Lists of islands as float64 arrays ready for the kernels (a ``ValueError`` naming the
+    island and the entry otherwise) and their friction indices (int64 or None)."""
+    Ms, qs = list(M), list(q)
+    B = len(Ms)
+    los, his = _per_island(lo, B, "lo"), _per_island(hi, B, "hi")
+    fis = [None] * B if findex is None else list(findex)
+    for name, v in (("q", qs), ("lo", los), ("hi", his), ("findex", fis)):
+        if len(v) != B:
+            raise ValueError(f"M and {name} must hold the same number of problems, got {B} and {len(v)}")
+    for b in range(B):
+        Mb, qb, lb, hb, fb = Ms[b], qs[b], los[b], his[b], fis[b]
+        if not (_ready(Mb, qb) and _ready_bound(lb, qb) and _ready_bound(hb, qb)
+                and (fb is None or (type(fb) is _ND and fb.dtype == _I64 and fb.shape == qb.shape))):
+            try:
+                Mb, qb, lb, hb, fb = as_blcp(Mb, qb, lb, hb, fb)
+            except (TypeError, ValueError) as exc:
+                raise type(exc)(f"problem {b}: {exc}") from None
+            Ms[b], qs[b], los[b], his[b], fis[b] = Mb, qb, lb, hb, fb
+    return Ms, qs, los, his, fis
+
+
+def _per_island(v, B, name):
+    if isinstance(v, (int, float, np.number)):  # one scalar bound for every island
+        return [v] * B
+    return list(v)
+
+
+def _ready(M, q) -> bool:
+    return (type(M) is _ND and type(q) is _ND and M.dtype == _F64 and q.dtype == _F64
+            and M.ndim == 2 and q.ndim == 1 and M.shape[0] == M.shape[1] == q.shape[0]
+            and M.flags.c_contiguous and q.flags.c_contiguous)
+
+
+def _ready_bound(v, q) -> bool:
+    return type(v) is _ND and v.dtype == _F64 and v.shape == q.shape and v.flags.c_contiguous
+
+
+def _packed_bound(v, total, name):
+    """A packed bound: a scalar for every row, or a 1-D array of ``total`` numbers."""
+    a = _validate.float64_array(v, name)
+    if a.ndim == 0:
+        return np.full(total, float(a))
+    if a.shape != (total,):
+        raise ValueError(f"packed {name} must be a scalar or 1-D with {total} numbers (sum of n_b), "
+                         f"got shape {a.shape}")
+    return _validate.kernel_array(a)
+
+
+def _packed_findex(findex, total):
+    f = np.asarray(findex)
+    if f.shape != (total,) or (f.size and f.dtype.kind not in "iu"):
+        raise ValueError(f"packed findex must be 1-D with {total} integers (sum of n_b), got shape "
+                         f"{f.shape} and dtype {f.dtype}")
+    return f.astype(np.int64)
+
+
+def _warm_states(warm_start, B, n_b, qoff, fmask, fis):
+    """The warm starts as the kernel takes them: the row states end to end (int8), a flag
+    per island (0: cold), and the list of those given (None for a BoxWarmStartBatch, whose
+    codes are taken as they are).  Sizes and friction rows are checked against the islands'
+    (ValueError naming ``warm_start[b]``)."""
+    total = int(qoff[-1])
+    if warm_start is None:
+        return np.zeros(total, dtype=np.int8), np.zeros(B, dtype=np.uint8), None
+    if type(warm_start) is BoxWarmStartBatch:
+        if len(warm_start) != B:
+            raise ValueError(f"warm_start must hold one basis per problem: {len(warm_start)} for {B} problems")
+        bad = np.flatnonzero(warm_start.n != n_b)
+        if bad.size:
+            b = int(bad[0])
+            raise ValueError(f"warm_start[{b}] is for a problem of size {int(warm_start.n[b])}, problem {b} "
+                             f"has n = {int(n_b[b])} (carry a basis to new rows with take or relabel)")
+        state = warm_start.state
+        _same_kinds(state, fmask, qoff)
+        return _validate.kernel_array(state), np.ones(B, dtype=np.uint8), None
+    _validate.wrong_kind(warm_start, "warm_start", "lemke.BoxWarmStartBatch or a sequence of BoxWarmStart")
+    ws = list(warm_start)
+    if len(ws) != B:
+        raise ValueError(f"warm_start must hold one BoxWarmStart (or None) per problem: {len(ws)} for {B} problems")
+    state = np.zeros(total, dtype=np.int8)
+    wflag = np.zeros(B, dtype=np.uint8)
+    for b, w in enumerate(ws):
+        if w is None:
+            continue
+        if not isinstance(w, BoxWarmStart) or w.rows != n_b[b]:
+            _check_warm(w, int(n_b[b]), None, f"warm_start[{b}]", f"problem {b}")  # raises
+            raise ValueError(f"warm_start[{b}] is for a problem of {w.rows} rows, problem {b} has "
+                             f"n = {int(n_b[b])} (carry a basis to new rows with take or relabel)")
+        state[qoff[b]:qoff[b + 1]] = w.row_states()
+        wflag[b] = 1
+    _same_kinds(state, fmask, qoff, wflag)
+    return state, wflag, ws
+
+
+def _same_kinds(state, fmask, qoff, wflag=None):
+    """Each warm row's kind (friction or not) must be its island's (ValueError naming the
+    island and row)."""
+    fric = state >= 3
+    want = np.zeros(state.size, dtype=bool) if fmask is None else fmask
+    bad = fric != want
+    if wflag is not None:
+        bad &= np.repeat(wflag != 0, np.diff(qoff))
+    if bad.any():
+        r = int(np.flatnonzero(bad)[0])
+        b = int(np.searchsorted(qoff, r, side="right") - 1)
+        raise ValueError(f"warm_start[{b}] is for other friction rows: its row {r - int(qoff[b])} is "
+                         f"{'a friction' if fric[r] else 'an ordinary'} row, problem {b}'s findex makes it "
+                         f"{'a friction' if want[r] else 'an ordinary'} one (carry a basis over with take "
+                         "or relabel and the new findex)")
