@@ -1,5 +1,5 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
-// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_gram, qp_solve_box) with the arguments and results of
+// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box) with the arguments and results of
 // the numba kernels of lemke/kernels/qp.py, and a few pieces for the oracle tests
 // (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts).
 // Sizes are checked here, before the GIL is released: where the numba kernel answers data
@@ -93,8 +93,11 @@ bool kkt_check(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 x, 
                          tol, stats.data());
 }
 
-Code4 solve(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method,
-            std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out) {
+// qp.solve, cold (warm nullptr) or warm, for qp_solve and qp_solve_warm.
+Code4 fused(const In2& P, const In1& q, const In2& G, const In1& h, const In2& A, const In1& b,
+            const In1& lb, const In1& ub, int method, std::int64_t max_pivots, double pivot_tol,
+            double tie_tol, double tol, Out1& out, const std::int64_t* warm, idx kw, idx pairs,
+            const double* x0 = nullptr) {
     idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
     idx k0 = 2 * n + p0 + m0 + 4;
     if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < k0 + m0 + 2 * n) {
@@ -108,9 +111,46 @@ Code4 solve(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method
     {
         nb::gil_scoped_release release;
         r = qp::solve(data(P, q, G, h, A, b, lb, ub), method, max_pivots, pivot_tol, tie_tol, tol,
-                      out.data(), reinterpret_cast<idx*>(out.data() + k0));
+                      out.data(), reinterpret_cast<idx*>(out.data() + k0), warm, kw, pairs, x0);
     }
     return {r.code, r.pivots, r.k, r.pairs};
+}
+
+Code4 solve(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method,
+            std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out) {
+    return fused(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, nullptr,
+                 0, 0);
+}
+
+using IdxIn = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+// qp.solve from a warm start: warm (int64) the KKT-MLCP's basic pairs, distinct, in
+// [0, pairs) (else ValueError); BAD_WARM (with this QP's count of pairs as the last
+// entry) when pairs is not this QP's.
+Code4 solve_warm(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method,
+                 std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
+                 IdxIn warm, std::int64_t pairs) {
+    const std::int64_t* wv = warm.data();
+    idx kw = len(warm);
+    if (pairs < 0 || kw > pairs)
+        throw nb::value_error("qp_solve_warm: warm must hold distinct pairs in [0, pairs)");
+    for (idx t = 0; t < kw; ++t)
+        if (wv[t] < 0 || wv[t] >= pairs || (t > 0 && wv[t] <= wv[t - 1]))
+            throw nb::value_error("qp_solve_warm: warm must hold rising pairs in [0, pairs)");
+    return fused(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, wv, kw,
+                 pairs);
+}
+
+// qp.solve from qpsolvers' initvals x0 (n entries, finite, else ValueError): its active rows
+// are the warm start.
+Code4 solve_guess(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method,
+                  std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
+                  In1 x0) {
+    if (len(x0) != len(q)) throw nb::value_error("qp_solve_guess: x0 must have n entries");
+    if (!lemke::all_finite(x0.data(), len(x0)))
+        throw nb::value_error("qp_solve_guess: x0 must be finite");
+    return fused(P, q, G, h, A, b, lb, ub, method, max_pivots, pivot_tol, tie_tol, tol, out, nullptr,
+                 0, 0, x0.data());
 }
 
 Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
@@ -245,6 +285,12 @@ void bind_qp(nb::module_& m) {
     m.def("qp_solve", &solve, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           "method"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
           nb::arg("out").noconvert());
+    m.def("qp_solve_warm", &solve_warm, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "method"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
+          nb::arg("out").noconvert(), nb::arg("warm").noconvert(), "pairs"_a);
+    m.def("qp_solve_guess", &solve_guess, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "method"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
+          nb::arg("out").noconvert(), "x0"_a);
     m.def("qp_solve_gram", &solve_gram, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, nb::arg("out").noconvert(),
           nb::arg("basic").noconvert(), "semidefinite"_a);
@@ -277,5 +323,6 @@ void bind_qp(nb::module_& m) {
     m.attr("QP_OK") = qp::OK;
     m.attr("QP_NOT_DEFINITE") = qp::NOT_DEFINITE;
     m.attr("QP_NOT_APPLICABLE") = qp::NOT_APPLICABLE;
+    m.attr("QP_BAD_WARM") = qp::BAD_WARM;
     m.attr("QP_GRAM_RATIO") = qp::GRAM_RATIO;
 }

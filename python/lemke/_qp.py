@@ -116,7 +116,7 @@ class QPResult(Outcome):
 
 
 def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="tableau",
-             warm_start=None, options=None) -> QPResult:
+             warm_start=None, initvals=None, options=None) -> QPResult:
     r"""Solve the convex quadratic program
 
     .. math::  \min_x \tfrac12 x^\top P x + q^\top x \quad \text{s.t.} \quad
@@ -148,8 +148,23 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         one whose P is only semidefinite where the equalities can pin its flat directions
         (step 8).
     warm_start : WarmStart, optional
-        ``result.warm_start`` of an earlier QP with the same sizes and the same kinds of
-        bounds.
+        ``result.warm_start`` of an earlier QP with the same structure: the same number of
+        variables, the same rows of G with a finite h and the same kinds of bounds (its
+        ``n``, the number of pairs of the KKT-MLCP, must match: else ``ValueError``).  Its
+        active set is tried first: with P definite the fused kernel solves the old active
+        set's KKT system on the new data and checks it (0 pivots when it holds), else
+        makes up to 3 active-set updates, else solves cold; P, A and G equal to the last call's (on
+        the same thread) reuse its factors whether warm or cold.  Another kind of warm start
+        (a ``BoxWarmStart``, a ``WarmStartBatch``) is a ``ValueError``, anything else a
+        ``TypeError``.
+    initvals : (n,) array_like, optional
+        qpsolvers' primal guess x0, turned into a warm start: the rows of G tight or violated
+        at x0 (``G_i x0 >= h_i - 1e-9 (|h_i| + |G_i| |x0|)``) and the bounds x0 is at or
+        beyond (``x0_j <= lb_j + 1e-9 (|lb_j| + |x0_j|)``, the same for ub) form the active
+        set (a variable within that of both bounds takes the nearer).  A guess is only a
+        start: the answer is solved and checked as without it.  A shape other than (n,) or
+        a non-finite entry is a ``ValueError`` naming ``initvals``; giving both
+        ``initvals`` and ``warm_start`` is a ``ValueError``.
     options : Options or dict, optional
         See :class:`lemke.Options`.
 
@@ -170,9 +185,10 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     """
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_qp, P, q, G, h, A, b, lb, ub, method=method,
-                     warm_start=warm_start)
-    tried = False
-    if (warm_start is None and type(P) is _ND and type(q) is _ND
+                     warm_start=warm_start, initvals=initvals)
+    tried = warm_tried = False
+    if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
+            and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
             and len(q) and type(method) is str and method in METHODS):
@@ -223,7 +239,13 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
             up = ub
         else:
             plain = False
-        if plain:
+        if plain and warm_start is not None:  # the fused kernel from the warm start
+            opts = _DEFAULT_OPTIONS if options is None else as_options(options)
+            res = _solve_warm((P, q, Gk, hk, Ak, bk, lo, up), method, opts, warm_start)
+            if res is not None:
+                return res
+            warm_tried = True
+        elif plain:
             opts = _DEFAULT_OPTIONS if options is None else as_options(options)
             if box and (lb is not None or ub is not None):
                 if n < BOX_FIRST:
@@ -264,6 +286,22 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     if warm_start is not None and not isinstance(warm_start, WarmStart):  # of any size: a basis
         _validate.wrong_kind(warm_start, "warm_start", "lemke.WarmStart")
         raise TypeError(f"warm_start must be a lemke.WarmStart, got {type(warm_start).__name__}")
+    if initvals is not None:
+        if warm_start is not None:
+            raise ValueError("give warm_start or initvals, not both")
+        plain = _plain_args(P, q, G, h, A, b, lb, ub)
+        if plain is not None:  # the fused kernel reads the guess's active set itself
+            res = _solve_warm(plain, method, opts, None, _guess_vector(initvals, plain[1].shape[0]))
+            if res is not None:
+                return res
+            warm_tried = True
+        warm_start = _initvals_start(initvals, P, q, G, h, A, b, lb, ub)  # for the KKT-MLCP path
+    if warm_start is not None and not warm_tried:
+        plain = _plain_args(P, q, G, h, A, b, lb, ub)
+        if plain is not None:
+            res = _solve_warm(plain, method, opts, warm_start)
+            if res is not None:
+                return res
     # Cold, the fast paths first (for data the first lines did not take, or a QP they did
     # not solve): a box-only QP of at least BOX_FIRST variables through the bounded kernel,
     # a definite P through the fused kernel (also a P semidefinite to rounding when m >= 4n:
@@ -292,20 +330,21 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     return _restore_rows(_solve(qp, method, opts, warm_start, certify=True), keep)
 
 
-def solve_qpsolvers_problem(problem, *, method="tableau", options=None):
+def solve_qpsolvers_problem(problem, *, method="tableau", initvals=None, options=None):
     """qpsolvers' ``solve_problem`` with lemke: a ``qpsolvers.Problem`` in, a
     ``qpsolvers.Solution`` out (qpsolvers must be installed), so that code written for
     qpsolvers switches by one call.  ``found`` is ``result.success``; x, y, z, z_box and
     obj are set only when found, as qpsolvers does; ``extras["lemke"]`` holds the
     :class:`QPResult` (status, certificate, pivots, warm start); ``solve_time`` is the
-    call's time.  The Solution's residual methods recompute qpsolvers' formulas."""
+    call's time.  The Solution's residual methods recompute qpsolvers' formulas.
+    ``initvals`` is qpsolvers' primal guess (see :func:`solve_qp`)."""
     import time
 
     import qpsolvers
 
     t0 = time.perf_counter()
     res = solve_qp(problem.P, problem.q, problem.G, problem.h, problem.A, problem.b,
-                   problem.lb, problem.ub, method=method, options=options)
+                   problem.lb, problem.ub, method=method, initvals=initvals, options=options)
     sol = qpsolvers.Solution(problem)
     sol.solve_time = time.perf_counter() - t0
     sol.found = res.success
@@ -590,6 +629,113 @@ def _box_basis(lo, up, ws):
     return WarmStart._trusted(int(shifted.size + len(boxed)), tuple(pairs))
 
 
+def _bad_warm(warm_start, pairs):
+    """The ValueError of a warm start of a QP with another structure."""
+    return ValueError(f"warm_start has {warm_start.n} pairs, this QP has {pairs} (one per "
+                      "variable with a finite bound, per row of G with a finite h, and one more "
+                      "per variable with both bounds): a basis of a QP with another structure")
+
+
+def _solve_warm(args, method, opts, warm_start, x0=None):
+    """The fused kernel from a warm start (``_core.qp_solve_warm``), or from qpsolvers'
+    initvals x0 (``_core.qp_solve_guess``, which reads the rows active at x0 itself, the
+    rule of :func:`_initvals_start`): that active set first (its KKT point on the new data,
+    checked; a few active-set updates), else cold; the factors of P, A, G reused when they
+    are the last call's.  None when it does not end solved and checked (P not definite,
+    dependent equalities, ...): the caller then takes the KKT-MLCP path from the same start.
+    A warm start with another number of pairs is a ValueError."""
+    P, q, G, h, A, b, lb, ub = args
+    n, p, m = q.shape[0], A.shape[0], G.shape[0]
+    out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
+    mp = -1 if opts.max_pivots is None else opts.max_pivots
+    if x0 is not None:
+        code, pivots, k, pairs = _core.qp_solve_guess(
+            P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
+            opts.tol, out, x0)
+    else:
+        warm = np.fromiter(warm_start.z_basic, dtype=_I64, count=len(warm_start.z_basic))
+        code, pivots, k, pairs = _core.qp_solve_warm(
+            P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
+            opts.tol, out, warm, warm_start.n)
+        if code == _BAD_WARM:
+            raise _bad_warm(warm_start, pairs)
+    if code in _STOP_CODES:
+        return _stopped(code, pivots, n, p, m)
+    if code != _OK:
+        return None
+    return _fused_result(out, n, p, m, k, pairs, pivots)
+
+
+ACTIVE_TOL = 1e-9  # initvals: a row or bound within this (relative) of tight counts as active (qp::ACTIVE_TOL)
+
+
+def _guess_vector(initvals, n):
+    """initvals as a finite float64 vector of n entries (a column (n, 1) flattened), or a
+    ValueError naming it."""
+    try:
+        x0 = np.asarray(initvals, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"initvals must be a real vector of shape ({n},)") from None
+    if x0.ndim == 2 and x0.shape[1] == 1:
+        x0 = x0.reshape(-1)
+    if x0.shape != (n,):
+        raise ValueError(f"initvals must have shape ({n},) (one entry per variable), got {x0.shape}")
+    if not np.isfinite(x0).all():
+        bad = np.flatnonzero(~np.isfinite(x0))
+        raise ValueError(f"initvals has a non-finite entry at index {int(bad[0])}")
+    return np.ascontiguousarray(x0)
+
+
+def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
+    """The warm start of a primal guess (qpsolvers' ``initvals``): the KKT-MLCP's basis
+    (``_reductions.qp_mlcp``'s numbering, as ``kernels.qp.mlcp_basis`` writes it) whose
+    active set is the rows of G and the bounds tight or violated at x0 (``ACTIVE_TOL``,
+    relative to the sizes of the terms).  The data is read after qpsolvers' conventions
+    and the validation (rows with h = +inf dropped, bounds beyond 1e20 infinite)."""
+    plain = _plain_args(P, q, G, h, A, b, lb, ub)
+    if plain is not None:  # float64 arrays of the kernel's shapes: the kernel checks the values
+        d = dict(zip(("P", "q", "G", "h", "A", "b", "lb", "ub"), plain))
+    else:
+        (P, q, G, h, A, b, lb, ub), _ = qpsolvers_form(P, q, G, h, A, b, lb, ub)
+        d = _validate.qp(P, q, G, h, A, b, lb, ub)
+    n = d["q"].size
+    x0 = _guess_vector(initvals, n)
+    lo = d.get("lb", np.full(n, -np.inf))
+    up = d.get("ub", np.full(n, np.inf))
+    lo = np.where(lo > -1e20, lo, -np.inf)
+    up = np.where(up < 1e20, up, np.inf)
+    lo_f, up_f = np.isfinite(lo), np.isfinite(up)
+    fixed = lo_f & up_f & (lo == up)
+    ax = np.abs(x0)
+    with np.errstate(invalid="ignore"):
+        d_lo = np.where(lo_f, x0 - lo, np.inf)  # distance above lb
+        d_up = np.where(up_f, up - x0, np.inf)  # distance below ub
+        at_lo = lo_f & (d_lo <= ACTIVE_TOL * (np.abs(np.where(lo_f, lo, 0.0)) + ax))
+        at_up = up_f & (d_up <= ACTIVE_TOL * (np.abs(np.where(up_f, up, 0.0)) + ax))
+    both = at_lo & at_up
+    at_lo &= ~both | (d_lo <= d_up)
+    at_up &= ~both | (d_up < d_lo)
+    shifted = np.flatnonzero((lo_f | up_f) & ~fixed)
+    boxed = shifted[lo_f[shifted] & up_f[shifted]]
+    # pair of a shifted variable: basic unless the bound it is measured from is active
+    held = np.where(lo_f[shifted], at_lo[shifted], at_up[shifted])
+    pairs = [np.flatnonzero(~held)]
+    G = d.get("G")
+    if G is not None and G.shape[0]:
+        hh = d["h"]
+        if np.isposinf(hh).any():  # no constraint (qpsolvers' convention): not a pair
+            G, hh = G[~np.isposinf(hh)], hh[~np.isposinf(hh)]
+        r = G @ x0 - hh
+        scale = np.abs(hh) + np.abs(G) @ ax
+        pairs.append(shifted.size + np.flatnonzero(r >= -ACTIVE_TOL * scale))
+        m_g = G.shape[0]
+    else:
+        m_g = 0
+    pairs.append(shifted.size + m_g + np.flatnonzero(at_up[boxed]))
+    basic = np.concatenate(pairs)
+    return WarmStart._trusted(int(shifted.size + m_g + boxed.size), tuple(basic.tolist()))
+
+
 def _solve_definite(args, method, opts):
     """The fused cold path for a positive definite P (``kernels.qp``): one kernel call that
     screens the data, factors P, solves the LCP of the inequality multipliers and checks
@@ -697,6 +843,7 @@ _I64 = np.dtype(np.int64)
 _METHOD_CODES = dict(_METHOD_NAMES)
 _OK, _NOT_DEFINITE, _GRAM_RATIO = _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_GRAM_RATIO
 _NOT_APPLICABLE = _core.QP_NOT_APPLICABLE
+_BAD_WARM = _core.QP_BAD_WARM
 
 
 def _fused_fields(out, n, p, m, k, pairs):
@@ -719,7 +866,7 @@ def _QP(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> QPToMLCP:
 def _solve(qp, method, opts, warm_start, certify):
     m_pairs = qp.e.size - qp.n_free
     if warm_start is not None and warm_start.n != m_pairs:
-        warm_start = None  # a basis of a QP with another structure: solve cold
+        raise _bad_warm(warm_start, m_pairs)
     r = solve_stacked(qp.E, qp.e, qp.n_free, method, opts, warm_start)
     x, y, z, z_box = qp.recover(np.concatenate([r.u, r.v]), r.w)
     status, certificate = r.status, None

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "boxed.hpp"
@@ -38,8 +39,15 @@ struct QPWork {
     double *fv, *d, *beta, *c, *v, *g, *zz, *ones, *yy, *buf, *beta2, *rd, *rpE, *rpS, *xi, *dx, *dy, *dz, *zg, *cc, *va, *zS, *s, *err, *size, *kkt;
     idx *ekind, *ckind, *up_row, *S, *lcp_basic;
     std::uint8_t *bflags, *gflags;
+    // The factor cache (solve's, see same_factors): what the dense layout's L, E, V, beta, C,
+    // the kinds, up_row and M were computed from. Any layout() call drops it.
+    bool cached = false;
+    idx key_p0 = 0, key_m0 = 0, m_g = 0;
+    std::vector<double> keyP, keyA, keyG, keyPs;  // the caller's P, A, G; screen's Ps of P
+    std::vector<std::uint8_t> keyPat;
 
     void layout(idx n_, idx p_, idx m_, bool dense) {
+        cached = false;
         n = n_;
         p = p_;
         m = m_;
@@ -144,6 +152,9 @@ struct Dot2 {
     double sum, size, norm;
 };
 
+// (dot2 and axpy2_matrix: one variant per instruction set, so that the avx512f one runs
+// std::fma as an instruction, not a call into libm: fma is rounded once either way, the same bits)
+LEMKE_CLONES
 Dot2 dot2(const double* x, const double* y, idx n, double c) {
     double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
     for (idx j = 0; j < n; ++j) {
@@ -154,7 +165,7 @@ Dot2 dot2(const double* x, const double* y, idx n, double c) {
     return {s + err, size, norm};
 }
 
-void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
+inline void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
     for (idx j = 0; j < n; ++j) {
         double p, e, t, f;
         two_product(a, x[j], p, e);
@@ -166,6 +177,7 @@ void axpy2(double* s, double* err, double* size, idx n, double a, const double* 
 }
 
 // axpy2 of every row of M with coefficient coef[i] (qp.axpy2_matrix, axpy2_rows).
+LEMKE_CLONES
 void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coef,
                   Mat<const double> M) {
     for (idx i = 0; i < M.rows; ++i) axpy2(s, err, size, n, coef[i], M.row(i));
@@ -288,6 +300,20 @@ void mlcp_basis(const double* lb, const double* ub, idx n, idx m_g, const idx* c
     pairs = pos;
 }
 
+// The end of qp.factors: v1 (the equalities' particular point, from f) and g, the multiplier
+// LCP's right-hand side, from d, v1 and c (in w.c, through L and the QR).
+void lcp_rhs(const Rows& R, QPWork& w, idx n) {
+    idx p = R.p, m = R.m;
+    double* v = w.v;
+    for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
+    idx r = n - p;
+    const double* c2 = w.c + p;
+    for (idx i = 0; i < m; ++i) {
+        const double* Fi = R.C.row(i);
+        w.g[i] = R.d[i] - dot(Fi, v, p) + dot(Fi + p, c2, r);
+    }
+}
+
 // qp.factors: steps 2 and 3 and g, given L (in w.L). Returns OK or DEPENDENT_EQUALITIES.
 int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows& R) {
     idx n = dt.n();
@@ -323,14 +349,7 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
         householder_apply(w.V, w.beta, k, c);
         for (idx i = 0; i < m; ++i) householder_apply(w.V, w.beta, k, R.C.row(i));
     }
-    double* v = w.v;
-    for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
-    idx r = n - p;
-    const double* c2 = c + p;
-    for (idx i = 0; i < m; ++i) {
-        const double* Fi = R.C.row(i);
-        w.g[i] = R.d[i] - dot(Fi, v, p) + dot(Fi + p, c2, r);
-    }
+    lcp_rhs(R, w, n);
     return OK;
 }
 
@@ -352,6 +371,183 @@ void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c,
     for (idx k = p - 1; k >= 0; --k) householder_apply(w.V, w.beta, k, v);
     backward_transposed(L, v);
     for (idx t = 0; t < n; ++t) x[t] = v[t];
+}
+
+// ----------------------------------------------------------------------------- the factor cache
+
+// The structure the factors depend on besides P, A and G: which rows of G count (h finite)
+// and each variable's kind of bounds (screened: fixed, upper, lower, both, none).
+void structure(const Data& dt, const double* lo, const double* up, std::vector<std::uint8_t>& pat) {
+    idx n = dt.n(), m0 = dt.m0();
+    pat.resize(static_cast<std::size_t>(m0 + n));
+    for (idx i = 0; i < m0; ++i) pat[i] = dt.h[i] < INF ? 1 : 0;
+    for (idx j = 0; j < n; ++j)
+        pat[m0 + j] = lo[j] == up[j] ? 4 : static_cast<std::uint8_t>((up[j] < INF ? 1 : 0) | (lo[j] > -INF ? 2 : 0));
+}
+
+bool same_bits(const std::vector<double>& key, const double* a, idx len) {
+    return static_cast<idx>(key.size()) == len &&
+           (len == 0 || std::memcmp(key.data(), a, static_cast<std::size_t>(len) * sizeof(double)) == 0);
+}
+
+// Whether w holds the factors of this QP's matrices: solve's dense layout at these sizes,
+// computed from P, A, G of the same bits and the same structure (compared here in full,
+// never trusted by identity: a caller may have changed an array in place). The factors are
+// then exactly what cholesky, factors and the Gram product would compute again.
+bool same_matrices(const Data& dt, const QPWork& w) {
+    idx n = dt.n();
+    return w.cached && w.n == n && w.key_p0 == dt.p0() && w.key_m0 == dt.m0() &&
+           same_bits(w.keyP, dt.P.p, n * n) && same_bits(w.keyA, dt.A.p, dt.p0() * n) &&
+           same_bits(w.keyG, dt.G.p, dt.m0() * n);
+}
+
+bool same_structure(const Data& dt, const double* lo, const double* up, const QPWork& w, idx p,
+                    idx m, std::vector<std::uint8_t>& pat) {
+    if (w.p != p || w.m != m) return false;
+    structure(dt, lo, up, pat);
+    return pat == w.keyPat;
+}
+
+// screen's last step: lb <= ub (neither a wrong-way infinity), the bounds beyond 1e20 infinite.
+bool screen_bounds(const Data& dt, double* lo, double* up) {
+    for (idx j = 0; j < dt.n(); ++j) {
+        double a = dt.lb[j], c = dt.ub[j];
+        if (!(a < INF && c > -INF && a <= c)) return false;
+        lo[j] = a > -INFINITY_BOUND ? a : -INF;
+        up[j] = c < INFINITY_BOUND ? c : INF;
+    }
+    return true;
+}
+
+// screen's verdict and bounds for data whose P, A, G have the bits of data that screen
+// passed (same_matrices): the checks of the other arrays only, in screen's terms.
+bool screen_vectors(const Data& dt, double* lo, double* up) {
+    idx n = dt.n();
+    if (!all_finite(dt.q, n) || !all_finite(dt.b, dt.p0())) return false;
+    for (idx i = 0; i < dt.m0(); ++i)
+        if (!(dt.h[i] > -INF)) return false;
+    return screen_bounds(dt, lo, up);
+}
+
+void remember(const Data& dt, const Data& ds, const double* lo, const double* up, QPWork& w,
+              idx m_g) {
+    idx n = dt.n();
+    w.keyP.assign(dt.P.p, dt.P.p + n * n);
+    w.keyPs.assign(ds.P.p, ds.P.p + n * n);
+    w.keyA.assign(dt.A.p, dt.A.p + dt.p0() * n);
+    w.keyG.assign(dt.G.p, dt.G.p + dt.m0() * n);
+    structure(dt, lo, up, w.keyPat);
+    w.key_p0 = dt.p0();
+    w.key_m0 = dt.m0();
+    w.m_g = m_g;
+    w.cached = true;
+}
+
+// factors' right-hand sides on cached factors: f and d (rows_of's values), c, v and g, by
+// the same operations in the same order as factors (so the same bits).
+Rows right_hand_sides(const Data& dt, const double* lb, const double* ub, QPWork& w) {
+    idx n = dt.n();
+    Rows R{w.E, w.C, w.fv, w.d, w.ekind, w.ckind, w.p, w.m, w.m_g};
+    idx p0 = dt.p0();
+    for (idx i = 0; i < p0; ++i) R.f[i] = dt.b[i];
+    idx k = p0;
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] == ub[j]) R.f[k++] = lb[j];
+    k = 0;
+    for (idx i = 0; i < dt.m0(); ++i)
+        if (dt.h[i] < INF) R.d[k++] = dt.h[i];
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] != ub[j] && ub[j] < INF) R.d[k++] = ub[j];
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] != ub[j] && lb[j] > -INF) R.d[k++] = -lb[j];
+    idx p = R.p;
+    double* c = w.c;
+    for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
+    forward(w.L, c);
+    for (idx kk = 0; kk < p; ++kk) householder_apply(w.V, w.beta, kk, c);
+    lcp_rhs(R, w, n);
+    return R;
+}
+
+// A warm start (the KKT-MLCP's basic pairs, mlcp_basis's numbering) as the multiplier LCP's
+// basic z's (the active rows of C), sorted, into beta; false when it has another number of
+// pairs than this QP (`pairs` gets this QP's).
+bool warm_rows(const double* lb, const double* ub, idx n, const Rows& R, const idx* warm, idx kw,
+               idx warm_pairs, std::vector<idx>& beta, idx& pairs) {
+    idx m = R.m, m_g = R.m_g;
+    idx ns = 0, nb = 0;
+    for (idx j = 0; j < n; ++j) {
+        bool lo = lb[j] > -INF, up = ub[j] < INF;
+        if ((lo || up) && lb[j] != ub[j]) {
+            ++ns;
+            if (lo && up) ++nb;
+        }
+    }
+    pairs = ns + m_g + nb;
+    if (warm_pairs != pairs) return false;
+    thread_local std::vector<idx> rows;
+    thread_local std::vector<std::uint8_t> on;
+    rows.assign(static_cast<std::size_t>(2 * n), -1);  // ub row of j, then lb row of j
+    on.assign(static_cast<std::size_t>(pairs + m + 1), 0);
+    for (idx i = m_g; i < m; ++i) rows[R.ckind[i]] = i;
+    for (idx t = 0; t < kw; ++t) on[warm[t]] = 1;
+    std::uint8_t* act = on.data() + pairs;
+    idx pos = 0;
+    for (idx j = 0; j < n; ++j) {
+        bool lo = lb[j] > -INF, up = ub[j] < INF;
+        if ((lo || up) && lb[j] != ub[j]) {
+            if (!on[pos]) act[lo ? rows[n + j] : rows[j]] = 1;
+            ++pos;
+        }
+    }
+    for (idx i = 0; i < m_g; ++i)
+        if (on[pos++]) act[i] = 1;
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] > -INF && ub[j] < INF && lb[j] != ub[j])
+            if (on[pos++]) act[rows[j]] = 1;
+    beta.clear();
+    for (idx i = 0; i < m; ++i)
+        if (act[i]) beta.push_back(i);
+    return true;
+}
+
+// qpsolvers' initvals: the multiplier LCP's rows active at the primal guess x0 (sorted, into
+// beta): a row of G tight or violated to ACTIVE_TOL relative to its terms,
+// G_i x0 - h_i >= -ACTIVE_TOL (|h_i| + sum |G_ij x0_j|), a bound x0 is at or beyond,
+// x0_j - lb_j <= ACTIVE_TOL (|lb_j| + |x0_j|) (ub alike); of a variable within that of both
+// bounds, the nearer one (lb on a tie). _qp._initvals_start is the same rule in numpy.
+void guess_rows(const Data& ds, const double* lb, const double* ub, const Rows& R,
+                const double* x0, std::vector<idx>& beta) {
+    idx n = ds.n(), m = R.m;
+    beta.clear();
+    for (idx i = 0; i < m; ++i) {
+        idx kind = R.ckind[i];
+        bool on;
+        if (kind < 0) {
+            const double* Gi = ds.G.row(-1 - kind);
+            double hi = ds.h[-1 - kind];
+            double acc = -hi, scale = std::fabs(hi);
+            for (idx j = 0; j < n; ++j) {
+                double t = Gi[j] * x0[j];
+                acc += t;
+                scale += std::fabs(t);
+            }
+            on = acc >= -ACTIVE_TOL * scale;
+        } else {
+            idx j = kind < n ? kind : kind - n;
+            double xj = x0[j], ax = std::fabs(xj);
+            double d_up = ub[j] < INF ? ub[j] - xj : INF;
+            double d_lo = lb[j] > -INF ? xj - lb[j] : INF;
+            bool at_up = ub[j] < INF && d_up <= ACTIVE_TOL * (std::fabs(ub[j]) + ax);
+            bool at_lo = lb[j] > -INF && d_lo <= ACTIVE_TOL * (std::fabs(lb[j]) + ax);
+            if (at_up && at_lo) {
+                at_lo = d_lo <= d_up;
+                at_up = !at_lo;
+            }
+            on = kind < n ? at_up : at_lo;
+        }
+        if (on) beta.push_back(i);
+    }
 }
 
 struct Outs {
@@ -531,6 +727,110 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
+// The warm start's own KKT point (solve's first stage from a warm start), with a few
+// active-set updates: the multipliers of the active rows S from M_SS z_S = -g_S (the
+// multiplier LCP's principal block, LU), a look at the LCP (z_S >= 0 and w = M z + g >= 0
+// off S, each to tol relative to its terms); while that fails, at most ACTIVE_SET_STEPS
+// times and while the number of rows that move does not grow, S loses its rows with z < 0 and gains
+// those with w < 0 (a primal-dual active-set step: no pivoting rule, so no guarantee, only
+// a cheap try). A set that passes gives the
+// point, caller_form and the KKT check on the data as for a solved LCP: true (Result OK,
+// pivots the number of rows that entered or left S, the basis written; or CHECK_FAILED when
+// the point fails the KKT check); false (Result.pivots the updates tried) leaves zz zero for
+// the cold LCP, whose answer a failed warm start then gives bit for bit.
+bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
+                const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
+    idx n = ds.n(), p = R.p, m = R.m;
+    thread_local std::vector<double> lu;
+    thread_local std::vector<idx> S, next;
+    S.assign(beta.begin(), beta.end());
+    double* zz = w.zz;
+    std::uint8_t* in_s = w.bflags;  // (mlcp_basis rewrites them)
+    idx changes = 0, last = 0;
+    bool ok = false;
+    for (idx step = 0; step <= ACTIVE_SET_STEPS; ++step) {
+        idx kb = static_cast<idx>(S.size());
+        if (kb > n - p) break;  // more active rows than free directions: singular
+        lu.resize(static_cast<std::size_t>(kb * (kb + 2)));
+        double* blk = lu.data();
+        double* y = blk + kb * kb;
+        double* zS = y + kb;
+        for (idx i = 0; i < kb; ++i) y[i] = -w.g[S[i]];
+        if (kb > 0 && !solve_gathered(w.M, S.data(), blk, y, zS, kb)) break;
+        for (idx i = 0; i < m; ++i) {
+            zz[i] = 0.0;
+            in_s[i] = 0;
+        }
+        double top = 0.0;
+        for (idx i = 0; i < kb; ++i) top = pmax(top, std::fabs(zS[i]));
+        next.clear();
+        for (idx i = 0; i < kb; ++i) {
+            in_s[S[i]] = 1;
+            zz[S[i]] = pmax(zS[i], 0.0);
+            if (zS[i] < -tol * top) in_s[S[i]] = 2;  // leaves
+        }
+        idx moved = 0;
+        for (idx i = 0; i < m; ++i) {
+            if (in_s[i] == 2) {
+                ++moved;
+                continue;
+            }
+            if (in_s[i] == 1) {
+                next.push_back(i);
+                continue;
+            }
+            const double* Mi = w.M.row(i);
+            double acc = w.g[i], size = std::fabs(w.g[i]);
+            for (idx j = 0; j < kb; ++j) {
+                double t = Mi[S[j]] * zz[S[j]];
+                acc += t;
+                size += std::fabs(t);
+            }
+            if (acc < -tol * size) {  // enters
+                next.push_back(i);
+                ++moved;
+            }
+        }
+        if (moved == 0) {
+            ok = true;
+            break;
+        }
+        if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
+        last = moved;
+        changes += moved;
+        S.swap(next);
+    }
+    idx kb = static_cast<idx>(S.size());
+    if (ok) {
+        double* v = w.v;
+        for (idx t = p; t < n; ++t) v[t] = -w.c[t];
+        for (idx j = 0; j < kb; ++j) {
+            double zi = zz[S[j]];
+            if (zi != 0.0) {
+                const double* Ci = R.C.row(S[j]);
+                for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
+            }
+        }
+        point(w.L, R, w, w.c, v, zz, o.x, w.yy);
+        caller_form(o, n, ds.p0(), ds.m0(), w.yy, zz, R, true);
+        if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+            // the LCP is solved and its point fails the check: what the cold LCP would give
+            // (x is unique, P definite), so the caller's fallback, not another LCP run
+            res.code = CHECK_FAILED;
+            res.pivots = changes;
+            return true;
+        }
+    }
+    res.pivots = changes;
+    if (!ok) {
+        for (idx i = 0; i < m; ++i) zz[i] = 0.0;
+        return false;
+    }
+    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, S.data(), kb, basic, w.bflags, res.k, res.pairs);
+    res.code = OK;
+    return true;
+}
+
 }  // namespace
 
 // ----------------------------------------------------------------------------- public pieces
@@ -629,13 +929,7 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     finite &= all_finite(dt.A.p, p0 * n);
     finite &= all_finite(dt.b, p0);
     if (!finite || asym > SYMMETRY_TOL * top) return false;
-    for (idx j = 0; j < n; ++j) {
-        double a = dt.lb[j], c = dt.ub[j];
-        if (!(a < INF && c > -INF && a <= c)) return false;
-        lo[j] = a > -INFINITY_BOUND ? a : -INF;
-        up[j] = c < INFINITY_BOUND ? c : INF;
-    }
-    return true;
+    return screen_bounds(dt, lo, up);
 }
 
 LEMKE_CLONES
@@ -834,7 +1128,8 @@ static bool screened(const Data& dt, std::vector<double>& scr, Data& ds) {
 }
 
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
-             double tol, double* out, idx* basic) {
+             double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs,
+             const double* x0) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     idx k0 = 2 * n + p0 + m0 + 4;
@@ -844,8 +1139,20 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     QPWork& w = work();
     // the sizes first (screen's bounds decide them): the workspace's layout, then screen
     thread_local std::vector<double> scr;
+    thread_local std::vector<std::uint8_t> pat;
     Data ds;
-    if (!screened(dt, scr, ds)) {
+    bool hit = same_matrices(dt, w);
+    if (hit) {  // P passed screen before: its Ps is kept, the vectors are checked here
+        scr.resize(static_cast<std::size_t>(2 * n + 1));
+        if (!screen_vectors(dt, scr.data(), scr.data() + n)) {
+            res.code = BAD_INPUT;
+            return res;
+        }
+        ds = dt;
+        ds.P = Mat<const double>(w.keyPs.data(), n, n);
+        ds.lb = scr.data();
+        ds.ub = scr.data() + n;
+    } else if (!screened(dt, scr, ds)) {
         res.code = BAD_INPUT;
         return res;
     }
@@ -853,40 +1160,63 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     const double* up = ds.ub;
     idx p, m;
     row_counts(dt, lo, up, p, m);
-    w.layout(n, p, m, true);
     Outs o = out_views(out, n, p0, m0);
-    if (!cholesky(ds.P, w.L)) {
-        res.code = NOT_DEFINITE;
-        return res;
-    }
     Rows R;
-    int code = factors(ds, lo, up, w, R);
-    if (code != OK) {
-        res.code = code;
+    if (hit && same_structure(dt, lo, up, w, p, m, pat)) {
+        // the matrices of the last solve on this thread: its factors and M, new right-hand sides
+        R = right_hand_sides(ds, lo, up, w);
+    } else {
+        if (hit) {  // the same matrices, another structure: the full screen's Ps (the same bits)
+            thread_local std::vector<double> ps;
+            ps.assign(w.keyPs.begin(), w.keyPs.end());
+            ds.P = Mat<const double>(ps.data(), n, n);
+        }
+        w.layout(n, p, m, true);
+        if (!cholesky(ds.P, w.L)) {
+            res.code = NOT_DEFINITE;
+            return res;
+        }
+        int code = factors(ds, lo, up, w, R);
+        if (code != OK) {
+            res.code = code;
+            return res;
+        }
+        idx r = n - p;
+        if ((res.code = deadline_passed()) >= 0) return res;  // (after the factorizations)
+        res.code = OK;
+        for (idx i = 0; i < m; ++i) {  // (a stop here leaves the cache empty: layout dropped it)
+            if ((i & 15) == 15 && (res.code = deadline_passed()) >= 0) return res;
+            const double* F2i = R.C.row(i) + p;
+            for (idx j = 0; j <= i; ++j) {
+                w.M(i, j) = dot(F2i, R.C.row(j) + p, r);
+                w.M(j, i) = w.M(i, j);
+            }
+        }
+        remember(dt, ds, lo, up, w, R.m_g);
+    }
+    thread_local std::vector<idx> beta;
+    beta.clear();
+    if (warm != nullptr && !warm_rows(lo, up, n, R, warm, k_warm, warm_pairs, beta, res.pairs)) {
+        res.code = BAD_WARM;
         return res;
     }
-    idx r = n - p;
-    if ((res.code = deadline_passed()) >= 0) return res;  // (after the factorizations)
-    res.code = OK;
+    if (x0 != nullptr) guess_rows(ds, lo, up, R, x0, beta);
     for (idx i = 0; i < m; ++i) {
         w.zz[i] = 0.0;
         w.ones[i] = 1.0;
     }
-    for (idx i = 0; i < m; ++i) {
-        if ((i & 15) == 15 && (res.code = deadline_passed()) >= 0) return res;
-        const double* F2i = R.C.row(i) + p;
-        for (idx j = 0; j <= i; ++j) {
-            w.M(i, j) = dot(F2i, R.C.row(j) + p, r);
-            w.M(j, i) = w.M(i, j);
-        }
-    }
     idx pivots = 0, k_basic = 0;
     idx* lcp_basic = basic;
+    if ((warm != nullptr || x0 != nullptr) && m > 0 &&
+        warm_point(ds, lo, up, w, R, beta, tol, o, basic, res)) return res;
     if (m > 0) {
         idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
-        RunResult rr = checked_once(method == TABLEAU ? TABLEAU : UNREVISED, w.M, w.g, w.ones, cap,
-                                    pivot_tol, tie_tol, tol, w.buf, lcp_basic);
-        pivots = rr.pivots;
+        Method mt = method == TABLEAU ? TABLEAU : UNREVISED;
+        // cold (also after a warm start that warm_point could not finish: measured on the MPC
+        // benchmark, Lemke restarted from the old basis cost more than the cold run)
+        RunResult rr = checked_once(mt, w.M, w.g, w.ones, cap, pivot_tol, tie_tol, tol, w.buf,
+                                    lcp_basic);
+        pivots = rr.pivots + res.pivots;
         k_basic = rr.k;
         if (!(rr.code == SOLVED || rr.code == TRIVIAL) || !rr.ok) {
             res.code = is_stop(rr.code) ? rr.code : NOT_SOLVED;  // a stop ends the QP too

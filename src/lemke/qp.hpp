@@ -21,6 +21,7 @@ constexpr int CHECK_FAILED = 4;
 constexpr int BAD_INPUT = 5;
 constexpr int NOT_APPLICABLE = 6;
 // 7 and 8: the LCP stopped by its budget (TIME_LIMIT, INTERRUPTED: pivoting.hpp's codes)
+constexpr int BAD_WARM = 9;  // a warm start with another number of pairs (Result.pairs: this QP's)
 
 constexpr double INFINITY_BOUND = 1e20;  // qp.INFINITY
 constexpr double SYMMETRY_TOL = 1e-10;
@@ -32,6 +33,8 @@ constexpr double PROXIMAL = 1e-6;
 constexpr double FLAT = 1e-3;
 constexpr idx REFINE = 2;
 constexpr idx REFINE_PROXIMAL = 3;
+constexpr idx ACTIVE_SET_STEPS = 3;  // a warm start's active-set updates before Lemke (warm_point)
+constexpr double ACTIVE_TOL = 1e-9;  // initvals: within this (relative) of tight is active
 
 // The caller's QP, qpsolvers' form: P (n x n), q, G (m0 x n), h, A (p0 x n), b, lb, ub.
 struct Data {
@@ -71,8 +74,19 @@ bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
 
 // qp.solve on data of matching shapes: writes out[:2n + p0 + m0 + 4] (x, y, z, zb,
 // stats) and the basis (int64) after it (room for m0 + 2n); method 0 tableau, 1 unrevised.
+// The factors of P, A, G (and M) are kept per thread and reused, not recomputed, when the
+// next call's P, A, G have the same bits and the same structure (h finite, kinds of
+// bounds): the same operations on the same inputs, so the same bits either way.
+// warm (not nullptr): a warm start, the KKT-MLCP's basic pairs warm[:k_warm] of warm_pairs
+// (as mlcp_basis numbers them): the multiplier LCP is solved (warm_point) from the
+// active rows they name (their point checked first, 0 pivots when it solves the LCP; then
+// up to ACTIVE_SET_STEPS active-set updates; else checked_once, cold); BAD_WARM when
+// warm_pairs is not this QP's count (Result.pairs).
+// x0 (not nullptr, n entries, finite: the caller checks): qpsolvers' initvals, a primal
+// guess whose active rows (guess_rows, ACTIVE_TOL) are the warm start instead.
 Result solve(const Data& d, int method, idx max_pivots, double pivot_tol, double tie_tol,
-             double tol, double* out, idx* basic);
+             double tol, double* out, idx* basic, const idx* warm = nullptr, idx k_warm = 0,
+             idx warm_pairs = 0, const double* x0 = nullptr);
 
 // qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
