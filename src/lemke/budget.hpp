@@ -88,6 +88,9 @@ public:
         work_ += work;
         return work_ < POLL_WORK ? -1 : look();
     }
+    // A look now, whatever the work since the last one: before a step that takes long at
+    // once (a refactorization).
+    int now() { return look(); }
 };
 
 }  // namespace lemke

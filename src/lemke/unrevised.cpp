@@ -395,6 +395,10 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
             refresh = u.drift() > RESIDUAL_TOL;
         }
         if (refresh) {
+            if (int stop = poll.now(); stop >= 0) {  // (a refactorization is O(k^3))
+                status = static_cast<Status>(stop);
+                break;
+            }
             since_refactor = 0;
             since_check = 0;
             if (u.k > 0 && !u.invert()) {
