@@ -192,7 +192,8 @@ def test_solve_lcp_fast_path_and_its_edges():
     read-only or strided M goes the validated way and gets the same bits."""
     M, q = problems.contact_like(5, np.random.default_rng(8))
     ref = lemke.solve_lcp(M, q)
-    assert _lcp._ENTRY.get("tableau") is not None
+    lemke.solve_lcp(M, q, method="unrevised")
+    assert _lcp._ENTRY.get("unrevised") is not None
     raw = np.zeros(M.size * 8 + 1, dtype=np.uint8)
     unaligned = raw[1:].view(np.float64).reshape(M.shape)
     unaligned[...] = M
@@ -238,3 +239,52 @@ def test_arrays_made_by_a_numba_kernel_take_the_fast_path_with_the_same_answer()
     assert rk.z.tobytes() == r.z.tobytes() and rk.pivots == r.pivots
     w = M @ rk.z + q
     assert rk.z.min() >= 0 and w.min() >= -1e-12 and abs(rk.z @ w) <= 1e-12
+
+
+def test_the_native_front_gives_the_python_fronts_results(monkeypatch):
+    """solve_lcp's commonest call runs whole in src/python_front.cpp (it reads the ndarrays'
+    fields itself, after checking NumPy's layout on probes): the same results, bit for bit,
+    as the Python front's fast path, on the goldens' LCPs and on problems that need the
+    driver's later stages (rays, cycles, failed checks), lazily built fields included."""
+    from lemke import _core
+    import golden
+
+    assert _core.lcp_front_on()
+    cases = [(np.ascontiguousarray(M, float), np.ascontiguousarray(q, float))
+             for _, M, q in golden.lcp_cases()]
+    rng = np.random.default_rng(4)
+    for n in (1, 3, 8, 20):
+        cases.append((rng.standard_normal((n, n)), rng.standard_normal(n)))  # rays, failures
+    cases.append((problems.degenerate().M, problems.degenerate().q))
+    native = [lemke.solve_lcp(M, q) for M, q in cases]
+    monkeypatch.setattr(_lcp, "_FRONT", lambda M, q: None)
+    python = [lemke.solve_lcp(M, q) for M, q in cases]
+    fields = ("z", "w", "z0", "ray", "covering", "row_scale", "col_scale")
+    for (M, q), a, b in zip(cases, native, python):
+        assert (a.status, a.pivots, a.recoveries, a.residual) == (b.status, b.pivots, b.recoveries, b.residual)
+        assert a.warm_start == b.warm_start
+        for f in fields:
+            x, y = getattr(a, f), getattr(b, f)
+            assert (x is None) == (y is None) and (x is None or np.asarray(x).tobytes() == np.asarray(y).tobytes()), f
+        if a.success:
+            assert_lcp_solution(M, q, a.z)
+            assert not a.z.flags.writeable
+
+
+def test_the_native_front_declines_what_is_not_plain():
+    """Lists, float32, the other byte order, Fortran order, read-only and mismatched shapes
+    are the Python front's
+    (which validates them and says what is wrong)."""
+    from lemke import _core
+
+    M = np.array([[2.0, 1.0], [1.0, 2.0]])
+    q = np.array([-5.0, -6.0])
+    ro = q.copy()
+    ro.setflags(write=False)
+    for a, b in ((M.tolist(), q), (M.astype(np.float32), q), (np.asfortranarray(M), q),
+                 (M.astype(M.dtype.newbyteorder()), q), (M, q.astype(q.dtype.newbyteorder())),
+                 (M, ro), (M, q[:1]), (M[:1], q), (M, q.reshape(2, 1))):
+        assert _core.lcp_front(a, b) is None
+    with pytest.raises(ValueError, match="q"):
+        lemke.solve_lcp(M, q[:1])
+    assert lemke.solve_lcp(np.asfortranarray(M), ro).z.tolist() == lemke.solve_lcp(M, q).z.tolist()

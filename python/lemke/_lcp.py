@@ -16,6 +16,9 @@ METHODS = tuple(_layout.METHODS)
 #: test can stand a lying kernel in.  ``_SOLVE_ONE``: a whole solve, warm or cold, with its
 #: recoveries, either method.
 _SOLVE_ONE = _core.solve_one
+#: The commonest call whole (src/python_front.cpp): plain float64 M and q, the tableau,
+#: defaults; a result, first_run's answer and buffer as a tuple, or None (not plain).
+_FRONT = _core.lcp_front
 #: The first stages of a solve by the tableau, cold or warm: the C++ core's port of
 #: ``_layout.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
 _FIRST_RUN = _core.first_run
@@ -88,6 +91,16 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
+    if d is None and options is None and warm_start is None and method == "tableau":
+        # The commonest call, whole in one native call (src/python_front.cpp): plain
+        # float64 arrays give the result (or what first_run left to do), others None.
+        r = _FRONT(M, q)
+        if r is not None:
+            if type(r) is not tuple:
+                return r
+            n = len(q)
+            return _go_on(M, q, _NO_D, method, _DEFAULT, None, _NO_BASIS, 0, 100 * (n + 1),
+                          _PIVOT_TOL, _TIE_TOL, _TOL, r[7], _LEN_N * n + _LEN_1, n, *r[:7])
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start
@@ -153,6 +166,14 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         if stage == 0:
             f["warm_start"] = ws
         return res
+    return _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf, at, n,
+                  code, pivots, k, ok, residual, recoveries, stage)
+
+
+def _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf, at, n,
+           code, pivots, k, ok, residual, recoveries, stage):
+    """solve_lcp after a first call of the core that did not settle the solve: the rest of
+    the driver (stage < 0), then the result."""
     if stage < 0:
         # A solve by the tableau that the lean kernel (_layout.first_run) could not finish: a
         # cold run with a cycle, a ray to check or recovery runs to make (stage -1: the full
@@ -242,3 +263,18 @@ def _result(z, w, residual, status, pivots, ray, z0, cov, warm_start, row_scale,
         a.setflags(write=False)
     return LCPResult._make(z, w, status, int(pivots), float(residual), ray, float(z0), cov,
                            warm_start, row_scale, col_scale, int(recoveries))
+
+
+def _front_init():
+    """Give the native front what it builds results with, and let it check NumPy's array
+    layout on probes (it stays off, returning None, where that layout differs)."""
+    probe = np.zeros((2, 3))
+    ro = np.zeros(3)
+    ro.setflags(write=False)
+    _core.lcp_front_init(np.ndarray, LCPResult, Status.SOLVED, Status.RAY_TERMINATION, np.empty,
+                         _PIVOT_TOL, _TIE_TOL, _TOL, probe, probe.__array_interface__["data"][0],
+                         ro, np.zeros(3, dtype=np.int64),
+                         np.zeros(3, dtype=np.dtype(np.float64).newbyteorder()))
+
+
+_front_init()

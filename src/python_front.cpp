@@ -1,0 +1,191 @@
+// lemke._core.lcp_front: solve_lcp's common call whole in one native call (issue 31's thin
+// front): plain float64 arrays, the tableau, no covering vector, no warm start, default
+// options. It reads the two ndarrays' fields directly (no DLPack capsule, no buffer view:
+// those cost more than a small solve), allocates the output buffer with numpy.empty, runs
+// lemke::first_run without the GIL and builds the LCPResult as LCPResult._lazy does.
+//
+// Returns the LCPResult when first_run settles the solve (solved and checked, q >= 0, or
+// a checked ray); the tuple (code, pivots, k, ok, residual, recoveries, stage, buf) when
+// the Python front must go on from first_run's answer (the same as _core.first_run's and
+// its buffer); None when the arguments are not of that plain kind (the Python front then
+// does everything). The same solve, the same bits as the Python fast path.
+//
+// The ndarray fields are those of NumPy's PyArrayObject (data, nd, dimensions, strides,
+// base, descr, flags; the same in NumPy 1.x and 2.x) and of its descr (type_num). Before
+// the first use, lcp_front_init checks that layout on probe arrays against what Python
+// reports; if anything disagrees the fast front stays off (every call returns None).
+#include <nanobind/nanobind.h>
+
+#include <cstdint>
+#include <cstring>
+
+#include "lemke/lcp.hpp"
+#include "lemke/pivoting.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace {
+
+// NumPy's array object, as far as read here.
+struct ArrayFields {
+    PyObject_HEAD
+    char* data;
+    int nd;
+    Py_ssize_t* dimensions;
+    Py_ssize_t* strides;
+    PyObject* base;
+    PyObject* descr;
+    int flags;
+};
+
+// NumPy's dtype object up to type_num.
+struct DescrFields {
+    PyObject_HEAD
+    PyTypeObject* typeobj;
+    char kind, type, byteorder, former_flags;
+    int type_num;
+};
+
+constexpr int NPY_DOUBLE = 12;
+constexpr int C_CONTIGUOUS = 0x0001;
+constexpr int ALIGNED = 0x0100;
+constexpr int WRITEABLE = 0x0400;
+constexpr int CARRAY = C_CONTIGUOUS | ALIGNED | WRITEABLE;  // ndarray.flags.carray
+
+struct Front {
+    bool on = false;
+    PyTypeObject* ndarray = nullptr;
+    PyObject* result_cls = nullptr;  // LCPResult
+    PyObject* solved = nullptr;      // Status.SOLVED
+    PyObject* ray = nullptr;         // Status.RAY_TERMINATION
+    PyObject* empty = nullptr;       // numpy.empty
+    PyObject *k_status, *k_pivots, *k_residual, *k_recoveries, *k_src;
+    double pivot_tol = 0, tie_tol = 0, tol = 0;
+} front;
+
+const ArrayFields* plain(PyObject* o, int nd) {
+    if (Py_TYPE(o) != front.ndarray) return nullptr;
+    auto* a = reinterpret_cast<const ArrayFields*>(o);
+    if (a->nd != nd || (a->flags & CARRAY) != CARRAY) return nullptr;
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    // float64 in the machine's byte order ('=': NumPy writes '<' or '>' only for the other)
+    if (t->type_num != NPY_DOUBLE || t->byteorder != '=') return nullptr;
+    return a;
+}
+
+// The layout check on probes made by Python: (a 2 x 3 float64 C array, its data address,
+// a read-only 1-D float64 array, an int64 array of 3, a float64 array of the other byte
+// order).
+bool layout_agrees(nb::handle probe2, std::uintptr_t address, nb::handle probe_ro,
+                   nb::handle probe_int, nb::handle probe_swapped) {
+    if (Py_TYPE(probe2.ptr()) != front.ndarray) return false;
+    auto* a = reinterpret_cast<const ArrayFields*>(probe2.ptr());
+    if (a->nd != 2 || a->dimensions[0] != 2 || a->dimensions[1] != 3 || a->strides[0] != 24 ||
+        a->strides[1] != 8 || reinterpret_cast<std::uintptr_t>(a->data) != address ||
+        (a->flags & CARRAY) != CARRAY)
+        return false;
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    if (t->type_num != NPY_DOUBLE || t->byteorder != '=') return false;
+    auto* r = reinterpret_cast<const ArrayFields*>(probe_ro.ptr());
+    if (r->nd != 1 || (r->flags & WRITEABLE) != 0 || (r->flags & C_CONTIGUOUS) == 0) return false;
+    auto* i = reinterpret_cast<const ArrayFields*>(probe_int.ptr());
+    if (i->nd != 1 || reinterpret_cast<const DescrFields*>(i->descr)->type_num == NPY_DOUBLE)
+        return false;
+    // the other byte order's float64 must be told apart
+    return plain(probe_swapped.ptr(), 1) == nullptr;
+}
+
+void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::handle ray,
+          nb::handle empty, double pivot_tol, double tie_tol, double tol, nb::handle probe2,
+          std::uintptr_t address, nb::handle probe_ro, nb::handle probe_int,
+          nb::handle probe_swapped) {
+    front.on = false;
+    front.ndarray = reinterpret_cast<PyTypeObject*>(ndarray.ptr());
+    if (!layout_agrees(probe2, address, probe_ro, probe_int, probe_swapped)) return;
+    for (nb::handle h : {ndarray, result_cls, solved, ray, empty}) h.inc_ref();  // kept for good
+    front.result_cls = result_cls.ptr();
+    front.solved = solved.ptr();
+    front.ray = ray.ptr();
+    front.empty = empty.ptr();
+    front.k_status = PyUnicode_InternFromString("status");
+    front.k_pivots = PyUnicode_InternFromString("pivots");
+    front.k_residual = PyUnicode_InternFromString("residual");
+    front.k_recoveries = PyUnicode_InternFromString("recoveries");
+    front.k_src = PyUnicode_InternFromString("_src");
+    front.pivot_tol = pivot_tol;
+    front.tie_tol = tie_tol;
+    front.tol = tol;
+    front.on = front.k_status && front.k_pivots && front.k_residual && front.k_recoveries &&
+               front.k_src;
+}
+
+// d[key] = value, stealing value; false on an error (set).
+bool put(PyObject* d, PyObject* key, PyObject* value) {
+    if (value == nullptr) return false;
+    int e = PyDict_SetItem(d, key, value);
+    Py_DECREF(value);
+    return e == 0;
+}
+
+nb::object lcp_front(nb::handle M_h, nb::handle q_h) {
+    using lemke::idx;
+    if (!front.on) return nb::none();
+    const ArrayFields* M = plain(M_h.ptr(), 2);
+    const ArrayFields* q = plain(q_h.ptr(), 1);
+    if (M == nullptr || q == nullptr) return nb::none();
+    idx n = q->dimensions[0];
+    if (M->dimensions[0] != n || M->dimensions[1] != n) return nb::none();
+    lemke::BufferLayout L{n};
+    idx at = L.length();
+    nb::object size = nb::steal(PyLong_FromSsize_t(at + n));
+    if (!size.is_valid()) throw nb::python_error();
+    PyObject* args[] = {size.ptr()};
+    nb::object buf = nb::steal(PyObject_Vectorcall(front.empty, args, 1, nullptr));
+    if (!buf.is_valid()) throw nb::python_error();
+    auto* b = reinterpret_cast<const ArrayFields*>(buf.ptr());
+    double* out = reinterpret_cast<double*>(b->data);
+    idx* basic = reinterpret_cast<idx*>(out + at);
+    const double* Md = reinterpret_cast<const double*>(M->data);
+    const double* qd = reinterpret_cast<const double*>(q->data);
+    lemke::RunResult r;
+    {
+        nb::gil_scoped_release release;
+        r = lemke::first_run(lemke::Mat<const double>(Md, n, n), qd, nullptr, nullptr, 0,
+                             100 * (n + 1), front.pivot_tol, front.tie_tol, front.tol, out, basic);
+    }
+    bool settled = r.ok && (r.code == lemke::SOLVED || r.code == lemke::TRIVIAL ||
+                            r.code == lemke::RAY_TERMINATION);
+    if (!settled)
+        return nb::make_tuple(r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage, buf);
+    // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0) and the source
+    // of the fields made when first read, (buf, 0, None, at, n, k).
+    auto* cls = reinterpret_cast<PyTypeObject*>(front.result_cls);
+    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nb::python_error();
+    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
+    if (!dict.is_valid()) throw nb::python_error();
+    PyObject* d = dict.ptr();
+    PyObject* status = r.code == lemke::RAY_TERMINATION ? front.ray : front.solved;
+    Py_INCREF(status);
+    bool ok = put(d, front.k_status, status) &&
+              put(d, front.k_pivots, PyLong_FromLongLong(r.pivots)) &&
+              put(d, front.k_residual, PyFloat_FromDouble(r.residual)) &&
+              (r.recoveries == 0 || put(d, front.k_recoveries, PyLong_FromLongLong(r.recoveries)));
+    if (ok) {
+        nb::object src = nb::make_tuple(buf, 0, nb::none(), at, n, r.k);
+        ok = PyDict_SetItem(d, front.k_src, src.ptr()) == 0;
+    }
+    if (!ok) throw nb::python_error();
+    return res;
+}
+
+}  // namespace
+
+void bind_front(nb::module_& m) {
+    m.def("lcp_front_init", &init, "ndarray"_a, "result_cls"_a, "solved"_a, "ray"_a, "empty"_a,
+          "pivot_tol"_a, "tie_tol"_a, "tol"_a, "probe2"_a, "address"_a, "probe_ro"_a,
+          "probe_int"_a, "probe_swapped"_a);
+    m.def("lcp_front", &lcp_front, "M"_a, "q"_a);
+    m.def("lcp_front_on", [] { return front.on; });
+}
