@@ -182,6 +182,9 @@ def main(argv=None):
     lines.append(f"- the kernel alone (`_core.qp_solve_warm` from the previous step's basis against "
                  f"`_core.qp_solve`, best of 15 each, on the {kr[2]} steps both solve and check): "
                  f"warm / cold median {kr[0]:.2f}, worst step {kr[1]:.2f}")
+    lines.append(f"- steps that leave the fused kernel for the KKT-MLCP path (its code not OK: "
+                 f"a failed KKT check, ...): cold {kr[3]} of {len(steps)}, warm {kr[4]} of "
+                 f"{len(steps) - 1}")
     zero = (piv["lemke warm"] == 0).mean()
     lines.append(f"- lemke warm steps with 0 pivots (the old active set solved the new step): {100 * zero:.0f} %")
     text = "\n".join(lines) + "\n"
@@ -192,15 +195,18 @@ def main(argv=None):
 
 
 def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
-    """(median, worst, count) of the per-step ratio of the fused kernel's time from the
-    previous step's basis to its cold time (the best of ``repeats`` calls each, interleaved),
-    over the steps where both end solved and checked (code 0): no Python front."""
+    """(median, worst, count, cold fallbacks, warm fallbacks): the per-step ratio of the
+    fused kernel's time from the previous step's basis to its cold time (the best of
+    ``repeats`` calls each, interleaved), over the steps where both end solved and checked
+    (code 0), no Python front; and the number of steps where the cold kernel, and the warm
+    one, does not (the front then takes the KKT-MLCP path)."""
     from lemke import _core
     n, p, m = P.shape[0], A.shape[0], G.shape[0]
     out = np.empty(4 * n + p + 2 * m + 4)
-    ws, ratios = None, []
+    ws, ratios, cold_out, warm_out = None, [], 0, 0
     for q, b in steps:
         r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, warm_start=ws)
+        cold_out += _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)[0] != 0
         if ws is not None:
             wv = np.array(ws.z_basic, dtype=np.int64)
             tw, tc = [], []
@@ -211,10 +217,11 @@ def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
                 t0 = time.perf_counter()
                 cc = _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)
                 tc.append(time.perf_counter() - t0)
+            warm_out += cw[0] != 0
             if cw[0] == 0 and cc[0] == 0:
                 ratios.append(min(tw) / min(tc))
         ws = r.warm_start
-    return float(np.median(ratios)), float(np.max(ratios)), len(ratios)
+    return float(np.median(ratios)), float(np.max(ratios)), len(ratios), cold_out, warm_out
 
 
 def _commit():

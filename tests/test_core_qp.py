@@ -5,7 +5,8 @@ output buffers of ``solve`` (both methods), ``solve_gram`` (definite and semidef
 ``screen``, ``cholesky`` and ``kkt_check``, and of the pieces whose bits they depend on
 (``_dot4``, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
 unrevised method in factored form), on the Maros-Meszaros files, the QP tests' generators
-(tests/test_qp.py, test_qp_gram.py, test_qp_conventions.py) and random dense convex QPs:
+(tests/test_qp.py, test_qp_gram.py, test_qp_conventions.py), steps of the MPC benchmark
+(benchmarks/mpc_problem.py) and random dense convex QPs:
 equalities, inequalities, finite and infinite bounds, fixed variables, P definite and
 semidefinite, and many inequalities (m >= 4n) for the factored path."""
 import sys
@@ -153,6 +154,10 @@ def families():
         rng = np.random.default_rng(rank)
         for t in range(3):
             yield f"gram_psd/{rank}/{t}", random_convex_qp(8, rng, m=160, rank=rank)
+    import mpc_problem
+    (P, G, h, A, lb, ub), steps = mpc_problem.sequence(steps=85, seed=0)
+    for t in (9, 45, 84):  # stationarity rows that pass by kkt_check's rounding floor only
+        yield f"mpc/{t}", (P, steps[t][0], G, h, A, steps[t][1], lb, ub)
     for n in (1, 2, 5, 10, 20, 40):
         for kind in range(8):
             rng = np.random.default_rng([n, kind])

@@ -27,6 +27,18 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     enough to be certified at all (in the row-equilibrated coordinates,
     ``eps max_i R_i |M_i.| |z| <= 1000 t max(max_i R_i |q_i|, 1)``: a z such as the
     |z| ~ 1e16 of a pivot on rounding noise answers a different problem).
+    A QP's answer is judged on the caller's data by its own row-wise KKT check (the fused
+    path at ``min(tol, 1e-12)``): with ``t = tol + 4 eps`` and ``f = 4 (n + 2) eps``,
+    stationarity row j may be off by ``t s_j + f (|P_.j|_1 max|x| + |A_.j|_1 max|y| +
+    |G_.j|_1 max|z| + max|z_box|)`` (s_j the sum of the sizes of the row's terms), an
+    equality or inequality row i by ``t s_i + f max|x| |row_i|_1``, a bound by
+    ``t (|bound| + |x_j|) + f max|x|``; z >= 0 and the signs of z_box exactly; a
+    multiplier that is not zero needs its row active to within that allowance, or must be
+    small enough to count as zero (as must z_i where h_i = +inf).  The ``f`` terms are the
+    rounding floor: a computed vector is exact only to about f times its largest entry
+    (normwise, not entry by entry), so a row whose terms are all at the rounding level
+    (an exact 0 that comes out as 1e-15) is judged against what that rounding can move it
+    by, not against 1e-12 of its own tiny terms.
 ``time_limit`` (default None: none)
     Seconds of wall-clock time for the whole call (a batch: for all its problems).  Every
     engine looks at the clock every few tens of microseconds of work, so the limit is kept to

@@ -183,6 +183,25 @@ void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coe
     for (idx i = 0; i < M.rows; ++i) axpy2(s, err, size, n, coef[i], M.row(i));
 }
 
+// acc[j] += a |M_ij| for every row i of M, in row order (qp.add_abs_rows): a times the
+// absolute column sums of M, the floor's weights in kkt_check. Nothing when a is 0.
+LEMKE_CLONES
+void add_abs_rows(double* acc, idx n, double a, Mat<const double> M) {
+    if (!(a > 0.0)) return;
+    for (idx i = 0; i < M.rows; ++i) {
+        const double* Mi = M.row(i);
+        for (idx j = 0; j < n; ++j) acc[j] += a * std::fabs(Mi[j]);
+    }
+}
+
+// Whether multiplier a of row Gi counts as zero: removing it moves no stationarity row j by
+// more than allow[j] (qp.counts_as_zero).
+inline bool counts_as_zero(double a, const double* Gi, const double* allow, idx n) {
+    for (idx j = 0; j < n; ++j)
+        if (!(std::fabs(a * Gi[j]) <= allow[j])) return false;
+    return true;
+}
+
 // ----------------------------------------------------------------------------- rows
 
 struct Rows {
@@ -974,19 +993,30 @@ bool kkt_check(const Data& dt, const double* x, const double* y, const double* z
     double xPq_hi = gap_hi, xPq_lo = gap_lo;
     axpy2_matrix(s, err, size, n, y, dt.A);
     axpy2_matrix(s, err, size, n, z, dt.G);
+    // The rounding floor (qp.kkt_check states the rule): each of x, y, z, zb is exact only to
+    // f = 4 (n + 2) eps times its own largest entry; allow[j] first holds what those errors
+    // move stationarity row j by, divided by f.
+    double f = 4.0 * static_cast<double>(n + 2) * EPS;
+    double x_top = 0.0, y_top = 0.0, z_top = 0.0, zb_top = 0.0;
+    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
+    for (idx i = 0; i < dt.p0(); ++i) y_top = pmax(y_top, std::fabs(y[i]));
+    for (idx i = 0; i < dt.m0(); ++i) z_top = pmax(z_top, std::fabs(z[i]));
+    for (idx j = 0; j < n; ++j) zb_top = pmax(zb_top, std::fabs(zb[j]));
+    for (idx j = 0; j < n; ++j) allow[j] = zb_top;
+    add_abs_rows(allow, n, x_top, dt.P);
+    add_abs_rows(allow, n, y_top, dt.A);
+    add_abs_rows(allow, n, z_top, dt.G);
     bool ok = true;
     double dual = 0.0;
     for (idx j = 0; j < n; ++j) {
         double r, e;
         two_sum(s[j], zb[j], r, e);
         r += e + err[j];
-        allow[j] = t * (size[j] + std::fabs(zb[j]));
+        allow[j] = t * (size[j] + std::fabs(zb[j])) + f * allow[j];
         dual = pmax(dual, std::fabs(r));
         if (!(std::fabs(r) <= allow[j])) ok = false;
     }
-    double x_top = 0.0;
-    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
-    double floor = 4.0 * static_cast<double>(n + 2) * EPS * x_top;
+    double floor = f * x_top;
     double primal = 0.0;
     for (idx i = 0; i < dt.p0(); ++i) {
         Dot2 d = dot2(dt.A.row(i), x, n, -dt.b[i]);
@@ -995,7 +1025,10 @@ bool kkt_check(const Data& dt, const double* x, const double* y, const double* z
         if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
     }
     for (idx i = 0; i < dt.m0(); ++i) {
-        if (!(dt.h[i] < INF)) continue;
+        if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
+            if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
+            continue;
+        }
         Dot2 d = dot2(dt.G.row(i), x, n, -dt.h[i]);
         double r = d.sum;
         double sz = t * d.size + floor * d.norm;
@@ -1004,14 +1037,8 @@ bool kkt_check(const Data& dt, const double* x, const double* y, const double* z
         double zi = z[i];
         if (!(r <= sz && zi >= 0.0)) {
             ok = false;
-        } else if (zi > 0.0 && -r > sz) {
-            const double* Gi = dt.G.row(i);
-            for (idx j = 0; j < n; ++j) {
-                if (std::fabs(zi * Gi[j]) > allow[j]) {
-                    ok = false;
-                    break;
-                }
-            }
+        } else if (zi > 0.0 && -r > sz && !counts_as_zero(zi, dt.G.row(i), allow, n)) {
+            ok = false;
         }
     }
     for (idx j = 0; j < n; ++j) {

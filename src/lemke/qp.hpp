@@ -67,8 +67,10 @@ bool screen(const Data& d, double* Ps, double* lo, double* up);
 // clearly positive.
 bool cholesky(Mat<const double> P, Mat<double> L);
 
-// qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check; stats (4) gets
-// (primal, dual, gap, obj).
+// qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check (each row against its
+// terms' sizes times tol + 4 eps, plus the rounding floor: each of x, y, z, zb exact only to
+// 4 (n + 2) eps times its largest entry; the oracle's docstring states the rule); stats (4)
+// gets (primal, dual, gap, obj).
 bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
                const double* zb, double tol, double* stats);
 

@@ -447,6 +447,28 @@ def dot2_row(M, i, y, c):
     return s + err, size, norm
 
 
+@inline_kernel
+def add_abs_rows(acc, a, M):
+    """``acc[j] += a |M_ij|`` for every row i of M, in row order: a times the absolute
+    column sums of M (the floor's weights in :func:`kkt_check`).  Nothing when a is 0."""
+    if not a > 0.0:
+        return
+    n = acc.shape[0]
+    for i in range(M.shape[0]):
+        for j in range(n):
+            acc[j] += a * abs(M[i, j])
+
+
+@inline_kernel
+def counts_as_zero(a, G, i, allow):
+    """Whether multiplier a of row i of G counts as zero: removing it moves no stationarity
+    row j by more than ``allow[j]``."""
+    for j in range(allow.shape[0]):
+        if not abs(a * G[i, j]) <= allow[j]:
+            return False
+    return True
+
+
 # ----------------------------------------------------------------------------- the check
 
 @kernel
@@ -455,15 +477,25 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     data with compensated sums, each row against its own size (as ``certify`` judges an
     LCP): with ``t = tol + 4 eps``,
 
-    - stationarity ``|P_j x + q_j + A_j'y + G_j'z + zb_j| <= t s_j`` (s_j the sum of the
-      sizes of the terms);
-    - equalities ``|A_i x - b_i| <= t s_i + f |A_i|_1``, inequalities ``G_i x - h_i <= t s_i
-      + f |G_i|_1``, bounds ``lb_j - x_j <= t (|lb_j| + |x_j|) + f`` and ``x_j - ub_j <= t
-      (...) + f``, with f the rounding floor ``4 (n + 2) eps max|x|`` of computing x;
+    - stationarity ``|P_j x + q_j + A_j'y + G_j'z + zb_j| <= t s_j + f (|P_.j|_1 max|x| +
+      |A_.j|_1 max|y| + |G_.j|_1 max|z| + max|zb|)`` (s_j the sum of the sizes of the terms);
+    - equalities ``|A_i x - b_i| <= t s_i + f max|x| |A_i|_1``, inequalities ``G_i x - h_i <=
+      t s_i + f max|x| |G_i|_1``, bounds ``lb_j - x_j <= t (|lb_j| + |x_j|) + f max|x|`` and
+      ``x_j - ub_j <= t (...) + f max|x|``;
     - signs: ``z >= 0``, ``zb_j < 0`` only at a finite lb, ``> 0`` only at a finite ub;
     - complementarity: a non-zero multiplier's row is active to within its allowance, or
       the multiplier is small enough to count as zero (removing it moves no stationarity
-      row by more than that row's allowance).
+      row by more than that row's allowance); the z_i of a row with h_i = +inf (no
+      constraint) must count as zero, of either sign.
+
+    f = ``4 (n + 2) eps`` is the rounding floor: a computed vector is accurate normwise, not
+    entry by entry, so each of x, y, z, zb is exact only to about f times its own largest
+    entry (an entry whose exact value is 0 comes out at that level), and each row is moved
+    by those errors times the absolute column sums (stationarity) or row sums (the primal
+    rows) of the data.  ``t s_j`` alone is the rounding of the row's own terms, which is
+    the whole error of an exact point rounded entry by entry; without the floor a row whose
+    terms are all at the rounding level (an exact 0 computed as 1e-15) gets an allowance
+    of 1e-27 and fails whatever the solver does.
 
     ``stats`` gets qpsolvers' primal residual, dual residual, duality gap and the objective,
     each summed in double-double (:func:`dot2`, :func:`axpy2`, :func:`acc2`): their values on
@@ -494,21 +526,37 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
     xPq_lo = gap_lo
     axpy2_matrix(s, err, size, y, A)
     axpy2_matrix(s, err, size, z, G)
+    # The rounding floor: each of x, y, z, zb is exact only to about f = 4 (n + 2) eps times
+    # its own largest entry; allow[j] first holds what those errors move stationarity row j
+    # by, divided by f (the primal rows: f max|x| sum_j |a_ij|).
+    f = 4.0 * (n + 2) * EPS
+    x_top = 0.0
+    y_top = 0.0
+    z_top = 0.0
+    zb_top = 0.0
+    for j in range(n):
+        x_top = max(x_top, abs(x[j]))
+    for i in range(A.shape[0]):
+        y_top = max(y_top, abs(y[i]))
+    for i in range(G.shape[0]):
+        z_top = max(z_top, abs(z[i]))
+    for j in range(n):
+        zb_top = max(zb_top, abs(zb[j]))
+    for j in range(n):
+        allow[j] = zb_top
+    add_abs_rows(allow, x_top, P)
+    add_abs_rows(allow, y_top, A)
+    add_abs_rows(allow, z_top, G)
     ok = True
     dual = 0.0
     for j in range(n):
         r, e = two_sum(s[j], zb[j])
         r += e + err[j]
-        allow[j] = t * (size[j] + abs(zb[j]))
+        allow[j] = t * (size[j] + abs(zb[j])) + f * allow[j]
         dual = max(dual, abs(r))
         if not abs(r) <= allow[j]:
             ok = False
-    # Every primal row also has the rounding floor of computing x: x is exact only to about
-    # f = 4 (n + 2) eps max|x|, which moves row i by f sum_j |a_ij|.
-    x_top = 0.0
-    for j in range(n):
-        x_top = max(x_top, abs(x[j]))
-    floor = 4.0 * (n + 2) * EPS * x_top
+    floor = f * x_top
     primal = 0.0
     for i in range(A.shape[0]):
         r, sz, norm = dot2_row(A, i, x, -b[i])
@@ -517,8 +565,10 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         if not abs(r) <= t * sz + floor * norm:
             ok = False
     for i in range(G.shape[0]):
-        if not h[i] < np.inf:
-            continue  # no constraint (its z_i is 0)
+        if not h[i] < np.inf:  # no constraint: its z_i must count as zero (either sign)
+            if z[i] != 0.0 and not counts_as_zero(z[i], G, i, allow):
+                ok = False
+            continue
         r, sz, norm = dot2_row(G, i, x, -h[i])
         sz = t * sz + floor * norm
         primal = max(primal, r)
@@ -526,11 +576,8 @@ def kkt_check(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol, stats):
         zi = z[i]
         if not (r <= sz and zi >= 0.0):
             ok = False
-        elif zi > 0.0 and -r > sz:  # inactive row with a non-zero multiplier
-            for j in range(n):
-                if abs(zi * G[i, j]) > allow[j]:
-                    ok = False
-                    break
+        elif zi > 0.0 and -r > sz and not counts_as_zero(zi, G, i, allow):
+            ok = False  # an inactive row with a multiplier that is not zero
     for j in range(n):
         zj = zb[j]
         lo = lb[j] > -np.inf
