@@ -60,7 +60,9 @@ bool arm_sigint_listener() {
         // Only where a handler function is in force (Python's): with the default action
         // (end the process) or SIGINT ignored, the caller's choice stands.
         if (!is_function(current)) return false;
-        g_previous = current;
+        // (never chain to itself: were the listener still in force, keep what it replaced)
+        bool mine_already = (current.sa_flags & SA_SIGINFO) && current.sa_sigaction == on_sigint;
+        if (!mine_already) g_previous = current;
         struct sigaction mine = current;
         mine.sa_sigaction = on_sigint;
         mine.sa_flags = (current.sa_flags | SA_SIGINFO) & ~SA_RESETHAND;
