@@ -10,7 +10,9 @@ For each n, a random monotone LCP (``M = A A' + 0.1 I``, ``q ~ N(0, I)``, seeded
 by ``lemke.solve_lcp`` three ways, interleaved in a random order each repeat, each answer
 checked (``w = M z + q`` recomputed here):
 
-- **core**: ``solve_lcp`` as shipped (the tableau's first run in the C++ core);
+- **core**: ``solve_lcp``'s Python fast path with the C++ core's first run (the tableau);
+- **shipped**: the plain call ``solve_lcp(M, q)`` as a user makes it (the native front,
+  ``src/python_front.cpp``, one native call);
 - **numba**: the same front with the numba kernel ``cold.first_run`` put back (the kernel
   the core ports, now in ``tests/oracle/``: the last numba code path, in the same process,
   on the same data);
@@ -65,12 +67,17 @@ def same_wrapper(run, a1, i1):
 
 def with_kernel(run, f):
     """f() with solve_lcp's tableau path calling ``run``."""
-    saved = _lcp._ENTRY.get("tableau"), _lcp._FIRST_RUN
-    _lcp._ENTRY["tableau"], _lcp._FIRST_RUN = run, run
+    saved = _lcp._ENTRY.get("tableau"), _lcp._FIRST_RUN, _lcp._FRONT
+    _lcp._ENTRY["tableau"], _lcp._FIRST_RUN, _lcp._FRONT = run, run, _no_front
     try:
         return f()
     finally:
-        _lcp._ENTRY["tableau"], _lcp._FIRST_RUN = saved
+        _lcp._ENTRY["tableau"], _lcp._FIRST_RUN, _lcp._FRONT = saved
+
+
+def _no_front(M, q):
+    """The native front declining: solve_lcp's Python fast path runs (with_kernel's kernel)."""
+    return None
 
 
 def checked(M, q, z):
@@ -145,6 +152,7 @@ def main(argv=None):
             "box": lambda: lemke.solve_blcp(M, q, zero, inf),
             "core": lambda: with_kernel(core, lambda: lemke.solve_lcp(M, q)),
             "numba": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M, q)),
+            "front": lambda: lemke.solve_lcp(M, q),
             "quantecon": lambda: lcp_lemke(M, q),
         }, args.budget)
         rows_cold.append((n, r.pivots, t))
@@ -161,7 +169,8 @@ def main(argv=None):
               f"numba {tw['numba']*1e6:.2f}", flush=True)
     M1 = np.array([[2.0]])
     fixed = time_calls({
-        "core, q >= 0 (plain call)": lambda: lemke.solve_lcp(M1, np.array([1.0])),
+        "core, q >= 0 (plain call: the native front)": lambda: lemke.solve_lcp(M1, np.array([1.0])),
+        "core, q < 0 (plain call: the native front)": lambda: lemke.solve_lcp(M1, np.array([-1.0])),
         "core, q >= 0": lambda: with_kernel(core, lambda: lemke.solve_lcp(M1, np.array([1.0]))),
         "numba, q >= 0": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M1, np.array([1.0]))),
         "core, q < 0": lambda: with_kernel(core, lambda: lemke.solve_lcp(M1, np.array([-1.0]))),
@@ -180,12 +189,16 @@ def main(argv=None):
     a("")
     a("## Cold solves (medians, microseconds)")
     a("")
-    a("| n | pivots | core | numba | quantecon | core/numba | core/quantecon | unrevised/tableau | box LCP/LCP |")
-    a("|---|---|---|---|---|---|---|---|---|")
+    a("| n | pivots | core | numba | shipped | quantecon | core/numba | core/quantecon | shipped/quantecon | unrevised/tableau | box LCP/LCP |")
+    a("|---|---|---|---|---|---|---|---|---|---|---|")
     for n, piv, t in rows_cold:
-        a(f"| {n} | {piv} | {t['core']*1e6:.2f} | {t['numba']*1e6:.2f} | {t['quantecon']*1e6:.2f} | "
-          f"{t['core']/t['numba']:.2f} | {t['core']/t['quantecon']:.2f} | "
+        a(f"| {n} | {piv} | {t['core']*1e6:.2f} | {t['numba']*1e6:.2f} | {t['front']*1e6:.2f} | "
+          f"{t['quantecon']*1e6:.2f} | "
+          f"{t['core']/t['numba']:.2f} | {t['core']/t['quantecon']:.2f} | {t['front']/t['quantecon']:.2f} | "
           f"{t['unrevised']/t['core']:.2f} | {t['box']/t['core']:.2f} |")
+    a("")
+    a("(shipped: the plain call `solve_lcp(M, q)` as a user makes it: the native front, "
+      "src/python_front.cpp, one native call; core and numba: the Python fast path with either kernel.)")
     a("")
     a("(unrevised: `solve_lcp(method=\"unrevised\")`; box LCP: `solve_blcp` with lo = 0, hi = inf, the same "
       "LCP through the box engine; both in the core, timed in the same interleaved rounds.)")
