@@ -75,7 +75,7 @@ def with_kernel(run, f):
         _lcp._ENTRY["tableau"], _lcp._FIRST_RUN, _lcp._FRONT = saved
 
 
-def _no_front(M, q):
+def _no_front(M, q, ws, beta):
     """The native front declining: solve_lcp's Python fast path runs (with_kernel's kernel)."""
     return None
 

@@ -1,6 +1,6 @@
 // lemke._core.lcp_front: solve_lcp's common call whole in one native call (issue 31's thin
-// front): plain float64 arrays, the tableau, no covering vector, no warm start, default
-// options. It reads the two ndarrays' fields directly (no DLPack capsule, no buffer view:
+// front): plain float64 arrays, the tableau, no covering vector, cold or warm from a
+// WarmStart (its int64 index array), default options. It reads the two ndarrays' fields directly (no DLPack capsule, no buffer view:
 // those cost more than a small solve), allocates the output buffer with numpy.empty, runs
 // lemke::first_run without the GIL and builds the LCPResult as LCPResult._lazy does.
 //
@@ -60,7 +60,8 @@ struct Front {
     PyObject* solved = nullptr;      // Status.SOLVED
     PyObject* ray = nullptr;         // Status.RAY_TERMINATION
     PyObject* empty = nullptr;       // numpy.empty
-    PyObject *k_status, *k_pivots, *k_residual, *k_recoveries, *k_src;
+    PyObject *k_status, *k_pivots, *k_residual, *k_recoveries, *k_src, *k_warm_start;
+    int int64_num = -1;  // NumPy's type number of int64 here (7 or 9 by platform)
     double pivot_tol = 0, tie_tol = 0, tol = 0;
 } front;
 
@@ -113,11 +114,14 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
     front.k_residual = PyUnicode_InternFromString("residual");
     front.k_recoveries = PyUnicode_InternFromString("recoveries");
     front.k_src = PyUnicode_InternFromString("_src");
+    front.k_warm_start = PyUnicode_InternFromString("warm_start");
+    front.int64_num = reinterpret_cast<const DescrFields*>(
+        reinterpret_cast<const ArrayFields*>(probe_int.ptr())->descr)->type_num;
     front.pivot_tol = pivot_tol;
     front.tie_tol = tie_tol;
     front.tol = tol;
     front.on = front.k_status && front.k_pivots && front.k_residual && front.k_recoveries &&
-               front.k_src;
+               front.k_src && front.k_warm_start;
 }
 
 // d[key] = value, stealing value; false on an error (set).
@@ -128,7 +132,7 @@ bool put(PyObject* d, PyObject* key, PyObject* value) {
     return e == 0;
 }
 
-nb::object lcp_front(nb::handle M_h, nb::handle q_h) {
+nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle beta_h) {
     using lemke::idx;
     if (!front.on) return nb::none();
     const ArrayFields* M = plain(M_h.ptr(), 2);
@@ -136,6 +140,21 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h) {
     if (M == nullptr || q == nullptr) return nb::none();
     idx n = q->dimensions[0];
     if (M->dimensions[0] != n || M->dimensions[1] != n) return nb::none();
+    // The warm start's basic z's (WarmStart._beta: int64, C-contiguous), in range.
+    const idx* beta = nullptr;
+    idx k = 0;
+    if (!beta_h.is_none()) {
+        if (Py_TYPE(beta_h.ptr()) != front.ndarray) return nb::none();
+        auto* b = reinterpret_cast<const ArrayFields*>(beta_h.ptr());
+        if (b->nd != 1 || (b->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
+            reinterpret_cast<const DescrFields*>(b->descr)->type_num != front.int64_num)
+            return nb::none();
+        beta = reinterpret_cast<const idx*>(b->data);
+        k = b->dimensions[0];
+        if (k > n) return nb::none();
+        for (idx i = 0; i < k; ++i)
+            if (beta[i] < 0 || beta[i] >= n) return nb::none();
+    }
     lemke::BufferLayout L{n};
     idx at = L.length();
     nb::object size = nb::steal(PyLong_FromSsize_t(at + n));
@@ -151,7 +170,7 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h) {
     lemke::RunResult r;
     {
         nb::gil_scoped_release release;
-        r = lemke::first_run(lemke::Mat<const double>(Md, n, n), qd, nullptr, nullptr, 0,
+        r = lemke::first_run(lemke::Mat<const double>(Md, n, n), qd, nullptr, beta, k,
                              100 * (n + 1), front.pivot_tol, front.tie_tol, front.tol, out, basic);
     }
     bool settled = r.ok && (r.code == lemke::SOLVED || r.code == lemke::TRIVIAL ||
@@ -176,6 +195,8 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h) {
         nb::object src = nb::make_tuple(buf, 0, nb::none(), at, n, r.k);
         ok = PyDict_SetItem(d, front.k_src, src.ptr()) == 0;
     }
+    if (ok && r.stage == 0)  // the warm start's own basis solved it: the result keeps it
+        ok = PyDict_SetItem(d, front.k_warm_start, ws.ptr()) == 0;
     if (!ok) throw nb::python_error();
     return res;
 }
@@ -186,6 +207,6 @@ void bind_front(nb::module_& m) {
     m.def("lcp_front_init", &init, "ndarray"_a, "result_cls"_a, "solved"_a, "ray"_a, "empty"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a, "probe2"_a, "address"_a, "probe_ro"_a,
           "probe_int"_a, "probe_swapped"_a);
-    m.def("lcp_front", &lcp_front, "M"_a, "q"_a);
+    m.def("lcp_front", &lcp_front, "M"_a, "q"_a, "ws"_a.none(), "beta"_a.none());
     m.def("lcp_front_on", [] { return front.on; });
 }

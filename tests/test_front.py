@@ -257,8 +257,20 @@ def test_the_native_front_gives_the_python_fronts_results(monkeypatch):
         cases.append((rng.standard_normal((n, n)), rng.standard_normal(n)))  # rays, failures
     cases.append((problems.degenerate().M, problems.degenerate().q))
     native = [lemke.solve_lcp(M, q) for M, q in cases]
-    monkeypatch.setattr(_lcp, "_FRONT", lambda M, q: None)
+    # warm: from each answer's own basis on a moved q (0 pivots or a restart), and from
+    # another problem's basis of the same size
+    moved = [(M, q + 1e-9 * np.abs(q).max(initial=1.0)) for M, q in cases]
+    warm = [lemke.solve_lcp(M, q2, warm_start=r.warm_start) for (M, q2), r in zip(moved, native)]
+    others = [lemke.solve_lcp(M, q, warm_start=WarmStart(len(q), tuple(range(len(q) // 2))))
+              for M, q in cases]
+    monkeypatch.setattr(_lcp, "_FRONT", lambda M, q, ws, beta: None)
     python = [lemke.solve_lcp(M, q) for M, q in cases]
+    python_warm = [lemke.solve_lcp(M, q2, warm_start=r.warm_start) for (M, q2), r in zip(moved, python)]
+    python_others = [lemke.solve_lcp(M, q, warm_start=WarmStart(len(q), tuple(range(len(q) // 2))))
+                     for M, q in cases]
+    assert sum(r.pivots == 0 and r.success for r in warm) >= len(cases) // 2
+    native, python = native + warm + others, python + python_warm + python_others
+    cases = cases + moved + cases
     fields = ("z", "w", "z0", "ray", "covering", "row_scale", "col_scale")
     for (M, q), a, b in zip(cases, native, python):
         assert (a.status, a.pivots, a.recoveries, a.residual) == (b.status, b.pivots, b.recoveries, b.residual)
@@ -284,7 +296,7 @@ def test_the_native_front_declines_what_is_not_plain():
     for a, b in ((M.tolist(), q), (M.astype(np.float32), q), (np.asfortranarray(M), q),
                  (M.astype(M.dtype.newbyteorder()), q), (M, q.astype(q.dtype.newbyteorder())),
                  (M, ro), (M, q[:1]), (M[:1], q), (M, q.reshape(2, 1))):
-        assert _core.lcp_front(a, b) is None
+        assert _core.lcp_front(a, b, None, None) is None
     with pytest.raises(ValueError, match="q"):
         lemke.solve_lcp(M, q[:1])
     assert lemke.solve_lcp(np.asfortranarray(M), ro).z.tolist() == lemke.solve_lcp(M, q).z.tolist()

@@ -259,7 +259,7 @@ def test_kernel_answer_is_rechecked(monkeypatch):
         z_basic[:] = False  # all w basic: the basis point is z = 0, wrong too
         return 0, 7
 
-    monkeypatch.setattr(_lcp, "_FRONT", lambda M, q: None)  # (the native front: its own kernel)
+    monkeypatch.setattr(_lcp, "_FRONT", lambda M, q, ws, beta: None)  # (the native front: its own kernel)
     monkeypatch.setattr(_lcp, "_SOLVE_ONE", with_solve(lying_kernel))
     monkeypatch.setattr(_lcp, "_FIRST_RUN", with_solve(lying_kernel))
     p = problems.cps_447()

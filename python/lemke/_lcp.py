@@ -91,16 +91,27 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
-    if d is None and options is None and warm_start is None and method == "tableau":
-        # The commonest call, whole in one native call (src/python_front.cpp): plain
+    if d is None and options is None and method == "tableau":
+        # The commonest calls, whole in one native call (src/python_front.cpp): plain
         # float64 arrays give the result (or what first_run left to do), others None.
-        r = _FRONT(M, q)
+        if warm_start is None:
+            r = _FRONT(M, q, None, None)
+            beta = _NO_BASIS
+        elif type(warm_start) is WarmStart and type(q) is _ND and warm_start.n == len(q):
+            try:
+                beta = warm_start._beta  # (an attribute read: cheaper than __dict__.get)
+            except AttributeError:
+                beta = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=np.int64)
+            r = _FRONT(M, q, warm_start, beta)
+        else:
+            r = None
         if r is not None:
             if type(r) is not tuple:
                 return r
             n = len(q)
-            return _go_on(M, q, _NO_D, method, _DEFAULT, None, _NO_BASIS, 0, 100 * (n + 1),
-                          _PIVOT_TOL, _TIE_TOL, _TOL, r[7], _LEN_N * n + _LEN_1, n, *r[:7])
+            return _go_on(M, q, _NO_D, method, _DEFAULT, warm_start, beta,
+                          0 if beta is None else len(beta), 100 * (n + 1), _PIVOT_TOL,
+                          _TIE_TOL, _TOL, r[7], _LEN_N * n + _LEN_1, n, *r[:7])
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start
