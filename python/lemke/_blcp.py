@@ -49,6 +49,9 @@ _F64 = np.dtype(np.float64)
 _SOLVED = Status.SOLVED
 _new = object.__new__
 _COLD = (0, 1, 2)  # covering vectors of the cold runs (kernels.boxed.solve's cov_mode)
+# A warm run: covering vector 1, and a warm basis that is singular kept in part (PARTIAL: the
+# z's the exchange pivots cannot make basic stay at their bounds), not given up for a cold run.
+_WARM = 1 | boxed.PARTIAL
 
 
 @dataclass(frozen=True)
@@ -638,7 +641,8 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     solve = boxed.solve
     pivots = rec = 0
     if ws is not None:  # _warm: a run from the warm start's basis
-        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, 1, limit, pt, tt, tol, ext, final)
+        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, _WARM, limit, pt, tt, tol,
+                                             ext, final)
         pivots = max(p, 0)
         if not (c == 0 and ok):  # _finish: the point of its final basis, recomputed
             point = _checked_point(A, qa, la, ha, *_basis_flags(final, k, m, N), tol,
@@ -770,7 +774,7 @@ def _warm(M, q, lo, hi, opts, ws):
             run.d[:] = 0.0
             run.set_basis(zb, zh)
             return _solved(run, n, lo, hi, 0)
-    run = _Run(n).go(M, q, lo, hi, np.concatenate([zb, zh & ~zb]), 1, opts, opts.pivot_limit(n), opts.tie_tol)
+    run = _Run(n).go(M, q, lo, hi, np.concatenate([zb, zh & ~zb]), _WARM, opts, opts.pivot_limit(n), opts.tie_tol)
     return _finish(M, q, lo, hi, opts, run, ladder=False)
 
 
@@ -882,6 +886,60 @@ def friction_lcp(M, q, lo, hi, findex):
     return Mx, qx, lox, hix, F[:k], F[k:]
 
 
+def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
+    """The point of an extended problem's basis (``zb`` basic, ``zh`` at hi; N = n + 2 nf
+    variables) computed on the caller's n rows, judged there: ``(z, w, residual, lo_in,
+    hi_in)`` when it passes the check with the coupled bounds, else None.
+
+    Each caller's row gives one equation, read from the states of its variables: an
+    ordinary row w_i = 0 when z_i is basic, else z_i at its bound; a friction row i (normal
+    row f, ``mu = hi_i``) z_i = mu z_f when β+ and λ are basic (sliding, β- at 0),
+    z_i = -mu z_f when β- and λ are, w_i = 0 when λ is at 0 and β+ or β- basic (sticking),
+    z_i = 0 when β+ and β- are both at 0.  The system is solved by one LU with refinement
+    in double-double (``refined_solve``).  Why: near a contact whose normal impulse is 0
+    the extended block is singular (λ basic with β+ and β- at 0 makes λ's column zero in
+    the block), and the tableau's point of such a basis carries errors of cond eps in rows
+    whose own terms are ~1e-11, so that it fails the row-wise check that the caller's
+    solution meets; the caller's system has no such column and its refined solution meets
+    the check in every row (issue 32's scene, islands of 75-120 rows)."""
+    from ._core import refined_solve
+
+    n = q.size
+    k = F.size
+    K = np.zeros((n, n))
+    rhs = np.zeros(n)
+    c_of = np.full(n, -1, dtype=np.int64)
+    c_of[F] = np.arange(k)
+    for i in range(n):
+        c = c_of[i]
+        if c < 0:
+            if zb[i] or (lo[i] == -np.inf and hi[i] == np.inf):
+                K[i] = M[i]
+                rhs[i] = -q[i]
+            else:
+                v = hi[i] if zh[i] and hi[i] < np.inf else (lo[i] if lo[i] > -np.inf else hi[i])
+                K[i, i] = 1.0
+                rhs[i] = v if np.isfinite(v) else 0.0
+            continue
+        bp, bm, lam = zb[i], zb[n + c], zb[n + k + c]
+        K[i, i] = 1.0
+        if lam and bp != bm:
+            K[i, normal[c]] = -hi[i] if bp else hi[i]
+        elif bp or bm:
+            K[i] = M[i]
+            rhs[i] = -q[i]
+    z = np.empty(n)
+    if not refined_solve(K, rhs, 2, z, np.empty(n)) or not np.all(np.isfinite(z)):
+        return None
+    mu = hi[F]
+    lo_in, hi_in = lo.copy(), hi.copy()
+    lo_in[F], hi_in[F] = -mu * z[normal], mu * z[normal]
+    z = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
+    w = np.empty(n)
+    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    return (z, w, residual, lo_in, hi_in) if ok else None
+
+
 def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     """A validated box LCP with a friction index: first in one kernel call (unless
     ``tried`` already), else the extended problem by the general path and the answer
@@ -913,10 +971,10 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     status = inner.status
     zc = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
     ok, residual = boxed.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
-    if not ok and inner.warm_start is not None:
+    flags = None if ok or inner.warm_start is None else inner.warm_start._kernel_flags()
+    if flags is not None:
         # The point of the final basis, from the extended data by one dense solve (more
         # accurate than the tableau after many pivots), judged again.
-        flags = inner.warm_start._kernel_flags()
         zx2 = _basis_point(Mx, qx, lox, hix, flags[:qx.size], flags[qx.size:])
         if zx2 is not None:
             z2 = zx2[:n].copy()
@@ -928,6 +986,14 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
             ok2, res2 = boxed.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
             if ok2:
                 ok, residual, zc, w, lo_in, hi_in = ok2, res2, z2, w2, lo2, hi2
+        if not ok and flags is not None:
+            # The same basis read as equations on the caller's n rows, solved with
+            # refinement (the extended block can be singular where the caller's is not).
+            got = _caller_point(M, q, lo, hi, F, normal, flags[:qx.size], flags[qx.size:],
+                                opts.tol, R, qx.size)
+            if got is not None:
+                ok = True
+                zc, w, residual, lo_in, hi_in = got
     if ok:
         status, z = Status.SOLVED, zc
     else:

@@ -131,7 +131,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     };
     SolveResult r;
     if (has_warm) {
-        r = solve(A, qa, la, ha, warm, 1, limit, pt, tt, tol, ext, final);
+        r = solve(A, qa, la, ha, warm, 1 | PARTIAL, limit, pt, tt, tol, ext, final);
         pivots = std::max<idx>(r.pivots, 0);
         bool ok = r.code == 0 && r.ok;
         residual = r.residual;
