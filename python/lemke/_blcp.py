@@ -658,6 +658,18 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                     return None
             return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, 0, None)
         rec = 1
+        if nf and c not in STOPPED:  # the warm basis with its friction rows cold (_reset)
+            warm2 = _reset(warm, N, _friction_vars(ints[N:N + nf], n))
+            c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm2, _WARM,
+                                                 max(0, limit - pivots), pt, tt, tol, ext, final)
+            pivots += max(p, 0)
+            if c == 0 and ok:
+                code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm2, True, tol, buf,
+                                       ints, work)
+                if code != 0:
+                    return None
+                return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, 1, None)
+            rec = 2
     # _solve's cold run, then _finish's ladder (other covering vectors, exact ties)
     cold = _no_warm(N)
     c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, cold, 0, max(0, limit - pivots), pt, tt,
@@ -731,9 +743,10 @@ def _check_warm(ws, n, friction=(), what="warm_start", problem="this one"):
                              "BoxWarmStart.take or .relabel)")
 
 
-def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=()):
+def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=(), reset=None):
     """A validated box LCP: a warm start if given (first in one kernel call, unless
-    ``tried`` already), then the cold runs."""
+    ``tried`` already), then, when a run from it fails and ``reset`` (variables) is given,
+    a run from it with those variables cold (:func:`_reset`), then the cold runs."""
     n = q.size
     extra, rec = 0, 0
     _check_warm(warm_start, n, friction)
@@ -746,10 +759,37 @@ def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=()):
         if res.status == Status.SOLVED:
             return res
         extra, rec = res.pivots, 1
+        if reset is not None and res.status not in STOPPED:  # as _one_call: friction rows cold
+            run = _Run(n).go(M, q, lo, hi, _reset(warm_start._kernel_flags(), n, reset), _WARM,
+                             opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+            if run.code == 0 and run.ok:
+                return _solved(run, n, lo, hi, rec, extra + run.pivots)
+            extra, rec = extra + max(run.pivots, 0), 2
     run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
     if run.code == boxed.NOT_FINITE:
         raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
     return _finish(M, q, lo, hi, opts, run, extra, rec)
+
+
+def _friction_vars(F, n):
+    """The extended problem's variables of the friction rows F (β+, β-, λ of each), for
+    :func:`_reset`."""
+    return np.concatenate([F, n + np.arange(2 * F.size)])
+
+
+def _reset(flags, N, idx):
+    """Warm flags (2N: basic, then at hi) with the variables ``idx`` cold (non-basic at lo).
+
+    A warm run from a basis that no longer solves the problem ends, on the scene of issue
+    32, on a secondary ray for about a third of the islands (the extended problem of a
+    friction index is not positive semidefinite, and its warm bases are not the start that
+    Anitescu and Potra's argument covers); the same basis with its friction rows cold (the
+    normal impulses' states kept) then solves most of them in about half the pivots of a
+    cold solve."""
+    out = flags.copy()
+    out[idx] = False
+    out[N + idx] = False
+    return out
 
 
 def _kernel_arrays(M, q, lo, hi):
@@ -953,7 +993,8 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
         if res is not None:
             return res
     Mx, qx, lox, hix, F, normal = friction_lcp(M, q, lo, hi, findex)
-    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None)
+    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None,
+                   reset=_friction_vars(F, n) if F.size and warm_start is not None else None)
     k = F.size
     zx = inner.z
     z = zx[:n].copy()
