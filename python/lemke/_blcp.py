@@ -640,6 +640,16 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     limit, pt, tt = opts.pivot_limit(N), opts.pivot_tol, opts.tie_tol
     solve = boxed.solve
     pivots = rec = 0
+
+    def done(k, m, pivots, residual, rec, from_warm):
+        # a run solved and checked: with a friction index the check on the caller's data
+        # decides (front's SOLVED_RUN phase; failed: the general path)
+        if friction:
+            code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, from_warm, tol, buf,
+                                   ints, work)
+            if code != 0:
+                return None
+        return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, rec, None)
     if ws is not None:  # _warm: a run from the warm start's basis
         c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, _WARM, limit, pt, tt, tol,
                                              ext, final)
@@ -651,12 +661,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                 ok = True
                 ext[:N], ext[N: 2 * N], residual = point
         if ok:
-            if friction:
-                code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, True, tol, buf,
-                                       ints, work)
-                if code != 0:
-                    return None
-            return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, 0, None)
+            return done(k, m, pivots, residual, 0, True)
         rec = 1
         if nf and c not in STOPPED:  # the warm basis with its friction rows cold (_reset)
             warm2 = _reset(warm, N, _friction_vars(ints[N:N + nf], n))
@@ -664,11 +669,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                                                  max(0, limit - pivots), pt, tt, tol, ext, final)
             pivots += max(p, 0)
             if c == 0 and ok:
-                code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm2, True, tol, buf,
-                                       ints, work)
-                if code != 0:
-                    return None
-                return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, 1, None)
+                return done(k, m, pivots, residual, 1, True)
             rec = 2
     # _solve's cold run, then _finish's ladder (other covering vectors, exact ties)
     cold = _no_warm(N)
@@ -691,12 +692,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                 break
         if not (c == 0 and ok):
             return None
-    if friction:
-        code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, False, tol, buf, ints,
-                               work)
-        if code != 0:
-            return None
-    return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, rec, None)
+    return done(k, m, pivots, residual, rec, False)
 
 
 def _lazy(buf, final, N, k, m, n, lo, hi, friction, pivots, residual, rec, ws):
