@@ -132,7 +132,8 @@ idx friction_rows(const idx* findex, idx n);
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const idx* findex, idx nf, double* work, idx* F);
 
-// One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n.
+// One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n;
+// cov_mode 0, 1 or 2, plus PARTIAL to keep a singular warm basis in part.
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
                   double tie_tol, double tol, double* buf, idx* final);

@@ -494,8 +494,9 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     """One run, checked: validate the data, equilibrate, exchange pivots (the free z's and
     the warm basis ``warm[:n]``, with non-basic z's at hi where ``warm[n:]``), Lemke with
     covering vector ``cov_mode`` (0: ones in the caller's coordinates, 1: ones in the
-    equilibrated ones, 2: fixed pseudo-random factors in [1, 2) there), and the check of
-    the point on (M, q, lo, hi).
+    equilibrated ones, 2: fixed pseudo-random factors in [1, 2) there; with the flag
+    ``PARTIAL`` added, a warm basis that the exchange pivots cannot make basic whole is kept
+    in part instead of SINGULAR), and the check of the point on (M, q, lo, hi).
 
     Returns ``(code, pivots, z0, ok, residual, k, m)``.  code: a pivoting status, or
     NOT_FINITE, BAD_BOUNDS (nothing else done) or SINGULAR (the start point); the outputs (views of ``buf``, see
