@@ -468,7 +468,9 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     warm_start : BoxWarmStart, optional
         The ``warm_start`` of an earlier result of the same size (and friction structure):
         if its basis still solves this problem the answer comes with 0 pivots; otherwise
-        Lemke restarts from it, and then cold if that fails.
+        Lemke restarts from it (from the part of it that can be made basic, where its block
+        is singular; with a friction index, when that run fails, once more from it with the
+        friction rows cold), and then cold if that fails.
     options : Options or dict, optional
         As for :func:`lemke.solve_lcp`.
 
