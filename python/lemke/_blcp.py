@@ -43,6 +43,7 @@ from . import _validate
 from ._result import LazyField, Outcome, lazy_state
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
+from ._core import refined_solve
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
@@ -932,16 +933,14 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     Each caller's row gives one equation, read from the states of its variables: an
     ordinary row w_i = 0 when z_i is basic, else z_i at its bound; a friction row i (normal
     row f, ``mu = hi_i``) z_i = mu z_f when β+ and λ are basic (sliding, β- at 0),
-    z_i = -mu z_f when β- and λ are, w_i = 0 when λ is at 0 and β+ or β- basic (sticking),
-    z_i = 0 when β+ and β- are both at 0.  The system is solved by one LU with refinement
+    z_i = -mu z_f when β- and λ are, w_i = 0 when λ is at 0 and β+ or β- basic, or when
+    both are (sticking), z_i = 0 when β+ and β- are both at 0.  The system is solved by one LU with refinement
     in double-double (``refined_solve``).  Why: near a contact whose normal impulse is 0
     the extended block is singular (λ basic with β+ and β- at 0 makes λ's column zero in
     the block), and the tableau's point of such a basis carries errors of cond eps in rows
     whose own terms are ~1e-11, so that it fails the row-wise check that the caller's
     solution meets; the caller's system has no such column and its refined solution meets
     the check in every row (issue 32's scene, islands of 75-120 rows)."""
-    from ._core import refined_solve
-
     n = q.size
     k = F.size
     K = np.zeros((n, n))
@@ -1044,6 +1043,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     ws = inner.warm_start
     if ws is not None and k:  # the extended problem's basis, for these friction rows
         ws = BoxWarmStart._trusted(ws.n, ws.z_basic, ws.at_upper, tuple(F.tolist()))
+    solved = status == Status.SOLVED
     return BLCPResult(z, w, status, inner.pivots, float(residual),
-                      inner.ray if status != Status.SOLVED else None, inner.z0, inner.covering,
+                      None if solved else inner.ray, 0.0 if solved else inner.z0, inner.covering,
                       ws, lo_in, hi_in, R, C, inner.recoveries)
