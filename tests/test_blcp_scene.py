@@ -11,7 +11,9 @@ refused or paid a cold solve for, kept in tests/data/contact3d/islands.npz:
   and β- at 0), once SINGULAR and a cold solve, now a warm run from the rest of it
   (``boxed.PARTIAL``);
 * ``warm_ray``: a warm run that ends on a secondary ray; the basis with its friction rows
-  cold (``_blcp._reset``) then solves it.
+  cold (``_blcp._reset``) then solves it;
+* ``failed_cold`` (192 rows): no answer before, cold or from the final basis; the restart
+  from that basis goes on with its friction rows cold and solves it.
 
 Every answer is checked here with numpy, row by row in the friction pyramid's terms."""
 from pathlib import Path
@@ -158,3 +160,16 @@ def test_a_warm_ray_is_followed_by_the_basis_with_friction_rows_cold():
     g = lemke.solve_blcp(A.tolist(), b.tolist(), lo.tolist(), hi.tolist(), findex=fi.tolist(),
                          warm_start=ws)
     assert g.status == lemke.Status.SOLVED and np.asarray(g.z).tobytes() == np.asarray(r.z).tobytes()
+
+
+def test_a_cold_failure_is_solved_by_the_restart_with_friction_rows_cold():
+    """``failed_cold`` (192 rows, step 694 of a run whose J W J' came from a threaded BLAS):
+    every cold run ended on a wrong point (residual 3e-3) and so did the restart from
+    their final basis (_from_final); that restart now goes on with the friction rows cold
+    (``_reset``) and solves it."""
+    A, b, lo, hi, fi, _ = island("failed_cold")
+    r = lemke.solve_blcp(A, b, lo, hi, findex=fi)
+    assert r.status == lemke.Status.SOLVED and r.recoveries >= 1
+    assert pyramid_rows(A, b, lo, hi, fi, np.asarray(r.z)) <= 1.0
+    many = lemke.solve_blcp_many([A], [b], [lo], [hi], findex=[fi])
+    assert np.asarray(many[0].z).tobytes() == np.asarray(r.z).tobytes()
