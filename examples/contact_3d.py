@@ -73,8 +73,14 @@ class Scene:
     h: float = 0.01
     margin: float = 0.01  # contacts are kept while the gap is below this
     # ODE's constraint force mixing (A + cfm diag A), at ODE's default: a pile's redundant
-    # contacts make A singular.  At 1e-6 (box_pile's) one island of 93 rows (cond(A) 2e7) had
-    # an answer with a residual of 2e-10 that lemke's row-wise check refused, cold and warm.
+    # contacts make A singular.  At 1e-6 (box_pile's; cond(A) 2-3e7) it is both the check and
+    # the solver: one island of 93 rows has an answer right to 2e-11 in the data's scale
+    # that misses lemke's row-wise test (by 1.6-1500x, in rows of contacts without load,
+    # whose own terms are ~1e-11) cold and warm, and the cold runs of the largest islands
+    # (117-195 rows) end, after thousands of pivots, on points that are wrong (relative
+    # residuals 1e-7 to 6e-2), which the check refuses; warm, all but one of them are
+    # solved.  Over 1000 steps: 2 islands not SOLVED, 1 without a right answer warm or
+    # cold (17 and 13 before the caller's-row point and the warm-run changes of issue 32).
     cfm: float = 1e-4
     push_out: float = 0.2  # fraction of an overlap removed after a step (position correction)
     # Spheres are released one by one: ``active`` ones fall, the others wait, frozen and

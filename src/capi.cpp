@@ -221,7 +221,7 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
             from[i] = zb[i];
             from[N + i] = zh[i] && !zb[i];
         }
-        bx::SolveResult again = bx::solve(Ae, qa, la, ha, from.data(), 1, limit, pt, tt, tol,
+        bx::SolveResult again = bx::solve(Ae, qa, la, ha, from.data(), 1 | bx::PARTIAL, limit, pt, tt, tol,
                                           ext, final);
         pivots += std::max<idx>(again.pivots, 0);
         if (again.code == 0 && again.ok) {

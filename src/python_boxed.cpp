@@ -259,6 +259,7 @@ void bind_boxed(nb::module_& m) {
     b.attr("BAD_FINDEX") = lemke::boxed::BAD_FINDEX;
     b.attr("UNDECIDED") = lemke::boxed::UNDECIDED;
     b.attr("NEED_RUN") = lemke::boxed::NEED_RUN;
+    b.attr("PARTIAL") = lemke::boxed::PARTIAL;
     b.attr("PREPARE") = lemke::boxed::PREPARE;
     b.attr("SOLVED_RUN") = lemke::boxed::SOLVED_RUN;
 }

@@ -261,7 +261,7 @@ def solve_args(M, q, lo, hi, warm, mode, mp, tie):
 def test_solve_directly():
     """boxed.solve on random box LCPs: every covering vector, tie tolerance and kind, pivot
     caps, warm starts from the final basis on moved data, random (often singular) warm
-    flags."""
+    flags, whole and kept in part (``PARTIAL``)."""
     counts = Counter()
     for n in list(range(1, 26)) + [31, 40, 48, 64, 90]:
         rng = np.random.default_rng([21, n])
@@ -287,7 +287,7 @@ def test_solve_directly():
             warm[n + final[k:m]] = True
             for move in (0.0, 1e-3, 0.3):
                 q2 = q + move * rng.standard_normal(n)
-                for mode in (1, 2):
+                for mode in (1, 2, 1 | cboxed.PARTIAL, 2 | cboxed.PARTIAL):
                     ok, out, _ = compare("solve", solve_args(M, q2, lo, hi, warm, mode, 100 * (n + 1), 1e-11))
                     counts["warm", ok, out[0]] += 1
                     assert ok, (n, trial, move, mode, out)
@@ -299,6 +299,14 @@ def test_solve_directly():
             ok, out, _ = compare("solve", solve_args(M, q, lo, hi, warm, 1, 100 * (n + 1), 1e-11))
             counts["random warm", ok, out[0]] += 1
             assert ok, (n, trial, out)
+            # the same kept in part (PARTIAL: what the exchange cannot make basic stays at its
+            # bound), as the fronts' warm runs make them
+            for mode in (0, 1) if n < 30 else (1,):
+                ok, out, _ = compare("solve", solve_args(M, q, lo, hi, warm, mode | cboxed.PARTIAL,
+                                                         100 * (n + 1), 1e-11))
+                counts["random warm, partial", ok, out[0]] += 1
+                assert ok, (n, trial, mode, out)
+                assert out[0] != cboxed.SINGULAR
     for n in (120, 200):  # larger sizes
         rng = np.random.default_rng([22, n])
         for kind in (0, 2):

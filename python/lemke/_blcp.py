@@ -43,12 +43,16 @@ from . import _validate
 from ._result import LazyField, Outcome, lazy_state
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
+from ._core import refined_solve
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
 _SOLVED = Status.SOLVED
 _new = object.__new__
 _COLD = (0, 1, 2)  # covering vectors of the cold runs (kernels.boxed.solve's cov_mode)
+# A warm run: covering vector 1, and a warm basis that is singular kept in part (PARTIAL: the
+# z's the exchange pivots cannot make basic stay at their bounds), not given up for a cold run.
+_WARM = 1 | boxed.PARTIAL
 
 
 @dataclass(frozen=True)
@@ -465,7 +469,9 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     warm_start : BoxWarmStart, optional
         The ``warm_start`` of an earlier result of the same size (and friction structure):
         if its basis still solves this problem the answer comes with 0 pivots; otherwise
-        Lemke restarts from it, and then cold if that fails.
+        Lemke restarts from it (from the part of it that can be made basic, where its block
+        is singular; with a friction index, when that run fails, once more from it with the
+        friction rows cold), and then cold if that fails.
     options : Options or dict, optional
         As for :func:`lemke.solve_lcp`.
 
@@ -637,8 +643,19 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     limit, pt, tt = opts.pivot_limit(N), opts.pivot_tol, opts.tie_tol
     solve = boxed.solve
     pivots = rec = 0
+
+    def done(k, m, pivots, residual, rec, from_warm):
+        # a run solved and checked: with a friction index the check on the caller's data
+        # decides (front's SOLVED_RUN phase; failed: the general path)
+        if friction:
+            code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, from_warm, tol, buf,
+                                   ints, work)
+            if code != 0:
+                return None
+        return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, rec, None)
     if ws is not None:  # _warm: a run from the warm start's basis
-        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, 1, limit, pt, tt, tol, ext, final)
+        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, _WARM, limit, pt, tt, tol,
+                                             ext, final)
         pivots = max(p, 0)
         if not (c == 0 and ok):  # _finish: the point of its final basis, recomputed
             point = _checked_point(A, qa, la, ha, *_basis_flags(final, k, m, N), tol,
@@ -647,13 +664,16 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                 ok = True
                 ext[:N], ext[N: 2 * N], residual = point
         if ok:
-            if friction:
-                code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, True, tol, buf,
-                                       ints, work)
-                if code != 0:
-                    return None
-            return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, 0, None)
+            return done(k, m, pivots, residual, 0, True)
         rec = 1
+        if nf and c not in STOPPED:  # the warm basis with its friction rows cold (_reset)
+            warm2 = _reset(warm, N, _friction_vars(ints[N:N + nf], n))
+            c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm2, _WARM,
+                                                 max(0, limit - pivots), pt, tt, tol, ext, final)
+            pivots += max(p, 0)
+            if c == 0 and ok:
+                return done(k, m, pivots, residual, 1, True)
+            rec = 2
     # _solve's cold run, then _finish's ladder (other covering vectors, exact ties)
     cold = _no_warm(N)
     c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, cold, 0, max(0, limit - pivots), pt, tt,
@@ -675,12 +695,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                 break
         if not (c == 0 and ok):
             return None
-    if friction:
-        code, residual = front(boxed.SOLVED_RUN, M, q, lo, hi, fi, warm, False, tol, buf, ints,
-                               work)
-        if code != 0:
-            return None
-    return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, rec, None)
+    return done(k, m, pivots, residual, rec, False)
 
 
 def _lazy(buf, final, N, k, m, n, lo, hi, friction, pivots, residual, rec, ws):
@@ -727,9 +742,10 @@ def _check_warm(ws, n, friction=(), what="warm_start", problem="this one"):
                              "BoxWarmStart.take or .relabel)")
 
 
-def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=()):
+def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=(), reset=None):
     """A validated box LCP: a warm start if given (first in one kernel call, unless
-    ``tried`` already), then the cold runs."""
+    ``tried`` already), then, when a run from it fails and ``reset`` (variables) is given,
+    a run from it with those variables cold (:func:`_reset`), then the cold runs."""
     n = q.size
     extra, rec = 0, 0
     _check_warm(warm_start, n, friction)
@@ -742,10 +758,37 @@ def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=()):
         if res.status == Status.SOLVED:
             return res
         extra, rec = res.pivots, 1
+        if reset is not None and res.status not in STOPPED:  # as _one_call: friction rows cold
+            run = _Run(n).go(M, q, lo, hi, _reset(warm_start._kernel_flags(), n, reset), _WARM,
+                             opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+            if run.code == 0 and run.ok:
+                return _solved(run, n, lo, hi, rec, extra + run.pivots)
+            extra, rec = extra + max(run.pivots, 0), 2
     run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
     if run.code == boxed.NOT_FINITE:
         raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
     return _finish(M, q, lo, hi, opts, run, extra, rec)
+
+
+def _friction_vars(F, n):
+    """The extended problem's variables of the friction rows F (β+, β-, λ of each), for
+    :func:`_reset`."""
+    return np.concatenate([F, n + np.arange(2 * F.size)])
+
+
+def _reset(flags, N, idx):
+    """Warm flags (2N: basic, then at hi) with the variables ``idx`` cold (non-basic at lo).
+
+    A warm run from a basis that no longer solves the problem ends, on the scene of issue
+    32, on a secondary ray for about a third of the islands (the extended problem of a
+    friction index is not positive semidefinite, and its warm bases are not the start that
+    Anitescu and Potra's argument covers); the same basis with its friction rows cold (the
+    normal impulses' states kept) then solves most of them in about half the pivots of a
+    cold solve."""
+    out = flags.copy()
+    out[idx] = False
+    out[N + idx] = False
+    return out
 
 
 def _kernel_arrays(M, q, lo, hi):
@@ -770,7 +813,7 @@ def _warm(M, q, lo, hi, opts, ws):
             run.d[:] = 0.0
             run.set_basis(zb, zh)
             return _solved(run, n, lo, hi, 0)
-    run = _Run(n).go(M, q, lo, hi, np.concatenate([zb, zh & ~zb]), 1, opts, opts.pivot_limit(n), opts.tie_tol)
+    run = _Run(n).go(M, q, lo, hi, np.concatenate([zb, zh & ~zb]), _WARM, opts, opts.pivot_limit(n), opts.tie_tol)
     return _finish(M, q, lo, hi, opts, run, ladder=False)
 
 
@@ -882,6 +925,58 @@ def friction_lcp(M, q, lo, hi, findex):
     return Mx, qx, lox, hix, F[:k], F[k:]
 
 
+def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
+    """The point of an extended problem's basis (``zb`` basic, ``zh`` at hi; N = n + 2 nf
+    variables) computed on the caller's n rows, judged there: ``(z, w, residual, lo_in,
+    hi_in)`` when it passes the check with the coupled bounds, else None.
+
+    Each caller's row gives one equation, read from the states of its variables: an
+    ordinary row w_i = 0 when z_i is basic, else z_i at its bound; a friction row i (normal
+    row f, ``mu = hi_i``) z_i = mu z_f when β+ and λ are basic (sliding, β- at 0),
+    z_i = -mu z_f when β- and λ are, w_i = 0 when λ is at 0 and β+ or β- basic, or when
+    both are (sticking), z_i = 0 when β+ and β- are both at 0.  The system is solved by one LU with refinement
+    in double-double (``refined_solve``).  Why: near a contact whose normal impulse is 0
+    the extended block is singular (λ basic with β+ and β- at 0 makes λ's column zero in
+    the block), and the tableau's point of such a basis carries errors of cond eps in rows
+    whose own terms are ~1e-11, so that it fails the row-wise check that the caller's
+    solution meets; the caller's system has no such column and its refined solution meets
+    the check in every row (issue 32's scene, islands of 75-120 rows)."""
+    n = q.size
+    k = F.size
+    K = np.zeros((n, n))
+    rhs = np.zeros(n)
+    c_of = np.full(n, -1, dtype=np.int64)
+    c_of[F] = np.arange(k)
+    for i in range(n):
+        c = c_of[i]
+        if c < 0:
+            if zb[i] or (lo[i] == -np.inf and hi[i] == np.inf):
+                K[i] = M[i]
+                rhs[i] = -q[i]
+            else:
+                v = hi[i] if zh[i] and hi[i] < np.inf else (lo[i] if lo[i] > -np.inf else hi[i])
+                K[i, i] = 1.0
+                rhs[i] = v if np.isfinite(v) else 0.0
+            continue
+        bp, bm, lam = zb[i], zb[n + c], zb[n + k + c]
+        K[i, i] = 1.0
+        if lam and bp != bm:
+            K[i, normal[c]] = -hi[i] if bp else hi[i]
+        elif bp or bm:
+            K[i] = M[i]
+            rhs[i] = -q[i]
+    z = np.empty(n)
+    if not refined_solve(K, rhs, 2, z, np.empty(n)) or not np.all(np.isfinite(z)):
+        return None
+    mu = hi[F]
+    lo_in, hi_in = lo.copy(), hi.copy()
+    lo_in[F], hi_in[F] = -mu * z[normal], mu * z[normal]
+    z = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
+    w = np.empty(n)
+    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    return (z, w, residual, lo_in, hi_in) if ok else None
+
+
 def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     """A validated box LCP with a friction index: first in one kernel call (unless
     ``tried`` already), else the extended problem by the general path and the answer
@@ -895,7 +990,8 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
         if res is not None:
             return res
     Mx, qx, lox, hix, F, normal = friction_lcp(M, q, lo, hi, findex)
-    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None)
+    inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None,
+                   reset=_friction_vars(F, n) if F.size and warm_start is not None else None)
     k = F.size
     zx = inner.z
     z = zx[:n].copy()
@@ -913,10 +1009,10 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     status = inner.status
     zc = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
     ok, residual = boxed.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
-    if not ok and inner.warm_start is not None:
+    flags = None if ok or inner.warm_start is None else inner.warm_start._kernel_flags()
+    if flags is not None:
         # The point of the final basis, from the extended data by one dense solve (more
         # accurate than the tableau after many pivots), judged again.
-        flags = inner.warm_start._kernel_flags()
         zx2 = _basis_point(Mx, qx, lox, hix, flags[:qx.size], flags[qx.size:])
         if zx2 is not None:
             z2 = zx2[:n].copy()
@@ -928,6 +1024,14 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
             ok2, res2 = boxed.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
             if ok2:
                 ok, residual, zc, w, lo_in, hi_in = ok2, res2, z2, w2, lo2, hi2
+        if not ok and flags is not None:
+            # The same basis read as equations on the caller's n rows, solved with
+            # refinement (the extended block can be singular where the caller's is not).
+            got = _caller_point(M, q, lo, hi, F, normal, flags[:qx.size], flags[qx.size:],
+                                opts.tol, R, qx.size)
+            if got is not None:
+                ok = True
+                zc, w, residual, lo_in, hi_in = got
     if ok:
         status, z = Status.SOLVED, zc
     else:
@@ -939,6 +1043,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     ws = inner.warm_start
     if ws is not None and k:  # the extended problem's basis, for these friction rows
         ws = BoxWarmStart._trusted(ws.n, ws.z_basic, ws.at_upper, tuple(F.tolist()))
+    solved = status == Status.SOLVED
     return BLCPResult(z, w, status, inner.pivots, float(residual),
-                      inner.ray if status != Status.SOLVED else None, inner.z0, inner.covering,
+                      None if solved else inner.ray, 0.0 if solved else inner.z0, inner.covering,
                       ws, lo_in, hi_in, R, C, inner.recoveries)

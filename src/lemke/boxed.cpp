@@ -728,13 +728,15 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     Run run(W);
     idx pivots = exchange(run, want);
     bool singular = false;
+    bool partial = (cov_mode & PARTIAL) != 0;
+    int mode = cov_mode & ~PARTIAL;
     for (idx i = 0; i < n; ++i) {
         if (want[i] && !is_basic[n + i]) {
             if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {
                 z_hi[i] = 0;  // a free z left non-basic: it rests at 0 as if at a lower bound
-            } else {
+            } else if (!partial) {
                 singular = true;
-            }
+            }  // (PARTIAL: it stays non-basic at the bound of its start, and Lemke goes on)
         }
     }
     if (singular) {
@@ -765,11 +767,11 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         double v = x[b];
         double mag;
         if (b < n) {
-            mag = cov_mode == 0 ? Rs[b] / rmax : 1.0;
+            mag = mode == 0 ? Rs[b] / rmax : 1.0;
         } else {
             mag = 1.0;
         }
-        if (cov_mode == 2) mag *= 1.0 + unit_random(label_key(i));
+        if (mode == 2) mag *= 1.0 + unit_random(label_key(i));
         double sgn = 0.0;
         if (v < lb) {
             sgn = 1.0;

@@ -24,6 +24,9 @@ constexpr int SINGULAR = -4;     // a warm start's basis cannot be made basic
 constexpr int BAD_FINDEX = -5;   // a friction index the front refuses
 constexpr int UNDECIDED = -6;    // front: the friction check failed
 constexpr int NEED_RUN = -7;     // front: a run must decide
+constexpr int PARTIAL = 4;       // solve's cov_mode flag: a warm basis that cannot be made
+                                 // basic whole is kept in part (the z's the exchange pivots
+                                 // could not make basic stay at their start bounds), not SINGULAR
 constexpr int PREPARE = 0;       // front's phases
 constexpr int SOLVED_RUN = 1;
 constexpr double EXCHANGE_TOL = 1e-9;
@@ -129,7 +132,8 @@ idx friction_rows(const idx* findex, idx n);
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const idx* findex, idx nf, double* work, idx* F);
 
-// One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n.
+// One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n;
+// cov_mode 0, 1 or 2, plus PARTIAL to keep a singular warm basis in part.
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
                   double tie_tol, double tol, double* buf, idx* final);

@@ -11,7 +11,7 @@ namespace {
 // One thread's scratch, reused from island to island (grown, never shrunk).
 struct Scratch {
     std::vector<double> work, z, w;
-    std::vector<std::uint8_t> warm, cold, zb, zh;
+    std::vector<std::uint8_t> warm, warm2, cold, zb, zh;
     std::vector<std::int8_t> s;
 };
 
@@ -131,7 +131,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     };
     SolveResult r;
     if (has_warm) {
-        r = solve(A, qa, la, ha, warm, 1, limit, pt, tt, tol, ext, final);
+        r = solve(A, qa, la, ha, warm, 1 | PARTIAL, limit, pt, tt, tol, ext, final);
         pivots = std::max<idx>(r.pivots, 0);
         bool ok = r.code == 0 && r.ok;
         residual = r.residual;
@@ -156,6 +156,20 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
         }
         if (ok) return solved(r, pivots, 0, residual, true);
         rec = 1;
+        if (nf > 0 && !is_stop(r.code)) {  // _blcp._reset: the friction rows cold
+            std::uint8_t* warm2 = sized(S.warm2, 2 * N);
+            std::copy(warm, warm + 2 * N, warm2);
+            const idx* F = ints + N;
+            for (idx c = 0; c < nf; ++c) {
+                const idx vars[3] = {F[c], n + c, n + nf + c};
+                for (idx v : vars) warm2[v] = warm2[N + v] = 0;
+            }
+            r = solve(A, qa, la, ha, warm2, 1 | PARTIAL, std::max<idx>(0, limit - pivots), pt, tt,
+                      tol, ext, final);
+            pivots += std::max<idx>(r.pivots, 0);
+            if (r.code == 0 && r.ok) return solved(r, pivots, 1, r.residual, true);
+            rec = 2;
+        }
     }
     std::uint8_t* cold = sized(S.cold, 2 * N);
     std::fill(cold, cold + 2 * N, std::uint8_t(0));

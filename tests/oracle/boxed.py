@@ -63,6 +63,7 @@ SINGULAR = -4  # a warm start's basis cannot be made basic
 BAD_FINDEX = -5  # a friction index the front refuses (see _validate.blcp): the front says where
 UNDECIDED = -6  # front: the friction check failed; the front's general path decides
 NEED_RUN = -7  # front: a run must decide
+PARTIAL = 4  # solve's cov_mode flag: keep what a singular warm basis can make basic, go on
 EXCHANGE_TOL = 1e-9  # an exchange pivot below this (equilibrated units) counts as singular
 
 
@@ -493,8 +494,9 @@ def solve(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, buf
     """One run, checked: validate the data, equilibrate, exchange pivots (the free z's and
     the warm basis ``warm[:n]``, with non-basic z's at hi where ``warm[n:]``), Lemke with
     covering vector ``cov_mode`` (0: ones in the caller's coordinates, 1: ones in the
-    equilibrated ones, 2: fixed pseudo-random factors in [1, 2) there), and the check of
-    the point on (M, q, lo, hi).
+    equilibrated ones, 2: fixed pseudo-random factors in [1, 2) there; with the flag
+    ``PARTIAL`` added, a warm basis that the exchange pivots cannot make basic whole is kept
+    in part instead of SINGULAR), and the check of the point on (M, q, lo, hi).
 
     Returns ``(code, pivots, z0, ok, residual, k, m)``.  code: a pivoting status, or
     NOT_FINITE, BAD_BOUNDS (nothing else done) or SINGULAR (the start point); the outputs (views of ``buf``, see
@@ -595,6 +597,8 @@ def solve_in(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, 
             want[i] = False
     pivots = exchange(T, x, basis, nonbasic, pos, is_basic, want, n, scratch)
     singular = False
+    partial = (cov_mode & PARTIAL) != 0
+    mode = cov_mode & 3
     for i in range(n):
         if want[i] and not is_basic[n + i]:
             if far_both(lo, hi, i) and (cold or lo[i] == -np.inf and hi[i] == np.inf):
@@ -604,8 +608,9 @@ def solve_in(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, 
                 # (Taking the side of w's current sign instead solved fewer of a fuzz
                 # family: 2605 against 2616 of 3000.)
                 z_hi[i] = False
-            else:
+            elif not partial:
                 singular = True
+            # (PARTIAL: it stays non-basic at the bound of its start, and Lemke goes on)
     if singular:
         # The warm basis cannot be made basic: report the start point (it may still pass
         # the check), nothing else; the front then solves cold.
@@ -618,7 +623,7 @@ def solve_in(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, 
     # The covering column, set in the current basis: each row needs z0 on the side its
     # variable must stay (w >= 0 at lo: +; w <= 0 at hi: -; a basic z outside its box: back
     # towards it; a basic z inside, a fixed variable's w: 0).
-    keys = pivoting.label_keys(n if cov_mode == 2 else 0)
+    keys = pivoting.label_keys(n if mode == 2 else 0)
     rmax = 0.0
     for i in range(n):
         rmax = max(rmax, R[i])
@@ -629,10 +634,10 @@ def solve_in(M, q, lo, hi, warm, cov_mode, max_pivots, pivot_tol, tie_tol, tol, 
         lb, ub = bounds_of(b, n, los, his, z_hi)
         v = x[b]
         if b < n:
-            mag = R[b] / rmax if cov_mode == 0 else 1.0
+            mag = R[b] / rmax if mode == 0 else 1.0
         else:
             mag = 1.0
-        if cov_mode == 2:
+        if mode == 2:
             mag *= 1.0 + pivoting.unit_random(keys, i)
         sgn = 0.0
         if v < lb:
