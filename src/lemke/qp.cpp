@@ -348,11 +348,17 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     forward_rows(L, R.E);
     idx m_u = m_g;
     while (m_u < m && R.ckind[m_u] < n) ++m_u;
-    forward_rows(L, Mat<double>(R.C.p, m_u, n));
+    // in blocks of 32 rows (forward_rows takes rows by fours: the same bits), the thread's
+    // deadline looked at between them
+    for (idx i0 = 0; i0 < m_u; i0 += 32) {
+        if (deadline_passed() >= 0) return TIME_LIMIT;
+        forward_rows(L, Mat<double>(R.C.row(i0), std::min<idx>(32, m_u - i0), n));
+    }
     idx* up_row = w.up_row;
     for (idx j = 0; j < n; ++j) up_row[j] = -1;
     for (idx i = m_g; i < m_u; ++i) up_row[R.ckind[i]] = i;
     for (idx i = m_u; i < m; ++i) {
+        if ((i & 31) == 31 && deadline_passed() >= 0) return TIME_LIMIT;
         idx j = R.ckind[i] - n;
         if (up_row[j] >= 0) {
             double* Ci = R.C.row(i);
@@ -959,6 +965,9 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
     double floor = DEFINITE_TOL * top;
     if (!(top > 0.0)) return false;
     for (idx i = 0; i < n; ++i) {
+        // (the thread's deadline, every 32 rows: false then, and the callers ask
+        // deadline_passed() before they read false as "not definite")
+        if ((i & 31) == 31 && deadline_passed() >= 0) return false;
         double* Li = L.row(i);
         for (idx j = 0; j < i; ++j) Li[j] = (P(i, j) - dot(Li, L.row(j), j)) / L(j, j);
         double d = P(i, i) - dot(Li, Li, i);
@@ -1200,7 +1209,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         }
         w.layout(n, p, m, true);
         if (!cholesky(ds.P, w.L)) {
-            res.code = NOT_DEFINITE;
+            res.code = deadline_passed() >= 0 ? TIME_LIMIT : NOT_DEFINITE;
             return res;
         }
         int code = factors(ds, lo, up, w, R);
@@ -1219,7 +1228,10 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
                 w.M(j, i) = w.M(i, j);
             }
         }
+        if ((res.code = deadline_passed()) >= 0) return res;
         remember(dt, ds, lo, up, w, R.m_g);
+        if ((res.code = deadline_passed()) >= 0) return res;
+        res.code = OK;
     }
     thread_local std::vector<idx> beta;
     beta.clear();
@@ -1302,6 +1314,8 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     QPWork& w = work();
     w.layout(n, p, m, false);
     bool definite = semidefinite ? false : cholesky(ds.P, w.L);
+    if (!definite && (res.code = deadline_passed()) >= 0) return res;
+    res.code = OK;
     if (!definite) {
         if (few && zero_diagonal(ds.P) > equalities(p0, lo, up, n)) {
             res.code = NOT_APPLICABLE;
@@ -1368,7 +1382,7 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
     }
     Mat<const double> P(Ps, n, n);
     if (!cholesky(P, Mat<double>(Lw, n, n))) {
-        res.code = NOT_DEFINITE;
+        res.code = deadline_passed() >= 0 ? TIME_LIMIT : NOT_DEFINITE;
         return res;
     }
     double* buf = out;
