@@ -371,6 +371,7 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     forward(L, c);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
     for (idx k = 0; k < p; ++k) {
+        if (deadline_passed() >= 0) return TIME_LIMIT;
         householder_apply(w.V, w.beta, k, c);
         for (idx i = 0; i < m; ++i) householder_apply(w.V, w.beta, k, R.C.row(i));
     }
