@@ -97,6 +97,20 @@ int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* 
                      const double* hi, const int64_t* findex, const lemke_options* options,
                      double* z, double* w, lemke_info* info);
 
+/* lemke_blcp_solve, warm: state (n int8, in and out; NULL: cold, as lemke_blcp_solve) holds
+ * each row's state in the basis to start from, as lemke.BoxWarmStart.row_states() gives it:
+ * an ordinary row 0 (z_i at lo), 1 (at hi) or 2 (basic); a friction row (findex[i] >= 0)
+ * 3 + 9 s(beta+) + 3 s(beta-) + s(lambda), each s in 0-2 (3 for a row starting cold). On
+ * return it holds the final basis's states, to pass to the next step's solve (for rows that
+ * come and go, carry them by contact as BoxWarmStart.take / relabel do: a new row cold,
+ * 0 or 3). The runs are solve_blcp's from a warm start, bit for bit (the old basis's point
+ * first: 0 pivots and info->warm = 1 when it still solves the problem); where they end
+ * undecided, lemke_blcp_solve's cold runs. A state out of range for its row is
+ * LEMKE_INVALID_ARGUMENT. */
+int lemke_blcp_solve_warm(int64_t n, const double* M, const double* q, const double* lo,
+                          const double* hi, const int64_t* findex, const lemke_options* options,
+                          int8_t* state, double* z, double* w, lemke_info* info);
+
 /* Stops every solve running in this process, in any thread, within some tens of
  * microseconds: each returns LEMKE_INTERRUPTED (solves started afterwards are not
  * affected). Async-signal-safe: a SIGINT handler of the program may call it. The library

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lemke/boxed.hpp"
+#include "lemke/boxed_batch.hpp"
 #include "lemke/certify.hpp"
 #include "lemke/lcp.hpp"
 
@@ -117,11 +118,18 @@ int solve(idx n, const double* M, const double* q, const lemke_options* options,
     return status;
 }
 
+// A checked answer off a bound by less than the check's allowance (a run's point is not
+// clamped when the run itself did not end solved; the fuzz found z = 0 for lo = 1e-300, and
+// a denormal past hi): onto the bound, as the Python front's answer is.
+void onto_bounds(double* z, const double* lo, const double* hi, idx n) {
+    for (idx i = 0; i < n; ++i) z[i] = std::min(std::max(z[i], lo[i]), hi[i]);
+}
+
 // The box LCP (lemke_blcp_solve): _blcp._one_call's runs (cold), then the final basis's
 // point and one restart from that basis.
 int blcp(idx n, const double* M, const double* q, const double* lo, const double* hi,
          const int64_t* findex, const lemke_options* options, double* z, double* w,
-         lemke_info* info) {
+         lemke_info* info, std::int8_t* state_out = nullptr) {
     namespace bx = lemke::boxed;
     lemke_options o;
     lemke_default_options(&o);
@@ -253,12 +261,13 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
     const double* zo = friction ? buf.data() + 6 * N + 1 : ext + L.z();
     const double* wo = friction ? buf.data() + 6 * N + 1 + n : ext + L.w();
     if (z) for (idx i = 0; i < n; ++i) z[i] = zo[i];
-    if (z && status == LEMKE_SOLVED && !friction)
-        // A checked answer off a bound by less than the check's allowance (a run's point is
-        // not clamped when the run itself did not end solved): onto the bound, as the
-        // Python front's answer is (the fuzz found z = 0 for lo = 1e-300).
-        for (idx i = 0; i < n; ++i) z[i] = std::min(std::max(z[i], lo[i]), hi[i]);
+    if (z && status == LEMKE_SOLVED && !friction) onto_bounds(z, lo, hi, n);
     if (w) for (idx i = 0; i < n; ++i) w[i] = wo[i];
+    if (state_out && n > 0) {  // the final basis's row states (lemke_blcp_solve_warm)
+        std::vector<std::int8_t> scratch(static_cast<std::size_t>(N));
+        bx::row_states(final, r.k, r.m, n, nf, friction ? findex : nullptr, scratch.data(),
+                       state_out);
+    }
     if (info) {
         info->status = status;
         info->pivots = pivots;
@@ -266,6 +275,64 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
         info->warm = 0;
     }
     return status;
+}
+
+// A row state's code as lemke_blcp_solve_warm takes it: 0-2 for an ordinary row, 3-29 for
+// a friction row (BoxWarmStart.row_states).
+bool valid_state(std::int8_t s, bool friction_row) {
+    return friction_row ? (s >= lemke::boxed::FRICTION_STATE && s < lemke::boxed::FRICTION_STATE + 27)
+                        : (s >= 0 && s <= 2);
+}
+
+// lemke_blcp_solve_warm: solve_blcp's one-call runs from the row states (boxed::batch on one
+// island: the same calls, the same bits); what they leave undecided, the cold runs of blcp.
+int blcp_warm(idx n, const double* M, const double* q, const double* lo, const double* hi,
+              const int64_t* findex, const lemke_options* options, std::int8_t* state,
+              double* z, double* w, lemke_info* info) {
+    namespace bx = lemke::boxed;
+    if (state == nullptr) return blcp(n, M, q, lo, hi, findex, options, z, w, info);
+    lemke_options o;
+    lemke_default_options(&o);
+    if (options) o = *options;
+    if (n < 0 || (n > 0 && (!M || !q || !lo || !hi)) || !valid_options(o) || n > (idx(1) << 26))
+        return LEMKE_INVALID_ARGUMENT;
+    bool friction = findex && n > 0;
+    idx nf = 0;
+    for (idx i = 0; i < n; ++i) {
+        bool fr = friction && findex[i] >= 0;
+        nf += fr;
+        if (!valid_state(state[i], fr)) return LEMKE_INVALID_ARGUMENT;
+    }
+    lemke::DeadlineScope budget(o.time_limit);
+    idx N = n + 2 * nf;
+    idx buf_len = 6 * N + 1 + (friction ? 6 * n : 0), ints_len = N + 2 * nf;
+    std::vector<double> buf(static_cast<std::size_t>(buf_len));
+    std::vector<idx> ints(static_cast<std::size_t>(ints_len + 1));
+    std::vector<std::int8_t> state_out(static_cast<std::size_t>(n + 1));
+    std::vector<idx> no_findex(static_cast<std::size_t>(n + 1), -1);
+    const idx mstart[1] = {0}, qoff[2] = {0, n}, buff[2] = {0, buf_len}, ioff[2] = {0, ints_len};
+    const idx limit[1] = {o.max_pivots < 0 ? 100 * (N + 1) : o.max_pivots};
+    const std::uint8_t fflag[1] = {static_cast<std::uint8_t>(friction)}, wflag[1] = {1};
+    idx out_i[7];
+    double out_f[1];
+    bx::batch(M, mstart, q, lo, hi, qoff, friction ? findex : no_findex.data(), fflag, state,
+              wflag, 0, 1, limit, o.pivot_tol, o.tie_tol, o.tol, buf.data(), buff, ints.data(),
+              ioff, state_out.data(), out_i, out_f);
+    idx stage = out_i[5];
+    if (stage < 0)  // undecided (a ray to judge, a failed ladder) or refused data: the cold way
+        return blcp(n, M, q, lo, hi, findex, options, z, w, info, state);
+    const double* zo = buf.data() + (friction ? 6 * N + 1 : 0);
+    if (z) for (idx i = 0; i < n; ++i) z[i] = zo[i];
+    if (z && !friction) onto_bounds(z, lo, hi, n);
+    if (w) for (idx i = 0; i < n; ++i) w[i] = zo[n + i];
+    std::copy(state_out.begin(), state_out.begin() + n, state);
+    if (info) {
+        info->status = LEMKE_SOLVED;
+        info->pivots = out_i[1];
+        info->residual = out_f[0];
+        info->warm = stage == 0;
+    }
+    return LEMKE_SOLVED;
 }
 
 }  // namespace
@@ -295,6 +362,15 @@ int guarded(lemke_info* info, Body body) {
 }
 
 }  // namespace
+
+extern "C" int lemke_blcp_solve_warm(int64_t n, const double* M, const double* q,
+                                     const double* lo, const double* hi, const int64_t* findex,
+                                     const lemke_options* options, int8_t* state, double* z,
+                                     double* w, lemke_info* info) {
+    return guarded(info, [&] {
+        return blcp_warm(n, M, q, lo, hi, findex, options, state, z, w, info);
+    });
+}
 
 extern "C" int lemke_blcp_solve(int64_t n, const double* M, const double* q, const double* lo,
                                 const double* hi, const int64_t* findex,

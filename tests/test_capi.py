@@ -159,3 +159,51 @@ def test_box_lcps_under_sanitizers(build, tmp_path):
             same += 1
     print(f"\n  box LCPs through the C API: {len(cases)}, {solved} solved, {same} bit for bit with Python")
     assert solved > 0.8 * len(cases) and same > 0.95 * len(cases), (solved, same, len(cases))
+
+
+def test_warm_box_lcps_under_sanitizers(build, tmp_path):
+    """lemke_blcp_solve_warm: each box LCP's next step (q moved by 1e-9 of its size, and a
+    step with another q) from the row states of Python's answer to this one: a SOLVED answer
+    passes the C++ test's own check, every success is Python's (solve_blcp with
+    BoxWarmStart.from_row_states), and where both took the same pivots z is the same, bit
+    for bit."""
+    rng = np.random.default_rng(3)
+    cases = []
+    for M, q, lo, hi, fi in _box_cases():
+        r = lemke.solve_blcp(M, q, lo, hi, findex=fi)
+        if r.warm_start is None:
+            continue
+        states = r.warm_start.row_states()
+        scale = max(1.0, float(np.abs(q).max(initial=0.0)))
+        for q2 in (q + 1e-9 * scale, rng.standard_normal(len(q)) * scale):
+            cases.append((M, q2, lo, hi, fi, states))
+    path = tmp_path / "warm.txt"
+    with path.open("w") as f:
+        for M, q, lo, hi, fi, states in cases:
+            f.write(f"{len(q)} {0 if fi is None else 1}\n")
+            for a in (M, q, lo, hi):
+                f.write(" ".join(repr(float(v)) for v in np.ravel(a)) + "\n")
+            if fi is not None:
+                f.write(" ".join(str(int(v)) for v in fi) + "\n")
+            f.write(" ".join(str(int(v)) for v in states) + "\n")
+    r = _run([str(build / "lemke_capi_test"), "--blcp-warm", str(path)])
+    assert r.returncode == 0, r.stderr[-3000:]
+    rows = [line.split() for line in r.stdout.splitlines()]
+    assert len(rows) == len(cases)
+    same = solved = zero = alike = 0
+    for (M, q, lo, hi, fi, states), row in zip(cases, rows):
+        status, pivots, checked = (int(v) for v in row[:3])
+        z = np.array([float.fromhex(v) for v in row[3:]])
+        assert checked == 1
+        py = lemke.solve_blcp(M, q, lo, hi, findex=fi,
+                              warm_start=lemke.BoxWarmStart.from_row_states(states))
+        assert (status == 0) == py.success, (status, py)
+        solved += status == 0
+        zero += status == 0 and pivots == 0
+        if pivots == py.pivots and status == int(py.status):
+            alike += 1  # (the same pivots: mostly the same runs; the C API's cold fallback
+            same += z.tobytes() == py.z.tobytes()  # can meet Python's warm recovery's count)
+    print(f"\n  warm box LCPs through the C API: {len(cases)}, {solved} solved ({zero} with 0 "
+          f"pivots), {alike} with Python's pivots, {same} of them bit for bit")
+    assert solved > 0.8 * len(cases) and zero > 0.3 * len(cases)
+    assert alike > 0.9 * len(cases) and same > 0.98 * alike

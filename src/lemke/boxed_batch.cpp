@@ -196,6 +196,11 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
 
 }  // namespace
 
+void row_states(const idx* final, idx k, idx m, idx n, idx nf, const idx* findex,
+                std::int8_t* scratch, std::int8_t* states) {
+    states_of(final, k, m, n, nf, findex, scratch, states);
+}
+
 void batch(const double* Ms, const idx* mstart, const double* qs, const double* los,
            const double* his, const idx* qoff, const idx* findex, const std::uint8_t* fflag,
            const std::int8_t* state, const std::uint8_t* wflag, idx lo, idx hi,

@@ -17,6 +17,12 @@ namespace boxed {
 // friction row 3 + 9 s(beta+) + 3 s(beta-) + s(lambda).
 constexpr int FRICTION_STATE = 3;
 
+// The row states of a final basis (final[:k] basic, final[k:m] at hi, of the problem of
+// n + 2 nf rows that solve_blcp solves with nf friction rows) into states (n);
+// scratch: n + 2 nf.
+void row_states(const idx* final, idx k, idx m, idx n, idx nf, const idx* findex,
+                std::int8_t* scratch, std::int8_t* states);
+
 // Islands lo..hi-1, laid end to end: island b has n = qoff[b + 1] - qoff[b] rows, M the
 // n x n row-major block at Ms + mstart[b], q, lo, hi, findex (when fflag[b]) and the warm
 // row states (when wflag[b]) at offset qoff[b]; its output buffer bufs + buff[b] (solve_blcp's

@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
                 s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING || s == LEMKE_TIME_LIMIT || s == LEMKE_NOT_FINITE ||
                 s == LEMKE_INVALID_ARGUMENT;
         if (!known || info.status != s) { ++bad; std::fprintf(stderr, "round %ld: box status %d\n", r, s); }
-        if (s == LEMKE_SOLVED) {
+        auto within = [&](const char* what) {
             for (int64_t i = 0; i < told; ++i) {
                 double l = lo[i], h = hi[i];
                 if (with_findex && findex[i] >= 0) {
@@ -104,11 +104,29 @@ int main(int argc, char** argv) {
                 }
                 if (!(z[i] >= l && z[i] <= h)) {
                     ++bad;
-                    std::fprintf(stderr, "round %ld: box z[%lld] out of its bounds\n", r, (long long)i);
+                    std::fprintf(stderr, "round %ld: %s z[%lld] out of its bounds\n", r, what, (long long)i);
                     break;
                 }
             }
+        };
+        if (s == LEMKE_SOLVED) within("box");
+        // The warm entry on the same data from row states made from the round number (the
+        // stream of pick() left as it was): valid codes for the row's kind, or sometimes
+        // not (every 7th round one out of range).
+        std::vector<int8_t> state(static_cast<std::size_t>(told + 1));
+        for (int64_t i = 0; i < told; ++i) {
+            bool fr = with_findex && findex[i] >= 0;
+            state[i] = static_cast<int8_t>(fr ? 3 + (r * 7 + i * 13) % 27 : (r + i) % 3);
         }
+        if (r % 7 == 0 && told > 0) state[0] = static_cast<int8_t>(31);
+        s = lemke_blcp_solve_warm(told, M.get(), q.get(), lo.get(), hi.get(),
+                                  with_findex ? findex.get() : nullptr, r % 4 ? &o : nullptr,
+                                  r % 5 == 0 ? nullptr : state.data(), z.get(), w.get(), &info);
+        known = s == LEMKE_SOLVED || s == LEMKE_MAX_PIVOTS || s == LEMKE_RAY_TERMINATION ||
+                s == LEMKE_NUMERICAL_FAILURE || s == LEMKE_CYCLING || s == LEMKE_TIME_LIMIT ||
+                s == LEMKE_NOT_FINITE || s == LEMKE_INVALID_ARGUMENT;
+        if (!known || info.status != s) { ++bad; std::fprintf(stderr, "round %ld: warm box status %d\n", r, s); }
+        if (s == LEMKE_SOLVED) within("warm box");
     }
     std::printf("fuzz: %ld rounds, %ld bad\n", rounds, bad);
     return bad ? 1 : 0;

@@ -226,6 +226,80 @@ static void box_known_answers() {
     EXPECT(s == LEMKE_SOLVED);
 }
 
+// lemke_blcp_solve_warm: a step solved cold from cold row states, then the next step (q
+// moved a little) warm from the states it returned: the old basis still solves it (0
+// pivots, info.warm); a step whose basis no longer fits still solves; contacts with
+// friction (2 contacts: normal rows 0 and 2, friction rows 1 and 3); bad states refused.
+static void box_warm() {
+    const double M[16] = {2.0, 0.5, 0.1, 0.0, 0.5, 1.0, 0.0, 0.1,
+                          0.1, 0.0, 2.0, 0.5, 0.0, 0.1, 0.5, 1.0};
+    const double lo[4] = {0.0, -0.5, 0.0, -0.5}, hi[4] = {INFINITY, 0.5, INFINITY, 0.5};
+    const int64_t fi[4] = {-1, 0, -1, 2};
+    const double q1[4] = {-1.0, 0.3, -1.0, -0.2};
+    const double q2[4] = {-1.0 - 1e-9, 0.3, -1.0, -0.2 + 1e-9};
+    const double q3[4] = {-1.0, -2.0, 0.5, -0.2};  // another contact state: sliding, lifted
+    double z[4], w[4];
+    lemke_info info;
+    int8_t state[4] = {0, 3, 0, 3};  // cold
+    EXPECT(lemke_blcp_solve_warm(4, M, q1, lo, hi, fi, nullptr, state, z, w, &info) ==
+           LEMKE_SOLVED);
+    EXPECT(box_solution(4, M, q1, lo, hi, fi, z) && info.warm == 0);
+    EXPECT(state[0] >= 0 && state[0] <= 2 && state[1] >= 3 && state[1] < 30);
+    EXPECT(lemke_blcp_solve_warm(4, M, q2, lo, hi, fi, nullptr, state, z, w, &info) ==
+           LEMKE_SOLVED);
+    EXPECT(box_solution(4, M, q2, lo, hi, fi, z) && info.warm == 1 && info.pivots == 0);
+    EXPECT(lemke_blcp_solve_warm(4, M, q3, lo, hi, fi, nullptr, state, z, w, &info) ==
+           LEMKE_SOLVED);
+    EXPECT(box_solution(4, M, q3, lo, hi, fi, z) && info.warm == 0);
+    // the same as a cold solve's answer where the cold solve decides (NULL state: cold)
+    double zc[4];
+    EXPECT(lemke_blcp_solve_warm(4, M, q3, lo, hi, fi, nullptr, nullptr, zc, nullptr, &info) ==
+           LEMKE_SOLVED);
+    EXPECT(box_solution(4, M, q3, lo, hi, fi, zc));
+    // without friction: random box problems, warm from their own states after q moves
+    std::mt19937_64 rng(5);
+    std::normal_distribution<double> g;
+    for (int t = 0; t < 200; ++t) {
+        int64_t n = 1 + static_cast<int64_t>(rng() % 12);
+        std::vector<double> A(n * n), B(n * n, 0.0), q(n), l(n), h(n), zz(n);
+        for (auto& v : A) v = g(rng);
+        for (int64_t i = 0; i < n; ++i)
+            for (int64_t j = 0; j < n; ++j) {
+                for (int64_t k = 0; k < n; ++k) B[i * n + j] += A[i * n + k] * A[j * n + k];
+                if (i == j) B[i * n + j] += 0.1;
+            }
+        for (int64_t i = 0; i < n; ++i) {
+            q[i] = g(rng);
+            l[i] = rng() % 3 == 0 ? -INFINITY : -std::fabs(g(rng));
+            h[i] = rng() % 3 == 0 ? INFINITY : std::fabs(g(rng));
+        }
+        std::vector<int8_t> s(n, 0);
+        int r1 = lemke_blcp_solve_warm(n, B.data(), q.data(), l.data(), h.data(), nullptr,
+                                       nullptr, s.data(), zz.data(), nullptr, &info);
+        EXPECT(r1 == LEMKE_SOLVED && box_solution(n, B.data(), q.data(), l.data(), h.data(),
+                                                  nullptr, zz.data()));
+        for (auto& v : q) v += 1e-10 * g(rng);
+        int r2 = lemke_blcp_solve_warm(n, B.data(), q.data(), l.data(), h.data(), nullptr,
+                                       nullptr, s.data(), zz.data(), nullptr, &info);
+        EXPECT(r2 == LEMKE_SOLVED && box_solution(n, B.data(), q.data(), l.data(), h.data(),
+                                                  nullptr, zz.data()));
+        for (auto& v : q) v = g(rng);  // another step: the old basis rarely fits
+        int r3 = lemke_blcp_solve_warm(n, B.data(), q.data(), l.data(), h.data(), nullptr,
+                                       nullptr, s.data(), zz.data(), nullptr, &info);
+        EXPECT(r3 == LEMKE_SOLVED && box_solution(n, B.data(), q.data(), l.data(), h.data(),
+                                                  nullptr, zz.data()));
+    }
+    int8_t bad[4] = {0, 2, 0, 3};  // a friction row with an ordinary row's state
+    EXPECT(lemke_blcp_solve_warm(4, M, q1, lo, hi, fi, nullptr, bad, z, w, &info) ==
+           LEMKE_INVALID_ARGUMENT);
+    int8_t bad2[4] = {7, 3, 0, 3};  // an ordinary row's state out of range
+    EXPECT(lemke_blcp_solve_warm(4, M, q1, lo, hi, fi, nullptr, bad2, z, w, &info) ==
+           LEMKE_INVALID_ARGUMENT);
+    int8_t bad3[2] = {3, 0};  // a friction state without a friction index
+    EXPECT(lemke_blcp_solve_warm(2, M, q1, lo, hi, nullptr, nullptr, bad3, z, w, &info) ==
+           LEMKE_INVALID_ARGUMENT);
+}
+
 static void box_random_problems() {
     std::mt19937_64 rng(11);
     std::normal_distribution<double> g(0.0, 1.0);
@@ -368,7 +442,7 @@ static void budgets() {
 
 // Solve every box LCP of a table file written by tests/test_capi.py ("n f", M, q, lo, hi,
 // and with f = 1 findex); print "status pivots checked" and z as hexadecimal floats.
-static int box_table(const char* path) {
+static int box_table(const char* path, bool warm) {
     std::FILE* f = std::fopen(path, "r");
     if (!f) {
         std::fprintf(stderr, "cannot open %s\n", path);
@@ -388,9 +462,18 @@ static int box_table(const char* path) {
                 v = x;
             }
         const int64_t* fi = has_findex ? findex.data() : nullptr;
+        std::vector<int8_t> state(n + 1);
+        if (warm)  // then the row states to start from (lemke_blcp_solve_warm)
+            for (int64_t i = 0; i < n; ++i) {
+                int x;
+                if (std::fscanf(f, "%d", &x) != 1) return 2;
+                state[i] = static_cast<int8_t>(x);
+            }
         lemke_info info;
-        int s = lemke_blcp_solve(n, M.data(), q.data(), lo.data(), hi.data(), fi, nullptr,
-                                 z.data(), w.data(), &info);
+        int s = warm ? lemke_blcp_solve_warm(n, M.data(), q.data(), lo.data(), hi.data(), fi,
+                                             nullptr, state.data(), z.data(), w.data(), &info)
+                     : lemke_blcp_solve(n, M.data(), q.data(), lo.data(), hi.data(), fi, nullptr,
+                                        z.data(), w.data(), &info);
         bool checked = s != LEMKE_SOLVED || box_solution(n, M.data(), q.data(), lo.data(),
                                                          hi.data(), fi, z.data());
         std::printf("%d %lld %d", s, (long long)info.pivots, checked ? 1 : 0);
@@ -426,7 +509,8 @@ static int table(const char* path) {
 }
 
 int main(int argc, char** argv) {
-    if (argc > 2 && std::string_view(argv[1]) == "--blcp") return box_table(argv[2]);
+    if (argc > 2 && std::string_view(argv[1]) == "--blcp") return box_table(argv[2], false);
+    if (argc > 2 && std::string_view(argv[1]) == "--blcp-warm") return box_table(argv[2], true);
     if (argc > 1 && std::string_view(argv[1]) != "-") return table(argv[1]);
     known_answer();
     random_problems();
@@ -434,6 +518,7 @@ int main(int argc, char** argv) {
     box_known_answers();
     box_random_problems();
     box_bad_arguments();
+    box_warm();
     budgets();
     if (failures) {
         std::fprintf(stderr, "%d failure(s)\n", failures);
