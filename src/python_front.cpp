@@ -21,37 +21,12 @@
 
 #include "lemke/lcp.hpp"
 #include "lemke/pivoting.hpp"
+#include "python_arrays.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
 
 namespace {
-
-// NumPy's array object, as far as read here.
-struct ArrayFields {
-    PyObject_HEAD
-    char* data;
-    int nd;
-    Py_ssize_t* dimensions;
-    Py_ssize_t* strides;
-    PyObject* base;
-    PyObject* descr;
-    int flags;
-};
-
-// NumPy's dtype object up to type_num.
-struct DescrFields {
-    PyObject_HEAD
-    PyTypeObject* typeobj;
-    char kind, type, byteorder, former_flags;
-    int type_num;
-};
-
-constexpr int NPY_DOUBLE = 12;
-constexpr int C_CONTIGUOUS = 0x0001;
-constexpr int ALIGNED = 0x0100;
-constexpr int WRITEABLE = 0x0400;
-constexpr int CARRAY = C_CONTIGUOUS | ALIGNED | WRITEABLE;  // ndarray.flags.carray
 
 struct Front {
     bool on = false;
@@ -65,15 +40,7 @@ struct Front {
     double pivot_tol = 0, tie_tol = 0, tol = 0;
 } front;
 
-const ArrayFields* plain(PyObject* o, int nd) {
-    if (Py_TYPE(o) != front.ndarray) return nullptr;
-    auto* a = reinterpret_cast<const ArrayFields*>(o);
-    if (a->nd != nd || (a->flags & CARRAY) != CARRAY) return nullptr;
-    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
-    // float64 in the machine's byte order ('=': NumPy writes '<' or '>' only for the other)
-    if (t->type_num != NPY_DOUBLE || t->byteorder != '=') return nullptr;
-    return a;
-}
+const ArrayFields* plain(PyObject* o, int nd) { return plain_f64(o, nd, front.ndarray); }
 
 // The layout check on probes made by Python: (a 2 x 3 float64 C array, its data address,
 // a read-only 1-D float64 array, an int64 array of 3, a float64 array of the other byte
@@ -202,6 +169,10 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
 }
 
 }  // namespace
+
+NumpyLayout numpy_layout() {
+    return {front.on, front.ndarray, front.int64_num, front.empty};
+}
 
 void bind_front(nb::module_& m) {
     m.def("lcp_front_init", &init, "ndarray"_a, "result_cls"_a, "solved"_a, "ray"_a, "empty"_a,

@@ -1,0 +1,57 @@
+// NumPy arrays read directly (no DLPack capsule, no buffer view: those cost more than a
+// small solve), for the native fronts (src/python_front.cpp). The fields are those of
+// NumPy's PyArrayObject (data, nd, dimensions, strides, base, descr, flags; the same in
+// NumPy 1.x and 2.x) and of its descr up to type_num; lcp_front_init checks them on probe
+// arrays against what Python reports, and a front that finds them different stays off.
+#pragma once
+#include <Python.h>
+
+// NumPy's array object, as far as read here.
+struct ArrayFields {
+    PyObject_HEAD
+    char* data;
+    int nd;
+    Py_ssize_t* dimensions;
+    Py_ssize_t* strides;
+    PyObject* base;
+    PyObject* descr;
+    int flags;
+};
+
+// NumPy's dtype object up to type_num.
+struct DescrFields {
+    PyObject_HEAD
+    PyTypeObject* typeobj;
+    char kind, type, byteorder, former_flags;
+    int type_num;
+};
+
+constexpr int NPY_DOUBLE = 12;
+constexpr int C_CONTIGUOUS = 0x0001;
+constexpr int ALIGNED = 0x0100;
+constexpr int WRITEABLE = 0x0400;
+constexpr int CARRAY = C_CONTIGUOUS | ALIGNED | WRITEABLE;  // ndarray.flags.carray
+
+// o when it is an ndarray (exactly) of nd dimensions, float64 in the machine's byte order
+// ('=': NumPy writes '<' or '>' only for the other), C-contiguous, aligned and writable;
+// else nullptr.
+inline const ArrayFields* plain_f64(PyObject* o, int nd, PyTypeObject* ndarray) {
+    if (Py_TYPE(o) != ndarray) return nullptr;
+    auto* a = reinterpret_cast<const ArrayFields*>(o);
+    if (a->nd != nd || (a->flags & CARRAY) != CARRAY) return nullptr;
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    if (t->type_num != NPY_DOUBLE || t->byteorder != '=') return nullptr;
+    return a;
+}
+
+
+// What lcp_front_init found (src/python_front.cpp): whether the layout above holds (false
+// until it has run: every native front then declines), numpy.ndarray, NumPy's type number
+// of int64 here, numpy.empty.
+struct NumpyLayout {
+    bool ok;
+    PyTypeObject* ndarray;
+    int int64_num;
+    PyObject* empty;
+};
+NumpyLayout numpy_layout();
