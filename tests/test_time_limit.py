@@ -179,3 +179,73 @@ def test_the_listener_restores_python_handler():
     with pytest.raises(KeyboardInterrupt):
         os.kill(os.getpid(), signal.SIGINT)
         time.sleep(1.0)
+
+
+# --- progress of single long solves -------------------------------------------------------
+
+@pytest.mark.parametrize("solve", ["lcp", "blcp", "mlcp"])
+def test_progress_of_a_long_solve(solve):
+    """progress(pivots, seconds) about every 0.1 s while the core pivots (in the calling
+    thread), pivots and seconds growing; the solve's result is unchanged by it."""
+    M, q, n = LONG.M, LONG.q, 26
+    opts = {**ENDLESS, "time_limit": 0.45}
+    calls = []
+    report = lambda pivots, seconds: calls.append((pivots, seconds, threading.get_ident()))
+    if solve == "lcp":
+        r = lemke.solve_lcp(M, q, options=opts, progress=report)
+    elif solve == "blcp":
+        r = lemke.solve_blcp(M, q, np.zeros(n), np.full(n, np.inf), options=opts, progress=report)
+    else:
+        r = lemke.solve_mlcp(np.eye(1), M, np.zeros((1, n)), np.zeros((n, 1)), np.zeros(1), q,
+                             options=opts, progress=report)
+    assert r.status == Status.TIME_LIMIT
+    assert 2 <= len(calls) <= 6, calls
+    assert all(t == threading.get_ident() for _, _, t in calls)
+    pivots = [p for p, _, _ in calls]
+    seconds = [s for _, s, _ in calls]
+    assert pivots == sorted(pivots) and pivots[0] > 0 and seconds == sorted(seconds)
+    assert 0.05 < seconds[0] < 0.45
+
+
+def test_progress_changes_no_bit_and_a_short_solve_makes_no_report():
+    p = problems.murty(10)
+    calls = []
+    a = lemke.solve_lcp(p.M, p.q)
+    b = lemke.solve_lcp(p.M, p.q, progress=lambda *c: calls.append(c))
+    assert calls == [] and a.pivots == b.pivots and a.z.tobytes() == b.z.tobytes()
+    assert_lcp_solution(p.M, p.q, b.z)
+    assert lemke.solve_lcp(p.M, p.q, progress=False).z.tobytes() == a.z.tobytes()
+
+
+def test_an_exception_of_the_progress_callback_stops_the_solve():
+    class Enough(Exception):
+        pass
+
+    def stop(pivots, seconds):
+        raise Enough(pivots)
+
+    t = time.perf_counter()
+    with pytest.raises(Enough):
+        lemke.solve_lcp(LONG.M, LONG.q, options=ENDLESS, progress=stop)
+    assert time.perf_counter() - t < 2.0  # stopped at the first report (0.1 s), not minutes
+    after = lemke.solve_lcp(problems.murty(5).M, problems.murty(5).q)
+    assert after.success and _core.progress_error() is None
+
+
+def test_progress_true_writes_on_stderr_and_bad_progress_is_refused(capsys, monkeypatch):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_tqdm(name, *args, **kwargs):
+        if name == "tqdm":
+            raise ImportError(name)
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_tqdm)
+    r = lemke.solve_lcp(LONG.M, LONG.q, options={**ENDLESS, "time_limit": 0.25}, progress=True)
+    assert r.status == Status.TIME_LIMIT
+    err = capsys.readouterr().err
+    assert "solve_lcp" in err and "pivots" in err
+    with pytest.raises(TypeError, match="progress"):
+        lemke.solve_lcp(LONG.M, LONG.q, progress="yes")

@@ -39,7 +39,7 @@ from itertools import repeat
 import numpy as np
 
 from ._options import _DEFAULT, as_options, time_limited, timed
-from . import _validate
+from . import _progress, _validate
 from ._result import LazyField, Outcome, lazy_state
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
@@ -447,7 +447,7 @@ class _Run:
 
 
 def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
-               options=None) -> BLCPResult:
+               options=None, progress=None) -> BLCPResult:
     r"""Solve the box LCP: lo <= z <= hi, w = M z + q, w_i >= 0 where z_i = lo_i, w_i <= 0
     where z_i = hi_i, w_i = 0 in between.
 
@@ -486,6 +486,10 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
     >>> r.status.name, r.z.tolist()
     ('SOLVED', [2.0, -1.0])
     """
+    if progress is not None and progress is not False:
+        return _progress.reported(_progress.check(progress), "solve_blcp", solve_blcp, M, q, lo,
+                                  hi, findex=findex, method=method, warm_start=warm_start,
+                                  options=options)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp, M, q, lo, hi, findex=findex, method=method,
                      warm_start=warm_start)

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _core, _validate
+from . import _core, _progress, _validate
 from ._certify import check_lcp
 from ._options import _DEFAULT, as_options, time_limited, timed
 from ._result import LCPResult, WarmStart
@@ -41,7 +41,8 @@ _PIVOT_TOL, _TIE_TOL, _TOL = _DEFAULT.pivot_tol, _DEFAULT.tie_tol, _DEFAULT.tol
 _ENTRY: dict = {}
 
 
-def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) -> LCPResult:
+def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
+              progress=None) -> LCPResult:
     r"""Solve the linear complementarity problem LCP(M, q) by Lemke's method.
 
     Find z with
@@ -70,7 +71,13 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
         transform by that basis, with a constant covering vector there; ``d`` is not used),
         and if that fails too, the problem is solved cold.
     options : Options or dict, optional
-        ``max_pivots`` and the tolerances; see :class:`lemke.Options`.
+        ``max_pivots``, the tolerances and ``time_limit``; see :class:`lemke.Options`.
+    progress : callable or True, optional
+        For long solves: ``progress(pivots, seconds)`` about every 0.1 s while the core
+        pivots (the pivots of the run in progress, the seconds since the call began), in
+        the calling thread; an exception it raises stops the solve and propagates.
+        ``True`` draws a bar on stderr (tqdm when installed, else a counter).  A short solve
+        makes no report.
 
     Returns
     -------
@@ -91,6 +98,9 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None) 
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
+    if progress is not None and progress is not False:
+        return _progress.reported(_progress.check(progress), "solve_lcp", solve_lcp, M, q,
+                                  method=method, d=d, warm_start=warm_start, options=options)
     if d is None and options is None and method == "tableau":
         # The commonest calls, whole in one native call (src/python_front.cpp): plain
         # float64 arrays give the result (or what first_run left to do), others None.

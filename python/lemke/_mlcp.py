@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from . import _core, _validate
+from . import _core, _progress, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp
 from ._options import as_options, time_limited, timed
@@ -78,7 +78,8 @@ class MLCPResult(Outcome):
         )
 
 
-def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=None) -> MLCPResult:
+def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=None,
+               progress=None) -> MLCPResult:
     r"""Solve the mixed linear complementarity problem
 
     .. math::  A u + C v + a = 0, \quad w = D u + B v + b, \quad 0 \le v \perp w \ge 0
@@ -119,6 +120,9 @@ def solve_mlcp(A, B, C, D, a, b, *, method="tableau", warm_start=None, options=N
     >>> r.status.name, r.u.round(6).tolist(), r.v.round(6).tolist()
     ('SOLVED', [1.666667], [0.666667])
     """
+    if progress is not None and progress is not False:
+        return _progress.reported(_progress.check(progress), "solve_mlcp", solve_mlcp, A, B, C, D,
+                                  a, b, method=method, warm_start=warm_start, options=options)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_mlcp, A, B, C, D, a, b, method=method, warm_start=warm_start)
     _validate.method(method, METHODS)

@@ -1,5 +1,6 @@
 """Progress reports of long work (:func:`lemke.lemke_paths`, :func:`lemke.solve_lcp_batch`,
-:func:`lemke.solve_lcp_many`).
+:func:`lemke.solve_lcp_many`, and single solves: :func:`lemke.solve_lcp`, ``solve_blcp``,
+``solve_mlcp``, ``solve_qp``, through :func:`reported`).
 
 A ``progress`` argument is None (silent), a callable (called in the calling thread with
 the counts the function documents), or ``True``: a bar on stderr drawn by ``tqdm`` when it
@@ -96,3 +97,30 @@ class Reporter:
 
 #: Seconds between two writes of the plain counter.
 PLAIN_INTERVAL = 0.2
+
+
+#: Seconds between two reports of a single solve (its engines call back at most this often).
+SOLVE_EVERY = 0.1
+
+
+def reported(progress, what, solve, *args, **kwargs):
+    """``solve(*args, **kwargs)`` reporting as it pivots: ``progress(pivots, seconds)`` (the
+    pivots of the run in progress, which a recovery run starts again from 0, and the
+    seconds since the call began) about every ``SOLVE_EVERY`` seconds while the C++ core
+    pivots, in the calling thread; a short solve makes no report.  An exception of the
+    callback stops the solve and is raised.  ``progress=True``: a bar or a counter."""
+    from . import _core
+
+    t0 = time.perf_counter()
+    with Reporter(progress, what, unit="pivot",
+                  describe=lambda pivots, seconds: (pivots, f"{seconds:.1f} s")) as report:
+        _core.set_progress(lambda pivots: report.update(pivots, time.perf_counter() - t0),
+                           SOLVE_EVERY)
+        try:
+            res = solve(*args, **kwargs)
+        finally:
+            _core.set_progress(None, 0.0)
+            error = _core.progress_error()
+        if error is not None:
+            raise error
+        return res

@@ -16,6 +16,7 @@ namespace {
 std::atomic<std::uint64_t> g_interrupts{0};
 std::atomic<bool> g_listener_enabled{false};
 thread_local std::int64_t t_deadline = 0;
+thread_local ProgressHook* t_progress = nullptr;
 
 #ifndef _WIN32
 std::mutex g_listener_mutex;
@@ -93,6 +94,10 @@ std::int64_t now_ns() {
 
 std::int64_t thread_deadline() { return t_deadline; }
 
+ProgressHook* thread_progress() { return t_progress; }
+
+void set_thread_progress(ProgressHook* hook) { t_progress = hook; }
+
 static std::int64_t deadline_after(double seconds) {
     if (!(seconds >= 0.0) || !std::isfinite(seconds)) return 0;
     double ns = seconds * 1e9;
@@ -126,6 +131,14 @@ int Poll::look() {
         } else if (!tried_ && total_ >= ARM_WORK) {
             tried_ = true;
             armed_ = arm_sigint_listener();
+        }
+        if (stopped_ < 0 && progress_ != nullptr) {
+            std::int64_t now = now_ns();
+            if (now >= progress_->next_ns) {
+                progress_->next_ns = now + progress_->every_ns;
+                // (pivots_ counts this tick's pivot, not yet made)
+                if (!progress_->call(progress_->ctx, pivots_ - 1)) stopped_ = STOP_INTERRUPTED;
+            }
         }
     }
     if (stopped_ >= 0) work_ = POLL_WORK;  // from now on every tick says so

@@ -66,18 +66,32 @@ inline int deadline_passed() {
     return d != 0 && now_ns() >= d ? STOP_TIME_LIMIT : -1;
 }
 
+// The calling thread's progress hook (none by default): Poll's looks call it at most every
+// every_ns with the run's pivots so far; it returns false to stop the run (INTERRUPTED).
+struct ProgressHook {
+    bool (*call)(void* ctx, std::int64_t pivots);
+    void* ctx;
+    std::int64_t every_ns;
+    std::int64_t next_ns;
+};
+ProgressHook* thread_progress();
+void set_thread_progress(ProgressHook* hook);
+
 class Poll {
     std::int64_t work_ = POLL_WORK;  // the first tick looks
     std::int64_t total_ = 0;
+    std::int64_t pivots_ = 0;
     std::int64_t deadline_;
     std::uint64_t seen_;
+    ProgressHook* progress_;
     int stopped_ = -1;
     bool armed_ = false;
     bool tried_ = false;
     int look();
 
 public:
-    Poll() : deadline_(thread_deadline()), seen_(interrupts_seen()) {}
+    Poll()
+        : deadline_(thread_deadline()), seen_(interrupts_seen()), progress_(thread_progress()) {}
     ~Poll() {
         if (armed_) disarm_sigint_listener();
     }
@@ -86,6 +100,7 @@ public:
     // -1: go on; else STOP_TIME_LIMIT or STOP_INTERRUPTED (and so at every later tick).
     int tick(std::int64_t work) {
         work_ += work;
+        ++pivots_;
         return work_ < POLL_WORK ? -1 : look();
     }
     // A look now, whatever the work since the last one: before a step that takes long at
