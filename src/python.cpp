@@ -184,6 +184,7 @@ static void batch(int method, Flat Ms, Indices mstart, Flat qs, Indices qoff, In
 
 void bind_games(nb::module_& m);  // src/python_games.cpp
 void bind_qp(nb::module_& m);     // src/python_qp.cpp
+void bind_front_qp(nb::module_& m);  // src/python_front_qp.cpp
 
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
@@ -230,4 +231,5 @@ NB_MODULE(_core, m) {
     bind_boxed(m);
     bind_front(m);
     bind_qp(m);
+    bind_front_qp(m);
 }
