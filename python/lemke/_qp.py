@@ -187,9 +187,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         return timed(timing, solve_qp, P, q, G, h, A, b, lb, ub, method=method,
                      warm_start=warm_start, initvals=initvals)
     tried = warm_tried = False
-    if options is None and type(method) is str and method == "tableau" and (
-            type(warm_start) is WarmStart and initvals is None
-            or warm_start is None and initvals is not None):
+    if (warm_start is not None or initvals is not None) and options is None and (
+            type(method) is str and method == "tableau") and (
+            type(warm_start) is WarmStart and initvals is None or warm_start is None):
         # The warm call (a WarmStart, or qpsolvers' initvals) whole in one native call
         # (src/python_front_qp.cpp): plain data (as the inline path below takes it, and a
         # plain float64 initvals) gives the result, or the kernel's code when it did not end
