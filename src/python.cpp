@@ -184,6 +184,7 @@ static void batch(int method, Flat Ms, Indices mstart, Flat qs, Indices qoff, In
 
 void bind_games(nb::module_& m);  // src/python_games.cpp
 void bind_qp(nb::module_& m);     // src/python_qp.cpp
+void bind_front_qp(nb::module_& m);  // src/python_front_qp.cpp
 
 // The calling thread's progress callback (set_progress): the engines' Poll calls it, with
 // the GIL taken for the call; an exception of the callback stops the run (INTERRUPTED) and is
@@ -282,4 +283,5 @@ NB_MODULE(_core, m) {
     bind_boxed(m);
     bind_front(m);
     bind_qp(m);
+    bind_front_qp(m);
 }

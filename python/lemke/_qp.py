@@ -187,7 +187,34 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         return timed(timing, solve_qp, P, q, G, h, A, b, lb, ub, method=method,
                      warm_start=warm_start, initvals=initvals)
     tried = warm_tried = False
+    if (warm_start is not None or initvals is not None) and options is None and (
+            type(method) is str and method == "tableau") and (
+            type(warm_start) is WarmStart and initvals is None or warm_start is None):
+        # The warm call (a WarmStart, or qpsolvers' initvals) whole in one native call
+        # (src/python_front_qp.cpp): plain data (as the inline path below takes it, and a
+        # plain float64 initvals) gives the result, or the kernel's code when it did not end
+        # solved and checked (the steps below then go on without calling it again); others
+        # None (the steps below do everything).
+        if warm_start is not None:
+            try:
+                beta = warm_start._beta  # (an attribute read: cheaper than __dict__.get)
+            except AttributeError:
+                beta = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=_I64)
+            r = _QP_FRONT(P, q, G, h, A, b, lb, ub, warm_start.n, beta, None)
+        else:
+            r = _QP_FRONT(P, q, G, h, A, b, lb, ub, 0, None, initvals)
+        if r is not None:
+            if type(r) is not tuple:
+                return r
+            code, pivots, k, pairs = r
+            if code == _BAD_WARM:
+                raise _bad_warm(warm_start, pairs)
+            if code in _STOP_CODES:
+                return _stopped(code, pivots, len(q), 0 if A is None else len(A),
+                                0 if G is None else len(G))
+            warm_tried = True
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
+            and not warm_tried
             and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
@@ -240,6 +267,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         else:
             plain = False
         if plain and warm_start is not None:  # the fused kernel from the warm start
+            # (with options or another method: the native front above takes the others)
             opts = _DEFAULT_OPTIONS if options is None else as_options(options)
             res = _solve_warm((P, q, Gk, hk, Ak, bk, lo, up), method, opts, warm_start)
             if res is not None:
@@ -289,7 +317,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     if initvals is not None:
         if warm_start is not None:
             raise ValueError("give warm_start or initvals, not both")
-        plain = _plain_args(P, q, G, h, A, b, lb, ub)
+        plain = None if warm_tried else _plain_args(P, q, G, h, A, b, lb, ub)
         if plain is not None:  # the fused kernel reads the guess's active set itself
             res = _solve_warm(plain, method, opts, None, _guess_vector(initvals, plain[1].shape[0]))
             if res is not None:
@@ -653,7 +681,10 @@ def _solve_warm(args, method, opts, warm_start, x0=None):
             P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
             opts.tol, out, x0)
     else:
-        warm = np.fromiter(warm_start.z_basic, dtype=_I64, count=len(warm_start.z_basic))
+        try:
+            warm = warm_start._beta  # kept on the warm start (as solve_lcp keeps it)
+        except AttributeError:
+            warm = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=_I64)
         code, pivots, k, pairs = _core.qp_solve_warm(
             P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], mp, opts.pivot_tol, opts.tie_tol,
             opts.tol, out, warm, warm_start.n)
@@ -844,6 +875,7 @@ _METHOD_CODES = dict(_METHOD_NAMES)
 _OK, _NOT_DEFINITE, _GRAM_RATIO = _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_GRAM_RATIO
 _NOT_APPLICABLE = _core.QP_NOT_APPLICABLE
 _BAD_WARM = _core.QP_BAD_WARM
+_QP_FRONT = _core.qp_front  # solve_qp's warm call, native (src/python_front_qp.cpp)
 
 
 def _fused_fields(out, n, p, m, k, pairs):
@@ -851,9 +883,11 @@ def _fused_fields(out, n, p, m, k, pairs):
     s = 2 * n + p + m
     primal, dual, gap, obj = out[s:s + 4].tolist()
     basic = out[s + 4:s + 4 + k].view(_I64)
+    ws = WarmStart._trusted(pairs, tuple(basic.tolist()))
+    ws.__dict__["_beta"] = basic  # the index array the warm path takes (read-only, as out)
     return {"y": out[n:n + p], "z": out[n + p:n + p + m], "z_box": out[n + p + m:2 * n + p + m],
             "obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
-            "warm_start": WarmStart._trusted(pairs, tuple(basic[:k].tolist()))}
+            "warm_start": ws}
 
 
 def _QP(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None) -> QPToMLCP:
@@ -1077,3 +1111,9 @@ def _direction_by_lp(qp, method, opts):
     if r.status != Status.SOLVED:
         return None
     return _check_direction(qp, N @ r.x, opts.tol)
+
+
+# The native warm front builds its results as _fused_result does (it stays off, returning
+# None, where lcp_front_init found another NumPy layout).
+_core.qp_front_init(QPResult, _SOLVED, _fused_fields, _METHOD_CODES["tableau"],
+                    _DEFAULT_OPTIONS.pivot_tol, _DEFAULT_OPTIONS.tie_tol, _DEFAULT_OPTIONS.tol)

@@ -1,0 +1,213 @@
+// lemke._core.qp_front: solve_qp's warm call (a WarmStart, or qpsolvers' initvals) whole in
+// one native call, as src/python_front.cpp does for solve_lcp: plain float64 arrays (the
+// kinds solve_qp's first lines take: ndarrays of the kernel's ranks, C-contiguous, aligned,
+// writable; G with h, A with b, or neither; lb, ub or None), the default options and
+// method. It reads the ndarrays' fields directly (src/python_arrays.hpp, the layout that
+// lcp_front_init checked), allocates the output buffer with numpy.empty, runs qp::solve
+// (the fused kernel from the warm start's pairs, or from x0) without the GIL and builds the
+// QPResult as _qp._fused_result does (x, status, pivots, certificate now, the rest from
+// _qp._fused_fields when first read).
+//
+// Returns the QPResult when the kernel ends OK (solved and checked); the tuple (code,
+// pivots, k, pairs) for any other code (the Python front goes on from there, as from
+// _core.qp_solve_warm's answer, without calling the kernel again); None when the arguments
+// are not of that plain kind, their shapes do not match, the warm start's index array is
+// not rising in [0, pairs) or x0 is not finite (the Python front then does what it did
+// before, and says what is wrong). The same solve, the same bits as _core.qp_solve_warm /
+// _core.qp_solve_guess.
+#include <nanobind/nanobind.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "lemke/qp.hpp"
+#include "python_arrays.hpp"
+
+namespace nb = nanobind;
+using namespace nb::literals;
+
+namespace {
+
+using lemke::idx;
+namespace qp = lemke::qp;
+
+struct QPFront {
+    bool on = false;
+    PyObject* result_cls = nullptr;  // QPResult
+    PyObject* solved = nullptr;      // Status.SOLVED
+    PyObject* fields = nullptr;      // _qp._fused_fields
+    PyObject *k_x, *k_status, *k_pivots, *k_certificate, *k_resolve;
+    int method = 0;
+    double pivot_tol = 0, tie_tol = 0, tol = 0;
+} qf;
+
+void init(nb::handle result_cls, nb::handle solved, nb::handle fields, int method,
+          double pivot_tol, double tie_tol, double tol) {
+    qf.on = false;
+    if (!numpy_layout().ok) return;  // lcp_front_init found another layout (or has not run)
+    for (nb::handle h : {result_cls, solved, fields}) h.inc_ref();  // kept for good
+    qf.result_cls = result_cls.ptr();
+    qf.solved = solved.ptr();
+    qf.fields = fields.ptr();
+    qf.k_x = PyUnicode_InternFromString("x");
+    qf.k_status = PyUnicode_InternFromString("status");
+    qf.k_pivots = PyUnicode_InternFromString("pivots");
+    qf.k_certificate = PyUnicode_InternFromString("certificate");
+    qf.k_resolve = PyUnicode_InternFromString("_resolve");
+    qf.method = method;
+    qf.pivot_tol = pivot_tol;
+    qf.tie_tol = tie_tol;
+    qf.tol = tol;
+    qf.on = qf.k_x && qf.k_status && qf.k_pivots && qf.k_certificate && qf.k_resolve;
+}
+
+// d[key] = value, stealing value; false on an error (set).
+bool put(PyObject* d, PyObject* key, PyObject* value) {
+    if (value == nullptr) return false;
+    int e = PyDict_SetItem(d, key, value);
+    Py_DECREF(value);
+    return e == 0;
+}
+
+// The absent bounds of n variables (-inf, then +inf), kept per thread.
+const double* absent_bounds(idx n) {
+    thread_local std::vector<double> v;
+    if (static_cast<idx>(v.size()) != 2 * n) {
+        v.assign(static_cast<std::size_t>(2 * n), std::numeric_limits<double>::infinity());
+        for (idx j = 0; j < n; ++j) v[static_cast<std::size_t>(j)] = -v[static_cast<std::size_t>(j)];
+    }
+    return v.data();
+}
+
+nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
+                    nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
+                    std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
+    if (!qf.on) return nb::none();
+    NumpyLayout lay = numpy_layout();
+    auto plain = [&](nb::handle o, int nd) { return plain_f64(o.ptr(), nd, lay.ndarray); };
+    const ArrayFields* P = plain(P_h, 2);
+    const ArrayFields* q = plain(q_h, 1);
+    if (P == nullptr || q == nullptr) return nb::none();
+    idx n = q->dimensions[0];
+    if (n == 0 || P->dimensions[0] != n || P->dimensions[1] != n) return nb::none();
+    static const double nothing = 0.0;
+    const double *Gd = &nothing, *hd = &nothing, *Ad = &nothing, *bd = &nothing;
+    idx m = 0, p = 0;
+    // rows (G and h, or A and b): both plain of matching shapes, or both None
+    auto rows = [&](nb::handle M_h, nb::handle v_h, const double*& M, const double*& v,
+                    idx& k) {
+        if (M_h.is_none() && v_h.is_none()) return true;
+        const ArrayFields* Ma = M_h.is_none() ? nullptr : plain(M_h, 2);
+        const ArrayFields* va = v_h.is_none() ? nullptr : plain(v_h, 1);
+        if (Ma == nullptr || va == nullptr) return false;
+        k = va->dimensions[0];
+        if (Ma->dimensions[0] != k || Ma->dimensions[1] != n) return false;
+        M = reinterpret_cast<const double*>(Ma->data);
+        v = reinterpret_cast<const double*>(va->data);
+        return true;
+    };
+    if (!rows(G_h, h_h, Gd, hd, m) || !rows(A_h, b_h, Ad, bd, p)) return nb::none();
+    const double* absent = nullptr;
+    const double *lo, *up;
+    if (lb_h.is_none()) {
+        absent = absent_bounds(n);
+        lo = absent;
+    } else {
+        const ArrayFields* a = plain(lb_h, 1);
+        if (a == nullptr || a->dimensions[0] != n) return nb::none();
+        lo = reinterpret_cast<const double*>(a->data);
+    }
+    if (ub_h.is_none()) {
+        if (absent == nullptr) absent = absent_bounds(n);
+        up = absent + n;
+    } else {
+        const ArrayFields* a = plain(ub_h, 1);
+        if (a == nullptr || a->dimensions[0] != n) return nb::none();
+        up = reinterpret_cast<const double*>(a->data);
+    }
+    // The warm start's pairs (WarmStart._beta: int64, C-contiguous, aligned; rising in
+    // [0, pairs), as _core.qp_solve_warm requires), or the guess x0 (n finite entries).
+    const std::int64_t* warm = nullptr;
+    idx kw = 0;
+    const double* x0 = nullptr;
+    if (!beta_h.is_none()) {
+        if (Py_TYPE(beta_h.ptr()) != lay.ndarray) return nb::none();
+        auto* w = reinterpret_cast<const ArrayFields*>(beta_h.ptr());
+        if (w->nd != 1 || (w->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
+            reinterpret_cast<const DescrFields*>(w->descr)->type_num != lay.int64_num)
+            return nb::none();
+        warm = reinterpret_cast<const std::int64_t*>(w->data);
+        kw = w->dimensions[0];
+        if (pairs < 0 || kw > pairs) return nb::none();
+        for (idx t = 0; t < kw; ++t)
+            if (warm[t] < 0 || warm[t] >= pairs || (t > 0 && warm[t] <= warm[t - 1]))
+                return nb::none();
+    } else {
+        // read only: a result's read-only x may be the guess (C-contiguous and aligned,
+        // float64 in the machine's byte order, as plain_f64 asks, writable or not)
+        if (x0_h.is_none() || Py_TYPE(x0_h.ptr()) != lay.ndarray) return nb::none();
+        auto* g = reinterpret_cast<const ArrayFields*>(x0_h.ptr());
+        auto* gt = reinterpret_cast<const DescrFields*>(g->descr);
+        if (g->nd != 1 || (g->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
+            gt->type_num != NPY_DOUBLE || gt->byteorder != '=' || g->dimensions[0] != n)
+            return nb::none();
+        x0 = reinterpret_cast<const double*>(g->data);
+        if (!lemke::all_finite(x0, n)) return nb::none();
+        pairs = 0;
+    }
+    idx k0 = 2 * n + p + m + 4;  // qp.out_size, then the basis (m + 2n)
+    nb::object size = nb::steal(PyLong_FromSsize_t(k0 + m + 2 * n));
+    if (!size.is_valid()) throw nb::python_error();
+    PyObject* args[] = {size.ptr()};
+    nb::object buf = nb::steal(PyObject_Vectorcall(lay.empty, args, 1, nullptr));
+    if (!buf.is_valid()) throw nb::python_error();
+    auto* bf = reinterpret_cast<ArrayFields*>(buf.ptr());
+    double* out = reinterpret_cast<double*>(bf->data);
+    qp::Data data{lemke::Mat<const double>(reinterpret_cast<const double*>(P->data), n, n),
+                  reinterpret_cast<const double*>(q->data),
+                  lemke::Mat<const double>(Gd, m, n), hd, lemke::Mat<const double>(Ad, p, n),
+                  bd, lo, up};
+    qp::Result r;
+    {
+        nb::gil_scoped_release release;
+        r = qp::solve(data, qf.method, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out,
+                      reinterpret_cast<idx*>(out + k0), warm, kw, pairs, x0);
+    }
+    if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
+    // _qp._fused_result: the buffer read-only (out.setflags(write=False): NumPy's
+    // PyArray_CLEARFLAGS, on the field), x its first n entries, the rest deferred.
+    bf->flags &= ~WRITEABLE;
+    nb::object stop = nb::steal(PyLong_FromSsize_t(n));
+    if (!stop.is_valid()) throw nb::python_error();
+    nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
+    if (!sl.is_valid()) throw nb::python_error();
+    auto* cls = reinterpret_cast<PyTypeObject*>(qf.result_cls);
+    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nb::python_error();
+    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
+    if (!dict.is_valid()) throw nb::python_error();
+    PyObject* d = dict.ptr();
+    Py_INCREF(qf.solved);
+    Py_INCREF(Py_None);
+    nb::object src = nb::make_tuple(buf, n, p, m, r.k, r.pairs);
+    bool ok = put(d, qf.k_x, PyObject_GetItem(buf.ptr(), sl.ptr())) &&
+              put(d, qf.k_status, qf.solved) &&
+              put(d, qf.k_pivots, PyLong_FromLongLong(r.pivots)) &&
+              put(d, qf.k_certificate, Py_None) &&
+              put(d, qf.k_resolve, PyTuple_Pack(2, qf.fields, src.ptr()));
+    if (!ok) throw nb::python_error();
+    return res;
+}
+
+}  // namespace
+
+void bind_front_qp(nb::module_& m) {
+    m.def("qp_front_init", &init, "result_cls"_a, "solved"_a, "fields"_a, "method"_a,
+          "pivot_tol"_a, "tie_tol"_a, "tol"_a);
+    m.def("qp_front", &qp_front, "P"_a.none(), "q"_a.none(), "G"_a.none(), "h"_a.none(),
+          "A"_a.none(), "b"_a.none(), "lb"_a.none(), "ub"_a.none(), "pairs"_a, "beta"_a.none(),
+          "x0"_a.none());
+    m.def("qp_front_on", [] { return qf.on; });
+}
