@@ -195,9 +195,10 @@ def test_progress_of_a_long_solve(solve):
         r = lemke.solve_lcp(M, q, options=opts, progress=report)
     elif solve == "blcp":
         r = lemke.solve_blcp(M, q, np.zeros(n), np.full(n, np.inf), options=opts, progress=report)
-    else:
+    elif solve == "mlcp":
         r = lemke.solve_mlcp(np.eye(1), M, np.zeros((1, n)), np.zeros((n, 1)), np.zeros(1), q,
                              options=opts, progress=report)
+
     assert r.status == Status.TIME_LIMIT
     assert 2 <= len(calls) <= 6, calls
     assert all(t == threading.get_ident() for _, _, t in calls)
@@ -249,3 +250,19 @@ def test_progress_true_writes_on_stderr_and_bad_progress_is_refused(capsys, monk
     assert "solve_lcp" in err and "pivots" in err
     with pytest.raises(TypeError, match="progress"):
         lemke.solve_lcp(LONG.M, LONG.q, progress="yes")
+
+
+def test_progress_of_a_qp(monkeypatch):
+    """solve_qp reports too (reports made every millisecond here, so that a QP of some tens
+    of milliseconds makes some), and its answer is the one it gives without them."""
+    from lemke import _progress
+    from helpers import assert_qp_kkt
+
+    d = problems.random_convex_qp(200, np.random.default_rng(1))
+    ref = lemke.solve_qp(*d, method="tableau")
+    monkeypatch.setattr(_progress, "SOLVE_EVERY", 0.001)
+    calls = []
+    r = lemke.solve_qp(*d, method="tableau", progress=lambda pivots, s: calls.append(pivots))
+    assert r.success and calls and calls == sorted(calls)
+    assert r.x.tobytes() == ref.x.tobytes() and r.pivots == ref.pivots
+    assert_qp_kkt(*d, r)

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from . import _validate
+from . import _progress, _validate
 from ._blcp import solve_blcp
 from ._certify import Certificate, absmax as _size, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
@@ -116,7 +116,7 @@ class QPResult(Outcome):
 
 
 def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="tableau",
-             warm_start=None, initvals=None, options=None) -> QPResult:
+             warm_start=None, initvals=None, options=None, progress=None) -> QPResult:
     r"""Solve the convex quadratic program
 
     .. math::  \min_x \tfrac12 x^\top P x + q^\top x \quad \text{s.t.} \quad
@@ -183,6 +183,10 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     >>> r.status.name, r.x.round(6).tolist(), r.z.round(6).tolist()
     ('SOLVED', [-0.25, 1.25], [2.5])
     """
+    if progress is not None and progress is not False:
+        return _progress.reported(_progress.check(progress), "solve_qp", solve_qp, P, q, G, h, A,
+                                  b, lb, ub, method=method, warm_start=warm_start,
+                                  initvals=initvals, options=options)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_qp, P, q, G, h, A, b, lb, ub, method=method,
                      warm_start=warm_start, initvals=initvals)
