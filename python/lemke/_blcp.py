@@ -40,11 +40,11 @@ import numpy as np
 
 from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _progress, _validate
-from ._result import LazyField, Outcome, lazy_state
+from ._result import LazyField, Outcome, lazy_state, native_fronts_init
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
 from ._core import refined_solve
-from . import _core, _lcp  # (importing _lcp runs lcp_front_init: the layout _FRONT relies on)
+from . import _core
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
@@ -1079,5 +1079,6 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
 #: default options, cold or with a friction index and/or a BoxWarmStart; a result, what is
 #: left to do (a tuple for _finish, False for _general), or None (not plain: all here).
 _FRONT = _core.blcp_front
+native_fronts_init()  # (NumPy's layout checked: _FRONT relies on it)
 _core.blcp_front_init(BLCPResult, BoxWarmStart, Status.SOLVED, _spans, _I64, _DEFAULT.pivot_tol,
                       _DEFAULT.tie_tol, _DEFAULT.tol)
