@@ -8,7 +8,7 @@ Markdown table of the medians over rounds (per case, the median over its problem
 Cases: cold calls at n = 1, 3, 6, 12, 24 (box LCPs: a monotone M, every other row a
 normal row [0, inf), the others [-0.5, 0.5]); 0-pivot warm re-solves (the last answer's
 warm start, q moved by 1e-9) at n = 6, 12, 24, without and with a friction index (n/2 2-D
-contacts, ``contacts`` of tests/test_blcp.py). A problem whose warm re-solve needs a pivot
+contacts, ``bench_blcp.contact_islands``). A problem whose warm re-solve needs a pivot
 is skipped. Both interpreters must give the same answers (checked: z bit for bit)."""
 import json
 import subprocess
@@ -16,6 +16,8 @@ import sys
 import time
 
 import numpy as np
+
+from bench_blcp import contact_islands  # (n/2 2-D contacts with findex)
 
 PROBLEMS = 5
 
@@ -32,18 +34,7 @@ def box(seed, n):
 
 
 def friction(seed, n):
-    k = n // 2
-    rng = np.random.default_rng(seed)
-    J = rng.standard_normal((2 * k, 3 * max(1, k // 2)))
-    M = J @ J.T + 1e-6 * np.eye(2 * k)
-    q = rng.standard_normal(2 * k)
-    mu = rng.uniform(0.2, 1.0, k)
-    lo, hi = np.zeros(2 * k), np.full(2 * k, np.inf)
-    findex = np.full(2 * k, -1, dtype=np.int64)
-    for c in range(k):
-        findex[2 * c + 1] = 2 * c
-        lo[2 * c + 1], hi[2 * c + 1] = -mu[c], mu[c]
-    return M, q, lo, hi, findex
+    return contact_islands(seed, n // 2)
 
 
 def cases():
