@@ -231,3 +231,31 @@ def test_results_are_read_only_and_alias_nothing():
             assert not np.shares_memory(a, x)
     r2 = lemke.solve_blcp(M, q, lo, hi, warm_start=r.warm_start)
     assert r2.pivots == 0 and r2.warm_start is r.warm_start
+
+
+def test_carried_and_rebuilt_warm_starts():
+    """Warm starts made by take, relabel, from_row_states and pickling (their row states
+    computed, not the kernel's final basis) give the Python path's answers too."""
+    import pickle
+    for seed in range(12):
+        M, q, lo, hi, findex, mu = contacts(seed, 4)
+        findex = findex.astype(np.int64)
+        r = lemke.solve_blcp(M, q, lo, hi, findex=findex)
+        ws = r.warm_start
+        same = list(range(q.size))
+        for w in (ws.take(same, findex), ws.relabel(same, same, findex),
+                  BoxWarmStart.from_row_states(ws.row_states()), pickle.loads(pickle.dumps(ws))):
+            assert w == ws
+            _both(M, q + 1e-3, lo, hi, findex=findex, warm_start=w)
+        # two contacts dropped, one new: the carried basis of the smaller problem
+        keep = np.r_[0:4, 6:8]
+        idx = np.r_[keep, -1, -1]
+        M2 = M[np.ix_(keep, keep)]
+        M2 = np.block([[M2, np.zeros((6, 2))], [np.zeros((2, 6)), np.eye(2)]])
+        q2, lo2, hi2 = np.r_[q[keep], -1.0, 0.5], np.r_[lo[keep], 0.0, -0.3], np.r_[hi[keep], np.inf, 0.3]
+        f2 = np.r_[findex[keep], -1, 6].astype(np.int64)
+        f2[f2 == 6] = 6
+        f2[5] = 4
+        w2 = ws.take(idx, f2)
+        _both(M2, q2, lo2, hi2, findex=f2, warm_start=w2)
+        _both(M2, q2, lo2, hi2, findex=f2)
