@@ -18,6 +18,7 @@ using namespace nb::literals;
 void bind_support(nb::module_& m);  // src/python_support.cpp
 void bind_boxed(nb::module_& m);  // src/python_boxed.cpp
 void bind_front(nb::module_& m);  // src/python_front.cpp
+void bind_front_box(nb::module_& m);  // src/python_front_box.cpp
 
 using Matrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
 using Vector = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
@@ -282,6 +283,7 @@ NB_MODULE(_core, m) {
     bind_games(m);
     bind_boxed(m);
     bind_front(m);
+    bind_front_box(m);
     bind_qp(m);
     bind_front_qp(m);
 }

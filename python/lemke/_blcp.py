@@ -40,10 +40,11 @@ import numpy as np
 
 from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _progress, _validate
-from ._result import LazyField, Outcome, lazy_state
+from ._result import LazyField, Outcome, lazy_state, native_fronts_init
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
 from ._core import refined_solve
+from . import _core
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
@@ -490,6 +491,21 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         return _progress.reported(_progress.check(progress), "solve_blcp", solve_blcp, M, q, lo,
                                   hi, findex=findex, method=method, warm_start=warm_start,
                                   options=options)
+    if options is None and method == "bounded":
+        # The commonest calls, whole in one native call (src/python_front_box.cpp): plain
+        # float64 arrays give the result, or what is left to do (the cold run's answer and
+        # buffers for _finish; False: the general path, where _one_call would go), else None.
+        r = _FRONT(M, q, lo, hi, findex, warm_start)
+        if r is not None:
+            if r is False:
+                return _general(M, q, lo, hi, findex, warm_start, _DEFAULT)
+            if type(r) is not tuple:
+                return r
+            run = _Run(q.shape[0], r[7], r[8])
+            run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = r[:7]
+            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+                return _from_final(_finish(M, q, lo, hi, _DEFAULT, run), M, q, lo, hi, None,
+                                   _DEFAULT)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp, M, q, lo, hi, findex=findex, method=method,
                      warm_start=warm_start)
@@ -539,13 +555,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             res = _one_call(M, q, lo, hi, findex, warm_start, opts, validated=False)
             if res is not None:
                 return res
-            M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
-            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                if findex is None:
-                    res = _solve(M, q, lo, hi, opts, warm_start, tried=True)
-                else:
-                    res = _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=True)
-                return _from_final(res, M, q, lo, hi, findex, opts)
+            return _general(M, q, lo, hi, findex, warm_start, opts)
     if method not in METHODS:
         raise ValueError(f"unknown method {method!r}; choose one of {', '.join(map(repr, METHODS))}")
     M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
@@ -557,6 +567,18 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             res = _solve(M, q, lo, hi, opts, warm_start)
         else:
             res = _solve_friction(M, q, lo, hi, findex, opts, warm_start)
+        return _from_final(res, M, q, lo, hi, findex, opts)
+
+
+def _general(M, q, lo, hi, findex, warm_start, opts):
+    """The general path after ``_one_call`` left the runs undecided (its kernel calls are
+    not made again)."""
+    M, q, lo, hi, findex = as_blcp(M, q, lo, hi, findex)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        if findex is None:
+            res = _solve(M, q, lo, hi, opts, warm_start, tried=True)
+        else:
+            res = _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=True)
         return _from_final(res, M, q, lo, hi, findex, opts)
 
 
@@ -1051,3 +1073,12 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     return BLCPResult(z, w, status, inner.pivots, float(residual),
                       None if solved else inner.ray, 0.0 if solved else inner.z0, inner.covering,
                       ws, lo_in, hi_in, R, C, inner.recoveries)
+
+
+#: The commonest calls whole (src/python_front_box.cpp): plain float64 M, q, lo, hi, the
+#: default options, cold or with a friction index and/or a BoxWarmStart; a result, what is
+#: left to do (a tuple for _finish, False for _general), or None (not plain: all here).
+_FRONT = _core.blcp_front
+native_fronts_init()  # (NumPy's layout checked: _FRONT relies on it)
+_core.blcp_front_init(BLCPResult, BoxWarmStart, Status.SOLVED, _spans, _I64, _DEFAULT.pivot_tol,
+                      _DEFAULT.tie_tol, _DEFAULT.tol)

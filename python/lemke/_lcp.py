@@ -6,7 +6,7 @@ import numpy as np
 from . import _core, _progress, _validate
 from ._certify import check_lcp
 from ._options import _DEFAULT, as_options, time_limited, timed
-from ._result import LCPResult, WarmStart
+from ._result import LCPResult, WarmStart, native_fronts_init
 from ._status import Status
 from . import _layout
 
@@ -286,16 +286,4 @@ def _result(z, w, residual, status, pivots, ray, z0, cov, warm_start, row_scale,
                            warm_start, row_scale, col_scale, int(recoveries))
 
 
-def _front_init():
-    """Give the native front what it builds results with, and let it check NumPy's array
-    layout on probes (it stays off, returning None, where that layout differs)."""
-    probe = np.zeros((2, 3))
-    ro = np.zeros(3)
-    ro.setflags(write=False)
-    _core.lcp_front_init(np.ndarray, LCPResult, Status.SOLVED, Status.RAY_TERMINATION, np.empty,
-                         _PIVOT_TOL, _TIE_TOL, _TOL, probe, probe.__array_interface__["data"][0],
-                         ro, np.zeros(3, dtype=np.int64),
-                         np.zeros(3, dtype=np.dtype(np.float64).newbyteorder()))
-
-
-_front_init()
+native_fronts_init()  # (solve_lcp's front and the layout check the native fronts rely on)

@@ -17,6 +17,7 @@ from operator import itemgetter
 import numpy as np
 
 from . import _core
+from ._options import _DEFAULT
 from ._status import Status
 from ._validate import kernel_array
 from . import _layout
@@ -711,3 +712,19 @@ class LCPBatchResult(Value):
     def __repr__(self) -> str:
         b, n = self.z.shape
         return f"LCPBatchResult(B={b}, n={n}, solved={int(self.success.sum())}/{b})"
+
+
+def native_fronts_init():
+    """Give solve_lcp's native front (``_core.lcp_front``, src/python_front.cpp) what it
+    builds results with, and let it check NumPy's array layout on probes: every native front
+    (solve_lcp's, solve_blcp's) stays off, returning None, where that layout differs.  Run by
+    the first of ``_lcp`` and ``_blcp`` imported; once."""
+    if _core.lcp_front_on():
+        return
+    probe = np.zeros((2, 3))
+    ro = np.zeros(3)
+    ro.setflags(write=False)
+    _core.lcp_front_init(np.ndarray, LCPResult, Status.SOLVED, Status.RAY_TERMINATION, np.empty,
+                         _DEFAULT.pivot_tol, _DEFAULT.tie_tol, _DEFAULT.tol, probe,
+                         probe.__array_interface__["data"][0], ro, np.zeros(3, dtype=np.int64),
+                         np.zeros(3, dtype=np.dtype(np.float64).newbyteorder()))
