@@ -45,6 +45,15 @@ inline const ArrayFields* plain_f64(PyObject* o, int nd, PyTypeObject* ndarray) 
 }
 
 
+// d[key] = value, stealing value (the fronts build their results' __dict__ with it);
+// false on an error (set).
+inline bool put(PyObject* d, PyObject* key, PyObject* value) {
+    if (value == nullptr) return false;
+    int e = PyDict_SetItem(d, key, value);
+    Py_DECREF(value);
+    return e == 0;
+}
+
 // What lcp_front_init found (src/python_front.cpp): whether the layout above holds (false
 // until it has run: every native front then declines), numpy.ndarray, NumPy's type number
 // of int64 here, numpy.empty.

@@ -91,14 +91,6 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
                front.k_src && front.k_warm_start;
 }
 
-// d[key] = value, stealing value; false on an error (set).
-bool put(PyObject* d, PyObject* key, PyObject* value) {
-    if (value == nullptr) return false;
-    int e = PyDict_SetItem(d, key, value);
-    Py_DECREF(value);
-    return e == 0;
-}
-
 nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle beta_h) {
     using lemke::idx;
     if (!front.on) return nb::none();

@@ -77,14 +77,6 @@ void init(nb::handle result_cls, nb::handle ws_cls, nb::handle solved, nb::handl
     bf.on = numpy_layout().ok;
 }
 
-// d[key] = value, stealing value; false on an error (set).
-bool put(PyObject* d, PyObject* key, PyObject* value) {
-    if (value == nullptr) return false;
-    int e = PyDict_SetItem(d, key, value);
-    Py_DECREF(value);
-    return e == 0;
-}
-
 // numpy.empty(len) (float64) or numpy.empty(len, int64).
 nb::object empty(idx len, bool ints) {
     nb::object size = nb::steal(PyLong_FromSsize_t(len));

@@ -63,14 +63,6 @@ void init(nb::handle result_cls, nb::handle solved, nb::handle fields, int metho
     qf.on = qf.k_x && qf.k_status && qf.k_pivots && qf.k_certificate && qf.k_resolve;
 }
 
-// d[key] = value, stealing value; false on an error (set).
-bool put(PyObject* d, PyObject* key, PyObject* value) {
-    if (value == nullptr) return false;
-    int e = PyDict_SetItem(d, key, value);
-    Py_DECREF(value);
-    return e == 0;
-}
-
 // The absent bounds of n variables (-inf, then +inf), kept per thread.
 const double* absent_bounds(idx n) {
     thread_local std::vector<double> v;
