@@ -187,54 +187,6 @@ void bind_games(nb::module_& m);  // src/python_games.cpp
 void bind_qp(nb::module_& m);     // src/python_qp.cpp
 void bind_front_qp(nb::module_& m);  // src/python_front_qp.cpp
 
-// The calling thread's progress callback (set_progress): the engines' Poll calls it, with
-// the GIL taken for the call; an exception of the callback stops the run (INTERRUPTED) and is
-// kept for progress_error().
-struct PyProgress {
-    nb::object fn;
-    nb::object error;
-    lemke::ProgressHook hook{};
-};
-static thread_local PyProgress t_py_progress;
-
-static bool call_progress(void* ctx, std::int64_t pivots) {
-    auto* p = static_cast<PyProgress*>(ctx);
-    PyGILState_STATE g = PyGILState_Ensure();
-    bool go_on = true;
-    try {
-        p->fn(pivots);
-    } catch (nb::python_error& e) {
-        p->error = nb::borrow(e.value());
-        go_on = false;
-    } catch (...) {
-        go_on = false;
-    }
-    PyGILState_Release(g);
-    return go_on;
-}
-
-static void set_progress(nb::object fn, double every) {
-    PyProgress& p = t_py_progress;
-    if (fn.is_none()) {
-        lemke::set_thread_progress(nullptr);
-        p.fn = nb::none();
-        return;
-    }
-    p.fn = fn;
-    p.error = nb::none();
-    p.hook.call = call_progress;
-    p.hook.ctx = &p;
-    p.hook.every_ns = static_cast<std::int64_t>(every * 1e9);
-    p.hook.next_ns = lemke::now_ns() + p.hook.every_ns;
-    lemke::set_thread_progress(&p.hook);
-}
-
-static nb::object progress_error() {
-    nb::object e = t_py_progress.error.is_valid() ? t_py_progress.error : nb::none();
-    t_py_progress.error = nb::none();
-    return e;
-}
-
 NB_MODULE(_core, m) {
     m.doc() = "The C++ core of lemke (see ARCHITECTURE.md).";
     // d, beta and basic may be None (no covering vector, no warm start, the buffer's own
@@ -267,10 +219,16 @@ NB_MODULE(_core, m) {
     m.def("deadline", &lemke::thread_deadline, "The calling thread's deadline (0: none).");
     m.def("interrupt", &lemke::interrupt_all, "Stop every running solve (INTERRUPTED).");
     m.def("interrupts", &lemke::interrupts_seen, "How many interrupts so far.");
-    m.def("set_progress", &set_progress, "fn"_a.none(), "every"_a,
-          "The calling thread's progress callback fn(pivots) for long runs, at most every "
-          "`every` seconds (None: none).");
-    m.def("progress_error", &progress_error, "The exception the callback raised (then cleared).");
+    // A progress probe (budget.hpp ProgressHook): attach() in the solving thread, pivots()
+    // and stop() from the reporting one.
+    nb::class_<lemke::ProgressHook>(m, "ProgressProbe")
+        .def(nb::init<>())
+        .def("attach", [](lemke::ProgressHook& h) { lemke::set_thread_progress(&h); })
+        .def("detach", [](lemke::ProgressHook&) { lemke::set_thread_progress(nullptr); })
+        .def("pivots", [](const lemke::ProgressHook& h) {
+            return h.pivots.load(std::memory_order_relaxed);
+        })
+        .def("stop", [](lemke::ProgressHook& h) { h.stop.store(true, std::memory_order_relaxed); });
     m.attr("TIME_LIMIT") = static_cast<int>(lemke::TIME_LIMIT);
     m.attr("INTERRUPTED") = static_cast<int>(lemke::INTERRUPTED);
     m.attr("NOT_FINITE") = lemke::NOT_FINITE;

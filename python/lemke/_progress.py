@@ -106,21 +106,46 @@ SOLVE_EVERY = 0.1
 def reported(progress, what, solve, *args, **kwargs):
     """``solve(*args, **kwargs)`` reporting as it pivots: ``progress(pivots, seconds)`` (the
     pivots of the run in progress, which a recovery run starts again from 0, and the
-    seconds since the call began) about every ``SOLVE_EVERY`` seconds while the C++ core
-    pivots, in the calling thread; a short solve makes no report.  An exception of the
-    callback stops the solve and is raised.  ``progress=True``: a bar or a counter."""
+    seconds since the call began) about every ``SOLVE_EVERY`` seconds, in the calling
+    thread, while the solve runs in a thread of its own (with the caller's deadline) and
+    records its pivots in a probe that the engines update at each look; a short solve makes
+    no report.  An exception of the callback (or Ctrl-C) stops the solve and is raised.
+    ``progress=True``: a bar or a counter.  (The callback may itself solve with lemke: it
+    runs in another thread than the solve it reports on.)"""
+    import threading
+
     from . import _core
+
+    probe = _core.ProgressProbe()
+    deadline = _core.deadline()
+    box = {}
+
+    def work():
+        probe.attach()
+        _core.restore_deadline(deadline)
+        try:
+            box["result"] = solve(*args, **kwargs)
+        except BaseException as exc:  # raised in the calling thread
+            box["error"] = exc
+        finally:
+            probe.detach()
+            _core.restore_deadline(0)
 
     t0 = time.perf_counter()
     with Reporter(progress, what, unit="pivot",
                   describe=lambda pivots, seconds: (pivots, f"{seconds:.1f} s")) as report:
-        _core.set_progress(lambda pivots: report.update(pivots, time.perf_counter() - t0),
-                           SOLVE_EVERY)
+        worker = threading.Thread(target=work, name=f"lemke-{what}", daemon=True)
+        worker.start()
         try:
-            res = solve(*args, **kwargs)
-        finally:
-            _core.set_progress(None, 0.0)
-            error = _core.progress_error()
-        if error is not None:
-            raise error
-        return res
+            while True:
+                worker.join(SOLVE_EVERY)
+                if not worker.is_alive():
+                    break
+                report.update(probe.pivots(), time.perf_counter() - t0)
+        except BaseException:
+            probe.stop()  # the solve ends at its next look
+            worker.join()
+            raise
+    if "error" in box:
+        raise box["error"]
+    return box["result"]

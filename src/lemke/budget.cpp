@@ -133,12 +133,9 @@ int Poll::look() {
             armed_ = arm_sigint_listener();
         }
         if (stopped_ < 0 && progress_ != nullptr) {
-            std::int64_t now = now_ns();
-            if (now >= progress_->next_ns) {
-                progress_->next_ns = now + progress_->every_ns;
-                // (pivots_ counts this tick's pivot, not yet made)
-                if (!progress_->call(progress_->ctx, pivots_ - 1)) stopped_ = STOP_INTERRUPTED;
-            }
+            // (pivots_ counts this tick's pivot, not yet made)
+            progress_->pivots.store(pivots_ - 1, std::memory_order_relaxed);
+            if (progress_->stop.load(std::memory_order_relaxed)) stopped_ = STOP_INTERRUPTED;
         }
     }
     if (stopped_ >= 0) work_ = POLL_WORK;  // from now on every tick says so

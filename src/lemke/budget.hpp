@@ -66,13 +66,12 @@ inline int deadline_passed() {
     return d != 0 && now_ns() >= d ? STOP_TIME_LIMIT : -1;
 }
 
-// The calling thread's progress hook (none by default): Poll's looks call it at most every
-// every_ns with the run's pivots so far; it returns false to stop the run (INTERRUPTED).
+// The calling thread's progress probe (none by default): at each look a run stores its
+// pivots so far there, and stops (INTERRUPTED) once another thread has asked it to. No
+// callback runs in the solving thread: the thread that reports reads the probe.
 struct ProgressHook {
-    bool (*call)(void* ctx, std::int64_t pivots);
-    void* ctx;
-    std::int64_t every_ns;
-    std::int64_t next_ns;
+    std::atomic<std::int64_t> pivots{0};
+    std::atomic<bool> stop{false};
 };
 ProgressHook* thread_progress();
 void set_thread_progress(ProgressHook* hook);
