@@ -269,7 +269,7 @@ def test_progress_of_a_qp(monkeypatch):
     assert_qp_kkt(*d, r)
 
 
-def test_a_progress_callback_may_solve_with_lemke_itself():
+def test_a_progress_callback_may_solve_with_lemke_itself(monkeypatch):
     """The callback runs in the calling thread and the solve in its own: a solve inside the
     callback (its own workspaces) leaves the reported solve's answer as it is."""
     from lemke import _progress
@@ -282,13 +282,8 @@ def test_a_progress_callback_may_solve_with_lemke_itself():
         p = problems.murty(8)
         inner.append(lemke.solve_lcp(p.M, p.q).z.tobytes())
 
-    import pytest as _pt
-    mp = _pt.MonkeyPatch()
-    mp.setattr(_progress, "SOLVE_EVERY", 0.001)
-    try:
-        r = lemke.solve_qp(*d, method="tableau", progress=nested)
-    finally:
-        mp.undo()
+    monkeypatch.setattr(_progress, "SOLVE_EVERY", 0.001)
+    r = lemke.solve_qp(*d, method="tableau", progress=nested)
     assert r.success and r.x.tobytes() == ref.x.tobytes()
     p = problems.murty(8)
     assert inner and set(inner) == {lemke.solve_lcp(p.M, p.q).z.tobytes()}
