@@ -90,15 +90,17 @@ def _arrays(path: Path):
     return tuple(None if a is None else np.array(a, dtype=float) for a in problem)
 
 
-def _worker(conn, data: str, eps: float, time_limit: float):
-    """Answer ``(problem, solver)`` requests with one timed call each, until ``None``."""
+def _worker(conn, data: str, eps: float, time_limit: float, fresh: bool = False):
+    """Answer ``(problem, solver)`` requests with one timed call each, until ``None``.
+    ``fresh``: no warm-up, so that the first request is the process's first solve (lemke and
+    qpsolvers, which imports every installed solver, are imported before it all the same)."""
     import warnings
 
     warnings.simplefilter("ignore")
     import qpsolvers
 
     kwargs = settings(eps, time_limit)
-    for name in WARM_UP:  # load (or compile) lemke's kernels, and start every peer once
+    for name in () if fresh else WARM_UP:  # load (or compile) lemke's kernels, and start every peer once
         arrays = _arrays(Path(data) / f"{name}.mat")
         lemke.solve_qp(*arrays)
         for solver, kw in kwargs.items():
@@ -150,13 +152,14 @@ class Runner:
     """One worker process; a call that does not answer within the time limit (plus slack for
     loading the problem) kills it and starts a new one."""
 
-    def __init__(self, data: Path, eps: float, time_limit: float, log):
-        self.args, self.limit, self.log = (str(data), eps, time_limit), time_limit, log
+    def __init__(self, data: Path, eps: float, time_limit: float, log, fresh: bool = False):
+        self.args, self.limit, self.log = (str(data), eps, time_limit, fresh), time_limit, log
         self.restarts = 0
         self._start()
 
     def _start(self):
-        ctx = mp.get_context("spawn")
+        # --fresh forks from this process, which imported lemke and qpsolvers and solved nothing
+        ctx = mp.get_context("fork" if self.args[3] else "spawn")
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_worker, args=(child, *self.args), daemon=True)
         self.proc.start()
@@ -177,6 +180,11 @@ class Runner:
     def close(self):
         self.conn.send(None)
         self.proc.join(10)
+
+    def renew(self):
+        """A new worker process for the next call (``--fresh``)."""
+        self.close()
+        self._start()
 
 
 # --------------------------------------------------------------------------- evaluation
@@ -259,7 +267,8 @@ def run(args, log) -> dict:
     if args.only:
         files = [f for f in files if f.stem in set(args.only)]
     rng = np.random.default_rng(args.seed)
-    runner = Runner(args.data, args.eps, args.time_limit, log)
+    fresh = getattr(args, "fresh", False)
+    runner = Runner(args.data, args.eps, args.time_limit, log, fresh)
     results = {}
     try:
         for f in files:
@@ -272,8 +281,10 @@ def run(args, log) -> dict:
                 order = [args.solvers[i] for i in rng.permutation(len(args.solvers))]
                 for s in order:
                     rec = recs[s]
-                    if rnd > 0 and (rec.get("timeout") or rec["times"][0] >= args.repeat_below):
+                    if rnd > 0 and (fresh or rec.get("timeout") or rec["times"][0] >= args.repeat_below):
                         continue
+                    if fresh:
+                        runner.renew()
                     out = runner.call(name, s)
                     if out is None:
                         rec.update(timeout=True)
@@ -426,13 +437,21 @@ def render(data, args, info, total_s) -> str:
           f"- Time limit {limit:g} s per call (qpbenchmark uses 1000 s on Maros–Meszaros; "
           "a call over the limit is killed with its worker process and fails). "
           f"Worker restarts: {data['restarts']}.",
-          f"- Solvers take turns in a random order (seed {args.seed}); a call faster than "
-          f"{args.repeat_below:g} s is made {args.reps} times in all (each round in a new random order) "
-          "and its median kept; a slower one once. Times are wall-clock `time.perf_counter` around "
-          "`lemke.solve_qp(...)` or `qpsolvers.solve_problem(...)` (qpsolvers' conversions included, "
-          "as in qpbenchmark); residuals are from the first call.",
-          "- lemke: `lemke.solve_qp(P, q, G, h, A, b, lb, ub)`, defaults (`method=\"tableau\"`); its "
-          "kernels loaded before the clock starts.",
+          *(([f"- **One call per problem and solver, each the first solve of a new worker process** "
+              f"(`--fresh`): lemke and qpsolvers (which imports every installed solver) are imported "
+              f"before the clock starts, nothing has solved anything yet in that process; solvers take "
+              f"turns in a random order (seed {args.seed}). Times are wall-clock `time.perf_counter` "
+              "around `lemke.solve_qp(...)` or `qpsolvers.solve_problem(...)` (qpsolvers' conversions "
+              "included, as in qpbenchmark).",
+              "- lemke: `lemke.solve_qp(P, q, G, h, A, b, lb, ub)`, defaults (`method=\"tableau\"`)."])
+            if getattr(args, "fresh", False) else
+            [f"- Solvers take turns in a random order (seed {args.seed}); a call faster than "
+             f"{args.repeat_below:g} s is made {args.reps} times in all (each round in a new random order) "
+             "and its median kept; a slower one once. Times are wall-clock `time.perf_counter` around "
+             "`lemke.solve_qp(...)` or `qpsolvers.solve_problem(...)` (qpsolvers' conversions included, "
+             "as in qpbenchmark); residuals are from the first call.",
+             "- lemke: `lemke.solve_qp(P, q, G, h, A, b, lb, ub)`, defaults (`method=\"tableau\"`); its "
+             "first calls made on small problems before the clock starts (as every peer's)."]),
           "- Peers: qpbenchmark's *high accuracy* settings (`SolverSettings.set_eps_abs(1e-9)`, "
           "`set_eps_rel(0)`, `check_duality_gap=True` for ProxQP and PIQP, OSQP's `time_limit`), "
           "`verbose=False`:", ""]
@@ -616,6 +635,8 @@ def main(argv=None):
     parser.add_argument("--reps", type=int, default=5)
     parser.add_argument("--repeat-below", type=float, default=1.0)
     parser.add_argument("--seed", type=int, default=2026)
+    parser.add_argument("--fresh", action="store_true",
+                        help="every call is the first solve of a new worker process (one call per problem and solver)")
     parser.add_argument("--json", help="write the raw results here")
     parser.add_argument("--from-json", help="render the report from raw results (no solving)")
     parser.add_argument("--analysis", help="a markdown file appended to the report")
@@ -631,7 +652,7 @@ def main(argv=None):
     else:
         t0 = time.perf_counter()
         info = machine_info()
-        import qpsolvers
+        import qpsolvers  # imported here (before --fresh's forks) as in every worker
 
         missing = [s for s in args.solvers if s != "lemke" and s not in qpsolvers.available_solvers]
         if missing:
@@ -641,7 +662,7 @@ def main(argv=None):
         mark_end(info)
         total = time.perf_counter() - t0
         saved.update(total_s=total, solvers=args.solvers,
-                     args={k: getattr(args, k) for k in ("argv", "eps", "time_limit", "reps", "repeat_below", "seed")},
+                     args={k: getattr(args, k) for k in ("argv", "eps", "time_limit", "reps", "repeat_below", "seed", "fresh")},
                      env={k: os.environ.get(k) for k in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")},
                      versions={"qpsolvers": qpsolvers.__version__,
                                **{s: metadata.version(PACKAGES[s]) for s in args.solvers if s in PACKAGES}})
