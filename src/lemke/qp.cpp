@@ -606,7 +606,8 @@ void caller_form(const Outs& o, idx n, idx p0, idx m0, const double* yy, const d
 }
 
 Outs out_views(double* out, idx n, idx p0, idx m0) {
-    return {out, out + n, out + n + p0, out + n + p0 + m0, out + 2 * n + p0 + m0};
+    OutLayout L{n, p0, m0};
+    return {out + L.x(), out + L.y(), out + L.z(), out + L.zb(), out + L.stats()};
 }
 
 bool proximal_cholesky(Mat<const double> P, Mat<double> Pd, Mat<double> L) {
@@ -1169,7 +1170,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
              const double* x0) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
-    idx k0 = 2 * n + p0 + m0 + 4;
+    idx k0 = OutLayout{n, p0, m0}.basis();
     for (idx t = 0; t < k0; ++t) out[t] = 0.0;
     if ((res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
@@ -1396,14 +1397,15 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
     }
     const double* x = buf;
     const double* w = buf + n;
-    double* zb = out + 6 * n + 1;
+    BoxOutLayout L{n};  // (its zb after boxed's buffer)
+    double* zb = out + L.zb();
     for (idx j = 0; j < n; ++j) zb[j] = -w[j];
     Data ds = dt;
     ds.P = P;
     ds.lb = lo;
     ds.ub = up;
     // (numba's kernel passes b and h as y and z: empty for a box-only QP)
-    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + 7 * n + 1)) {
+    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + L.stats())) {
         res.code = CHECK_FAILED;
         return res;
     }

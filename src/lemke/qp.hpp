@@ -51,6 +51,33 @@ struct Data {
     idx p0() const { return A.rows; }
 };
 
+// The one statement of the fused kernels' output buffer (solve, solve_gram and the warm
+// entries; lemke/_qp.py sizes and reads its buffers from _core.qp_layout, and
+// tests/test_structure.py checks the two against the kernels' writes): x (n), y (p0),
+// z (m0), zb (n), stats (primal, dual, gap, obj), then the final basis as int64 (room for
+// m0 + 2n).
+struct OutLayout {
+    idx n, p0, m0;
+    idx x() const { return 0; }
+    idx y() const { return n; }
+    idx z() const { return n + p0; }
+    idx zb() const { return n + p0 + m0; }
+    idx stats() const { return 2 * n + p0 + m0; }
+    idx basis() const { return stats() + 4; }
+    idx length() const { return basis() + m0 + 2 * n; }
+};
+
+// solve_box's buffer: boxed::solve's (boxed::BoxLayout, 6n + 1: x its z, w after it), zb
+// (n), stats (4), then the final bases as int64 (3n: boxed's, then box_basis's pairs at n).
+struct BoxOutLayout {
+    idx n;
+    idx x() const { return 0; }
+    idx zb() const { return 6 * n + 1; }
+    idx stats() const { return 7 * n + 1; }
+    idx final() const { return 7 * n + 5; }
+    idx length() const { return final() + 3 * n; }
+};
+
 struct Result {
     int code = OK;
     idx pivots = 0;
