@@ -754,6 +754,16 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
+// acc[i] += Mj[i] z, size[i] += |Mj[i] z| (i < m): one term of warm_point's sums per row.
+LEMKE_CLONES
+void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m) {
+    for (idx i = 0; i < m; ++i) {
+        double t = Mj[i] * z;
+        acc[i] += t;
+        size[i] += std::fabs(t);
+    }
+}
+
 // The warm start's own KKT point (solve's first stage from a warm start), with a few
 // active-set updates: the multipliers of the active rows S from M_SS z_S = -g_S (the
 // multiplier LCP's principal block, LU), a look at the LCP (z_S >= 0 and w = M z + g >= 0
@@ -768,7 +778,7 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
                 const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
     idx n = ds.n(), p = R.p, m = R.m;
-    thread_local std::vector<double> lu;
+    thread_local std::vector<double> lu, ws;
     thread_local std::vector<idx> S, next;
     S.assign(beta.begin(), beta.end());
     double* zz = w.zz;
@@ -796,6 +806,19 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             zz[S[i]] = pmax(zS[i], 0.0);
             if (zS[i] < -tol * top) in_s[S[i]] = 2;  // leaves
         }
+        // w = g + M_S z_S and its terms' sizes, row S_j of M at a time (M is symmetric to
+        // the bit: M(i, S_j) z_j is M(S_j, i) z_j, added in the same order j as row i's
+        // own sum would add it, so the same bits; kb rows read whole instead of kb scattered
+        // entries of each of the m rows)
+        ws.resize(static_cast<std::size_t>(2 * m));
+        double* acc = ws.data();
+        double* size = acc + m;
+        for (idx i = 0; i < m; ++i) {
+            acc[i] = w.g[i];
+            size[i] = std::fabs(w.g[i]);
+        }
+        for (idx j = 0; j < kb; ++j)
+            add_row_terms(w.M.row(S[j]), zz[S[j]], acc, size, m);
         idx moved = 0;
         for (idx i = 0; i < m; ++i) {
             if (in_s[i] == 2) {
@@ -806,14 +829,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
                 next.push_back(i);
                 continue;
             }
-            const double* Mi = w.M.row(i);
-            double acc = w.g[i], size = std::fabs(w.g[i]);
-            for (idx j = 0; j < kb; ++j) {
-                double t = Mi[S[j]] * zz[S[j]];
-                acc += t;
-                size += std::fabs(t);
-            }
-            if (acc < -tol * size) {  // enters
+            if (acc[i] < -tol * size[i]) {  // enters
                 next.push_back(i);
                 ++moved;
             }
@@ -1250,6 +1266,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     idx* lcp_basic = basic;
     if ((warm != nullptr || x0 != nullptr) && m > 0 &&
         warm_point(ds, lo, up, w, R, beta, tol, o, basic, res)) return res;
+
     if (m > 0) {
         idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
         Method mt = method == TABLEAU ? TABLEAU : UNREVISED;
