@@ -779,8 +779,10 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
                 const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
     idx n = ds.n(), p = R.p, m = R.m;
     thread_local std::vector<double> lu, ws;
-    thread_local std::vector<idx> S, next;
+    thread_local std::vector<idx> S, next, seen, starts;  // seen: the sets tried, sorted
     S.assign(beta.begin(), beta.end());
+    seen.clear();
+    starts.assign(1, 0);
     double* zz = w.zz;
     std::uint8_t* in_s = w.bflags;  // (mlcp_basis rewrites them)
     idx changes = 0, last = 0;
@@ -839,6 +841,16 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             break;
         }
         if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
+        // a set tried before: the steps repeat (each set gives the same next one), never
+        // one that holds; the cold LCP, without the rest of the tries
+        seen.insert(seen.end(), S.begin(), S.end());
+        std::sort(seen.end() - kb, seen.end());
+        starts.push_back(static_cast<idx>(seen.size()));
+        bool again = false;
+        for (std::size_t t = 0; t + 1 < starts.size() && !again; ++t)
+            again = std::equal(next.begin(), next.end(), seen.begin() + starts[t],
+                               seen.begin() + starts[t + 1]);
+        if (again) break;
         last = moved;
         changes += moved;
         S.swap(next);
