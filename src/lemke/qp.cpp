@@ -779,12 +779,14 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
                 const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
     idx n = ds.n(), p = R.p, m = R.m;
     thread_local std::vector<double> lu, ws;
-    thread_local std::vector<idx> S, next, seen, starts;  // seen: the sets tried, sorted
+    thread_local std::vector<idx> S, next, seen, starts, last_set;  // seen: the sets tried, sorted
     S.assign(beta.begin(), beta.end());
     seen.clear();
     starts.assign(1, 0);
-    double* zz = w.zz;
+    last_set.clear();
+    double* zz = w.zz;  // (zero: solve zeroed it)
     std::uint8_t* in_s = w.bflags;  // (mlcp_basis rewrites them)
+    for (idx i = 0; i < m; ++i) in_s[i] = 0;
     idx changes = 0, last = 0;
     bool ok = false;
     for (idx step = 0; step <= ACTIVE_SET_STEPS; ++step) {
@@ -796,10 +798,12 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         double* zS = y + kb;
         for (idx i = 0; i < kb; ++i) y[i] = -w.g[S[i]];
         if (kb > 0 && !solve_gathered(w.M, S.data(), blk, y, zS, kb)) break;
-        for (idx i = 0; i < m; ++i) {
-            zz[i] = 0.0;
-            in_s[i] = 0;
+        // zz and in_s are zero but on the last step's set (solve zeroed zz; in_s below)
+        for (idx r : last_set) {
+            zz[r] = 0.0;
+            in_s[r] = 0;
         }
+        last_set.assign(S.begin(), S.end());
         double top = 0.0;
         for (idx i = 0; i < kb; ++i) top = pmax(top, std::fabs(zS[i]));
         next.clear();
