@@ -768,7 +768,8 @@ void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m)
 // active-set updates: the multipliers of the active rows S from M_SS z_S = -g_S (the
 // multiplier LCP's principal block, LU), a look at the LCP (z_S >= 0 and w = M z + g >= 0
 // off S, each to tol relative to its terms); while that fails, at most ACTIVE_SET_STEPS
-// times and while the number of rows that move does not grow, S loses its rows with z < 0 and gains
+// times (and ACTIVE_SET_MORE times more while each moves a single row), while the number of
+// rows that move does not grow and no set comes back, S loses its rows with z < 0 and gains
 // those with w < 0 (a primal-dual active-set step: no pivoting rule, so no guarantee, only
 // a cheap try). A set that passes gives the
 // point, caller_form and the KKT check on the data as for a solved LCP: true (Result OK,
@@ -789,7 +790,10 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
     for (idx i = 0; i < m; ++i) in_s[i] = 0;
     idx changes = 0, last = 0;
     bool ok = false;
-    for (idx step = 0; step <= ACTIVE_SET_STEPS; ++step) {
+    for (idx step = 0; step <= ACTIVE_SET_STEPS + ACTIVE_SET_MORE; ++step) {
+        // beyond the first ACTIVE_SET_STEPS updates, only while the last one moved a single
+        // row (close: a cheap step more; else the cold LCP, without more tries)
+        if (step > ACTIVE_SET_STEPS && last != 1) break;
         idx kb = static_cast<idx>(S.size());
         if (kb > n - p) break;  // more active rows than free directions: singular
         lu.resize(static_cast<std::size_t>(kb * (kb + 2)));

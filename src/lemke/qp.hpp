@@ -34,6 +34,7 @@ constexpr double FLAT = 1e-3;
 constexpr idx REFINE = 2;
 constexpr idx REFINE_PROXIMAL = 3;
 constexpr idx ACTIVE_SET_STEPS = 3;  // a warm start's active-set updates before Lemke (warm_point)
+constexpr idx ACTIVE_SET_MORE = 3;   // and up to this many more while each moves a single row
 constexpr double ACTIVE_TOL = 1e-9;  // initvals: within this (relative) of tight is active
 
 // The caller's QP, qpsolvers' form: P (n x n), q, G (m0 x n), h, A (p0 x n), b, lb, ub.
@@ -109,7 +110,8 @@ bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
 // warm (not nullptr): a warm start, the KKT-MLCP's basic pairs warm[:k_warm] of warm_pairs
 // (as mlcp_basis numbers them): the multiplier LCP is solved (warm_point) from the
 // active rows they name (their point checked first, 0 pivots when it solves the LCP; then
-// up to ACTIVE_SET_STEPS active-set updates; else checked_once, cold); BAD_WARM when
+// up to ACTIVE_SET_STEPS active-set updates, ACTIVE_SET_MORE more while each moves a single
+// row; else checked_once, cold); BAD_WARM when
 // warm_pairs is not this QP's count (Result.pairs).
 // x0 (not nullptr, n entries, finite: the caller checks): qpsolvers' initvals, a primal
 // guess whose active rows (guess_rows, ACTIVE_TOL) are the warm start instead.
