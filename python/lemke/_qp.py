@@ -154,7 +154,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         ``n``, the number of pairs of the KKT-MLCP, must match: else ``ValueError``).  Its
         active set is tried first: with P definite the fused kernel solves the old active
         set's KKT system on the new data and checks it (0 pivots when it holds), else
-        makes up to 3 active-set updates, else solves cold; P, A and G equal to the last call's (on
+        makes up to 3 active-set updates (3 more while each moves a single row), else solves
+        cold; P, A and G equal to the last call's (on
         the same thread) reuse its factors whether warm or cold.  Another kind of warm start
         (a ``BoxWarmStart``, a ``WarmStartBatch``) is a ``ValueError``, anything else a
         ``TypeError``.
