@@ -1286,7 +1286,6 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     idx* lcp_basic = basic;
     if ((warm != nullptr || x0 != nullptr) && m > 0 &&
         warm_point(ds, lo, up, w, R, beta, tol, o, basic, res)) return res;
-
     if (m > 0) {
         idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
         Method mt = method == TABLEAU ? TABLEAU : UNREVISED;
