@@ -200,9 +200,9 @@ def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
     ``repeats`` calls each, interleaved), over the steps where both end solved and checked
     (code 0), no Python front; and the number of steps where the cold kernel, and the warm
     one, does not (the front then takes the KKT-MLCP path)."""
-    from lemke import _core
+    from lemke import _core, _qp
     n, p, m = P.shape[0], A.shape[0], G.shape[0]
-    out = np.empty(4 * n + p + 2 * m + 4)
+    out = np.empty(_qp._layout(n, p, m)[-1])  # (qp::OutLayout's length)
     ws, ratios, cold_out, warm_out = None, [], 0, 0
     for q, b in steps:
         r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, warm_start=ws)

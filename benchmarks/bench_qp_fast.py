@@ -14,7 +14,11 @@ Three families (a fourth on request), each at n = 10, 100, 300 by default: P = B
 
 q is Gaussian with standard deviation 3, so that a good share of the constraints is active
 at the optimum.  "daqp native" times ``daqp.solve`` alone on arguments built beforehand
-(qpsolvers' own conversion, not timed); the others are timed on the full call.  lemke's
+(qpsolvers' own conversion, not timed); the others are timed on the full call.  Each
+problem is solved ``--reps`` times, so from its second call on lemke's kernel reuses the
+factors of P, A and G it kept (its per-thread factor cache: the same matrices again);
+"lemke, fresh factors" times the same call after an untimed 2-variable QP has evicted
+them (the cost of a first solve of new matrices).  lemke's
 old path (the KKT-MLCP, what solve_qp did before the fused path; ``--old``) is timed by
 calling it directly.  Every answer is compared with quadprog's x.
 
@@ -107,9 +111,18 @@ def main(argv=None):
         qp = _qp._QP(*prob)
         return _qp._solve(qp, "tableau", lemke.Options(), None, True)
 
-    names = ["lemke", "daqp native", "daqp (qpsolvers)", "quadprog (qpsolvers)"]
+    names = ["lemke", "daqp native", "daqp (qpsolvers)", "quadprog (qpsolvers)",
+             "lemke, fresh factors"]
     if args.old:
         names.append("lemke old path")
+    tiny = (np.eye(2), np.array([1.0, -1.0]))
+
+    def fresh(prob):
+        """(result, seconds) of solve_qp after the factor cache was evicted (untimed)."""
+        lemke.solve_qp(*tiny)
+        t0 = time.perf_counter()
+        r = lemke.solve_qp(*prob)
+        return r, time.perf_counter() - t0
     rows = []
     for fam in args.families:
         for n in args.sizes:
@@ -125,18 +138,23 @@ def main(argv=None):
                     lambda: daqp.solve(*da),
                     lambda: qpsolvers.solve_qp(*prob, solver="daqp"),
                     lambda: qpsolvers.solve_qp(*prob, solver="quadprog"),
+                    lambda: fresh(prob),
                 ]
                 if args.old:
                     calls.append(lambda: old_path(prob))
-                times, results = time_interleaved(calls, args.reps, rng=rng)
+                times, results = time_interleaved(calls, args.reps, keep_results=True, rng=rng)
+                times[4] = [dt for _, dt in results[4]]  # (its own timing, eviction left out)
+                results = [[r[-1]] for r in results]
+                results[4] = [results[4][0][0]]
                 res = results[0][0]
                 pivots.append(res.pivots)
                 fast += res.certificate is None and res.success
                 xs = {"lemke": res.x if res.success else None,
                       "daqp native": results[1][0][0] if results[1][0][2] == 1 else None,
-                      "daqp (qpsolvers)": results[2][0], "quadprog (qpsolvers)": results[3][0]}
+                      "daqp (qpsolvers)": results[2][0], "quadprog (qpsolvers)": results[3][0],
+                      "lemke, fresh factors": results[4][0].x if results[4][0].success else None}
                 if args.old:
-                    xs["lemke old path"] = results[4][0].x if results[4][0].success else None
+                    xs["lemke old path"] = results[5][0].x if results[5][0].success else None
                 ref = xs["quadprog (qpsolvers)"]
                 for j, s in enumerate(names):
                     med[s].append(statistics.median(times[j]))

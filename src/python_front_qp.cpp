@@ -1,20 +1,23 @@
-// lemke._core.qp_front: solve_qp's warm call (a WarmStart, or qpsolvers' initvals) whole in
-// one native call, as src/python_front.cpp does for solve_lcp: plain float64 arrays (the
-// kinds solve_qp's first lines take: ndarrays of the kernel's ranks, C-contiguous, aligned,
-// writable; G with h, A with b, or neither; lb, ub or None), the default options and
-// method. It reads the ndarrays' fields directly (src/python_arrays.hpp, the layout that
-// lcp_front_init checked), allocates the output buffer with numpy.empty, runs qp::solve
-// (the fused kernel from the warm start's pairs, or from x0) without the GIL and builds the
-// QPResult as _qp._fused_result does (x, status, pivots, certificate now, the rest from
-// _qp._fused_fields when first read).
+// lemke._core.qp_front: solve_qp's call on plain data whole in one native call, as
+// src/python_front.cpp does for solve_lcp: plain float64 arrays (the kinds solve_qp's first
+// lines take: ndarrays of the kernel's ranks, C-contiguous, aligned, writable; G with h, A
+// with b, or neither; lb, ub or None), the default options and method; cold, or warm (a
+// WarmStart, or qpsolvers' initvals). It reads the ndarrays' fields directly
+// (src/python_arrays.hpp, the layout that lcp_front_init checked), allocates the output
+// buffer with numpy.empty (qp::OutLayout, qp::BoxOutLayout), runs the kernel without the
+// GIL and builds the QPResult as _qp._fused_result (or _qp._solve_box_small) does (x,
+// status, pivots, certificate now, the rest from _qp._fused_fields / _box_small_fields
+// when first read). Cold, it chooses as solve_qp's inline lines do: a box-only QP below
+// BOX_FIRST variables qp::solve_box, fewer than GRAM_RATIO n inequalities qp::solve, the
+// rest None.
 //
 // Returns the QPResult when the kernel ends OK (solved and checked); the tuple (code,
 // pivots, k, pairs) for any other code (the Python front goes on from there, as from
-// _core.qp_solve_warm's answer, without calling the kernel again); None when the arguments
-// are not of that plain kind, their shapes do not match, the warm start's index array is
-// not rising in [0, pairs) or x0 is not finite (the Python front then does what it did
-// before, and says what is wrong). The same solve, the same bits as _core.qp_solve_warm /
-// _core.qp_solve_guess.
+// _core.qp_solve_warm's, qp_solve's or qp_solve_box's answer, without calling the kernel
+// again); None when the arguments are not of that plain kind, their shapes do not match,
+// the warm start's index array is not rising in [0, pairs), x0 is not finite, or a cold QP
+// is not one the inline lines give a kernel (the Python front then does what it did
+// before, and says what is wrong). The same solve, the same bits as the Python path.
 #include <nanobind/nanobind.h>
 
 #include <cmath>
@@ -38,19 +41,23 @@ struct QPFront {
     PyObject* result_cls = nullptr;  // QPResult
     PyObject* solved = nullptr;      // Status.SOLVED
     PyObject* fields = nullptr;      // _qp._fused_fields
+    PyObject* box_fields = nullptr;  // _qp._box_small_fields
+    idx box_first = 0;               // _qp.BOX_FIRST
     PyObject *k_x, *k_status, *k_pivots, *k_certificate, *k_resolve;
     int method = 0;
     double pivot_tol = 0, tie_tol = 0, tol = 0;
 } qf;
 
-void init(nb::handle result_cls, nb::handle solved, nb::handle fields, int method,
-          double pivot_tol, double tie_tol, double tol) {
+void init(nb::handle result_cls, nb::handle solved, nb::handle fields, nb::handle box_fields,
+          std::int64_t box_first, int method, double pivot_tol, double tie_tol, double tol) {
     qf.on = false;
     if (!numpy_layout().ok) return;  // lcp_front_init found another layout (or has not run)
-    for (nb::handle h : {result_cls, solved, fields}) h.inc_ref();  // kept for good
+    for (nb::handle h : {result_cls, solved, fields, box_fields}) h.inc_ref();  // kept for good
     qf.result_cls = result_cls.ptr();
     qf.solved = solved.ptr();
     qf.fields = fields.ptr();
+    qf.box_fields = box_fields.ptr();
+    qf.box_first = box_first;
     qf.k_x = PyUnicode_InternFromString("x");
     qf.k_status = PyUnicode_InternFromString("status");
     qf.k_pivots = PyUnicode_InternFromString("pivots");
@@ -71,6 +78,72 @@ const double* absent_bounds(idx n) {
         for (idx j = 0; j < n; ++j) v[static_cast<std::size_t>(j)] = -v[static_cast<std::size_t>(j)];
     }
     return v.data();
+}
+
+qp::Data data_of(const ArrayFields* P, const ArrayFields* q, const double* G, const double* h,
+                 idx m, const double* A, const double* b, idx p, const double* lo,
+                 const double* up) {
+    idx n = q->dimensions[0];
+    return {lemke::Mat<const double>(reinterpret_cast<const double*>(P->data), n, n),
+            reinterpret_cast<const double*>(q->data), lemke::Mat<const double>(G, m, n), h,
+            lemke::Mat<const double>(A, p, n), b, lo, up};
+}
+
+// numpy.empty(length): float64
+nb::object new_buffer(const NumpyLayout& lay, idx length) {
+    nb::object size = nb::steal(PyLong_FromSsize_t(length));
+    if (!size.is_valid()) throw nb::python_error();
+    PyObject* args[] = {size.ptr()};
+    nb::object buf = nb::steal(PyObject_Vectorcall(lay.empty, args, 1, nullptr));
+    if (!buf.is_valid()) throw nb::python_error();
+    return buf;
+}
+
+// The solved QPResult as _qp._fused_result (or _solve_box_small) builds it: the buffer
+// read-only (out.setflags(write=False): NumPy's PyArray_CLEARFLAGS, on the field), x its
+// first n entries, status, pivots and certificate now, the rest from fields(*src) when first
+// read.
+nb::object solved(const nb::object& buf, idx n, idx pivots, PyObject* fields,
+                  const nb::object& src) {
+    reinterpret_cast<ArrayFields*>(buf.ptr())->flags &= ~WRITEABLE;
+    nb::object stop = nb::steal(PyLong_FromSsize_t(n));
+    if (!stop.is_valid()) throw nb::python_error();
+    nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
+    if (!sl.is_valid()) throw nb::python_error();
+    auto* cls = reinterpret_cast<PyTypeObject*>(qf.result_cls);
+    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nb::python_error();
+    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
+    if (!dict.is_valid()) throw nb::python_error();
+    PyObject* d = dict.ptr();
+    Py_INCREF(qf.solved);
+    Py_INCREF(Py_None);
+    bool ok = put(d, qf.k_x, PyObject_GetItem(buf.ptr(), sl.ptr())) &&
+              put(d, qf.k_status, qf.solved) &&
+              put(d, qf.k_pivots, PyLong_FromLongLong(pivots)) &&
+              put(d, qf.k_certificate, Py_None) &&
+              put(d, qf.k_resolve, PyTuple_Pack(2, fields, src.ptr()));
+    if (!ok) throw nb::python_error();
+    return res;
+}
+
+// _qp._solve_box_small: qp::solve_box from no warm start (solve_blcp's pivot budget), one
+// buffer (BoxOutLayout, the final bases in its tail); the result, or the kernel's code.
+nb::object box_small(const qp::Data& data, const NumpyLayout& lay) {
+    idx n = data.n();
+    thread_local std::vector<std::uint8_t> no_warm;
+    no_warm.assign(static_cast<std::size_t>(2 * n), 0);
+    qp::BoxOutLayout L{n};
+    nb::object buf = new_buffer(lay, L.length());
+    double* out = reinterpret_cast<double*>(reinterpret_cast<ArrayFields*>(buf.ptr())->data);
+    qp::Result r;
+    {
+        nb::gil_scoped_release release;
+        r = qp::solve_box(data, no_warm.data(), 100 * (n + 1), qf.pivot_tol, qf.tie_tol, qf.tol,
+                          out, reinterpret_cast<idx*>(out + L.final()));
+    }
+    if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
+    return solved(buf, n, r.pivots, qf.box_fields, nb::make_tuple(buf, n, r.k, r.pairs));
 }
 
 nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
@@ -120,7 +193,8 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
         up = reinterpret_cast<const double*>(a->data);
     }
     // The warm start's pairs (WarmStart._beta: int64, C-contiguous, aligned; rising in
-    // [0, pairs), as _core.qp_solve_warm requires), or the guess x0 (n finite entries).
+    // [0, pairs), as _core.qp_solve_warm requires), or the guess x0 (n finite entries), or
+    // neither: cold.
     const std::int64_t* warm = nullptr;
     idx kw = 0;
     const double* x0 = nullptr;
@@ -136,10 +210,10 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
         for (idx t = 0; t < kw; ++t)
             if (warm[t] < 0 || warm[t] >= pairs || (t > 0 && warm[t] <= warm[t - 1]))
                 return nb::none();
-    } else {
+    } else if (!x0_h.is_none()) {
         // read only: a result's read-only x may be the guess (C-contiguous and aligned,
         // float64 in the machine's byte order, as plain_f64 asks, writable or not)
-        if (x0_h.is_none() || Py_TYPE(x0_h.ptr()) != lay.ndarray) return nb::none();
+        if (Py_TYPE(x0_h.ptr()) != lay.ndarray) return nb::none();
         auto* g = reinterpret_cast<const ArrayFields*>(x0_h.ptr());
         auto* gt = reinterpret_cast<const DescrFields*>(g->descr);
         if (g->nd != 1 || (g->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
@@ -148,56 +222,39 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
         x0 = reinterpret_cast<const double*>(g->data);
         if (!lemke::all_finite(x0, n)) return nb::none();
         pairs = 0;
+    } else {
+        // cold, as solve_qp's inline lines choose: a box-only QP with bounds below
+        // BOX_FIRST variables takes the box kernel; from there, or with at least
+        // GRAM_RATIO n inequalities (bounds counted), the Python steps (None); else the
+        // fused kernel
+        bool box = G_h.is_none() && h_h.is_none() && A_h.is_none() && b_h.is_none();
+        idx bounds = !lb_h.is_none() + !ub_h.is_none();
+        if (box && bounds > 0) {
+            if (n >= qf.box_first) return nb::none();
+            return box_small(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up), lay);
+        }
+        if (m + n * bounds >= qp::GRAM_RATIO * n) return nb::none();
+        pairs = 0;
     }
-    idx k0 = 2 * n + p + m + 4;  // qp.out_size, then the basis (m + 2n)
-    nb::object size = nb::steal(PyLong_FromSsize_t(k0 + m + 2 * n));
-    if (!size.is_valid()) throw nb::python_error();
-    PyObject* args[] = {size.ptr()};
-    nb::object buf = nb::steal(PyObject_Vectorcall(lay.empty, args, 1, nullptr));
-    if (!buf.is_valid()) throw nb::python_error();
-    auto* bf = reinterpret_cast<ArrayFields*>(buf.ptr());
-    double* out = reinterpret_cast<double*>(bf->data);
-    qp::Data data{lemke::Mat<const double>(reinterpret_cast<const double*>(P->data), n, n),
-                  reinterpret_cast<const double*>(q->data),
-                  lemke::Mat<const double>(Gd, m, n), hd, lemke::Mat<const double>(Ad, p, n),
-                  bd, lo, up};
+    qp::OutLayout L{n, p, m};
+    nb::object buf = new_buffer(lay, L.length());
+    double* out = reinterpret_cast<double*>(reinterpret_cast<ArrayFields*>(buf.ptr())->data);
     qp::Result r;
     {
         nb::gil_scoped_release release;
-        r = qp::solve(data, qf.method, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out,
-                      reinterpret_cast<idx*>(out + k0), warm, kw, pairs, x0);
+        r = qp::solve(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up), qf.method, -1, qf.pivot_tol,
+                      qf.tie_tol, qf.tol, out, reinterpret_cast<idx*>(out + L.basis()), warm,
+                      kw, pairs, x0);
     }
     if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
-    // _qp._fused_result: the buffer read-only (out.setflags(write=False): NumPy's
-    // PyArray_CLEARFLAGS, on the field), x its first n entries, the rest deferred.
-    bf->flags &= ~WRITEABLE;
-    nb::object stop = nb::steal(PyLong_FromSsize_t(n));
-    if (!stop.is_valid()) throw nb::python_error();
-    nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
-    if (!sl.is_valid()) throw nb::python_error();
-    auto* cls = reinterpret_cast<PyTypeObject*>(qf.result_cls);
-    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
-    if (!res.is_valid()) throw nb::python_error();
-    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
-    if (!dict.is_valid()) throw nb::python_error();
-    PyObject* d = dict.ptr();
-    Py_INCREF(qf.solved);
-    Py_INCREF(Py_None);
-    nb::object src = nb::make_tuple(buf, n, p, m, r.k, r.pairs);
-    bool ok = put(d, qf.k_x, PyObject_GetItem(buf.ptr(), sl.ptr())) &&
-              put(d, qf.k_status, qf.solved) &&
-              put(d, qf.k_pivots, PyLong_FromLongLong(r.pivots)) &&
-              put(d, qf.k_certificate, Py_None) &&
-              put(d, qf.k_resolve, PyTuple_Pack(2, qf.fields, src.ptr()));
-    if (!ok) throw nb::python_error();
-    return res;
+    return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
 }
 
 }  // namespace
 
 void bind_front_qp(nb::module_& m) {
-    m.def("qp_front_init", &init, "result_cls"_a, "solved"_a, "fields"_a, "method"_a,
-          "pivot_tol"_a, "tie_tol"_a, "tol"_a);
+    m.def("qp_front_init", &init, "result_cls"_a, "solved"_a, "fields"_a, "box_fields"_a,
+          "box_first"_a, "method"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a);
     m.def("qp_front", &qp_front, "P"_a.none(), "q"_a.none(), "G"_a.none(), "h"_a.none(),
           "A"_a.none(), "b"_a.none(), "lb"_a.none(), "ub"_a.none(), "pairs"_a, "beta"_a.none(),
           "x0"_a.none());

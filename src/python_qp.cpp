@@ -99,8 +99,9 @@ Code4 fused(const In2& P, const In1& q, const In2& G, const In1& h, const In2& A
             double tie_tol, double tol, Out1& out, const std::int64_t* warm, idx kw, idx pairs,
             const double* x0 = nullptr) {
     idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
-    idx k0 = 2 * n + p0 + m0 + 4;
-    if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < k0 + m0 + 2 * n) {
+    qp::OutLayout L{n, p0, m0};
+    idx k0 = L.basis();
+    if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < L.length()) {
         // numba's kernel: out[:k0] = 0 (clamped to out), then BAD_INPUT from the screen; a
         // buffer without room for the basis gets the same answer (it would be written past)
         double* o = out.data();
@@ -157,7 +158,7 @@ Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
                  std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
                  IdxOut basic, bool semidefinite) {
     idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
-    idx k0 = 2 * n + p0 + m0 + 4;
+    idx k0 = qp::OutLayout{n, p0, m0}.basis();
     double* o = out.data();
     if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < k0 || len(basic) < m0 + 2 * n) {
         for (idx t = 0; t < len(out); ++t) o[t] = 0.0;
@@ -182,7 +183,9 @@ Code4 solve_box(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, FlagsO
                 IdxOut final) {
     idx n = len(q);
     if (!shapes_match(P, q, G, h, A, b, lb, ub)) return {qp::BAD_INPUT, 0, 0, 0};
-    if (len(out) < 7 * n + 5 || len(final) < 3 * n || len(warm) < 2 * n || !is_flags(warm))
+    qp::BoxOutLayout L{n};  // (final apart from out here: out up to L.final())
+    if (len(out) < L.final() || len(final) < L.length() - L.final() || len(warm) < 2 * n ||
+        !is_flags(warm))
         throw nb::value_error("qp_solve_box: out of length at least 7n + 5, final (int64) 3n, "
                               "warm (bool) 2n");
     qp::Result r;
@@ -320,6 +323,16 @@ void bind_qp(nb::module_& m) {
         if (len(lb) != len(ub)) throw nb::value_error("qp_inequalities: lb and ub of one length");
         return qp::inequalities(h.data(), len(h), lb.data(), ub.data(), len(lb));
     }, "h"_a, "lb"_a, "ub"_a);
+    // The output buffers' layouts (qp.hpp OutLayout, BoxOutLayout): lemke/_qp.py sizes and
+    // reads its buffers from these (tests/test_structure.py checks them on the kernels).
+    m.def("qp_layout", [](std::int64_t n, std::int64_t p0, std::int64_t m0) {
+        qp::OutLayout L{n, p0, m0};
+        return std::make_tuple(L.x(), L.y(), L.z(), L.zb(), L.stats(), L.basis(), L.length());
+    }, "n"_a, "p"_a, "m"_a);
+    m.def("qp_box_layout", [](std::int64_t n) {
+        qp::BoxOutLayout L{n};
+        return std::make_tuple(L.x(), L.zb(), L.stats(), L.final(), L.length());
+    }, "n"_a);
     m.attr("QP_OK") = qp::OK;
     m.attr("QP_NOT_DEFINITE") = qp::NOT_DEFINITE;
     m.attr("QP_NOT_APPLICABLE") = qp::NOT_APPLICABLE;

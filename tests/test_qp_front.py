@@ -13,6 +13,7 @@ import pytest
 import lemke
 from lemke import Status, WarmStart, _core, _qp
 from lemke.problems import random_convex_qp
+from oracle import qp as kqp
 
 from test_qp_warm import _bits, check
 
@@ -165,3 +166,90 @@ def test_front_results_are_values(no_front):
     assert back == fr and _bits(back) == _bits(fr)
     assert pickle.loads(pickle.dumps(fr.warm_start)).__dict__.get("_beta") is None
     assert repr(fr) == repr(py)
+
+
+def _cold_cases():
+    """Cold QPs of every kind the front's cold lines choose between: mixed rows and bounds,
+    no constraints, box-only below and at BOX_FIRST (the box kernel; None), many rows (at
+    GRAM_RATIO n: None), a linear program (P = 0: the kernel's NOT_DEFINITE handed back),
+    an infeasible QP (the kernel's code, then the KKT-MLCP path's certificate)."""
+    rng = np.random.default_rng(77)
+    P, q, G, h, A, b, lb, ub = random_convex_qp(10, rng, 6, 2)
+    yield "mixed", (P, q, G, h, A, b, lb, ub)
+    yield "rows only", (P, q, G, h, None, None, None, None)
+    yield "equalities only", (P, q, None, None, A, b, None, None)
+    yield "unconstrained", (P, q, None, None, None, None, None, None)
+    yield "lower bounds", (P, q, G, h, A, b, lb, None)
+    yield "box", (P, q, None, None, None, None, lb, ub)
+    yield "box upper", (P, q, None, None, None, None, None, ub)
+    P2, q2, _, _, _, _, lb2, ub2 = random_convex_qp(_qp.BOX_FIRST, rng, 2, 1)
+    yield "box at BOX_FIRST", (P2, q2, None, None, None, None, lb2, ub2)
+    P3, q3, G3, h3, A3, b3, lb3, ub3 = random_convex_qp(5, rng, 25, 1)
+    yield "many rows", (P3, q3, G3, h3, A3, b3, lb3, ub3)
+    yield "linear program", (np.zeros_like(P), q, G, h, A, b, lb, ub)
+    g = rng.standard_normal(10)
+    yield "infeasible", (P, q, np.vstack([G, g, -g]), np.concatenate([h, [-1.0, -1.0]]), A, b,
+                         lb, ub)
+
+
+@pytest.mark.parametrize("name, args", list(_cold_cases()))
+def test_cold_calls_bit_for_bit(no_front, name, args):
+    """The cold call through the front (src/python_front_qp.cpp's cold lines) against the
+    Python path (the front off): the same status, bits, certificate and warm start, and a
+    solved answer passes the independent KKT check."""
+    fr, py = _both(no_front, *args)
+    assert fr.status == py.status and _bits(fr) == _bits(py), name
+    assert fr.certificate == py.certificate
+    if fr.status == Status.SOLVED:
+        P, q, G, h, A, b, lb, ub = args
+        n = q.size
+        check(P, q, np.zeros((0, n)) if G is None else G, np.zeros(0) if h is None else h,
+              np.zeros((0, n)) if A is None else A, np.zeros(0) if b is None else b,
+              np.full(n, -np.inf) if lb is None else lb, np.full(n, np.inf) if ub is None else ub,
+              fr)
+    else:
+        assert name == "infeasible" and fr.status == Status.PRIMAL_INFEASIBLE
+    P, q, G, h, A, b, lb, ub = args
+    r = _core.qp_front(P, q, G, h, A, b, lb, ub, 0, None, None)
+    if name in ("box at BOX_FIRST", "many rows"):
+        assert r is None
+    elif name in ("linear program", "infeasible"):
+        assert type(r) is tuple and r[0] != _core.QP_OK
+    else:
+        assert type(r) is _qp.QPResult and _bits(r) == _bits(fr)
+    # the result a second time from the same buffer and warm start: values, not views of
+    # anything the caller holds
+    if type(r) is _qp.QPResult:
+        assert not r.x.flags.writeable and r == fr and repr(r) == repr(fr)
+        warm = lemke.solve_qp(*args, warm_start=r.warm_start)
+        assert warm.status == Status.SOLVED and warm.pivots == 0
+
+
+def test_cold_declined_and_bad_inputs_say_the_same(no_front):
+    """Data the cold front declines (lists, float32, a Fortran G, mismatched shapes) or
+    runs and hands back (a NaN: BAD_INPUT) takes the Python path, whose errors are as
+    before, word for word."""
+    rng = np.random.default_rng(6)
+    P, q, G, h, A, b, lb, ub = random_convex_qp(8, rng, 5, 2)
+    assert _core.qp_front(P.tolist(), q, G, h, A, b, lb, ub, 0, None, None) is None
+    assert _core.qp_front(P, q.astype(np.float32), G, h, A, b, lb, ub, 0, None, None) is None
+    assert _core.qp_front(P, q, np.asfortranarray(G), h, A, b, lb, ub, 0, None, None) is None
+    assert _core.qp_front(P, q, G[:, :-1], h, A, b, lb, ub, 0, None, None) is None
+    assert _core.qp_front(P, q, G, None, A, b, lb, ub, 0, None, None) is None
+    for args in ((P.tolist(), q, G, h, A, b, lb, ub), (P, q.astype(np.float32), G, h, A, b, lb, ub)):
+        fr, py = _both(no_front, *args)
+        assert _bits(fr) == _bits(py)
+    Pn = P.copy()
+    Pn[1, 2] = np.nan
+    assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == kqp.BAD_INPUT
+    off, on = no_front
+    for bad in ((Pn, q, G, h, A, b, lb, ub), (P, q, G[:, :-1], h, A, b, lb, ub),
+                (P, q, G, None, A, b, lb, ub), (P[:, :-1], q, G, h, A, b, lb, ub)):
+        msgs = []
+        for switch in (on, off):
+            switch()
+            with pytest.raises((ValueError, TypeError)) as e:
+                lemke.solve_qp(*bad)
+            msgs.append((type(e.value), str(e.value)))
+        on()
+        assert msgs[0] == msgs[1]

@@ -34,7 +34,20 @@ def gram_calls(monkeypatch):
 
 @pytest.fixture
 def dense_calls(monkeypatch):
-    return _recorder(monkeypatch, "solve")
+    """(With the dense kernel's runs in the native front, ``_qp._QP_FRONT``: its result,
+    OK, or the code it hands back; not its box kernel's, nor its None.)"""
+    codes = _recorder(monkeypatch, "solve")
+    front = _qp._QP_FRONT
+
+    def recording(P, q, G, h, A, b, lb, ub, *rest):
+        r = front(P, q, G, h, A, b, lb, ub, *rest)
+        box = G is None and h is None and A is None and b is None and (
+            lb is not None or ub is not None)
+        if r is not None and not box:
+            codes.append(kqp.OK if type(r) is _qp.QPResult else r[0])
+        return r
+    monkeypatch.setattr(_qp, "_QP_FRONT", recording)
+    return codes
 
 
 def _recorder(monkeypatch, name):

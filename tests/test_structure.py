@@ -140,6 +140,43 @@ def test_the_layout_is_the_cores(n):
     assert KINDS["lcp"].methods == tuple(_layout.METHODS) == lemke.METHODS
 
 
+@pytest.mark.parametrize("n, p, m", [(1, 0, 0), (5, 2, 3), (10, 0, 7), (4, 3, 0)])
+def test_the_qp_layouts_are_the_cores(n, p, m):
+    """The QP kernels' buffers as the core states them (qp.hpp OutLayout, BoxOutLayout,
+    exported as _core.qp_layout / qp_box_layout, from which _qp sizes and reads its
+    buffers) are the oracle's (kernels.qp out_size, out_views, box_out_size), and a solve's
+    fields read through them are the kernel's writes: x, y, z, z_box and the residuals of
+    an independent KKT check."""
+    from lemke import _core, _qp
+    from oracle import qp as kqp
+    x, y, z, zb, stats, basis, length = _core.qp_layout(n, p, m)
+    buf = np.arange(kqp.out_size(n, p, m), dtype=float)
+    views = kqp.out_views(buf, n, p, m)
+    assert [(v[0] if v.size else None, v.size) for v in views] == [
+        (buf[a] if b > a else None, b - a) for a, b in ((x, y), (y, z), (z, zb), (zb, stats), (stats, basis))]
+    assert basis == kqp.out_size(n, p, m) and length == basis + m + 2 * n
+    assert _qp._layout(n, p, m) == (x, y, z, zb, stats, basis, length)
+    bx, bzb, bstats, bfinal, blength = _core.qp_box_layout(n)
+    assert (bx, bzb, bstats, bfinal) == (0, 6 * n + 1, 7 * n + 1, kqp.box_out_size(n))
+    assert blength == bfinal + 3 * n and _qp._box_layout(n) == (bx, bzb, bstats, bfinal, blength)
+    rng = np.random.default_rng(n + 10 * p + 100 * m)
+    B = rng.standard_normal((n, n))
+    P, q = B @ B.T + np.eye(n), rng.standard_normal(n)
+    G, A = rng.standard_normal((m, n)), rng.standard_normal((p, n))
+    x0 = rng.standard_normal(n)
+    h, b = G @ x0 + 0.1, A @ x0
+    lb, ub = x0 - 1.0, x0 + 1.0
+    out = np.empty(length)
+    code, _, k, _ = _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-9, 1e-12, 1e-9, out)
+    assert code == _core.QP_OK
+    stats4 = np.empty(4)
+    assert _core.qp_kkt_check(P, q, G, h, A, b, lb, ub, out[x:y], out[y:z], out[z:zb],
+                              out[zb:stats], 1e-9, stats4)
+    assert stats4.tolist() == out[stats:basis].tolist()
+    basic = out[basis:basis + k].view(np.int64)
+    assert k == 0 or (basic.min() >= 0 and np.all(np.diff(basic) > 0))
+
+
 @pytest.mark.parametrize("n", [0, 1, 5])
 def test_one_buffer_layout(n):
     assert cold.buffer_size(n) == cold.buffer_length(n)

@@ -14,6 +14,7 @@ certificate is checked (``_certify``) before it is returned.
 """
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -153,7 +154,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         ``n``, the number of pairs of the KKT-MLCP, must match: else ``ValueError``).  Its
         active set is tried first: with P definite the fused kernel solves the old active
         set's KKT system on the new data and checks it (0 pivots when it holds), else
-        makes up to 3 active-set updates, else solves cold; P, A and G equal to the last call's (on
+        makes up to 3 active-set updates (3 more while each moves a single row), else solves
+        cold; P, A and G equal to the last call's (on
         the same thread) reuse its factors whether warm or cold.  Another kind of warm start
         (a ``BoxWarmStart``, a ``WarmStartBatch``) is a ``ValueError``, anything else a
         ``TypeError``.
@@ -191,14 +193,14 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         return timed(timing, solve_qp, P, q, G, h, A, b, lb, ub, method=method,
                      warm_start=warm_start, initvals=initvals)
     tried = warm_tried = False
-    if (warm_start is not None or initvals is not None) and options is None and (
-            type(method) is str and method == "tableau") and (
-            type(warm_start) is WarmStart and initvals is None or warm_start is None):
-        # The warm call (a WarmStart, or qpsolvers' initvals) whole in one native call
-        # (src/python_front_qp.cpp): plain data (as the inline path below takes it, and a
-        # plain float64 initvals) gives the result, or the kernel's code when it did not end
-        # solved and checked (the steps below then go on without calling it again); others
-        # None (the steps below do everything).
+    cold = None  # the native front's code of a cold call it ran and did not solve
+    if options is None and type(method) is str and method == "tableau" and (
+            warm_start is None or type(warm_start) is WarmStart and initvals is None):
+        # The call whole in one native call (src/python_front_qp.cpp), cold or warm (a
+        # WarmStart, or qpsolvers' initvals): plain data (as the inline lines below take it,
+        # and a plain float64 initvals) gives the result, or the kernel's code when it did
+        # not end solved and checked (the steps below then go on without calling it again);
+        # others None (the steps below do everything).
         if warm_start is not None:
             try:
                 beta = warm_start._beta  # (an attribute read: cheaper than __dict__.get)
@@ -216,7 +218,10 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
             if code in _STOP_CODES:
                 return _stopped(code, pivots, len(q), 0 if A is None else len(A),
                                 0 if G is None else len(G))
-            warm_tried = True
+            if warm_start is None and initvals is None:
+                cold = code
+            else:
+                warm_tried = True
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
             and not warm_tried
             and type(P) is _ND and type(q) is _ND
@@ -280,7 +285,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         elif plain:
             opts = _DEFAULT_OPTIONS if options is None else as_options(options)
             if box and (lb is not None or ub is not None):
-                if n < BOX_FIRST:
+                if n < BOX_FIRST and cold is None:  # (else the front ran it: not solved)
                     res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
@@ -289,25 +294,19 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                 if res is not None:
                     return res
                 tried = True
-            else:  # _solve_definite, inline
-                p, m = len(Ak), len(Gk)
-                out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
-                mp = opts.max_pivots
-                code, pivots, k, pairs = _core.qp_solve(
-                    P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method], -1 if mp is None else mp,
-                    opts.pivot_tol, opts.tie_tol, opts.tol, out)
-                if code == _OK:
-                    out.setflags(False)  # (write=False, positional: a third of the time)
-                    res = _new(QPResult)  # (QPResult._deferred, inlined)
-                    d = res.__dict__
-                    d["x"] = out[:n]
-                    d["status"] = _SOLVED
-                    d["pivots"] = pivots
-                    d["certificate"] = None
-                    d["_resolve"] = (_fused_fields, (out, n, p, m, k, pairs))
-                    return res
-                if code in _STOP_CODES:
-                    return _stopped(code, pivots, n, len(Ak), len(Gk))
+            else:  # _solve_definite, inline (unless the front ran it: code cold)
+                code = cold
+                if code is None:
+                    p, m = len(Ak), len(Gk)
+                    out = np.empty(_layout(n, p, m)[-1])
+                    mp = opts.max_pivots
+                    code, pivots, k, pairs = _core.qp_solve(
+                        P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method],
+                        -1 if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, out)
+                    if code == _OK:
+                        return _fused_result(out, n, p, m, k, pairs, pivots)
+                    if code in _STOP_CODES:
+                        return _stopped(code, pivots, n, len(Ak), len(Gk))
                 if code == _NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
@@ -584,8 +583,9 @@ def _solve_box_small(args, opts):
     and the basis are read from the kernel's buffer when first read."""
     P, q, G, h, A, b, lb, ub = args
     n = q.shape[0]
-    out = np.empty(7 * n + 5)  # kernels.qp.box_out_size
-    final = np.empty(3 * n, _I64)
+    at = _box_layout(n)  # qp::BoxOutLayout: the final bases (int64) in the buffer's tail
+    out = np.empty(at[-1])
+    final = out[at[3]:].view(_I64)
     mp = opts.max_pivots
     code, pivots, k, pairs = _core.qp_solve_box(P, q, G, h, A, b, lb, ub, _NO_WARM[n],
                                                 100 * (n + 1) if mp is None else mp,  # (solve_blcp's)
@@ -601,18 +601,20 @@ def _solve_box_small(args, opts):
     d["status"] = _SOLVED
     d["pivots"] = pivots
     d["certificate"] = None
-    d["_resolve"] = (_box_small_fields, (out, n, final, k, pairs))
+    d["_resolve"] = (_box_small_fields, (out, n, k, pairs))
     return res
 
 
-def _box_small_fields(out, n, final, k, pairs):
+def _box_small_fields(out, n, k, pairs):
     """The deferred fields of a result of :func:`_solve_box_small` (the basis numbered as
     :func:`_box_basis` numbers it, by the kernel: ``qp::box_basis``, the port of
-    ``kernels.qp.box_basis``)."""
-    primal, dual, gap, obj = out[7 * n + 1:].tolist()
-    return {"y": _EMPTY, "z": _EMPTY, "z_box": out[6 * n + 1:7 * n + 1], "obj": obj,
+    ``kernels.qp.box_basis``; in the buffer's tail after boxed's own final basis)."""
+    _, zb, stats, final, _ = _box_layout(n)
+    primal, dual, gap, obj = out[stats:final].tolist()
+    basic = out[final:].view(_I64)[n:n + k]
+    return {"y": _EMPTY, "z": _EMPTY, "z_box": out[zb:stats], "obj": obj,
             "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
-            "warm_start": WarmStart._trusted(pairs, tuple(final[n:n + k].tolist()))}
+            "warm_start": WarmStart._trusted(pairs, tuple(basic.tolist()))}
 
 
 _EMPTY = np.zeros(0)
@@ -678,7 +680,7 @@ def _solve_warm(args, method, opts, warm_start, x0=None):
     A warm start with another number of pairs is a ValueError."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
+    out = np.empty(_layout(n, p, m)[-1])
     mp = -1 if opts.max_pivots is None else opts.max_pivots
     if x0 is not None:
         code, pivots, k, pairs = _core.qp_solve_guess(
@@ -783,7 +785,7 @@ def _solve_definite(args, method, opts):
     infeasible and unbounded QPs."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
+    out = np.empty(_layout(n, p, m)[-1])
     max_pivots = opts.max_pivots
     if max_pivots is None:
         max_pivots = -1
@@ -823,7 +825,7 @@ def _solve_semidefinite(args, opts):
         # decline at once (kernels.qp.zero_diagonal); a linear program, say, neither calls nor
         # compiles it
         return None
-    out = np.empty(4 * n + p + 2 * m + 4)  # qp.out_size, then the basis (m + 2n)
+    out = np.empty(_layout(n, p, m)[-1])
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
     code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                  opts.pivot_tol, opts.tie_tol, opts.tol, out,
@@ -866,9 +868,24 @@ def _fused_result(out, n, p, m, k, pairs, pivots):
 
 
 def _basis_view(out, n, p, m):
-    """The int64 view of the fused kernels' basis, after ``qp.out_size(n, p, m)`` entries of
-    ``out`` (``_core.qp_solve`` makes the same view inside)."""
-    return out[2 * n + p + m + 4:].view(_I64)
+    """The int64 view of the fused kernels' basis in ``out``'s tail (``_core.qp_solve`` makes
+    the same view inside)."""
+    return out[_layout(n, p, m)[5]:].view(_I64)
+
+
+@functools.lru_cache(maxsize=256)
+def _layout(n, p, m):
+    """The fused kernels' output buffer for n variables, p equalities and m inequalities,
+    as the C++ core states it (``qp::OutLayout``): the offsets of x, y, z, z_box, the stats
+    (primal, dual, gap, obj) and the basis (int64), and the length."""
+    return _core.qp_layout(n, p, m)
+
+
+@functools.lru_cache(maxsize=64)
+def _box_layout(n):
+    """The box kernel's output buffer (``qp::BoxOutLayout``): the offsets of x, z_box, the
+    stats and the final bases (int64), and the length."""
+    return _core.qp_box_layout(n)
 
 
 _new = object.__new__
@@ -884,12 +901,12 @@ _QP_FRONT = _core.qp_front  # solve_qp's warm call, native (src/python_front_qp.
 
 def _fused_fields(out, n, p, m, k, pairs):
     """The deferred fields of a result of the fused path (see :func:`_solve_definite`)."""
-    s = 2 * n + p + m
-    primal, dual, gap, obj = out[s:s + 4].tolist()
-    basic = out[s + 4:s + 4 + k].view(_I64)
+    _, y, z, zb, s, basis, _ = _layout(n, p, m)
+    primal, dual, gap, obj = out[s:basis].tolist()
+    basic = out[basis:basis + k].view(_I64)
     ws = WarmStart._trusted(pairs, tuple(basic.tolist()))
     ws.__dict__["_beta"] = basic  # the index array the warm path takes (read-only, as out)
-    return {"y": out[n:n + p], "z": out[n + p:n + p + m], "z_box": out[n + p + m:2 * n + p + m],
+    return {"y": out[y:z], "z": out[z:zb], "z_box": out[zb:s],
             "obj": obj, "primal_residual": primal, "dual_residual": dual, "duality_gap": gap,
             "warm_start": ws}
 
@@ -1119,5 +1136,6 @@ def _direction_by_lp(qp, method, opts):
 
 # The native warm front builds its results as _fused_result does (it stays off, returning
 # None, where lcp_front_init found another NumPy layout).
-_core.qp_front_init(QPResult, _SOLVED, _fused_fields, _METHOD_CODES["tableau"],
+_core.qp_front_init(QPResult, _SOLVED, _fused_fields, _box_small_fields, BOX_FIRST,
+                    _METHOD_CODES["tableau"],
                     _DEFAULT_OPTIONS.pivot_tol, _DEFAULT_OPTIONS.tie_tol, _DEFAULT_OPTIONS.tol)

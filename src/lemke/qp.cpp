@@ -606,7 +606,8 @@ void caller_form(const Outs& o, idx n, idx p0, idx m0, const double* yy, const d
 }
 
 Outs out_views(double* out, idx n, idx p0, idx m0) {
-    return {out, out + n, out + n + p0, out + n + p0 + m0, out + 2 * n + p0 + m0};
+    OutLayout L{n, p0, m0};
+    return {out + L.x(), out + L.y(), out + L.z(), out + L.zb(), out + L.stats()};
 }
 
 bool proximal_cholesky(Mat<const double> P, Mat<double> Pd, Mat<double> L) {
@@ -753,11 +754,22 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
+// acc[i] += Mj[i] z, size[i] += |Mj[i] z| (i < m): one term of warm_point's sums per row.
+LEMKE_CLONES
+void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m) {
+    for (idx i = 0; i < m; ++i) {
+        double t = Mj[i] * z;
+        acc[i] += t;
+        size[i] += std::fabs(t);
+    }
+}
+
 // The warm start's own KKT point (solve's first stage from a warm start), with a few
 // active-set updates: the multipliers of the active rows S from M_SS z_S = -g_S (the
 // multiplier LCP's principal block, LU), a look at the LCP (z_S >= 0 and w = M z + g >= 0
 // off S, each to tol relative to its terms); while that fails, at most ACTIVE_SET_STEPS
-// times and while the number of rows that move does not grow, S loses its rows with z < 0 and gains
+// times (and ACTIVE_SET_MORE times more while each moves a single row), while the number of
+// rows that move does not grow and no set comes back, S loses its rows with z < 0 and gains
 // those with w < 0 (a primal-dual active-set step: no pivoting rule, so no guarantee, only
 // a cheap try). A set that passes gives the
 // point, caller_form and the KKT check on the data as for a solved LCP: true (Result OK,
@@ -767,14 +779,21 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
                 const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
     idx n = ds.n(), p = R.p, m = R.m;
-    thread_local std::vector<double> lu;
-    thread_local std::vector<idx> S, next;
+    thread_local std::vector<double> lu, ws;
+    thread_local std::vector<idx> S, next, seen, starts, last_set;  // seen: the sets tried, sorted
     S.assign(beta.begin(), beta.end());
-    double* zz = w.zz;
+    seen.clear();
+    starts.assign(1, 0);
+    last_set.clear();
+    double* zz = w.zz;  // (zero: solve zeroed it)
     std::uint8_t* in_s = w.bflags;  // (mlcp_basis rewrites them)
+    for (idx i = 0; i < m; ++i) in_s[i] = 0;
     idx changes = 0, last = 0;
     bool ok = false;
-    for (idx step = 0; step <= ACTIVE_SET_STEPS; ++step) {
+    for (idx step = 0; step <= ACTIVE_SET_STEPS + ACTIVE_SET_MORE; ++step) {
+        // beyond the first ACTIVE_SET_STEPS updates, only while the last one moved a single
+        // row (close: a cheap step more; else the cold LCP, without more tries)
+        if (step > ACTIVE_SET_STEPS && last != 1) break;
         idx kb = static_cast<idx>(S.size());
         if (kb > n - p) break;  // more active rows than free directions: singular
         lu.resize(static_cast<std::size_t>(kb * (kb + 2)));
@@ -783,10 +802,12 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         double* zS = y + kb;
         for (idx i = 0; i < kb; ++i) y[i] = -w.g[S[i]];
         if (kb > 0 && !solve_gathered(w.M, S.data(), blk, y, zS, kb)) break;
-        for (idx i = 0; i < m; ++i) {
-            zz[i] = 0.0;
-            in_s[i] = 0;
+        // zz and in_s are zero but on the last step's set (solve zeroed zz; in_s below)
+        for (idx r : last_set) {
+            zz[r] = 0.0;
+            in_s[r] = 0;
         }
+        last_set.assign(S.begin(), S.end());
         double top = 0.0;
         for (idx i = 0; i < kb; ++i) top = pmax(top, std::fabs(zS[i]));
         next.clear();
@@ -795,6 +816,19 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             zz[S[i]] = pmax(zS[i], 0.0);
             if (zS[i] < -tol * top) in_s[S[i]] = 2;  // leaves
         }
+        // w = g + M_S z_S and its terms' sizes, row S_j of M at a time (M is symmetric to
+        // the bit: M(i, S_j) z_j is M(S_j, i) z_j, added in the same order j as row i's
+        // own sum would add it, so the same bits; kb rows read whole instead of kb scattered
+        // entries of each of the m rows)
+        ws.resize(static_cast<std::size_t>(2 * m));
+        double* acc = ws.data();
+        double* size = acc + m;
+        for (idx i = 0; i < m; ++i) {
+            acc[i] = w.g[i];
+            size[i] = std::fabs(w.g[i]);
+        }
+        for (idx j = 0; j < kb; ++j)
+            add_row_terms(w.M.row(S[j]), zz[S[j]], acc, size, m);
         idx moved = 0;
         for (idx i = 0; i < m; ++i) {
             if (in_s[i] == 2) {
@@ -805,14 +839,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
                 next.push_back(i);
                 continue;
             }
-            const double* Mi = w.M.row(i);
-            double acc = w.g[i], size = std::fabs(w.g[i]);
-            for (idx j = 0; j < kb; ++j) {
-                double t = Mi[S[j]] * zz[S[j]];
-                acc += t;
-                size += std::fabs(t);
-            }
-            if (acc < -tol * size) {  // enters
+            if (acc[i] < -tol * size[i]) {  // enters
                 next.push_back(i);
                 ++moved;
             }
@@ -822,6 +849,16 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             break;
         }
         if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
+        // a set tried before: the steps repeat (each set gives the same next one), never
+        // one that holds; the cold LCP, without the rest of the tries
+        seen.insert(seen.end(), S.begin(), S.end());
+        std::sort(seen.end() - kb, seen.end());
+        starts.push_back(static_cast<idx>(seen.size()));
+        bool again = false;
+        for (std::size_t t = 0; t + 1 < starts.size() && !again; ++t)
+            again = std::equal(next.begin(), next.end(), seen.begin() + starts[t],
+                               seen.begin() + starts[t + 1]);
+        if (again) break;
         last = moved;
         changes += moved;
         S.swap(next);
@@ -1169,7 +1206,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
              const double* x0) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
-    idx k0 = 2 * n + p0 + m0 + 4;
+    idx k0 = OutLayout{n, p0, m0}.basis();
     for (idx t = 0; t < k0; ++t) out[t] = 0.0;
     if ((res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
@@ -1396,14 +1433,15 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
     }
     const double* x = buf;
     const double* w = buf + n;
-    double* zb = out + 6 * n + 1;
+    BoxOutLayout L{n};  // (its zb after boxed's buffer)
+    double* zb = out + L.zb();
     for (idx j = 0; j < n; ++j) zb[j] = -w[j];
     Data ds = dt;
     ds.P = P;
     ds.lb = lo;
     ds.ub = up;
     // (numba's kernel passes b and h as y and z: empty for a box-only QP)
-    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + 7 * n + 1)) {
+    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + L.stats())) {
         res.code = CHECK_FAILED;
         return res;
     }

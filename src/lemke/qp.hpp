@@ -34,6 +34,7 @@ constexpr double FLAT = 1e-3;
 constexpr idx REFINE = 2;
 constexpr idx REFINE_PROXIMAL = 3;
 constexpr idx ACTIVE_SET_STEPS = 3;  // a warm start's active-set updates before Lemke (warm_point)
+constexpr idx ACTIVE_SET_MORE = 3;   // and up to this many more while each moves a single row
 constexpr double ACTIVE_TOL = 1e-9;  // initvals: within this (relative) of tight is active
 
 // The caller's QP, qpsolvers' form: P (n x n), q, G (m0 x n), h, A (p0 x n), b, lb, ub.
@@ -49,6 +50,33 @@ struct Data {
     idx n() const { return P.rows; }
     idx m0() const { return G.rows; }
     idx p0() const { return A.rows; }
+};
+
+// The one statement of the fused kernels' output buffer (solve, solve_gram and the warm
+// entries; lemke/_qp.py sizes and reads its buffers from _core.qp_layout, and
+// tests/test_structure.py checks the two against the kernels' writes): x (n), y (p0),
+// z (m0), zb (n), stats (primal, dual, gap, obj), then the final basis as int64 (room for
+// m0 + 2n).
+struct OutLayout {
+    idx n, p0, m0;
+    idx x() const { return 0; }
+    idx y() const { return n; }
+    idx z() const { return n + p0; }
+    idx zb() const { return n + p0 + m0; }
+    idx stats() const { return 2 * n + p0 + m0; }
+    idx basis() const { return stats() + 4; }
+    idx length() const { return basis() + m0 + 2 * n; }
+};
+
+// solve_box's buffer: boxed::solve's (boxed::BoxLayout, 6n + 1: x its z, w after it), zb
+// (n), stats (4), then the final bases as int64 (3n: boxed's, then box_basis's pairs at n).
+struct BoxOutLayout {
+    idx n;
+    idx x() const { return 0; }
+    idx zb() const { return 6 * n + 1; }
+    idx stats() const { return 7 * n + 1; }
+    idx final() const { return 7 * n + 5; }
+    idx length() const { return final() + 3 * n; }
 };
 
 struct Result {
@@ -82,7 +110,8 @@ bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
 // warm (not nullptr): a warm start, the KKT-MLCP's basic pairs warm[:k_warm] of warm_pairs
 // (as mlcp_basis numbers them): the multiplier LCP is solved (warm_point) from the
 // active rows they name (their point checked first, 0 pivots when it solves the LCP; then
-// up to ACTIVE_SET_STEPS active-set updates; else checked_once, cold); BAD_WARM when
+// up to ACTIVE_SET_STEPS active-set updates, ACTIVE_SET_MORE more while each moves a single
+// row; else checked_once, cold); BAD_WARM when
 // warm_pairs is not this QP's count (Result.pairs).
 // x0 (not nullptr, n entries, finite: the caller checks): qpsolvers' initvals, a primal
 // guess whose active rows (guess_rows, ACTIVE_TOL) are the warm start instead.
