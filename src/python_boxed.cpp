@@ -208,10 +208,9 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
         idx nf = 0;
         if (ok && fflag.data()[b] != 0)
             for (idx i = qo[b]; i < qo[b + 1]; ++i) nf += fi[i] >= 0;
-        idx N = n + 2 * nf;
-        ok = ok && bf[b] >= 0 && bf[b + 1] <= len(bufs) &&
-             bf[b + 1] - bf[b] == 6 * N + 1 + (fflag.data()[b] != 0 && n > 0 ? 6 * n : 0) &&
-             io[b] >= 0 && io[b + 1] <= len(ints) && io[b + 1] - io[b] == N + 2 * nf;
+        lemke::boxed::FrontLayout FL{n, nf, fflag.data()[b] != 0 && n > 0};
+        ok = ok && bf[b] >= 0 && bf[b + 1] <= len(bufs) && bf[b + 1] - bf[b] == FL.length() &&
+             io[b] >= 0 && io[b + 1] <= len(ints) && io[b + 1] - io[b] == FL.ints_length();
         if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
         if (wflag.data()[b] != 0)
             for (idx i = qo[b]; i < qo[b + 1]; ++i) {
@@ -226,6 +225,74 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
                         fflag.data(), state.data(), wflag.data(), lo, hi, max_pivots.data(),
                         pivot_tol, tie_tol, tol, bufs.data(), bf, ints.data(), io,
                         state_out.data(), out_i.data(), out_f.data());
+}
+
+// The layout of the one-call buffers (boxed.hpp FrontLayout, BoxLayout), for the Python
+// fronts: {name: (start, stop)} of each field and each length, for n rows with nf friction
+// rows (friction: a friction index is given). Run fields (the run's BoxLayout(N)): z, w,
+// covering, row_scale, col_scale, ray; the caller's (friction only): caller_z, caller_w,
+// caller_lo, caller_hi, caller_row_scale, caller_col_scale; ints: final, friction_rows,
+// normal_rows; work (nf > 0): work_M, work_q, work_lo, work_hi; and N, run_length, length,
+// ints_length, work_length, answer (where the answer's z starts).
+nb::dict layout(std::int64_t n, std::int64_t nf, bool friction) {
+    if (n < 0 || nf < 0 || nf > n) throw nb::value_error("layout: 0 <= nf <= n");
+    lemke::boxed::FrontLayout F{n, nf, friction && n > 0};
+    lemke::boxed::BoxLayout R = F.run();
+    idx N = F.N();
+    nb::dict d;
+    auto span = [&](const char* name, idx at, idx len) { d[name] = nb::make_tuple(at, at + len); };
+    span("z", R.z(), N);
+    span("w", R.w(), N);
+    span("covering", R.covering(), N);
+    span("row_scale", R.row_scale(), N);
+    span("col_scale", R.col_scale(), N);
+    span("ray", R.ray(), N + 1);
+    if (F.friction) {
+        span("caller_z", F.z(), n);
+        span("caller_w", F.w(), n);
+        span("caller_lo", F.lo(), n);
+        span("caller_hi", F.hi(), n);
+        span("caller_row_scale", F.row_scale(), n);
+        span("caller_col_scale", F.col_scale(), n);
+    }
+    span("final", F.final(), N);
+    span("friction_rows", F.friction_rows(), nf);
+    span("normal_rows", F.normal_rows(), nf);
+    if (nf > 0) {
+        span("work_M", F.work_M(), N * N);
+        span("work_q", F.work_q(), N);
+        span("work_lo", F.work_lo(), N);
+        span("work_hi", F.work_hi(), N);
+    }
+    d["N"] = N;
+    d["run_length"] = R.length();
+    d["length"] = F.length();
+    d["ints_length"] = F.ints_length();
+    d["work_length"] = F.work_length();
+    d["answer"] = F.answer();
+    return d;
+}
+
+// Per island (n_b rows, nf_b friction rows, fflag_b: a friction index given) the offsets of
+// its buffers laid end to end (FrontLayout): buff and ioff (B + 1 each, from 0), and where
+// its answer's z sits in its buffer (answer, B).
+void island_layout(CIndices n_b, CIndices nf_b, Bytes fflag, OutIndices buff, OutIndices ioff,
+                   OutIndices answer) {
+    idx B = static_cast<idx>(n_b.shape(0));
+    if (static_cast<idx>(nf_b.shape(0)) != B || static_cast<idx>(fflag.shape(0)) != B ||
+        static_cast<idx>(buff.shape(0)) != B + 1 || static_cast<idx>(ioff.shape(0)) != B + 1 ||
+        static_cast<idx>(answer.shape(0)) != B)
+        throw nb::value_error("island_layout: B sizes, B + 1 offsets");
+    idx *bf = buff.data(), *io = ioff.data(), *an = answer.data();
+    bf[0] = io[0] = 0;
+    for (idx b = 0; b < B; ++b) {
+        idx n = n_b.data()[b], nf = nf_b.data()[b];
+        if (n < 0 || nf < 0 || nf > n) throw nb::value_error("island_layout: 0 <= nf <= n");
+        lemke::boxed::FrontLayout F{n, nf, fflag.data()[b] != 0 && n > 0};
+        bf[b + 1] = bf[b] + F.length();
+        io[b + 1] = io[b] + F.ints_length();
+        an[b] = F.answer();
+    }
 }
 
 }  // namespace
@@ -253,6 +320,9 @@ void bind_boxed(nb::module_& m) {
           "fflag"_a, "state"_a, "wflag"_a, "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a,
           "tie_tol"_a, "tol"_a, "bufs"_a.noconvert(), "buff"_a, "ints"_a.noconvert(), "ioff"_a,
           "state_out"_a.noconvert(), "out_i"_a.noconvert(), "out_f"_a.noconvert());
+    b.def("layout", &layout, "n"_a, "nf"_a = 0, "friction"_a = false);
+    b.def("island_layout", &island_layout, "n_b"_a, "nf_b"_a, "fflag"_a, "buff"_a.noconvert(),
+          "ioff"_a.noconvert(), "answer"_a.noconvert());
     b.attr("NOT_FINITE") = lemke::boxed::NOT_FINITE;
     b.attr("BAD_BOUNDS") = lemke::boxed::BAD_BOUNDS;
     b.attr("SINGULAR") = lemke::boxed::SINGULAR;

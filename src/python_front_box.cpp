@@ -247,7 +247,8 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
                 return nb::none();
         }
     }
-    idx buf_len = 6 * N + 1 + (friction ? 6 * n : 0), ints_len = N + 2 * nf;
+    lemke::boxed::FrontLayout FL{n, nf, friction};
+    idx buf_len = FL.length(), ints_len = FL.ints_length();
     nb::object buf = empty(buf_len, false);
     nb::object ints = empty(ints_len, true);
     const double *Md = reinterpret_cast<const double*>(M->data),

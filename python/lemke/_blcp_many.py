@@ -167,16 +167,17 @@ class BLCPManyResult(ManyItems):
     """
 
     def __init__(self, sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state, fflag,
-                 los, his, given, special):
+                 los, his, given, special, answer):
         """The kernels' arrays (``boxed.batch``), the problems' flat bounds, the warm starts
-        given (a BoxWarmStartBatch, a list, or None) and ``special``: ``{b: BLCPResult}``,
-        the islands the general path solved."""
+        given (a BoxWarmStartBatch, a list, or None), ``special``: ``{b: BLCPResult}``,
+        the islands the general path solved, and ``answer``: where each island's z sits in
+        its buffer (``boxed.island_layout``)."""
         for a in (qoff, out_i, out_f, buff, ioff, state, fflag):
             a.setflags(write=False)
         self._sizes, self._qoff, self._out_i, self._out_f = sizes, qoff, out_i, out_f
         self._bufs, self._buff, self._ints, self._ioff = bufs, buff, ints, ioff
         self._state, self._fflag, self._los, self._his = state, fflag, los, his
-        self._given, self._special = given, special
+        self._given, self._special, self._answer = given, special, answer
         self._items = [None] * len(sizes)
         for b, res in special.items():
             self._items[b] = res
@@ -209,14 +210,15 @@ class BLCPManyResult(ManyItems):
         a friction index (then its bounds in force are in the buffer too)."""
         qo = self._qoff
         n = np.diff(qo)
-        N = self._out_i[:, 6]
         fr = (self._fflag != 0) & (n > 0)
-        start = self._buff[:-1] + np.where(fr, 6 * N + 1, 0)
+        start = self._buff[:-1] + self._answer
         at = np.arange(qo[-1], dtype=np.int64)
         at += np.repeat(start - qo[:-1], n)
         return at, np.repeat(n, n), np.repeat(fr, n)
 
     def _gather(self, name, shift, flat=None):
+        # the field ``shift`` n-blocks after the answer's z (FrontLayout: the caller's z, w,
+        # lo, hi with a friction index, the run's z, w without; tests/test_structure.py)
         at, n, fr = self._where
         v = self._bufs.take(at + shift * n)
         if flat is not None:
@@ -361,11 +363,10 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
         nf, fmask = np.zeros(B, dtype=np.int64), None
     state, wflag, given = _warm_states(warm_start, B, n_b, qoff, fmask, fis)
     N = n_b + 2 * nf
-    fr = (fflag != 0) & (n_b > 0)
-    buff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum(6 * N + 1 + np.where(fr, 6 * n_b, 0), out=buff[1:])
-    ioff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum(N + 2 * nf, out=ioff[1:])
+    # each island's buffers laid end to end, and where its answer's z sits in its buffer
+    # (the engine's layout, src/lemke/boxed.hpp FrontLayout)
+    buff, ioff, answer = np.empty(B + 1, dtype=np.int64), np.empty(B + 1, dtype=np.int64), np.empty(B, dtype=np.int64)
+    boxed.island_layout(n_b, np.ascontiguousarray(nf, dtype=np.int64), fflag, buff, ioff, answer)
     limits = np.empty(B, dtype=np.int64)
     limits[:] = opts.pivot_limit(N)
     bufs = np.empty(int(buff[-1]))
@@ -395,7 +396,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
         state_out[o0:o1] = (res.warm_start.row_states() if res.warm_start is not None
                             else np.zeros(n, np.int8))
     return BLCPManyResult(sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state_out, fflag,
-                          loflat, hiflat, given, special)
+                          loflat, hiflat, given, special, answer)
 
 
 _NO_FINDEX = np.zeros(0, dtype=np.int64)

@@ -44,6 +44,43 @@ struct BoxLayout {
     idx length() const { return 6 * n + 1; }
 };
 
+// The buffers of solve_blcp's one-call path (front, batch's islands, the C API), stated here
+// once; every size and offset of them, in C++ and in Python (exported as
+// lemke._core.boxed.layout), derives from this. A problem of n rows with nf friction rows
+// is solved as the box LCP of N = n + 2 nf rows (extend); `friction`: a friction index is
+// given (and n > 0), even one without friction rows.
+//  buf:   the run's BoxLayout(N), then with a friction index the caller's answer
+//         [z | w | lo | hi | R | C] (n each; lo, hi the bounds in force);
+//  ints:  the final basis (N), then F: the friction rows (nf), their normal rows (nf);
+//  work:  the extended problem (extend): Mx (N x N), qx, lox, hix (N each); empty when nf = 0.
+struct FrontLayout {
+    idx n, nf;
+    bool friction;
+    idx N() const { return n + 2 * nf; }
+    BoxLayout run() const { return BoxLayout{N()}; }
+    // the caller's answer (friction only)
+    idx z() const { return run().length(); }
+    idx w() const { return z() + n; }
+    idx lo() const { return w() + n; }
+    idx hi() const { return lo() + n; }
+    idx row_scale() const { return hi() + n; }
+    idx col_scale() const { return row_scale() + n; }
+    idx length() const { return friction ? col_scale() + n : run().length(); }
+    // where the answer's z and w sit: the caller's with a friction index, else the run's
+    idx answer() const { return friction ? z() : run().z(); }
+    // ints
+    idx final() const { return 0; }
+    idx friction_rows() const { return N(); }
+    idx normal_rows() const { return N() + nf; }
+    idx ints_length() const { return N() + 2 * nf; }
+    // work
+    idx work_M() const { return 0; }
+    idx work_q() const { return N() * N(); }
+    idx work_lo() const { return work_q() + N(); }
+    idx work_hi() const { return work_lo() + N(); }
+    idx work_length() const { return nf > 0 ? work_hi() + N() : 0; }
+};
+
 // What solve returns: (code, pivots, z0, ok, residual, k, m) of boxed.solve.
 struct SolveResult {
     int code = 0;
@@ -127,8 +164,8 @@ bool is_ray(Mat<const double> M, const double* q, const double* lo, const double
 // The number of friction rows, or BAD_FINDEX (boxed.friction_rows).
 idx friction_rows(const idx* findex, idx n);
 
-// The extended box LCP of a friction index into work (N N + 3 N, N = n + 2 nf: Mx, qx, lox,
-// hix), F (2 nf) the friction rows then their normal rows (boxed.extend).
+// The extended box LCP of a friction index into work (FrontLayout's work: Mx, qx, lox, hix),
+// F (2 nf) the friction rows then their normal rows (boxed.extend).
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const idx* findex, idx nf, double* work, idx* F);
 
@@ -140,7 +177,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
 
 // The kernel part of solve_blcp with a friction index and/or a warm start (boxed.front):
 // returns the code, residual in `residual`. findex_len is 0 or n (the binding checks);
-// the other lengths are checked here as the kernel checks them.
+// the other lengths (FrontLayout's) are checked here as the kernel checks them.
 int front(int phase, Mat<const double> M, const double* q, const double* lo, const double* hi,
           const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,
           bool has_warm, double tol, double* buf, idx buf_len, idx* ints, idx ints_len,
