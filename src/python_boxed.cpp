@@ -273,26 +273,47 @@ nb::dict layout(std::int64_t n, std::int64_t nf, bool friction) {
     return d;
 }
 
-// Per island (n_b rows, nf_b friction rows, fflag_b: a friction index given) the offsets of
-// its buffers laid end to end (FrontLayout): buff and ioff (B + 1 each, from 0), and where
-// its answer's z sits in its buffer (answer, B).
-void island_layout(CIndices n_b, CIndices nf_b, Bytes fflag, OutIndices buff, OutIndices ioff,
-                   OutIndices answer) {
-    idx B = static_cast<idx>(n_b.shape(0));
-    if (static_cast<idx>(nf_b.shape(0)) != B || static_cast<idx>(fflag.shape(0)) != B ||
-        static_cast<idx>(buff.shape(0)) != B + 1 || static_cast<idx>(ioff.shape(0)) != B + 1 ||
-        static_cast<idx>(answer.shape(0)) != B)
-        throw nb::value_error("island_layout: B sizes, B + 1 offsets");
-    idx *bf = buff.data(), *io = ioff.data(), *an = answer.data();
+// solve_blcp_many's islands laid out (FrontLayout), in one pass: island b has the rows
+// qoff[b]..qoff[b + 1] of findex (read when fflag[b]) and of the warm row states (when
+// wflag[b]); into buff and ioff (B + 1 each, from 0) its buffers' offsets, laid end to end,
+// into answer (B) where its answer's z sits in its buffer, into limits (B) its pivot cap
+// (max_pivots, or the default 100 (N + 1) when max_pivots < 0). Returns the first warm row
+// whose state is not of its row's kind (a friction row's code for an ordinary row or the
+// other way round), -1 when none is (the front then says which, in its words).
+std::int64_t islands(CIndices qoff, CIndices findex, Bytes fflag, States state, Bytes wflag,
+                     std::int64_t max_pivots, OutIndices buff, OutIndices ioff,
+                     OutIndices answer, OutIndices limits) {
+    idx B = static_cast<idx>(qoff.shape(0)) - 1;
+    auto len = [](const auto& a) { return static_cast<idx>(a.shape(0)); };
+    if (B < 0 || len(fflag) != B || len(wflag) != B || len(buff) != B + 1 ||
+        len(ioff) != B + 1 || len(answer) != B || len(limits) != B)
+        throw nb::value_error("islands: B flags and outputs, B + 1 offsets");
+    const idx *qo = qoff.data(), *fi = findex.data();
+    const std::int8_t* st = state.data();
+    idx *bf = buff.data(), *io = ioff.data(), *an = answer.data(), *lim = limits.data();
     bf[0] = io[0] = 0;
+    idx bad = -1;
     for (idx b = 0; b < B; ++b) {
-        idx n = n_b.data()[b], nf = nf_b.data()[b];
-        if (n < 0 || nf < 0 || nf > n) throw nb::value_error("island_layout: 0 <= nf <= n");
-        lemke::boxed::FrontLayout F{n, nf, fflag.data()[b] != 0 && n > 0};
+        idx o = qo[b], n = qo[b + 1] - o;
+        bool fr = fflag.data()[b] != 0, warm = wflag.data()[b] != 0;
+        if (n < 0 || o < 0 || (fr && qo[b + 1] > len(findex)) || (warm && qo[b + 1] > len(state)))
+            throw nb::value_error("islands: an island's rows lie outside its arrays");
+        idx nf = 0;
+        if (fr)
+            for (idx i = o; i < o + n; ++i) nf += fi[i] >= 0;
+        if (warm && bad < 0)
+            for (idx i = o; i < o + n; ++i)
+                if ((st[i] >= lemke::boxed::FRICTION_STATE) != (fr && fi[i] >= 0)) {
+                    bad = i;
+                    break;
+                }
+        lemke::boxed::FrontLayout F{n, nf, fr && n > 0};
         bf[b + 1] = bf[b] + F.length();
         io[b + 1] = io[b] + F.ints_length();
         an[b] = F.answer();
+        lim[b] = max_pivots < 0 ? 100 * (F.N() + 1) : max_pivots;  // Options.pivot_limit(N)
     }
+    return bad;
 }
 
 }  // namespace
@@ -321,8 +342,9 @@ void bind_boxed(nb::module_& m) {
           "tie_tol"_a, "tol"_a, "bufs"_a.noconvert(), "buff"_a, "ints"_a.noconvert(), "ioff"_a,
           "state_out"_a.noconvert(), "out_i"_a.noconvert(), "out_f"_a.noconvert());
     b.def("layout", &layout, "n"_a, "nf"_a = 0, "friction"_a = false);
-    b.def("island_layout", &island_layout, "n_b"_a, "nf_b"_a, "fflag"_a, "buff"_a.noconvert(),
-          "ioff"_a.noconvert(), "answer"_a.noconvert());
+    b.def("islands", &islands, "qoff"_a, "findex"_a, "fflag"_a, "state"_a, "wflag"_a,
+          "max_pivots"_a, "buff"_a.noconvert(), "ioff"_a.noconvert(), "answer"_a.noconvert(),
+          "limits"_a.noconvert());
     b.attr("NOT_FINITE") = lemke::boxed::NOT_FINITE;
     b.attr("BAD_BOUNDS") = lemke::boxed::BAD_BOUNDS;
     b.attr("SINGULAR") = lemke::boxed::SINGULAR;

@@ -192,14 +192,16 @@ def test_the_box_layout_is_stated_once(n, nf, friction):
             assert (a.__array_interface__["data"][0] - run_.buf.__array_interface__["data"][0]) // 8 == L[name][0]
             assert a.size == L[name][1] - L[name][0]
     # the islands' offsets, laid end to end
-    sizes = np.array([n, n], dtype=np.int64)
-    buff, ioff, answer = (np.empty(3, dtype=np.int64), np.empty(3, dtype=np.int64),
-                          np.empty(2, dtype=np.int64))
-    boxed.island_layout(sizes, np.array([nf, nf], dtype=np.int64),
-                        np.array([friction, friction], dtype=np.uint8), buff, ioff, answer)
+    findex = np.array(([0] * nf + [-1] * (n - nf)) * 2, dtype=np.int64)  # nf friction rows
+    state = np.where(findex >= 0, 3, 0).astype(np.int8)
+    buff, ioff, answer, limits = (np.empty(k, dtype=np.int64) for k in (3, 3, 2, 2))
+    flag = np.array([friction, friction], dtype=np.uint8)
+    assert boxed.islands(np.array([0, n, 2 * n], dtype=np.int64), findex, flag, state,
+                         flag, -1, buff, ioff, answer, limits) == -1
     assert buff.tolist() == [0, L["length"], 2 * L["length"]]
     assert ioff.tolist() == [0, L["ints_length"], 2 * L["ints_length"]]
     assert answer.tolist() == [L["answer"]] * 2
+    assert limits.tolist() == [100 * (N + 1)] * 2
 
 
 @pytest.mark.parametrize("n", [0, 1, 5])
