@@ -171,7 +171,7 @@ class BLCPManyResult(ManyItems):
         """The kernels' arrays (``boxed.batch``), the problems' flat bounds, the warm starts
         given (a BoxWarmStartBatch, a list, or None), ``special``: ``{b: BLCPResult}``,
         the islands the general path solved, and ``answer``: where each island's z sits in
-        its buffer (``boxed.island_layout``)."""
+        its buffer (``boxed.islands``)."""
         for a in (qoff, out_i, out_f, buff, ioff, state, fflag):
             a.setflags(write=False)
         self._sizes, self._qoff, self._out_i, self._out_f = sizes, qoff, out_i, out_f

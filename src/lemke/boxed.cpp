@@ -10,9 +10,9 @@ namespace boxed {
 
 void BoxedWork::layout(idx size) {
     n = size;
-    f.resize(static_cast<std::size_t>(n * (n + 1) + 20 * n + 6));
-    i.resize(static_cast<std::size_t>(6 * n + 3));
-    flags.resize(static_cast<std::size_t>(6 * n + 2));
+    f.resize(static_cast<std::size_t>(f_length()));
+    i.resize(static_cast<std::size_t>(i_length()));
+    flags.resize(static_cast<std::size_t>(flags_length()));
 }
 
 double* BoxedWork::check_area(idx len) {
