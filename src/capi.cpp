@@ -141,11 +141,12 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
     idx nf = 0;
     if (friction)
         for (idx i = 0; i < n; ++i) nf += findex[i] >= 0;
-    idx N = n + 2 * nf;
+    bx::FrontLayout FL{n, nf, friction};
+    idx N = FL.N();
     std::vector<std::uint8_t> warm(static_cast<std::size_t>(2 * N), 0);
-    std::vector<double> buf(static_cast<std::size_t>(6 * N + 1 + (friction ? 6 * n : 0)));
-    std::vector<idx> ints(static_cast<std::size_t>(N + 2 * nf));
-    std::vector<double> work(static_cast<std::size_t>(nf > 0 ? N * N + 3 * N : 0));
+    std::vector<double> buf(static_cast<std::size_t>(FL.length()));
+    std::vector<idx> ints(static_cast<std::size_t>(FL.ints_length()));
+    std::vector<double> work(static_cast<std::size_t>(FL.work_length()));
     lemke::Mat<const double> A(M, n, n);
     double tol = o.tol;
     idx buf_len = static_cast<idx>(buf.size()), ints_len = static_cast<idx>(ints.size());
@@ -163,14 +164,14 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
     lemke::Mat<const double> Ae = A;
     const double *qa = q, *la = lo, *ha = hi;
     if (nf > 0) {
-        Ae = lemke::Mat<const double>(work.data(), N, N);
-        qa = work.data() + N * N;
-        la = qa + N;
-        ha = la + N;
+        Ae = lemke::Mat<const double>(work.data() + FL.work_M(), N, N);
+        qa = work.data() + FL.work_q();
+        la = work.data() + FL.work_lo();
+        ha = work.data() + FL.work_hi();
     }
-    idx* final = ints.data();
+    idx* final = ints.data() + FL.final();
     double* ext = buf.data();
-    bx::BoxLayout L{N};
+    bx::BoxLayout L = FL.run();
     idx limit = o.max_pivots < 0 ? 100 * (N + 1) : o.max_pivots;
     double pt = o.pivot_tol, tt = o.tie_tol;
     idx pivots = 0;
@@ -258,8 +259,8 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
                  : stop ? stop
                  : (r.code == LEMKE_MAX_PIVOTS || r.code == LEMKE_CYCLING) ? r.code
                                                                             : LEMKE_NUMERICAL_FAILURE;
-    const double* zo = friction ? buf.data() + 6 * N + 1 : ext + L.z();
-    const double* wo = friction ? buf.data() + 6 * N + 1 + n : ext + L.w();
+    const double* zo = buf.data() + (friction ? FL.z() : L.z());
+    const double* wo = buf.data() + (friction ? FL.w() : L.w());
     if (z) for (idx i = 0; i < n; ++i) z[i] = zo[i];
     if (z && status == LEMKE_SOLVED && !friction) onto_bounds(z, lo, hi, n);
     if (w) for (idx i = 0; i < n; ++i) w[i] = wo[i];
@@ -304,8 +305,9 @@ int blcp_warm(idx n, const double* M, const double* q, const double* lo, const d
         if (!valid_state(state[i], fr)) return LEMKE_INVALID_ARGUMENT;
     }
     lemke::DeadlineScope budget(o.time_limit);
-    idx N = n + 2 * nf;
-    idx buf_len = 6 * N + 1 + (friction ? 6 * n : 0), ints_len = N + 2 * nf;
+    bx::FrontLayout FL{n, nf, friction};
+    idx N = FL.N();
+    idx buf_len = FL.length(), ints_len = FL.ints_length();
     std::vector<double> buf(static_cast<std::size_t>(buf_len));
     std::vector<idx> ints(static_cast<std::size_t>(ints_len + 1));
     std::vector<std::int8_t> state_out(static_cast<std::size_t>(n + 1));
@@ -321,10 +323,11 @@ int blcp_warm(idx n, const double* M, const double* q, const double* lo, const d
     idx stage = out_i[5];
     if (stage < 0)  // undecided (a ray to judge, a failed ladder) or refused data: the cold way
         return blcp(n, M, q, lo, hi, findex, options, z, w, info, state);
-    const double* zo = buf.data() + (friction ? 6 * N + 1 : 0);
+    const double* zo = buf.data() + FL.answer();
+    const double* wo = buf.data() + FL.answer() + n;  // (w follows z in either layout)
     if (z) for (idx i = 0; i < n; ++i) z[i] = zo[i];
     if (z && !friction) onto_bounds(z, lo, hi, n);
-    if (w) for (idx i = 0; i < n; ++i) w[i] = zo[n + i];
+    if (w) for (idx i = 0; i < n; ++i) w[i] = wo[i];
     std::copy(state_out.begin(), state_out.begin() + n, state);
     if (info) {
         info->status = LEMKE_SOLVED;

@@ -208,10 +208,9 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
         idx nf = 0;
         if (ok && fflag.data()[b] != 0)
             for (idx i = qo[b]; i < qo[b + 1]; ++i) nf += fi[i] >= 0;
-        idx N = n + 2 * nf;
-        ok = ok && bf[b] >= 0 && bf[b + 1] <= len(bufs) &&
-             bf[b + 1] - bf[b] == 6 * N + 1 + (fflag.data()[b] != 0 && n > 0 ? 6 * n : 0) &&
-             io[b] >= 0 && io[b + 1] <= len(ints) && io[b + 1] - io[b] == N + 2 * nf;
+        lemke::boxed::FrontLayout FL{n, nf, fflag.data()[b] != 0 && n > 0};
+        ok = ok && bf[b] >= 0 && bf[b + 1] <= len(bufs) && bf[b + 1] - bf[b] == FL.length() &&
+             io[b] >= 0 && io[b + 1] <= len(ints) && io[b + 1] - io[b] == FL.ints_length();
         if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
         if (wflag.data()[b] != 0)
             for (idx i = qo[b]; i < qo[b + 1]; ++i) {
@@ -226,6 +225,95 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
                         fflag.data(), state.data(), wflag.data(), lo, hi, max_pivots.data(),
                         pivot_tol, tie_tol, tol, bufs.data(), bf, ints.data(), io,
                         state_out.data(), out_i.data(), out_f.data());
+}
+
+// The layout of the one-call buffers (boxed.hpp FrontLayout, BoxLayout), for the Python
+// fronts: {name: (start, stop)} of each field and each length, for n rows with nf friction
+// rows (friction: a friction index is given). Run fields (the run's BoxLayout(N)): z, w,
+// covering, row_scale, col_scale, ray; the caller's (friction only): caller_z, caller_w,
+// caller_lo, caller_hi, caller_row_scale, caller_col_scale; ints: final, friction_rows,
+// normal_rows; work (nf > 0): work_M, work_q, work_lo, work_hi; and N, run_length, length,
+// ints_length, work_length, answer (where the answer's z starts).
+nb::dict layout(std::int64_t n, std::int64_t nf, bool friction) {
+    if (n < 0 || nf < 0 || nf > n) throw nb::value_error("layout: 0 <= nf <= n");
+    lemke::boxed::FrontLayout F{n, nf, friction && n > 0};
+    lemke::boxed::BoxLayout R = F.run();
+    idx N = F.N();
+    nb::dict d;
+    auto span = [&](const char* name, idx at, idx len) { d[name] = nb::make_tuple(at, at + len); };
+    span("z", R.z(), N);
+    span("w", R.w(), N);
+    span("covering", R.covering(), N);
+    span("row_scale", R.row_scale(), N);
+    span("col_scale", R.col_scale(), N);
+    span("ray", R.ray(), N + 1);
+    if (F.friction) {
+        span("caller_z", F.z(), n);
+        span("caller_w", F.w(), n);
+        span("caller_lo", F.lo(), n);
+        span("caller_hi", F.hi(), n);
+        span("caller_row_scale", F.row_scale(), n);
+        span("caller_col_scale", F.col_scale(), n);
+    }
+    span("final", F.final(), N);
+    span("friction_rows", F.friction_rows(), nf);
+    span("normal_rows", F.normal_rows(), nf);
+    if (nf > 0) {
+        span("work_M", F.work_M(), N * N);
+        span("work_q", F.work_q(), N);
+        span("work_lo", F.work_lo(), N);
+        span("work_hi", F.work_hi(), N);
+    }
+    d["N"] = N;
+    d["run_length"] = R.length();
+    d["length"] = F.length();
+    d["ints_length"] = F.ints_length();
+    d["work_length"] = F.work_length();
+    d["answer"] = F.answer();
+    return d;
+}
+
+// solve_blcp_many's islands laid out (FrontLayout), in one pass: island b has the rows
+// qoff[b]..qoff[b + 1] of findex (read when fflag[b]) and of the warm row states (when
+// wflag[b]); into buff and ioff (B + 1 each, from 0) its buffers' offsets, laid end to end,
+// into answer (B) where its answer's z sits in its buffer, into limits (B) its pivot cap
+// (max_pivots, or the default 100 (N + 1) when max_pivots < 0). Returns the first warm row
+// whose state is not of its row's kind (a friction row's code for an ordinary row or the
+// other way round), -1 when none is (the front then says which, in its words).
+std::int64_t islands(CIndices qoff, CIndices findex, Bytes fflag, States state, Bytes wflag,
+                     std::int64_t max_pivots, OutIndices buff, OutIndices ioff,
+                     OutIndices answer, OutIndices limits) {
+    idx B = static_cast<idx>(qoff.shape(0)) - 1;
+    auto len = [](const auto& a) { return static_cast<idx>(a.shape(0)); };
+    if (B < 0 || len(fflag) != B || len(wflag) != B || len(buff) != B + 1 ||
+        len(ioff) != B + 1 || len(answer) != B || len(limits) != B)
+        throw nb::value_error("islands: B flags and outputs, B + 1 offsets");
+    const idx *qo = qoff.data(), *fi = findex.data();
+    const std::int8_t* st = state.data();
+    idx *bf = buff.data(), *io = ioff.data(), *an = answer.data(), *lim = limits.data();
+    bf[0] = io[0] = 0;
+    idx bad = -1;
+    for (idx b = 0; b < B; ++b) {
+        idx o = qo[b], n = qo[b + 1] - o;
+        bool fr = fflag.data()[b] != 0, warm = wflag.data()[b] != 0;
+        if (n < 0 || o < 0 || (fr && qo[b + 1] > len(findex)) || (warm && qo[b + 1] > len(state)))
+            throw nb::value_error("islands: an island's rows lie outside its arrays");
+        idx nf = 0;
+        if (fr)
+            for (idx i = o; i < o + n; ++i) nf += fi[i] >= 0;
+        if (warm && bad < 0)
+            for (idx i = o; i < o + n; ++i)
+                if ((st[i] >= lemke::boxed::FRICTION_STATE) != (fr && fi[i] >= 0)) {
+                    bad = i;
+                    break;
+                }
+        lemke::boxed::FrontLayout F{n, nf, fr && n > 0};
+        bf[b + 1] = bf[b] + F.length();
+        io[b + 1] = io[b] + F.ints_length();
+        an[b] = F.answer();
+        lim[b] = max_pivots < 0 ? 100 * (F.N() + 1) : max_pivots;  // Options.pivot_limit(N)
+    }
+    return bad;
 }
 
 }  // namespace
@@ -253,6 +341,10 @@ void bind_boxed(nb::module_& m) {
           "fflag"_a, "state"_a, "wflag"_a, "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a,
           "tie_tol"_a, "tol"_a, "bufs"_a.noconvert(), "buff"_a, "ints"_a.noconvert(), "ioff"_a,
           "state_out"_a.noconvert(), "out_i"_a.noconvert(), "out_f"_a.noconvert());
+    b.def("layout", &layout, "n"_a, "nf"_a = 0, "friction"_a = false);
+    b.def("islands", &islands, "qoff"_a, "findex"_a, "fflag"_a, "state"_a, "wflag"_a,
+          "max_pivots"_a, "buff"_a.noconvert(), "ioff"_a.noconvert(), "answer"_a.noconvert(),
+          "limits"_a.noconvert());
     b.attr("NOT_FINITE") = lemke::boxed::NOT_FINITE;
     b.attr("BAD_BOUNDS") = lemke::boxed::BAD_BOUNDS;
     b.attr("SINGULAR") = lemke::boxed::SINGULAR;

@@ -19,6 +19,7 @@
 #include <nanobind/nanobind.h>
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "lemke/boxed.hpp"
@@ -44,9 +45,13 @@ struct BoxFront {
     PyObject* i64 = nullptr;         // numpy.dtype(numpy.int64)
     PyObject* zero = nullptr;        // 0.0
     PyObject *k_status, *k_pivots, *k_residual, *k_ray, *k_z0, *k_lo, *k_hi, *k_recoveries,
-        *k_warm_start, *k_src, *k_n, *k_friction, *k_row_states;
+        *k_warm_start, *k_src, *k_n, *k_friction, *k_row_states, *k_codes;
     double pivot_tol = 0, tie_tol = 0, tol = 0;
-    std::vector<PyObject*> cold_spans;  // _spans(n, n, False) per n, kept for good
+    // _spans(n, N, friction) by (n, N, friction), kept for good (as _blcp._SPANS keeps them)
+    std::unordered_map<std::uint64_t, PyObject*> spans_cache;
+    // The result's __dict__ of each kind (friction | recoveries << 1 | warm start << 2): its
+    // keys in lazy's order, the constant values set; lazy copies one (no dict growth).
+    PyObject* templates[8] = {};
 } bf;
 
 void init(nb::handle result_cls, nb::handle ws_cls, nb::handle solved, nb::handle spans,
@@ -61,16 +66,31 @@ void init(nb::handle result_cls, nb::handle ws_cls, nb::handle solved, nb::handl
     bf.zero = PyFloat_FromDouble(0.0);
     PyObject** keys[] = {&bf.k_status, &bf.k_pivots, &bf.k_residual, &bf.k_ray, &bf.k_z0,
                          &bf.k_lo, &bf.k_hi, &bf.k_recoveries, &bf.k_warm_start, &bf.k_src,
-                         &bf.k_n, &bf.k_friction, &bf.k_row_states};
+                         &bf.k_n, &bf.k_friction, &bf.k_row_states, &bf.k_codes};
     const char* names[] = {"status", "pivots", "residual", "ray", "z0", "lo", "hi",
-                           "recoveries", "warm_start", "_src", "n", "friction", "row_states"};
+                           "recoveries", "warm_start", "_src", "n", "friction", "row_states",
+                           "_codes"};
     bool ok = bf.zero != nullptr;
     for (std::size_t i = 0; i < sizeof(keys) / sizeof(keys[0]); ++i) {
         *keys[i] = PyUnicode_InternFromString(names[i]);
         ok = ok && *keys[i] != nullptr;
     }
     if (!ok) throw nb::python_error();
-    bf.cold_spans.assign(COLD_MAX, nullptr);
+    for (int v = 0; v < 8; ++v) {
+        PyObject* t = PyDict_New();
+        bf.templates[v] = t;
+        ok = t != nullptr && PyDict_SetItem(t, bf.k_status, bf.solved) == 0 &&
+             PyDict_SetItem(t, bf.k_pivots, Py_None) == 0 &&
+             PyDict_SetItem(t, bf.k_residual, Py_None) == 0 &&
+             PyDict_SetItem(t, bf.k_ray, Py_None) == 0 &&
+             PyDict_SetItem(t, bf.k_z0, bf.zero) == 0 &&
+             ((v & 1) || (PyDict_SetItem(t, bf.k_lo, Py_None) == 0 &&
+                          PyDict_SetItem(t, bf.k_hi, Py_None) == 0)) &&
+             (!(v & 2) || PyDict_SetItem(t, bf.k_recoveries, Py_None) == 0) &&
+             (!(v & 4) || PyDict_SetItem(t, bf.k_warm_start, Py_None) == 0) &&
+             PyDict_SetItem(t, bf.k_src, Py_None) == 0;
+        if (!ok) throw nb::python_error();
+    }
     bf.pivot_tol = pivot_tol;
     bf.tie_tol = tie_tol;
     bf.tol = tol;
@@ -92,12 +112,16 @@ T* data_of(const nb::object& a) {
     return reinterpret_cast<T*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
 }
 
-// _blcp._spans(n, N, friction), the cold one (N = n, no friction) kept per n.
+// _blcp._spans(n, N, friction), kept per (n, N, friction) (sizes below 2^31).
 nb::object spans_of(idx n, idx N, bool friction) {
-    bool cache = !friction && N == n && n < COLD_MAX;
-    if (cache && bf.cold_spans[n] != nullptr) return nb::borrow(bf.cold_spans[n]);
+    bool cache = n < (idx(1) << 31) && N < (idx(1) << 31);
+    std::uint64_t key = (std::uint64_t(n) << 32 | std::uint64_t(N)) << 1 | std::uint64_t(friction);
+    if (cache) {
+        auto it = bf.spans_cache.find(key);
+        if (it != bf.spans_cache.end()) return nb::borrow(it->second);
+    }
     nb::object s = nb::handle(bf.spans)(n, N, friction);
-    if (cache) bf.cold_spans[n] = s.inc_ref().ptr();
+    if (cache) bf.spans_cache.emplace(key, s.inc_ref().ptr());
     return s;
 }
 
@@ -108,22 +132,21 @@ nb::object lazy(const nb::object& buf, const nb::object& ints, idx N, idx k, idx
     auto* cls = reinterpret_cast<PyTypeObject*>(bf.result_cls);
     nb::object res = nb::steal(cls->tp_alloc(cls, 0));
     if (!res.is_valid()) throw nb::python_error();
-    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
+    int kind = int(friction) | int(rec != 0) << 1 | int(!ws.is_none()) << 2;
+    nb::object dict = nb::steal(PyDict_Copy(bf.templates[kind]));
     if (!dict.is_valid()) throw nb::python_error();
     PyObject* d = dict.ptr();
     nb::object spans = spans_of(n, N, friction);
-    bool ok = PyDict_SetItem(d, bf.k_status, bf.solved) == 0 &&
-              put(d, bf.k_pivots, PyLong_FromSsize_t(pivots)) &&
+    bool ok = put(d, bf.k_pivots, PyLong_FromSsize_t(pivots)) &&
               put(d, bf.k_residual, PyFloat_FromDouble(residual)) &&
-              PyDict_SetItem(d, bf.k_ray, Py_None) == 0 &&
-              PyDict_SetItem(d, bf.k_z0, bf.zero) == 0 &&
               (friction || (PyDict_SetItem(d, bf.k_lo, lo.ptr()) == 0 &&
                             PyDict_SetItem(d, bf.k_hi, hi.ptr()) == 0)) &&
               (rec == 0 || put(d, bf.k_recoveries, PyLong_FromSsize_t(rec))) &&
               (ws.is_none() || PyDict_SetItem(d, bf.k_warm_start, ws.ptr()) == 0);
     if (ok) {
         nb::object src = nb::make_tuple(buf, ints, N, k, m, spans);
-        ok = PyDict_SetItem(d, bf.k_src, src.ptr()) == 0;
+        ok = PyDict_SetItem(d, bf.k_src, src.ptr()) == 0 &&
+             PyObject_GenericSetDict(res.ptr(), d, nullptr) == 0;
     }
     if (!ok) throw nb::python_error();
     return res;
@@ -202,8 +225,15 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
             if (v != i) return nb::none();
             ++r;
         }
-        states = nb::steal(PyObject_CallMethodNoArgs(ws.ptr(), bf.k_row_states));
-        if (!states.is_valid()) throw nb::python_error();
+        // row_states(): the codes it keeps in its __dict__, else the method (which makes them)
+        PyObject* kept = PyDict_GetItemWithError(d.ptr(), bf.k_codes);
+        if (kept != nullptr && kept != Py_None) {
+            states = nb::borrow(kept);
+        } else {
+            if (PyErr_Occurred()) throw nb::python_error();
+            states = nb::steal(PyObject_CallMethodNoArgs(ws.ptr(), bf.k_row_states));
+            if (!states.is_valid()) throw nb::python_error();
+        }
         if (Py_TYPE(states.ptr()) != L.ndarray) return nb::none();
         auto* s = reinterpret_cast<const ArrayFields*>(states.ptr());
         if (s->nd != 1 || s->dimensions[0] != n ||
@@ -217,7 +247,8 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
                 return nb::none();
         }
     }
-    idx buf_len = 6 * N + 1 + (friction ? 6 * n : 0), ints_len = N + 2 * nf;
+    lemke::boxed::FrontLayout FL{n, nf, friction};
+    idx buf_len = FL.length(), ints_len = FL.ints_length();
     nb::object buf = empty(buf_len, false);
     nb::object ints = empty(ints_len, true);
     const double *Md = reinterpret_cast<const double*>(M->data),
@@ -229,7 +260,8 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
     const idx mstart[1] = {0}, qoff[2] = {0, n}, buff[2] = {0, buf_len}, ioff[2] = {0, ints_len};
     const idx max_pivots[1] = {100 * (N + 1)};  // Options.pivot_limit(N), the default
     const std::uint8_t fflag[1] = {std::uint8_t(friction)}, wflag[1] = {std::uint8_t(st != nullptr)};
-    std::vector<std::int8_t> state_out(static_cast<std::size_t>(n) + 1);
+    thread_local std::vector<std::int8_t> state_out;  // (not read here: batch's output)
+    if (state_out.size() < static_cast<std::size_t>(n) + 1) state_out.resize(n + 1);
     idx out_i[7] = {0, 0, 0, 0, 0, 0, 0};
     double out_f[1] = {0.0};
     {

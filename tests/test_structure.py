@@ -177,6 +177,70 @@ def test_the_qp_layouts_are_the_cores(n, p, m):
     assert k == 0 or (basic.min() >= 0 and np.all(np.diff(basic) > 0))
 
 
+@pytest.mark.parametrize("n, nf, friction", [(0, 0, False), (1, 0, False), (5, 0, False),
+                                             (0, 0, True), (3, 0, True), (4, 1, True),
+                                             (6, 3, True), (9, 6, True)])
+def test_the_box_layout_is_stated_once(n, nf, friction):
+    """The box engine's buffers are laid out in one place (src/lemke/boxed.hpp FrontLayout,
+    exported as _core.boxed.layout): its fields tile each buffer in the stated order, and
+    the Python fronts' slices are its own (_blcp._spans, _Run; _blcp_many's blocks)."""
+    import numpy as np
+    from lemke import _blcp
+    from lemke._core import boxed
+    L = boxed.layout(n, nf, friction)
+    N = n + 2 * nf
+    assert L["N"] == N
+    fr = friction and n > 0
+
+    def tiles(names, lengths, total):
+        at = 0
+        for name, k in zip(names, lengths):
+            assert L[name] == (at, at + k), name
+            at += k
+        assert at == total
+
+    run = ("z", "w", "covering", "row_scale", "col_scale", "ray")
+    caller = tuple("caller_" + f for f in ("z", "w", "lo", "hi", "row_scale", "col_scale"))
+    tiles(run, (N,) * 5 + (N + 1,), L["run_length"])
+    if fr:
+        tiles(run + caller, (N,) * 5 + (N + 1,) + (n,) * 6, L["length"])
+        assert L["answer"] == L["caller_z"][0]
+    else:
+        assert L["length"] == L["run_length"] and not any(c in L for c in caller)
+        assert L["answer"] == L["z"][0]
+    # _blcp_many gathers z, w (and lo, hi with friction) as n-blocks after the answer's z
+    for shift, name in enumerate(("z", "w", "lo", "hi") if fr else ("z", "w")):
+        assert L[("caller_" if fr else "") + name][0] == L["answer"] + shift * n
+    tiles(("final", "friction_rows", "normal_rows"), (N, nf, nf), L["ints_length"])
+    if nf:
+        tiles(("work_M", "work_q", "work_lo", "work_hi"), (N * N, N, N, N), L["work_length"])
+    else:
+        assert L["work_length"] == 0
+    spans = _blcp._spans(n, N, fr)
+    for name, span in spans.items():
+        want = L["covering"] if name == "covering" else L[("caller_" if fr else "") + name]
+        assert span == want, name
+    if not friction:
+        run_ = _blcp._Run(n)
+        assert run_.buf.size == L["length"]
+        for attr, name in (("z", "z"), ("w", "w"), ("d", "covering"), ("R", "row_scale"),
+                           ("C", "col_scale"), ("ray", "ray")):
+            a = getattr(run_, attr)
+            assert (a.__array_interface__["data"][0] - run_.buf.__array_interface__["data"][0]) // 8 == L[name][0]
+            assert a.size == L[name][1] - L[name][0]
+    # the islands' offsets, laid end to end
+    findex = np.array(([0] * nf + [-1] * (n - nf)) * 2, dtype=np.int64)  # nf friction rows
+    state = np.where(findex >= 0, 3, 0).astype(np.int8)
+    buff, ioff, answer, limits = (np.empty(k, dtype=np.int64) for k in (3, 3, 2, 2))
+    flag = np.array([friction, friction], dtype=np.uint8)
+    assert boxed.islands(np.array([0, n, 2 * n], dtype=np.int64), findex, flag, state,
+                         flag, -1, buff, ioff, answer, limits) == -1
+    assert buff.tolist() == [0, L["length"], 2 * L["length"]]
+    assert ioff.tolist() == [0, L["ints_length"], 2 * L["ints_length"]]
+    assert answer.tolist() == [L["answer"]] * 2
+    assert limits.tolist() == [100 * (N + 1)] * 2
+
+
 @pytest.mark.parametrize("n", [0, 1, 5])
 def test_one_buffer_layout(n):
     assert cold.buffer_size(n) == cold.buffer_length(n)

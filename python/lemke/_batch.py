@@ -62,11 +62,11 @@ def _run(kernel, args, tail, B, workers, progress=None, what=""):
     if progress is not None and progress is not False:
         return _run_reporting(kernel, args, tail, B, workers, progress, what)
     chunks = min(B, CHUNKS_PER_WORKER * workers) if workers > 1 else min(B, 1)
-    bounds = np.linspace(0, B, chunks + 1).astype(int).tolist() if chunks else [0]
-    if chunks <= 1:
-        for lo, hi in zip(bounds[:-1], bounds[1:]):
-            kernel(*args, lo, hi, *tail)
+    if chunks <= 1:  # one chunk, all B (none when B = 0), in the calling thread
+        if chunks:
+            kernel(*args, 0, B, *tail)
         return
+    bounds = np.linspace(0, B, chunks + 1).astype(int).tolist()
     spans = iter(list(zip(bounds[:-1], bounds[1:])))
     lock = threading.Lock()
     deadline, seen = _core.deadline(), _core.interrupts()  # the caller's budget, for the pool's
@@ -436,22 +436,24 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
 _RAY = int(Status.RAY_TERMINATION)
 
 
-def _offsets(sizes):
+def _offsets(sizes, buffers=True):
     """int64 (3, B + 1): row 0, 1, 2 from index 1 on the problems' n, n^2 and output buffer
-    lengths (``_layout.BUFFER``), to be summed into offsets."""
+    lengths (``_layout.BUFFER``; left 0 without ``buffers``), to be summed into offsets."""
     off = np.zeros((3, len(sizes) + 1), dtype=np.int64)
     n_b = off[0, 1:]
     n_b[:] = sizes
     off[1, 1:] = n_b * n_b
-    off[2, 1:] = sum(length(n_b) for _, length in _layout.BUFFER)
+    if buffers:
+        off[2, 1:] = sum(length(n_b) for _, length in _layout.BUFFER)
     return off
 
 
-def _packed(M, q, sizes):
+def _packed(M, q, sizes, buffers=True):
     """Packed problems (see solve_lcp_many): ``(M, q, offsets)`` with M and q float64 1-D
     arrays ready for the kernels (the caller's own when they are already), or a
-    ``ValueError``/``TypeError`` naming what is wrong.  Finiteness is left to the kernels
-    (an error then names the problem and the entry)."""
+    ``ValueError``/``TypeError`` naming what is wrong (``buffers``: the LCP's output
+    buffers' lengths in the offsets' row 2, as :func:`_offsets`).  Finiteness is left to
+    the kernels (an error then names the problem and the entry)."""
     try:
         n_b = np.asarray(sizes)
     except (TypeError, ValueError) as exc:
@@ -460,7 +462,7 @@ def _packed(M, q, sizes):
         raise TypeError(f"sizes must be a 1-D array of integers, got shape {n_b.shape} and dtype {n_b.dtype}")
     if n_b.size and n_b.min() < 0:
         raise ValueError(f"sizes must be >= 0, got {int(n_b.min())} at index {int(np.argmin(n_b))}")
-    off = _offsets(n_b)
+    off = _offsets(n_b, buffers)
     flat = []
     for name, x, need in (("M", M, int(off[1].sum())), ("q", q, int(off[0].sum()))):
         a = _validate.float64_array(x, name)

@@ -34,6 +34,7 @@ evaluated at the final z.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from itertools import repeat
 
 import numpy as np
@@ -366,8 +367,8 @@ class _BoxField(LazyField):
         buf, final, N, k, m, spans = src
         if self.name == "warm_start":
             nf = (final.size - N) // 2  # (friction: ints, the friction rows after the basis)
-            v = BoxWarmStart._trusted(N, *_split(final, k, m),
-                                      tuple(final[N:N + nf].tolist()) if nf > 0 else ())
+            F = final[slice(*_layout(N - 2 * nf, nf, True)["friction_rows"])] if nf > 0 else ()
+            v = BoxWarmStart._trusted(N, *_split(final, k, m), tuple(F.tolist()) if nf > 0 else ())
             v.__dict__["_final"] = (final[:m], k)  # for its flags, if it is passed back
             return v
         if buf.flags.writeable:  # the result's arrays are read-only, as the others'
@@ -381,22 +382,29 @@ def _split(final, k, m):
     return tuple(idx[:k]), tuple(idx[k:])
 
 
+@lru_cache(maxsize=1024)
+def _layout(n, nf=0, friction=False):
+    """The box engine's buffers for n rows with nf friction rows (``friction``: a friction
+    index is given): ``{field: (start, stop)}`` and their lengths, as the C++ core states
+    them once (``src/lemke/boxed.hpp``: ``BoxLayout``, ``FrontLayout``; exported as
+    ``_core.boxed.layout``, whose docstring lists the names).  Every size and slice of
+    these buffers here and in ``_blcp_many`` derives from it."""
+    return boxed.layout(n, nf, friction)
+
+
 def _spans(n, N, friction):
-    """Where the fields of a result of size n sit in the buffer of ``kernels.boxed``:
-    without a friction index, :func:`kernels.boxed.layout`'s; with one (an extended problem
-    of size N), that problem's covering vector there, and the caller's arrays after it
-    (``kernels.boxed.front``)."""
+    """Where the fields of a result of size n sit in the buffer of the box engine: without
+    a friction index, the run's (:func:`_layout`); with one (an extended problem of size
+    N), that problem's covering vector there, and the caller's arrays after it."""
     key = (n, N, friction)
     s = _SPANS.get(key)
     if s is None:
-        if not friction:
-            s = {name: (at * n, (at + 1) * n) for name, at in
-                 (("z", 0), ("w", 1), ("covering", 2), ("row_scale", 3), ("col_scale", 4))}
-        else:
-            o = 6 * N + 1
-            s = {name: (o + at * n, o + (at + 1) * n) for name, at in
-                 (("z", 0), ("w", 1), ("lo", 2), ("hi", 3), ("row_scale", 4), ("col_scale", 5))}
-            s["covering"] = (2 * N, 3 * N)
+        L = _layout(n, (N - n) // 2, friction)
+        names = ("z", "w", "lo", "hi", "row_scale", "col_scale") if friction else \
+            ("z", "w", "covering", "row_scale", "col_scale")
+        s = {name: L["caller_" + name if friction else name] for name in names}
+        if friction:
+            s["covering"] = L["covering"]
         s = _SPANS.setdefault(key, s)
     return s
 
@@ -417,10 +425,12 @@ class _Run:
                  "ok", "residual", "k", "m")
 
     def __init__(self, n, buf=None, final=None):
-        # One buffer, sliced as kernels.boxed.layout slices it.
-        buf = np.empty(6 * n + 1) if buf is None else buf
-        self.z, self.w, self.d = buf[:n], buf[n:2 * n], buf[2 * n:3 * n]
-        self.R, self.C, self.ray = buf[3 * n:4 * n], buf[4 * n:5 * n], buf[5 * n:]
+        # One buffer, sliced as the engine lays it out (_layout: BoxLayout).
+        L = _layout(n)
+        buf = np.empty(L["length"]) if buf is None else buf
+        self.z, self.w, self.d = buf[slice(*L["z"])], buf[slice(*L["w"])], buf[slice(*L["covering"])]
+        self.R, self.C = buf[slice(*L["row_scale"])], buf[slice(*L["col_scale"])]
+        self.ray = buf[slice(*L["ray"])]
         self.buf = buf
         self.final = np.empty(n, dtype=np.int64) if final is None else final
         self.k = self.m = 0
@@ -521,7 +531,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             # released) that also validates the data.
             opts = _DEFAULT if options is None else as_options(options)
             if n < len(_NO):
-                buf = np.empty(6 * n + 1)
+                buf = np.empty(_layout(n)["length"])
                 final = np.empty(n, dtype=np.int64)
                 mp = opts.max_pivots
                 out = boxed.solve(M, q, lo, hi, _NO[n], 0, 100 * (n + 1) if mp is None else mp,
@@ -628,7 +638,8 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     n = q.shape[0]
     friction = findex is not None and n > 0
     nf = int(np.count_nonzero(findex >= 0)) if friction else 0
-    N = n + 2 * nf
+    L = _layout(n, nf, friction)
+    N = L["N"]
     if ws is None:
         warm = _no_warm(N)
     else:
@@ -637,9 +648,9 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                 _check_warm(ws, N, ())  # raises
             return None
         warm = ws._kernel_flags()
-    buf = np.empty(6 * N + 1 + 6 * n if friction else 6 * N + 1)
-    ints = np.empty(N + 2 * nf, dtype=np.int64)
-    work = np.empty(N * N + 3 * N) if nf else _NO_WORK
+    buf = np.empty(L["length"])
+    ints = np.empty(L["ints_length"], dtype=np.int64)
+    work = np.empty(L["work_length"]) if nf else _NO_WORK
     fi = findex if friction else _NO_FINDEX
     tol = opts.tol
     front = boxed.front
@@ -647,7 +658,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                            work)
     if nf and ws is not None and (code == 0 or code == _NEED_RUN or code == _UNDECIDED):
         # the data passed: F (the friction rows) is in ints
-        F = tuple(ints[N:N + nf].tolist())
+        F = tuple(ints[slice(*L["friction_rows"])].tolist())
         if ws.friction != F:  # a basis of other friction rows
             if validated:
                 _check_warm(ws, N, F)  # raises
@@ -660,12 +671,13 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
         as_blcp(M, q, lo, hi, findex)  # raises, naming the entry
         raise AssertionError("the kernel refused data that validation accepts")
     if nf:
-        A = work[: N * N].reshape(N, N)
-        qa, la, ha = work[N * N: N * N + N], work[N * N + N: N * N + 2 * N], work[N * N + 2 * N:]
-        final = ints[:N]
+        A = work[slice(*L["work_M"])].reshape(N, N)
+        qa, la, ha = (work[slice(*L[name])] for name in ("work_q", "work_lo", "work_hi"))
+        final = ints[slice(*L["final"])]
     else:
         A, qa, la, ha, final = M, q, lo, hi, ints
-    ext = buf[: 6 * N + 1] if friction else buf
+    ext = buf[: L["run_length"]]  # the run's fields (the extended problem's with friction rows)
+    ez, ew, ed, eR, eray = (slice(*L[name]) for name in ("z", "w", "covering", "row_scale", "ray"))
     limit, pt, tt = opts.pivot_limit(N), opts.pivot_tol, opts.tie_tol
     solve = boxed.solve
     pivots = rec = 0
@@ -684,16 +696,15 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                                              ext, final)
         pivots = max(p, 0)
         if not (c == 0 and ok):  # _finish: the point of its final basis, recomputed
-            point = _checked_point(A, qa, la, ha, *_basis_flags(final, k, m, N), tol,
-                                   ext[3 * N: 4 * N])
+            point = _checked_point(A, qa, la, ha, *_basis_flags(final, k, m, N), tol, ext[eR])
             if point is not None:
                 ok = True
-                ext[:N], ext[N: 2 * N], residual = point
+                ext[ez], ext[ew], residual = point
         if ok:
             return done(k, m, pivots, residual, 0, True)
         rec = 1
         if nf and c not in STOPPED:  # the warm basis with its friction rows cold (_reset)
-            warm2 = _reset(warm, N, _friction_vars(ints[N:N + nf], n))
+            warm2 = _reset(warm, N, _friction_vars(ints[slice(*L["friction_rows"])], n))
             c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm2, _WARM,
                                                  max(0, limit - pivots), pt, tt, tol, ext, final)
             pivots += max(p, 0)
@@ -706,8 +717,8 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
                                          tol, ext, final)
     pivots += max(p, 0)
     if not (c == 0 and ok):
-        if c == Status.RAY_TERMINATION and is_box_ray(A, qa, la, ha, ext[2 * N: 3 * N], ext[:N],
-                                                       z0, ext[5 * N:], tol):
+        if c == Status.RAY_TERMINATION and is_box_ray(A, qa, la, ha, ext[ed], ext[ez], z0,
+                                                       ext[eray], tol):
             return None  # (the general path reports the ray)
         for mode, tie in ((1, tt), (2, 0.0)):
             left = limit - pivots
@@ -945,9 +956,8 @@ def friction_lcp(M, q, lo, hi, findex):
     findex = _validate.kernel_array(np.asarray(findex, dtype=np.int64))
     n = q.size
     k = int(np.count_nonzero(findex >= 0))
-    N = n + 2 * k
     F = np.empty(2 * k, dtype=np.int64)
-    Mx, qx, lox, hix = boxed.extend(M, q, lo, hi, findex, k, np.empty(N * N + 3 * N), F)
+    Mx, qx, lox, hix = boxed.extend(M, q, lo, hi, findex, k, np.empty(_layout(n, k, True)["work_length"]), F)
     return Mx, qx, lox, hix, F[:k], F[k:]
 
 

@@ -167,16 +167,17 @@ class BLCPManyResult(ManyItems):
     """
 
     def __init__(self, sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state, fflag,
-                 los, his, given, special):
+                 los, his, given, special, answer):
         """The kernels' arrays (``boxed.batch``), the problems' flat bounds, the warm starts
-        given (a BoxWarmStartBatch, a list, or None) and ``special``: ``{b: BLCPResult}``,
-        the islands the general path solved."""
+        given (a BoxWarmStartBatch, a list, or None), ``special``: ``{b: BLCPResult}``,
+        the islands the general path solved, and ``answer``: where each island's z sits in
+        its buffer (``boxed.islands``)."""
         for a in (qoff, out_i, out_f, buff, ioff, state, fflag):
             a.setflags(write=False)
         self._sizes, self._qoff, self._out_i, self._out_f = sizes, qoff, out_i, out_f
         self._bufs, self._buff, self._ints, self._ioff = bufs, buff, ints, ioff
         self._state, self._fflag, self._los, self._his = state, fflag, los, his
-        self._given, self._special = given, special
+        self._given, self._special, self._answer = given, special, answer
         self._items = [None] * len(sizes)
         for b, res in special.items():
             self._items[b] = res
@@ -205,22 +206,27 @@ class BLCPManyResult(ManyItems):
 
     @cached_property
     def _where(self):
-        """Per row of the scene: where its z sits in the buffers, and whether its island has
-        a friction index (then its bounds in force are in the buffer too)."""
+        """Per row of the scene: where its z sits in the buffers."""
         qo = self._qoff
-        n = np.diff(qo)
-        N = self._out_i[:, 6]
-        fr = (self._fflag != 0) & (n > 0)
-        start = self._buff[:-1] + np.where(fr, 6 * N + 1, 0)
         at = np.arange(qo[-1], dtype=np.int64)
-        at += np.repeat(start - qo[:-1], n)
-        return at, np.repeat(n, n), np.repeat(fr, n)
+        at += np.repeat(self._buff[:-1] + self._answer - qo[:-1], self._n_rows)
+        return at
+
+    @cached_property
+    def _n_rows(self):
+        return np.diff(self._qoff)
 
     def _gather(self, name, shift, flat=None):
-        at, n, fr = self._where
-        v = self._bufs.take(at + shift * n)
-        if flat is not None:
-            v = np.where(fr, v, flat)
+        # the field ``shift`` n-blocks after the answer's z (FrontLayout: the caller's z, w,
+        # lo, hi with a friction index, the run's z, w without; tests/test_structure.py)
+        at = self._where
+        if shift:
+            n = self._n_rows
+            at = at + shift * np.repeat(n, n)
+        v = self._bufs.take(at)
+        if flat is not None:  # (lo, hi: the buffer's with a friction index, else the flat ones)
+            n = self._n_rows
+            v = np.where(np.repeat((self._fflag != 0) & (n > 0), n), v, flat)
         qo = self._qoff
         for b, res in self._special.items():
             v[qo[b]:qo[b + 1]] = getattr(res, name)
@@ -335,7 +341,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
                                   for f, k in zip(fis, n_b)]) if fflag.any() else _NO_FINDEX)
         sizes = n_b
     else:
-        Mflat, qflat, off = _packed(M, q, sizes)
+        Mflat, qflat, off = _packed(M, q, sizes, buffers=False)
         sizes = off[0, 1:].tolist()
         B = len(sizes)
         mlen = off[1]
@@ -351,23 +357,17 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     qoff = np.zeros(B + 1, dtype=np.int64)
     np.cumsum(n_b, out=qoff[1:])
     mstart = np.cumsum(mlen)[:-1]
-    # friction rows per island (the extended size N = n + 2 nf)
-    if fiflat.size:
-        fc = np.zeros(qoff[-1] + 1, dtype=np.int64)
-        np.cumsum(fiflat >= 0, out=fc[1:])
-        nf = (fc[qoff[1:]] - fc[qoff[:-1]]) * (fflag != 0)
-        fmask = (fiflat >= 0) & np.repeat(fflag != 0, n_b)
-    else:
-        nf, fmask = np.zeros(B, dtype=np.int64), None
-    state, wflag, given = _warm_states(warm_start, B, n_b, qoff, fmask, fis)
-    N = n_b + 2 * nf
-    fr = (fflag != 0) & (n_b > 0)
-    buff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum(6 * N + 1 + np.where(fr, 6 * n_b, 0), out=buff[1:])
-    ioff = np.zeros(B + 1, dtype=np.int64)
-    np.cumsum(N + 2 * nf, out=ioff[1:])
-    limits = np.empty(B, dtype=np.int64)
-    limits[:] = opts.pivot_limit(N)
+    state, wflag, given = _warm_states(warm_start, B, n_b, qoff, fis)
+    # each island's buffers laid end to end (the engine's layout, src/lemke/boxed.hpp
+    # FrontLayout), where its answer's z sits in its buffer, its pivot cap; the first warm
+    # row of another kind than its row's
+    buff, ioff = np.empty(B + 1, dtype=np.int64), np.empty(B + 1, dtype=np.int64)
+    answer, limits = np.empty(B, dtype=np.int64), np.empty(B, dtype=np.int64)
+    mp = opts.max_pivots
+    if boxed.islands(qoff, fiflat, fflag, state, wflag, -1 if mp is None else mp, buff, ioff,
+                     answer, limits) >= 0:
+        fmask = (fiflat >= 0) & np.repeat(fflag != 0, n_b) if fiflat.size else None
+        _same_kinds(state, fmask, qoff, wflag)  # raises, naming the island and row
     bufs = np.empty(int(buff[-1]))
     ints = np.empty(int(ioff[-1]), dtype=np.int64)
     state_out = np.empty(int(qoff[-1]), dtype=np.int8)
@@ -395,7 +395,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
         state_out[o0:o1] = (res.warm_start.row_states() if res.warm_start is not None
                             else np.zeros(n, np.int8))
     return BLCPManyResult(sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state_out, fflag,
-                          loflat, hiflat, given, special)
+                          loflat, hiflat, given, special, answer)
 
 
 _NO_FINDEX = np.zeros(0, dtype=np.int64)
@@ -472,11 +472,12 @@ def _packed_findex(findex, total):
     return f.astype(np.int64)
 
 
-def _warm_states(warm_start, B, n_b, qoff, fmask, fis):
+def _warm_states(warm_start, B, n_b, qoff, fis):
     """The warm starts as the kernel takes them: the row states end to end (int8), a flag
     per island (0: cold), and the list of those given (None for a BoxWarmStartBatch, whose
-    codes are taken as they are).  Sizes and friction rows are checked against the islands'
-    (ValueError naming ``warm_start[b]``)."""
+    codes are taken as they are).  Sizes are checked against the islands' (ValueError
+    naming ``warm_start[b]``); the rows' kinds by ``boxed.islands`` (then
+    :func:`_same_kinds`)."""
     total = int(qoff[-1])
     if warm_start is None:
         return np.zeros(total, dtype=np.int8), np.zeros(B, dtype=np.uint8), None
@@ -488,9 +489,7 @@ def _warm_states(warm_start, B, n_b, qoff, fmask, fis):
             b = int(bad[0])
             raise ValueError(f"warm_start[{b}] is for a problem of size {int(warm_start.n[b])}, problem {b} "
                              f"has n = {int(n_b[b])} (carry a basis to new rows with take or relabel)")
-        state = warm_start.state
-        _same_kinds(state, fmask, qoff)
-        return _validate.kernel_array(state), np.ones(B, dtype=np.uint8), None
+        return _validate.kernel_array(warm_start.state), np.ones(B, dtype=np.uint8), None
     _validate.wrong_kind(warm_start, "warm_start", "lemke.BoxWarmStartBatch or a sequence of BoxWarmStart")
     ws = list(warm_start)
     if len(ws) != B:
@@ -506,7 +505,6 @@ def _warm_states(warm_start, B, n_b, qoff, fmask, fis):
                              f"n = {int(n_b[b])} (carry a basis to new rows with take or relabel)")
         state[qoff[b]:qoff[b + 1]] = w.row_states()
         wflag[b] = 1
-    _same_kinds(state, fmask, qoff, wflag)
     return state, wflag, ws
 
 

@@ -10,9 +10,9 @@ namespace boxed {
 
 void BoxedWork::layout(idx size) {
     n = size;
-    f.resize(static_cast<std::size_t>(n * (n + 1) + 20 * n + 6));
-    i.resize(static_cast<std::size_t>(6 * n + 3));
-    flags.resize(static_cast<std::size_t>(6 * n + 2));
+    f.resize(static_cast<std::size_t>(f_length()));
+    i.resize(static_cast<std::size_t>(i_length()));
+    flags.resize(static_cast<std::size_t>(flags_length()));
 }
 
 double* BoxedWork::check_area(idx len) {
@@ -583,11 +583,12 @@ idx friction_rows(const idx* findex, idx n) {
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const idx* findex, idx nf, double* work_out, idx* F) {
     idx n = M.rows;
-    idx N = n + 2 * nf;
-    Mat<double> Mx(work_out, N, N);
-    double* qx = work_out + N * N;
-    double* lox = qx + N;
-    double* hix = lox + N;
+    FrontLayout L{n, nf, true};
+    idx N = L.N();
+    Mat<double> Mx(work_out + L.work_M(), N, N);
+    double* qx = work_out + L.work_q();
+    double* lox = work_out + L.work_lo();
+    double* hix = work_out + L.work_hi();
     idx c = 0;
     for (idx i = 0; i < n; ++i) {
         if (findex[i] >= 0) {
@@ -832,13 +833,14 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
 namespace {
 
 // The friction index's answer from the extended one zx, judged on the caller's data
-// (boxed.friction_check); out (6n): z, w, lo and hi in force, R, C.
+// (boxed.friction_check), into buf's caller's fields (FrontLayout).
 bool friction_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                    const idx* F, idx nf, const double* zx, idx N, double tol, double* out,
+                    const idx* F, idx nf, const double* zx, idx N, double tol, double* buf,
                     double& residual) {
     idx n = M.rows;
-    double *z = out, *w = out + n, *lo_in = out + 2 * n, *hi_in = out + 3 * n;
-    double *R = out + 4 * n, *C = out + 5 * n;
+    FrontLayout L{n, nf, true};
+    double *z = buf + L.z(), *w = buf + L.w(), *lo_in = buf + L.lo(), *hi_in = buf + L.hi();
+    double *R = buf + L.row_scale(), *C = buf + L.col_scale();
     for (idx i = 0; i < n; ++i) {
         z[i] = zx[i];
         lo_in[i] = lo[i];
@@ -879,33 +881,34 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
     } else {
         for (idx i = 0; i < findex_len; ++i) nf += findex[i] >= 0;
     }
-    idx N = n + 2 * nf;
-    if (buf_len != 6 * N + 1 + (friction ? 6 * n : 0) || ints_len != N + 2 * nf ||
-        work_len != (nf > 0 ? N * N + 3 * N : 0) || warm_len != 2 * N)
+    FrontLayout FL{n, nf, friction};
+    idx N = FL.N();
+    if (buf_len != FL.length() || ints_len != FL.ints_length() ||
+        work_len != FL.work_length() || warm_len != 2 * N)
         return BAD_FINDEX;  // (the front sizes them: never)
-    idx* F = ints + N;
+    idx* F = ints + FL.friction_rows();
     if (phase != PREPARE) {
         // F was written by PREPARE; refuse what it could not have written (the numba
         // kernel trusts it).
         for (idx c = 0; c < 2 * nf; ++c)
             if (F[c] < 0 || F[c] >= n) return BAD_FINDEX;
     }
-    double* z = buf;
+    double* z = buf + FL.run().z();
     if (phase == PREPARE) {
         Mat<const double> A = M;
         const double *qa = q, *la = lo, *ha = hi;
         if (nf > 0) {
             extend(M, q, lo, hi, findex, nf, work_in, F);
-            A = Mat<const double>(work_in, N, N);
-            qa = work_in + N * N;
-            la = qa + N;
-            ha = la + N;
+            A = Mat<const double>(work_in + FL.work_M(), N, N);
+            qa = work_in + FL.work_q();
+            la = work_in + FL.work_lo();
+            ha = work_in + FL.work_hi();
         }
         if (!has_warm || !basis_point(A, qa, la, ha, warm, warm + N, true, z)) {
             residual = INF;
             return NEED_RUN;
         }
-        BoxLayout L{N};
+        BoxLayout L = FL.run();
         double *w = buf + L.w(), *d = buf + L.covering(), *R = buf + L.row_scale();
         double* C = buf + L.col_scale();
         check_scales(A, qa, la, ha, R, C);
@@ -917,7 +920,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
         for (idx i = 0; i < N; ++i) d[i] = 0.0;
     }
     if (friction) {
-        bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf + 6 * N + 1, residual);
+        bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf, residual);
         if (!ok) {
             residual = INF;
             return UNDECIDED;

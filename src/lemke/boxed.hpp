@@ -44,6 +44,43 @@ struct BoxLayout {
     idx length() const { return 6 * n + 1; }
 };
 
+// The buffers of solve_blcp's one-call path (front, batch's islands, the C API), stated here
+// once; every size and offset of them, in C++ and in Python (exported as
+// lemke._core.boxed.layout), derives from this. A problem of n rows with nf friction rows
+// is solved as the box LCP of N = n + 2 nf rows (extend); `friction`: a friction index is
+// given (and n > 0), even one without friction rows.
+//  buf:   the run's BoxLayout(N), then with a friction index the caller's answer
+//         [z | w | lo | hi | R | C] (n each; lo, hi the bounds in force);
+//  ints:  the final basis (N), then F: the friction rows (nf), their normal rows (nf);
+//  work:  the extended problem (extend): Mx (N x N), qx, lox, hix (N each); empty when nf = 0.
+struct FrontLayout {
+    idx n, nf;
+    bool friction;
+    idx N() const { return n + 2 * nf; }
+    BoxLayout run() const { return BoxLayout{N()}; }
+    // the caller's answer (friction only)
+    idx z() const { return run().length(); }
+    idx w() const { return z() + n; }
+    idx lo() const { return w() + n; }
+    idx hi() const { return lo() + n; }
+    idx row_scale() const { return hi() + n; }
+    idx col_scale() const { return row_scale() + n; }
+    idx length() const { return friction ? col_scale() + n : run().length(); }
+    // where the answer's z and w sit: the caller's with a friction index, else the run's
+    idx answer() const { return friction ? z() : run().z(); }
+    // ints
+    idx final() const { return 0; }
+    idx friction_rows() const { return N(); }
+    idx normal_rows() const { return N() + nf; }
+    idx ints_length() const { return N() + 2 * nf; }
+    // work
+    idx work_M() const { return 0; }
+    idx work_q() const { return N() * N(); }
+    idx work_lo() const { return work_q() + N(); }
+    idx work_hi() const { return work_lo() + N(); }
+    idx work_length() const { return nf > 0 ? work_hi() + N() : 0; }
+};
+
 // What solve returns: (code, pivots, z0, ok, residual, k, m) of boxed.solve.
 struct SolveResult {
     int code = 0;
@@ -54,8 +91,8 @@ struct SolveResult {
     idx k = 0, m = 0;
 };
 
-// The engine's workspace, laid out once per size (one per thread, reused; layout states
-// every offset):
+// The engine's workspace, laid out once per size (one per thread, reused). The offsets
+// below state the layout; layout() sizes each array from the end of its last field:
 // f:     T (n x (n + 1)) | qs, los, his, s0, z0s (n each) | x, ray_lab (2n + 1 each) |
 //        the pivots' scratch rhs, magb (n each), prow (n + 1), col (n) |
 //        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n
@@ -71,34 +108,65 @@ struct BoxedWork {
     void layout(idx size);
     double* check_area(idx len);
     idx* check_indices(idx len);
+    // offsets in f
+    idx at_qs() const { return n * (n + 1); }
+    idx at_los() const { return at_qs() + n; }
+    idx at_his() const { return at_los() + n; }
+    idx at_s0() const { return at_his() + n; }
+    idx at_z0s() const { return at_s0() + n; }
+    idx at_x() const { return at_z0s() + n; }
+    idx at_ray_lab() const { return at_x() + 2 * n + 1; }
+    idx at_rhs() const { return at_ray_lab() + 2 * n + 1; }
+    idx at_magb() const { return at_rhs() + n; }
+    idx at_prow() const { return at_magb() + n; }
+    idx at_col() const { return at_prow() + n + 1; }
+    idx at_keys() const { return at_col() + n; }
+    idx at_gaps() const { return at_keys() + n + 1; }
+    idx at_cc() const { return at_gaps() + n + 1; }
+    idx at_rlo() const { return at_cc() + n + 1; }
+    idx at_rhi() const { return at_rlo() + n; }
+    idx at_eq_work() const { return at_rhi() + n; }
+    idx f_length() const { return at_eq_work() + 2 * n; }
+    // offsets in i
+    idx at_nonbasic() const { return n; }
+    idx at_pos() const { return at_nonbasic() + n + 1; }
+    idx at_start_basis() const { return at_pos() + 2 * n + 1; }
+    idx at_cand() const { return at_start_basis() + n; }
+    idx i_length() const { return at_cand() + n + 1; }
+    // offsets in flags
+    idx at_z_hi() const { return n; }
+    idx at_is_basic() const { return at_z_hi() + n; }
+    idx at_want() const { return at_is_basic() + 2 * n + 1; }
+    idx at_low() const { return at_want() + n; }
+    idx flags_length() const { return at_low() + n + 1; }
     Mat<double> T() { return Mat<double>(f.data(), n, n + 1); }
-    double* qs() { return f.data() + n * (n + 1); }
-    double* los() { return qs() + n; }
-    double* his() { return los() + n; }
-    double* s0() { return his() + n; }
-    double* z0s() { return s0() + n; }
-    double* x() { return z0s() + n; }
-    double* ray_lab() { return x() + 2 * n + 1; }
-    double* rhs() { return ray_lab() + 2 * n + 1; }
-    double* magb() { return rhs() + n; }
-    double* prow() { return magb() + n; }
-    double* col() { return prow() + n + 1; }
-    double* keys() { return col() + n; }
-    double* gaps() { return keys() + n + 1; }
-    double* cc() { return gaps() + n + 1; }
-    double* rlo() { return cc() + n + 1; }
-    double* rhi() { return rlo() + n; }
-    double* eq_work() { return rhi() + n; }
+    double* qs() { return f.data() + at_qs(); }
+    double* los() { return f.data() + at_los(); }
+    double* his() { return f.data() + at_his(); }
+    double* s0() { return f.data() + at_s0(); }
+    double* z0s() { return f.data() + at_z0s(); }
+    double* x() { return f.data() + at_x(); }
+    double* ray_lab() { return f.data() + at_ray_lab(); }
+    double* rhs() { return f.data() + at_rhs(); }
+    double* magb() { return f.data() + at_magb(); }
+    double* prow() { return f.data() + at_prow(); }
+    double* col() { return f.data() + at_col(); }
+    double* keys() { return f.data() + at_keys(); }
+    double* gaps() { return f.data() + at_gaps(); }
+    double* cc() { return f.data() + at_cc(); }
+    double* rlo() { return f.data() + at_rlo(); }
+    double* rhi() { return f.data() + at_rhi(); }
+    double* eq_work() { return f.data() + at_eq_work(); }
     idx* basis() { return i.data(); }
-    idx* nonbasic() { return basis() + n; }
-    idx* pos() { return nonbasic() + n + 1; }
-    idx* start_basis() { return pos() + 2 * n + 1; }
-    idx* cand() { return start_basis() + n; }
+    idx* nonbasic() { return i.data() + at_nonbasic(); }
+    idx* pos() { return i.data() + at_pos(); }
+    idx* start_basis() { return i.data() + at_start_basis(); }
+    idx* cand() { return i.data() + at_cand(); }
     std::uint8_t* z_basic() { return flags.data(); }
-    std::uint8_t* z_hi() { return z_basic() + n; }
-    std::uint8_t* is_basic() { return z_hi() + n; }
-    std::uint8_t* want() { return is_basic() + 2 * n + 1; }
-    std::uint8_t* low() { return want() + n; }
+    std::uint8_t* z_hi() { return flags.data() + at_z_hi(); }
+    std::uint8_t* is_basic() { return flags.data() + at_is_basic(); }
+    std::uint8_t* want() { return flags.data() + at_want(); }
+    std::uint8_t* low() { return flags.data() + at_low(); }
 };
 
 // 0, NOT_FINITE or BAD_BOUNDS (boxed.prologue).
@@ -127,8 +195,8 @@ bool is_ray(Mat<const double> M, const double* q, const double* lo, const double
 // The number of friction rows, or BAD_FINDEX (boxed.friction_rows).
 idx friction_rows(const idx* findex, idx n);
 
-// The extended box LCP of a friction index into work (N N + 3 N, N = n + 2 nf: Mx, qx, lox,
-// hix), F (2 nf) the friction rows then their normal rows (boxed.extend).
+// The extended box LCP of a friction index into work (FrontLayout's work: Mx, qx, lox, hix),
+// F (2 nf) the friction rows then their normal rows (boxed.extend).
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const idx* findex, idx nf, double* work, idx* F);
 
@@ -140,7 +208,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
 
 // The kernel part of solve_blcp with a friction index and/or a warm start (boxed.front):
 // returns the code, residual in `residual`. findex_len is 0 or n (the binding checks);
-// the other lengths are checked here as the kernel checks them.
+// the other lengths (FrontLayout's) are checked here as the kernel checks them.
 int front(int phase, Mat<const double> M, const double* q, const double* lo, const double* hi,
           const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,
           bool has_warm, double tol, double* buf, idx buf_len, idx* ints, idx ints_len,

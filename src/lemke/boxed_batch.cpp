@@ -84,10 +84,13 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
                  idx limit, double pt, double tt, double tol, double* buf, idx buf_len,
                  idx* ints, idx ints_len) {
     Outcome o;
-    idx n = M.rows, N = n + 2 * nf;
+    idx n = M.rows;
     bool friction = fl > 0;
+    FrontLayout FL{n, nf, friction};
+    BoxLayout L = FL.run();
+    idx N = FL.N();
     Scratch& S = scratch();
-    idx work_len = nf > 0 ? N * N + 3 * N : 0;
+    idx work_len = FL.work_length();
     double* work = sized(S.work, work_len);
     double residual;
     int code = front(PREPARE, M, q, lo, hi, fi, fl, warm, 2 * N, has_warm, tol, buf, buf_len,
@@ -106,13 +109,13 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     Mat<const double> A = M;
     const double *qa = q, *la = lo, *ha = hi;
     if (nf > 0) {
-        A = Mat<const double>(work, N, N);
-        qa = work + N * N;
-        la = qa + N;
-        ha = la + N;
+        A = Mat<const double>(work + FL.work_M(), N, N);
+        qa = work + FL.work_q();
+        la = work + FL.work_lo();
+        ha = work + FL.work_hi();
     }
-    double* ext = buf;
-    idx* final = ints;
+    double* ext = buf;  // the run's BoxLayout(N)
+    idx* final = ints + FL.final();
     idx pivots = 0, rec = 0;
     // A run that ended solved and checked: with a friction index, the check on the
     // caller's data decides (front's SOLVED_RUN phase; failed: the general path).
@@ -146,10 +149,10 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
             if (basis_point(A, qa, la, ha, zb, zh, false, z)) {
                 double* w = sized(S.w, N);
                 double res2;
-                if (box_check(A, qa, la, ha, z, tol, w, ext + 3 * N, 0, res2)) {
+                if (box_check(A, qa, la, ha, z, tol, w, ext + L.row_scale(), 0, res2)) {
                     ok = true;
-                    std::copy(z, z + N, ext);
-                    std::copy(w, w + N, ext + N);
+                    std::copy(z, z + N, ext + L.z());
+                    std::copy(w, w + N, ext + L.w());
                     residual = res2;
                 }
             }
@@ -159,7 +162,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
         if (nf > 0 && !is_stop(r.code)) {  // _blcp._reset: the friction rows cold
             std::uint8_t* warm2 = sized(S.warm2, 2 * N);
             std::copy(warm, warm + 2 * N, warm2);
-            const idx* F = ints + N;
+            const idx* F = ints + FL.friction_rows();
             for (idx c = 0; c < nf; ++c) {
                 const idx vars[3] = {F[c], n + c, n + nf + c};
                 for (idx v : vars) warm2[v] = warm2[N + v] = 0;
@@ -177,7 +180,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     pivots += std::max<idx>(r.pivots, 0);
     if (!(r.code == 0 && r.ok)) {
         if (r.code == RAY_TERMINATION &&
-            is_ray(A, qa, la, ha, ext + 2 * N, ext, r.z0, ext + 5 * N, tol))
+            is_ray(A, qa, la, ha, ext + L.covering(), ext + L.z(), r.z0, ext + L.ray(), tol))
             return o;  // (the general path reports the ray)
         const int modes[2] = {1, 2};
         const double ties[2] = {tt, 0.0};
