@@ -105,11 +105,7 @@ nb::object spans_of(idx n, idx N, bool friction) {
 nb::object lazy(const nb::object& buf, const nb::object& ints, idx N, idx k, idx m, idx n,
                 nb::handle lo, nb::handle hi, bool friction, idx pivots, double residual,
                 idx rec, nb::handle ws) {
-    auto* cls = reinterpret_cast<PyTypeObject*>(bf.result_cls);
-    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
-    if (!res.is_valid()) throw nb::python_error();
-    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
-    if (!dict.is_valid()) throw nb::python_error();
+    auto [res, dict] = new_result(bf.result_cls);
     PyObject* d = dict.ptr();
     nb::object spans = spans_of(n, N, friction);
     bool ok = PyDict_SetItem(d, bf.k_status, bf.solved) == 0 &&
