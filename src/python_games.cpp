@@ -112,7 +112,7 @@ bool check(Payoffs A, Payoffs B, VecIn x, VecIn y, double tol, VecOut out) {
 // shape, init_label an int in [0, m + n), Lemke-Howson from the artificial equilibrium,
 // default options, no exact certificate. The buffer from numpy.empty, the slack start, the
 // kernel without the GIL (the check on the caller's payoffs included), then:
-//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it;
+//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it (x and y made at once);
 //  - any other code: the tuple (code, pivots, restarts, buf), for the Python front to go on
 //    from (_finish, or the error naming a payoff that is not finite), as after its own call;
 //  - None: arguments of another kind; the Python front does everything (the same call).
@@ -122,7 +122,7 @@ struct GamesFront {
     PyObject* result_cls = nullptr;  // BimatrixResult
     PyObject* solved = nullptr;      // Status.SOLVED
     PyObject* method = nullptr;      // "lemke-howson"
-    PyObject *k_status, *k_pivots, *k_init_label, *k_method, *k_restarts, *k_lazy;
+    PyObject *k_status, *k_pivots, *k_init_label, *k_method, *k_restarts, *k_lazy, *k_x, *k_y;
     double params[4] = {0, 0, 0, 0};  // the defaults' (max_pivots, pivot_tol, tie_tol, tol)
 } gf;
 
@@ -134,9 +134,10 @@ void front_init(nb::handle result_cls, nb::handle solved, nb::handle method, Vec
     gf.solved = solved.ptr();
     gf.method = method.ptr();
     PyObject** keys[] = {&gf.k_status, &gf.k_pivots, &gf.k_init_label, &gf.k_method,
-                         &gf.k_restarts, &gf.k_lazy};
-    const char* names[] = {"status", "pivots", "init_label", "method", "restarts", "_lazy"};
-    for (std::size_t i = 0; i < 6; ++i) {
+                         &gf.k_restarts, &gf.k_lazy, &gf.k_x, &gf.k_y};
+    const char* names[] = {"status", "pivots", "init_label", "method", "restarts", "_lazy",
+                           "x", "y"};
+    for (std::size_t i = 0; i < 8; ++i) {
         *keys[i] = PyUnicode_InternFromString(names[i]);
         if (*keys[i] == nullptr) throw nb::python_error();
     }
@@ -175,7 +176,12 @@ nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
             start.data(), gf.params, out);
     }
     if (r.status != lemke::SOLVED) return nb::make_tuple(r.status, r.pivots, r.restarts, buf);
-    // BimatrixResult._lazy(buf, m, n, pivots, init_label, restarts)
+    // BimatrixResult._lazy(buf, m, n, pivots, init_label, restarts), with x and y made at
+    // once (every caller reads them; _FromKernel would make the same read-only views, the
+    // buffer made read-only first, as NumPy's PyArray_CLEARFLAGS does, so views copy it).
+    reinterpret_cast<ArrayFields*>(buf.ptr())->flags &= ~WRITEABLE;
+    nb::object x = buf[nb::slice(at.x(), at.x() + m)];
+    nb::object y = buf[nb::slice(at.y(), at.y() + n)];
     auto [res, dict] = new_result(gf.result_cls);
     PyObject* d = dict.ptr();
     nb::object lazy = nb::make_tuple(buf, m, n);
@@ -184,7 +190,8 @@ nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
               PyDict_SetItem(d, gf.k_init_label, k_h.ptr()) == 0 &&
               PyDict_SetItem(d, gf.k_method, gf.method) == 0 &&
               put(d, gf.k_restarts, PyLong_FromLongLong(r.restarts)) &&
-              PyDict_SetItem(d, gf.k_lazy, lazy.ptr()) == 0;
+              PyDict_SetItem(d, gf.k_lazy, lazy.ptr()) == 0 &&
+              PyDict_SetItem(d, gf.k_x, x.ptr()) == 0 && PyDict_SetItem(d, gf.k_y, y.ptr()) == 0;
     if (!ok) throw nb::python_error();
     return res;
 }

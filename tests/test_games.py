@@ -530,6 +530,10 @@ def test_front_is_the_python_path(kind, m, n, monkeypatch):
         for k in sorted({0, m - 1, m, m + n - 1}):
             paths.append(lemke.solve_bimatrix(A, B, init_label=k))
     assert fronts == paths
+    for r in fronts + paths:  # read-only views of the kernel's buffer, as the lazy fields are
+        assert not r.x.flags.writeable and not r.y.flags.writeable
+        with pytest.raises(ValueError):
+            r.x[0] = 2.0
     assert [(r.basis, r.payoffs, r.regret, r.init_label) for r in fronts] == [
         (r.basis, r.payoffs, r.regret, r.init_label) for r in paths]
 
