@@ -93,32 +93,52 @@ struct Scratch {
 };
 
 // games.exchange: the pivot on row r and column s (entering column in col). Rows whose
-// entry is zero are left alone, their entry s included (it keeps its sign of zero).
+// entry is zero are left alone, their entry s included (it keeps its sign of zero). With
+// `wlab` and `wcol`, magb[r] is first set to row r's size (row_size, summed in the same
+// order in the loop that reads the row for the pivot), as games.step does before its pivot.
+// The bounds magb are updated after the tableau (other arrays, the same operations), so
+// that the rows' updates need not wait for the size's chain of additions.
 LEMKE_CLONES
 void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
-              double* prow) {
+              double* prow, const idx* basis = nullptr, const double* wlab = nullptr,
+              const double* wcol = nullptr) {
     idx n = T.rows, k = T.cols;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
-    for (idx j = 0; j < k; ++j) {
-        double v = -tr[j] * inv;
-        prow[j] = v;
-        tr[j] = v;
+    if (wlab != nullptr) {
+        double size = wlab[basis[r]];
+        for (idx j = 0; j < k; ++j) {
+            double t = tr[j];
+            size += std::fabs(t) * wcol[j];
+            double v = -t * inv;
+            prow[j] = v;
+            tr[j] = v;
+        }
+        magb[r] = size;
+    } else {
+        for (idx j = 0; j < k; ++j) {
+            double v = -tr[j] * inv;
+            prow[j] = v;
+            tr[j] = v;
+        }
     }
     tr[s] = inv;
     double rr = -rhs[r] * inv;
     rhs[r] = rr;
-    magb[r] *= std::fabs(inv);
-    double mr = magb[r];
     for (idx i = 0; i < n; ++i) {
         double f = col[i];
         if (i != r && f != 0.0) {
             rhs[i] += f * rr;
-            magb[i] += std::fabs(f) * mr;
             double* ti = T.row(i);
             for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
             ti[s] = f * inv;
         }
+    }
+    magb[r] *= std::fabs(inv);
+    double mr = magb[r];
+    for (idx i = 0; i < n; ++i) {
+        double f = col[i];
+        if (i != r && f != 0.0) magb[i] += std::fabs(f) * mr;
     }
 }
 
@@ -257,8 +277,7 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     if (r >= 0 && !(std::fabs(col[r]) < INF)) {
         leaving = -2;
     } else if (r >= 0) {
-        t.magb[r] = row_size(t.T, r, t.basis, t.wlab, t.wcol);
-        exchange(t.T, t.rhs, t.magb, r, s, col, w.prow);
+        exchange(t.T, t.rhs, t.magb, r, s, col, w.prow, t.basis, t.wlab, t.wcol);  // row_size too
         leaving = swap_labels(t.basis, t.nonbasic, t.pos, t.inb, r, s);
         t.wcol[s] = t.wlab[leaving];
     }
