@@ -1,6 +1,7 @@
 #include "games.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "multiversion.hpp"
 #include "simd.hpp"
@@ -418,23 +419,34 @@ struct LHViews {
     idx* index;    // verdict's scratch (max(m, n))
 };
 
+// Each tableau row and the pivot row start on a 64-byte boundary (rows padded to a multiple
+// of 8 doubles): the updates' vector loads then never straddle two cache lines.
+constexpr idx ALIGN = 8;  // doubles
+inline idx padded(idx k) { return (k + ALIGN - 1) / ALIGN * ALIGN; }
+
 LHViews lh_layout(GamesWork& g, idx m, idx n) {
     idx L = m + n, big = std::max(m, n);
-    g.reserve(2 * m * n + 4 * L + 2 * L + 5 * big + n, 6 * L + 2 * big, 3 * L);
+    idx ldP = padded(m), ldQ = padded(n);  // P is n x m, Q m x n
+    g.reserve(ALIGN + n * ldP + m * ldQ + padded(big) + 4 * L + 2 * L + 4 * big + n,
+              6 * L + 2 * big, 3 * L);
     LHViews v;
     double* f = g.f.data();
     idx* i = g.i.data();
     std::uint8_t* z = g.z.data();
+    f += (ALIGN - reinterpret_cast<std::uintptr_t>(f) / sizeof(double) % ALIGN) % ALIGN;
     v.P.T = Mat<double>(f, n, m);
-    f += n * m;
+    v.P.T.ld = ldP;
+    f += n * ldP;
     v.Q.T = Mat<double>(f, m, n);
-    f += m * n;
+    v.Q.T.ld = ldQ;
+    f += m * ldQ;
+    v.w.prow = f; f += padded(big);
     v.P.rhs = f; v.P.magb = f + n; f += 2 * n;
     v.Q.rhs = f; v.Q.magb = f + m; f += 2 * m;
     v.P.wlab = f; v.Q.wlab = f + L; f += 2 * L;
     v.P.wcol = f; v.Q.wcol = f + m; f += L;
-    v.w.col = f; v.w.prow = f + big; v.w.scratch = f + 2 * big; v.w.keys = f + 3 * big;
-    v.w.mags = f + 4 * big; f += 5 * big;
+    v.w.col = f; v.w.scratch = f + big; v.w.keys = f + 2 * big; v.w.mags = f + 3 * big;
+    f += 4 * big;
     v.acc = f;
     v.P.basis = i; v.P.nonbasic = i + n; i += L;
     v.Q.basis = i; v.Q.nonbasic = i + m; i += L;
