@@ -41,7 +41,8 @@ _F64 = np.dtype(np.float64)
 _STATUSES = {int(s): s for s in Status}
 #: The games kernels of the C++ core (src/lemke/games.cpp: kernels/games.py's lemke_howson,
 #: trace and check, with the same arguments, results and bits); module attributes, so that
-#: a test can stand a lying kernel in.
+#: a test can stand a lying kernel in (with ``_FRONT`` set to return None, since the
+#: native front calls the engine itself).
 _LEMKE_HOWSON = _core.lemke_howson
 _TRACE = _core.games_trace
 _CHECK = _core.games_check
