@@ -4,7 +4,7 @@
 // NumPy 1.x and 2.x) and of its descr up to type_num; lcp_front_init checks them on probe
 // arrays against what Python reports, and a front that finds them different stays off.
 #pragma once
-#include <Python.h>
+#include <nanobind/nanobind.h>
 
 // NumPy's array object, as far as read here.
 struct ArrayFields {
@@ -52,6 +52,20 @@ inline bool put(PyObject* d, PyObject* key, PyObject* value) {
     int e = PyDict_SetItem(d, key, value);
     Py_DECREF(value);
     return e == 0;
+}
+
+// A new instance of a result class (its __init__ skipped, as object.__new__ does) and its
+// __dict__, which the fronts fill as the classes' own lazy builders do.
+struct NewResult {
+    nanobind::object res, dict;
+};
+inline NewResult new_result(PyObject* result_cls) {
+    auto* cls = reinterpret_cast<PyTypeObject*>(result_cls);
+    nanobind::object res = nanobind::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nanobind::python_error();
+    nanobind::object dict = nanobind::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
+    if (!dict.is_valid()) throw nanobind::python_error();
+    return {res, dict};
 }
 
 // What lcp_front_init found (src/python_front.cpp): whether the layout above holds (false

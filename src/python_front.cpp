@@ -138,11 +138,7 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
         return nb::make_tuple(r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage, buf);
     // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0) and the source
     // of the fields made when first read, (buf, 0, None, at, n, k).
-    auto* cls = reinterpret_cast<PyTypeObject*>(front.result_cls);
-    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
-    if (!res.is_valid()) throw nb::python_error();
-    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
-    if (!dict.is_valid()) throw nb::python_error();
+    auto [res, dict] = new_result(front.result_cls);
     PyObject* d = dict.ptr();
     PyObject* status = r.code == lemke::RAY_TERMINATION ? front.ray : front.solved;
     Py_INCREF(status);

@@ -110,11 +110,7 @@ nb::object solved(const nb::object& buf, idx n, idx pivots, PyObject* fields,
     if (!stop.is_valid()) throw nb::python_error();
     nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
     if (!sl.is_valid()) throw nb::python_error();
-    auto* cls = reinterpret_cast<PyTypeObject*>(qf.result_cls);
-    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
-    if (!res.is_valid()) throw nb::python_error();
-    nb::object dict = nb::steal(PyObject_GenericGetDict(res.ptr(), nullptr));
-    if (!dict.is_valid()) throw nb::python_error();
+    auto [res, dict] = new_result(qf.result_cls);
     PyObject* d = dict.ptr();
     Py_INCREF(qf.solved);
     Py_INCREF(Py_None);

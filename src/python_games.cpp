@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lemke/games.hpp"
+#include "python_arrays.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -56,7 +57,7 @@ std::tuple<int, std::int64_t, std::int64_t> lemke_howson(Payoffs A, Payoffs B, s
     if (len(params.shape(0)) < 4)
         throw nb::value_error("lemke_howson: params must be (max_pivots, pivot_tol, tie_tol, tol)");
     if (len(buf.shape(0)) < lemke::games::lh_buffer_length(m, n))
-        throw nb::value_error("lemke_howson: buf must hold 2 (m + n) + 3 + STATE floats");
+        throw nb::value_error("lemke_howson: buf must hold games_layout(m, n)'s length");
     lemke::games::LHResult r;
     {
         nb::gil_scoped_release release;
@@ -76,7 +77,8 @@ std::tuple<int, std::int64_t> trace(Payoffs A, Payoffs B, VecIn p, VecIn q,
     payoffs_ok("games_trace", A, B, true);
     idx m = len(A.shape(0)), n = len(A.shape(1));
     if (len(p.shape(0)) != m || len(q.shape(0)) != n || len(x.shape(0)) != m ||
-        len(y.shape(0)) != n || len(basis_out.shape(0)) < m + n + 2 || len(out.shape(0)) < 3)
+        len(y.shape(0)) != n || len(basis_out.shape(0)) < lemke::games::trace_labels(m, n) ||
+        len(out.shape(0)) < 3)
         throw nb::value_error("games_trace: p and x must have length m, q and y length n, "
                               "basis_out m + n + 2, out 3");
     lemke::games::TraceResult r;
@@ -102,9 +104,112 @@ bool check(Payoffs A, Payoffs B, VecIn x, VecIn y, double tol, VecOut out) {
                                out.data());
 }
 
+// --- solve_bimatrix's native front ---------------------------------------------------------
+//
+// games_front(A, B, init_label): solve_bimatrix's commonest call whole in one native call,
+// as lcp_front does solve_lcp's (src/python_front.cpp): A and B plain float64 (numpy_layout's
+// plain_f64: C-contiguous, aligned, writable, the machine's byte order), of one non-empty
+// shape, init_label an int in [0, m + n), Lemke-Howson from the artificial equilibrium,
+// default options, no exact certificate. The buffer from numpy.empty, the slack start, the
+// kernel without the GIL (the check on the caller's payoffs included), then:
+//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it (x and y made at once);
+//  - any other code: the tuple (code, pivots, restarts, buf), for the Python front to go on
+//    from (_finish, or the error naming a payoff that is not finite), as after its own call;
+//  - None: arguments of another kind; the Python front does everything (the same call).
+
+struct GamesFront {
+    bool on = false;
+    PyObject* result_cls = nullptr;  // BimatrixResult
+    PyObject* solved = nullptr;      // Status.SOLVED
+    PyObject* method = nullptr;      // "lemke-howson"
+    PyObject *k_status, *k_pivots, *k_init_label, *k_method, *k_restarts, *k_lazy, *k_x, *k_y;
+    double params[4] = {0, 0, 0, 0};  // the defaults' (max_pivots, pivot_tol, tie_tol, tol)
+} gf;
+
+void front_init(nb::handle result_cls, nb::handle solved, nb::handle method, VecIn params) {
+    gf.on = false;
+    if (len(params.shape(0)) != 4) throw nb::value_error("games_front_init: 4 parameters");
+    for (nb::handle h : {result_cls, solved, method}) h.inc_ref();  // kept for good
+    gf.result_cls = result_cls.ptr();
+    gf.solved = solved.ptr();
+    gf.method = method.ptr();
+    PyObject** keys[] = {&gf.k_status, &gf.k_pivots, &gf.k_init_label, &gf.k_method,
+                         &gf.k_restarts, &gf.k_lazy, &gf.k_x, &gf.k_y};
+    const char* names[] = {"status", "pivots", "init_label", "method", "restarts", "_lazy",
+                           "x", "y"};
+    for (std::size_t i = 0; i < 8; ++i) {
+        *keys[i] = PyUnicode_InternFromString(names[i]);
+        if (*keys[i] == nullptr) throw nb::python_error();
+    }
+    for (int i = 0; i < 4; ++i) gf.params[i] = params.data()[i];
+    gf.on = numpy_layout().ok;
+}
+
+nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
+    if (!gf.on) return nb::none();
+    NumpyLayout np = numpy_layout();
+    const ArrayFields* A = plain_f64(A_h.ptr(), 2, np.ndarray);
+    const ArrayFields* B = plain_f64(B_h.ptr(), 2, np.ndarray);
+    if (A == nullptr || B == nullptr || !PyLong_CheckExact(k_h.ptr())) return nb::none();
+    idx m = A->dimensions[0], n = A->dimensions[1];
+    if (m == 0 || n == 0 || B->dimensions[0] != m || B->dimensions[1] != n) return nb::none();
+    int overflow = 0;
+    long long k = PyLong_AsLongLongAndOverflow(k_h.ptr(), &overflow);
+    if (overflow != 0 || k < 0 || k >= m + n) return nb::none();
+    lemke::games::LHLayout at{m, n};
+    nb::object size = nb::steal(PyLong_FromSsize_t(at.length()));
+    if (!size.is_valid()) throw nb::python_error();
+    PyObject* args[] = {size.ptr()};
+    nb::object buf = nb::steal(PyObject_Vectorcall(np.empty, args, 1, nullptr));
+    if (!buf.is_valid()) throw nb::python_error();
+    double* out = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(buf.ptr())->data);
+    thread_local std::vector<idx> start;
+    start.resize(static_cast<std::size_t>(m + n));
+    for (idx j = 0; j < n; ++j) start[j] = m + j;  // _games._slack_start
+    for (idx i = 0; i < m; ++i) start[n + i] = i;
+    lemke::games::LHResult r;
+    {
+        nb::gil_scoped_release release;
+        r = lemke::games::lemke_howson(
+            lemke::Mat<const double>(reinterpret_cast<const double*>(A->data), m, n),
+            lemke::Mat<const double>(reinterpret_cast<const double*>(B->data), m, n), k,
+            start.data(), gf.params, out);
+    }
+    if (r.status != lemke::SOLVED) return nb::make_tuple(r.status, r.pivots, r.restarts, buf);
+    // BimatrixResult._lazy(buf, m, n, pivots, init_label, restarts), with x and y made at
+    // once (every caller reads them; _FromKernel would make the same read-only views, the
+    // buffer made read-only first, as NumPy's PyArray_CLEARFLAGS does, so views copy it).
+    reinterpret_cast<ArrayFields*>(buf.ptr())->flags &= ~WRITEABLE;
+    nb::object x = buf[nb::slice(at.x(), at.x() + m)];
+    nb::object y = buf[nb::slice(at.y(), at.y() + n)];
+    auto [res, dict] = new_result(gf.result_cls);
+    PyObject* d = dict.ptr();
+    nb::object lazy = nb::make_tuple(buf, m, n);
+    bool ok = PyDict_SetItem(d, gf.k_status, gf.solved) == 0 &&
+              put(d, gf.k_pivots, PyLong_FromLongLong(r.pivots)) &&
+              PyDict_SetItem(d, gf.k_init_label, k_h.ptr()) == 0 &&
+              PyDict_SetItem(d, gf.k_method, gf.method) == 0 &&
+              put(d, gf.k_restarts, PyLong_FromLongLong(r.restarts)) &&
+              PyDict_SetItem(d, gf.k_lazy, lazy.ptr()) == 0 &&
+              PyDict_SetItem(d, gf.k_x, x.ptr()) == 0 && PyDict_SetItem(d, gf.k_y, y.ptr()) == 0;
+    if (!ok) throw nb::python_error();
+    return res;
+}
+
 }  // namespace
 
 void bind_games(nb::module_& m) {
+    m.def("games_front_init", &front_init, "result_cls"_a, "solved"_a, "method"_a, "params"_a);
+    m.def("games_front", &games_front, "A"_a, "B"_a, "init_label"_a);
+    // The games engine's buffer layout (games.hpp LHLayout; lemke/_games.py reads it here):
+    // (x, y, regret, payoffs, labels, state, length) for lemke_howson's buffer of an m x n
+    // game, then trace's (floats, labels) lengths.
+    m.def("games_layout", [](std::int64_t rows, std::int64_t cols) {
+        lemke::games::LHLayout L{rows, cols};
+        return std::make_tuple(L.x(), L.y(), L.regret(), L.payoffs(), L.labels(), L.state(),
+                               L.length(), lemke::games::trace_floats(rows, cols),
+                               lemke::games::trace_labels(rows, cols));
+    }, "m"_a, "n"_a);
     m.def("lemke_howson", &lemke_howson, "A"_a, "B"_a, "k"_a, "start"_a, "params"_a, "buf"_a);
     m.def("games_trace", &trace, "A"_a, "B"_a, "p"_a, "q"_a, "max_pivots"_a, "pivot_tol"_a,
           "tie_tol"_a, "tol"_a, "x"_a, "y"_a, "basis_out"_a, "out"_a);

@@ -506,3 +506,88 @@ def test_lemke_paths_on_degenerate_random_games():
         for r in found:
             assert_exact_equilibrium(A, B, r)
         assert len({as_key(r) for r in found}) == len(found)
+
+
+# --- the native front (_core.games_front) ------------------------------------------------------
+
+@pytest.mark.parametrize("kind, m, n", [("unif", 7, 5), ("int100", 12, 12), ("int3", 9, 11),
+                                        ("unif", 30, 30), ("int100", 1, 4)])
+def test_front_is_the_python_path(kind, m, n, monkeypatch):
+    """solve_bimatrix's native front gives the Python path's result bit for bit (results are
+    values: == compares every field's bits), and each is an equilibrium by the numpy check."""
+    fronts, paths = [], []
+    for seed in range(3):
+        A, B = family(kind, m, n, seed)
+        A, B = np.ascontiguousarray(A, dtype=float), np.ascontiguousarray(B, dtype=float)
+        for k in sorted({0, m - 1, m, m + n - 1}):
+            assert isinstance(_core.games_front(A, B, k), lemke.BimatrixResult)  # the front took it
+            fronts.append(lemke.solve_bimatrix(A, B, init_label=k))
+            assert_equilibrium(A, B, fronts[-1])
+    monkeypatch.setattr(_games, "_FRONT", lambda A, B, k: None)
+    for seed in range(3):
+        A, B = family(kind, m, n, seed)
+        A, B = np.ascontiguousarray(A, dtype=float), np.ascontiguousarray(B, dtype=float)
+        for k in sorted({0, m - 1, m, m + n - 1}):
+            paths.append(lemke.solve_bimatrix(A, B, init_label=k))
+    assert fronts == paths
+    for r in fronts + paths:  # read-only views of the kernel's buffer, as the lazy fields are
+        assert not r.x.flags.writeable and not r.y.flags.writeable
+        with pytest.raises(ValueError):
+            r.x[0] = 2.0
+    assert [(r.basis, r.payoffs, r.regret, r.init_label) for r in fronts] == [
+        (r.basis, r.payoffs, r.regret, r.init_label) for r in paths]
+
+
+def test_front_declines_other_arguments():
+    """Anything but plain float64 payoffs of one non-empty shape and an int label in range
+    goes to the Python path (None), which then answers or names the error."""
+    A, B = np.array(STENGEL_A, dtype=float), np.array(STENGEL_B, dtype=float)
+    ro = A.copy()
+    ro.flags.writeable = False
+    for args in [(A.T, B.T), (np.asfortranarray(A), B), (A.astype(np.float32), B), (ro, B),
+                 (A.astype(np.int64), B), (A[:, :1], B), (A.tolist(), B)]:
+        assert _core.games_front(*args, 0) is None
+        assert _core.games_front(args[1], args[0], 0) is None
+    for k in (True, np.int64(0), 0.0, -1, A.shape[0] + A.shape[1], 2**70):
+        assert _core.games_front(A, B, k) is None
+    assert_equilibrium(A, B, lemke.solve_bimatrix(ro, B))
+    assert lemke.solve_bimatrix(ro, B) == lemke.solve_bimatrix(A, B)
+
+
+def test_front_hands_back_what_it_does_not_settle():
+    """A payoff that is not finite: the front hands the kernel's code back and the Python
+    path names the entry, as without the front."""
+    A = np.array([[1.0, np.nan], [0.0, 2.0]])
+    B = np.ones((2, 2))
+    code, pivots, restarts, buf = _core.games_front(A, B, 0)
+    assert code == _core.GAMES_NOT_FINITE and pivots == 0 and buf.shape == (_games._layout(2, 2)["length"],)
+    with pytest.raises(ValueError, match="non-finite"):
+        lemke.solve_bimatrix(A, B)
+
+
+@pytest.mark.parametrize("m, n", [(1, 1), (3, 2), (2, 5), (8, 8)])
+def test_the_games_layout_is_the_cores(m, n):
+    """_games reads the buffer by the core's LHLayout (_core.games_layout); the kernel writes
+    there: x and y are the strategies (checked here in numpy), the regret and payoffs theirs,
+    the labels each label once, the path state's pivots the result's."""
+    at = _games._layout(m, n)
+    assert tuple(at.values()) == _core.games_layout(m, n)
+    assert (at["x"], at["y"], at["regret"], at["payoffs"]) == (0, m, m + n, m + n + 1)
+    assert at["labels"] == at["trace_floats"] == m + n + 3
+    assert at["state"] == at["labels"] + m + n
+    assert at["length"] == at["state"] + _core.GAMES_STATE == at["state"] + 3 + _core.GAMES_HISTORY
+    assert at["trace_labels"] == m + n + 2
+    A, B = family("unif", m, n, 3)
+    A, B = np.ascontiguousarray(A, dtype=float), np.ascontiguousarray(B, dtype=float)
+    buf = np.full(at["length"], np.nan)
+    code, pivots, restarts = _core.lemke_howson(A, B, 0, _games._slack_start(m, n),
+                                                _games._DEFAULT_PARAMS, buf)
+    assert code == 0
+    x, y = buf[at["x"] : at["x"] + m], buf[at["y"] : at["y"] + n]
+    assert abs(x.sum() - 1) < 1e-12 and abs(y.sum() - 1) < 1e-12 and x.min() >= 0 and y.min() >= 0
+    assert buf[at["regret"]] == pytest.approx(regret(A, B, x, y), abs=1e-12)
+    assert buf[at["payoffs"]] == pytest.approx(x @ A @ y, rel=1e-12)
+    assert buf[at["payoffs"] + 1] == pytest.approx(x @ B @ y, rel=1e-12)
+    ints = buf.view(np.int64)
+    assert sorted(ints[at["labels"] : at["labels"] + m + n]) == list(range(m + n))
+    assert ints[at["state"] + 2] == pivots

@@ -30,7 +30,7 @@ from . import _core, _progress, _validate
 from . import _games_exact as ex
 from ._options import _DEFAULT, Options, as_options, time_limited, timed
 from ._options import deadline as deadline_scope
-from ._result import LazyField, Outcome
+from ._result import LazyField, Outcome, native_fronts_init
 from ._status import STOPPED, Status
 
 SOLVED = int(Status.SOLVED)  # the core's code of a solved run
@@ -41,12 +41,24 @@ _F64 = np.dtype(np.float64)
 _STATUSES = {int(s): s for s in Status}
 #: The games kernels of the C++ core (src/lemke/games.cpp: kernels/games.py's lemke_howson,
 #: trace and check, with the same arguments, results and bits); module attributes, so that
-#: a test can stand a lying kernel in.
+#: a test can stand a lying kernel in (with ``_FRONT`` set to return None, since the
+#: native front calls the engine itself).
 _LEMKE_HOWSON = _core.lemke_howson
 _TRACE = _core.games_trace
 _CHECK = _core.games_check
-_STATE = _core.GAMES_STATE  # the length of the kernel's path state, after the labels
+_FRONT = _core.games_front  # solve_bimatrix's commonest call whole (src/python_games.cpp)
 _NOT_FINITE = _core.GAMES_NOT_FINITE  # a payoff is not finite: nothing done
+
+
+@functools.lru_cache(maxsize=256)
+def _layout(m, n):
+    """The games engine's buffer layout for an m x n game, as the core states it
+    (``games.hpp``: ``LHLayout``, ``trace_floats``, ``trace_labels``): the offsets in
+    ``lemke_howson``'s buffer of x, y, the regret, the payoffs, the int64 labels and path
+    state, its length, and the lengths of ``trace``'s float and label outputs."""
+    names = ("x", "y", "regret", "payoffs", "labels", "state", "length", "trace_floats",
+             "trace_labels")
+    return dict(zip(names, _core.games_layout(m, n)))
 
 
 @dataclass(frozen=True)
@@ -136,9 +148,9 @@ class BimatrixResult(Outcome):
     def _lazy(cls, buf, m, n, pivots, init_label, restarts) -> "BimatrixResult":
         """A solved floating-point result whose x, y, payoffs, regret and basis are read
         from the kernel's buffer on first access (``_FromKernel``; see
-        ``kernels.games.lemke_howson`` for its layout, which the core's keeps; ``exact``, ``exact_from`` and
-        ``walked_back`` are the class defaults): a small solve pays only for what is
-        read."""
+        ``_layout``: the core's ``LHLayout``; ``exact``, ``exact_from`` and
+        ``walked_back`` are the class defaults; ``_core.games_front`` builds the same): a
+        small solve pays only for what is read."""
         res = object.__new__(cls)
         res.__dict__.update(status=Status.SOLVED, pivots=pivots, init_label=init_label,
                             method="lemke-howson", restarts=restarts, _lazy=(buf, m, n))
@@ -158,17 +170,23 @@ class _FromKernel(LazyField):
 
     def make(self, d):
         buf, m, n = d["_lazy"]
-        L = m + n
         name = self.name
         if name == "x" or name == "y":
             if "x" not in d and "y" not in d:
                 buf.flags.writeable = False  # before the first view: views copy the flag
-            return buf[:m] if name == "x" else buf[m:L]
+                # both at once (a caller that reads one reads the other)
+                d["y"] = y = buf[m : m + n]
+                if name == "y":
+                    return y
+            return buf[:m] if name == "x" else buf[m : m + n]
+        at = _layout(m, n)
         if name == "regret":
-            return buf[L]
+            return buf[at["regret"]]
         if name == "payoffs":
-            return (buf[L + 1], buf[L + 2])
-        return GameBasis._trusted(m, n, buf[L + 3 : 2 * L + 3].view(np.int64))
+            p = at["payoffs"]
+            return (buf[p], buf[p + 1])
+        i = at["labels"]
+        return GameBasis._trusted(m, n, buf[i : i + m + n].view(np.int64))
 
 
 for _name in ("x", "y", "payoffs", "regret", "basis"):
@@ -270,6 +288,14 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     Theory vol. 3 (2002).  A. H. van den Elzen, A. J. J. Talman, "A procedure for finding Nash
     equilibria in bi-matrix games", ZOR 35 (1991).
     """
+    if options is None and method == "lemke-howson" and warm_start is None and not exact:
+        got = _FRONT(A, B, init_label)  # None: arguments of another kind, done below
+        if got is not None:
+            if type(got) is not tuple:
+                return got  # solved and checked
+            code, pivots, restarts, buf = got
+            return _after_kernel(A, B, init_label, code, pivots, restarts, buf, _DEFAULT,
+                                 False, None)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_bimatrix, A, B, init_label=init_label, method=method,
                      prior=prior, warm_start=warm_start, exact=exact)
@@ -290,17 +316,26 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
         if warm_start is not None:
             raise ValueError("warm_start is for method='lemke-howson'")
         return _trace(A, B, prior, opts, exact)
-    buf = np.empty(2 * (m + n) + 3 + _STATE)  # see kernels.games.lemke_howson
+    buf = np.empty(_layout(m, n)["length"])
     code, pivots, restarts = _LEMKE_HOWSON(
         A, B, k, _slack_start(m, n) if warm_start is None else _start(warm_start, m, n),
         params, buf)
     if code == SOLVED and not exact:  # the common case, without _finish's detours
         return BimatrixResult._lazy(buf, m, n, pivots, k, restarts)
+    return _after_kernel(A, B, k, code, pivots, restarts, buf, opts, exact, warm_start)
+
+
+def _after_kernel(A, B, k, code, pivots, restarts, buf, opts, exact, warm_start):
+    """The result of a Lemke-Howson kernel call (its output ``buf``) that did not end
+    solved, or with ``exact``: the error naming a payoff that is not finite, or
+    ``_finish``."""
     if code == _NOT_FINITE:
         _as_payoffs(A, B)  # raises, naming the entry
-    ibuf = buf[m + n + 3 :].view(np.int64)
+    m, n = A.shape
+    split = _layout(m, n)["labels"]
+    ibuf = buf[split:].view(np.int64)
     return _finish(A, B, k, GameBasis._trusted(m, n, ibuf), code, pivots, restarts,
-                   "lemke-howson", buf[: m + n + 3], opts, exact, warm_start is None, ibuf)
+                   "lemke-howson", buf[:split], opts, exact, warm_start is None, ibuf)
 
 
 def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, cold, ibuf=None):
@@ -314,7 +349,7 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
         # check: re-solve the final basis' support system afresh (rounding of a long path).
         fixed = _resolve_float(A, B, basis, opts.tol)
         if fixed is not None:
-            fbuf[:m], fbuf[m : m + n], fbuf[m + n : m + n + 3] = fixed
+            fbuf[:m], fbuf[m : m + n], fbuf[m + n : m + n + 3] = fixed  # x, y, out: the layout's floats
             code = SOLVED
             restarts += 1
     path = None if ibuf is None else _path_state(ibuf, m, n, k)
@@ -327,9 +362,11 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
         if res.success:
             return _as_float(res)
     fbuf.flags.writeable = False
-    return BimatrixResult._make_from(fbuf[:m], fbuf[m : m + n], (float(fbuf[m + n + 1]), float(fbuf[m + n + 2])),
-                                status, int(pivots), float(fbuf[m + n]), basis, k, method, False,
-                                int(restarts), "", 0)
+    at = _layout(m, n)
+    r, p = at["regret"], at["payoffs"]
+    return BimatrixResult._make_from(fbuf[at["x"] : m], fbuf[at["y"] : m + n],
+                                     (float(fbuf[p]), float(fbuf[p + 1])), status, int(pivots),
+                                     float(fbuf[r]), basis, k, method, False, int(restarts), "", 0)
 
 
 def _path_state(ibuf, m, n, k):
@@ -338,8 +375,9 @@ def _path_state(ibuf, m, n, k):
     ``(P labels, Q labels, side of the next pivot, labels that left)``, the labels that left
     in its last pivots oldest first, preceded by k when they reach back to its start."""
     L = m + n
-    side, run = int(ibuf[L + 1]), int(ibuf[L + 2])
-    hist = ibuf[L + 3 :]
+    st = _layout(m, n)["state"] - _layout(m, n)["labels"]  # the path state, in ibuf
+    side, run = int(ibuf[st + 1]), int(ibuf[st + 2])
+    hist = ibuf[st + 3 :]
     H = hist.shape[0]
     left = [int(hist[t % H]) for t in range(max(0, run - H), run)]
     if run <= H:
@@ -351,8 +389,9 @@ def _trace(A, B, prior, opts, exact):
     m, n = A.shape
     p, q = (None, None) if prior is None else prior
     p, q = _prior(p, m, "row player"), _prior(q, n, "column player")
-    labels = np.empty(m + n + 2, dtype=np.int64)
-    fbuf = np.empty(m + n + 3)
+    at = _layout(m, n)
+    labels = np.empty(at["trace_labels"], dtype=np.int64)
+    fbuf = np.empty(at["trace_floats"])
     code, pivots = _TRACE(A, B, p, q, _max_pivots(opts), opts.pivot_tol, opts.tie_tol,
                             opts.tol, fbuf[:m], fbuf[m : m + n], labels, fbuf[m + n :])
     return _finish(A, B, 0, _trace_basis(labels, m, n), code, pivots, 0, "tracing", fbuf,
@@ -368,6 +407,8 @@ def _params(opts: Options) -> np.ndarray:
 
 
 _DEFAULT_PARAMS = _params(_DEFAULT)
+native_fronts_init()  # (NumPy's layout checked: the front relies on it)
+_core.games_front_init(BimatrixResult, Status.SOLVED, "lemke-howson", _DEFAULT_PARAMS)
 
 
 @functools.lru_cache(maxsize=64)

@@ -1,8 +1,10 @@
 #include "games.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "multiversion.hpp"
+#include "simd.hpp"
 
 namespace lemke {
 namespace games {
@@ -22,30 +24,45 @@ struct Range {
     bool finite;
 };
 
-// games.payoff_range: four running minima, maxima and sums of v * 0, combined as there.
+// games.payoff_range: the least and the largest payoff and whether every payoff is finite
+// (sum of v * 0, NaN when one is not). Eight lanes: the minimum and the maximum of a set do
+// not depend on the order they are taken in (up to the sign of a zero, which nothing after
+// reads: every use is v - lo, hi - lo or |lo|, the same bits for either zero), nor does
+// the sum of zeros (NaN when any term is).
+LEMKE_CLONES
 Range payoff_range(Mat<const double> A) {
-    double lo0 = INF, lo1 = INF, lo2 = INF, lo3 = INF;
-    double hi0 = -INF, hi1 = -INF, hi2 = -INF, hi3 = -INF;
-    double z0 = 0.0, z1 = 0.0, z2 = 0.0, z3 = 0.0;
     idx m = A.rows, n = A.cols;
+    double lo = INF, hi = -INF, z = 0.0;
+#ifdef LEMKE_SIMD
+    using namespace simd;
+    v8d lo8 = splat8(INF), hi8 = splat8(-INF), z8 = splat8(0.0), zero = splat8(0.0);
+#endif
     for (idx i = 0; i < m; ++i) {
         const double* a = A.row(i);
         idx j = 0;
-        for (; j + 4 <= n; j += 4) {
-            double v0 = a[j], v1 = a[j + 1], v2 = a[j + 2], v3 = a[j + 3];
-            lo0 = pmin(lo0, v0); lo1 = pmin(lo1, v1); lo2 = pmin(lo2, v2); lo3 = pmin(lo3, v3);
-            hi0 = pmax(hi0, v0); hi1 = pmax(hi1, v1); hi2 = pmax(hi2, v2); hi3 = pmax(hi3, v3);
-            z0 = z0 + v0 * 0.0; z1 = z1 + v1 * 0.0; z2 = z2 + v2 * 0.0; z3 = z3 + v3 * 0.0;
+#ifdef LEMKE_SIMD
+        for (; j + 8 <= n; j += 8) {
+            v8d v = load8(a + j);
+            lo8 = v < lo8 ? v : lo8;
+            hi8 = max8(hi8, v);
+            z8 = z8 + v * zero;
         }
+#endif
         for (; j < n; ++j) {
             double v = a[j];
-            lo0 = pmin(lo0, v);
-            hi0 = pmax(hi0, v);
-            z0 += v * 0.0;
+            lo = pmin(lo, v);
+            hi = pmax(hi, v);
+            z += v * 0.0;
         }
     }
-    bool finite = (z0 + z1) + (z2 + z3) == 0.0;
-    return {pmin(pmin(lo0, lo1), pmin(lo2, lo3)), pmax(pmax(hi0, hi1), pmax(hi2, hi3)), finite};
+#ifdef LEMKE_SIMD
+    for (int q = 0; q < 8; ++q) {
+        lo = pmin(lo, lo8[q]);
+        hi = pmax(hi, hi8[q]);
+        z += z8[q];
+    }
+#endif
+    return {lo, hi, z == 0.0};
 }
 
 double positive_scale(double lo, double hi) { return hi > lo ? pow2_scale(hi - lo) : 0.0; }
@@ -77,32 +94,52 @@ struct Scratch {
 };
 
 // games.exchange: the pivot on row r and column s (entering column in col). Rows whose
-// entry is zero are left alone, their entry s included (it keeps its sign of zero).
+// entry is zero are left alone, their entry s included (it keeps its sign of zero). With
+// `wlab` and `wcol`, magb[r] is first set to row r's size (row_size, summed in the same
+// order in the loop that reads the row for the pivot), as games.step does before its pivot.
+// The bounds magb are updated after the tableau (other arrays, the same operations), so
+// that the rows' updates need not wait for the size's chain of additions.
 LEMKE_CLONES
 void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
-              double* prow) {
+              double* prow, const idx* basis = nullptr, const double* wlab = nullptr,
+              const double* wcol = nullptr) {
     idx n = T.rows, k = T.cols;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
-    for (idx j = 0; j < k; ++j) {
-        double v = -tr[j] * inv;
-        prow[j] = v;
-        tr[j] = v;
+    if (wlab != nullptr) {
+        double size = wlab[basis[r]];
+        for (idx j = 0; j < k; ++j) {
+            double t = tr[j];
+            size += std::fabs(t) * wcol[j];
+            double v = -t * inv;
+            prow[j] = v;
+            tr[j] = v;
+        }
+        magb[r] = size;
+    } else {
+        for (idx j = 0; j < k; ++j) {
+            double v = -tr[j] * inv;
+            prow[j] = v;
+            tr[j] = v;
+        }
     }
     tr[s] = inv;
     double rr = -rhs[r] * inv;
     rhs[r] = rr;
-    magb[r] *= std::fabs(inv);
-    double mr = magb[r];
     for (idx i = 0; i < n; ++i) {
         double f = col[i];
         if (i != r && f != 0.0) {
             rhs[i] += f * rr;
-            magb[i] += std::fabs(f) * mr;
             double* ti = T.row(i);
             for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
             ti[s] = f * inv;
         }
+    }
+    magb[r] *= std::fabs(inv);
+    double mr = magb[r];
+    for (idx i = 0; i < n; ++i) {
+        double f = col[i];
+        if (i != r && f != 0.0) magb[i] += std::fabs(f) * mr;
     }
 }
 
@@ -172,6 +209,43 @@ idx leaving_row(Tab& t, const double* col, bool has_free, const std::uint8_t* fr
     return lex_break(t.T, c, t.pos, t.inb, t.start, art, pivot_tol, tie_tol, w.cand, w.keys, nc);
 }
 
+// pivoting.blocking_rows(vals, vals, col, n, thr, tie_tol, cand, -1, 0.0), the same rows in
+// the same order, for the common case (no artificial row, every value's size its own): the
+// ratios first, in a loop without branches (ratio[i], NaN where row i does not block), then
+// the scan, whose branch is almost never taken once the minimum is found (the ratio test
+// with a branch on each entry's sign cost a third of a pivot at n = 100, mispredicted).
+LEMKE_CLONES
+void plain_ratios(const double* vals, const double* col, idx n, double thr, double* ratio) {
+    for (idx i = 0; i < n; ++i) {
+        double c = col[i];
+        double v = vals[i];
+        double t = (v > VALUE_ROUNDING * v ? v : 0.0) / -c;  // row_value(vals, vals, i, -1, 0)
+        ratio[i] = c < thr ? t : NAN;
+    }
+}
+
+idx plain_blocking_rows(const double* vals, const double* col, idx n, double thr, double tie_tol,
+                        idx* cand, double* ratio) {
+    plain_ratios(vals, col, n, thr, ratio);
+    double theta = INF, lim = INF;
+    idx nc = 0;
+    for (idx i = 0; i < n; ++i) {
+        double t = ratio[i];
+        if (t <= lim) {  // false for NaN: the rows that do not block
+            if (t < theta) {
+                theta = t;
+                lim = theta + tie_tol * theta;
+                idx kept = 0;
+                for (idx q = 0; q < nc; ++q)
+                    if (ratio[cand[q]] <= lim) cand[kept++] = cand[q];
+                nc = kept;
+            }
+            cand[nc++] = i;
+        }
+    }
+    return theta < INF ? nc : 0;
+}
+
 // games.step: one pivot, the label `entering` enters; returns the label that left, -1 when
 // nothing blocks, -2 when the pivot entry is not finite.
 idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art, double z0_max,
@@ -194,8 +268,8 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     if (has_free || art >= 0 || sized) {
         r = leaving_row(t, col, has_free, free, art, z0_max, pivot_tol, tie_tol, w);
     } else {
-        idx nc = blocking_rows(t.rhs, t.rhs, col, rows, -pivot_tol * cmax, tie_tol, w.cand, art,
-                               z0_max);
+        idx nc = plain_blocking_rows(t.rhs, col, rows, -pivot_tol * cmax, tie_tol, w.cand,
+                                     w.mags);
         r = nc == 1 ? w.cand[0]
                     : lex_break(t.T, col, t.pos, t.inb, t.start, art, pivot_tol, tie_tol, w.cand,
                                 w.keys, nc);
@@ -204,8 +278,7 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     if (r >= 0 && !(std::fabs(col[r]) < INF)) {
         leaving = -2;
     } else if (r >= 0) {
-        t.magb[r] = row_size(t.T, r, t.basis, t.wlab, t.wcol);
-        exchange(t.T, t.rhs, t.magb, r, s, col, w.prow);
+        exchange(t.T, t.rhs, t.magb, r, s, col, w.prow, t.basis, t.wlab, t.wcol);  // row_size too
         leaving = swap_labels(t.basis, t.nonbasic, t.pos, t.inb, r, s);
         t.wcol[s] = t.wlab[leaving];
     }
@@ -346,23 +419,34 @@ struct LHViews {
     idx* index;    // verdict's scratch (max(m, n))
 };
 
+// Each tableau row and the pivot row start on a 64-byte boundary (rows padded to a multiple
+// of 8 doubles): the updates' vector loads then never straddle two cache lines.
+constexpr idx ALIGN = 8;  // doubles
+inline idx padded(idx k) { return (k + ALIGN - 1) / ALIGN * ALIGN; }
+
 LHViews lh_layout(GamesWork& g, idx m, idx n) {
     idx L = m + n, big = std::max(m, n);
-    g.reserve(2 * m * n + 4 * L + 2 * L + 5 * big + n, 6 * L + 2 * big, 3 * L);
+    idx ldP = padded(m), ldQ = padded(n);  // P is n x m, Q m x n
+    g.reserve(ALIGN + n * ldP + m * ldQ + padded(big) + 4 * L + 2 * L + 4 * big + n,
+              6 * L + 2 * big, 3 * L);
     LHViews v;
     double* f = g.f.data();
     idx* i = g.i.data();
     std::uint8_t* z = g.z.data();
+    f += (ALIGN - reinterpret_cast<std::uintptr_t>(f) / sizeof(double) % ALIGN) % ALIGN;
     v.P.T = Mat<double>(f, n, m);
-    f += n * m;
+    v.P.T.ld = ldP;
+    f += n * ldP;
     v.Q.T = Mat<double>(f, m, n);
-    f += m * n;
+    v.Q.T.ld = ldQ;
+    f += m * ldQ;
+    v.w.prow = f; f += padded(big);
     v.P.rhs = f; v.P.magb = f + n; f += 2 * n;
     v.Q.rhs = f; v.Q.magb = f + m; f += 2 * m;
     v.P.wlab = f; v.Q.wlab = f + L; f += 2 * L;
     v.P.wcol = f; v.Q.wcol = f + m; f += L;
-    v.w.col = f; v.w.prow = f + big; v.w.scratch = f + 2 * big; v.w.keys = f + 3 * big;
-    v.w.mags = f + 4 * big; f += 5 * big;
+    v.w.col = f; v.w.scratch = f + big; v.w.keys = f + 2 * big; v.w.mags = f + 3 * big;
+    f += 4 * big;
     v.acc = f;
     v.P.basis = i; v.P.nonbasic = i + n; i += L;
     v.Q.basis = i; v.Q.nonbasic = i + m; i += L;
@@ -485,15 +569,15 @@ LHResult lemke_howson(Mat<const double> A, Mat<const double> B, idx k, const idx
     idx L = m + n;
     idx max_pivots = float_to_int(params[0]);
     double pivot_tol = params[1], tie_tol = params[2], tol = params[3];
-    double* x = buf;
-    double* y = buf + m;
-    double* out = buf + L;
-    idx* ibuf = reinterpret_cast<idx*>(buf + L + 3);
+    LHLayout at{m, n};
+    double* x = buf + at.x();
+    double* y = buf + at.y();
+    double* out = buf + at.regret();
     const idx* startP = start;
     const idx* startQ = start + n;
-    idx* basisP = ibuf;
-    idx* basisQ = ibuf + n;
-    idx* state = ibuf + L;
+    idx* basisP = reinterpret_cast<idx*>(buf + at.labels());
+    idx* basisQ = basisP + n;
+    idx* state = reinterpret_cast<idx*>(buf + at.state());
     double scale[4] = {ra.lo, positive_scale(ra.lo, ra.hi), rb.lo, positive_scale(rb.lo, rb.hi)};
     thread_local GamesWork work;
     LHViews v = lh_layout(work, m, n);

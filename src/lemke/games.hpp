@@ -23,8 +23,30 @@ constexpr double ROUNDING_SLACK = 64.0;
 constexpr idx HISTORY = 64;        // leaving labels kept of a path's last pivots (power of 2)
 constexpr idx STATE = 3 + HISTORY; // the path state after the labels in the int64 part
 
+// The layout of lemke_howson's output buffer for an m x n game, stated here only (the
+// Python front reads it through lemke._core.games_layout): 8-byte slots, doubles first
+// [x (m) | y (n) | regret | row payoff | column payoff], then int64 [P's n basic labels |
+// Q's m basic labels | the path state (entering label, side, pivots, the HISTORY leaving
+// labels)].
+struct LHLayout {
+    idx m, n;
+    idx x() const { return 0; }
+    idx y() const { return m; }
+    idx regret() const { return m + n; }
+    idx payoffs() const { return m + n + 1; }  // the row player's, then the column player's
+    idx floats() const { return m + n + 3; }   // the doubles end here
+    idx labels() const { return floats(); }    // int64 from here: P's labels, then Q's
+    idx state() const { return labels() + m + n; }
+    idx length() const { return state() + STATE; }
+};
+
 // The length (in doubles) of lemke_howson's output buffer for an m x n game.
-inline idx lh_buffer_length(idx m, idx n) { return 2 * (m + n) + 3 + STATE; }
+inline idx lh_buffer_length(idx m, idx n) { return LHLayout{m, n}.length(); }
+
+// trace's outputs for an m x n game: x, y and out side by side (TRACE_FLOATS doubles, the
+// order of LHLayout's doubles) and basis_out (TRACE_LABELS int64: its system's rows).
+inline idx trace_floats(idx m, idx n) { return LHLayout{m, n}.floats(); }
+inline idx trace_labels(idx m, idx n) { return m + n + 2; }
 
 // The games engine's work arrays, one per thread and reused: the float, index and flag
 // arrays that lemke_howson and trace carve in games.cpp (LHViews / TraceViews, each laid
