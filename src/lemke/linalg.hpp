@@ -68,6 +68,10 @@ double pow2_rsqrt(double x);
 // Row and column scales R, C (powers of two) of the LCP (M, q): Ruiz's iteration with q as
 // one more column, at most 16 sweeps (linalg.equilibrate). `work`: 2n doubles.
 void equilibrate(Mat<const double> M, const double* q, double* R, double* C, double* work);
+// Whether M and q are finite (all_finite's test, M's in the first sweep) and, when they
+// are, equilibrate(M, q) into R, C (the same scales).
+bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double* C,
+                        double* work);
 
 // A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q; returns d_scale = max |R d|.
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,

@@ -1,5 +1,7 @@
 #include "tableau.hpp"
 
+#include <cstdint>
+
 #include "multiversion.hpp"
 
 namespace lemke {
@@ -7,18 +9,41 @@ namespace lemke {
 void TableauWork::layout(idx size) {
     n = size;
     block = block_size(n);
-    f.resize(static_cast<std::size_t>(n * (n + 1) + 7 * n + 1 + block * (2 * n + 1)));
-    i.resize(static_cast<std::size_t>(6 * n + 2 + block));
+    idx lanes = n < 48 ? 4 : 8;
+    ld = (n + lanes) / lanes * lanes;
+    f.resize(static_cast<std::size_t>(7 + n * ld + 6 * n + ld + n * block + block * ld));
+    auto at = reinterpret_cast<std::uintptr_t>(f.data());
+    off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
+    i.resize(static_cast<std::size_t>(6 * n + 2));
     flags.resize(static_cast<std::size_t>(2 * n + 1));
 }
 
 // The pivot on row r and column s (entering column in col), applied at once; the same
 // operations in the same order as the numba kernel's pivot_now, so the same bits. Compiled
 // per instruction set (multiversion.hpp): the row updates are the solve's hot loop.
+namespace {
+
+// t[j] += f * v[j] for j < m (eight lanes at a time, then one by one).
+inline void axpy(double* t, double f, const double* v, idx m) {
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d vf = simd::splat8(f);
+    for (; j + 8 <= m; j += 8) simd::store8(t + j, simd::load8(t + j) + vf * simd::load8(v + j));
+    if (j + 4 <= m) {
+        simd::v4d wf = simd::splat4(f);
+        simd::store4(t + j, simd::load4(t + j) + wf * simd::load4(v + j));
+        j += 4;
+    }
+#endif
+    for (; j < m; ++j) t[j] += f * v[j];
+}
+
+}  // namespace
+
 LEMKE_CLONES
 void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
                double* prow) {
-    idx n = T.rows, m = T.cols;
+    idx n = T.rows, m = T.ld;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
     for (idx j = 0; j < m; ++j) {
@@ -38,7 +63,7 @@ void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const dou
         if (f != 0.0) {
             rhs[i] += f * rr;
             magb[i] += std::fabs(f) * mr;
-            for (idx j = 0; j < m; ++j) ti[j] += f * prow[j];
+            axpy(ti, f, prow, m);
             ti[s] = f * inv + f * 0.0;
         } else {
             ti[s] = f * inv;
@@ -53,7 +78,6 @@ namespace {
 struct Pending {
     double* U;
     double* V;
-    idx* act;
     idx b, m, k;
     double u(idx i, idx p) const { return U[i * b + p]; }
     const double* v(idx p) const { return V + p * m; }
@@ -69,30 +93,56 @@ inline double entry(Mat<double> T, const Pending& P, idx i, idx j) {
     return t;
 }
 
-// Apply the k pending pivots, row by row, four at a time (tableau.flush: the terms of a row
-// with a zero factor skipped, as an immediate update skips them).
+// t[j] = ((t[j] + a[0] v[0][j]) + a[1] v[1][j]) + ... for j < m: K terms in one pass.
+template <int K>
+inline void add_terms(double* t, const double* a, const double* const* v, idx m) {
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d va[K];
+    for (int c = 0; c < K; ++c) va[c] = simd::splat8(a[c]);
+    for (; j + 8 <= m; j += 8) {
+        simd::v8d x = simd::load8(t + j);
+        for (int c = 0; c < K; ++c) x = x + va[c] * simd::load8(v[c] + j);
+        simd::store8(t + j, x);
+    }
+#endif
+    for (; j < m; ++j) {
+        double x = t[j];
+        for (int c = 0; c < K; ++c) x = x + a[c] * v[c][j];
+        t[j] = x;
+    }
+}
+
+// Apply the k pending pivots, row by row (tableau.flush: each entry gets the row's terms in
+// pivot order, ((t + a0 v0) + a1 v1) + ..., the terms with a zero factor skipped, as an
+// immediate update skips them): up to eight terms in one pass over the row.
 LEMKE_CLONES
 void flush(Mat<double> T, Pending& P) {
-    idx n = T.rows, m = T.cols;
-    idx* act = P.act;
+    idx n = T.rows, m = P.m;
     for (idx i = 0; i < n; ++i) {
-        idx na = 0;
-        for (idx p = 0; p < P.k; ++p)
-            if (P.u(i, p) != 0.0) act[na++] = p;
+        double a[8];
+        const double* v[8];
         double* ti = T.row(i);
-        idx c = 0;
-        for (; c + 4 <= na; c += 4) {
-            idx p0 = act[c], p1 = act[c + 1], p2 = act[c + 2], p3 = act[c + 3];
-            double a0 = P.u(i, p0), a1 = P.u(i, p1), a2 = P.u(i, p2), a3 = P.u(i, p3);
-            const double *v0 = P.v(p0), *v1 = P.v(p1), *v2 = P.v(p2), *v3 = P.v(p3);
-            for (idx j = 0; j < m; ++j)
-                ti[j] = (((ti[j] + a0 * v0[j]) + a1 * v1[j]) + a2 * v2[j]) + a3 * v3[j];
-        }
-        for (; c < na; ++c) {
-            idx p = act[c];
-            double a = P.u(i, p);
-            const double* v = P.v(p);
-            for (idx j = 0; j < m; ++j) ti[j] += a * v[j];
+        idx na = 0;
+        for (idx p = 0; p < P.k; ++p) {
+            double f = P.u(i, p);
+            if (f != 0.0) {
+                a[na] = f;
+                v[na++] = P.v(p);
+            }
+            if (na == 8 || (p + 1 == P.k && na > 0)) {
+                switch (na) {
+                    case 1: add_terms<1>(ti, a, v, m); break;
+                    case 2: add_terms<2>(ti, a, v, m); break;
+                    case 3: add_terms<3>(ti, a, v, m); break;
+                    case 4: add_terms<4>(ti, a, v, m); break;
+                    case 5: add_terms<5>(ti, a, v, m); break;
+                    case 6: add_terms<6>(ti, a, v, m); break;
+                    case 7: add_terms<7>(ti, a, v, m); break;
+                    default: add_terms<8>(ti, a, v, m); break;
+                }
+                na = 0;
+            }
         }
     }
     P.k = 0;
@@ -102,7 +152,7 @@ void flush(Mat<double> T, Pending& P) {
 // and column made exact in T, the rank-one update kept pending; flushed when b are.
 inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
                           const double* col, double* prow, Pending& P) {
-    idx n = T.rows, m = T.cols, k = P.k, b = P.b;
+    idx n = T.rows, m = P.m, k = P.k, b = P.b;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
     for (idx j = 0; j < m; ++j) prow[j] = tr[j];
@@ -198,7 +248,7 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     idx *basis = w.basis(), *nonbasic = w.nonbasic(), *pos = w.pos();
     idx *start_basis = w.start_basis(), *cand = w.cand();
     std::uint8_t* is_basic = w.flags.data();
-    Pending P{w.U(), w.V(), w.act(), w.block, n + 1, 0};
+    Pending P{w.U(), w.V(), w.block, w.ld, 0};
     for (idx i = 0; i < 2 * n + 1; ++i) is_basic[i] = 0;
     for (idx i = 0; i < n; ++i) {
         start_basis[i] = basis[i];
