@@ -174,9 +174,27 @@ double sweep_q(const double* q, const double* R, double cq, idx n, double* rmax,
 // Whether every x[i] (i < k) that is not zero lies in [0.5, 2] (balanced), and each x[i]
 // replaced by pow2_rsqrt(x[i]): by exponent arithmetic without a branch when every x[i] is
 // zero or a positive normal float (a vector loop), else one by one.
+LEMKE_CLONES
 bool rsqrt_all(double* x, idx k) {
     bool fast = true, balanced = true;
-    for (idx i = 0; i < k; ++i) {
+    idx i = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8l all = simd::v8l{} - 1, off = simd::v8l{};
+        simd::v8d zero = simd::splat8(0.0), tiny = simd::splat8(2.2250738585072014e-308);
+        simd::v8d inf = simd::splat8(INF), half = simd::splat8(0.5), two = simd::splat8(2.0);
+        for (; i + 8 <= k; i += 8) {
+            simd::v8d a = simd::load8(x + i);
+            all &= (a == zero) | ((a >= tiny) & (a < inf));
+            off |= (a > zero) & ((a < half) | (a > two));
+        }
+        for (int l = 0; l < 8; ++l) {
+            fast &= all[l] != 0;
+            balanced &= off[l] == 0;
+        }
+    }
+#endif
+    for (; i < k; ++i) {
         double a = x[i];
         fast &= (a == 0.0) | ((a >= 2.2250738585072014e-308) & (a < INF));
         balanced &= !((a > 0.0) & ((a < 0.5) | (a > 2.0)));
@@ -185,7 +203,19 @@ bool rsqrt_all(double* x, idx k) {
         for (idx i = 0; i < k; ++i) x[i] = pow2_rsqrt(x[i]);
         return balanced;
     }
-    for (idx i = 0; i < k; ++i) {
+    i = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d zero = simd::splat8(0.0), one = simd::splat8(1.0);
+        for (; i + 8 <= k; i += 8) {
+            simd::v8d a = simd::load8(x + i);
+            simd::v8l e = reinterpret_cast<simd::v8l>(a) >> 52;
+            simd::v8d v = reinterpret_cast<simd::v8d>((1023 - ((e - 1022) >> 1)) << 52);
+            simd::store8(x + i, a == zero ? one : v);
+        }
+    }
+#endif
+    for (; i < k; ++i) {
         double a = x[i];
         double v = bits_float((1023 - (((float_bits(a) >> 52) - 1022) >> 1)) << 52);
         x[i] = a == 0.0 ? 1.0 : v;

@@ -1,6 +1,7 @@
 #include "tableau.hpp"
 
 #include <cstdint>
+#include <utility>
 
 #include "multiversion.hpp"
 
@@ -11,7 +12,7 @@ void TableauWork::layout(idx size) {
     block = block_size(n);
     idx lanes = n < 48 ? 4 : 8;
     ld = (n + lanes) / lanes * lanes;
-    f.resize(static_cast<std::size_t>(7 + n * ld + 6 * n + ld + n * block + block * ld));
+    f.resize(static_cast<std::size_t>(7 + n * ld + 7 * n + ld + n * block + block * ld));
     auto at = reinterpret_cast<std::uintptr_t>(f.data());
     off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
     i.resize(static_cast<std::size_t>(6 * n + 2));
@@ -41,8 +42,8 @@ inline void axpy(double* t, double f, const double* v, idx m) {
 }  // namespace
 
 LEMKE_CLONES
-void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
-               double* prow) {
+void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, const double* col,
+               double* prow, idx s_next, double* col_next) {
     idx n = T.rows, m = T.ld;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
@@ -57,17 +58,19 @@ void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const dou
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
     for (idx i = 0; i < n; ++i) {
-        if (i == r) continue;
-        double f = col[i];
         double* ti = T.row(i);
-        if (f != 0.0) {
-            rhs[i] += f * rr;
-            magb[i] += std::fabs(f) * mr;
-            axpy(ti, f, prow, m);
-            ti[s] = f * inv + f * 0.0;
-        } else {
-            ti[s] = f * inv;
+        if (i != r) {
+            double f = col[i];
+            if (f != 0.0) {
+                rhs[i] += f * rr;
+                magb[i] += std::fabs(f) * mr;
+                axpy(ti, f, prow, m);
+                ti[s] = f * inv + f * 0.0;
+            } else {
+                ti[s] = f * inv;
+            }
         }
+        if (s_next >= 0) col_next[i] = ti[s_next];
     }
 }
 
@@ -76,10 +79,10 @@ namespace {
 // The pivots pending (numba's tableau with block > 1): the current tableau is
 // T + sum_p U[:, p] V[p] over the k pending, summed in pivot order. U is n x b, V b x m.
 struct Pending {
-    double* U;
+    double* U;  // column p of U: U + p n (the factors of pivot p, one per row)
     double* V;
-    idx b, m, k;
-    double u(idx i, idx p) const { return U[i * b + p]; }
+    idx b, m, k, n;
+    double u(idx i, idx p) const { return U[p * n + i]; }
     const double* v(idx p) const { return V + p * m; }
 };
 
@@ -113,35 +116,59 @@ inline void add_terms(double* t, const double* a, const double* const* v, idx m)
     }
 }
 
+// Column s of the current tableau into col: entry() for every row, a pending pivot at a
+// time over all rows (each entry's terms in pivot order; a zero factor's term is -0.0, which
+// leaves any number as it is, as entry() skips it), so the rows' sums run side by side.
+LEMKE_CLONES
+void pending_column(Mat<double> T, const Pending& P, idx s, double* col) {
+    idx n = T.rows;
+    for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+    for (idx p = 0; p < P.k; ++p) {
+        double vp = P.v(p)[s];
+        const double* u = P.U + p * n;
+        for (idx i = 0; i < n; ++i) {
+            double f = u[i];
+            double t = f * vp;
+            col[i] = col[i] + (f != 0.0 ? t : -0.0);
+        }
+    }
+}
+
 // Apply the k pending pivots, row by row (tableau.flush: each entry gets the row's terms in
 // pivot order, ((t + a0 v0) + a1 v1) + ..., the terms with a zero factor skipped, as an
-// immediate update skips them): up to eight terms in one pass over the row.
+// immediate update skips them): up to eight terms in one pass over the row. Wide rows go in
+// strips of 256 columns, so that the pending rows' strips stay in the first-level cache
+// while every row of T passes (each entry gets the same terms in the same order).
 LEMKE_CLONES
 void flush(Mat<double> T, Pending& P) {
     idx n = T.rows, m = P.m;
-    for (idx i = 0; i < n; ++i) {
-        double a[8];
-        const double* v[8];
-        double* ti = T.row(i);
-        idx na = 0;
-        for (idx p = 0; p < P.k; ++p) {
-            double f = P.u(i, p);
-            if (f != 0.0) {
-                a[na] = f;
-                v[na++] = P.v(p);
-            }
-            if (na == 8 || (p + 1 == P.k && na > 0)) {
-                switch (na) {
-                    case 1: add_terms<1>(ti, a, v, m); break;
-                    case 2: add_terms<2>(ti, a, v, m); break;
-                    case 3: add_terms<3>(ti, a, v, m); break;
-                    case 4: add_terms<4>(ti, a, v, m); break;
-                    case 5: add_terms<5>(ti, a, v, m); break;
-                    case 6: add_terms<6>(ti, a, v, m); break;
-                    case 7: add_terms<7>(ti, a, v, m); break;
-                    default: add_terms<8>(ti, a, v, m); break;
+    idx strip = m > 512 ? 256 : m;
+    for (idx j0 = 0; j0 < m; j0 += strip) {
+        idx w = m - j0 < strip ? m - j0 : strip;
+        for (idx i = 0; i < n; ++i) {
+            double a[8];
+            const double* v[8];
+            double* ti = T.row(i) + j0;
+            idx na = 0;
+            for (idx p = 0; p < P.k; ++p) {
+                double f = P.u(i, p);
+                if (f != 0.0) {
+                    a[na] = f;
+                    v[na++] = P.v(p) + j0;
                 }
-                na = 0;
+                if (na == 8 || (p + 1 == P.k && na > 0)) {
+                    switch (na) {
+                        case 1: add_terms<1>(ti, a, v, w); break;
+                        case 2: add_terms<2>(ti, a, v, w); break;
+                        case 3: add_terms<3>(ti, a, v, w); break;
+                        case 4: add_terms<4>(ti, a, v, w); break;
+                        case 5: add_terms<5>(ti, a, v, w); break;
+                        case 6: add_terms<6>(ti, a, v, w); break;
+                        case 7: add_terms<7>(ti, a, v, w); break;
+                        default: add_terms<8>(ti, a, v, w); break;
+                    }
+                    na = 0;
+                }
             }
         }
     }
@@ -171,12 +198,12 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
     for (idx p = 0; p < k; ++p) {
-        P.U[r * b + p] = 0.0;
+        P.U[p * n + r] = 0.0;
         P.V[p * m + s] = 0.0;
     }
     for (idx i = 0; i < n; ++i) {
         double f = col[i];
-        P.U[i * b + k] = f;
+        P.U[k * n + i] = f;
         if (i != r) {
             T(i, s) = f * inv;
             if (f != 0.0) {
@@ -185,7 +212,7 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
             }
         }
     }
-    P.U[r * b + k] = 0.0;
+    P.U[k * n + r] = 0.0;
     double* vk = P.V + k * m;
     for (idx j = 0; j < m; ++j) vk[j] = prow[j];
     vk[s] = 0.0;
@@ -243,12 +270,12 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     idx n = w.n;
     idx artificial = 2 * n;
     Mat<double> T = w.T();
-    double *rhs = w.rhs(), *col = w.col(), *q0 = w.q0(), *magb = w.magb(), *mags = w.mags();
+    double *rhs = w.rhs(), *col = w.col(), *col_next = w.col2(), *q0 = w.q0(), *magb = w.magb(), *mags = w.mags();
     double *prow = w.prow(), *keys = w.keys();
     idx *basis = w.basis(), *nonbasic = w.nonbasic(), *pos = w.pos();
     idx *start_basis = w.start_basis(), *cand = w.cand();
     std::uint8_t* is_basic = w.flags.data();
-    Pending P{w.U(), w.V(), w.block, w.ld, 0};
+    Pending P{w.U(), w.V(), w.block, w.ld, 0, n};
     for (idx i = 0; i < 2 * n + 1; ++i) is_basic[i] = 0;
     for (idx i = 0; i < n; ++i) {
         start_basis[i] = basis[i];
@@ -288,10 +315,15 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
             status = NUMERICAL_FAILURE;
             break;
         }
-        if (P.b == 1)
-            pivot_now(T, rhs, magb, r, s, col, prow);
-        else
+        // the complement of the leaving variable enters next: a column now (its label is
+        // nonbasic and neither `leaving` nor `entering`), read during the pivot's row updates
+        idx s_next = leaving == artificial ? -1 : pos[leaving < n ? leaving + n : leaving - n];
+        if (P.b == 1) {
+            pivot_now(T, rhs, magb, r, s, col, prow, s_next, col_next);
+        } else {
             pivot_delayed(T, rhs, magb, r, s, col, prow, P);
+            s_next = -1;
+        }
         ++pivots;
         swap_labels(basis, nonbasic, pos, is_basic, r, s);
         int stop = after_pivot(leaving, entering, artificial, h, detector);
@@ -300,10 +332,13 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
             break;
         }
         s = pos[leaving < n ? leaving + n : leaving - n];  // the complement enters
-        if (P.k == 0)
+        if (s == s_next) {
+            std::swap(col, col_next);
+        } else if (P.k == 0) {
             for (idx i = 0; i < n; ++i) col[i] = T(i, s);
-        else
-            for (idx i = 0; i < n; ++i) col[i] = entry(T, P, i, s);
+        } else {
+            pending_column(T, P, s, col);
+        }
         // max |col| (numba's running maximum: no NaN ever enters it, so eight lanes give
         // the same number)
         double cmax = absmax(col, n);
@@ -312,9 +347,11 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         idx nc;
         if (careful) {
             careful_sizes(T, P, col, rhs, pos, is_basic, start_basis, q0, magb, mags);
-            nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
+            nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max,
+                               keys);
         } else {
-            nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
+            nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max,
+                               keys);
         }
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;
