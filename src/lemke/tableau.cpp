@@ -285,6 +285,8 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     for (idx j = 0; j < n + 1; ++j) pos[nonbasic[j]] = j;
     for (idx j = 0; j < n + 1; ++j) ray_out[j] = 0.0;
 
+    // the ratio test's vector passes pay from some 64 rows (blocking_rows_vector)
+    double* ratios = n >= 64 ? keys : nullptr;
     Status status = MAX_PIVOTS;
     pivots = 0;
     idx s = pos[artificial];
@@ -348,10 +350,10 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         if (careful) {
             careful_sizes(T, P, col, rhs, pos, is_basic, start_basis, q0, magb, mags);
             nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max,
-                               keys);
+                               ratios);
         } else {
             nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max,
-                               keys);
+                               ratios);
         }
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;
