@@ -31,12 +31,8 @@ int prologue(Mat<const double> M, const double* q, const double* d, const Views&
              std::vector<double>& work) {
     idx n = M.rows;
     if (!scaled) {
-        double m_max;
-        bool finite = finite_absmax(M, m_max);
-        finite &= all_finite(q, n);
-        if (!finite) return NOT_FINITE;
         work.resize(static_cast<std::size_t>(2 * n));
-        equilibrate(M, q, v.R, v.C, work.data());
+        if (!equilibrate_finite(M, q, v.R, v.C, work.data())) return NOT_FINITE;
     }
     double q_min = 0.0;
     for (idx i = 0; i < n; ++i) {

@@ -46,16 +46,7 @@ void row_dot_and_size(const double* row, const double* y, idx k, double& dot_out
 }
 
 LEMKE_CLONES
-double dot(const double* x, const double* y, idx k) {
-    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    idx j = 0;
-    // (plain lanes: GCC vectorizes them; written on vector types, this loop made the QP
-    // 1.3x -> 1.9x numba's time at n = 300, where dot runs on many short rows)
-    for (; j + 8 <= k; j += 8)
-        for (int l = 0; l < 8; ++l) a[l] += x[j + l] * y[j + l];
-    for (; j < k; ++j) a[0] += x[j] * y[j];
-    return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
-}
+double dot(const double* x, const double* y, idx k) { return dot_lanes(x, y, k); }
 
 LEMKE_CLONES
 bool finite_absmax(Mat<const double> M, double& m_max) {
@@ -96,33 +87,43 @@ namespace {
 constexpr int EQUILIBRATE_SWEEPS = 16;
 
 // One sweep: the largest entry of each row (q's times cq included) and column of
-// diag(R) M diag(C) into rmax, cmax; returns q's largest. Every term is >= +0 and not NaN
-// (M is finite, the scales positive and finite, or the sweeps stop), and a maximum of such
-// terms is exact in any order: eight running maxima per row, so the loop is a vector loop.
+// diag(R) M diag(C) into rmax, cmax, the rows' largest entries of M's part alone into mrow;
+// returns q's largest. Every term is >= +0 and not NaN (M is finite, the scales positive and
+// finite, or the sweeps stop), and a maximum of such terms is exact in any order: eight
+// running maxima per row, so the loop is a vector loop. With `finite`, also whether every
+// entry of M is finite (the sums of 0 * M[i, j], all_finite's test, in the same pass).
 LEMKE_CLONES
 double sweep(Mat<const double> M, const double* q, const double* R, const double* C, double cq,
-             double* rmax, double* cmax) {
+             double* rmax, double* cmax, double* mrow, bool* finite) {
     idx n = M.rows;
     for (idx j = 0; j < n; ++j) cmax[j] = 0.0;
     double qmax = 0.0;
+    bool all = true;
     for (idx i = 0; i < n; ++i) {
         double r = R[i];
         double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+        double z[8] = {0, 0, 0, 0, 0, 0, 0, 0};
         const double* row = M.row(i);
         idx j = 0;
 #ifdef LEMKE_SIMD
         {
-            simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r);
+            simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r), vz = simd::splat8(0.0);
             for (; j + 8 <= n; j += 8) {
-                simd::v8d a = (simd::abs8(simd::load8(row + j)) * rr) * simd::load8(C + j);
+                simd::v8d x = simd::load8(row + j);
+                if (finite) vz += simd::splat8(0.0) * x;
+                simd::v8d a = (simd::abs8(x) * rr) * simd::load8(C + j);
                 vr = simd::max8(vr, a);
                 simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
             }
-            for (int l = 0; l < 8; ++l) rm[l] = vr[l];
+            for (int l = 0; l < 8; ++l) {
+                rm[l] = vr[l];
+                z[l] = vz[l];
+            }
         }
 #else
         for (; j + 8 <= n; j += 8) {
             for (int l = 0; l < 8; ++l) {
+                if (finite) z[l] += 0.0 * row[j + l];
                 double a = std::fabs(row[j + l]) * r * C[j + l];
                 rm[l] = pmax(rm[l], a);
                 cmax[j + l] = pmax(cmax[j + l], a);
@@ -130,14 +131,32 @@ double sweep(Mat<const double> M, const double* q, const double* R, const double
         }
 #endif
         for (; j < n; ++j) {
+            if (finite) z[0] += 0.0 * row[j];
             double a = std::fabs(row[j]) * r * C[j];
             rm[0] = pmax(rm[0], a);
             cmax[j] = pmax(cmax[j], a);
         }
+        if (finite) all &= ((z[0] + z[1]) + (z[2] + z[3])) + ((z[4] + z[5]) + (z[6] + z[7])) == 0.0;
         double m = pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
                         pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
+        mrow[i] = m;
         double a = std::fabs(q[i]) * r * cq;
         rmax[i] = pmax(m, a);
+        qmax = pmax(qmax, a);
+    }
+    if (finite) *finite = all;
+    return qmax;
+}
+
+// A sweep after one that left R and C as they were: M's part of each row's maximum (mrow)
+// and every column's are the same numbers, so only q's terms are new (the same rmax and
+// qmax as sweep's).
+double sweep_q(const double* q, const double* R, double cq, idx n, double* rmax,
+               const double* mrow) {
+    double qmax = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double a = std::fabs(q[i]) * R[i] * cq;
+        rmax[i] = pmax(mrow[i], a);
         qmax = pmax(qmax, a);
     }
     return qmax;
@@ -146,9 +165,27 @@ double sweep(Mat<const double> M, const double* q, const double* R, const double
 // Whether every x[i] (i < k) that is not zero lies in [0.5, 2] (balanced), and each x[i]
 // replaced by pow2_rsqrt(x[i]): by exponent arithmetic without a branch when every x[i] is
 // zero or a positive normal float (a vector loop), else one by one.
+LEMKE_CLONES
 bool rsqrt_all(double* x, idx k) {
     bool fast = true, balanced = true;
-    for (idx i = 0; i < k; ++i) {
+    idx i = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8l all = simd::v8l{} - 1, off = simd::v8l{};
+        simd::v8d zero = simd::splat8(0.0), tiny = simd::splat8(2.2250738585072014e-308);
+        simd::v8d inf = simd::splat8(INF), half = simd::splat8(0.5), two = simd::splat8(2.0);
+        for (; i + 8 <= k; i += 8) {
+            simd::v8d a = simd::load8(x + i);
+            all &= (a == zero) | ((a >= tiny) & (a < inf));
+            off |= (a > zero) & ((a < half) | (a > two));
+        }
+        for (int l = 0; l < 8; ++l) {
+            fast &= all[l] != 0;
+            balanced &= off[l] == 0;
+        }
+    }
+#endif
+    for (; i < k; ++i) {
         double a = x[i];
         fast &= (a == 0.0) | ((a >= 2.2250738585072014e-308) & (a < INF));
         balanced &= !((a > 0.0) & ((a < 0.5) | (a > 2.0)));
@@ -157,7 +194,19 @@ bool rsqrt_all(double* x, idx k) {
         for (idx i = 0; i < k; ++i) x[i] = pow2_rsqrt(x[i]);
         return balanced;
     }
-    for (idx i = 0; i < k; ++i) {
+    i = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d zero = simd::splat8(0.0), one = simd::splat8(1.0);
+        for (; i + 8 <= k; i += 8) {
+            simd::v8d a = simd::load8(x + i);
+            simd::v8l e = reinterpret_cast<simd::v8l>(a) >> 52;
+            simd::v8d v = reinterpret_cast<simd::v8d>((1023 - ((e - 1022) >> 1)) << 52);
+            simd::store8(x + i, a == zero ? one : v);
+        }
+    }
+#endif
+    for (; i < k; ++i) {
         double a = x[i];
         double v = bits_float((1023 - (((float_bits(a) >> 52) - 1022) >> 1)) << 52);
         x[i] = a == 0.0 ? 1.0 : v;
@@ -167,26 +216,64 @@ bool rsqrt_all(double* x, idx k) {
 
 }  // namespace
 
-void equilibrate(Mat<const double> M, const double* q, double* R, double* C, double* work) {
+namespace {
+
+// equilibrate's sweeps; with `finite`, the first sweep (run even past a deadline) also
+// tells whether M is finite, and the scales are left alone when it is not.
+void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* work,
+            bool* finite) {
     idx n = M.rows;
+    thread_local std::vector<double> rows;
+    rows.resize(static_cast<std::size_t>(n));
+    double* mrow = rows.data();
     for (idx i = 0; i < n; ++i) { R[i] = 1.0; C[i] = 1.0; }
     double cq = pow2_scale(absmax(q, n));
     double* rmax = work;
     double* cmax = work + n;
+    double qmax = 0.0;
+    if (finite) {
+        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite);
+        if (!*finite) return;
+    }
+    bool same = false;  // the last sweep left R and C as they were
     for (int sweep_no = 0; sweep_no < EQUILIBRATE_SWEEPS; ++sweep_no) {
         // past the thread's deadline the scales are left as they are: the run that needs
         // them stops at its first look (budget.hpp)
         if (n >= 64 && deadline_passed() >= 0) break;
-        double qmax = sweep(M, q, R, C, cq, rmax, cmax);
-        bool balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
-        balanced &= rsqrt_all(work, 2 * n);
+        bool balanced;
+        if (same) {
+            // cmax's factors are all 1 (and balanced) from the last sweep: the rows alone
+            qmax = sweep_q(q, R, cq, n, rmax, mrow);
+            balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
+            balanced &= rsqrt_all(work, n);
+        } else {
+            if (sweep_no > 0 || !finite) qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr);
+            balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
+            balanced &= rsqrt_all(work, 2 * n);
+        }
         if (balanced) break;
+        same = true;
+        for (idx i = 0; i < 2 * n; ++i) same &= work[i] == 1.0;
         for (idx i = 0; i < n; ++i) {
             R[i] = R[i] * rmax[i];
             C[i] = C[i] * cmax[i];
         }
         cq *= pow2_rsqrt(qmax);
     }
+}
+
+}  // namespace
+
+void equilibrate(Mat<const double> M, const double* q, double* R, double* C, double* work) {
+    sweeps(M, q, R, C, work, nullptr);
+}
+
+bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double* C,
+                        double* work) {
+    if (!all_finite(q, M.rows)) return false;
+    bool finite = true;
+    sweeps(M, q, R, C, work, &finite);
+    return finite;
 }
 
 LEMKE_CLONES

@@ -29,6 +29,19 @@ inline double bits_float(std::int64_t b) { double x; std::memcpy(&x, &b, 8); ret
 void row_dot_and_size(const double* row, const double* y, idx k, double& dot, double& size);
 double dot(const double* x, const double* y, idx k);
 
+// dot's body, inlined by loops compiled per instruction set that take many short dot
+// products (a call per row through the clones' dispatch costs as much as a short row).
+inline double dot_lanes(const double* x, const double* y, idx k) {
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+    // (plain lanes: GCC vectorizes them; written on vector types, this loop made the QP
+    // 1.3x -> 1.9x numba's time at n = 300, where dot runs on many short rows)
+    for (; j + 8 <= k; j += 8)
+        for (int l = 0; l < 8; ++l) a[l] += x[j + l] * y[j + l];
+    for (; j < k; ++j) a[0] += x[j] * y[j];
+    return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+}
+
 // Whether every x[j] is finite: sum 0 * x[j] is 0 then and NaN otherwise, in any order, so
 // eight running sums (a vector loop without reordering permission).
 inline bool all_finite(const double* x, idx k) {
@@ -68,6 +81,10 @@ double pow2_rsqrt(double x);
 // Row and column scales R, C (powers of two) of the LCP (M, q): Ruiz's iteration with q as
 // one more column, at most 16 sweeps (linalg.equilibrate). `work`: 2n doubles.
 void equilibrate(Mat<const double> M, const double* q, double* R, double* C, double* work);
+// Whether M and q are finite (all_finite's test, M's in the first sweep) and, when they
+// are, equilibrate(M, q) into R, C (the same scales).
+bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double* C,
+                        double* work);
 
 // A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q; returns d_scale = max |R d|.
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,

@@ -17,6 +17,7 @@ namespace simd {
 #pragma GCC diagnostic ignored "-Wpsabi"
 typedef double v8d __attribute__((vector_size(64)));
 typedef std::int64_t v8l __attribute__((vector_size(64)));
+typedef double v4d __attribute__((vector_size(32)));
 
 #define LEMKE_SIMD_INLINE inline __attribute__((always_inline))
 
@@ -27,6 +28,13 @@ LEMKE_SIMD_INLINE v8d load8(const double* p) {
 }
 LEMKE_SIMD_INLINE void store8(double* p, v8d v) { __builtin_memcpy(p, &v, sizeof v); }
 LEMKE_SIMD_INLINE v8d splat8(double x) { return v8d{x, x, x, x, x, x, x, x}; }
+LEMKE_SIMD_INLINE v4d load4(const double* p) {
+    v4d v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+}
+LEMKE_SIMD_INLINE void store4(double* p, v4d v) { __builtin_memcpy(p, &v, sizeof v); }
+LEMKE_SIMD_INLINE v4d splat4(double x) { return v4d{x, x, x, x}; }
 // |x| lane by lane (the sign bit cleared, as std::fabs).
 LEMKE_SIMD_INLINE v8d abs8(v8d x) {
     const std::int64_t m = 0x7FFFFFFFFFFFFFFFLL;

@@ -48,6 +48,7 @@ struct Mat {
     idx rows = 0, cols = 0, ld = 0;
     Mat() = default;
     Mat(T* data, idx r, idx c) : p(data), rows(r), cols(c), ld(c) {}
+    Mat(T* data, idx r, idx c, idx stride) : p(data), rows(r), cols(c), ld(stride) {}
     // A read-only view of a writable matrix.
     template <class U, class = typename std::enable_if<std::is_same<const U, T>::value &&
                                                        !std::is_same<U, T>::value>::type>

@@ -1,5 +1,8 @@
 #include "tableau.hpp"
 
+#include <cstdint>
+#include <utility>
+
 #include "multiversion.hpp"
 
 namespace lemke {
@@ -7,18 +10,41 @@ namespace lemke {
 void TableauWork::layout(idx size) {
     n = size;
     block = block_size(n);
-    f.resize(static_cast<std::size_t>(n * (n + 1) + 7 * n + 1 + block * (2 * n + 1)));
-    i.resize(static_cast<std::size_t>(6 * n + 2 + block));
+    idx lanes = n < 48 ? 4 : 8;
+    ld = (n + lanes) / lanes * lanes;
+    f.resize(static_cast<std::size_t>(7 + n * ld + 7 * n + ld + n * block + block * ld));
+    auto at = reinterpret_cast<std::uintptr_t>(f.data());
+    off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
+    i.resize(static_cast<std::size_t>(6 * n + 2));
     flags.resize(static_cast<std::size_t>(2 * n + 1));
 }
 
 // The pivot on row r and column s (entering column in col), applied at once; the same
 // operations in the same order as the numba kernel's pivot_now, so the same bits. Compiled
 // per instruction set (multiversion.hpp): the row updates are the solve's hot loop.
+namespace {
+
+// t[j] += f * v[j] for j < m (eight lanes at a time, then one by one).
+inline void axpy(double* t, double f, const double* v, idx m) {
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d vf = simd::splat8(f);
+    for (; j + 8 <= m; j += 8) simd::store8(t + j, simd::load8(t + j) + vf * simd::load8(v + j));
+    if (j + 4 <= m) {
+        simd::v4d wf = simd::splat4(f);
+        simd::store4(t + j, simd::load4(t + j) + wf * simd::load4(v + j));
+        j += 4;
+    }
+#endif
+    for (; j < m; ++j) t[j] += f * v[j];
+}
+
+}  // namespace
+
 LEMKE_CLONES
-void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
-               double* prow) {
-    idx n = T.rows, m = T.cols;
+void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, const double* col,
+               double* prow, idx s_next, double* col_next) {
+    idx n = T.rows, m = T.ld;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
     for (idx j = 0; j < m; ++j) {
@@ -32,17 +58,19 @@ void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const dou
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
     for (idx i = 0; i < n; ++i) {
-        if (i == r) continue;
-        double f = col[i];
         double* ti = T.row(i);
-        if (f != 0.0) {
-            rhs[i] += f * rr;
-            magb[i] += std::fabs(f) * mr;
-            for (idx j = 0; j < m; ++j) ti[j] += f * prow[j];
-            ti[s] = f * inv + f * 0.0;
-        } else {
-            ti[s] = f * inv;
+        if (i != r) {
+            double f = col[i];
+            if (f != 0.0) {
+                rhs[i] += f * rr;
+                magb[i] += std::fabs(f) * mr;
+                axpy(ti, f, prow, m);
+                ti[s] = f * inv + f * 0.0;
+            } else {
+                ti[s] = f * inv;
+            }
         }
+        if (s_next >= 0) col_next[i] = ti[s_next];
     }
 }
 
@@ -51,11 +79,10 @@ namespace {
 // The pivots pending (numba's tableau with block > 1): the current tableau is
 // T + sum_p U[:, p] V[p] over the k pending, summed in pivot order. U is n x b, V b x m.
 struct Pending {
-    double* U;
+    double* U;  // column p of U: U + p n (the factors of pivot p, one per row)
     double* V;
-    idx* act;
-    idx b, m, k;
-    double u(idx i, idx p) const { return U[i * b + p]; }
+    idx b, m, k, n;
+    double u(idx i, idx p) const { return U[p * n + i]; }
     const double* v(idx p) const { return V + p * m; }
 };
 
@@ -69,30 +96,80 @@ inline double entry(Mat<double> T, const Pending& P, idx i, idx j) {
     return t;
 }
 
-// Apply the k pending pivots, row by row, four at a time (tableau.flush: the terms of a row
-// with a zero factor skipped, as an immediate update skips them).
+// t[j] = ((t[j] + a[0] v[0][j]) + a[1] v[1][j]) + ... for j < m: K terms in one pass.
+template <int K>
+inline void add_terms(double* t, const double* a, const double* const* v, idx m) {
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d va[K];
+    for (int c = 0; c < K; ++c) va[c] = simd::splat8(a[c]);
+    for (; j + 8 <= m; j += 8) {
+        simd::v8d x = simd::load8(t + j);
+        for (int c = 0; c < K; ++c) x = x + va[c] * simd::load8(v[c] + j);
+        simd::store8(t + j, x);
+    }
+#endif
+    for (; j < m; ++j) {
+        double x = t[j];
+        for (int c = 0; c < K; ++c) x = x + a[c] * v[c][j];
+        t[j] = x;
+    }
+}
+
+// Column s of the current tableau into col: entry() for every row, a pending pivot at a
+// time over all rows (each entry's terms in pivot order; a zero factor's term is -0.0, which
+// leaves any number as it is, as entry() skips it), so the rows' sums run side by side.
+LEMKE_CLONES
+void pending_column(Mat<double> T, const Pending& P, idx s, double* col) {
+    idx n = T.rows;
+    for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+    for (idx p = 0; p < P.k; ++p) {
+        double vp = P.v(p)[s];
+        const double* u = P.U + p * n;
+        for (idx i = 0; i < n; ++i) {
+            double f = u[i];
+            double t = f * vp;
+            col[i] = col[i] + (f != 0.0 ? t : -0.0);
+        }
+    }
+}
+
+// Apply the k pending pivots, row by row (tableau.flush: each entry gets the row's terms in
+// pivot order, ((t + a0 v0) + a1 v1) + ..., the terms with a zero factor skipped, as an
+// immediate update skips them): up to eight terms in one pass over the row. Wide rows go in
+// strips of 256 columns, so that the pending rows' strips stay in the first-level cache
+// while every row of T passes (each entry gets the same terms in the same order).
 LEMKE_CLONES
 void flush(Mat<double> T, Pending& P) {
-    idx n = T.rows, m = T.cols;
-    idx* act = P.act;
-    for (idx i = 0; i < n; ++i) {
-        idx na = 0;
-        for (idx p = 0; p < P.k; ++p)
-            if (P.u(i, p) != 0.0) act[na++] = p;
-        double* ti = T.row(i);
-        idx c = 0;
-        for (; c + 4 <= na; c += 4) {
-            idx p0 = act[c], p1 = act[c + 1], p2 = act[c + 2], p3 = act[c + 3];
-            double a0 = P.u(i, p0), a1 = P.u(i, p1), a2 = P.u(i, p2), a3 = P.u(i, p3);
-            const double *v0 = P.v(p0), *v1 = P.v(p1), *v2 = P.v(p2), *v3 = P.v(p3);
-            for (idx j = 0; j < m; ++j)
-                ti[j] = (((ti[j] + a0 * v0[j]) + a1 * v1[j]) + a2 * v2[j]) + a3 * v3[j];
-        }
-        for (; c < na; ++c) {
-            idx p = act[c];
-            double a = P.u(i, p);
-            const double* v = P.v(p);
-            for (idx j = 0; j < m; ++j) ti[j] += a * v[j];
+    idx n = T.rows, m = P.m;
+    idx strip = m > 512 ? 256 : m;
+    for (idx j0 = 0; j0 < m; j0 += strip) {
+        idx w = m - j0 < strip ? m - j0 : strip;
+        for (idx i = 0; i < n; ++i) {
+            double a[8];
+            const double* v[8];
+            double* ti = T.row(i) + j0;
+            idx na = 0;
+            for (idx p = 0; p < P.k; ++p) {
+                double f = P.u(i, p);
+                if (f != 0.0) {
+                    a[na] = f;
+                    v[na++] = P.v(p) + j0;
+                }
+                if (na == 8 || (p + 1 == P.k && na > 0)) {
+                    switch (na) {
+                        case 1: add_terms<1>(ti, a, v, w); break;
+                        case 2: add_terms<2>(ti, a, v, w); break;
+                        case 3: add_terms<3>(ti, a, v, w); break;
+                        case 4: add_terms<4>(ti, a, v, w); break;
+                        case 5: add_terms<5>(ti, a, v, w); break;
+                        case 6: add_terms<6>(ti, a, v, w); break;
+                        case 7: add_terms<7>(ti, a, v, w); break;
+                        default: add_terms<8>(ti, a, v, w); break;
+                    }
+                    na = 0;
+                }
+            }
         }
     }
     P.k = 0;
@@ -102,7 +179,7 @@ void flush(Mat<double> T, Pending& P) {
 // and column made exact in T, the rank-one update kept pending; flushed when b are.
 inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
                           const double* col, double* prow, Pending& P) {
-    idx n = T.rows, m = T.cols, k = P.k, b = P.b;
+    idx n = T.rows, m = P.m, k = P.k, b = P.b;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
     for (idx j = 0; j < m; ++j) prow[j] = tr[j];
@@ -121,12 +198,12 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
     for (idx p = 0; p < k; ++p) {
-        P.U[r * b + p] = 0.0;
+        P.U[p * n + r] = 0.0;
         P.V[p * m + s] = 0.0;
     }
     for (idx i = 0; i < n; ++i) {
         double f = col[i];
-        P.U[i * b + k] = f;
+        P.U[k * n + i] = f;
         if (i != r) {
             T(i, s) = f * inv;
             if (f != 0.0) {
@@ -135,7 +212,7 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
             }
         }
     }
-    P.U[r * b + k] = 0.0;
+    P.U[k * n + r] = 0.0;
     double* vk = P.V + k * m;
     for (idx j = 0; j < m; ++j) vk[j] = prow[j];
     vk[s] = 0.0;
@@ -193,12 +270,12 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     idx n = w.n;
     idx artificial = 2 * n;
     Mat<double> T = w.T();
-    double *rhs = w.rhs(), *col = w.col(), *q0 = w.q0(), *magb = w.magb(), *mags = w.mags();
+    double *rhs = w.rhs(), *col = w.col(), *col_next = w.col2(), *q0 = w.q0(), *magb = w.magb(), *mags = w.mags();
     double *prow = w.prow(), *keys = w.keys();
     idx *basis = w.basis(), *nonbasic = w.nonbasic(), *pos = w.pos();
     idx *start_basis = w.start_basis(), *cand = w.cand();
     std::uint8_t* is_basic = w.flags.data();
-    Pending P{w.U(), w.V(), w.act(), w.block, n + 1, 0};
+    Pending P{w.U(), w.V(), w.block, w.ld, 0, n};
     for (idx i = 0; i < 2 * n + 1; ++i) is_basic[i] = 0;
     for (idx i = 0; i < n; ++i) {
         start_basis[i] = basis[i];
@@ -208,6 +285,8 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     for (idx j = 0; j < n + 1; ++j) pos[nonbasic[j]] = j;
     for (idx j = 0; j < n + 1; ++j) ray_out[j] = 0.0;
 
+    // the ratio test's vector passes pay from some 64 rows (blocking_rows_vector)
+    double* ratios = n >= 64 ? keys : nullptr;
     Status status = MAX_PIVOTS;
     pivots = 0;
     idx s = pos[artificial];
@@ -238,10 +317,15 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
             status = NUMERICAL_FAILURE;
             break;
         }
-        if (P.b == 1)
-            pivot_now(T, rhs, magb, r, s, col, prow);
-        else
+        // the complement of the leaving variable enters next: a column now (its label is
+        // nonbasic and neither `leaving` nor `entering`), read during the pivot's row updates
+        idx s_next = leaving == artificial ? -1 : pos[leaving < n ? leaving + n : leaving - n];
+        if (P.b == 1) {
+            pivot_now(T, rhs, magb, r, s, col, prow, s_next, col_next);
+        } else {
             pivot_delayed(T, rhs, magb, r, s, col, prow, P);
+            s_next = -1;
+        }
         ++pivots;
         swap_labels(basis, nonbasic, pos, is_basic, r, s);
         int stop = after_pivot(leaving, entering, artificial, h, detector);
@@ -250,10 +334,13 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
             break;
         }
         s = pos[leaving < n ? leaving + n : leaving - n];  // the complement enters
-        if (P.k == 0)
+        if (s == s_next) {
+            std::swap(col, col_next);
+        } else if (P.k == 0) {
             for (idx i = 0; i < n; ++i) col[i] = T(i, s);
-        else
-            for (idx i = 0; i < n; ++i) col[i] = entry(T, P, i, s);
+        } else {
+            pending_column(T, P, s, col);
+        }
         // max |col| (numba's running maximum: no NaN ever enters it, so eight lanes give
         // the same number)
         double cmax = absmax(col, n);
@@ -262,9 +349,11 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         idx nc;
         if (careful) {
             careful_sizes(T, P, col, rhs, pos, is_basic, start_basis, q0, magb, mags);
-            nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
+            nc = blocking_rows(rhs, mags, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max,
+                               ratios);
         } else {
-            nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max);
+            nc = blocking_rows(rhs, rhs, col, n, -pivot_tol * cmax, tie_tol, cand, art, z0_max,
+                               ratios);
         }
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;

@@ -8,41 +8,51 @@
 
 namespace lemke {
 
-// Pivots kept pending before they are applied (numba's tableau.block_size): 1 (no delay)
-// while the tableau fits in the cache anyway. Any block gives the same bits.
-inline idx block_size(idx n) { return n < 400 ? 1 : 8; }
+// Pivots kept pending before they are applied (numba's tableau.block_size delays from
+// n = 400): 1 (no delay) below n = 32, where the tableau stays in the first-level cache;
+// from there 8, so that each pass over T applies eight pivots (the row updates are bound by
+// the traffic over T: at n = 100 and 300 the delayed updates take 0.8x and 0.65x the time).
+// Any block gives the same bits (the pending terms are summed in pivot order; tableau.cpp).
+inline idx block_size(idx n) { return n < 32 ? 1 : 8; }
 
-// The tableau engine's workspace, laid out once per size (one per thread, reused).
+// The tableau engine's workspace, laid out once per size (one per thread, reused). T's rows
+// are padded to a multiple of eight doubles (ld) and start on 64-byte boundaries, so the
+// row updates run on whole, aligned vectors; the padding columns hold values nobody reads.
 struct TableauWork {
-    std::vector<double> f;   // T (n x (n + 1)), rhs, col, q0, magb, mags, prow, keys, U, V
-    std::vector<idx> i;      // basis, nonbasic, pos, start_basis, cand, act
+    std::vector<double> f;   // T (n x ld), rhs, col, q0, magb, mags, prow (ld), keys, U, V (block x ld), col2
+    std::vector<idx> i;      // basis, nonbasic, pos, start_basis, cand
     std::vector<std::uint8_t> flags;  // is_basic
     idx n = -1;
+    idx ld = 0;              // T's row stride: n + 1 rounded up to a multiple of 8
+    idx off = 0;             // T's offset in f: its first row on a 64-byte boundary
     idx block = 1;
     void layout(idx size);
-    Mat<double> T() { return Mat<double>(f.data(), n, n + 1); }
-    double* rhs() { return f.data() + n * (n + 1); }
+    Mat<double> T() { return Mat<double>(f.data() + off, n, n + 1, ld); }
+    double* rhs() { return f.data() + off + n * ld; }
     double* col() { return rhs() + n; }
     double* q0() { return col() + n; }
     double* magb() { return q0() + n; }
     double* mags() { return magb() + n; }
     double* prow() { return mags() + n; }
-    double* keys() { return prow() + n + 1; }
-    double* U() { return keys() + n; }        // n x block: the pending pivots' columns
-    double* V() { return U() + n * block; }   // block x (n + 1): their rows
+    double* keys() { return prow() + ld; }
+    double* U() { return keys() + n; }        // block x n: the pending pivots' columns
+    double* V() { return U() + n * block; }   // block x ld: their rows
+    double* col2() { return V() + block * ld; }  // the next entering column
     idx* basis() { return i.data(); }
     idx* nonbasic() { return basis() + n; }
     idx* pos() { return nonbasic() + n + 1; }
     idx* start_basis() { return pos() + 2 * n + 1; }
     idx* cand() { return start_basis() + n; }
-    idx* act() { return cand() + n; }
 };
 
-// The pivot on row r and column s of T (entering column in col, prow: scratch of T.cols),
+// The pivot on row r and column s of T (entering column in col, prow: scratch of T.ld),
 // rhs and magb updated with it (numba's tableau.pivot_now: the same operations in the same
-// order). Also the box LCP engine's pivot (boxed.cpp).
-void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
-               double* prow);
+// order). The row updates run over T.ld columns: padding columns past T.cols are updated
+// too (values nobody reads), each column on its own, so the bits of the others are those of
+// the scalar loop. With s_next >= 0 (not s), col_next gets the column s_next after the pivot,
+// read as each row is done. Also the box LCP engine's pivot (boxed.cpp).
+void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, const double* col,
+               double* prow, idx s_next = -1, double* col_next = nullptr);
 
 // One run from the tableau in `w` (T, rhs, basis, nonbasic set up): returns the status and
 // the pivots made. x_out (n + 1) gets z and z0, ray_out (n + 1) the ray on RAY_TERMINATION,

@@ -51,6 +51,18 @@ void row_times(const double* x, Mat<const double> G, idx k, double* out) {
     }
 }
 
+// dwv[i] = base[i] + AB[i, :k] dz for the rows with a basic w (apos[i] < 0; base nullptr:
+// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row).
+LEMKE_CLONES
+void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos,
+                  const double* base, double* dwv) {
+    for (idx i = 0; i < AB.rows; ++i) {
+        if (apos[i] >= 0) continue;
+        double d = dot_lanes(AB.row(i), dz, k);
+        dwv[i] = base ? base[i] + d : d;
+    }
+}
+
 // One run's state: views of the workspace and the sizes (the numba kernel's locals).
 struct Run {
     idx n, kmax, k = 0;
@@ -166,13 +178,11 @@ struct Run {
         if (label < n) {  // a w leaves zero: H dz = e_p
             idx p = apos[label];
             for (idx r = 0; r < k; ++r) dz[r] = G(r, p);
-            for (idx i = 0; i < n; ++i)
-                if (apos[i] < 0) dwv[i] = dot(AB.row(i), dz, k);
+            basic_w_rows(AB, dz, k, apos, nullptr, dwv);
         } else {  // a z (or z0) enters: H dz = -A[alpha, e]
             for (idx r = 0; r < k; ++r) tmp[r] = -col[alist[r]];
             matvec(G, k, tmp, dz);
-            for (idx i = 0; i < n; ++i)
-                if (apos[i] < 0) dwv[i] = col[i] + dot(AB.row(i), dz, k);
+            basic_w_rows(AB, dz, k, apos, col, dwv);
         }
     }
 
