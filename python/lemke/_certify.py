@@ -31,7 +31,7 @@ formed from, plus the rounding of forming it:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ._frozen import frozen
 
 import numpy as np
 
@@ -157,7 +157,7 @@ def is_mlcp_ray(E, n, direction, tol) -> bool:
 
 # ----------------------------------------------------------------------------- QP
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class Certificate(Value):
     """A proof that a QP has no optimum, checkable with its data alone.
 

@@ -21,7 +21,8 @@ import functools
 import math
 import numbers
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
+from ._frozen import frozen
 from fractions import Fraction
 
 import numpy as np
@@ -61,7 +62,7 @@ def _layout(m, n):
     return dict(zip(names, _core.games_layout(m, n)))
 
 
-@dataclass(frozen=True)
+@frozen
 class GameBasis:
     """A vertex pair of the best-response polytopes, as a plain value: the basic labels of
     the polytope of x (``{x >= 0: B'^T x <= 1}``, n of them: action i < m for x_i, m + j for
@@ -88,7 +89,7 @@ class GameBasis:
         return b
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class BimatrixResult(Outcome):
     """The outcome of :func:`solve_bimatrix`.
 

@@ -10,7 +10,7 @@ kind (a box LCP, a bimatrix game) is one :class:`Kind` here, its validation in
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass
+from ._frozen import frozen
 from typing import Callable
 
 from . import _validate
@@ -46,7 +46,7 @@ class _Solver:
         return f"<solver lemke.{self.front}.{self.name}>"
 
 
-@dataclass(frozen=True)
+@frozen
 class Kind:
     """One kind of problem.
 

@@ -17,7 +17,8 @@ Stacked, ``E x + e = (0, w)`` with ``x = (u, v)``, ``E = [[A, C], [D, B]]`` and
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
+from ._frozen import frozen
 
 import numpy as np
 
@@ -35,7 +36,7 @@ EPS = float(np.finfo(np.float64).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class MLCPResult(Outcome):
     """The outcome of :func:`lemke.solve_mlcp`.
 
