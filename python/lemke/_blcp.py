@@ -34,12 +34,12 @@ evaluated at the final z.
 from __future__ import annotations
 
 from dataclasses import replace
-from ._frozen import frozen
 from functools import lru_cache
 from itertools import repeat
 
 import numpy as np
 
+from ._frozen import frozen
 from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _progress, _validate
 from ._result import LazyField, Outcome, lazy_state, native_fronts_init

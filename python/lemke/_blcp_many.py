@@ -14,11 +14,11 @@ and result type exact (``solve_lcp`` / ``solve_blcp``, ``solve_lcp_many`` /
 """
 from __future__ import annotations
 
-from ._frozen import frozen
 from functools import cached_property
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _validate
 from ._batch import _flat, _packed, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,

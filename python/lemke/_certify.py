@@ -31,10 +31,10 @@ formed from, plus the rounding of forming it:
 """
 from __future__ import annotations
 
-from ._frozen import frozen
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core
 from ._result import Value
 from ._validate import square_matrix, vector

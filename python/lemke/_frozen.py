@@ -38,11 +38,11 @@ def frozen(cls=None, /, *, eq: bool = True):
     _init(cls, [f for f in fields if f.init], qualname)
     _add(cls, "__repr__", _repr([f.name for f in fields if f.repr]), qualname)
     if eq:
-        names = tuple(f.name for f in fields if f.compare)
-        key = _key(names)
-        _add(cls, "__eq__", _eq(key), qualname)
+        # a __hash__ of the class body's own (None only where its own __eq__ set it) stays
         explicit = cls.__dict__.get("__hash__", MISSING)
-        if explicit is MISSING or (explicit is None and "__eq__" in cls.__dict__):
+        add_hash = explicit is MISSING or (explicit is None and "__eq__" in cls.__dict__)
+        _add(cls, "__eq__", _eq(_key(tuple(f.name for f in fields if f.compare))), qualname)
+        if add_hash:
             hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
             cls.__hash__ = _hash(_key(hashed), qualname)
     _frozen_attributes(cls, tuple(f.name for f in fields), qualname)

@@ -22,11 +22,11 @@ import math
 import numbers
 import time
 from dataclasses import replace
-from ._frozen import frozen
 from fractions import Fraction
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core, _progress, _validate
 from . import _games_exact as ex
 from ._options import _DEFAULT, Options, as_options, time_limited, timed

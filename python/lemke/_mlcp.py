@@ -18,10 +18,10 @@ Stacked, ``E x + e = (0, w)`` with ``x = (u, v)``, ``E = [[A, C], [D, B]]`` and
 from __future__ import annotations
 
 from dataclasses import replace
-from ._frozen import frozen
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core, _progress, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp

@@ -55,8 +55,9 @@ import contextlib
 import math
 import numbers
 from dataclasses import fields, replace
-from ._frozen import frozen
 from typing import Any, Mapping
+
+from ._frozen import frozen
 
 
 @frozen

@@ -16,10 +16,10 @@ from __future__ import annotations
 
 import functools
 from dataclasses import replace
-from ._frozen import frozen
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _progress, _validate
 from ._blcp import solve_blcp
 from ._certify import Certificate, absmax as _size, data_scale as _data_scale

@@ -10,13 +10,13 @@ import operator
 import struct
 from collections.abc import Sequence
 from dataclasses import fields
-from ._frozen import frozen
 from functools import cached_property
 from itertools import compress, repeat
 from operator import itemgetter
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core
 from ._options import _DEFAULT
 from ._status import Status
