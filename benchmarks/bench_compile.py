@@ -1,28 +1,29 @@
 #!/usr/bin/env python
-"""What the first call costs, per entry point, in fresh processes.  Since the C++ core, no
-entry point compiles anything: the table shows each first call beside the second pass's
-(both in new processes), and numba's counters (taken where numba is installed, for the
-test oracles) stay at zero.
+"""What the first call costs, per entry point, in fresh processes: ``import lemke``, the
+first call after it and the second (the same call again), medians of ``--runs`` fresh
+processes (5), beside numba's counters (taken where numba is installed, for the test
+oracles; the package never imports it, so they stay at zero).
 
 Usage::
 
-    python benchmarks/bench_compile.py [--out benchmarks/RESULTS-compile.md]
+    env -u PYTHONDONTWRITEBYTECODE python benchmarks/bench_compile.py [--runs 5] [--out benchmarks/RESULTS-compile.md]
 
-The entry points run one after another, each in a new Python process, on one numba cache
-directory that starts empty (``NUMBA_CACHE_DIR``): the command line ``lemke solve`` first
-(README's install-and-run command: the first call after ``pip install``), then
-``solve_lcp``, a warm start, the unrevised method, ``solve_lcp_batch``, ``solve_lcp_many``,
-``solve_mlcp``, ``solve_qp`` on its fused and its KKT-MLCP path, ``solve_blcp`` (plain,
-then with a friction index and a warm start) and
-``solve_bimatrix``.  Each process reports the seconds of ``import lemke`` and of its first
-call (wall and CPU), and how many kernel signatures numba compiled (cache misses: what it
-did not share with the entry points before it) and loaded (cache hits).  A second pass runs
-every entry point again on the filled cache.
+(an installed package has its bytecode: with ``PYTHONDONTWRITEBYTECODE`` set and an
+editable install, every import would compile the sources again).  The entry points run in
+turn, each in a new Python process, round after round: the command line ``lemke solve``
+(README's install-and-run command, a whole process), then ``solve_lcp``, a warm start, the
+unrevised method, ``solve_lcp_batch``, ``solve_lcp_many``, ``solve_mlcp``, ``solve_qp`` on
+its box, fused and KKT-MLCP paths, ``solve_blcp`` (plain, then with a friction index and a
+warm start), ``solve_blcp_many``, ``solve_bimatrix`` and ``lemke_paths``.  Each process
+reports the seconds of ``import numpy``, of ``import lemke`` after it, of its first call
+and of the same call again (wall), and how many kernel signatures numba compiled and
+loaded.
 """
 from __future__ import annotations
 
 import json
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -57,6 +58,7 @@ _CALLS = {
     "solve_lcp_many": "lemke.solve_lcp_many([M, M[:2, :2]], [q, q[:2]])",
     "solve_mlcp": ("lemke.solve_mlcp(np.array([[2.0]]), M, np.ones((1, 3)), np.ones((3, 1)), "
                    "np.array([-1.0]), q)"),
+    "solve_qp (box)": "lemke.solve_qp(np.eye(3) * 2, -np.ones(3), lb=-np.ones(3), ub=np.ones(3))",
     "solve_qp (fused)": "lemke.solve_qp(np.eye(3) * 2, -np.ones(3), G=np.ones((1, 3)), h=np.ones(1))",
     "solve_qp (KKT-MLCP)": "lemke.solve_qp(np.zeros((3, 3)), -np.ones(3), G=np.eye(3), h=np.ones(3))",
     "solve_blcp": "lemke.solve_blcp(M, q, -np.ones(3), np.ones(3))",
@@ -64,23 +66,28 @@ _CALLS = {
         "fi = np.array([-1, 0, -1]); lo = np.array([0.0, -0.5, 0.0]); hi = np.array([np.inf, 0.5, 1.0]); "
         "r = lemke.solve_blcp(M, q, lo, hi, findex=fi); "
         "lemke.solve_blcp(M, q + 1e-9, lo, hi, findex=fi, warm_start=r.warm_start)"),
+    "solve_blcp_many": "lemke.solve_blcp_many([M, M[:2, :2]], [q, q[:2]], [-np.ones(3), -np.ones(2)], [np.ones(3), np.ones(2)])",
     "solve_bimatrix": "lemke.solve_bimatrix(M + 5, M.T + 5)",
+    "lemke_paths": "lemke.lemke_paths(M + 5, M.T + 5)",
 }
 
 _CHILD = _STATS + r"""
 import time
 t0 = time.perf_counter()
-c0 = time.process_time()
 import numpy as np
-import lemke
 t1 = time.perf_counter()
-c1 = time.process_time()
+import lemke
+t2 = time.perf_counter()
 M = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]])
 q = np.array([-1.0, -2.0, 1.0])
-exec(sys.argv[1])
-t2 = time.perf_counter()
+code = compile(sys.argv[1], "<call>", "exec")
+t3 = time.perf_counter()
+exec(code)
+t4 = time.perf_counter()
+exec(code)
+t5 = time.perf_counter()
 hits, misses = _stats()
-print(json.dumps(dict(import_s=t1 - t0, call_s=t2 - t1, cpu_s=time.process_time() - c1, hits=hits,
+print(json.dumps(dict(numpy_s=t1 - t0, import_s=t2 - t1, call_s=t4 - t3, again_s=t5 - t4, hits=hits,
                       misses=misses)))
 """
 
@@ -103,47 +110,47 @@ def _cli(cache):
     return dict(call_s=time.perf_counter() - t0, process_cpu_s=cpu, stderr=out.stderr.strip())
 
 
+def _median(rows, key):
+    return statistics.median(r[key] for r in rows)
+
+
 def main(argv=None):
     parser, argv = report_parser(__doc__, "RESULTS-compile.md", argv)
+    parser.add_argument("--runs", type=int, default=5, help="fresh processes per entry point")
     args = parser.parse_args(argv)
     args.argv = argv
     info = machine_info()
     t_start = time.perf_counter()
-    first, again = [], []
+    runs = {name: [] for name in ["cli", *_CALLS]}
     with tempfile.TemporaryDirectory(prefix="lemke-compile-") as cache:
-        for rows in (first, again):
-            cli = _cli(cache)
-            rows.append(("command line `lemke solve`", cli))
-            print(f"CLI {cli['call_s']:.2f} s, {cli['process_cpu_s']:.2f} s CPU, stderr {cli['stderr']!r}",
-                  flush=True)
+        for k in range(args.runs):
+            runs["cli"].append(_cli(cache))
             for name, code in _CALLS.items():
-                r = _child(code, cache)
-                rows.append((name, r))
-                print(f"{name:24s} {r['call_s']:6.2f} s wall, {r['cpu_s']:6.2f} s CPU, "
-                      f"{r['misses']} compiled, {r['hits']} loaded", flush=True)
+                runs[name].append(_child(code, cache))
+            print(f"round {k + 1}/{args.runs}: CLI {runs['cli'][-1]['call_s']:.2f} s; " + ", ".join(
+                f"{name} {r[-1]['call_s'] * 1e6:.0f}/{r[-1]['again_s'] * 1e6:.0f} us"
+                for name, r in runs.items() if name != "cli"), flush=True)
     mark_end(info)
     L = report_head("First calls per entry point (nothing compiles at run time)", "bench_compile.py", args,
                     time.perf_counter() - t_start, info)
-    L += ["", "## Each entry point's first call, in this order, on one cache that starts empty", "",
-          "Every row is a new process.  *compiled*: kernel signatures numba compiled there (what "
-          "the entry points above did not already leave in the cache); *loaded*: taken from the "
-          "cache.  The second column group is a second pass on the filled cache.", "",
-          "| entry point | first call (wall) | CPU | compiled | loaded | cached: first call | compiled |",
-          "|---|---:|---:|---:|---:|---:|---:|"]
-    for (name, r), (_, r2) in zip(first, again):
-        if "misses" in r:
-            L.append(f"| {name} | {r['call_s'] * 1e3:.1f} ms | {r['cpu_s'] * 1e3:.0f} ms | {r['misses']} | {r['hits']} | "
-                     f"{r2['call_s'] * 1e3:.1f} ms | {r2['misses']} |")
-        else:
-            L.append(f"| {name} (whole process) | {r['call_s']:.1f} s | {r['process_cpu_s']:.1f} s | | | "
-                     f"{r2['call_s']:.2f} s | |")
-    total = sum(r.get("cpu_s", r.get("process_cpu_s", 0.0)) for _, r in first)
-    imports = sorted(r["import_s"] for _, r in first + again if "import_s" in r)
-    L += ["", f"CPU seconds of all the first calls together (the command line's whole process "
-          f"included): {total:.0f} s.  `import lemke`: median "
-          f"{imports[len(imports) // 2]:.2f} s (nothing is compiled at import).", "",
-          f"The command line's stderr on the empty cache: `{first[0][1]['stderr'] or '(nothing)'}`; "
-          f"on the filled cache: `{again[0][1]['stderr'] or '(nothing)'}`.", ""]
+    L += ["", f"## Each entry point in a fresh process: medians of {args.runs} processes", "",
+          "Every row is a new process per run: *import numpy*, then *import lemke* (which imports "
+          "every solver's module and solves one tiny problem on each engine), then the entry "
+          "point's *first call* and the same call *again*.  *compiled* / *loaded*: kernel signatures "
+          "numba compiled / loaded from its cache (the package never imports numba).", "",
+          "| entry point | import numpy | import lemke | first call | second call | first / second | compiled | loaded |",
+          "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for name, rows in runs.items():
+        if name == "cli":
+            continue
+        first, again = _median(rows, "call_s"), _median(rows, "again_s")
+        L.append(f"| {name} | {_median(rows, 'numpy_s') * 1e3:.1f} ms | {_median(rows, 'import_s') * 1e3:.1f} ms | "
+                 f"{first * 1e6:.0f} us | {again * 1e6:.0f} us | {first / again:.1f} | "
+                 f"{max(r['misses'] for r in rows)} | {max(r['hits'] for r in rows)} |")
+    cli = runs["cli"]
+    L += ["", f"The command line `lemke solve` (a whole process, Python's start included): median "
+          f"{_median(cli, 'call_s'):.2f} s, {_median(cli, 'process_cpu_s'):.2f} s of CPU; its stderr: "
+          f"`{cli[0]['stderr'] or '(nothing)'}`.", ""]
     with open(args.out, "w") as f:
         f.write("\n".join(L) + "\n")
     print(f"wrote {args.out}")

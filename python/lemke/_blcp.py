@@ -33,12 +33,13 @@ evaluated at the final z.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from functools import lru_cache
 from itertools import repeat
 
 import numpy as np
 
+from ._frozen import frozen
 from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _progress, _validate
 from ._result import LazyField, Outcome, lazy_state, native_fronts_init
@@ -57,7 +58,7 @@ _COLD = (0, 1, 2)  # covering vectors of the cold runs (kernels.boxed.solve's co
 _WARM = 1 | boxed.PARTIAL
 
 
-@dataclass(frozen=True)
+@frozen
 class BoxWarmStart:
     """A final basis of a box LCP, as a plain value: which z are basic (``z_basic``) and
     which non-basic z sit at their upper bounds (``at_upper``; the others at their lower
@@ -293,7 +294,7 @@ def _from_codes(c):
     return ws
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class BLCPResult(Outcome):
     """The outcome of :func:`lemke.solve_blcp`.
 

@@ -14,11 +14,11 @@ and result type exact (``solve_lcp`` / ``solve_blcp``, ``solve_lcp_many`` /
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _validate
 from ._batch import _flat, _packed, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
@@ -33,7 +33,7 @@ _F64 = np.dtype(np.float64)
 _I64 = np.dtype(np.int64)
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class BoxWarmStartBatch(Value):
     """The final bases of B box LCPs (the islands of a scene) in one value: island b has
     ``n[b]`` rows, and ``state[offsets[b]:offsets[b + 1]]`` holds one int8 code per row,

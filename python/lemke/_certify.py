@@ -31,10 +31,10 @@ formed from, plus the rounding of forming it:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core
 from ._result import Value
 from ._validate import square_matrix, vector
@@ -157,7 +157,7 @@ def is_mlcp_ray(E, n, direction, tol) -> bool:
 
 # ----------------------------------------------------------------------------- QP
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class Certificate(Value):
     """A proof that a QP has no optimum, checkable with its data alone.
 

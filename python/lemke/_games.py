@@ -21,11 +21,12 @@ import functools
 import math
 import numbers
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from fractions import Fraction
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core, _progress, _validate
 from . import _games_exact as ex
 from ._options import _DEFAULT, Options, as_options, time_limited, timed
@@ -61,7 +62,7 @@ def _layout(m, n):
     return dict(zip(names, _core.games_layout(m, n)))
 
 
-@dataclass(frozen=True)
+@frozen
 class GameBasis:
     """A vertex pair of the best-response polytopes, as a plain value: the basic labels of
     the polytope of x (``{x >= 0: B'^T x <= 1}``, n of them: action i < m for x_i, m + j for
@@ -88,7 +89,7 @@ class GameBasis:
         return b
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class BimatrixResult(Outcome):
     """The outcome of :func:`solve_bimatrix`.
 

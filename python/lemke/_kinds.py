@@ -10,9 +10,9 @@ kind (a box LCP, a bimatrix game) is one :class:`Kind` here, its validation in
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass
 from typing import Callable
 
+from ._frozen import frozen
 from . import _validate
 
 #: The LCP's methods (``lemke.METHODS``; a test checks that they agree).
@@ -46,7 +46,7 @@ class _Solver:
         return f"<solver lemke.{self.front}.{self.name}>"
 
 
-@dataclass(frozen=True)
+@frozen
 class Kind:
     """One kind of problem.
 

@@ -17,10 +17,11 @@ Stacked, ``E x + e = (0, w)`` with ``x = (u, v)``, ``E = [[A, C], [D, B]]`` and
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core, _progress, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp
@@ -35,7 +36,7 @@ EPS = float(np.finfo(np.float64).eps)
 CLEAN = 64 * np.finfo(np.float64).eps  # a residual above CLEAN * scale gets one strict restart
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class MLCPResult(Outcome):
     """The outcome of :func:`lemke.solve_mlcp`.
 

@@ -54,11 +54,13 @@ from __future__ import annotations
 import contextlib
 import math
 import numbers
-from dataclasses import dataclass, fields, replace
+from dataclasses import fields, replace
 from typing import Any, Mapping
 
+from ._frozen import frozen
 
-@dataclass(frozen=True)
+
+@frozen
 class Options:
     """Solver options; every field is optional.  See the module docstring for the defaults."""
 

@@ -15,10 +15,11 @@ certificate is checked (``_certify``) before it is returned.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _progress, _validate
 from ._blcp import solve_blcp
 from ._certify import Certificate, absmax as _size, data_scale as _data_scale
@@ -37,7 +38,7 @@ EPS = float(np.finfo(np.float64).eps)
 BOX_FIRST = 16  # box-only QPs: below, plain data goes to _core.qp_solve_box; from here, solve_blcp first
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class QPResult(Outcome):
     """The outcome of :func:`lemke.solve_qp`.
 

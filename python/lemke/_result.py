@@ -9,13 +9,14 @@ from __future__ import annotations
 import operator
 import struct
 from collections.abc import Sequence
-from dataclasses import dataclass, fields
+from dataclasses import fields
 from functools import cached_property
 from itertools import compress, repeat
 from operator import itemgetter
 
 import numpy as np
 
+from ._frozen import frozen
 from . import _core
 from ._options import _DEFAULT
 from ._status import Status
@@ -23,7 +24,7 @@ from ._validate import kernel_array
 from . import _layout
 
 
-@dataclass(frozen=True)
+@frozen
 class WarmStart:
     """A complementary basis, as a plain value: pass it back as ``solve_lcp(..., warm_start=)``.
 
@@ -198,7 +199,7 @@ class Outcome(Value):
         return self.status.message
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class LCPResult(Outcome):
     """The outcome of :func:`lemke.solve_lcp`.
 
@@ -394,7 +395,7 @@ for _name in _LAZY_FIELDS:
 del _name
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class WarmStartBatch(Value):
     """The complementary bases of B problems in one value: problem b has size ``n[b]``, and
     ``z_basic[offsets[b]:offsets[b + 1]]`` lists (sorted, 0-based) the i whose z_i is basic,
@@ -682,7 +683,7 @@ class LCPManyResult(ManyItems):
         return WarmStartBatch._trusted(np.diff(self._off[0]), self._basics.take(idx), off)
 
 
-@dataclass(frozen=True, eq=False)
+@frozen(eq=False)
 class LCPBatchResult(Value):
     """The outcome of :func:`lemke.solve_lcp_batch`: row b of every array is what
     :func:`lemke.solve_lcp` gives for problem b (the same status, pivots and bits).
