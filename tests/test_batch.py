@@ -411,3 +411,35 @@ def test_packed_problems_bad_input():
         lemke.solve_lcp_many(bad, qp, sizes=sizes)
     with pytest.raises(ValueError, match=r"warm_start\[0\] is for a problem of size 3"):
         lemke.solve_lcp_many(Mp, qp, sizes=sizes, warm_start=[lemke.WarmStart(3, ()), None])
+
+
+def _batch_in_child(conn):
+    rs = lemke.solve_lcp_batch(*_fork_problems(), workers=2)
+    conn.send(rs.z.tolist())
+
+
+def _fork_problems():
+    rng = np.random.default_rng(7)
+    A = rng.standard_normal((4, 5, 5))
+    return A @ A.transpose(0, 2, 1) + np.eye(5), rng.standard_normal((4, 5))
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="fork is POSIX")
+def test_a_forked_child_runs_parallel_batches():
+    """The batch pool's threads are the parent's: a child made by fork after a parallel
+    batch starts a pool of its own (before, its first parallel batch waited forever)."""
+    import multiprocessing as mp
+    M, q = _fork_problems()
+    here = lemke.solve_lcp_batch(M, q, workers=2)  # the parent's pool exists now
+    ctx = mp.get_context("fork")
+    parent, child = ctx.Pipe()
+    p = ctx.Process(target=_batch_in_child, args=(child,))
+    p.start()
+    got = parent.recv() if parent.poll(60) else None
+    p.join(5)
+    if p.is_alive():
+        p.kill()
+    assert got is not None, "the forked child's batch did not finish"
+    assert np.array_equal(np.array(got), here.z)
+    for b in range(q.shape[0]):
+        assert_lcp_solution(M[b], q[b], here.z[b])

@@ -42,6 +42,17 @@ def _executor():
         return _pool
 
 
+def _forget_pool():
+    """In a child made by fork: the parent's pool threads do not exist there (work handed to
+    them would wait forever), and its lock may have been held; the child starts its own."""
+    global _pool, _pool_lock
+    _pool, _pool_lock = None, threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_pool)
+
+
 def _workers(workers) -> int:
     workers = _validate.positive_int_or_none(workers, "workers")
     return usable_cores() if workers is None else workers
