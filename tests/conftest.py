@@ -16,6 +16,28 @@ SANITIZED_TEST = "test_solves_under_sanitizers"
 _sanitized = {}  # "job": the SanitizedJob of this session
 
 
+_frozen_store: dict = {}  # the references recorded in this session (LEMKE_FREEZE=record/update)
+
+
+@pytest.fixture(autouse=True)
+def _frozen_reference(request):
+    """The running test's frozen reference (tests/frozen.py): what it hands to
+    ``frozen.check`` is compared with the recorded digests when it ends."""
+    import frozen
+
+    frozen._current = ref = frozen.Reference(Path(request.node.fspath).stem, request.node.name)
+    yield ref
+    frozen._current = None
+    ref.finish(_frozen_store)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    if _frozen_store and exitstatus == 0:
+        import frozen
+
+        frozen.write(_frozen_store)
+
+
 @pytest.fixture(params=lemke.METHODS)
 def method(request):
     """Every test that takes ``method`` runs once per Lemke method."""

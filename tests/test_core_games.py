@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import frozen
 from lemke import _core
 from oracle import games as kg
 
@@ -33,18 +34,19 @@ def slack_start(m, n):
 
 def lh(fn, A, B, k, start, params):
     m, n = A.shape
-    buf = np.full(2 * (m + n) + 3 + kg.STATE, np.nan)
+    buf = np.full(2 * (m + n) + 3 + _core.GAMES_STATE, np.nan)
     r = fn(A, B, k, start, params, buf)
     return tuple(int(v) for v in r), buf.tobytes()
 
 
 def same_lh(A, B, k, start=None, params=PARAMS):
-    """Both kernels on one Lemke-Howson solve: (equal, numba's result, numba's buffer)."""
+    """The core's Lemke-Howson solve, checked against the frozen oracle's bits: (True, its
+    result, its buffer); a changed bit fails the test when it ends."""
     m, n = A.shape
     start = slack_start(m, n) if start is None else start
-    a = lh(kg.lemke_howson, A, B, k, start, params)
     b = lh(_core.lemke_howson, A, B, k, start, params)
-    return a == b, a
+    frozen.check(b, ("lemke_howson", m, n, k), oracle=lambda: lh(kg.lemke_howson, A, B, k, start, params))
+    return True, b
 
 
 def tr(fn, A, B, p, q, mp, ptol, ttol, tol):
@@ -56,9 +58,9 @@ def tr(fn, A, B, p, q, mp, ptol, ttol, tol):
 
 
 def same_trace(A, B, p, q, mp=10**6, ptol=1e-11, ttol=1e-11, tol=1e-9):
-    a = tr(kg.trace, A, B, p, q, mp, ptol, ttol, tol)
     b = tr(_core.games_trace, A, B, p, q, mp, ptol, ttol, tol)
-    return a == b, a
+    frozen.check(b, ("trace", A.shape, mp), oracle=lambda: tr(kg.trace, A, B, p, q, mp, ptol, ttol, tol))
+    return True, b
 
 
 def as_game(A, B):
@@ -146,7 +148,7 @@ def random_games(seeds):
 
 def test_constants_agree():
     assert (_core.GAMES_STATE, _core.GAMES_HISTORY, _core.GAMES_NOT_FINITE, _core.GAMES_UNCHECKED) \
-        == (kg.STATE, kg.HISTORY, kg.NOT_FINITE, kg.UNCHECKED)
+        == (67, 64, -1, 7)  # the oracle's (STATE, HISTORY, NOT_FINITE, UNCHECKED)
 
 
 def test_known_games_every_label_and_warm_starts():
@@ -232,9 +234,9 @@ def test_extreme_and_non_finite_payoffs():
             A = base[0].copy()
             A[-1, -1] = bad
             ok, (res, _) = same_lh(A, base[1], 0)
-            tally.add(ok and res[0] == kg.NOT_FINITE, (m, n, bad))
+            tally.add(ok and res[0] == _core.GAMES_NOT_FINITE, (m, n, bad))
             ok, (res, _) = same_lh(base[0], A, 0)
-            tally.add(ok and res[0] == kg.NOT_FINITE, (m, n, bad, "B"))
+            tally.add(ok and res[0] == _core.GAMES_NOT_FINITE, (m, n, bad, "B"))
     tally.done()
 
 
@@ -280,17 +282,17 @@ def test_check():
         profiles += [(x / x.sum(), y / y.sum()), (x, y), (-x, y), (np.zeros(m), np.zeros(n))]
         for x, y in profiles:
             for tol in (1e-9, 0.0, 1.0):
-                outs = []
-                for fn in (kg.check, _core.games_check):
+                def run(fn):
                     out = np.full(3, np.nan)
-                    outs.append((bool(fn(A, B, x, y, tol, out)), out.tobytes()))
-                tally.add(outs[0] == outs[1], (name, tol))
+                    return bool(fn(A, B, x, y, tol, out)), out.tobytes()
+                frozen.check(run(_core.games_check), (name, tol), oracle=lambda: run(kg.check))
+                tally.add(True, (name, tol))
     tally.done()
 
 
 def test_bad_arguments_raise():
     A = np.ones((2, 3))
-    buf = np.empty(2 * 5 + 3 + kg.STATE)
+    buf = np.empty(2 * 5 + 3 + _core.GAMES_STATE)
     start = slack_start(2, 3)
     with pytest.raises(ValueError):
         _core.lemke_howson(A, np.ones((3, 2)), 0, start, PARAMS, buf)
