@@ -1,8 +1,7 @@
 // Small dense kernels: Python's max/min semantics, the fixed-order dot product, the finite
 // check, Ruiz equilibration by powers of two, the scaled system, and a pivoted LU solve.
 // Every sum is in a fixed order with no fused multiply-add (-ffp-contract=off), so the
-// results are the same bits on every instruction set and equal the numba kernels'
-// (lemke/kernels/linalg.py), which follow the same order.
+// results are the same bits on every instruction set (those the goldens record).
 #pragma once
 #include <cmath>
 #include <cstring>
@@ -79,8 +78,8 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
 
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
-// residual2, solve, refined_solve, principal_block). std::fma only here, where numba calls
-// its explicit `fma` intrinsic (llvm.fma): a b + c rounded once on every instruction set.
+// residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c
+// rounded once on every instruction set.
 
 // (p, e) with p = fl(a b) and a b = p + e exactly (unless a b over- or underflows).
 inline void two_product(double a, double b, double& p, double& e) {
@@ -133,7 +132,7 @@ void matvec(Mat<const double> G, idx k, const double* x, double* out);
 // the inverse's columns swapped back at the end. G may be larger than k x k. work: 4k
 // doubles (a pass's multipliers, its pivot rows), piv: k. False when the block is not
 // finite, a pivot is exactly zero or NaN, or the inverse is not finite (G then holds what
-// the elimination left, as numba's does).
+// the elimination left).
 bool invert_in_place(Mat<double> G, idx k, double* work, idx* piv);
 
 }  // namespace lemke

@@ -1,5 +1,4 @@
-// Lemke's method on a condensed tableau (the Japanese article's method; the port of
-// lemke/kernels/tableau.py). Row i says basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j];
+// Lemke's method on a condensed tableau (the Japanese article's method). Row i says basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j];
 // labels 0..n-1 are w, n..2n-1 are z, 2n is z0.
 #pragma once
 #include <vector>
@@ -8,7 +7,7 @@
 
 namespace lemke {
 
-// Pivots kept pending before they are applied (numba's tableau.block_size): 1 (no delay)
+// Pivots kept pending before they are applied: 1 (no delay)
 // while the tableau fits in the cache anyway. Any block gives the same bits.
 inline idx block_size(idx n) { return n < 400 ? 1 : 8; }
 
@@ -39,8 +38,8 @@ struct TableauWork {
 };
 
 // The pivot on row r and column s of T (entering column in col, prow: scratch of T.cols),
-// rhs and magb updated with it (numba's tableau.pivot_now: the same operations in the same
-// order). Also the box LCP engine's pivot (boxed.cpp).
+// rhs and magb updated with it (the same operations in the same order as the goldens
+// record). Also the box LCP engine's pivot (boxed.cpp).
 void pivot_now(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
                double* prow);
 
