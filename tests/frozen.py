@@ -1,25 +1,27 @@
-"""Frozen references: the outputs of the former numba kernels (the oracles the C++ core was
-ported from, bit for bit), kept as digests in ``tests/data/frozen/<test module>.json`` so
-that the tests that compared the core with them go on comparing it with them.
+"""Frozen references: the outputs of the former Python kernels, the oracles the C++ core was
+ported from bit for bit (deleted since), kept as digests in ``tests/data/frozen/<test
+module>.json`` so that the tests that compared the core with them go on doing so.
 
-A test hands every output it used to compare to :func:`check` (``frozen.check(value,
-label)``): the value's bits (its type; a float's IEEE bits; an array's dtype, shape and
-bytes; tuples and lists element by element) are hashed, and the test's hashes, in the
-order it makes them, must be the recorded ones.  One changed bit of one output fails the
-test, and the message names the first call (its label) whose output changed.  A test
-records up to ``BLOCKS`` digests: with more calls, each digest covers a block of
-consecutive calls.
+A test hands every output it compares to :func:`check` (``frozen.check(value, label)``):
+the value's bits (its type; a float's IEEE bits; an array's dtype, shape and bytes; tuples
+and lists element by element) are hashed, and the test's hashes, in the order it makes
+them, must be the recorded ones.  One changed bit of one output fails the test, and the
+message names the first call (its label) whose output changed.  A test records up to
+``BLOCKS`` digests: with more calls, each digest covers a block of consecutive calls.
+Buffers that a kernel may leave partly unwritten are made by :func:`empty` (fixed bytes),
+so the digests do not depend on what ``np.empty`` happens to leave.
 
-The references were recorded from the numba kernels themselves while they existed
-(``tools/freeze_oracle.py`` at the commit that added this module: each test ran both the
-kernel and the core on every call, asserted the same bits and recorded them), with the
-platform ``golden.versions()`` names.  The test data is made by numpy (random generators,
-matrix products), so the bits are compared where the platform is the recorded one, as
-``tests/test_golden.py`` does; on another platform the comparison is not made (a warning
-says so) and each test's own checks (complementarity, KKT, equilibrium conditions, codes)
-still run.  Regenerating is no longer possible (the oracle is gone): a change that is meant
-to change these bits must say why in its commit and update the digests from the core's
-outputs (``LEMKE_FREEZE=update``), as ``tests/golden.py`` is regenerated.
+The references were recorded from the oracle itself while it existed: at commit 9d446dc,
+``tools/freeze_oracle.py`` ran these tests with ``LEMKE_FREEZE=record``, every checked call
+ran on both the oracle and the core, the same bits were asserted, and the digests were
+written, with the platform ``golden.versions()`` names.  The test data is made by numpy
+(random generators, matrix products), so the bits are compared where the platform is the
+recorded one, as ``tests/test_golden.py`` compares its bits; on another platform the
+comparison is not made (a warning says so) and each test's own checks (complementarity,
+KKT and equilibrium conditions, codes) still run.  A change that is *meant* to change these
+bits rewrites them from the core's outputs with ``LEMKE_FREEZE=update pytest
+tests/test_core_*.py tests/test_qp_kkt_check.py`` and says why in its commit, as for
+``tests/golden.py``.
 """
 from __future__ import annotations
 
@@ -35,7 +37,6 @@ import numpy as np
 
 DATA = Path(__file__).parent / "data" / "frozen"
 BLOCKS = 256
-#: "record": store the core's outputs (the test also asserts the oracle's are the same);
 #: "update": store the core's outputs (a change meant to change them); else compare.
 MODE = os.environ.get("LEMKE_FREEZE", "")
 
@@ -85,13 +86,9 @@ class Reference:
         self.labels: list = []
         self.digests: list = []
 
-    def check(self, value, label="", oracle=None):
-        d = digest(value)
-        if MODE == "record" and oracle is not None:
-            o = oracle()
-            assert digest(o) == d, f"the core and the oracle differ: {label}"
+    def check(self, value, label=""):
         self.labels.append(label)
-        self.digests.append(d)
+        self.digests.append(digest(value))
         return value
 
     def _blocks(self, size):
@@ -109,7 +106,7 @@ class Reference:
                 assert self.name not in load(self.module)["tests"], \
                     f"{self.name} has a frozen reference but checked no output"
             return
-        if MODE in ("record", "update"):
+        if MODE == "update":
             size = max(1, math.ceil(n / BLOCKS))
             store.setdefault(self.module, {})[self.name] = {"calls": n, "block": size,
                                                             "digests": self._blocks(size)}
@@ -127,7 +124,7 @@ class Reference:
         got = self._blocks(size)
         bad = [i for i, (a, b) in enumerate(zip(got, ref["digests"])) if a != b]
         assert not bad, (f"{self.name}: {len(bad)} of {len(got)} blocks of {size} outputs differ "
-                         f"from the frozen oracle's; the first from call {bad[0] * size}: "
+                         f"from the frozen references; the first from call {bad[0] * size}: "
                          f"{self.labels[bad[0] * size:(bad[0] + 1) * size][:3]}")
 
 
@@ -173,7 +170,8 @@ def write(store: dict):
 _current: Reference | None = None
 
 
-def check(value, label="", oracle=None):
-    """Check (or record) ``value`` in the running test's frozen reference; returns it."""
+def check(value, label=""):
+    """Check (or, with LEMKE_FREEZE=update, record) ``value`` in the running test's frozen
+    reference; returns it."""
     assert _current is not None, "frozen.check outside a test"
-    return _current.check(value, label, oracle)
+    return _current.check(value, label)

@@ -1,12 +1,13 @@
-"""The C++ box LCP engine (src/lemke/boxed.*, bound as lemke._core.boxed) against the numba
-kernels it ports (lemke/kernels/boxed.py), bit for bit: every returned number (its type
-and its bits) and every byte of every array the call may write.
+"""The C++ box LCP engine (src/lemke/boxed.*, bound as lemke._core.boxed) against its frozen
+references (tests/frozen.py: the outputs of the kernels it was ported from), bit for bit:
+every returned number (its type and its bits) and every byte of every array the call may
+write.
 
 Two ways in:
 
 * **through the front**: ``_blcp.boxed`` is replaced by a tee that runs each call of the
-  front (solve, front, box_check, check_scales, basis_point, is_ray, extend) on both
-  engines with copies of the same arguments, compares, and hands the numba answer on; then
+  front (solve, front, box_check, check_scales, basis_point, is_ray, extend) on copies of
+  its arguments, checks the outputs and hands them on; then
   the box LCP tests' problems (tests/test_blcp.py: the Siconos relay files, the seeded
   family, degenerate ties, the small integer fuzz, extreme values, friction contacts, the
   pile of examples/box_pile.py cold and warm), the contact scenes of tests/contact_sim.py
@@ -15,10 +16,7 @@ Two ways in:
 * **directly**: random box LCPs with finite, one-sided, infinite and fixed bounds, every
   covering vector, several tie tolerances, pivot caps, warm starts (the final basis of a
   run on moved data, and random flags that make the warm basis singular), and the checks
-  on random points and rays.
-
-The numba kernels serve as the oracle while the port is under way; this test goes when
-they do."""
+  on random points and rays."""
 from collections import Counter
 
 import numpy as np
@@ -27,7 +25,6 @@ import pytest
 import frozen
 import lemke
 from lemke import _blcp, _core
-from oracle import boxed as nboxed
 
 cboxed = _core.boxed
 FUNCS = ("solve", "front", "box_check", "check_scales", "basis_point", "is_ray", "extend")
@@ -36,36 +33,29 @@ TIES = (1e-11, 0.0, 1e-9)
 
 def compare(name, args):
     """Run kernel ``name`` of the core on copies of ``args`` and check its return value and
-    every array argument afterwards against the frozen oracle's bits: ``(True, the return
+    every array argument afterwards against the frozen references: ``(True, the return
     value, the copies of the arguments)`` (a changed bit fails the test when it ends)."""
-    def run(module):
-        a = [x.copy() if isinstance(x, np.ndarray) else x for x in args]
-        r = getattr(module, name)(*a)
-        return r, a
-
-    rc, b = run(cboxed)
-    frozen.check((rc, [x for x in b if isinstance(x, np.ndarray)]), name,
-                 oracle=lambda: (lambda r, a: (r, [x for x in a if isinstance(x, np.ndarray)]))(*run(nboxed)))
-    return True, rc, b
+    a = [x.copy() if isinstance(x, np.ndarray) else x for x in args]
+    r = getattr(cboxed, name)(*a)
+    frozen.check((r, [x for x in a if isinstance(x, np.ndarray)]), name)
+    return True, r, a
 
 
 class Tee:
-    """``_blcp.boxed`` for the comparison: each kernel call on both engines, compared; the
-    numba outputs written back into the caller's arrays and its return value returned."""
+    """``_blcp.boxed`` for the comparison: each kernel call of the front run by
+    :func:`compare` (its outputs checked against the frozen references), the outputs
+    written back into the caller's arrays and the return value returned."""
 
     def __init__(self):
         self.counts = Counter()
-        self.bad = []
 
     def __getattr__(self, name):
         if name not in FUNCS:
             return getattr(cboxed, name)
 
         def call(*args):
-            ok, rn, a = compare(name, args)
-            self.counts[name, ok] += 1
-            if not ok:
-                self.bad.append((name, args))
+            _, rn, a = compare(name, args)
+            self.counts[name] += 1
             for orig, new in zip(args, a):
                 if isinstance(orig, np.ndarray) and orig.flags.writeable:
                     orig[...] = new
@@ -83,13 +73,8 @@ def tee(monkeypatch):
     # the front's buffers with fixed bytes where no kernel writes (checked byte for byte)
     monkeypatch.setattr(_blcp, "np", frozen.FixedEmpty())
     yield t
-    total = sum(t.counts.values())
-    matched = sum(c for (_, ok), c in t.counts.items() if ok)
-    per = {f: (t.counts[f, True], t.counts[f, True] + t.counts[f, False]) for f in FUNCS
-           if t.counts[f, True] + t.counts[f, False]}
-    print(f"\n  kernel calls compared: {matched}/{total} bit for bit; per function {per}")
-    assert not t.bad, [(name, [getattr(a, "shape", a) for a in args]) for name, args in t.bad[:5]]
-    assert total > 0
+    print(f"\n  kernel calls checked: {dict(t.counts)}")
+    assert sum(t.counts.values()) > 0
 
 
 def _test_blcp():
@@ -156,6 +141,9 @@ def test_front_on_the_blcp_tests_problems(tee):
 
 def test_front_with_friction_and_warm_starts(tee):
     tb = _test_blcp()
+    # the pile's own solves (test_blcp.pile_steps runs examples/box_pile.py) run here, through
+    # the tee, whatever ran before: the frozen references hold them in this order
+    tb._PILES.clear()
     for seed in range(12):
         for k in (1, 2, 3, 5, 8):
             M, q, lo, hi, findex, mu = tb.contacts(seed, k)
@@ -417,7 +405,7 @@ def test_extend_and_front_directly():
             ok, out, a = compare("extend", (M, q, lo, hi, findex, nf, np.full(N * N + 3 * N, 7.0),
                                             np.full(2 * nf, -9, dtype=np.int64)))
             assert ok
-            assert out[0].base is not None  # views of work, as numba's
+            assert out[0].base is not None  # views of work
             for has_warm in (False, True):
                 warm = np.zeros(2 * N, dtype=np.bool_)
                 if has_warm:

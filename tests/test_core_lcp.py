@@ -1,20 +1,17 @@
 """The C++ LCP driver (src/lemke/lcp.cpp: solve_one with its recovery ladder, the ray check,
-the restart from a warm basis, and batch) against the numba kernels it ports
-(lemke/kernels/cold.py), bit for bit: every returned number and every byte of the output
-buffer and of the basic z's, on the stress suite's problems (DART, Murty, Siconos, Drake,
-integer families, contact steps and their scaled copies: the problems that need the
-recoveries), at several tie tolerances, by both methods, cold and warm (a restart from a
-basis at n >= 100, and the old basis's point below), and through the batch kernel.
-
-The numba kernels serve as the oracle while the port is under way; this test goes when
-they do."""
+the restart from a warm basis, and batch) against the frozen outputs of the kernels it
+was ported from (tests/frozen.py, tests/data/frozen/test_core_lcp.json), bit for bit: every
+returned number and every byte of the output buffer and of the basic z's, on the stress
+suite's problems (DART, Murty, Siconos, Drake, integer families, contact steps and their
+scaled copies: the problems that need the recoveries), at several tie tolerances, by both
+methods, cold and warm (a restart from a basis at n >= 100, and the old basis's point
+below), and through the batch kernel."""
 import numpy as np
 import pytest
 
 import frozen
 import stress_cases
 from lemke import _core, _layout
-from oracle import cold
 
 NO_D = np.empty(0)
 NO_I = np.zeros(0, dtype=np.int64)
@@ -41,12 +38,11 @@ def _run(fn, method, M, q, beta, k, mp, ptol, ttol, tol):
 
 
 def _both(method, M, q, beta=NO_I, k=0, tie_tol=1e-11, mp=None, label=""):
-    """The core's solve_one, its every output checked against the frozen oracle's."""
+    """The core's solve_one, its every output checked against the frozen references."""
     n = len(q)
     mp = 100 * (n + 1) if mp is None else mp
     b = _run(_core.solve_one, method, M, q, beta, k, mp, 1e-11, tie_tol, 1e-9)
-    return frozen.check(b, label, oracle=lambda: _run(cold.solve_one, method, M, q, beta, k, mp,
-                                                      1e-11, tie_tol, 1e-9))
+    return frozen.check(b, label)
 
 
 @pytest.mark.parametrize("key", KEYS)
@@ -81,7 +77,7 @@ def test_warm_solve_one_is_the_frozen_oracle_bit_for_bit(n):
 
 
 def test_batch_is_the_frozen_oracle_bit_for_bit():
-    """cold.batch's layout: problems of different sizes end to end, some warm."""
+    """The batch kernel's layout: problems of different sizes end to end, some warm."""
     rng = np.random.default_rng(5)
     Ms, qs, betas, sizes = [], [], [], []
     for b in range(40):
@@ -120,4 +116,4 @@ def test_batch_is_the_frozen_oracle_bit_for_bit():
         return out_i.tobytes(), out_f.tobytes(), bufs.tobytes(), used.tobytes()
 
     for method in (0, 1):
-        frozen.check(run(_core.batch, method), method, oracle=lambda: run(cold.batch, method))
+        frozen.check(run(_core.batch, method), method)

@@ -1,9 +1,9 @@
-"""The C++ QP kernels (``lemke._core.qp_*``, src/lemke/qp.cpp) against the numba kernels
-(``kernels.qp``) as their oracle, bit for bit: every returned number and every byte of the
+"""The C++ QP kernels (``lemke._core.qp_*``, src/lemke/qp.cpp) against their frozen
+references (tests/frozen.py: the outputs of the kernels they were ported from), bit for bit: every returned number and every byte of the
 output buffers of ``solve`` (both methods), ``solve_gram`` (definite and semidefinite),
 ``solve_box`` (and ``box_basis``; on box-only QPs of fewer than BOX_FIRST variables),
 ``screen``, ``cholesky`` and ``kkt_check``, and of the pieces whose bits they depend on
-(``_dot4``, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
+(``dot4``, ``forward_rows``, ``qr_rows``, ``gram_lcp`` and the
 unrevised method in factored form), on the Maros-Meszaros files, the QP tests' generators
 (tests/test_qp.py, test_qp_gram.py, test_qp_conventions.py), steps of the MPC benchmark
 (benchmarks/mpc_problem.py) and random dense convex QPs:
@@ -17,7 +17,6 @@ import pytest
 
 import frozen
 from lemke import _core, _qp
-from oracle import kernel, linalg, qp as kqp, unrevised
 
 HERE = Path(__file__).resolve().parent
 DATA = HERE / "data" / "maros-meszaros"
@@ -36,7 +35,7 @@ def plain(problem):
 
 def compare_solve(args, method, max_pivots=-1):
     """_core.qp_solve on one problem, every returned number and the bytes of out checked
-    against the frozen oracle's: ([], the code)."""
+    against the frozen references: ([], the code)."""
     n, p, m = args[1].shape[0], args[4].shape[0], args[2].shape[0]
     fill = np.random.default_rng(n + 7 * m + 31 * p).standard_normal(4 * n + p + 2 * m + 4)
 
@@ -45,7 +44,7 @@ def compare_solve(args, method, max_pivots=-1):
         ret = solve(*args, method, max_pivots, *TOL, out)
         return tuple(int(v) for v in ret), out
 
-    r, _ = frozen.check(run(_core.qp_solve), ("solve", method, max_pivots), oracle=lambda: run(kqp.solve))
+    r, _ = frozen.check(run(_core.qp_solve), ("solve", method, max_pivots))
     return [], r[0]
 
 
@@ -59,19 +58,18 @@ def compare_gram(args, semidefinite, max_pivots=-1):
         ret = solve(*args, *([max_pivots] + list(TOL)), out, basic, semidefinite)
         return tuple(int(v) for v in ret), out
 
-    r, _ = frozen.check(run(_core.qp_solve_gram), ("solve_gram", semidefinite, max_pivots),
-                        oracle=lambda: run(kqp.solve_gram))
+    r, _ = frozen.check(run(_core.qp_solve_gram), ("solve_gram", semidefinite, max_pivots))
     return [], r[0]
 
 
 def compare_pieces(args):
     """screen, cholesky and kkt_check (at the solve's point, and a perturbed one), checked
-    against the frozen oracle's bits."""
+    against the frozen references."""
     def screen(fn):
         s = fn(*args)
         return (bool(s[0]),) + (tuple(np.asarray(a) for a in s[1:]) if s[0] else ())
 
-    s = frozen.check(screen(_core.qp_screen), "screen", oracle=lambda: screen(kqp.screen))
+    s = frozen.check(screen(_core.qp_screen), "screen")
     if not s[0]:
         return []
     Ps, lo, up = s[1:]
@@ -80,7 +78,7 @@ def compare_pieces(args):
         L = np.full_like(Ps, 7.0)
         return bool(fn(Ps, L)), L
 
-    frozen.check(cholesky(_core.qp_cholesky), "cholesky", oracle=lambda: cholesky(kqp.cholesky))
+    frozen.check(cholesky(_core.qp_cholesky), "cholesky")
     n, p, m = args[1].shape[0], args[4].shape[0], args[2].shape[0]
     out = np.zeros(4 * n + p + 2 * m + 4)
     _core.qp_solve(*args, 0, -1, *TOL, out)
@@ -93,7 +91,7 @@ def compare_pieces(args):
             st = np.empty(4)
             return bool(fn(Ps, args[1], args[2], args[3], args[4], args[5], lo, up, *pt, 1e-9, st)), st
 
-        frozen.check(kkt(_core.qp_kkt_check), ("kkt_check", pert), oracle=lambda: kkt(kqp.kkt_check))
+        frozen.check(kkt(_core.qp_kkt_check), ("kkt_check", pert))
     return []
 
 
@@ -249,14 +247,14 @@ def test_screen_refuses_alike():
 
 
 def test_dot4_in_a_fixed_order():
-    """qp._dot4 and qp::dot4: each sum linalg.dot's fixed order (eight lanes, no fused
-    multiply-add), so numba's, the core's and linalg.dot's bits agree on every host."""
+    """qp::dot4: each sum in linalg.cpp's dot's fixed order (eight lanes, no fused
+    multiply-add), so its bits are the same on every host (recorded as the former
+    linalg.dot gave them)."""
     rng = np.random.default_rng(1)
     for k in list(range(0, 80)) + [95, 96, 97, 127, 128, 129, 255, 300]:
         a = rng.standard_normal(k) * 10.0 ** rng.integers(-3, 3, k)
         rs = [rng.standard_normal(k) for _ in range(4)]
-        frozen.check(np.array(_core.qp_dot4(a, *rs)), k,
-                     oracle=lambda: np.array([linalg.dot(a, r, k) for r in rs]))
+        frozen.check(np.array(_core.qp_dot4(a, *rs)), k)
 
 
 def test_forward_rows_and_qr_rows():
@@ -272,25 +270,18 @@ def test_forward_rows_and_qr_rows():
                 fn(L, R1)
                 return R1
 
-            frozen.check(forward(_core.qp_forward_rows), ("forward_rows", n, k),
-                         oracle=lambda: forward(kqp.forward_rows))
+            frozen.check(forward(_core.qp_forward_rows), ("forward_rows", n, k))
             if k <= n:
                 def qr(fn):
                     W1, V1, b1 = R.copy(), np.zeros((k, n)), np.zeros(k)
                     return fn(W1, V1, b1), W1, V1, b1
 
-                frozen.check(qr(_core.qp_qr_rows), ("qr_rows", n, k), oracle=lambda: qr(kqp.qr_rows))
-
-
-@kernel
-def numba_factored(Fs, d, q, max_pivots, pivot_tol, tie_tol, x, ray, zb):
-    return unrevised.lemke(d.reshape((d.shape[0], 1)), Fs, q, linalg.false_flags(q.shape[0]),
-                           linalg.no_matrix(), max_pivots, pivot_tol, tie_tol, x, ray, zb)
+                frozen.check(qr(_core.qp_qr_rows), ("qr_rows", n, k))
 
 
 def test_unrevised_factored_bit_for_bit():
-    """The unrevised method on M = Fs Fs' (numba's unrevised.lemke with Fs) against the
-    core's: status, pivots and the bytes of x, the ray and the basic z's."""
+    """The unrevised method on M = Fs Fs' (M never formed): status, pivots and the bytes of
+    x, the ray and the basic z's, as the frozen references record them."""
     count = 0
     for n in (1, 2, 5, 12, 30, 80, 200):
         for r in (1, 2, max(n // 4, 1), n, n + 3):
@@ -306,7 +297,7 @@ def test_unrevised_factored_bit_for_bit():
                     st, piv = solve(Fs, d, q, mp, 1e-11, 1e-11, x, ray, zb)
                     return (int(st), int(piv)), x.tobytes(), ray.tobytes(), zb.tobytes()
 
-                frozen.check(run(_core.unrevised_factored), (n, r, cap), oracle=lambda: run(numba_factored))
+                frozen.check(run(_core.unrevised_factored), (n, r, cap))
                 count += 1
     assert count == 70
 
@@ -328,7 +319,7 @@ def test_gram_lcp_bit_for_bit():
                 r = fn(C, g, p, -1, 1e-11, 1e-11, f)
                 return tuple(map(int, r)), f
 
-            frozen.check(run(_core.qp_gram_lcp), (name, p), oracle=lambda: run(kqp.gram_lcp))
+            frozen.check(run(_core.qp_gram_lcp), (name, p))
             del m
     assert bad == 0
 
@@ -336,8 +327,8 @@ def test_gram_lcp_bit_for_bit():
 # ----------------------------------------------------------------------------- box-only QPs
 
 def compare_box(args, warm=None, max_pivots=None):
-    """kqp.solve_box and _core.qp_solve_box on one box-only QP: the mismatches (empty: the
-    same bits: every returned value, every byte of out and final) and numba's code."""
+    """_core.qp_solve_box on one box-only QP, every returned value and every byte of out and
+    final checked against the frozen references: ([], the code)."""
     n = args[1].shape[0]
     warm = np.zeros(2 * n, bool) if warm is None else warm
     mp = 100 * (n + 1) if max_pivots is None else max_pivots
@@ -350,7 +341,7 @@ def compare_box(args, warm=None, max_pivots=None):
         ret = solve(*args, warm, mp, *TOL, out, final)
         return tuple(int(v) for v in ret), out, final
 
-    r, _, _ = frozen.check(run(_core.qp_solve_box), ("solve_box", mp), oracle=lambda: run(kqp.solve_box))
+    r, _, _ = frozen.check(run(_core.qp_solve_box), ("solve_box", mp))
     return [], r[0]
 
 
@@ -498,4 +489,4 @@ def test_box_basis_bit_for_bit():
                 o = np.full(2 * n, -7, np.int64)
                 return tuple(map(int, fn(lo, up, final, k, m, o))), o
 
-            frozen.check(run(_core.qp_box_basis), (n, t), oracle=lambda: run(kqp.box_basis))
+            frozen.check(run(_core.qp_box_basis), (n, t))

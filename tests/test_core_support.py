@@ -1,22 +1,19 @@
-"""The C++ core's support functions (src/python_support.cpp) against the numba kernels they
-port, bit for bit: every returned number and every byte of every array argument after the
-call (outputs, and inputs that must stay as they were).
+"""The C++ core's support functions (src/python_support.cpp) against their frozen references
+(tests/frozen.py: the outputs of the kernels they were ported from), bit for bit: every
+returned number and every byte of every array argument after the call (outputs, and inputs
+that must stay as they were).
 
-* the checks: ``lcp_check`` and ``lcp_ray_check`` (kernels/certify.py), ``check_mlcp``
-  (``_certify._check_mlcp_numpy`` over numba's ``residual2``), ``residual2``;
-* the dense solves: ``refined_solve``, ``linalg_solve`` (``linalg.solve``),
-  ``invert_in_place``, ``principal_block`` (kernels/linalg.py);
-* the MLCP reduction: ``mlcp_equilibrate``, ``mlcp_reduce`` (kernels/mlcp.py);
-* ``relabel_ids`` (kernels/carry.py).
+* the checks: ``lcp_check``, ``lcp_ray_check``, ``check_mlcp``, ``residual2``;
+* the dense solves: ``refined_solve``, ``linalg_solve``, ``invert_in_place``,
+  ``principal_block``;
+* the MLCP reduction: ``mlcp_equilibrate``, ``mlcp_reduce``;
+* ``relabel_ids``.
 
 Two kinds of input.  The fronts' own calls: every call that solve_mlcp, solve_qp,
 solve_lcp, pivot_column, is_lcp_solution, is_lcp_ray and WarmStart.relabel make on the
 goldens' problems (Siconos MLCP files, Maros-Meszaros and random QPs, the LCPs) is
-recorded and replayed through both.  And families made here: QP KKT systems, the linear
-algebra tests' matrices, solved and perturbed LCP points and rays, random id arrays.
-
-The numba kernels serve as the oracle while the port is under way; this test goes when
-they do."""
+recorded and replayed.  And families made here: QP KKT systems, the linear
+algebra tests' matrices, solved and perturbed LCP points and rays, random id arrays."""
 from __future__ import annotations
 
 import collections
@@ -31,43 +28,24 @@ import pytest
 import frozen
 import lemke
 from lemke import _certify, _core
-from oracle import carry
-from oracle import certify as kcertify
-from oracle import linalg as klinalg
-from oracle import mlcp as kmlcp
 
 sys.path.insert(0, str(Path(__file__).parent))
 import golden  # noqa: E402
 
 
-def _check_mlcp_numba(E, e, n, x, tol, y):
-    """check_mlcp's numbers by the numpy reference over numba's residual2, y = E x + e."""
-    klinalg.residual2(E, x, e, y)
-    w, ok, residual = _certify._check_mlcp_numpy(E, e, n, x, tol, klinalg.residual2)
-    assert w.tobytes() == y[n:].tobytes()
-    return ok, residual
-
-
-#: core name -> (numba function, family)
-ORACLE = {
-    "lcp_check": (kcertify.lcp_check, "check"),
-    "lcp_ray_check": (kcertify.lcp_ray_check, "ray check"),
-    "check_mlcp": (_check_mlcp_numba, "check_mlcp"),
-    "residual2": (klinalg.residual2, "residual2"),
-    "refined_solve": (klinalg.refined_solve, "refined_solve"),
-    "linalg_solve": (klinalg.solve, "solve"),
-    "invert_in_place": (klinalg.invert_in_place, "invert_in_place"),
-    "principal_block": (klinalg.principal_block, "principal_block"),
-    "mlcp_equilibrate": (kmlcp.equilibrate, "mlcp equilibrate"),
-    "mlcp_reduce": (kmlcp.reduce, "mlcp reduce"),
-    "relabel_ids": (carry.relabel_ids, "relabel"),
-}
+#: core name -> family (the report's rows)
+FAMILY = {"lcp_check": "check", "lcp_ray_check": "ray check", "check_mlcp": "check_mlcp",
+          "residual2": "residual2", "refined_solve": "refined_solve", "linalg_solve": "solve",
+          "invert_in_place": "invert_in_place", "principal_block": "principal_block",
+          "mlcp_equilibrate": "mlcp equilibrate", "mlcp_reduce": "mlcp reduce",
+          "relabel_ids": "relabel"}
 
 COUNTS: collections.Counter = collections.Counter()
 
 
 def _bits(v):
-    """v as comparable bits: arrays by dtype, shape and bytes, floats by their IEEE bits."""
+    """v as comparable bits: arrays by dtype, shape and bytes, floats by their IEEE bits (the
+    form the frozen digests were recorded in)."""
     if isinstance(v, np.ndarray):
         return ("array", v.dtype.str, v.shape, v.tobytes())
     if isinstance(v, (tuple, list)):
@@ -89,25 +67,18 @@ def _copy(args):
 
 def same(name, *args, source="made here"):
     """Run the core's ``name`` on a copy of args; check its results and the bytes of every
-    argument afterwards against the frozen oracle's; count it."""
-    def run(fn):
-        a = _copy(args)
-        with np.errstate(all="ignore"):
-            r = fn(*a)
-        return _bits(r), [_bits(x) for x in a]
-
+    argument afterwards against the frozen references; count it."""
     b = _copy(args)
     rb = getattr(_core, name)(*b)
-    rb_bits = (_bits(rb), [_bits(x) for x in b])
-    frozen.check(rb_bits, (name, source), oracle=lambda: run(ORACLE[name][0]))
-    COUNTS[(ORACLE[name][1], source)] += 1
+    frozen.check((_bits(rb), [_bits(x) for x in b]), (name, source))
+    COUNTS[(FAMILY[name], source)] += 1
     return rb
 
 
 @pytest.fixture(scope="module", autouse=True)
 def _report():
     yield
-    print("\nbit-for-bit matches (family, input):")
+    print("\ncalls checked bit for bit (family, input):")
     for (family, source), count in sorted(COUNTS.items()):
         print(f"  {family:18s} {source:24s} {count}")
 
@@ -123,7 +94,7 @@ class _Recorder:
 
     def __getattr__(self, name):
         real = getattr(_core, name)
-        if name not in ORACLE:
+        if name not in FAMILY:
             return real
 
         def call(*args):
@@ -295,7 +266,7 @@ def test_dense_solves_on_the_linalg_tests_matrices():
         same("linalg_solve", H, np.ones(k))
         same("invert_in_place", H.copy(), k)
         same("refined_solve", H, np.ones(k), 2, np.zeros(k), np.zeros(k))
-    # sizes that do not fit: False (no exception), as numba's
+    # sizes that do not fit: False (no exception)
     same("invert_in_place", np.eye(3), 4)
     same("invert_in_place", np.eye(3), -1)
     same("linalg_solve", np.eye(3), np.ones(2))
@@ -404,8 +375,8 @@ def test_mlcp_reduction_on_stacked_systems():
 
 def test_mlcp_reduce_when_the_swap_leaves_no_free_column():
     """A 2 x 2 exchange whose first pivot cancels the pair's row in every free column
-    exactly (powers of two): numba's reduce then exchanges with column -1, which it reads
-    from the end (T's constant column, col_label's last entry); the port does the same."""
+    exactly (powers of two): reduce then exchanges with column -1, which it reads from the
+    end (T's constant column, col_label's last entry), as the frozen references record."""
     a, p, b, f = 2.0**-34, 1.0, 2.0**-26, 2.0**8
     for e1 in (0.5, 0.0):
         T = np.array([[a, p, 0.25], [b, f, e1]])

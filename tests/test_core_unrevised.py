@@ -1,9 +1,9 @@
 """The C++ unrevised method (``lemke._core.unrevised_solve``, src/lemke/unrevised.cpp) against
-the numba kernel (``kernels.unrevised.solve``) as its oracle, bit for bit: the status, the
+its frozen references (tests/frozen.py: the outputs of the kernel it was ported from), bit for bit: the status, the
 pivots and the bytes of x (z and z0), the ray and the final basic z's, on the goldens' LCPs,
 seeded random families (PSD, P-matrix, integer, contact-like) at n = 1..150 with several
 tie_tol values, runs stopped by the pivot cap, and restarts from a warm basis (the covering
-vector of ``cold.restart``)."""
+vector of the driver's restart)."""
 import sys
 from pathlib import Path
 
@@ -12,7 +12,6 @@ import pytest
 
 import frozen
 from lemke import _core, problems
-from oracle import kernel, linalg, unrevised
 
 sys.path.insert(0, str(Path(__file__).parent))
 import golden  # noqa: E402
@@ -20,12 +19,6 @@ import golden  # noqa: E402
 PIVOT_TOL = 1e-11
 TIE_TOLS = (1e-11, 0.0, 1e-9)
 SIZES = (1, 2, 3, 5, 8, 13, 24, 48, 100, 150)
-
-
-@kernel
-def numba_unrevised(M, q, d, R, C, z_start, max_pivots, pivot_tol, tie_tol, x, ray, zb):
-    return unrevised.solve(M, q, d, R, C, z_start, linalg.no_matrix(), max_pivots, pivot_tol,
-                           tie_tol, x, ray, zb)
 
 
 def scales(M, q):
@@ -44,11 +37,10 @@ def _run(solve, M, q, d, R, C, flags, max_pivots, pivot_tol, tie_tol):
 def both(M, q, d, R, C, z_start, max_pivots, tie_tol, core_flags=np.bool_,
          pivot_tol=PIVOT_TOL, label=""):
     """The core on one problem: (status, pivots, x, ray, z_basic), every output checked
-    against the frozen oracle's bits."""
+    against the frozen references."""
     out = _run(_core.unrevised_solve, M, q, d, R, C, z_start.astype(core_flags), max_pivots,
                pivot_tol, tie_tol)
-    return frozen.check(out, label, oracle=lambda: _run(numba_unrevised, M, q, d, R, C, z_start,
-                                                         max_pivots, pivot_tol, tie_tol))
+    return frozen.check(out, label)
 
 
 def families():
@@ -93,14 +85,14 @@ def test_cold_runs_are_bitwise_equal():
 
 
 def _restart_covering(M, z_start):
-    """cold.restart's covering vector: c e_alpha - M[:, beta] 1, c = max|M|."""
+    """The covering vector of the driver's restart (lcp.cpp): c e_alpha - M[:, beta] 1, c = max|M|."""
     m_max = np.abs(M).max() if M.size else 0.0
     m_scale = m_max if m_max > 0.0 else 1.0
     beta = np.flatnonzero(z_start)
     cov = np.empty(M.shape[0])
     for i in range(M.shape[0]):
         acc = 0.0 if z_start[i] else m_scale
-        for j in beta:  # the order of cold.restart's sum
+        for j in beta:  # the order of the restart's sum
             acc -= M[i, j]
         cov[i] = acc
     return cov
@@ -108,7 +100,7 @@ def _restart_covering(M, z_start):
 
 def test_restarts_are_bitwise_equal():
     """From the final basis of a solved problem, on q perturbed (a warm start after a step),
-    with cold.restart's covering vector; contact problems give singular starting blocks
+    with the restart's covering vector; contact problems give singular starting blocks
     (NUMERICAL_FAILURE with no pivot) too."""
     runs, warm = 0, 0
     for name, M, q in CASES:

@@ -234,7 +234,7 @@ def _pow2_scale_reference(x):
 
 def _ruiz_reference(M, q, sweeps=EQUILIBRATE_SWEEPS):
     """equilibrate's documented iteration in numpy (whole-matrix maxima; the scales by
-    math.frexp/ldexp as pow2_scale's docstring states them), independent of the kernels."""
+    math.frexp/ldexp as lemke::equilibrate applies them), independent of the kernels."""
     import math
 
     def pow2(x):

@@ -393,7 +393,7 @@ def test_fused_path_gives_up_after_one_failed_run():
 @pytest.mark.parametrize("n", [16, 40])
 def test_box_path_defers_its_fields(n):
     """A box-only QP of at least BOX_FIRST variables with plain data takes the box kernel
-    without the front's validation (kernels.qp.screen and cholesky instead, the same
+    without the front's validation (qp.cpp's screen and cholesky instead, the same
     arrays); its residuals, objective and basis are built when first read, and are those
     of the point (KKT checked here; the warm start re-solves it in 0 pivots)."""
     import pickle

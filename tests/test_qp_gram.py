@@ -1,5 +1,5 @@
 """solve_qp when the inequalities far outnumber the variables (m >= 4n, the DUALC problems):
-the fused kernel's path in factored form (``kernels.qp``, step 7: Lemke on the multiplier
+the fused kernel's path in factored form (src/lemke/qp.cpp, step 7: Lemke on the multiplier
 LCP without forming M, the point from the final basis's active rows, refined and checked).
 
 Every solved QP is checked by the tests' own KKT check (helpers.assert_qp_kkt), every
@@ -39,8 +39,8 @@ def dense_calls(monkeypatch):
 
 
 def _recorder(monkeypatch, name):
-    """Record the codes of the core's kernel ``qp_<name>`` (the front calls the C++ core's
-    port of ``kernels.qp.<name>``, looked up on ``_core`` at each call)."""
+    """Record the codes of the core's kernel ``qp_<name>`` (the front looks it up on
+    ``_core`` at each call)."""
     codes = []
     kernel = getattr(_core, "qp_" + name)
 

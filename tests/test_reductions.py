@@ -98,7 +98,7 @@ def test_mlcp_to_lcp_finds_contradictory_equations():
 
 @pytest.mark.parametrize("seed", range(20))
 def test_equilibrate_kernel_matches_numpy_bit_for_bit(seed):
-    """The MLCP reduction's Ruiz scaling runs in a kernel (kernels.mlcp.equilibrate); it
+    """The MLCP reduction's Ruiz scaling runs in a kernel (lemke::mlcp_equilibrate); it
     must give numpy's bits (the QP goldens depend on them), zero rows and columns, wide
     ranges of magnitudes and every split of free and paired variables included."""
     from lemke._reductions.mlcp_lcp import _equilibrate_numpy, equilibrate
