@@ -1,8 +1,7 @@
 #!/usr/bin/env python
 """What the first call costs, per entry point, in fresh processes: ``import lemke``, the
 first call after it and the second (the same call again), medians of ``--runs`` fresh
-processes (5), beside numba's counters (taken where numba is installed, for the test
-oracles; the package never imports it, so they stay at zero).
+processes (5).  Since the C++ core, no entry point compiles anything at run time.
 
 Usage::
 
@@ -16,8 +15,7 @@ unrevised method, ``solve_lcp_batch``, ``solve_lcp_many``, ``solve_mlcp``, ``sol
 its box, fused and KKT-MLCP paths, ``solve_blcp`` (plain, then with a friction index and a
 warm start), ``solve_blcp_many``, ``solve_bimatrix`` and ``lemke_paths``.  Each process
 reports the seconds of ``import numpy``, of ``import lemke`` after it, of its first call
-and of the same call again (wall), and how many kernel signatures numba compiled and
-loaded.
+and of the same call again (wall).
 """
 from __future__ import annotations
 
@@ -26,29 +24,10 @@ import os
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_lcp import machine_info, mark_end, report_head, report_parser  # noqa: E402
-
-_STATS = r"""
-import json, sys, types
-def _stats():
-    if "numba" not in sys.modules:  # the package never imports numba: nothing compiled
-        return 0, 0
-    import numba.core.registry
-    hits = misses = 0
-    for name, mod in list(sys.modules.items()):
-        if not name.startswith("lemke"):
-            continue
-        for obj in vars(mod).values():
-            st = getattr(obj, "stats", None)
-            if isinstance(obj, numba.core.registry.CPUDispatcher) and st is not None:
-                hits += sum(st.cache_hits.values())
-                misses += sum(st.cache_misses.values())
-    return hits, misses
-"""
 
 _CALLS = {
     "solve_lcp": "lemke.solve_lcp(M, q)",
@@ -71,7 +50,8 @@ _CALLS = {
     "lemke_paths": "lemke.lemke_paths(M + 5, M.T + 5)",
 }
 
-_CHILD = _STATS + r"""
+_CHILD = r"""
+import json, sys
 import time
 t0 = time.perf_counter()
 import numpy as np
@@ -86,25 +66,21 @@ exec(code)
 t4 = time.perf_counter()
 exec(code)
 t5 = time.perf_counter()
-hits, misses = _stats()
-print(json.dumps(dict(numpy_s=t1 - t0, import_s=t2 - t1, call_s=t4 - t3, again_s=t5 - t4, hits=hits,
-                      misses=misses)))
+print(json.dumps(dict(numpy_s=t1 - t0, import_s=t2 - t1, call_s=t4 - t3, again_s=t5 - t4)))
 """
 
 
-def _child(code, cache):
-    env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+def _child(code):
     out = subprocess.run([sys.executable, "-c", _CHILD, code], capture_output=True, text=True,
-                         env=env, check=True)
+                         check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
-def _cli(cache):
-    env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+def _cli():
     t0 = time.perf_counter()
     c0 = os.times()
     out = subprocess.run([sys.executable, "-m", "lemke", "solve"], capture_output=True, text=True,
-                         env=env, check=True)
+                         check=True)
     c1 = os.times()
     cpu = (c1.children_user - c0.children_user) + (c1.children_system - c0.children_system)
     return dict(call_s=time.perf_counter() - t0, process_cpu_s=cpu, stderr=out.stderr.strip())
@@ -136,17 +112,15 @@ def main(argv=None):
     L += ["", f"## Each entry point in a fresh process: medians of {args.runs} processes", "",
           "Every row is a new process per run: *import numpy*, then *import lemke* (which imports "
           "every solver's module and solves one tiny problem on each engine), then the entry "
-          "point's *first call* and the same call *again*.  *compiled* / *loaded*: kernel signatures "
-          "numba compiled / loaded from its cache (the package never imports numba).", "",
-          "| entry point | import numpy | import lemke | first call | second call | first / second | compiled | loaded |",
-          "|---|---:|---:|---:|---:|---:|---:|---:|"]
+          "point's *first call* and the same call *again*.", "",
+          "| entry point | import numpy | import lemke | first call | second call | first / second |",
+          "|---|---:|---:|---:|---:|---:|"]
     for name, rows in runs.items():
         if name == "cli":
             continue
         first, again = _median(rows, "call_s"), _median(rows, "again_s")
         L.append(f"| {name} | {_median(rows, 'numpy_s') * 1e3:.1f} ms | {_median(rows, 'import_s') * 1e3:.1f} ms | "
-                 f"{first * 1e6:.0f} us | {again * 1e6:.0f} us | {first / again:.1f} | "
-                 f"{max(r['misses'] for r in rows)} | {max(r['hits'] for r in rows)} |")
+                 f"{first * 1e6:.0f} us | {again * 1e6:.0f} us | {first / again:.1f} |")
     cli = runs["cli"]
     L += ["", f"The command line `lemke solve` (a whole process, Python's start included): median "
           f"{_median(cli, 'call_s'):.2f} s, {_median(cli, 'process_cpu_s'):.2f} s of CPU; its stderr: "

@@ -1,5 +1,5 @@
 #!/usr/bin/env python
-"""The C++ core against the numba kernels it replaces and against quantecon, in one process.
+"""The C++ core against quantecon, in one process.
 
 Usage::
 
@@ -7,24 +7,26 @@ Usage::
                                     [--out benchmarks/RESULTS-core.md]
 
 For each n, a random monotone LCP (``M = A A' + 0.1 I``, ``q ~ N(0, I)``, seeded) is solved
-by ``lemke.solve_lcp`` three ways, interleaved in a random order each repeat, each answer
-checked (``w = M z + q`` recomputed here):
+by ``lemke.solve_lcp`` two ways and by quantecon, interleaved in a random order each
+repeat, each answer checked (``w = M z + q`` recomputed here):
 
 - **core**: ``solve_lcp``'s Python fast path with the C++ core's first run (the tableau);
 - **shipped**: the plain call ``solve_lcp(M, q)`` as a user makes it (the native front,
   ``src/python_front.cpp``, one native call);
-- **numba**: the same front with the numba kernel ``cold.first_run`` put back (the kernel
-  the core ports, now in ``tests/oracle/``: the last numba code path, in the same process,
-  on the same data);
 - **quantecon**: ``quantecon.optimize.lcp_lemke`` (cold);
 
 and, in the same rounds, the unrevised method and the box LCP engine (lo = 0, hi = inf) on
 the same problem, both in the core.
 
-Then the 0-pivot warm re-solve (q moved by 1e-9, the old basis still solves it) by core and
-numba, and the fixed cost at n = 1 with q >= 0 (no pivot) and q < 0 (one pivot).  The table
+Then the 0-pivot warm re-solve (q moved by 1e-9, the old basis still solves it), and the
+fixed cost at n = 1 with q >= 0 (no pivot) and q < 0 (one pivot).  The table
 gives medians in microseconds (each repeat times a batch of calls, so small n is not timer
 noise) and the ratios; the machine's load is recorded at both ends.
+
+The former column of the kernel the core was ported from (put back into the same front, in
+the same process) went with that kernel; RESULTS-core.md's rows of it were measured at commit
+129530f.  To compare with an older version, run this script in that version's checkout (its
+own build) on the same machine.
 """
 from __future__ import annotations
 
@@ -36,29 +38,16 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-# the former numba kernels, now the test oracles (tests/oracle/; numba from the test extra)
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests"))
 from bench_lcp import machine_info, mark_end, report_head, report_parser  # noqa: E402
 
 import lemke  # noqa: E402
 from lemke import _lcp  # noqa: E402
-from oracle import cold  # noqa: E402
-
-
-def numba_entry():
-    """The numba first_run's compiled entry point for solve_lcp's fast-path types, behind
-    the front's calling convention (None for no covering vector, warm basis or basic
-    array: the numba kernel takes empty arrays there)."""
-    from oracle import entry_point
-    a1, i1 = np.empty(0), np.empty(0, dtype=np.int64)
-    run = entry_point(cold.first_run, 0, np.empty((0, 0)), a1, a1, i1, 0, 0, 0.0, 0.0, 0.0, a1, i1)
-    return same_wrapper(run, a1, i1)
 
 
 def same_wrapper(run, a1, i1):
-    """``run`` behind one Python wrapper that maps None to empty arrays: both the core and
-    the numba rows are called through one, so that neither carries a call the other does
-    not."""
+    """``run`` behind one Python wrapper that maps None to ``a1``/``i1`` (the calling
+    convention the former kernel rows needed; kept so the core row measures what it
+    measured)."""
     def call(method, M, q, d, beta, k, mp, pt, tt, tol, buf, basic):
         return run(method, M, q, a1 if d is None else d, i1 if beta is None else beta, k, mp, pt,
                    tt, tol, buf, i1 if basic is None else basic)
@@ -129,7 +118,6 @@ def main(argv=None):
     t_start = time.time()
     from quantecon.optimize import lcp_lemke
 
-    nb = numba_entry()
     core = same_wrapper(_lcp._FIRST_RUN, None, None)  # (the core takes None itself)
     rng = np.random.default_rng(20261128)
     rows_cold, rows_warm = [], []
@@ -138,8 +126,6 @@ def main(argv=None):
         r = lemke.solve_lcp(M, q)
         assert r.success
         checked(M, q, r.z)
-        rn = with_kernel(nb, lambda: lemke.solve_lcp(M, q))
-        assert rn.pivots == r.pivots and rn.z.tobytes() == r.z.tobytes(), n
         qe = lcp_lemke(M, q)
         checked(M, q, qe.z)
         inf = np.full(n, np.inf)
@@ -151,7 +137,6 @@ def main(argv=None):
             "unrevised": lambda: lemke.solve_lcp(M, q, method="unrevised"),
             "box": lambda: lemke.solve_blcp(M, q, zero, inf),
             "core": lambda: with_kernel(core, lambda: lemke.solve_lcp(M, q)),
-            "numba": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M, q)),
             "front": lambda: lemke.solve_lcp(M, q),
             "quantecon": lambda: lcp_lemke(M, q),
         }, args.budget)
@@ -161,56 +146,51 @@ def main(argv=None):
         assert lemke.solve_lcp(M, q2, warm_start=ws).pivots == 0
         tw = time_calls({
             "core": lambda: with_kernel(core, lambda: lemke.solve_lcp(M, q2, warm_start=ws)),
-            "numba": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M, q2, warm_start=ws)),
             "front": lambda: lemke.solve_lcp(M, q2, warm_start=ws),
         }, args.budget)
         rows_warm.append((n, tw, t))
-        print(f"n={n}: cold core {t['core']*1e6:.2f} us, numba {t['numba']*1e6:.2f}, "
-              f"quantecon {t['quantecon']*1e6:.2f}; warm core {tw['core']*1e6:.2f}, "
-              f"numba {tw['numba']*1e6:.2f}", flush=True)
+        print(f"n={n}: cold core {t['core']*1e6:.2f} us, quantecon {t['quantecon']*1e6:.2f}; "
+              f"warm core {tw['core']*1e6:.2f}", flush=True)
     M1 = np.array([[2.0]])
     fixed = time_calls({
         "core, q >= 0 (plain call: the native front)": lambda: lemke.solve_lcp(M1, np.array([1.0])),
         "core, q < 0 (plain call: the native front)": lambda: lemke.solve_lcp(M1, np.array([-1.0])),
         "core, q >= 0": lambda: with_kernel(core, lambda: lemke.solve_lcp(M1, np.array([1.0]))),
-        "numba, q >= 0": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M1, np.array([1.0]))),
         "core, q < 0": lambda: with_kernel(core, lambda: lemke.solve_lcp(M1, np.array([-1.0]))),
-        "numba, q < 0": lambda: with_kernel(nb, lambda: lemke.solve_lcp(M1, np.array([-1.0]))),
         "quantecon, q < 0": lambda: lcp_lemke(M1, np.array([-1.0])),
     }, args.budget)
     mark_end(info)
-    L = report_head("The C++ core against numba and quantecon", "bench_core.py", args,
+    L = report_head("The C++ core against quantecon", "bench_core.py", args,
                     time.time() - t_start, info)
     a = L.append
     a("")
-    a("The numba rows put `cold.first_run` back into the same front (`with_kernel`): the code "
-      "path of the last numba commit, on the same data in the same process. The core's rows "
-      "go through the same swap (two dictionary writes and a closure, a few hundred "
-      "nanoseconds) so that both carry it; the plain call's fixed cost is listed apart.")
+    a("The core's rows put the core's `first_run` into the front's Python fast path "
+      "(`with_kernel`: two dictionary writes and a closure, a few hundred nanoseconds); the "
+      "plain call (shipped) is listed apart.")
     a("")
     a("## Cold solves (medians, microseconds)")
     a("")
-    a("| n | pivots | core | numba | shipped | quantecon | core/numba | core/quantecon | shipped/quantecon | unrevised/tableau | box LCP/LCP |")
-    a("|---|---|---|---|---|---|---|---|---|---|---|")
+    a("| n | pivots | core | shipped | quantecon | core/quantecon | shipped/quantecon | unrevised/tableau | box LCP/LCP |")
+    a("|---|---|---|---|---|---|---|---|---|")
     for n, piv, t in rows_cold:
-        a(f"| {n} | {piv} | {t['core']*1e6:.2f} | {t['numba']*1e6:.2f} | {t['front']*1e6:.2f} | "
+        a(f"| {n} | {piv} | {t['core']*1e6:.2f} | {t['front']*1e6:.2f} | "
           f"{t['quantecon']*1e6:.2f} | "
-          f"{t['core']/t['numba']:.2f} | {t['core']/t['quantecon']:.2f} | {t['front']/t['quantecon']:.2f} | "
+          f"{t['core']/t['quantecon']:.2f} | {t['front']/t['quantecon']:.2f} | "
           f"{t['unrevised']/t['core']:.2f} | {t['box']/t['core']:.2f} |")
     a("")
     a("(shipped: the plain call `solve_lcp(M, q)` as a user makes it: the native front, "
-      "src/python_front.cpp, one native call; core and numba: the Python fast path with either kernel.)")
+      "src/python_front.cpp, one native call; core: the Python fast path with the core's first_run.)")
     a("")
     a("(unrevised: `solve_lcp(method=\"unrevised\")`; box LCP: `solve_blcp` with lo = 0, hi = inf, the same "
       "LCP through the box engine; both in the core, timed in the same interleaved rounds.)")
     a("")
     a("## 0-pivot warm re-solves (q moved by 1e-9)")
     a("")
-    a("| n | core | numba | shipped | core/numba | core warm/core cold | shipped warm/shipped cold |")
-    a("|---|---|---|---|---|---|---|")
+    a("| n | core | shipped | core warm/core cold | shipped warm/shipped cold |")
+    a("|---|---|---|---|---|")
     for n, tw, t in rows_warm:
-        a(f"| {n} | {tw['core']*1e6:.2f} | {tw['numba']*1e6:.2f} | {tw['front']*1e6:.2f} | "
-          f"{tw['core']/tw['numba']:.2f} | {tw['core']/t['core']:.2f} | {tw['front']/t['front']:.2f} |")
+        a(f"| {n} | {tw['core']*1e6:.2f} | {tw['front']*1e6:.2f} | "
+          f"{tw['core']/t['core']:.2f} | {tw['front']/t['front']:.2f} |")
     a("")
     a("## Fixed cost, n = 1 (medians, microseconds)")
     a("")

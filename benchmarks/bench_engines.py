@@ -7,8 +7,7 @@ Usage::
     python benchmarks/bench_engines.py [--quick] [--note TEXT] [--out benchmarks/RESULTS-engines.md]
 
 Needs ``pip install pybullet dartpy`` (the ``bench`` extra); a missing engine is reported,
-not fatal.  ``--quick`` (fewer islands and steps) runs in under a minute once numba's cache
-holds lemke's kernels.
+not fatal.  ``--quick`` (fewer islands and steps) runs in under a minute.
 
 Same islands (DART)
     dartpy 6.20 binds ``DantzigBoxedLcpSolver.solve`` and ``PgsBoxedLcpSolver.solve``, but

@@ -28,9 +28,9 @@ Checks
     ``RESID_RTOL * max(max|M|, max|q|, max|M| max|z|)``.
 
 First call
-    In fresh subprocesses: ``import lemke`` time, and the first ``solve_lcp`` call
-    (a) with an empty numba cache (a new ``NUMBA_CACHE_DIR``) and (b) with that cache
-    filled by (a).
+    In fresh subprocesses: ``import lemke`` time, and the first ``solve_lcp`` call, in a
+    first process and again in a second one (nothing is compiled at run time: the two
+    differ by the OS's file cache only).
 """
 from __future__ import annotations
 
@@ -125,7 +125,7 @@ def run_qe(M, q):
 
 
 def warm_up():
-    """Compile both solvers (and the numba cache load) before anything is timed."""
+    """Warm both solvers up (quantecon compiles its kernels) before anything is timed."""
     for n in (3, 10):
         M, q = make_problem(n, 10_000)
         run_lemke(M, q)
@@ -264,8 +264,7 @@ _IMPORT_ONLY = textwrap.dedent("""
     t0 = time.perf_counter()
     import lemke
     t1 = time.perf_counter()
-    print(json.dumps(dict(import_s=t1 - t0, numba_loaded="numba" in sys.modules,
-                          scipy_loaded="scipy" in sys.modules)))
+    print(json.dumps(dict(import_s=t1 - t0, scipy_loaded="scipy" in sys.modules)))
 """)
 
 _IMPORT_BREAKDOWN = textwrap.dedent("""
@@ -273,37 +272,9 @@ _IMPORT_BREAKDOWN = textwrap.dedent("""
     t0 = time.perf_counter()
     import numpy
     t1 = time.perf_counter()
-    import numba
-    t2 = time.perf_counter()
     import lemke
     t3 = time.perf_counter()
-    print(json.dumps(dict(numpy_s=t1 - t0, numba_s=t2 - t1, lemke_rest_s=t3 - t2)))
-""")
-
-
-# The floor any cache=True numba function pays: a trivial kernel, first call in a fresh process.
-_TRIVIAL_MOD = textwrap.dedent("""
-    import numpy as np
-    from numba import njit
-
-    @njit(cache=True, nogil=True)
-    def trivial(x):
-        s = 0.0
-        for i in range(x.size):
-            s += x[i]
-        return s
-""")
-
-_TRIVIAL_CALL = textwrap.dedent("""
-    import json, sys, time
-    sys.path.insert(0, sys.argv[1])
-    import numpy as np
-    import bench_trivial_kernel as m
-    x = np.ones(10)
-    t0 = time.perf_counter()
-    m.trivial(x)
-    t1 = time.perf_counter()
-    print(json.dumps(dict(first_s=t1 - t0)))
+    print(json.dumps(dict(numpy_s=t1 - t0, lemke_rest_s=t3 - t1)))
 """)
 
 
@@ -323,50 +294,15 @@ def _subprocess(code, extra_env=None, args=()):
     return out
 
 
-def _count_cache_files(d):
-    return sum(f.endswith((".nbi", ".nbc")) for _, _, fs in os.walk(d) for f in fs)
-
-
-def _cache_state(d):
-    """{path: (mtime_ns, size)} of the numba cache files under d."""
-    out = {}
-    for root, _, fs in os.walk(d):
-        for f in fs:
-            if f.endswith((".nbi", ".nbc")):
-                st = os.stat(os.path.join(root, f))
-                out[os.path.join(root, f)] = (st.st_mtime_ns, st.st_size)
-    return out
-
-
 def first_call(runs, log):
-    cold, warm, cache_files = [], [], []
-    with tempfile.TemporaryDirectory(prefix="lemke-bench-") as root:
-        for i in range(runs):
-            cache = os.path.join(root, f"numba-cache-{i}")
-            os.mkdir(cache)
-            env = {"NUMBA_CACHE_DIR": cache}
-            cold.append(_subprocess(_FIRST_CALL, env))
-            cache_files.append(_count_cache_files(cache))
-            before = _cache_state(cache)
-            w = _subprocess(_FIRST_CALL, env)
-            # A run that rewrote the cache compiled instead of loading (e.g. the lemke
-            # sources changed in between, which invalidates numba's cache).
-            w["cache_rewritten"] = _cache_state(cache) != before
-            warm.append(w)
-        mod_dir = os.path.join(root, "trivial")
-        os.mkdir(mod_dir)
-        with open(os.path.join(mod_dir, "bench_trivial_kernel.py"), "w") as f:
-            f.write(_TRIVIAL_MOD)
-        triv_cold, triv_warm = [], []
-        for i in range(runs):
-            env = {"NUMBA_CACHE_DIR": os.path.join(root, f"numba-cache-trivial-{i}")}
-            triv_cold.append(_subprocess(_TRIVIAL_CALL, env, (mod_dir,)))
-            triv_warm.append(_subprocess(_TRIVIAL_CALL, env, (mod_dir,)))
-        imports = [_subprocess(_IMPORT_ONLY) for _ in range(max(runs, 5))]
-        breakdown = [_subprocess(_IMPORT_BREAKDOWN) for _ in range(max(runs, 5))]
-    log(f"first call: {runs} cold + {runs} warm-cache subprocesses")
-    return dict(cold=cold, warm=warm, cache_files=cache_files, imports=imports,
-                breakdown=breakdown, triv_cold=triv_cold, triv_warm=triv_warm)
+    cold, warm = [], []
+    for _ in range(runs):
+        cold.append(_subprocess(_FIRST_CALL))
+        warm.append(_subprocess(_FIRST_CALL))
+    imports = [_subprocess(_IMPORT_ONLY) for _ in range(max(runs, 5))]
+    breakdown = [_subprocess(_IMPORT_BREAKDOWN) for _ in range(max(runs, 5))]
+    log(f"first call: {runs} + {runs} subprocesses")
+    return dict(cold=cold, warm=warm, imports=imports, breakdown=breakdown)
 
 
 # --------------------------------------------------------------------------- machine
@@ -386,8 +322,12 @@ def machine_info():
         usable = len(os.sched_getaffinity(0))
     except AttributeError:
         usable = os.cpu_count()
-    import numba
     import scipy
+    try:
+        import numba  # quantecon's compiler (the peer's), where installed
+        numba_version = numba.__version__
+    except ImportError:
+        numba_version = "not installed"
     commit = None
     try:
         commit = subprocess.run(["git", "-C", LEMKE_ROOT, "rev-parse", "--short", "HEAD"],
@@ -408,7 +348,7 @@ def machine_info():
         cpu=cpu, cores=os.cpu_count(), usable_cores=usable,
         platform=platform.platform(),
         python=f"{platform.python_implementation()} {platform.python_version()}",
-        numpy=np.__version__, scipy=scipy.__version__, numba=numba.__version__,
+        numpy=np.__version__, scipy=scipy.__version__, numba=numba_version,
         quantecon=quantecon.__version__ if quantecon else "not installed", lemke=getattr(lemke, "__version__", "?"),
         commit=commit,
     )
@@ -507,7 +447,7 @@ def render(info, args, rows, details, fc, total_s):
       f"`numpy.random.default_rng([{SEED}, n, k])`. Both solvers get the same float64 arrays "
       "and default options.")
     a("")
-    a("Each problem: both solvers warmed up (numba compilation excluded), then called "
+    a("Each problem: both solvers warmed up (quantecon's compilation excluded), then called "
       "alternately, solver order swapped every repeat, each call timed with "
       "`time.perf_counter` (GC off); per-problem time = median over repeats. "
       + ("Repeats per problem: " + (f"{args.repeats} (fixed)." if args.repeats else
@@ -565,23 +505,12 @@ def render(info, args, rows, details, fc, total_s):
     line("`import lemke` (fresh process, nothing imported before)", fc["imports"], "import_s")
     line("  ↳ same runs, whole process wall time (incl. interpreter start-up)", fc["imports"], "wall_s")
     line("  ↳ split (separate runs): `import numpy`", fc["breakdown"], "numpy_s")
-    line("  ↳ split: then `import numba`", fc["breakdown"], "numba_s")
     line("  ↳ split: then `import lemke`", fc["breakdown"], "lemke_rest_s")
-    line("first `solve_lcp` call, empty numba cache (compiles)", fc["cold"], "first_s")
-    line("first `solve_lcp` call, filled numba cache", fc["warm"], "first_s")
+    line("first `solve_lcp` call, first process", fc["cold"], "first_s")
+    line("first `solve_lcp` call, second process", fc["warm"], "first_s")
     line("second `solve_lcp` call (same process, for reference)", fc["warm"], "second_s")
-    line("reference: first call of a trivial `njit(cache=True)` function, empty cache",
-         fc["triv_cold"], "first_s")
-    line("reference: the same, filled cache (numba's floor)", fc["triv_warm"], "first_s")
     a("")
-    if any(w.get("cache_rewritten") for w in fc["warm"]):
-        a("\\* This filled-cache run rewrote the cache, i.e. it compiled instead of loading "
-          "(numba invalidates its cache when a kernel's source file changes; were the lemke "
-          "sources edited during the benchmark?). Rerun for a clean number.")
-        a("")
-    a(f"Numba cache files written by each empty-cache run: {', '.join(map(str, fc['cache_files']))}. "
-      f"After `import lemke`, numba is loaded: {fc['imports'][0]['numba_loaded']}; scipy is loaded: "
-      f"{fc['imports'][0]['scipy_loaded']} (numba imports scipy when it is installed).")
+    a(f"After `import lemke`, scipy is loaded: {fc['imports'][0]['scipy_loaded']}.")
     a("")
     a("## Per-problem data")
     a("")
@@ -657,10 +586,8 @@ def render_no_fc(info, args, rows, details, total_s):
 
 _EMPTY_FC = dict(
     cold=[dict(first_s=float("nan"))], warm=[dict(first_s=float("nan"), second_s=float("nan"))],
-    cache_files=[0], imports=[dict(import_s=float("nan"), wall_s=float("nan"), numba_loaded=None,
-                                   scipy_loaded=None)],
-    breakdown=[dict(numpy_s=float("nan"), numba_s=float("nan"), lemke_rest_s=float("nan"))],
-    triv_cold=[dict(first_s=float("nan"))], triv_warm=[dict(first_s=float("nan"))],
+    imports=[dict(import_s=float("nan"), wall_s=float("nan"), scipy_loaded=None)],
+    breakdown=[dict(numpy_s=float("nan"), lemke_rest_s=float("nan"))],
 )
 
 if __name__ == "__main__":

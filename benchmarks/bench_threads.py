@@ -25,8 +25,8 @@ is called from the Python side.
 
 Each section runs in a fresh subprocess per lemke version (``--versions LABEL=PATH``: PATH is
 put first on PYTHONPATH, so it is a directory holding a ``lemke`` package), the versions
-alternating order from section to section.  Each version compiles its kernels once into a
-numba cache of its own (``NUMBA_CACHE_DIR``, a temporary directory): numba's on-disk cache
+alternating order from section to section.  A version that still compiles its kernels
+(those before the C++ core) does so once into a numba cache of its own (``NUMBA_CACHE_DIR``, a temporary directory): numba's on-disk cache
 keys a kernel by its own source file only, so a cache left by an older ``unrevised.py``
 would still serve ``cold.py``'s kernels that inline it.  The subprocesses and the load
 process run with the BLAS thread variables (``OPENBLAS_NUM_THREADS``, ``OMP_NUM_THREADS``,
@@ -122,7 +122,7 @@ def child(args):
 
     batch = args.child.startswith("batch")
     rows = []
-    # Compile (or load from the numba cache) everything first.
+    # Warm everything up first (older versions compile their kernels here).
     for family in FAMILIES:
         M, q = problems(family, 8, 1)[0]
         for m in ("tableau", "unrevised"):
@@ -276,11 +276,15 @@ def machine_info(args):
     except OSError:
         nproc = str(os.cpu_count())
     import numpy
-    import numba
     import scipy
+    try:
+        import numba  # what older versions compiled with (and quantecon), where installed
+        numba_version = numba.__version__
+    except ImportError:
+        numba_version = "not installed"
 
     return dict(cpu=model, nproc=nproc, python=platform.python_version(), numpy=numpy.__version__,
-                scipy=scipy.__version__, numba=numba.__version__,
+                scipy=scipy.__version__, numba=numba_version,
                 date=_dt.datetime.now().isoformat(timespec="seconds"),
                 blas=("default (BLAS thread variables removed)" if not args.blas_threads
                       else f"{', '.join(BLAS_VARS)} = {args.blas_threads}"))

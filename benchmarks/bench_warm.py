@@ -390,7 +390,7 @@ def render_head(info, args, total_s, commit_note):
     a("Problems: `M = A A' + (B - B')`, A, B standard normal n x n scaled by 1/sqrt(n), q standard "
       f"normal, from `numpy.random.default_rng([{SEED}, n, k])` (the problems of `bench_lcp.py`). "
       "All solvers get the same float64 arrays and default options; everything is warmed up "
-      "(numba compiled) before timing. Timings are `time.perf_counter` around one solver call, "
+      "(quantecon compiled) before timing. Timings are `time.perf_counter` around one solver call, "
       "garbage collector off. lemke's times include its Python front end (validation, copies, the "
       "answer check on the caller's data, the result object); Drake's include its "
       "`MathematicalProgram` front end (`Solve(prog)` -> result object), but not building the program.")
@@ -639,7 +639,7 @@ def main(argv=None):
     if args.commit:
         commit_note = (f" (snapshot of commit {args.commit})" if not info["commit"]
                        else f" (--commit {args.commit})")
-    # Warm up: numba kernels of both methods (cold and restart paths), quantecon, Drake.
+    # Warm up: both methods (cold and restart paths), quantecon, Drake.
     for n in (3, 10, 30):
         M, q = make_problem(n, 10_000)
         for m in METHODS:

@@ -21,8 +21,7 @@ for every repeat), with everything compiled beforehand:
 * convex QPs (dense, strictly convex, with inequalities and equalities): ``lemke.solve_qp``
   against quadprog, daqp, proxqp (proxsuite) and piqp through qpsolvers, each answer compared
   with quadprog's;
-* the first call: ``import lemke`` and the first solve with an empty and a filled numba
-  cache, in fresh subprocesses.
+* the first call: ``import lemke`` and the first solve, in fresh subprocesses.
 
 Every answer is checked by this script on the caller's data (residual ``max|min(z, Mz+q)|``
 against ``1e-8`` times the data's scale); a *wrong* answer is one reported as solved that
@@ -630,14 +629,12 @@ def render(info, args, records, warm, batches, qp_names, qp_rows, fc, plotted, t
         a("|---|---:|---|")
         a(f"| `import lemke` | {bl._t(med(fc['imports'], 'import_s'))} | "
           + ", ".join(bl._t(x["import_s"]) for x in fc["imports"]) + " |")
-        a(f"| first `solve_lcp` (n = 10), empty numba cache (compiles) | {bl._t(med(fc['cold'], 'first_s'))} | "
+        a(f"| first `solve_lcp` (n = 10), first process | {bl._t(med(fc['cold'], 'first_s'))} | "
           + ", ".join(bl._t(x["first_s"]) for x in fc["cold"]) + " |")
-        a(f"| first `solve_lcp`, filled numba cache | {bl._t(med(fc['warm'], 'first_s'))} | "
+        a(f"| first `solve_lcp`, second process | {bl._t(med(fc['warm'], 'first_s'))} | "
           + ", ".join(bl._t(x["first_s"]) for x in fc["warm"]) + " |")
         a(f"| second `solve_lcp` (same process) | {bl._t(med(fc['warm'], 'second_s'))} | "
           + ", ".join(bl._t(x["second_s"]) for x in fc["warm"]) + " |")
-        a(f"| reference: a trivial `njit(cache=True)` function, filled cache | {bl._t(med(fc['triv_warm'], 'first_s'))} | "
-          + ", ".join(bl._t(x["first_s"]) for x in fc["triv_warm"]) + " |")
         a("")
     return "\n".join(L) + "\n"
 

@@ -73,8 +73,8 @@ static bool is_flags(const A& a) {
     return a.dtype() == nb::dtype<bool>() || a.dtype() == nb::dtype<std::uint8_t>();
 }
 
-// unrevised.solve(M, q, d, R, C, z_start, no_matrix(), ...) (for tests against the numba
-// kernel): (status, pivots). z_start: n flags or empty (all w basic). Mis-sized or mistyped
+// The unrevised method on (M, q, d) equilibrated by (R, C) from z_start (for the tests that
+// run the engine directly): (status, pivots). z_start: n flags or empty (all w basic). Mis-sized or mistyped
 // arrays raise ValueError.
 static std::tuple<int, std::int64_t> unrevised_solve(Matrix M, Vector q, Vector d, Vector R,
                                                      Vector C, FlagsIn z_start,

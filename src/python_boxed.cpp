@@ -1,9 +1,7 @@
 // lemke._core.boxed: the box LCP engine (src/lemke/boxed.*) for the Python front
-// (lemke/_blcp.py). Each function takes the arguments of the numba kernel of the same name
-// in lemke/kernels/boxed.py and returns what it returns, so the front switches by importing
-// this submodule in place of the kernels' module. Sizes are checked before the GIL is
-// released: where the numba kernel checks a size itself the same code comes back, every
-// other mismatch (one the kernel would read past) raises ValueError. Output arrays are
+// (lemke/_blcp.py and _blcp_many.py). Sizes are checked before the GIL is released: where
+// the engine checks a size itself its code comes back (NOT_FINITE, BAD_FINDEX), every other
+// mismatch (one the engine would read past) raises ValueError. Output arrays are
 // never converted (a float32 or non-contiguous buffer raises instead of being copied).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -152,7 +150,7 @@ std::tuple<NumpyMatrix, NumpyVector, NumpyVector, NumpyVector> extend(
     }
     double* p = work.data();
     std::size_t Ns = static_cast<std::size_t>(N);
-    std::size_t rest = work.shape(0) - Ns * Ns - 2 * Ns;  // hix: the rest, as numba's slice
+    std::size_t rest = work.shape(0) - Ns * Ns - 2 * Ns;  // hix: the rest of work
     return {NumpyMatrix(p, {Ns, Ns}, work_obj), NumpyVector(p + Ns * Ns, {Ns}, work_obj),
             NumpyVector(p + Ns * Ns + Ns, {Ns}, work_obj),
             NumpyVector(p + Ns * Ns + 2 * Ns, {rest}, work_obj)};
@@ -320,8 +318,8 @@ std::int64_t islands(CIndices qoff, CIndices findex, Bytes fflag, States state, 
 
 void bind_boxed(nb::module_& m) {
     nb::module_ b = m.def_submodule(
-        "boxed", "The box LCP engine (port of lemke.kernels.boxed): the same functions, "
-                 "arguments and return values.");
+        "boxed", "The box LCP engine (src/lemke/boxed.*): solve, front, extend and the "
+                 "checks, for lemke._blcp.");
     b.def("solve", &solve, "M"_a, "q"_a, "lo"_a, "hi"_a, "warm"_a, "cov_mode"_a, "max_pivots"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a.noconvert(), "final"_a.noconvert());
     b.def("box_check", &box_check, "M"_a, "q"_a, "lo"_a, "hi"_a, "z"_a, "tol"_a,

@@ -1,6 +1,6 @@
 // lemke._core's games functions: the bimatrix games engine (src/lemke/games.*) with the
-// arguments and return values of the numba kernels of lemke/kernels/games.py that
-// lemke/_games.py calls (lemke_howson, trace -> games_trace, check -> games_check). Every
+// arguments and return values lemke/_games.py expects (lemke_howson, games_trace,
+// games_check). Every
 // size and label is checked before the GIL is released (ValueError otherwise), so bad input
 // never reaches the engine.
 #include <nanobind/nanobind.h>

@@ -1,8 +1,7 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
-// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box) with the arguments and results of
-// the numba kernels of lemke/kernels/qp.py, and a few pieces for the oracle tests
+// qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box), and a few pieces whose bits the tests check
 // (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts).
-// Sizes are checked here, before the GIL is released: where the numba kernel answers data
+// Sizes are checked here, before the GIL is released: where the kernel answers data
 // of mismatched shapes (screen: False; solve, solve_gram: BAD_INPUT) this answers the same;
 // where it would read or write out of bounds this raises ValueError. Arrays of the wrong
 // dtype or layout raise TypeError (outputs are never converted).
@@ -102,7 +101,7 @@ Code4 fused(const In2& P, const In1& q, const In2& G, const In1& h, const In2& A
     qp::OutLayout L{n, p0, m0};
     idx k0 = L.basis();
     if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(out) < L.length()) {
-        // numba's kernel: out[:k0] = 0 (clamped to out), then BAD_INPUT from the screen; a
+        // out[:k0] = 0 (clamped to out), then BAD_INPUT from the screen; a
         // buffer without room for the basis gets the same answer (it would be written past)
         double* o = out.data();
         for (idx t = 0; t < k0 && t < len(out); ++t) o[t] = 0.0;
@@ -176,8 +175,8 @@ Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
 bool is_flags(const FlagsOut& a);
 
 // qp.solve_box: out of length at least 7n + 5, final (int64) at least 3n, warm (bool) at
-// least 2n. Shapes that do not match: BAD_INPUT with nothing written (numba's screen);
-// buffers too short: ValueError (numba's kernel would write past them).
+// least 2n. Shapes that do not match: BAD_INPUT with nothing written (the screen's);
+// buffers too short: ValueError (the kernel would write past them).
 Code4 solve_box(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, FlagsOut warm,
                 std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
                 IdxOut final) {

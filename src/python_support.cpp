@@ -1,8 +1,8 @@
 // lemke._core's support functions: what the Python fronts call besides the LCP driver (the
 // checks of _certify, the dense solves of _pivot_column and the MLCP reduction, the MLCP
 // exchanges, WarmStart.relabel's hash tables, _lcp's principal block), each with the
-// arguments and results of the numba kernel it ports. Sizes are checked here: a mis-sized
-// array raises ValueError (or gives False where the numba kernel does), an array of the
+// arguments and results the tests record (tests/data/frozen/). Sizes are checked here: a
+// mis-sized array raises ValueError (or gives False where the function answers for itself), an array of the
 // wrong dtype or layout TypeError (outputs are never converted: they must be float64 or
 // int64, C-contiguous and writable), so no call reads or writes out of bounds. The GIL is
 // released around the work.
@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <tuple>
+#include <vector>
 
 #include "lemke/carry.hpp"
 #include "lemke/certify.hpp"
@@ -142,6 +143,17 @@ NewMatrix principal_block(In2 M, IdxIn index) {
     return NewMatrix(out, {static_cast<std::size_t>(k), static_cast<std::size_t>(k)}, owner);
 }
 
+// equilibrate(M, q, R, C): the LCP's Ruiz scales (lemke::equilibrate, as the driver's
+// prologue computes them) into R and C; for the tests that call an engine directly.
+void equilibrate(In2 M, In1 q, Out1 R, Out1 C) {
+    idx n = len(q);
+    if (len(M, 0) != n || len(M, 1) != n || len(R) != n || len(C) != n)
+        throw nb::value_error("equilibrate: M must be n x n, q, R and C of length n");
+    std::vector<double> work(static_cast<std::size_t>(2 * n));
+    nb::gil_scoped_release release;
+    lemke::equilibrate(mat(M), q.data(), R.data(), C.data(), work.data());
+}
+
 // mlcp.equilibrate(E, n, iterations, r, s): Ruiz scaling into r, s (all ones on entry).
 void mlcp_equilibrate(In2 E, std::int64_t n, std::int64_t iterations, Out1 r, Out1 s) {
     idx N = len(E, 0);
@@ -191,6 +203,8 @@ void bind_support(nb::module_& m) {
     m.def("linalg_solve", &linalg_solve, "H"_a, "b"_a);
     m.def("invert_in_place", &invert_in_place, nb::arg("G").noconvert(), "k"_a);
     m.def("principal_block", &principal_block, "M"_a, "idx"_a);
+    m.def("equilibrate", &equilibrate, "M"_a, "q"_a, nb::arg("R").noconvert(),
+          nb::arg("C").noconvert());
     m.def("mlcp_equilibrate", &mlcp_equilibrate, "E"_a, "n"_a, "iterations"_a,
           nb::arg("r").noconvert(), nb::arg("s").noconvert());
     m.def("mlcp_reduce", &mlcp_reduce, nb::arg("T").noconvert(), "n"_a, "rank_tol"_a,

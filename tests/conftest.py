@@ -16,6 +16,28 @@ SANITIZED_TEST = "test_solves_under_sanitizers"
 _sanitized = {}  # "job": the SanitizedJob of this session
 
 
+_frozen_store: dict = {}  # the references recorded in this session (LEMKE_FREEZE=update)
+
+
+@pytest.fixture(autouse=True)
+def _frozen_reference(request):
+    """The running test's frozen reference (tests/frozen.py): what it hands to
+    ``frozen.check`` is compared with the recorded digests when it ends."""
+    import frozen
+
+    frozen._current = ref = frozen.Reference(Path(request.node.fspath).stem, request.node.name)
+    yield ref
+    frozen._current = None
+    ref.finish(_frozen_store)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    if _frozen_store and exitstatus == 0:
+        import frozen
+
+        frozen.write(_frozen_store)
+
+
 @pytest.fixture(params=lemke.METHODS)
 def method(request):
     """Every test that takes ``method`` runs once per Lemke method."""
@@ -109,11 +131,10 @@ class SanitizedJob:
                             stderr=f"no AddressSanitizer runtime found for the compiler {compiler}")
             return
         env = dict(os.environ, LD_PRELOAD=" ".join(preload), PYTHONPATH=str(pkg), PYTHONFAULTHANDLER="1",
-                   # no leak check: CPython, numpy and numba keep allocations to the end by
+                   # no leak check: CPython and numpy keep allocations to the end by
                    # design, and LeakSanitizer would report thousands of them at exit
                    ASAN_OPTIONS="detect_leaks=0:abort_on_error=0",
                    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1")
-        env.pop("NUMBA_DISABLE_JIT", None)
         self.out["env"] = {k: env[k] for k in ("LD_PRELOAD", "PYTHONPATH", "ASAN_OPTIONS", "UBSAN_OPTIONS")}
         self.out["summary_path"] = str(self.dir / "summary.json")
         self._run("child", [sys.executable, str(HERE / "sanitized_run.py"), self.out["summary_path"]],

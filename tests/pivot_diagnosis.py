@@ -4,9 +4,8 @@
 equilibration) with the basis re-solved by LU at every pivot, so each basis has the accuracy
 of its own condition; it returns the status, pivots, final basis, z and per pivot the
 condition number of the basis.  ``replay(M, q, pivots)`` takes a kernel's pivot sequence
-(``(leaving, entering)`` labels, e.g. recorded by wrapping ``pivoting.after_pivot`` under
-``NUMBA_DISABLE_JIT=1``) and prints, per pivot, the condition of the basis and whether the
-kernel's leaving row is a minimum ratio row of the accurate values.
+(``(leaving, entering)`` labels) and prints, per pivot, the condition of the basis and
+whether the kernel's leaving row is a minimum ratio row of the accurate values.
 
 Measured with them on the pile scene (seed 0, 20 bodies, steps 26-31): the reference run
 solves every step in 86-124 pivots (bases of condition up to 1e9); the kernels' first runs
@@ -17,13 +16,13 @@ Labels: 0..n-1 for w, n..2n-1 for z, 2n for z0.
 import numpy as np
 import scipy.linalg as sl
 
-from oracle.linalg import equilibrate
+from lemke import _core
 
 
 def _system(M, q):
     n = q.size
     R, C = np.empty(n), np.empty(n)
-    equilibrate(M, q, R, C)
+    _core.equilibrate(np.ascontiguousarray(M, float), np.ascontiguousarray(q, float), R, C)
     A = R[:, None] * M * C[None, :]
     ds = R / R.max()
     return np.hstack([np.eye(n), -A, -ds[:, None]]), R * q, C

@@ -244,7 +244,7 @@ def sizes(run):
         for rank in (None, max(1, n // 2)):
             P, q, G, h, A, b, lb, ub = problems.random_convex_qp(n, rng, rank=rank)
             forms = [("G", (P, q, G, h)), ("G A", (P, q, G, h, A, b)), ("G A box", (P, q, G, h, A, b, lb, ub))]
-            if n >= lemke._qp.BOX_FIRST:  # (smaller box-only QPs go to a numba kernel, not to the core)
+            if n >= lemke._qp.BOX_FIRST:  # (smaller box-only QPs take the fused box kernel)
                 forms += [("box", (P, q, None, None, None, None, lb, ub)),
                           ("lb", (P, q, None, None, None, None, lb, None)),
                           ("ub, no P", (0 * P, q, None, None, None, None, lb, ub))]

@@ -379,7 +379,7 @@ def test_pile_warm_starts_across_steps():
 
 @pytest.mark.parametrize("friction", [True, False])
 def test_one_call_equals_the_general_path(friction):
-    """solve_blcp's one-call path (kernels.boxed.front and the runs around it) against the
+    """solve_blcp's one-call path (boxed::front and the runs around it) against the
     general path that it stands for (_solve_friction / _solve run step by step, with their
     own basis points, checks and ladder), cold and warm-started across the steps of a pile:
     the same status, pivots, recoveries, final basis and bounds in force, z to 1e-12; and

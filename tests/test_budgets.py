@@ -34,8 +34,8 @@ def game_50():
 
 @pytest.fixture(scope="module")
 def warm():
-    """Compile (or load from numba's cache) the Lemke-Howson kernel, cold and warm-started,
-    so that the timings below measure the search only."""
+    """Run the Lemke-Howson kernel once, cold and warm-started (caches and pages warm), so
+    that the timings below measure the search only."""
     lemke.lemke_paths(STENGEL_A, STENGEL_B)
     A, B = game_50()
     lemke.lemke_paths(A, B, max_equilibria=2)
@@ -251,7 +251,7 @@ CHILD = textwrap.dedent("""
     import lemke
     rng = np.random.default_rng(0)
     A, B = rng.uniform(size=(50, 50)), rng.uniform(size=(50, 50))
-    lemke.lemke_paths(A, B, max_equilibria=2)  # compiled, or loaded from numba's cache
+    lemke.lemke_paths(A, B, max_equilibria=2)  # warm caches
     print("ready", flush=True)
     try:
         lemke.lemke_paths(A, B)  # no bound: minutes

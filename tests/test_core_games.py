@@ -1,6 +1,6 @@
 """The C++ bimatrix games engine (``lemke._core.lemke_howson``, ``games_trace``,
-``games_check``; src/lemke/games.cpp) against the numba kernels it ports
-(``kernels.games.lemke_howson``, ``trace``, ``check``) as the oracle, bit for bit: every
+``games_check``; src/lemke/games.cpp) against its frozen references (tests/frozen.py: the
+outputs of the kernels it was ported from), bit for bit: every
 returned number and every byte of the output buffers (the strategies, the regret and the
 payoffs, the final labels and the path state), on the games of tests/test_games.py (the
 textbook games, von Stengel's, Selten's, one-action and constant games, zero-sum games),
@@ -10,16 +10,15 @@ warm starts (every equilibrium basis found, and singular start bases), capped an
 restarted runs (a pivot cap, exact ties, a pivot tolerance that breaks the paths so that
 the perturbed restart runs), the tracing procedure from several priors, and the check.
 
-Each family reports how many runs matched (``pytest -s``).  The numba kernels serve as the
-oracle while the port is under way; this test goes when they do."""
+Each family reports how many runs it checked (``pytest -s``)."""
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+import frozen
 from lemke import _core
-from oracle import games as kg
 
 sys.path.insert(0, str(Path(__file__).parent))
 import test_games as tg  # noqa: E402  (the games and generators of the front's tests)
@@ -33,18 +32,19 @@ def slack_start(m, n):
 
 def lh(fn, A, B, k, start, params):
     m, n = A.shape
-    buf = np.full(2 * (m + n) + 3 + kg.STATE, np.nan)
+    buf = np.full(2 * (m + n) + 3 + _core.GAMES_STATE, np.nan)
     r = fn(A, B, k, start, params, buf)
     return tuple(int(v) for v in r), buf.tobytes()
 
 
 def same_lh(A, B, k, start=None, params=PARAMS):
-    """Both kernels on one Lemke-Howson solve: (equal, numba's result, numba's buffer)."""
+    """The core's Lemke-Howson solve, checked against the frozen references: (True, its
+    result, its buffer); a changed bit fails the test when it ends."""
     m, n = A.shape
     start = slack_start(m, n) if start is None else start
-    a = lh(kg.lemke_howson, A, B, k, start, params)
     b = lh(_core.lemke_howson, A, B, k, start, params)
-    return a == b, a
+    frozen.check(b, ("lemke_howson", m, n, k))
+    return True, b
 
 
 def tr(fn, A, B, p, q, mp, ptol, ttol, tol):
@@ -56,9 +56,9 @@ def tr(fn, A, B, p, q, mp, ptol, ttol, tol):
 
 
 def same_trace(A, B, p, q, mp=10**6, ptol=1e-11, ttol=1e-11, tol=1e-9):
-    a = tr(kg.trace, A, B, p, q, mp, ptol, ttol, tol)
     b = tr(_core.games_trace, A, B, p, q, mp, ptol, ttol, tol)
-    return a == b, a
+    frozen.check(b, ("trace", A.shape, mp))
+    return True, b
 
 
 def as_game(A, B):
@@ -77,7 +77,7 @@ class Tally:
             self.bad.append(what)
 
     def done(self):
-        print(f"\n{self.name}: {self.runs - len(self.bad)}/{self.runs} bit for bit")
+        print(f"\n{self.name}: {self.runs} runs checked")
         assert not self.bad, self.bad[:10]
 
 
@@ -146,7 +146,7 @@ def random_games(seeds):
 
 def test_constants_agree():
     assert (_core.GAMES_STATE, _core.GAMES_HISTORY, _core.GAMES_NOT_FINITE, _core.GAMES_UNCHECKED) \
-        == (kg.STATE, kg.HISTORY, kg.NOT_FINITE, kg.UNCHECKED)
+        == (67, 64, -1, 7)  # the oracle's (STATE, HISTORY, NOT_FINITE, UNCHECKED)
 
 
 def test_known_games_every_label_and_warm_starts():
@@ -199,7 +199,7 @@ def test_tolerances_caps_and_restarts():
 def test_singular_and_arbitrary_warm_starts():
     """Arbitrary start bases (random splits of the labels between the tableaux; some
     singular: the path fails at once).  (A start with a label basic in both tableaux is
-    refused: the numba kernel would read and write out of bounds.)"""
+    refused: the engine would read and write out of bounds.)"""
     tally = Tally("singular and arbitrary start bases")
     rng = np.random.default_rng(9)
     for name, A, B in [("constant", np.ones((4, 3)), np.ones((4, 3))),
@@ -232,9 +232,9 @@ def test_extreme_and_non_finite_payoffs():
             A = base[0].copy()
             A[-1, -1] = bad
             ok, (res, _) = same_lh(A, base[1], 0)
-            tally.add(ok and res[0] == kg.NOT_FINITE, (m, n, bad))
+            tally.add(ok and res[0] == _core.GAMES_NOT_FINITE, (m, n, bad))
             ok, (res, _) = same_lh(base[0], A, 0)
-            tally.add(ok and res[0] == kg.NOT_FINITE, (m, n, bad, "B"))
+            tally.add(ok and res[0] == _core.GAMES_NOT_FINITE, (m, n, bad, "B"))
     tally.done()
 
 
@@ -280,17 +280,17 @@ def test_check():
         profiles += [(x / x.sum(), y / y.sum()), (x, y), (-x, y), (np.zeros(m), np.zeros(n))]
         for x, y in profiles:
             for tol in (1e-9, 0.0, 1.0):
-                outs = []
-                for fn in (kg.check, _core.games_check):
+                def run(fn):
                     out = np.full(3, np.nan)
-                    outs.append((bool(fn(A, B, x, y, tol, out)), out.tobytes()))
-                tally.add(outs[0] == outs[1], (name, tol))
+                    return bool(fn(A, B, x, y, tol, out)), out.tobytes()
+                frozen.check(run(_core.games_check), (name, tol))
+                tally.add(True, (name, tol))
     tally.done()
 
 
 def test_bad_arguments_raise():
     A = np.ones((2, 3))
-    buf = np.empty(2 * 5 + 3 + kg.STATE)
+    buf = np.empty(2 * 5 + 3 + _core.GAMES_STATE)
     start = slack_start(2, 3)
     with pytest.raises(ValueError):
         _core.lemke_howson(A, np.ones((3, 2)), 0, start, PARAMS, buf)

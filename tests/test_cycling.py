@@ -52,7 +52,7 @@ from hypothesis import strategies as st
 
 import lemke
 from helpers import assert_lcp_solution, assert_lcp_solution_rowwise, assert_ray, enumerate_solutions
-from lemke import Status
+from lemke import Status, _core, _layout
 from stress_cases import ALL, BASE_CASES, BY_KEY, CASES, DATA, MURTY_N, SCALED_CASES, p_matrix, scaling
 from stress_worker import Solver
 
@@ -201,17 +201,16 @@ FIRST_BASIS_RIGHT = ["scaled/perm-rowcol:dart/Lemke_2D", "scaled/rowcol-a:dart/L
 
 @pytest.mark.parametrize("key", FIRST_BASIS_RIGHT)
 def test_a_first_run_with_the_right_basis_needs_no_recovery_run(key):
-    """kernels.cold.checked: when the first run ends SOLVED on a point that fails the check,
+    """The driver (lcp.cpp's checked): when the first run ends SOLVED on a point that fails the check,
     the point of its final basis (one LU solve on the data) is tried before any recovery
     run; where it passes, that is the answer: recoveries 0, and the pivots are the first
     run's.  The answer is checked here independently."""
-    from oracle import cold
     M, q = (np.ascontiguousarray(a, dtype=float) for a in problem(key))
     n = q.size
-    buf = np.empty(cold.buffer_length(n) + n)
+    buf = np.empty(_layout.buffer_length(n) + n)
     none_i, none_f = np.zeros(0, dtype=np.int64), np.zeros(0)
-    code, pivots, _, ok, _, _, stage = cold.first_run(
-        cold.TABLEAU, M, q, none_f, none_i, 0, 10**6, 1e-12, 1e-10, 1e-9, buf, np.empty(n, dtype=np.int64))
+    code, pivots, _, ok, _, _, stage = _core.first_run(
+        _core.TABLEAU, M, q, none_f, none_i, 0, 10**6, 1e-12, 1e-10, 1e-9, buf, np.empty(n, dtype=np.int64))
     assert code == 0 and not ok and stage == -1, "the first run no longer fails its check here"
     res = lemke.solve_lcp(M, q)
     assert res.status == Status.SOLVED and res.recoveries == 0 and res.pivots == pivots
@@ -224,32 +223,29 @@ def test_a_first_run_with_the_right_basis_needs_no_recovery_run(key):
 
 
 def test_a_first_run_one_basis_off_is_restarted_from_its_basis():
-    """kernels.cold.checked, n >= RESTART_FROM: when the first run ends SOLVED on a point
+    """The driver, n >= RESTART_FROM: when the first run ends SOLVED on a point
     that fails the check and so does the point of its final basis, Lemke's method restarts
-    from that basis (cold.restart) before the recovery runs: on this contact step (196 rows)
-    the first run's basis was a few pivots off, and the restart's 20 pivots end it
-    (recoveries 1).  The answer is checked here independently."""
+    from that basis (lcp.cpp's restart) before the recovery runs: on this contact step (196 rows)
+    the first run's basis was a few pivots off, and the restart's 10 pivots end it
+    (recoveries 1; 10 as the former kernel's restart counted them).  The answer is checked
+    here independently."""
     from lemke import Options
-    from oracle import cold, linalg
     o = Options()
     M, q = (np.ascontiguousarray(a, dtype=float) for a in problem("contact/mixed-step055"))
     n = q.size
-    assert n >= cold.RESTART_FROM
-    buf = np.empty(cold.buffer_length(n) + n)
-    flags = np.empty(n, dtype=np.int64)
-    code, first, _, ok, _, _, stage = cold.first_run(
-        cold.TABLEAU, M, q, np.zeros(0), np.zeros(0, dtype=np.int64), 0, 10**6, o.pivot_tol,
-        o.tie_tol, o.tol, buf, flags)
-    z_basic = flags != 0
-    R = buf[cold.fields(n)["row_scale"]]
-    assert code == 0 and not ok and stage == -1 and not cold.basis_checks(M, q, z_basic, o.tol, R)
-    again, z_after = buf.copy(), np.empty(n, dtype=np.bool_)
-    beta = np.flatnonzero(z_basic).astype(np.int64)
-    extra, ok_restart, _ = cold.restart(M, q, z_basic, beta, len(beta), linalg.finite_absmax(M)[1],
-                                        10**6, o.pivot_tol, o.tie_tol, o.tol, again, z_after)
-    assert ok_restart
+    assert n >= _core.RESTART_FROM
+    buf = np.empty(_layout.buffer_length(n) + n)
+    basic = np.empty(n, dtype=np.int64)
+    code, first, k, ok, _, _, stage = _core.first_run(
+        _core.TABLEAU, M, q, np.zeros(0), np.zeros(0, dtype=np.int64), 0, 10**6, o.pivot_tol,
+        o.tie_tol, o.tol, buf, basic)
+    assert code == 0 and not ok and stage == -1
+    beta = basic[:k]
+    z = np.zeros(n)  # the point of its final basis (numpy's LU here): no answer either
+    z[beta] = np.linalg.solve(M[np.ix_(beta, beta)], -q[beta])
+    assert not lemke.is_lcp_solution(M, q, z)
     res = lemke.solve_lcp(M, q)
-    assert res.status == Status.SOLVED and res.recoveries == 1 and res.pivots == first + extra
+    assert res.status == Status.SOLVED and res.recoveries == 1 and res.pivots == first + 10
     assert_lcp_solution(M, q, res.z)
 
 
@@ -292,7 +288,7 @@ def _may_diverge(key, options=()):
     lcp_tobenna), where an entry of the driving column that is exactly zero comes out exact
     in the tableau but as +-1e-17 from the unrevised method's basis inverse; and copies whose rows or
     columns were scaled (``scaled/``), where the default covering vector is uneven after
-    equilibration and the recovery runs (kernels/cold.py) may be needed by one method and
+    equilibration and the recovery runs (src/lemke/lcp.cpp) may be needed by one method and
     not the other; and DART's Lemke_12D with a tie window of 1e-9 or wider, where ratios
     that differ in exact arithmetic count as tied and the choice then rests on the last
     bits of each method's arithmetic: since the dot products sum in a fixed order (the
@@ -340,7 +336,7 @@ def test_p_matrix_under_row_and_column_scaling(seed, n, kind, data):
     # Entries of q are 0 or of size 1e-6 ... 1e3: assert_lcp_solution_rowwise has no rounding
     # floor, and a q_j of 1e-252 next to a q_i of 1 (hypothesis' favourite) asks for z ~ 1e-253
     # to 8 digits in rows that are rounding next to the others; lemke's own check allows the
-    # rounding of q's largest entry there (kernels/certify.py), this independent one does not.
+    # rounding of q's largest entry there (src/lemke/certify.cpp), this independent one does not.
     q[np.abs(q) < 1e-6] = 0.0
     Ms, qs = d1[:, None] * M * d2[None, :], d1 * q  # still a P-matrix: exactly one solution
     for method in lemke.METHODS:

@@ -14,7 +14,6 @@ from scipy.optimize import linprog
 
 import lemke
 from lemke import _core, _games, _games_exact
-from oracle import games as kernels_games
 from lemke._io import ProblemFormatError
 from lemke._io.nfg import read_nfg
 
@@ -290,7 +289,7 @@ def stopped_float_path(A, B, k, pivots):
     """The float kernel's path dropping k stopped after ``pivots`` pivots: its status and
     the state it reports (``_games._path_state``)."""
     m, n = A.shape
-    buf = np.empty(2 * (m + n) + 3 + kernels_games.STATE)
+    buf = np.empty(2 * (m + n) + 3 + _core.GAMES_STATE)
     params = np.array([float(pivots), 1e-9, 1e-11, 1e-9])
     code, done, _ = _core.lemke_howson(A, B, k, np.r_[np.arange(m, m + n), np.arange(m)],
                                        params, buf)
@@ -314,7 +313,7 @@ def test_exact_continuation_from_a_state_on_the_path(before_end):
     from its state and needs only the pivots that were left (a restart needs them all)."""
     A, B, P = long_path_game()
     code, _, (labP, labQ, side, left) = stopped_float_path(A, B, 0, P - before_end)
-    assert code == kernels_games.MAX_PIVOTS
+    assert code == lemke.Status.MAX_PIVOTS
     Aint, Bint = _games_exact.dyadic(A)[0], _games_exact.dyadic(B)[0]
     run, walked = _games_exact.continuation(Aint, Bint, 0, labP, labQ, side, left, 10**4)
     assert run.status == "solved" and walked == 0
@@ -341,7 +340,7 @@ def test_exact_continuation_through_the_front(monkeypatch):
         short = params.copy()
         short[0] = stop
         code, pivots, restarts = real(A, B, k, start, short, buf)
-        return kernels_games.NUMERICAL_FAILURE, pivots, restarts
+        return int(lemke.Status.NUMERICAL_FAILURE), pivots, restarts
 
     monkeypatch.setattr(_games, "_LEMKE_HOWSON", stopped)
     res = lemke.solve_bimatrix(A, B, exact=True)
@@ -377,11 +376,11 @@ def test_exact_continuation_walks_back_from_a_wrong_pivot(monkeypatch):
     ibuf[:n], ibuf[n : m + n] = labels[0], labels[1]
     run = int(ibuf[m + n + 2])
     ibuf[m + n : m + n + 3] = (wrong[0], 1 - side, run + 1)
-    ibuf[m + n + 3 + run % kernels_games.HISTORY] = wrong[0]
+    ibuf[m + n + 3 + run % _core.GAMES_HISTORY] = wrong[0]
 
     def wrong_pivot(A, B, k, start, params, out):
         out[:] = buf
-        return kernels_games.NUMERICAL_FAILURE, P, 0
+        return int(lemke.Status.NUMERICAL_FAILURE), P, 0
 
     monkeypatch.setattr(_games, "_LEMKE_HOWSON", wrong_pivot)
     res = lemke.solve_bimatrix(A, B, exact=True)

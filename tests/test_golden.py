@@ -1,5 +1,5 @@
 """The answers on the peer data are those recorded in tests/data/golden.json (see
-tests/golden.py): bit for bit with the same numpy, scipy and numba on the same CPU (a
+tests/golden.py): bit for bit with the same numpy and scipy on the same CPU (a
 record of this platform), else, against the newest record, the same statuses and LCP
 pivots, arrays to 1e-8, and a QP's optimal value to 1e-8 (its x and multipliers need not be
 unique)."""

@@ -227,27 +227,22 @@ def test_status_messages():
 
 def test_kernel_answer_is_rechecked(monkeypatch):
     """A kernel that claims success with a wrong point must not give SOLVED."""
-    from lemke import _lcp
-    from oracle import cold
-
-    from oracle import certify
+    from lemke import _core, _lcp, _layout
 
     def with_solve(solve):
-        """cold.solve_one (and cold.first_run), cold, with its pivoting replaced by ``solve``
-        (the same check)."""
+        """The core's solve_one (and first_run) as the front calls it, with its pivoting
+        replaced by ``solve`` (the same check of the point, lcp_check)."""
         def solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic):
             n = q.shape[0]
-            # (the front passes None for no covering vector and no basic array: the core
-            # takes None, the numba oracle empty arrays)
-            d = np.empty(0) if d is None else d
-            basic = np.empty(0, dtype=np.int64) if basic is None else basic
-            assert cold.prologue(M, q, d, buf, np.False_) == 0
-            x, ray, w, cov, R, C = cold.layout(n, buf)
+            f = _layout.fields(n)
+            buf[f["covering"]] = 1.0
+            _core.equilibrate(M, q, buf[f["row_scale"]], buf[f["col_scale"]])
+            x, ray, w = buf[:n + 1], buf[f["ray"]], buf[f["w"]]
             z_basic = np.empty(n, dtype=np.bool_)
             code, pivots = solve(x, ray, z_basic)
-            ok, residual = certify.lcp_check_sized(M, q, x[:n], tol, w, R)
-            if basic.size == 0:  # solve_lcp's one buffer (cold.own_basic)
-                basic = buf[cold.buffer_length(n):].view(np.int64)
+            ok, residual = _core.lcp_check(M, q, np.ascontiguousarray(x[:n]), tol, w)
+            if basic is None or basic.size == 0:  # solve_lcp's one buffer, after the fields
+                basic = buf[_layout.buffer_length(n):].view(np.int64)
             basic_z = np.flatnonzero(z_basic)
             basic[: basic_z.size] = basic_z
             return code, pivots, basic_z.size, ok, residual, 0, 2
@@ -308,33 +303,6 @@ def test_methods_agree(method):
         assert a.pivots == b.pivots
         np.testing.assert_allclose(b.z, a.z, rtol=1e-8, atol=1e-10 * max(1.0, np.abs(a.z).max()))
         assert a.warm_start == b.warm_start
-
-
-@pytest.mark.parametrize("block", [2, 3, 8, 16])
-def test_delayed_updates_change_no_bit(block):
-    """The tableau kernel with pivots kept pending gives exactly what immediate updates
-    give, on problems with ties (the lexicographic rule reads pending entries) and rays."""
-    from oracle import linalg, tableau
-
-    rng = np.random.default_rng(block)
-    cases = [problems.contact_like(n, rng) for n in (9, 30, 64)]
-    cases += [problems.random_psd(50, rng), (problems.murty(7).M, problems.murty(7).q)]
-    cases += [(np.array([[-1.0, 0.0, 1.0], [0.0, 1.0, 0.0], [2.0, 0.0, -1.0]]), -np.ones(3))]
-    for M, q in cases:
-        n = q.size
-        runs = []
-        for b in (1, block):
-            R, C = np.empty(n), np.empty(n)
-            linalg.equilibrate(M, q, R, C)
-            T, rhs, _ = linalg.scaled_system(M, q, np.ones(n), R, C)
-            basis = np.arange(n)
-            nonbasic = np.r_[np.arange(n, 2 * n), 2 * n]
-            out = (np.empty(n + 1), np.empty(n + 1), np.empty(n, dtype=np.bool_))
-            nf, ni = tableau.work_sizes(n, b)
-            code = tableau.lemke(T, rhs, basis, nonbasic, 10_000, 1e-11, 1e-11, *out, b,
-                                 np.False_, np.empty(nf), np.empty(ni, dtype=np.int64))
-            runs.append((code, out[0].tobytes(), out[1].tobytes(), out[2].tobytes(), basis.tolist()))
-        assert runs[0] == runs[1]
 
 
 def test_a_point_too_large_to_certify_is_no_solution():

@@ -1,14 +1,14 @@
-"""The kernels' own dense factorizations (``oracle.linalg``): single-threaded
-replacements for LAPACK, so that no kernel starts a BLAS thread pool."""
-from pathlib import Path
-
+"""The core's own dense factorizations and scaling (src/lemke/linalg.*, bound in
+lemke._core): single-threaded replacements for LAPACK, so that no solve starts a BLAS
+thread pool, checked against LAPACK, exact arithmetic and a numpy reference."""
 import numpy as np
 import pytest
 
 import lemke
 from helpers import assert_lcp_solution
-from lemke import problems
-from oracle import linalg
+from lemke import _core, problems
+
+EQUILIBRATE_SWEEPS = 16  # the most sweeps of lemke::equilibrate (src/lemke/linalg.cpp)
 
 
 def _matrix(rng, k, kind):
@@ -38,7 +38,7 @@ def test_invert_in_place_matches_lapack(kind):
         pad = k % 3
         G = np.full((k + pad, k + pad), 7.0)
         G[:k, :k] = H
-        assert linalg.invert_in_place(G, k)
+        assert _core.invert_in_place(G, k)
         assert (G[k:] == 7.0).all() and (G[:, k:] == 7.0).all()  # only the block is touched
         ref = np.linalg.inv(H)
         tol = 50 * k * cond * np.finfo(float).eps
@@ -63,18 +63,18 @@ def _systems(seed, sizes, kind):
 def test_solve_matches_lapack(kind):
     for k, H, b, ref, tol in _systems(12, [1, 2, 3, 5, 16, 40, 101], kind):
         H0, b0 = H.copy(), b.copy()
-        ok, x = linalg.solve(H, b)
+        ok, x = _core.linalg_solve(H, b)
         assert ok
         assert (H == H0).all() and (b == b0).all()
         assert np.abs(x - ref).max() <= tol
 
 
 def test_empty_and_non_contiguous():
-    assert linalg.invert_in_place(np.empty((0, 0)), 0)
-    ok, x = linalg.solve(np.empty((0, 0)), np.empty(0))
+    assert _core.invert_in_place(np.empty((0, 0)), 0)
+    ok, x = _core.linalg_solve(np.empty((0, 0)), np.empty(0))
     assert ok and x.shape == (0,)
     H = np.random.default_rng(13).standard_normal((10, 10))
-    ok, x = linalg.solve(H[::2, ::2], np.ones(5))
+    ok, x = _core.linalg_solve(H[::2, ::2], np.ones(5))
     assert ok
     np.testing.assert_allclose(H[::2, ::2] @ x, 1.0, rtol=1e-10)
 
@@ -94,17 +94,17 @@ SINGULAR_OR_NOT_FINITE = [
 def test_singular_or_not_finite_is_false_never_raises(H):
     k = H.shape[0]
     with np.errstate(all="ignore"):
-        assert not linalg.invert_in_place(H.copy(), k)
-        ok, _ = linalg.solve(H, np.ones(k))
+        assert not _core.invert_in_place(H.copy(), k)
+        ok, _ = _core.linalg_solve(H, np.ones(k))
     assert not ok
 
 
 def test_bad_sizes_are_false():
-    assert not linalg.invert_in_place(np.eye(3), 4)
-    assert not linalg.invert_in_place(np.eye(3), -1)
-    assert not linalg.solve(np.eye(3), np.ones(2))[0]
-    assert not linalg.solve(np.ones((2, 3)), np.ones(2))[0]
-    assert not linalg.solve(np.eye(2), np.array([np.nan, 1.0]))[0]
+    assert not _core.invert_in_place(np.eye(3), 4)
+    assert not _core.invert_in_place(np.eye(3), -1)
+    assert not _core.linalg_solve(np.eye(3), np.ones(2))[0]
+    assert not _core.linalg_solve(np.ones((2, 3)), np.ones(2))[0]
+    assert not _core.linalg_solve(np.eye(2), np.array([np.nan, 1.0]))[0]
 
 
 @pytest.mark.parametrize("kind", KINDS)
@@ -118,10 +118,10 @@ def test_refined_solve_refines_with_one_factorization(kind):
     untouched."""
     for k, H, b, ref, tol in _systems(14, [1, 2, 3, 5, 16, 40, 75], kind):
         H0, b0 = H.copy(), b.copy()
-        ok, x_plain = linalg.solve(H, b)
+        ok, x_plain = _core.linalg_solve(H, b)
         x0, x2 = np.empty(k), np.empty(k)
-        assert linalg.refined_solve(H, b, 0, x0, np.empty(k))
-        assert linalg.refined_solve(H, b, 2, x2, np.empty(k))
+        assert _core.refined_solve(H, b, 0, x0, np.empty(k))
+        assert _core.refined_solve(H, b, 2, x2, np.empty(k))
         assert (H == H0).all() and (b == b0).all()
         if kind == "dense":  # no sparse updates: the very operations of solve
             assert np.array_equal(x0, x_plain)
@@ -155,7 +155,7 @@ def test_refined_solve_reaches_the_rounding_of_the_answer():
     b = H @ np.arange(1.0, k + 1.0)
     exact = _solve_exact(H, b)
     x0, x3, lo = np.empty(k), np.empty(k), np.empty(k)
-    assert linalg.refined_solve(H, b, 0, x0, lo) and linalg.refined_solve(H, b, 3, x3, lo)
+    assert _core.refined_solve(H, b, 0, x0, lo) and _core.refined_solve(H, b, 3, x3, lo)
     eps = np.finfo(float).eps
     assert np.abs(x0 - exact).max() > 1e4 * eps * np.abs(exact).max()
     assert np.abs(x3 - exact).max() <= 4 * eps * np.abs(exact).max()
@@ -165,14 +165,14 @@ def test_refined_solve_reaches_the_rounding_of_the_answer():
 def test_refined_solve_singular_or_not_finite_is_false(H):
     k = H.shape[0]
     with np.errstate(all="ignore"):
-        assert not linalg.refined_solve(H, np.ones(k), 2, np.empty(k), np.empty(k))
+        assert not _core.refined_solve(H, np.ones(k), 2, np.empty(k), np.empty(k))
     lo2 = np.empty(2)
-    assert not linalg.refined_solve(np.eye(2), np.array([1.0, np.inf]), 2, np.empty(2), lo2)
-    assert not linalg.refined_solve(np.eye(3), np.ones(2), 2, np.empty(2), lo2)
-    assert not linalg.refined_solve(np.eye(2), np.ones(2), 2, np.empty(3), lo2)
-    assert not linalg.refined_solve(np.eye(2), np.ones(2), 2, np.empty(2), np.empty(3))
+    assert not _core.refined_solve(np.eye(2), np.array([1.0, np.inf]), 2, np.empty(2), lo2)
+    assert not _core.refined_solve(np.eye(3), np.ones(2), 2, np.empty(2), lo2)
+    assert not _core.refined_solve(np.eye(2), np.ones(2), 2, np.empty(3), lo2)
+    assert not _core.refined_solve(np.eye(2), np.ones(2), 2, np.empty(2), np.empty(3))
     given_inf = np.array([0.0, 0.0, np.inf])
-    assert not linalg.refined_solve(np.ones((2, 3)), np.ones(2), 2, given_inf, lo2)
+    assert not _core.refined_solve(np.ones((2, 3)), np.ones(2), 2, given_inf, lo2)
 
 
 def test_refined_solve_with_given_unknowns_is_the_full_solve():
@@ -186,13 +186,13 @@ def test_refined_solve_with_given_unknowns_is_the_full_solve():
         given = rng.standard_normal(j) * 1e3
         x, lo = np.empty(k + j), np.empty(k)
         x[k:] = given
-        assert linalg.refined_solve(K, rhs, 3, x, lo)
+        assert _core.refined_solve(K, rhs, 3, x, lo)
         assert (x[k:] == given).all()
         full = np.zeros((k + j, k + j))
         full[:k] = K
         full[k:, k:] = np.eye(j)
         xf, lof = np.empty(k + j), np.empty(k + j)
-        assert linalg.refined_solve(full, np.concatenate([rhs, given]), 3, xf, lof)
+        assert _core.refined_solve(full, np.concatenate([rhs, given]), 3, xf, lof)
         assert np.array_equal(x[:k], xf[:k])
         from fractions import Fraction
         for r in range(k):  # K (x + lo) = rhs to about eps^2 of its terms, in exact arithmetic
@@ -200,28 +200,6 @@ def test_refined_solve_with_given_unknowns_is_the_full_solve():
                      for c in range(k + j)]
             size = sum(abs(t) for t in terms) + abs(Fraction(rhs[r]))
             assert abs(sum(terms) - Fraction(rhs[r])) <= size * Fraction(1, 2**90)
-
-
-def test_two_product_is_exact():
-    """p + e = a b exactly (checked with fractions), including factors whose split in
-    Dekker's algorithm would overflow."""
-    from fractions import Fraction
-    rng = np.random.default_rng(15)
-    a = rng.standard_normal(300) * 10.0 ** rng.integers(-150, 150, 300)
-    b = rng.standard_normal(300) * 10.0 ** rng.integers(-150, 150, 300)
-    a[:3] = [1e300, -3e299, 1.0 + 2**-52]
-    b[:3] = [1e-290, 7e-280, 1.0 - 2**-53]
-    for x, y in zip(a, b):
-        p, e = linalg.two_product(x, y)
-        assert Fraction(p) + Fraction(e) == Fraction(x) * Fraction(y)
-
-
-def test_no_kernel_calls_lapack():
-    """The kernels factorize with these routines, never through numba's np.linalg (scipy's
-    multithreaded OpenBLAS)."""
-    kernels = Path(lemke.__file__).parent / "kernels"
-    for path in kernels.glob("*.py"):
-        assert "np.linalg" not in path.read_text(), path.name
 
 
 def test_refactorization_keeps_the_methods_together():
@@ -254,77 +232,9 @@ def _pow2_scale_reference(x):
         return math.inf
 
 
-def test_pow2_scale_reads_the_bits_as_frexp_would():
-    """pow2_scale reads the exponent and fraction bits of x; it must give the reference's
-    bits everywhere: around 1/sqrt(2) and sqrt(2) within every binade, at the ends of the
-    normal range, subnormals, 0, negatives, inf and NaN."""
-    import struct
-
-    rng = np.random.default_rng(5)
-    xs = np.concatenate([10.0 ** rng.uniform(-320, 308, 20000), rng.uniform(0, 4, 5000),
-                         2.0 ** np.arange(-1074, 1024, dtype=float),
-                         np.sqrt(0.5) * 2.0 ** np.arange(-1070, 1024, 7, dtype=float),
-                         [0.0, -0.0, -1.0, np.inf, -np.inf, np.nan, 5e-324, 2.2250738585072014e-308,
-                          1.7976931348623157e308, 0.7071067811865476, 1.4142135623730951]])
-    with np.errstate(over="ignore"):  # the largest finite float's next is inf: wanted
-        xs = np.concatenate([xs, np.nextafter(xs, np.inf), np.nextafter(xs, -np.inf)])
-    for x in xs.tolist():
-        got, want = linalg.pow2_scale(x), _pow2_scale_reference(x)
-        assert struct.pack("<d", got) == struct.pack("<d", want), x
-
-
-def test_pow2_rsqrt_is_pow2_scale_of_the_square_root():
-    """pow2_rsqrt reads x's exponent; it must give the bits of the reference applied to
-    math.sqrt(x) everywhere: every power of two and its two neighbours (the boundaries of
-    its rule), random bit patterns over the whole range, subnormals, 0, inf, NaN."""
-    import math
-    import struct
-
-    rng = np.random.default_rng(11)
-    pows = 2.0 ** np.arange(-1074, 1024, dtype=float)
-    with np.errstate(over="ignore"):
-        xs = np.concatenate([pows, np.nextafter(pows, np.inf), np.nextafter(pows, -np.inf),
-                             rng.integers(0, 0x7FF0000000000000, 20000).view(np.float64),
-                             rng.uniform(0, 4, 5000),
-                             [0.0, -0.0, -1.0, np.inf, -np.inf, np.nan, 5e-324, 1.7976931348623157e308]])
-    for x in xs.tolist():
-        want = _pow2_scale_reference(math.sqrt(x)) if x >= 0.0 else 1.0
-        assert struct.pack("<d", linalg.pow2_rsqrt(x)) == struct.pack("<d", want), x
-
-
-def test_pow2_rsqrt_all_is_pow2_rsqrt_of_each_or_declines():
-    """pow2_rsqrt_all (equilibrate's scales of a sweep, branch-free): on a block of zeros
-    and positive normal floats, the bits of the reference (pow2_scale of the square root,
-    1 for zero) for every entry; with a subnormal or an infinity in the block, it declines
-    and leaves the block as it was.  Its balance flag is the numpy one either way."""
-    import math
-    import struct
-
-    rng = np.random.default_rng(12)
-    pows = 2.0 ** np.arange(-1022, 1024, dtype=float)
-    normal = np.concatenate([pows, np.nextafter(pows, np.inf), np.nextafter(pows[1:], -np.inf),
-                             rng.integers(0x0010000000000000, 0x7FF0000000000000, 20000).view(np.float64),
-                             rng.uniform(0, 4, 5000), [0.0, 0.5, 2.0, 1.7976931348623157e308]])
-    odd = [5e-324, 2.2250738585072009e-308, np.inf]
-    for block in np.array_split(rng.permutation(normal), 300):
-        for extra in ([], [odd[int(rng.integers(3))]]):
-            x = np.concatenate([block, extra])
-            x = x[rng.permutation(x.size)]
-            before = x.copy()
-            fast, balanced = linalg.pow2_rsqrt_all(x, x.size)
-            assert balanced == (not ((before > 0) & ((before < 0.5) | (before > 2.0))).any())
-            if extra:
-                assert not fast and np.array_equal(x, before)
-                continue
-            assert fast
-            for got, v in zip(x.tolist(), before.tolist()):
-                want = _pow2_scale_reference(math.sqrt(v)) if v > 0.0 else 1.0
-                assert struct.pack("<d", got) == struct.pack("<d", want), v
-
-
-def _ruiz_reference(M, q, sweeps=linalg.EQUILIBRATE_SWEEPS):
+def _ruiz_reference(M, q, sweeps=EQUILIBRATE_SWEEPS):
     """equilibrate's documented iteration in numpy (whole-matrix maxima; the scales by
-    math.frexp/ldexp as pow2_scale's docstring states them), independent of the kernels."""
+    math.frexp/ldexp as lemke::equilibrate applies them), independent of the kernels."""
     import math
 
     def pow2(x):
@@ -365,105 +275,6 @@ def test_equilibrate_both_sweeps_match_the_reference():
             M[rng.integers(0, n), rng.integers(0, n)] = rng.choice([1e308, -1e300, 1e-310, -0.0, 5e-324])
         q = rng.standard_normal(n) * np.exp(rng.normal(0, 6)) * (rng.random(n) < 0.7)
         R, C = np.empty(n), np.empty(n)
-        linalg.equilibrate(M, q, R, C)
+        _core.equilibrate(M, q, R, C)
         R0, C0 = _ruiz_reference(M, q)
         assert np.array_equal(R, R0) and np.array_equal(C, C0), (t, n)
-
-
-def test_finite_absmax_flags_every_nan_and_inf():
-    """finite_absmax (SIMD maxima from n = SIMD_FROM, the NaN probe apart): max|M| exactly
-    on finite matrices, and not finite wherever one NaN or infinity sits."""
-    rng = np.random.default_rng(8)
-    for n in range(1, 41):
-        M = rng.standard_normal((n, n)) * np.exp(rng.normal(0, 30))
-        finite, top = linalg.finite_absmax(M)
-        assert finite and top == np.abs(M).max()
-        for bad in (np.nan, np.inf, -np.inf):
-            B = M.copy()
-            B[rng.integers(0, n), rng.integers(0, n)] = bad
-            assert not linalg.finite_absmax(B)[0]
-
-
-def test_row_dot_and_size_is_the_row_product_wherever_the_row_lies():
-    """row_dot_and_size (the checks' row products, M read in place): the sum and the size
-    of the row's products (against numpy, to rounding), and the same bits for the same row
-    wherever it lies (row i of M, or alone in a matrix of one row): a problem's check does
-    not depend on where its M sits in a batch."""
-    rng = np.random.default_rng(30)
-    for _ in range(1500):
-        n = int(rng.integers(1, 131))
-        M = rng.standard_normal((n, n)) * 10.0 ** rng.integers(-8, 9, (n, n))
-        y = rng.standard_normal(n)
-        y[rng.random(n) < 0.5] = 0.0
-        i, k = int(rng.integers(n)), int(rng.integers(0, n + 1))
-        got = linalg.row_dot_and_size(M, i, y, k)
-        alone = linalg.row_dot_and_size(M[i : i + 1].copy(), 0, y, k)
-        assert np.array(got).tobytes() == np.array(alone).tobytes(), (n, i, k)
-        t = M[i, :k] * y[:k]
-        assert abs(got[0] - t.sum()) <= 1e-13 * np.abs(t).sum() + 1e-300
-        assert abs(got[1] - np.abs(t).sum()) <= 1e-13 * np.abs(t).sum() + 1e-300
-
-
-def test_borrow_is_a_view_of_the_argument_in_a_kernel_and_in_python():
-    """linalg.borrow in a kernel (no reference counts) and in plain Python: arrays of the
-    asked shape and dtype over the argument's memory from the given element on, so writes
-    through them land at those bytes of the argument, and nothing else is touched."""
-    from numba import njit
-
-    def fill(F, I):
-        a = linalg.borrow(F, 3, 4, np.float64)
-        U = linalg.borrow(F, 7, (2, 3), np.float64)
-        b = linalg.borrow(I, 2, 10, np.bool_)
-        u = linalg.borrow(I, 5, 2, np.uint64)
-        for j in range(4):
-            a[j] = 1.0 + j
-        for r in range(2):
-            for c in range(3):
-                U[r, c] = 10.0 * r + c
-        for j in range(10):
-            b[j] = j % 3 == 0
-        u[0] = np.uint64(2**63 + 5)
-        u[1] = np.uint64(7)
-        return a.shape[0] + U.shape[0] * U.shape[1] + b.shape[0] + u.shape[0]
-
-    results = []
-    for f in (fill, njit(fill)):
-        F, I = np.full(16, -1.0), np.full(8, -3, dtype=np.int64)
-        assert f(F, I) == 4 + 6 + 10 + 2
-        results.append((F.tobytes(), I.tobytes()))
-        assert F[:3].tolist() == [-1.0] * 3 and F[13:].tolist() == [-1.0] * 3
-        assert F[3:7].tolist() == [1.0, 2.0, 3.0, 4.0]
-        assert F[7:13].tolist() == [0.0, 1.0, 2.0, 10.0, 11.0, 12.0]
-        flags = I.view(np.uint8)[16:26]
-        assert flags.tolist() == [1 if j % 3 == 0 else 0 for j in range(10)]
-        assert I.view(np.uint64)[5] == 2**63 + 5 and I[6] == 7
-        assert I[0] == I[1] == I[7] == -3
-    assert results[0] == results[1]
-
-
-def test_row_is_the_row_of_the_matrix_in_a_kernel_and_in_python():
-    """linalg.row_of (a borrowed row of a C-contiguous matrix, the QP kernels' row loops):
-    the entries of M[i], and writes through it land in row i and nowhere else; borrow's
-    start counts in the flat order of a 2-D parent."""
-    from numba import njit
-
-    def bump_rows(M, out):
-        for i in range(M.shape[0]):
-            r = linalg.row_of(M, i)
-            out[i] = r.sum()
-            r[i % M.shape[1]] += 100.0 * (i + 1)
-        tail = linalg.borrow(M, M.shape[1] + 1, 2, np.float64)  # M[1, 1:3], flat offset
-        return tail[0] + 10.0 * tail[1]
-
-    rng = np.random.default_rng(31)
-    for f in (bump_rows, njit(bump_rows)):
-        M = rng.standard_normal((5, 7)).round(3)
-        before = M.copy()
-        out = np.empty(5)
-        got = f(M, out)
-        assert np.allclose(out, before.sum(axis=1), rtol=1e-14, atol=1e-12)
-        want = before.copy()
-        for i in range(5):
-            want[i, i % 7] += 100.0 * (i + 1)
-        assert np.array_equal(M, want)
-        assert got == want[1, 1] + 10.0 * want[1, 2]

@@ -1,6 +1,6 @@
 """Tableau and unrevised Lemke agree on the peer problems: the same status, and on all but
 the cases listed in ``DIVERGE`` the same pivot count, the same z and the same final basis
-(both follow kernels/pivoting.py's rule, so even where the solution is not unique both
+(both follow src/lemke/pivoting.hpp's rule, so even where the solution is not unique both
 methods must reach the same one).
 
 ``DIVERGE``: the one exception among these files, and the bound the README promises for it

@@ -370,9 +370,8 @@ def test_fused_path_gives_up_after_one_failed_run():
     import sys
     from pathlib import Path
 
-    from lemke import _qp
+    from lemke import _core, _qp
     from lemke._options import as_options
-    from oracle import cold, qp as kqp
 
     here = Path(__file__).resolve().parent
     sys.path.insert(0, str(here.parent / "benchmarks"))
@@ -382,9 +381,9 @@ def test_fused_path_gives_up_after_one_failed_run():
     args = _qp._plain_args(*problem)
     n, p, m = args[1].size, args[4].shape[0], args[2].shape[0]
     opts = as_options(None)
-    code, pivots, _, _ = kqp.solve(*args, cold.METHODS["tableau"], -1, opts.pivot_tol,
-                                   opts.tie_tol, opts.tol, np.empty(4 * n + p + 2 * m + 4))
-    assert code == kqp.NOT_SOLVED and pivots <= 10
+    code, pivots, _, _ = _core.qp_solve(*args, _core.TABLEAU, -1, opts.pivot_tol,
+                                        opts.tie_tol, opts.tol, np.empty(4 * n + p + 2 * m + 4))
+    assert code == 3 and pivots <= 10  # NOT_SOLVED (src/lemke/qp.hpp)
     res = lemke.solve_qp(*problem)
     assert res.status == Status.SOLVED, res
     assert_qp_kkt(*problem, res, rtol=1e-8)
@@ -394,7 +393,7 @@ def test_fused_path_gives_up_after_one_failed_run():
 @pytest.mark.parametrize("n", [16, 40])
 def test_box_path_defers_its_fields(n):
     """A box-only QP of at least BOX_FIRST variables with plain data takes the box kernel
-    without the front's validation (kernels.qp.screen and cholesky instead, the same
+    without the front's validation (qp.cpp's screen and cholesky instead, the same
     arrays); its residuals, objective and basis are built when first read, and are those
     of the point (KKT checked here; the warm start re-solves it in 0 pivots)."""
     import pickle

@@ -1,6 +1,6 @@
 """solve_qp takes what qpsolvers.solve_qp takes (issue 15): column vectors, a 1-D P for
 n = 1, h_i = +inf and infinite bounds as no constraint, qpsolvers' multiplier signs; and
-its fused path for a positive definite P (kernels.qp) agrees with the KKT-MLCP path."""
+its fused path for a positive definite P (src/lemke/qp.cpp) agrees with the KKT-MLCP path."""
 import numpy as np
 import pytest
 

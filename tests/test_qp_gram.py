@@ -1,5 +1,5 @@
 """solve_qp when the inequalities far outnumber the variables (m >= 4n, the DUALC problems):
-the fused kernel's path in factored form (``kernels.qp``, step 7: Lemke on the multiplier
+the fused kernel's path in factored form (src/lemke/qp.cpp, step 7: Lemke on the multiplier
 LCP without forming M, the point from the final basis's active rows, refined and checked).
 
 Every solved QP is checked by the tests' own KKT check (helpers.assert_qp_kkt), every
@@ -13,7 +13,6 @@ import pytest
 
 import lemke
 from lemke import Status, _core, _qp
-from oracle import qp as kqp
 from lemke.problems import random_convex_qp
 from helpers import assert_farkas, assert_qp_kkt, assert_unbounded_direction
 
@@ -23,6 +22,8 @@ sys.path.insert(0, str(HERE.parent / "benchmarks"))
 from maros_meszaros import load, references  # noqa: E402
 
 REFS = references(DATA / "README.md")
+# the QP kernels' codes (src/lemke/qp.hpp)
+QP_OK, QP_NOT_DEFINITE, QP_NOT_SOLVED, QP_CHECK_FAILED, QP_NOT_APPLICABLE = 0, 1, 3, 4, 6
 
 
 @pytest.fixture
@@ -51,8 +52,8 @@ def dense_calls(monkeypatch):
 
 
 def _recorder(monkeypatch, name):
-    """Record the codes of the core's kernel ``qp_<name>`` (the front calls the C++ core's
-    port of ``kernels.qp.<name>``, looked up on ``_core`` at each call)."""
+    """Record the codes of the core's kernel ``qp_<name>`` (the front looks it up on
+    ``_core`` at each call)."""
     codes = []
     kernel = getattr(_core, "qp_" + name)
 
@@ -79,7 +80,7 @@ def test_dualc(name, method, gram_calls):
     problem, r = load(DATA / f"{name}.mat")
     res = lemke.solve_qp(*problem, method=method)
     check_solved(problem, res)
-    assert gram_calls == [kqp.OK]
+    assert gram_calls == [QP_OK]
     assert abs(res.obj + r - REFS[name]) <= 1e-6 * abs(REFS[name])
     assert res.pivots <= 40
 
@@ -94,7 +95,7 @@ def test_random_many_inequalities(n, ratio, gram_calls):
         problem = random_convex_qp(n, rng, m=ratio * n)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls == [kqp.OK] * 3
+    assert gram_calls == [QP_OK] * 3
 
 
 def test_random_without_equalities_or_bounds(gram_calls):
@@ -108,7 +109,7 @@ def test_random_without_equalities_or_bounds(gram_calls):
         check_solved(problem, res)
         if shift:
             assert res.pivots == 0 and not np.any(res.z)
-    assert gram_calls == [kqp.OK] * 2
+    assert gram_calls == [QP_OK] * 2
 
 
 @pytest.mark.parametrize("rank", [4, 6])
@@ -125,7 +126,7 @@ def test_random_semidefinite(rank, gram_calls):
         problem = random_convex_qp(8, rng, m=160, rank=rank)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls.count(kqp.OK) >= 2 and set(gram_calls) <= {kqp.OK, kqp.CHECK_FAILED}, gram_calls
+    assert gram_calls.count(QP_OK) >= 2 and set(gram_calls) <= {QP_OK, QP_CHECK_FAILED}, gram_calls
 
 
 def test_degenerate_vertex_with_singular_p(gram_calls):
@@ -143,7 +144,7 @@ def test_degenerate_vertex_with_singular_p(gram_calls):
     problem = (P, q, G, h, None, None, lb, ub)
     res = lemke.solve_qp(*problem)
     check_solved(problem, res)
-    assert gram_calls == [kqp.OK]
+    assert gram_calls == [QP_OK]
 
 
 @pytest.mark.parametrize("n", [4, 8])
@@ -159,7 +160,7 @@ def test_random_infeasible(n, gram_calls, dense_calls):
     res = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
     assert res.status == Status.PRIMAL_INFEASIBLE, res
     assert_farkas(G, h, A, b, lb, ub, res.certificate, n)
-    assert gram_calls == [kqp.NOT_SOLVED] and dense_calls == [kqp.NOT_SOLVED]
+    assert gram_calls == [QP_NOT_SOLVED] and dense_calls == [QP_NOT_SOLVED]
 
 
 def test_unbounded_semidefinite(gram_calls):
@@ -176,7 +177,7 @@ def test_unbounded_semidefinite(gram_calls):
     res = lemke.solve_qp(P, q, G, h)
     assert res.status == Status.DUAL_INFEASIBLE, res
     assert_unbounded_direction(P, q, G, None, None, None, res.certificate)
-    assert len(gram_calls) == 1 and gram_calls[0] != kqp.OK
+    assert len(gram_calls) == 1 and gram_calls[0] != QP_OK
 
 
 def test_not_taken_below_the_ratio(gram_calls, dense_calls):
@@ -189,11 +190,11 @@ def test_not_taken_below_the_ratio(gram_calls, dense_calls):
         problem = random_convex_qp(n, rng)
         res = lemke.solve_qp(*problem)
         check_solved(problem, res)
-    assert gram_calls == [] and dense_calls == [kqp.OK, kqp.OK]
+    assert gram_calls == [] and dense_calls == [QP_OK, QP_OK]
     P, q, G, h, A, b, lb, ub = random_convex_qp(5, rng, m=14)
     problem = (P, q, G, h, A, b, lb, np.full(5, np.inf))
     check_solved(problem, lemke.solve_qp(*problem))
-    assert gram_calls == [kqp.NOT_APPLICABLE] and dense_calls[-1] == kqp.OK
+    assert gram_calls == [QP_NOT_APPLICABLE] and dense_calls[-1] == QP_OK
 
 
 def test_warm_start_from_the_factored_path():
@@ -223,8 +224,8 @@ def test_semidefinite_pinned_by_equalities(name, method, gram_calls, dense_calls
     assert np.linalg.eigvalsh(P).min() <= 1e-12 * np.abs(P).max()  # not definite indeed
     res = lemke.solve_qp(*problem, method=method)
     check_solved(problem, res)
-    assert dense_calls == [kqp.NOT_DEFINITE]
-    assert gram_calls == [kqp.OK]
+    assert dense_calls == [QP_NOT_DEFINITE]
+    assert gram_calls == [QP_OK]
     assert abs(res.obj + r - REFS[name]) <= 1e-8 * max(1.0, abs(REFS[name]))
 
 
@@ -236,16 +237,16 @@ def test_flat_directions_not_pinned(name, gram_calls, dense_calls):
     problem, r = load(DATA / f"{name}.mat")
     res = lemke.solve_qp(*problem)
     check_solved(problem, res)
-    assert dense_calls == [kqp.NOT_DEFINITE]
+    assert dense_calls == [QP_NOT_DEFINITE]
     assert gram_calls == []
     assert abs(res.obj + r - REFS[name]) <= 1e-6 * max(1.0, abs(REFS[name]))
     P, q, G, h, A, b, lb, ub = _qp._plain_args(*problem)
     n, p, m = q.size, A.shape[0], G.shape[0]
     out, basic = np.empty(2 * n + p + m + 4), np.empty(m + 2 * n, dtype=np.int64)
     o = lemke.Options()
-    code, pivots, _, _ = kqp.solve_gram(P, q, G, h, A, b, lb, ub, -1, o.pivot_tol, o.tie_tol,
-                                        o.tol, out, basic, True)
-    assert (code, pivots) == (kqp.NOT_APPLICABLE, 0)
+    code, pivots, _, _ = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, -1, o.pivot_tol, o.tie_tol,
+                                             o.tol, out, basic, True)
+    assert (code, pivots) == (QP_NOT_APPLICABLE, 0)
 
 
 def test_flat_directions_counted_by_the_factor(gram_calls):
@@ -260,10 +261,10 @@ def test_flat_directions_counted_by_the_factor(gram_calls):
     lb, ub = -np.ones(4), np.ones(4)
     A1 = rng.standard_normal((1, 4))
     res = lemke.solve_qp(P, q, A=A1, b=np.zeros(1), lb=lb, ub=ub)
-    assert gram_calls == [kqp.NOT_APPLICABLE]
+    assert gram_calls == [QP_NOT_APPLICABLE]
     check_solved((P, q, None, None, A1, np.zeros(1), lb, ub), res)
     gram_calls.clear()
     A2 = rng.standard_normal((2, 4))
     res = lemke.solve_qp(P, q, A=A2, b=np.zeros(2), lb=lb, ub=ub)
-    assert gram_calls == [kqp.OK]
+    assert gram_calls == [QP_OK]
     check_solved((P, q, None, None, A2, np.zeros(2), lb, ub), res)

@@ -1,7 +1,7 @@
 """The fused path's KKT check (``qp::kkt_check``, ``_core.qp_kkt_check``) and its rounding
 floor: an answer computed in floating point passes, a wrong one is refused.
 
-The rule (tests/oracle/qp.py's ``kkt_check`` states it): with t = tol + 4 eps and
+The rule (as ``qp::kkt_check`` applies it): with t = tol + 4 eps and
 f = 4 (n + 2) eps, stationarity row j may be off by t s_j (its terms' sizes) plus
 f (|P_.j|_1 max|x| + |A_.j|_1 max|y| + |G_.j|_1 max|z| + max|zb|).  Without the last part
 the MPC benchmark's terminal velocities (exactly 0 at the optimum, computed as 1e-15) failed
@@ -15,6 +15,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+import frozen
 import lemke
 from lemke import Status, _core
 from helpers import assert_qp_kkt
@@ -116,9 +117,8 @@ def test_wrong_points_are_refused(mpc):
     """Perturbed points (one entry off by 1e-9 of its vector's size, x off by 1e-10
     relative), another step's point, multipliers with the wrong sign, a non-zero multiplier
     on a row with h = +inf: all refused at the fused path's tolerance (the gross errors at
-    the default 1e-9 too), the core and the oracle alike, bit for bit."""
-    from oracle import qp as kqp
-
+    the default 1e-9 too), with the verdicts and statistics the frozen references record (tests/frozen.py),
+    bit for bit."""
     data, pt, j = _floor_step(mpc)
     P, q, G, h, A, b, lb, ub = data
     x, y, z, zb = pt
@@ -161,10 +161,11 @@ def test_wrong_points_are_refused(mpc):
     cases.append(((P, q - 1e-3 * G[off[0]]) + data[2:], bad))
     for k, (d, bad) in enumerate(cases):
         for tol in (STRICT, 1e-9):
-            st1, st2 = np.empty(4), np.empty(4)
-            k1 = bool(kqp.kkt_check(*d, *bad, tol, st1))
-            k2 = bool(_core.qp_kkt_check(*d, *bad, tol, st2))
-            assert k1 == k2 and st1.tobytes() == st2.tobytes()
+            def run(fn):
+                st = np.empty(4)
+                return bool(fn(*d, *bad, tol, st)), st
+
+            k2, _ = frozen.check(run(_core.qp_kkt_check), (k, tol))
             assert not k2 or (tol > STRICT and k < small), (tol, k)
     # and a z of a row with h = +inf that counts as zero (removing it moves no row by more
     # than its allowance) is no error

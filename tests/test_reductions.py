@@ -8,7 +8,7 @@ import quadprog
 from helpers import enumerate_solutions
 from lemke._reductions.mlcp_lcp import MLCPToLCP
 from lemke._reductions.qp_mlcp import QPToMLCP
-from oracle import mlcp as kmlcp
+from lemke import _core
 
 
 def _random_qp(seed, n=6, m=4, p=2):
@@ -76,7 +76,7 @@ def _mlcp_with_solution(seed, n=3, m=5):
 def test_mlcp_to_lcp_alone(seed):
     E, e, n = _mlcp_with_solution(seed)
     red = MLCPToLCP(E, e, n)
-    assert red.code == kmlcp.OK
+    assert red.code == _core.MLCP_OK
     sols = enumerate_solutions(red.M, red.q)  # the reduced LCP, solved by enumeration
     assert sols
     for zr in sols:
@@ -93,12 +93,12 @@ def test_mlcp_to_lcp_finds_contradictory_equations():
     # u1 + u2 = 1 and u1 + u2 = 2 (n = 2, m = 1): no x satisfies the equations
     E = np.array([[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     e = np.array([-1.0, -2.0, 0.0])
-    assert MLCPToLCP(E, e, 2).code == kmlcp.INCONSISTENT
+    assert MLCPToLCP(E, e, 2).code == _core.MLCP_INCONSISTENT
 
 
 @pytest.mark.parametrize("seed", range(20))
 def test_equilibrate_kernel_matches_numpy_bit_for_bit(seed):
-    """The MLCP reduction's Ruiz scaling runs in a kernel (kernels.mlcp.equilibrate); it
+    """The MLCP reduction's Ruiz scaling runs in a kernel (lemke::mlcp_equilibrate); it
     must give numpy's bits (the QP goldens depend on them), zero rows and columns, wide
     ranges of magnitudes and every split of free and paired variables included."""
     from lemke._reductions.mlcp_lcp import _equilibrate_numpy, equilibrate

@@ -23,7 +23,7 @@ CMakeCache.txt).  That works here (GCC 12, Linux x86-64) with no other setting: 
 force (``sanitized_run.sanitizer_probe``: ASan's allocator serves malloc, a freed block is
 poisoned; UBSan's handlers are loaded), and the test checks the build's compile commands.
 
-``ASAN_OPTIONS=detect_leaks=0``: CPython, numpy and numba keep many allocations to the end by
+``ASAN_OPTIONS=detect_leaks=0``: CPython and numpy keep many allocations to the end by
 design, and LeakSanitizer would report them at exit (the C API's own tests, tests/test_capi.py,
 run with the leak check on).  ``UBSAN_OPTIONS=halt_on_error=1``: a UBSan finding stops the
 child (the build also has ``-fno-sanitize-recover=all``).

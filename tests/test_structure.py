@@ -1,8 +1,8 @@
 """The package's structure, as ARCHITECTURE.md states it: imports only go down the layers
 (no cycle, no import back up, not even inside a function), the kind strings live in the
 registry and the file formats' declarations only, the core's buffer layout is the one
-_layout.py states, and results behave like values; and no module of the package imports
-numba (its kernels are the core's test oracles, in tests/oracle/)."""
+_layout.py states, and results behave like values; and the package imports nothing beyond
+the standard library, numpy, scipy and its optional extras."""
 import ast
 import pickle
 from pathlib import Path
@@ -12,7 +12,6 @@ import pytest
 
 import lemke
 from lemke._kinds import KINDS
-from oracle import cold
 
 PACKAGE = Path(lemke.__file__).parent
 
@@ -144,20 +143,17 @@ def test_the_layout_is_the_cores(n):
 def test_the_qp_layouts_are_the_cores(n, p, m):
     """The QP kernels' buffers as the core states them (qp.hpp OutLayout, BoxOutLayout,
     exported as _core.qp_layout / qp_box_layout, from which _qp sizes and reads its
-    buffers) are the oracle's (kernels.qp out_size, out_views, box_out_size), and a solve's
+    buffers) are the ones the former kernels used (x, y, z, z_box, 4 residuals laid end to
+    end, then the basis: m + 2n; the box path's after boxed's 6n + 1), and a solve's
     fields read through them are the kernel's writes: x, y, z, z_box and the residuals of
     an independent KKT check."""
     from lemke import _core, _qp
-    from oracle import qp as kqp
     x, y, z, zb, stats, basis, length = _core.qp_layout(n, p, m)
-    buf = np.arange(kqp.out_size(n, p, m), dtype=float)
-    views = kqp.out_views(buf, n, p, m)
-    assert [(v[0] if v.size else None, v.size) for v in views] == [
-        (buf[a] if b > a else None, b - a) for a, b in ((x, y), (y, z), (z, zb), (zb, stats), (stats, basis))]
-    assert basis == kqp.out_size(n, p, m) and length == basis + m + 2 * n
+    assert (x, y, z, zb, stats, basis) == (0, n, n + p, n + p + m, 2 * n + p + m, 2 * n + p + m + 4)
+    assert length == basis + m + 2 * n
     assert _qp._layout(n, p, m) == (x, y, z, zb, stats, basis, length)
     bx, bzb, bstats, bfinal, blength = _core.qp_box_layout(n)
-    assert (bx, bzb, bstats, bfinal) == (0, 6 * n + 1, 7 * n + 1, kqp.box_out_size(n))
+    assert (bx, bzb, bstats, bfinal) == (0, 6 * n + 1, 7 * n + 1, 7 * n + 5)
     assert blength == bfinal + 3 * n and _qp._box_layout(n) == (bx, bzb, bstats, bfinal, blength)
     rng = np.random.default_rng(n + 10 * p + 100 * m)
     B = rng.standard_normal((n, n))
@@ -241,17 +237,6 @@ def test_the_box_layout_is_stated_once(n, nf, friction):
     assert limits.tolist() == [100 * (N + 1)] * 2
 
 
-@pytest.mark.parametrize("n", [0, 1, 5])
-def test_one_buffer_layout(n):
-    assert cold.buffer_size(n) == cold.buffer_length(n)
-    buf = np.arange(cold.buffer_length(n), dtype=float)
-    x, ray, w, cov, R, C = cold.layout(n, buf)
-    f = cold.fields(n)
-    assert np.array_equal(x[:n], buf[f["z"]]) and x[n] == buf[f["z0"]]
-    for view, name in ((ray, "ray"), (w, "w"), (cov, "covering"), (R, "row_scale"), (C, "col_scale")):
-        assert np.array_equal(view, buf[f[name]])
-
-
 def test_results_are_values():
     M, q = [[2.0, 1.0], [1.0, 2.0]], [-5.0, -6.0]
     a, b = lemke.solve_lcp(M, q), lemke.solve_lcp(M, q)
@@ -277,11 +262,20 @@ def test_status_prints_its_name():
     assert len(repr(r)) < 120
 
 
-def test_the_package_does_not_import_numba():
-    """numba is a test dependency only (the oracles of tests/test_core_*.py): no module of
-    the package names it."""
-    bad = [str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py") if "numba" in
-           {(n.module or "").split(".")[0] for n in ast.walk(ast.parse(p.read_text()))
-            if isinstance(n, ast.ImportFrom)} | {a.name.split(".")[0] for n in
-            ast.walk(ast.parse(p.read_text())) if isinstance(n, ast.Import) for a in n.names}]
+def test_the_package_imports_only_numpy_scipy_and_its_extras():
+    """The package's dependencies are numpy and scipy, and its optional extras (tqdm for
+    progress bars, dask's distributed, qpsolvers' interface): no module of the package
+    imports anything else outside the standard library."""
+    import sys
+
+    allowed = {"numpy", "scipy", "tqdm", "distributed", "qpsolvers", "lemke"}
+    bad = {}
+    for p in PACKAGE.rglob("*.py"):
+        for n in ast.walk(ast.parse(p.read_text())):
+            names = ([n.module] if isinstance(n, ast.ImportFrom) and n.level == 0 else
+                     [a.name for a in n.names] if isinstance(n, ast.Import) else [])
+            for name in names:
+                top = name.split(".")[0]
+                if top not in allowed and top not in sys.stdlib_module_names:
+                    bad.setdefault(str(p.relative_to(PACKAGE)), set()).add(top)
     assert not bad, bad

@@ -165,7 +165,7 @@ def test_relabel_is_take_by_position():
 
 
 def test_relabel_by_integer_arrays_is_take_by_position():
-    """relabel with 1-D integer arrays (one kernel call, kernels.carry's hash tables)
+    """relabel with 1-D integer arrays (one kernel call, carry.cpp's hash tables)
     against take (numpy) on random ids: rows kept, dropped, permuted and new; ids that
     share their low bits (contact ids times 4), negative ids, uint64 ids above 2**63, other
     integer dtypes; a WarmStart made by hand as well as one read from a result."""
@@ -244,9 +244,9 @@ def test_pile_simulation_with_contacts_that_come_and_go():
 def test_warm_starts_read_back_are_taken_as_they_are():
     """A warm start read from a result whose arrays were read first (its buffer read-only
     by then), or from a solve_lcp_many result's WarmStartBatch, goes to the core as it is,
-    in a new process whose first solve_lcp call is such a warm start (with numba kernels, a
-    read-only index array compiled them a second time, some 20 s; the core takes read-only
-    arrays, and tests/test_runtime.py checks that no solve compiles anything)."""
+    in a new process whose first solve_lcp call is such a warm start (with the former
+    JIT-compiled kernels, a read-only index array compiled them a second time, some 20 s; the
+    core takes read-only arrays)."""
     import subprocess
     import sys
 

@@ -11,9 +11,8 @@ from ._status import Status
 from . import _layout
 
 METHODS = tuple(_layout.METHODS)
-#: The C++ core's LCP driver (src/lemke/lcp.cpp), the port of the numba kernels of
-#: kernels/_layout.py with the same arguments, results and bits; module attributes, so that a
-#: test can stand a lying kernel in.  ``_SOLVE_ONE``: a whole solve, warm or cold, with its
+#: The C++ core's LCP driver (src/lemke/lcp.cpp), its buffer laid out as _layout.py states;
+#: module attributes, so that a test can stand a lying kernel in.  ``_SOLVE_ONE``: a whole solve, warm or cold, with its
 #: recoveries, either method.
 _SOLVE_ONE = _core.solve_one
 #: The commonest call whole (src/python_front.cpp): plain float64 M and q, the tableau,
@@ -126,7 +125,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
         return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start
     # (``is`` first, for speed; ``==`` for a float64 dtype that is not numpy's own object,
-    # such as that of an array made by a numba kernel.)
+    # such as one made by ``dtype.newbyteorder("=")``.)
     if (type(M) is _ND and type(q) is _ND and d is None and q.ndim == 1 and M.ndim == 2
             and (M.dtype is _F64 or M.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and M.flags.carray and q.flags.carray

@@ -117,7 +117,7 @@ inline void step_values(double* x, const idx* basis, const double* col, idx n, i
     x[e] += delta;
 }
 
-// The run's views of the workspace (numba's borrowed arrays).
+// The run's views of the workspace.
 struct Run {
     idx n;
     Mat<double> T;
@@ -888,8 +888,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
         return BAD_FINDEX;  // (the front sizes them: never)
     idx* F = ints + FL.friction_rows();
     if (phase != PREPARE) {
-        // F was written by PREPARE; refuse what it could not have written (the numba
-        // kernel trusts it).
+        // F was written by PREPARE; refuse what it could not have written.
         for (idx c = 0; c < 2 * nf; ++c)
             if (F[c] < 0 || F[c] >= n) return BAD_FINDEX;
     }

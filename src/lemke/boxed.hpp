@@ -1,13 +1,10 @@
-// Lemke's method for the box LCP with bounded variables (the port of
-// lemke/kernels/boxed.py, whose module docstring states the problem, the method, the rule,
-// the start, the equilibration and the check): n pairs, each z_i non-basic at a bound or
+// Lemke's method for the box LCP with bounded variables: n pairs, each z_i non-basic at a bound or
 // basic, bound flips without a basis change, the friction index solved exactly on an
-// extended box LCP (extend), and the one-call front of solve_blcp (front). Every function
-// here is the numba kernel of the same name, the same operations in the same order, so the
-// same bits.
+// extended box LCP (extend), and the one-call front of solve_blcp (front). Every sum in
+// a fixed order, so the same bits on every instruction set (tests/data/frozen/ records them).
 //
 // Labels: 0..n-1 the w's, n..2n-1 the z's, 2n the artificial z0. Flags are one byte each
-// (numba's bool arrays).
+// (numpy's bool arrays).
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,4 @@
-// Carrying a basis across a change of rows by integer labels (the port of
-// lemke/kernels/carry.py): open-addressing hash tables with linear probing and Fibonacci
+// Carrying a basis across a change of rows by integer labels: open-addressing hash tables with linear probing and Fibonacci
 // hashing, O(n + m).
 #pragma once
 #include <cstdint>

@@ -1,5 +1,4 @@
-// The acceptance test of an LCP point, row by row (the port of lemke/kernels/certify.py,
-// whose docstring states the rule: componentwise backward error relative to each row's own
+// The acceptance test of an LCP point, row by row (the rule: componentwise backward error relative to each row's own
 // size, a rounding floor for q, the certifiability bound).
 #pragma once
 #include "linalg.hpp"

@@ -400,7 +400,7 @@ bool normalize(double* v, idx len) {
     return true;
 }
 
-// numba's int(x) of a float64 (x86's cvttsd2si: INT64_MIN when out of range or NaN).
+// int(x) of a float64 as x86's cvttsd2si gives it (INT64_MIN when out of range or NaN).
 idx float_to_int(double x) {
     if (x >= -9223372036854775808.0 && x < 9223372036854775808.0) return static_cast<idx>(x);
     return INT64_MIN;
@@ -408,7 +408,7 @@ idx float_to_int(double x) {
 
 // --- Lemke-Howson ---------------------------------------------------------------------------
 
-// The work arrays of one Lemke-Howson solve (kernels/games.py's F, I, Z, U), laid out here
+// The work arrays of one Lemke-Howson solve (F, I, Z, U), laid out here
 // and only here.
 struct LHViews {
     Tab P, Q;

@@ -1,8 +1,7 @@
-// Bimatrix games (the port of lemke/kernels/games.py, whose docstring states the method):
-// Lemke-Howson on two condensed tableaux and the van den Elzen-Talman tracing procedure,
+// Bimatrix games: Lemke-Howson on two condensed tableaux and the van den Elzen-Talman tracing procedure,
 // both choosing rows by the shared rule of pivoting.hpp, each answer checked by the
-// players' regrets on the caller's payoffs. The same floating-point operations in the same
-// order as the numba kernels, so the same bits.
+// players' regrets on the caller's payoffs. Every sum in a fixed order, so the same bits on
+// every instruction set.
 //
 // Convention: A and B (both m x n, row-major) are the payoffs of the row player and of the
 // column player; labels 0..m-1 are the row player's actions, m..m+n-1 the column player's.

@@ -279,7 +279,7 @@ idx restart(Mat<const double> M, const double* q, const std::uint8_t* z_start, c
     return pivots;
 }
 
-// The cold solve with its recoveries (cold.checked). Returns code, pivots, k (basic z's into
+// The cold solve with its recoveries. Returns code, pivots, k (basic z's into
 // basic), ok, residual, recoveries in a RunResult (stage 2).
 RunResult checked(Method method, Mat<const double> M, const double* q, const double* d,
                   idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,

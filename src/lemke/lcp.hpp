@@ -1,6 +1,5 @@
-// The LCP driver: a cold or warm solve's first stages in one call (the port of
-// lemke/kernels/cold.py's first_run, whose docstring states the stages). The output buffer
-// is laid out as in cold.BUFFER: [z | z0 | ray (n + 1) | w | covering | row scales |
+// The LCP driver: a cold or warm solve's first stages in one call (first_run; the stages are
+// stated below). The output buffer is laid out as in python/lemke/_layout.py's BUFFER: [z | z0 | ray (n + 1) | w | covering | row scales |
 // column scales], 6n + 2 doubles (BufferLayout), with the n basic indices (int64) after it.
 #pragma once
 #include <cstdint>
@@ -64,9 +63,9 @@ RunResult solve(Method method, Mat<const double> M, const double* q, const doubl
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
                 double tol, double* buf, idx* basic);
 
-// cold.checked_once: checked() with the covering vector d given (so no recovery runs after a
+// checked_once: checked() with the covering vector d given (so no recovery runs after a
 // failed check) and a ray not judged (ok false): the prologue, one run of `method` with the
-// recoveries from a cycle, the check. For kernels.qp's multiplier LCP. buf:
+// recoveries from a cycle, the check. For qp.cpp's multiplier LCP. buf:
 // BufferLayout(n).length() doubles; basic: n int64 (the basic z's, k of them).
 RunResult checked_once(Method method, Mat<const double> M, const double* q, const double* d,
                        idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,

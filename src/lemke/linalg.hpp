@@ -1,8 +1,7 @@
 // Small dense kernels: Python's max/min semantics, the fixed-order dot product, the finite
 // check, Ruiz equilibration by powers of two, the scaled system, and a pivoted LU solve.
 // Every sum is in a fixed order with no fused multiply-add (-ffp-contract=off), so the
-// results are the same bits on every instruction set and equal the numba kernels'
-// (lemke/kernels/linalg.py), which follow the same order.
+// results are the same bits on every instruction set (those the goldens record).
 #pragma once
 #include <cmath>
 #include <cstring>
@@ -35,7 +34,7 @@ inline double dot_lanes(const double* x, const double* y, idx k) {
     double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
     // (plain lanes: GCC vectorizes them; written on vector types, this loop made the QP
-    // 1.3x -> 1.9x numba's time at n = 300, where dot runs on many short rows)
+    // 1.5x slower at n = 300, where dot runs on many short rows)
     for (; j + 8 <= k; j += 8)
         for (int l = 0; l < 8; ++l) a[l] += x[j + l] * y[j + l];
     for (; j < k; ++j) a[0] += x[j] * y[j];
@@ -96,8 +95,8 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
 
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
-// residual2, solve, refined_solve, principal_block). std::fma only here, where numba calls
-// its explicit `fma` intrinsic (llvm.fma): a b + c rounded once on every instruction set.
+// residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c
+// rounded once on every instruction set.
 
 // (p, e) with p = fl(a b) and a b = p + e exactly (unless a b over- or underflows).
 inline void two_product(double a, double b, double& p, double& e) {
@@ -150,7 +149,7 @@ void matvec(Mat<const double> G, idx k, const double* x, double* out);
 // the inverse's columns swapped back at the end. G may be larger than k x k. work: 4k
 // doubles (a pass's multipliers, its pivot rows), piv: k. False when the block is not
 // finite, a pivot is exactly zero or NaN, or the inverse is not finite (G then holds what
-// the elimination left, as numba's does).
+// the elimination left).
 bool invert_in_place(Mat<double> G, idx k, double* work, idx* piv);
 
 }  // namespace lemke

@@ -30,10 +30,10 @@ struct MlcpWork {
 
 thread_local MlcpWork mlcp_work;
 
-// Exchange the basic variable of row r with the non-basic one of column c (kmlcp.exchange):
+// Exchange the basic variable of row r with the non-basic one of column c:
 // where the pivot row has few non-zeros only those columns of the other rows are updated.
-// c = -1 is read as numba reads it, from the end (T's last column, col_label's last entry):
-// reduce can pass it when no free column is left in the row (the same bits as there).
+// c = -1 is read from the end, as a Python index (T's last column, col_label's last entry):
+// reduce can pass it when no free column is left in the row (the bits the tests record).
 void exchange(Mat<double> T, idx r, idx c, idx* row_label, idx* col_label, double* prow,
               idx* nz) {
     idx rows = T.rows, cols = T.cols;
@@ -146,7 +146,7 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
     idx* fcols = w.fcols();
     idx* srows = w.srows();
     idx* col_of = w.col_of();
-    auto col = [&T](idx j) { return j < 0 ? j + T.cols : j; };  // numba's negative index
+    auto col = [&T](idx j) { return j < 0 ? j + T.cols : j; };  // a negative index counts from the end
     while (true) {
         idx nf = 0;
         for (idx l = 0; l < 2 * N; ++l) col_of[l] = -1;

@@ -1,5 +1,4 @@
-// From a mixed LCP to a plain LCP (the port of lemke/kernels/mlcp.py, whose docstring
-// states the method): the Ruiz scaling of the stacked E, and the exchange pivots that make
+// From a mixed LCP to a plain LCP: the Ruiz scaling of the stacked E, and the exchange pivots that make
 // every free variable basic on the dictionary T = [E | e].
 #pragma once
 #include "span.hpp"

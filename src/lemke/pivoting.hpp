@@ -1,5 +1,4 @@
-// The pivoting rule shared by every engine (the port of lemke/kernels/pivoting.py, whose
-// docstring states the rule): the first pivot, the ratio test with relative ties, the
+// The pivoting rule shared by every engine: the first pivot, the ratio test with relative ties, the
 // lexicographic tie-break and Brent's cycle detector on a 64-bit basis fingerprint. A method
 // supplies only numbers: the values, the entering column, entries of its basis inverse.
 #pragma once

@@ -1440,7 +1440,7 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
     ds.P = P;
     ds.lb = lo;
     ds.ub = up;
-    // (numba's kernel passes b and h as y and z: empty for a box-only QP)
+    // (b and h passed as y and z: empty for a box-only QP)
     if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + L.stats())) {
         res.code = CHECK_FAILED;
         return res;

@@ -1,10 +1,10 @@
-// The QP kernels (the port of lemke/kernels/qp.py, whose docstring states the method): the
+// The QP kernels: the
 // fused cold path of a strictly convex QP (screen, Cholesky, the rows' substitutions, the
 // QR of the equalities, the multiplier LCP by lemke::checked_once, the point, the KKT check
 // on the caller's data) and the path for many more inequalities than variables (the LCP in
 // factored form by the unrevised method, the active set's point refined in double-double).
-// The same operations in the same order as the numba kernels, so the same bits (every sum in
-// a fixed order without fused multiply-adds: the same bits on every instruction set).
+// Every sum in a fixed order without fused multiply-adds: the same bits on every instruction
+// set (those the goldens and tests/data/frozen/ record).
 #pragma once
 #include <cstdint>
 
@@ -97,7 +97,7 @@ bool cholesky(Mat<const double> P, Mat<double> L);
 
 // qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check (each row against its
 // terms' sizes times tol + 4 eps, plus the rounding floor: each of x, y, z, zb exact only to
-// 4 (n + 2) eps times its largest entry; the oracle's docstring states the rule); stats (4)
+// 4 (n + 2) eps times its largest entry; tests/test_qp_kkt_check.py states the rule); stats (4)
 // gets (primal, dual, gap, obj).
 bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
                const double* zb, double tol, double* stats);
@@ -138,7 +138,7 @@ Result solve_box(const Data& d, const std::uint8_t* warm, idx max_pivots, double
 void box_basis(const double* lo, const double* up, idx n, const idx* final, idx k, idx m,
                idx* out, idx& count, idx& pairs);
 
-// Pieces bound for the oracle tests.
+// Pieces bound for the tests that check their bits (tests/test_core_qp.py).
 void forward_rows(Mat<const double> L, Mat<double> R);
 // qp._dot4: the four sums a' r_k, each in linalg's fixed order (dot).
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,

@@ -20,7 +20,7 @@ void TableauWork::layout(idx size) {
 }
 
 // The pivot on row r and column s (entering column in col), applied at once; the same
-// operations in the same order as the numba kernel's pivot_now, so the same bits. Compiled
+// operations in the same order whatever the block, so the same bits. Compiled
 // per instruction set (multiversion.hpp): the row updates are the solve's hot loop.
 namespace {
 
@@ -76,7 +76,7 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
 
 namespace {
 
-// The pivots pending (numba's tableau with block > 1): the current tableau is
+// The pivots pending (block > 1): the current tableau is
 // T + sum_p U[:, p] V[p] over the k pending, summed in pivot order. U is n x b, V b x m.
 struct Pending {
     double* U;  // column p of U: U + p n (the factors of pivot p, one per row)
@@ -341,8 +341,8 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
         } else {
             pending_column(T, P, s, col);
         }
-        // max |col| (numba's running maximum: no NaN ever enters it, so eight lanes give
-        // the same number)
+        // max |col| (a running maximum: no NaN ever enters it, so eight lanes give the same
+        // number as one)
         double cmax = absmax(col, n);
         if (is_basic[artificial]) z0_max = pmax(z0_max, rhs[pos[artificial]]);
         idx art = is_basic[artificial] ? pos[artificial] : -1;

@@ -1,5 +1,4 @@
-// Lemke's method on a condensed tableau (the Japanese article's method; the port of
-// lemke/kernels/tableau.py). Row i says basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j];
+// Lemke's method on a condensed tableau (the Japanese article's method). Row i says basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j];
 // labels 0..n-1 are w, n..2n-1 are z, 2n is z0.
 #pragma once
 #include <vector>
@@ -8,9 +7,8 @@
 
 namespace lemke {
 
-// Pivots kept pending before they are applied (numba's tableau.block_size delays from
-// n = 400): 1 (no delay) below n = 32, where the tableau stays in the first-level cache;
-// from there 8, so that each pass over T applies eight pivots (the row updates are bound by
+// Pivots kept pending before they are applied: 1 (no delay) below n = 32, where the
+// tableau stays in the first-level cache; from there 8, so that each pass over T applies eight pivots (the row updates are bound by
 // the traffic over T: at n = 100 and 300 the delayed updates take 0.8x and 0.65x the time).
 // Any block gives the same bits (the pending terms are summed in pivot order; tableau.cpp).
 inline idx block_size(idx n) { return n < 32 ? 1 : 8; }
@@ -46,8 +44,8 @@ struct TableauWork {
 };
 
 // The pivot on row r and column s of T (entering column in col, prow: scratch of T.ld),
-// rhs and magb updated with it (numba's tableau.pivot_now: the same operations in the same
-// order). The row updates run over T.ld columns: padding columns past T.cols are updated
+// rhs and magb updated with it (the same operations in the same order as the goldens
+// record). The row updates run over T.ld columns: padding columns past T.cols are updated
 // too (values nobody reads), each column on its own, so the bits of the others are those of
 // the scalar loop. With s_next >= 0 (not s), col_next gets the column s_next after the pivot,
 // read as each row is done. Also the box LCP engine's pivot (boxed.cpp).

@@ -63,7 +63,7 @@ void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos
     }
 }
 
-// One run's state: views of the workspace and the sizes (the numba kernel's locals).
+// One run's state: views of the workspace and the sizes (one run's locals).
 struct Run {
     idx n, kmax, k = 0;
     ColumnSource src;
@@ -342,7 +342,7 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
 
     Status status = MAX_PIVOTS;
     pivots = 0;
-    if (u.k > 0 && !u.invert()) {  // (k == 0: numba's empty G0 matches, nothing to invert)
+    if (u.k > 0 && !u.invert()) {  // (k == 0: an empty G0, nothing to invert)
         status = NUMERICAL_FAILURE;
         max_pivots = 0;
     }

@@ -1,11 +1,10 @@
-// Lemke's method without a tableau: the "unrevised" method of Dai & Drumwright (the port of
-// lemke/kernels/unrevised.py, whose docstring states the method). Only the index sets are
+// Lemke's method without a tableau: the "unrevised" method of Dai & Drumwright. Only the index sets are
 // kept: alpha (the non-basic w's, H's rows) and beta (the basic z's, H's columns; n stands
 // for z0), the inverse G of the block H = A[alpha, beta] of A = [M | d], updated per pivot,
 // and the basic values, updated in place and checked against the block every CHECK_EVERY
 // pivots. Labels: 0..n-1 for w, n..2n-1 for z, 2n for z0.
 //
-// Both forms of numba's kernel with G0 empty: M dense (A = [M | d], kmax = n) and M in
+// Two forms: M dense (A = [M | d], kmax = n) and M in
 // factored form M = Fs Fs' (A = d alone, n x 1; a column Fs Fs[e]' computed when z_e
 // enters; kmax = min(n, r + 1)). The columns of A come through one function (fetch_column,
 // over a ColumnSource), and H's arrays are sized by kmax (its largest possible size).
@@ -53,7 +52,7 @@ struct UnrevisedWork {
 };
 
 // One run on the scaled system in `w` (qs and z_start set) with columns from `src`: Lemke's
-// method from the basis z_start (numba's unrevised.lemke with G0 empty). Returns the status,
+// method from the basis z_start. Returns the status,
 // pivots in `pivots`; x_out (n + 1) gets z and z0, ray_out (n + 1) the ray on
 // RAY_TERMINATION, z_basic_out (n) the final basic z's; all in the scaled units.
 Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots,
@@ -61,17 +60,15 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
                        std::uint8_t* z_basic_out, idx& pivots);
 
 // Lemke's method from the basis z_start (n flags; nullptr: all w basic) on (M, q) with
-// covering vector d, on the system equilibrated by (R, C), as numba's unrevised.solve(M, q, d,
-// R, C, z_start, no_matrix(), ...): returns the status, pivots in `pivots`; x_out (n + 1)
+// covering vector d, on the system equilibrated by (R, C): returns the status, pivots in `pivots`; x_out (n + 1)
 // z and z0 and ray_out (n + 1) in the caller's units, z_basic_out (n) the final basic z's.
 Status unrevised_solve(Mat<const double> M, const double* q, const double* d, const double* R,
                        const double* C, const std::uint8_t* z_start, idx max_pivots,
                        double pivot_tol, double tie_tol, double* x_out, double* ray_out,
                        std::uint8_t* z_basic_out, idx& pivots);
 
-// numba's unrevised.lemke(d[:, None], Fs, q, false_flags(n), no_matrix(), ...): Lemke's
-// method from the all-w basis on LCP(Fs Fs', q) with covering vector d, M never formed
-// (the LCP of kernels.qp.gram_lcp, whose units it takes as given: no scaling here).
+// Lemke's method from the all-w basis on LCP(Fs Fs', q) with covering vector d, M never
+// formed (the LCP of qp.cpp's gram_lcp, whose units it takes as given: no scaling here).
 // Outputs as unrevised_lemke.
 Status unrevised_factored(Mat<const double> Fs, const double* d, const double* q,
                           idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
