@@ -45,7 +45,7 @@ def dense_calls(monkeypatch):
         box = G is None and h is None and A is None and b is None and (
             lb is not None or ub is not None)
         if r is not None and not box:
-            codes.append(kqp.OK if type(r) is _qp.QPResult else r[0])
+            codes.append(QP_OK if type(r) is _qp.QPResult else r[0])
         return r
     monkeypatch.setattr(_qp, "_QP_FRONT", recording)
     return codes
