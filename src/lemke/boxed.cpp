@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "certify.hpp"
+#include "multiversion.hpp"
 #include "tableau.hpp"
 
 namespace lemke {
@@ -180,13 +181,22 @@ idx exchange(Run& R, const std::uint8_t* want) {
 }
 
 // The rows of the ratio test (boxed.ratio_rows): returns the artificial variable's row
-// (-1 when not basic), cmax the largest |cc|.
-idx ratio_rows(const double* x, const idx* basis, const idx* pos, const std::uint8_t* is_basic,
-               const double* col, double sigma, idx e, idx n, const double* lo,
-               const double* hi, const double* rlo, const double* rhi, double* gaps, double* cc,
-               std::uint8_t* low, double& cmax) {
+// (-1 when not basic), cmax the largest |cc|, kept as the rows go (a maximum of numbers that
+// no NaN ever changes, as pmax runs it, is the same in any order; it was a loop of its own).
+// Inlined into each of lemke_run's clones (LEMKE_CLONES). (An eight-lane form of this loop,
+// the basic values gathered and the low flags stored from the lane masks, was slower at
+// n = 48 than this one on AVX-512.)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline idx ratio_rows(const double* x, const idx* basis, const idx* pos,
+                      const std::uint8_t* is_basic, const double* col, double sigma, idx e,
+                      idx n, const double* lo, const double* hi, const double* rlo,
+                      const double* rhi, double* gaps, double* cc, std::uint8_t* low,
+                      double& cmax) {
     idx art_lab = 2 * n;
     idx art = is_basic[art_lab] ? pos[art_lab] : -1;
+    double top = 0.0;
     for (idx i = 0; i < n; ++i) {
         double c = sigma * col[i];
         double v = x[basis[i]];
@@ -197,6 +207,7 @@ idx ratio_rows(const double* x, const idx* basis, const idx* pos, const std::uin
         gaps[i] = fin ? (neg ? (v - bnd) : (bnd - v)) : INF;
         cc[i] = fin ? -a : a;
         low[i] = neg || !fin;
+        top = pmax(top, a);
     }
     if (art >= 0) gaps[art] = x[art_lab];
     gaps[n] = INF;
@@ -210,8 +221,7 @@ idx ratio_rows(const double* x, const idx* basis, const idx* pos, const std::uin
             low[n] = sigma < 0.0;
         }
     }
-    cmax = 0.0;
-    for (idx i = 0; i < n + 1; ++i) cmax = pmax(cmax, std::fabs(cc[i]));
+    cmax = pmax(top, std::fabs(cc[n]));
     return art;
 }
 
@@ -244,7 +254,9 @@ idx ratio_ties(Mat<const double> T, const idx* pos, const std::uint8_t* is_basic
 }
 
 // Bounded-variable Lemke (boxed.lemke) from a complementary basis with z0's column in
-// T[:, n], z0 non-basic; lo, hi, at_hi the scaled bounds and flags; ray (2n + 1).
+// T[:, n], z0 non-basic; lo, hi, at_hi the scaled bounds and flags; ray (2n + 1). Compiled
+// per instruction set, as tableau_lemke: the column copy and the ratio test run every pivot.
+LEMKE_CLONES
 Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::uint8_t* at_hi,
                  const double* s0, idx max_pivots, double pivot_tol, double tie_tol,
                  double* ray, idx& pivots_out) {
@@ -269,6 +281,9 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     Detector detector;
     for (idx i = 0; i < 2 * n + 1; ++i) ray[i] = 0.0;
     pivots_out = 0;
+    // the ratio test's vector passes pay from some 64 rows (blocking_rows_vector, as the
+    // tableau's); keys (n + 1) hold the ratios, free until ratio_ties writes them
+    double* ratios = n >= 64 ? keys : nullptr;
     // First pivot: z0 rises until every basic variable is within its bounds.
     idx s = pos[art_lab];
     for (idx i = 0; i < n; ++i) col[i] = T(i, s);
@@ -356,7 +371,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         idx art = ratio_rows(x, basis, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi, gaps,
                              cc, low, cmax);
         idx nc = blocking_rows(gaps, gaps, cc, n + 1, -pivot_tol * cmax, tie_tol, cand, art,
-                               z0_max);
+                               z0_max, ratios);
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;
         } else {
