@@ -98,14 +98,14 @@ def main(argv=None):
     info = machine_info()
     t_start = time.perf_counter()
     runs = {name: [] for name in ["cli", *_CALLS]}
-    with tempfile.TemporaryDirectory(prefix="lemke-compile-") as cache:
-        for k in range(args.runs):
-            runs["cli"].append(_cli(cache))
-            for name, code in _CALLS.items():
-                runs[name].append(_child(code, cache))
-            print(f"round {k + 1}/{args.runs}: CLI {runs['cli'][-1]['call_s']:.2f} s; " + ", ".join(
-                f"{name} {r[-1]['call_s'] * 1e6:.0f}/{r[-1]['again_s'] * 1e6:.0f} us"
-                for name, r in runs.items() if name != "cli"), flush=True)
+    # rounds one after another (nothing is cached between processes but the OS's files)
+    for k in range(args.runs):
+        runs["cli"].append(_cli())
+        for name, code in _CALLS.items():
+            runs[name].append(_child(code))
+        print(f"round {k + 1}/{args.runs}: CLI {runs['cli'][-1]['call_s']:.2f} s; " + ", ".join(
+            f"{name} {r[-1]['call_s'] * 1e6:.0f}/{r[-1]['again_s'] * 1e6:.0f} us"
+            for name, r in runs.items() if name != "cli"), flush=True)
     mark_end(info)
     L = report_head("First calls per entry point (nothing compiles at run time)", "bench_compile.py", args,
                     time.perf_counter() - t_start, info)

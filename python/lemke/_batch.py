@@ -58,7 +58,14 @@ def _workers(workers) -> int:
     return usable_cores() if workers is None else workers
 
 
-def _run(kernel, args, tail, B, workers, progress=None, what=""):
+#: Estimated multiply-adds (sum of n^3 over the problems) under which a batch runs in the
+#: calling thread whatever ``workers`` says: handing chunks to pool threads costs some tens
+#: to hundreds of microseconds (a thread's wake-up on a shared machine), more than such a
+#: batch takes to solve.  The results are the same either way.
+INLINE_WORK = 200_000
+
+
+def _run(kernel, args, tail, B, workers, progress=None, what="", work=None):
     """``kernel(*args, lo, hi, *tail)`` over chunks of the B problems: in the calling thread
     when one worker (or one chunk), else by the calling thread and ``workers - 1`` threads of
     the pool, each taking the next chunk until none is left.  The calling thread starts at
@@ -69,9 +76,11 @@ def _run(kernel, args, tail, B, workers, progress=None, what=""):
     time_limit) and take no chunk after an interrupt (Ctrl-C; the call then raises
     KeyboardInterrupt).  ``progress`` (checked by ``_progress.check``): when neither
     None nor False, the work goes through :func:`_run_reporting`, the reports named
-    ``what``."""
+    ``what``.  ``work``: the batch's estimated multiply-adds (see INLINE_WORK)."""
     if progress is not None and progress is not False:
         return _run_reporting(kernel, args, tail, B, workers, progress, what)
+    if work is not None and work < INLINE_WORK:
+        workers = 1
     chunks = min(B, CHUNKS_PER_WORKER * workers) if workers > 1 else min(B, 1)
     if chunks <= 1:  # one chunk, all B (none when B = 0), in the calling thread
         if chunks:
@@ -292,7 +301,7 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     _run(_BATCH, (_layout.METHODS[method], M.reshape(-1), mstart, q.reshape(-1), qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs.reshape(-1),
           np.arange(B + 1, dtype=np.int64) * L, basics.reshape(-1), out_i, out_f), B, workers,
-         progress, "solve_lcp_batch")
+         progress, "solve_lcp_batch", work=B * n ** 3)
 
     f = _layout.fields(n)
     z = np.ascontiguousarray(bufs[:, f["z"]])
@@ -417,6 +426,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     n_b = off[0, 1:]
     limits = np.empty(B, dtype=np.int64)
     limits[:] = opts.pivot_limit(n_b)
+    work = _cubes(n_b)  # (before the sums below: n_b is a view of off)
     np.cumsum(off, axis=1, out=off)
     qoff, mstart, buff = off[0], off[1, :-1], off[2]
     bufs = np.empty(int(buff[-1]))
@@ -425,7 +435,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     out_f = np.empty((B, 2))
     _run(_BATCH, (_layout.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
-         progress, "solve_lcp_many")
+         progress, "solve_lcp_many", work=work)
     code = out_i[:, 0]
     for b in np.flatnonzero(code == _layout.NOT_FINITE).tolist():
         n, m, o = sizes[b], int(mstart[b]), int(qoff[b])
@@ -445,6 +455,11 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
 
 
 _RAY = int(Status.RAY_TERMINATION)
+
+
+def _cubes(n_b):
+    """The sum of n^3 over the sizes n_b (an int64 array): a batch's estimated work."""
+    return float(np.dot(n_b.astype(float) ** 2, n_b))
 
 
 def _offsets(sizes, buffers=True):

@@ -20,7 +20,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _validate
-from ._batch import _flat, _packed, _run, _workers
+from ._batch import _cubes, _flat, _packed, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
@@ -375,7 +375,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     out_f = np.empty(B)
     _run(boxed.batch, (Mflat, mstart, qflat, loflat, hiflat, qoff, fiflat, fflag, state, wflag),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, ints, ioff, state_out,
-          out_i, out_f), B, workers)
+          out_i, out_f), B, workers, work=8 * _cubes(n_b) if fiflat.size else _cubes(n_b))
     special = {}
     given = _Given(warm_start, given)
     stage = out_i[:, 5]
