@@ -31,6 +31,7 @@ from lemke import _certify, _core
 
 sys.path.insert(0, str(Path(__file__).parent))
 import golden  # noqa: E402
+from siconos_mlcp import LARGE_MLCP, read_mlcp  # noqa: E402
 
 
 #: core name -> family (the report's rows)
@@ -124,14 +125,12 @@ def _replay(rec, source):
 
 
 def test_the_mlcp_front_on_the_siconos_files(recorder):
-    """solve_mlcp on the goldens' Siconos MLCP files (and the big ones when the shared data
-    is here) by both methods, and the small cases of test_mlcp: equilibrate, reduce,
+    """solve_mlcp on the goldens' Siconos MLCP files (and the two big ones, compressed in
+    tests/data/siconos/mlcp-large) by both methods, and the small cases of test_mlcp: equilibrate, reduce,
     refined_solve (the basis points) and check_mlcp, as the front calls them."""
     cases = [args for _, args in golden.mlcp_cases()]
-    root = Path(__file__).resolve().parent.parent.parent
-    shared = root / "shared" / "data" / "peer-lcp" / "siconos" / "mlcp"
-    for path in sorted(shared.glob("deltasigma*.dat")):
-        cases.append([np.array(a) for a in lemke.read_problem(path).arrays_in_order()])
+    for path in LARGE_MLCP:  # the big ones, compressed in tests/data (the same arrays as ../shared's)
+        cases.append(list(read_mlcp(path)))
     E1 = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0], [-1.0, -1.0, 0.0]])
     cases += [
         [[[1.0]], [[2.0]], [[-1.0]], [[1.0]], [-1.0], [-3.0]],
