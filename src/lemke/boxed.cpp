@@ -1,6 +1,7 @@
 #include "boxed.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "certify.hpp"
 #include "multiversion.hpp"
@@ -11,7 +12,12 @@ namespace boxed {
 
 void BoxedWork::layout(idx size) {
     n = size;
-    f.resize(static_cast<std::size_t>(f_length()));
+    idx lanes = n < 48 ? 4 : 8;  // TableauWork's rule (tableau.cpp)
+    ld = (n + lanes) / lanes * lanes;
+    off = 0;
+    f.resize(static_cast<std::size_t>(f_length() + 7));
+    auto at = reinterpret_cast<std::uintptr_t>(f.data());
+    off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
     i.resize(static_cast<std::size_t>(i_length()));
     flags.resize(static_cast<std::size_t>(flags_length()));
 }
@@ -122,11 +128,11 @@ inline void step_values(double* x, const idx* basis, const double* col, idx n, i
 struct Run {
     idx n;
     Mat<double> T;
-    double *x, *rhs, *magb, *prow, *col;
+    double *x, *prow, *col;
     idx *basis, *nonbasic, *pos;
     std::uint8_t* is_basic;
     explicit Run(BoxedWork& w)
-        : n(w.n), T(w.T()), x(w.x()), rhs(w.rhs()), magb(w.magb()), prow(w.prow()),
+        : n(w.n), T(w.T()), x(w.x()), prow(w.prow()),
           col(w.col()), basis(w.basis()), nonbasic(w.nonbasic()), pos(w.pos()),
           is_basic(w.is_basic()) {}
 };
@@ -174,7 +180,7 @@ idx exchange(Run& R, const std::uint8_t* want) {
         idx leaving = R.basis[br];
         step_values(R.x, R.basis, col, n, e, -R.x[leaving] / col[br]);
         R.x[leaving] = 0.0;
-        pivot_now(T, R.rhs, R.magb, br, bs, col, R.prow);
+        pivot_now(T, nullptr, nullptr, br, bs, col, R.prow);
         swap_labels(R.basis, R.nonbasic, R.pos, R.is_basic, br, bs);
         ++done;
     }
@@ -338,7 +344,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
             double lb, ub;
             bounds_of(leaving, n, lo, hi, at_hi, lb, ub);
             x[leaving] = low_r ? lb : ub;
-            pivot_now(T, R.rhs, R.magb, r, s, col, R.prow);
+            pivot_now(T, nullptr, nullptr, r, s, col, R.prow);
             swap_labels(basis, R.nonbasic, pos, is_basic, r, s);
             bounds_of(e, n, lo, hi, at_hi, rlo[r], rhi[r]);
             ++pivots;
@@ -712,7 +718,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         const double* mrow = M.row(i);
         double* trow = T.row(i);
         for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * Cs[j];
-        trow[n] = 0.0;
+        for (idx j = n; j < W.ld; ++j) trow[j] = 0.0;  // z0's column, then the padding
         x[i] = qs[i] * r;
         x[n + i] = z0s[i] / Cs[i];
         los[i] = lo[i] / Cs[i];
@@ -728,11 +734,6 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     }
     nonbasic[n] = 2 * n;
     pos[2 * n] = n;
-    double *rhs = W.rhs(), *magb = W.magb();
-    for (idx i = 0; i < n; ++i) {
-        rhs[i] = 0.0;
-        magb[i] = 0.0;
-    }
     for (idx i = 0; i < n; ++i) want[i] = warm_basic[i];
     for (idx i = 0; i < n; ++i) {
         if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {

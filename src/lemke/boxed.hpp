@@ -90,8 +90,10 @@ struct SolveResult {
 
 // The engine's workspace, laid out once per size (one per thread, reused). The offsets
 // below state the layout; layout() sizes each array from the end of its last field:
-// f:     T (n x (n + 1)) | qs, los, his, s0, z0s (n each) | x, ray_lab (2n + 1 each) |
-//        the pivots' scratch rhs, magb (n each), prow (n + 1), col (n) |
+// f:     (off doubles, so that T's first row starts on a 64-byte boundary) T (n x ld: rows
+//        of n + 1 padded as TableauWork's, so pivot_now runs on whole aligned vectors; the
+//        padding columns are zeroed and read by nobody) | qs, los, his, s0, z0s (n each) |
+//        x, ray_lab (2n + 1 each) | the pivots' scratch prow (ld), col (n) |
 //        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n
 // i:     basis (n), nonbasic (n + 1), pos (2n + 1), start_basis (n), cand (n + 1)
 // flags: z_basic, z_hi (n each), is_basic (2n + 1), want (n), low (n + 1)
@@ -102,21 +104,21 @@ struct BoxedWork {
     std::vector<idx> i, chk_i;
     std::vector<std::uint8_t> flags;
     idx n = -1;
+    idx ld = 0;   // T's row stride: n + 1 rounded up to a multiple of 4 (n < 48) or 8
+    idx off = 0;  // T's offset in f
     void layout(idx size);
     double* check_area(idx len);
     idx* check_indices(idx len);
     // offsets in f
-    idx at_qs() const { return n * (n + 1); }
+    idx at_qs() const { return off + n * ld; }
     idx at_los() const { return at_qs() + n; }
     idx at_his() const { return at_los() + n; }
     idx at_s0() const { return at_his() + n; }
     idx at_z0s() const { return at_s0() + n; }
     idx at_x() const { return at_z0s() + n; }
     idx at_ray_lab() const { return at_x() + 2 * n + 1; }
-    idx at_rhs() const { return at_ray_lab() + 2 * n + 1; }
-    idx at_magb() const { return at_rhs() + n; }
-    idx at_prow() const { return at_magb() + n; }
-    idx at_col() const { return at_prow() + n + 1; }
+    idx at_prow() const { return at_ray_lab() + 2 * n + 1; }
+    idx at_col() const { return at_prow() + ld; }
     idx at_keys() const { return at_col() + n; }
     idx at_gaps() const { return at_keys() + n + 1; }
     idx at_cc() const { return at_gaps() + n + 1; }
@@ -136,7 +138,7 @@ struct BoxedWork {
     idx at_want() const { return at_is_basic() + 2 * n + 1; }
     idx at_low() const { return at_want() + n; }
     idx flags_length() const { return at_low() + n + 1; }
-    Mat<double> T() { return Mat<double>(f.data(), n, n + 1); }
+    Mat<double> T() { return Mat<double>(f.data() + off, n, n + 1, ld); }
     double* qs() { return f.data() + at_qs(); }
     double* los() { return f.data() + at_los(); }
     double* his() { return f.data() + at_his(); }
@@ -144,8 +146,6 @@ struct BoxedWork {
     double* z0s() { return f.data() + at_z0s(); }
     double* x() { return f.data() + at_x(); }
     double* ray_lab() { return f.data() + at_ray_lab(); }
-    double* rhs() { return f.data() + at_rhs(); }
-    double* magb() { return f.data() + at_magb(); }
     double* prow() { return f.data() + at_prow(); }
     double* col() { return f.data() + at_col(); }
     double* keys() { return f.data() + at_keys(); }

@@ -53,17 +53,22 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
         tr[j] = v;
     }
     tr[s] = inv;
-    rhs[r] = -rhs[r] * inv;
-    double rr = rhs[r];
-    magb[r] *= std::fabs(inv);
-    double mr = magb[r];
+    double rr = 0.0, mr = 0.0;
+    if (rhs) {
+        rhs[r] = -rhs[r] * inv;
+        rr = rhs[r];
+        magb[r] *= std::fabs(inv);
+        mr = magb[r];
+    }
     for (idx i = 0; i < n; ++i) {
         double* ti = T.row(i);
         if (i != r) {
             double f = col[i];
             if (f != 0.0) {
-                rhs[i] += f * rr;
-                magb[i] += std::fabs(f) * mr;
+                if (rhs) {
+                    rhs[i] += f * rr;
+                    magb[i] += std::fabs(f) * mr;
+                }
                 axpy(ti, f, prow, m);
                 ti[s] = f * inv + f * 0.0;
             } else {
