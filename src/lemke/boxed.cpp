@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 
 #include "certify.hpp"
 #include "multiversion.hpp"
@@ -270,6 +271,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     Mat<double> T = R.T;
     double* x = R.x;
     double* col = R.col;
+    double* col_next = w.col2();  // the next entering column, read during pivot_now
     idx *basis = R.basis, *pos = R.pos;
     std::uint8_t* is_basic = R.is_basic;
     idx art_lab = 2 * n;
@@ -321,6 +323,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     double z0_max = 0.0;
     Status status = MAX_PIVOTS;
     Poll poll;
+    idx s_next = -1;
     std::int64_t work = n * (n + 1);
     while (pivots < max_pivots) {
         if (int stop = poll.tick(work); stop >= 0) {
@@ -344,7 +347,12 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
             double lb, ub;
             bounds_of(leaving, n, lo, hi, at_hi, lb, ub);
             x[leaving] = low_r ? lb : ub;
-            pivot_now(T, nullptr, nullptr, r, s, col, R.prow);
+            // the complement of the leaving variable enters next (below; none when z0
+            // leaves): its column, non-basic and not s, is read during the row updates
+            idx e_next = leaving < n ? leaving + n : leaving - n;
+            s_next = leaving == art_lab || is_basic[e_next] || pos[e_next] == s ? -1
+                                                                                : pos[e_next];
+            pivot_now(T, nullptr, nullptr, r, s, col, R.prow, s_next, col_next);
             swap_labels(basis, R.nonbasic, pos, is_basic, r, s);
             bounds_of(e, n, lo, hi, at_hi, rlo[r], rhi[r]);
             ++pivots;
@@ -370,8 +378,13 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
             status = CYCLING;
             break;
         }
+        if (s_next >= 0 && pos[e] == s_next) {
+            std::swap(col, col_next);  // the column pivot_now read: the same values
+        } else {
+            for (idx i = 0; i < n; ++i) col[i] = T(i, pos[e]);
+        }
         s = pos[e];
-        for (idx i = 0; i < n; ++i) col[i] = T(i, s);
+        s_next = -1;
         if (is_basic[art_lab]) z0_max = pmax(z0_max, x[art_lab]);
         double cmax;
         idx art = ratio_rows(x, basis, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi, gaps,

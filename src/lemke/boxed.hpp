@@ -93,7 +93,8 @@ struct SolveResult {
 // f:     (off doubles, so that T's first row starts on a 64-byte boundary) T (n x ld: rows
 //        of n + 1 padded as TableauWork's, so pivot_now runs on whole aligned vectors; the
 //        padding columns are zeroed and read by nobody) | qs, los, his, s0, z0s (n each) |
-//        x, ray_lab (2n + 1 each) | the pivots' scratch prow (ld), col (n) |
+//        x, ray_lab (2n + 1 each) | the pivots' scratch prow (ld), col, col2 (n each: the
+//        entering column, and the next one read during the pivot) |
 //        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n
 // i:     basis (n), nonbasic (n + 1), pos (2n + 1), start_basis (n), cand (n + 1)
 // flags: z_basic, z_hi (n each), is_basic (2n + 1), want (n), low (n + 1)
@@ -119,7 +120,8 @@ struct BoxedWork {
     idx at_ray_lab() const { return at_x() + 2 * n + 1; }
     idx at_prow() const { return at_ray_lab() + 2 * n + 1; }
     idx at_col() const { return at_prow() + ld; }
-    idx at_keys() const { return at_col() + n; }
+    idx at_col2() const { return at_col() + n; }
+    idx at_keys() const { return at_col2() + n; }
     idx at_gaps() const { return at_keys() + n + 1; }
     idx at_cc() const { return at_gaps() + n + 1; }
     idx at_rlo() const { return at_cc() + n + 1; }
@@ -148,6 +150,7 @@ struct BoxedWork {
     double* ray_lab() { return f.data() + at_ray_lab(); }
     double* prow() { return f.data() + at_prow(); }
     double* col() { return f.data() + at_col(); }
+    double* col2() { return f.data() + at_col2(); }
     double* keys() { return f.data() + at_keys(); }
     double* gaps() { return f.data() + at_gaps(); }
     double* cc() { return f.data() + at_cc(); }
