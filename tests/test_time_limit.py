@@ -274,7 +274,9 @@ def test_a_progress_callback_may_solve_with_lemke_itself(monkeypatch):
     callback (its own workspaces) leaves the reported solve's answer as it is."""
     from lemke import _progress
 
-    d = problems.random_convex_qp(120, np.random.default_rng(2))
+    # (70 ms or so, so that the calling thread wakes within the solve even on a loaded
+    # machine: at n = 120, 8 ms, it once did not, and no report came)
+    d = problems.random_convex_qp(300, np.random.default_rng(2))
     ref = lemke.solve_qp(*d, method="tableau")
     inner = []
 
