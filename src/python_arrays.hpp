@@ -44,6 +44,18 @@ inline const ArrayFields* plain_f64(PyObject* o, int nd, PyTypeObject* ndarray) 
     return a;
 }
 
+// A 1-D int64 ndarray in the machine's byte order with the flags `need` (C-contiguous and
+// aligned; CARRAY: writable too), else nullptr. int64_num: NumPy's type number of int64
+// here (NumpyLayout).
+inline const ArrayFields* plain_i64(PyObject* o, PyTypeObject* ndarray, int int64_num,
+                                    int need = C_CONTIGUOUS | ALIGNED) {
+    if (Py_TYPE(o) != ndarray) return nullptr;
+    auto* a = reinterpret_cast<const ArrayFields*>(o);
+    if (a->nd != 1 || (a->flags & need) != need) return nullptr;
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    if (t->type_num != int64_num || t->byteorder != '=') return nullptr;
+    return a;
+}
 
 // d[key] = value, stealing value (the fronts build their results' __dict__ with it);
 // false on an error (set).

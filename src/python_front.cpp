@@ -103,11 +103,8 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
     const idx* beta = nullptr;
     idx k = 0;
     if (!beta_h.is_none()) {
-        if (Py_TYPE(beta_h.ptr()) != front.ndarray) return nb::none();
-        auto* b = reinterpret_cast<const ArrayFields*>(beta_h.ptr());
-        if (b->nd != 1 || (b->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
-            reinterpret_cast<const DescrFields*>(b->descr)->type_num != front.int64_num)
-            return nb::none();
+        auto* b = plain_i64(beta_h.ptr(), front.ndarray, front.int64_num);
+        if (b == nullptr) return nb::none();
         beta = reinterpret_cast<const idx*>(b->data);
         k = b->dimensions[0];
         if (k > n) return nb::none();

@@ -184,12 +184,8 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
     const NumpyLayout L = numpy_layout();
     const idx* fi = nullptr;
     if (!findex_h.is_none()) {
-        if (Py_TYPE(findex_h.ptr()) != L.ndarray) return nb::none();
-        auto* f = reinterpret_cast<const ArrayFields*>(findex_h.ptr());
-        auto* t = reinterpret_cast<const DescrFields*>(f->descr);
-        if (f->nd != 1 || f->dimensions[0] != n || (f->flags & CARRAY) != CARRAY ||
-            t->type_num != L.int64_num || t->byteorder != '=')
-            return nb::none();
+        auto* f = plain_i64(findex_h.ptr(), L.ndarray, L.int64_num, CARRAY);
+        if (f == nullptr || f->dimensions[0] != n) return nb::none();
         fi = reinterpret_cast<const idx*>(f->data);
     }
     bool friction = fi != nullptr;

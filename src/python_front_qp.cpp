@@ -195,11 +195,8 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
     idx kw = 0;
     const double* x0 = nullptr;
     if (!beta_h.is_none()) {
-        if (Py_TYPE(beta_h.ptr()) != lay.ndarray) return nb::none();
-        auto* w = reinterpret_cast<const ArrayFields*>(beta_h.ptr());
-        if (w->nd != 1 || (w->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
-            reinterpret_cast<const DescrFields*>(w->descr)->type_num != lay.int64_num)
-            return nb::none();
+        auto* w = plain_i64(beta_h.ptr(), lay.ndarray, lay.int64_num);
+        if (w == nullptr) return nb::none();
         warm = reinterpret_cast<const std::int64_t*>(w->data);
         kw = w->dimensions[0];
         if (pairs < 0 || kw > pairs) return nb::none();
