@@ -419,9 +419,13 @@ def _batch_in_child(conn):
 
 
 def _fork_problems():
+    """Four problems of 40 rows: work over _batch.INLINE_WORK, so that a batch of them is
+    handed to the pool (a smaller one runs in the calling thread)."""
+    from lemke import _batch
     rng = np.random.default_rng(7)
-    A = rng.standard_normal((4, 5, 5))
-    return A @ A.transpose(0, 2, 1) + np.eye(5), rng.standard_normal((4, 5))
+    A = rng.standard_normal((4, 40, 40))
+    assert 4 * 40 ** 3 >= _batch.INLINE_WORK
+    return A @ A.transpose(0, 2, 1) + np.eye(40), rng.standard_normal((4, 40))
 
 
 @pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="fork is POSIX")
@@ -435,7 +439,7 @@ def test_a_forked_child_runs_parallel_batches():
     parent, child = ctx.Pipe()
     p = ctx.Process(target=_batch_in_child, args=(child,))
     p.start()
-    got = parent.recv() if parent.poll(60) else None
+    got = parent.recv() if parent.poll(30) else None
     p.join(5)
     if p.is_alive():
         p.kill()
