@@ -15,6 +15,7 @@ void BoxedWork::layout(idx size) {
     n = size;
     idx lanes = n < 48 ? 4 : 8;  // TableauWork's rule (tableau.cpp)
     ld = (n + lanes) / lanes * lanes;
+    block = block_size(n);
     off = 0;
     f.resize(static_cast<std::size_t>(f_length() + 7));
     auto at = reinterpret_cast<std::uintptr_t>(f.data());
@@ -233,7 +234,7 @@ inline idx ratio_rows(const double* x, const idx* basis, const idx* pos,
 }
 
 // The blocking row among nc > 1 tied rows (boxed.ratio_ties); -1 when none is left.
-idx ratio_ties(Mat<const double> T, const idx* pos, const std::uint8_t* is_basic,
+idx ratio_ties(Mat<double> T, const Pending& P, const idx* pos, const std::uint8_t* is_basic,
                const idx* start_basis, const double* s0, idx n, double pivot_tol,
                double tie_tol, const double* cc, const std::uint8_t* low, idx* cand,
                double* keys, idx nc, idx art) {
@@ -249,7 +250,7 @@ idx ratio_ties(Mat<const double> T, const idx* pos, const std::uint8_t* is_basic
             } else if (is_basic[lab]) {
                 b = pos[lab] == i ? 1.0 : 0.0;
             } else {
-                b = -T(i, pos[lab]);
+                b = -entry(T, P, i, pos[lab]);
             }
             double sg = low[i] ? 1.0 : -1.0;
             keys[c] = lex_key(sg * s0[j] * b, cc[i], pivot_tol);
@@ -280,6 +281,10 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     for (idx i = 0; i < n; ++i) start_basis[i] = basis[i];
     double *keys = w.keys(), *gaps = w.gaps(), *cc = w.cc(), *rlo = w.rlo(), *rhi = w.rhi();
     std::uint8_t* low = w.low();
+    // pivots kept pending from n = 32 (block_size), as tableau_lemke keeps them: each pivot
+    // makes its row and column exact in T and leaves the rank-one update pending, flushed
+    // eight at a time; the columns and ratio_ties's entries read through the pending terms
+    Pending P{w.U(), w.V(), w.block, w.ld, 0, n};
     for (idx i = 0; i < n; ++i) bounds_of(basis[i], n, lo, hi, at_hi, rlo[i], rhi[i]);
     // keys 0..2n the labels, 2n + 1 + i z_i at hi (pivoting.label_key)
     std::uint64_t h = 0;
@@ -349,10 +354,15 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
             x[leaving] = low_r ? lb : ub;
             // the complement of the leaving variable enters next (below; none when z0
             // leaves): its column, non-basic and not s, is read during the row updates
-            idx e_next = leaving < n ? leaving + n : leaving - n;
-            s_next = leaving == art_lab || is_basic[e_next] || pos[e_next] == s ? -1
-                                                                                : pos[e_next];
-            pivot_now(T, nullptr, nullptr, r, s, col, R.prow, s_next, col_next);
+            if (P.b == 1) {
+                idx e_next = leaving < n ? leaving + n : leaving - n;
+                s_next = leaving == art_lab || is_basic[e_next] || pos[e_next] == s
+                             ? -1
+                             : pos[e_next];
+                pivot_now(T, nullptr, nullptr, r, s, col, R.prow, s_next, col_next);
+            } else {
+                pivot_delayed(T, nullptr, nullptr, r, s, col, R.prow, P);
+            }
             swap_labels(basis, R.nonbasic, pos, is_basic, r, s);
             bounds_of(e, n, lo, hi, at_hi, rlo[r], rhi[r]);
             ++pivots;
@@ -380,8 +390,10 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         }
         if (s_next >= 0 && pos[e] == s_next) {
             std::swap(col, col_next);  // the column pivot_now read: the same values
-        } else {
+        } else if (P.k == 0) {
             for (idx i = 0; i < n; ++i) col[i] = T(i, pos[e]);
+        } else {
+            pending_column(T, P, pos[e], col);  // the current column: T and the pending terms
         }
         s = pos[e];
         s_next = -1;
@@ -394,7 +406,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;
         } else {
-            r = ratio_ties(T, pos, is_basic, start_basis, s0, n, pivot_tol, tie_tol, cc, low,
+            r = ratio_ties(T, P, pos, is_basic, start_basis, s0, n, pivot_tol, tie_tol, cc, low,
                            cand, keys, nc, art);
         }
         if (r < 0) {
@@ -408,6 +420,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         double step = (cc[r] < 0.0 && g > 0.0 && g < INF) ? g / -cc[r] : 0.0;
         step_values(x, basis, col, n, e, sigma * step);
     }
+    if (P.k > 0) flush(T, P);  // T current again, as the immediate pivots leave it
     pivots_out = pivots;
     return status;
 }

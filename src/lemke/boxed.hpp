@@ -95,7 +95,9 @@ struct SolveResult {
 //        padding columns are zeroed and read by nobody) | qs, los, his, s0, z0s (n each) |
 //        x, ray_lab (2n + 1 each) | the pivots' scratch prow (ld), col, col2 (n each: the
 //        entering column, and the next one read during the pivot) |
-//        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n
+//        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n |
+//        the pending pivots' U (n x block), V (block x ld), as TableauWork's, each from
+//        a 64-byte boundary
 // i:     basis (n), nonbasic (n + 1), pos (2n + 1), start_basis (n), cand (n + 1)
 // flags: z_basic, z_hi (n each), is_basic (2n + 1), want (n), low (n + 1)
 // chk:   the checks' scratch, outside the run's arrays (box_check 3n; check_scales 4n;
@@ -107,6 +109,7 @@ struct BoxedWork {
     idx n = -1;
     idx ld = 0;   // T's row stride: n + 1 rounded up to a multiple of 4 (n < 48) or 8
     idx off = 0;  // T's offset in f
+    idx block = 1;  // pivots kept pending (tableau.hpp block_size)
     void layout(idx size);
     double* check_area(idx len);
     idx* check_indices(idx len);
@@ -127,7 +130,10 @@ struct BoxedWork {
     idx at_rlo() const { return at_cc() + n + 1; }
     idx at_rhi() const { return at_rlo() + n; }
     idx at_eq_work() const { return at_rhi() + n; }
-    idx f_length() const { return at_eq_work() + 2 * n; }
+    // U and V start on 64-byte boundaries as T does (flush reads V's rows as whole vectors)
+    idx at_U() const { return off + (at_eq_work() + 2 * n - off + 7) / 8 * 8; }
+    idx at_V() const { return off + (at_U() + n * block - off + 7) / 8 * 8; }
+    idx f_length() const { return at_V() + block * ld; }
     // offsets in i
     idx at_nonbasic() const { return n; }
     idx at_pos() const { return at_nonbasic() + n + 1; }
@@ -157,6 +163,8 @@ struct BoxedWork {
     double* rlo() { return f.data() + at_rlo(); }
     double* rhi() { return f.data() + at_rhi(); }
     double* eq_work() { return f.data() + at_eq_work(); }
+    double* U() { return f.data() + at_U(); }
+    double* V() { return f.data() + at_V(); }
     idx* basis() { return i.data(); }
     idx* nonbasic() { return i.data() + at_nonbasic(); }
     idx* pos() { return i.data() + at_pos(); }

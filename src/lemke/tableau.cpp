@@ -39,6 +39,14 @@ inline void axpy(double* t, double f, const double* v, idx m) {
     for (; j < m; ++j) t[j] += f * v[j];
 }
 
+// The pivot row's rhs and magb (pivot_now and pivot_delayed alike): rr, mr their new values.
+inline void pivot_rhs_row(double* rhs, double* magb, idx r, double inv, double& rr, double& mr) {
+    rhs[r] = -rhs[r] * inv;
+    rr = rhs[r];
+    magb[r] *= std::fabs(inv);
+    mr = magb[r];
+}
+
 }  // namespace
 
 LEMKE_CLONES
@@ -54,12 +62,7 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
     }
     tr[s] = inv;
     double rr = 0.0, mr = 0.0;
-    if (rhs) {
-        rhs[r] = -rhs[r] * inv;
-        rr = rhs[r];
-        magb[r] *= std::fabs(inv);
-        mr = magb[r];
-    }
+    if (rhs) pivot_rhs_row(rhs, magb, r, inv, rr, mr);
     for (idx i = 0; i < n; ++i) {
         double* ti = T.row(i);
         if (i != r) {
@@ -81,26 +84,6 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
 
 namespace {
 
-// The pivots pending (block > 1): the current tableau is
-// T + sum_p U[:, p] V[p] over the k pending, summed in pivot order. U is n x b, V b x m.
-struct Pending {
-    double* U;  // column p of U: U + p n (the factors of pivot p, one per row)
-    double* V;
-    idx b, m, k, n;
-    double u(idx i, idx p) const { return U[p * n + i]; }
-    const double* v(idx p) const { return V + p * m; }
-};
-
-// The current T[i, j]: T[i, j] plus the k pending terms, in pivot order (tableau.entry).
-inline double entry(Mat<double> T, const Pending& P, idx i, idx j) {
-    double t = T(i, j);
-    for (idx p = 0; p < P.k; ++p) {
-        double f = P.u(i, p);
-        if (f != 0.0) t += f * P.v(p)[j];
-    }
-    return t;
-}
-
 // t[j] = ((t[j] + a[0] v[0][j]) + a[1] v[1][j]) + ... for j < m: K terms in one pass.
 template <int K>
 inline void add_terms(double* t, const double* a, const double* const* v, idx m) {
@@ -120,6 +103,8 @@ inline void add_terms(double* t, const double* a, const double* const* v, idx m)
         t[j] = x;
     }
 }
+
+}  // namespace
 
 // Column s of the current tableau into col: entry() for every row, a pending pivot at a
 // time over all rows (each entry's terms in pivot order; a zero factor's term is -0.0, which
@@ -182,8 +167,9 @@ void flush(Mat<double> T, Pending& P) {
 
 // The pivot on row r and column s with P.k pivots pending (tableau.pivot): the pivot row
 // and column made exact in T, the rank-one update kept pending; flushed when b are.
-inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
-                          const double* col, double* prow, Pending& P) {
+LEMKE_CLONES
+void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
+                   const double* col, double* prow, Pending& P) {
     idx n = T.rows, m = P.m, k = P.k, b = P.b;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
@@ -198,10 +184,8 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
     for (idx j = 0; j < m; ++j) prow[j] = -prow[j] * inv;
     prow[s] = inv;
     for (idx j = 0; j < m; ++j) tr[j] = prow[j];
-    rhs[r] = -rhs[r] * inv;
-    double rr = rhs[r];
-    magb[r] *= std::fabs(inv);
-    double mr = magb[r];
+    double rr = 0.0, mr = 0.0;
+    if (rhs) pivot_rhs_row(rhs, magb, r, inv, rr, mr);
     for (idx p = 0; p < k; ++p) {
         P.U[p * n + r] = 0.0;
         P.V[p * m + s] = 0.0;
@@ -211,7 +195,7 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
         P.U[k * n + i] = f;
         if (i != r) {
             T(i, s) = f * inv;
-            if (f != 0.0) {
+            if (rhs && f != 0.0) {
                 rhs[i] += f * rr;
                 magb[i] += std::fabs(f) * mr;
             }
@@ -224,6 +208,8 @@ inline void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s
     P.k = k + 1;
     if (P.k == b) flush(T, P);
 }
+
+namespace {
 
 // mags = the size |B^-1| |q| of the rows under the running bound that may be rounding.
 void careful_sizes(Mat<double> T, const Pending& P, const double* col, const double* rhs, const idx* pos,

@@ -52,6 +52,41 @@ struct TableauWork {
 void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, const double* col,
                double* prow, idx s_next = -1, double* col_next = nullptr);
 
+// The pivots pending (block > 1): the current tableau is
+// T + sum_p U[:, p] V[p] over the k pending, summed in pivot order. U is n x b, V b x m.
+struct Pending {
+    double* U;  // column p of U: U + p n (the factors of pivot p, one per row)
+    double* V;
+    idx b, m, k, n;
+    double u(idx i, idx p) const { return U[p * n + i]; }
+    const double* v(idx p) const { return V + p * m; }
+};
+
+// The current T[i, j]: T[i, j] plus the k pending terms, in pivot order (tableau.entry).
+// Also the box LCP engine's (boxed.cpp), with the same functions below.
+inline double entry(Mat<double> T, const Pending& P, idx i, idx j) {
+    double t = T(i, j);
+    for (idx p = 0; p < P.k; ++p) {
+        double f = P.u(i, p);
+        if (f != 0.0) t += f * P.v(p)[j];
+    }
+    return t;
+}
+
+// Column s of the current tableau into col: entry() for every row, in one pass per pending
+// pivot (tableau.cpp).
+void pending_column(Mat<double> T, const Pending& P, idx s, double* col);
+
+// Apply the k pending pivots (each entry gets its row's terms in pivot order, as the
+// immediate updates give them); P.k = 0 after.
+void flush(Mat<double> T, Pending& P);
+
+// The pivot on row r and column s with P.k pivots pending: the pivot row and column made
+// exact in T (and rhs, magb with it; rhs = nullptr: neither, as pivot_now), the rank-one
+// update kept pending; flushed when P.b are. The same bits as pivot_now once flushed.
+void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
+                   double* prow, Pending& P);
+
 // One run from the tableau in `w` (T, rhs, basis, nonbasic set up): returns the status and
 // the pivots made. x_out (n + 1) gets z and z0, ray_out (n + 1) the ray on RAY_TERMINATION,
 // z_basic_out (n) the final basic z's. `careful`: exact sizes of the rows that may be
