@@ -283,7 +283,9 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     std::uint8_t* low = w.low();
     // pivots kept pending from n = 32 (block_size), as tableau_lemke keeps them: each pivot
     // makes its row and column exact in T and leaves the rank-one update pending, flushed
-    // eight at a time; the columns and ratio_ties's entries read through the pending terms
+    // eight at a time; the columns and ratio_ties's entries read through the pending terms.
+    // The run returns with up to seven pending (solve reads no T after it; the next run
+    // lays T out afresh)
     Pending P{w.U(), w.V(), w.block, w.ld, 0, n};
     for (idx i = 0; i < n; ++i) bounds_of(basis[i], n, lo, hi, at_hi, rlo[i], rhi[i]);
     // keys 0..2n the labels, 2n + 1 + i z_i at hi (pivoting.label_key)
@@ -420,7 +422,6 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         double step = (cc[r] < 0.0 && g > 0.0 && g < INF) ? g / -cc[r] : 0.0;
         step_values(x, basis, col, n, e, sigma * step);
     }
-    if (P.k > 0) flush(T, P);  // T current again, as the immediate pivots leave it
     pivots_out = pivots;
     return status;
 }
