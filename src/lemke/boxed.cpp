@@ -197,7 +197,7 @@ idx exchange(Run& R, const std::uint8_t* want) {
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-inline idx ratio_rows(const double* x, const idx* basis, const idx* pos,
+inline idx ratio_rows(const double* xb, const idx* pos,
                       const std::uint8_t* is_basic, const double* col, double sigma, idx e,
                       idx n, const double* lo, const double* hi, const double* rlo,
                       const double* rhi, double* gaps, double* cc, std::uint8_t* low,
@@ -207,7 +207,7 @@ inline idx ratio_rows(const double* x, const idx* basis, const idx* pos,
     double top = 0.0;
     for (idx i = 0; i < n; ++i) {
         double c = sigma * col[i];
-        double v = x[basis[i]];
+        double v = xb[i];
         bool neg = c < 0.0;
         double bnd = neg ? rlo[i] : rhi[i];
         bool fin = std::fabs(bnd) < INF;
@@ -217,7 +217,7 @@ inline idx ratio_rows(const double* x, const idx* basis, const idx* pos,
         low[i] = neg || !fin;
         top = pmax(top, a);
     }
-    if (art >= 0) gaps[art] = x[art_lab];
+    if (art >= 0) gaps[art] = xb[art];
     gaps[n] = INF;
     cc[n] = 0.0;
     low[n] = 0;
@@ -323,6 +323,11 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     if (r < 0) return NUMERICAL_FAILURE;
     double t = -need[r] / sc[r];
     step_values(x, basis, col, n, art_lab, t);
+    // the basic variables' values by row from here (xb[i] is x[basis[i]]; x keeps the
+    // non-basic ones), so that the ratio test and the steps run over contiguous rows; the
+    // same operations on the same numbers, written back to x when the run ends
+    double* xb = w.xb();
+    for (idx i = 0; i < n; ++i) xb[i] = x[basis[i]];
     bool low_r = col[r] > 0.0;
     idx pivots = 0;
     double sigma = 1.0;
@@ -354,6 +359,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
             double lb, ub;
             bounds_of(leaving, n, lo, hi, at_hi, lb, ub);
             x[leaving] = low_r ? lb : ub;
+            xb[r] = x[e];  // the entering variable's value, basic in row r
             // the complement of the leaving variable enters next (below; none when z0
             // leaves): its column, non-basic and not s, is read during the row updates
             if (P.b == 1) {
@@ -399,9 +405,9 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         }
         s = pos[e];
         s_next = -1;
-        if (is_basic[art_lab]) z0_max = pmax(z0_max, x[art_lab]);
+        if (is_basic[art_lab]) z0_max = pmax(z0_max, xb[pos[art_lab]]);
         double cmax;
-        idx art = ratio_rows(x, basis, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi, gaps,
+        idx art = ratio_rows(xb, pos, is_basic, col, sigma, e, n, lo, hi, rlo, rhi, gaps,
                              cc, low, cmax);
         idx nc = blocking_rows(gaps, gaps, cc, n + 1, -pivot_tol * cmax, tie_tol, cand, art,
                                z0_max, ratios);
@@ -420,8 +426,11 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         low_r = low[r] != 0;
         double g = gaps[r];
         double step = (cc[r] < 0.0 && g > 0.0 && g < INF) ? g / -cc[r] : 0.0;
-        step_values(x, basis, col, n, e, sigma * step);
+        double delta = sigma * step;
+        for (idx i = 0; i < n; ++i) xb[i] += col[i] * delta;  // step_values, by row
+        x[e] += delta;
     }
+    for (idx i = 0; i < n; ++i) x[basis[i]] = xb[i];
     pivots_out = pivots;
     return status;
 }

@@ -95,7 +95,7 @@ struct SolveResult {
 //        padding columns are zeroed and read by nobody) | qs, los, his, s0, z0s (n each) |
 //        x, ray_lab (2n + 1 each) | the pivots' scratch prow (ld), col, col2 (n each: the
 //        entering column, and the next one read during the pivot) |
-//        lemke's keys, gaps, cc (n + 1 each), rlo, rhi (n each) | equilibrate's 2n |
+//        lemke's keys, gaps, cc (n + 1 each), rlo, rhi, xb (n each) | equilibrate's 2n |
 //        the pending pivots' U (n x block), V (block x ld), as TableauWork's, each from
 //        a 64-byte boundary
 // i:     basis (n), nonbasic (n + 1), pos (2n + 1), start_basis (n), cand (n + 1)
@@ -129,7 +129,8 @@ struct BoxedWork {
     idx at_cc() const { return at_gaps() + n + 1; }
     idx at_rlo() const { return at_cc() + n + 1; }
     idx at_rhi() const { return at_rlo() + n; }
-    idx at_eq_work() const { return at_rhi() + n; }
+    idx at_xb() const { return at_rhi() + n; }
+    idx at_eq_work() const { return at_xb() + n; }
     // U and V start on 64-byte boundaries as T does (flush reads V's rows as whole vectors)
     idx at_U() const { return off + (at_eq_work() + 2 * n - off + 7) / 8 * 8; }
     idx at_V() const { return off + (at_U() + n * block - off + 7) / 8 * 8; }
@@ -162,6 +163,7 @@ struct BoxedWork {
     double* cc() { return f.data() + at_cc(); }
     double* rlo() { return f.data() + at_rlo(); }
     double* rhi() { return f.data() + at_rhi(); }
+    double* xb() { return f.data() + at_xb(); }
     double* eq_work() { return f.data() + at_eq_work(); }
     double* U() { return f.data() + at_U(); }
     double* V() { return f.data() + at_V(); }
