@@ -551,8 +551,14 @@ void principal_block(Mat<const double> M, const idx* index, idx k, double* out) 
     }
 }
 
+LEMKE_CLONES
 void matvec(Mat<const double> G, idx k, const double* x, double* out) {
-    for (idx r = 0; r < k; ++r) out[r] = dot(G.row(r), x, k);
+    idx r = 0;
+    for (; r + 4 <= k; r += 4) {
+        const double* rows[4] = {G.row(r), G.row(r + 1), G.row(r + 2), G.row(r + 3)};
+        dot_lanes4(rows, x, k, out + r);
+    }
+    for (; r < k; ++r) out[r] = dot_lanes(G.row(r), x, k);
 }
 
 namespace {

@@ -41,6 +41,62 @@ inline double dot_lanes(const double* x, const double* y, idx k) {
     return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
 }
 
+// dot_lanes of four rows with one y: out[t] = dot_lanes(x[t], y, k), each row's sums in
+// dot's order (the same bits), y's loads shared by the four rows. On vector types: left to
+// the vectorizer, the four rows' lanes came out interleaved by permutes (2x slower than
+// four calls of dot_lanes). Always inlined: a copy of its own would be compiled for the
+// baseline instruction set, where a vector of 8 is four registers.
+#ifdef LEMKE_SIMD
+LEMKE_SIMD_INLINE
+#else
+inline
+#endif
+void dot_lanes4(const double* const* x, const double* y, idx k, double* out) {
+    const double *x0 = x[0], *x1 = x[1], *x2 = x[2], *x3 = x[3];
+    double a[4][8];
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d s0 = simd::splat8(0.0), s1 = s0, s2 = s0, s3 = s0;
+        for (; j + 8 <= k; j += 8) {
+            simd::v8d v = simd::load8(y + j);
+            s0 += simd::load8(x0 + j) * v;
+            s1 += simd::load8(x1 + j) * v;
+            s2 += simd::load8(x2 + j) * v;
+            s3 += simd::load8(x3 + j) * v;
+        }
+        for (int l = 0; l < 8; ++l) {
+            a[0][l] = s0[l];
+            a[1][l] = s1[l];
+            a[2][l] = s2[l];
+            a[3][l] = s3[l];
+        }
+    }
+#else
+    for (int t = 0; t < 4; ++t)
+        for (int l = 0; l < 8; ++l) a[t][l] = 0.0;
+    for (; j + 8 <= k; j += 8)
+        for (int l = 0; l < 8; ++l) {
+            double v = y[j + l];
+            a[0][l] += x0[j + l] * v;
+            a[1][l] += x1[j + l] * v;
+            a[2][l] += x2[j + l] * v;
+            a[3][l] += x3[j + l] * v;
+        }
+#endif
+    for (; j < k; ++j) {
+        double v = y[j];
+        a[0][0] += x0[j] * v;
+        a[1][0] += x1[j] * v;
+        a[2][0] += x2[j] * v;
+        a[3][0] += x3[j] * v;
+    }
+    for (int t = 0; t < 4; ++t) {
+        const double* b = a[t];
+        out[t] = ((b[0] + b[1]) + (b[2] + b[3])) + ((b[4] + b[5]) + (b[6] + b[7]));
+    }
+}
+
 // Whether every x[j] is finite: sum 0 * x[j] is 0 then and NaN otherwise, in any order, so
 // eight running sums (a vector loop without reordering permission).
 inline bool all_finite(const double* x, idx k) {
@@ -141,7 +197,8 @@ bool invert_in_place(Mat<double> G, idx k);
 // out (k x k, row-major) = M[index][:, index] (linalg.principal_block).
 void principal_block(Mat<const double> M, const idx* index, idx k, double* out);
 
-// out[:k] = G[:k, :k] x[:k], each row by `dot` (linalg.matvec).
+// out[:k] = G[:k, :k] x[:k], each row by `dot`'s sums (linalg.matvec; four rows at a time,
+// dot_lanes4).
 void matvec(Mat<const double> G, idx k, const double* x, double* out);
 
 // Replace G[:k, :k] by its inverse (linalg.invert_in_place, the same operations in the same

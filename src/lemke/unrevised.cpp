@@ -11,7 +11,7 @@ void UnrevisedWork::layout(idx size, idx block_max, idx a_cols) {
     n = size;
     kmax = block_max;
     acols = a_cols;
-    f.resize(static_cast<std::size_t>(n * acols + n + n * kmax + kmax * kmax + 15 * n +
+    f.resize(static_cast<std::size_t>(n * acols + n + n * kmax + kmax * kmax + 16 * n +
                                       4 * kmax + 1));
     i.resize(static_cast<std::size_t>(6 * n + 1 + kmax + 1));
     flags.resize(static_cast<std::size_t>(n + 1));
@@ -26,42 +26,100 @@ constexpr double UPDATE_PIVOT = 1e-13;  // an update's pivot at or below this: r
 
 // G[r, :k] += a[r] x[:k] for every r < k (but those with a[r] == 0 when skip_zero)
 // (unrevised.add_rows). Compiled per instruction set: with the row products, the update of
-// G is a pivot's O(k^2) part.
+// G is a pivot's O(k^2) part. Four rows at a time share x's loads (each entry's operation
+// is its own: the same bits).
 LEMKE_CLONES
 void add_rows(Mat<double> G, idx k, const double* a, const double* x, bool skip_zero) {
+    idx rows[4];
+    int nr = 0;
     for (idx r = 0; r < k; ++r) {
-        double f = a[r];
-        if (f != 0.0 || !skip_zero) {
-            double* g = G.row(r);
-            for (idx c = 0; c < k; ++c) g[c] += f * x[c];
+        if (a[r] == 0.0 && skip_zero) continue;
+        rows[nr++] = r;
+        if (nr < 4) continue;
+        nr = 0;
+        double f0 = a[rows[0]], f1 = a[rows[1]], f2 = a[rows[2]], f3 = a[rows[3]];
+        // (four distinct rows of G, none of them x: no store reaches a load of another)
+        double *__restrict g0 = G.row(rows[0]), *__restrict g1 = G.row(rows[1]),
+                           *__restrict g2 = G.row(rows[2]), *__restrict g3 = G.row(rows[3]);
+        for (idx c = 0; c < k; ++c) {
+            double v = x[c];
+            g0[c] += f0 * v;
+            g1[c] += f1 * v;
+            g2[c] += f2 * v;
+            g3[c] += f3 * v;
         }
+    }
+    for (int t = 0; t < nr; ++t) {
+        double f = a[rows[t]];
+        double* g = G.row(rows[t]);
+        for (idx c = 0; c < k; ++c) g[c] += f * x[c];
     }
 }
 
-// out[:k] = x[:k] G[:k, :k], row by row of G (unrevised._row_times).
+// out[:k] = x[:k] G[:k, :k], row by row of G (unrevised._row_times): out[c] gets the terms
+// x[p] G[p, c] of the rows with x[p] != 0 in increasing p, four rows a pass (the same sums
+// in the same order, out read and written once a pass instead of once a row).
 LEMKE_CLONES
-void row_times(const double* x, Mat<const double> G, idx k, double* out) {
+void row_times(const double* x, Mat<const double> G, idx k, double* __restrict out) {
     for (idx c = 0; c < k; ++c) out[c] = 0.0;
+    idx rows[4];
+    int nr = 0;
     for (idx p = 0; p < k; ++p) {
-        double xp = x[p];
-        if (xp != 0.0) {
-            const double* g = G.row(p);
-            for (idx c = 0; c < k; ++c) out[c] += xp * g[c];
+        if (x[p] == 0.0) continue;
+        rows[nr++] = p;
+        if (nr < 4) continue;
+        nr = 0;
+        double x0 = x[rows[0]], x1 = x[rows[1]], x2 = x[rows[2]], x3 = x[rows[3]];
+        const double *g0 = G.row(rows[0]), *g1 = G.row(rows[1]), *g2 = G.row(rows[2]),
+                     *g3 = G.row(rows[3]);
+        for (idx c = 0; c < k; ++c) {
+            double o = out[c];
+            o += x0 * g0[c];
+            o += x1 * g1[c];
+            o += x2 * g2[c];
+            o += x3 * g3[c];
+            out[c] = o;
         }
+    }
+    for (int t = 0; t < nr; ++t) {
+        double xp = x[rows[t]];
+        const double* g = G.row(rows[t]);
+        for (idx c = 0; c < k; ++c) out[c] += xp * g[c];
     }
 }
 
 // dwv[i] = base[i] + AB[i, :k] dz for the rows with a basic w (apos[i] < 0; base nullptr:
-// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row).
+// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row), four rows
+// at a time (dot_lanes4: dz's loads shared, each row's sums its own).
 LEMKE_CLONES
 void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos,
                   const double* base, double* dwv) {
+    idx rows[4];
+    const double* ptr[4];
+    double d[4];
+    int nr = 0;
     for (idx i = 0; i < AB.rows; ++i) {
         if (apos[i] >= 0) continue;
-        double d = dot_lanes(AB.row(i), dz, k);
-        dwv[i] = base ? base[i] + d : d;
+        rows[nr] = i;
+        ptr[nr++] = AB.row(i);
+        if (nr < 4) continue;
+        nr = 0;
+        dot_lanes4(ptr, dz, k, d);
+        for (int t = 0; t < 4; ++t) dwv[rows[t]] = base ? base[rows[t]] + d[t] : d[t];
+    }
+    for (int t = 0; t < nr; ++t) {
+        double dt = dot_lanes(ptr[t], dz, k);
+        dwv[rows[t]] = base ? base[rows[t]] + dt : dt;
     }
 }
+
+// The pivot loop's steps are inlined into unrevised_lemke's instruction-set variants (a
+// copy of their own would be compiled for the baseline instruction set only).
+#if defined(__GNUC__)
+#define LEMKE_STEP inline __attribute__((always_inline))
+#else
+#define LEMKE_STEP inline
+#endif
 
 // One run's state: views of the workspace and the sizes (one run's locals).
 struct Run {
@@ -71,15 +129,15 @@ struct Run {
     const std::uint8_t* z_start;
     Mat<double> AB, G;
     double *zb, *wv, *dzb, *dw, *lz, *lw, *tmp, *tmp2, *row, *keys, *rv, *rc, *acol, *lcol,
-        *coef, *inv_work;
+        *coef, *ratios, *inv_work;
     double z0_max = 0.0;
     idx *alist, *blist, *apos, *bpos, *cand, *rlab, *piv;
 
     Run(UnrevisedWork& w, const ColumnSource& s)
         : n(w.n), kmax(w.kmax), src(s), q(w.qs()), z_start(w.z_start()), AB(w.AB()), G(w.G()) {
         double** v[] = {&zb, &wv, &dzb, &dw, &lz, &lw, &tmp, &tmp2, &row, &keys, &rv, &rc,
-                        &acol, &lcol, &coef};
-        for (idx j = 0; j < 15; ++j) *v[j] = w.vec(j);
+                        &acol, &lcol, &coef, &ratios};
+        for (idx j = 0; j < 16; ++j) *v[j] = w.vec(j);
         inv_work = w.inv_work();
         alist = w.alist();
         blist = w.blist();
@@ -92,7 +150,7 @@ struct Run {
 
     // out = column e of A (e = n: the covering column). The one place that reads A: the
     // dense A, or with Fs, d (e = n) or the column Fs Fs[e]' of M (unrevised.fetch_column).
-    void fetch_column(idx e, double* out) const {
+    LEMKE_STEP void fetch_column(idx e, double* out) const {
         if (src.Fs.rows == 0) {
             for (idx i = 0; i < n; ++i) out[i] = src.A(i, e);
         } else if (e == n) {
@@ -104,7 +162,7 @@ struct Run {
         }
     }
 
-    void set_column(idx j, const double* col) const {
+    LEMKE_STEP void set_column(idx j, const double* col) const {
         for (idx r = 0; r < n; ++r) AB(r, j) = col[r];
     }
 
@@ -119,7 +177,7 @@ struct Run {
     }
 
     // wv = q + AB[:, :k] zb; the residual over alpha, row-wise relative (unrevised._all_w).
-    double all_w() const {
+    LEMKE_STEP double all_w() const {
         double res = 0.0;
         for (idx i = 0; i < n; ++i) {
             double mz, size;
@@ -148,19 +206,19 @@ struct Run {
         return res;
     }
 
-    void advance(double t) const {
+    LEMKE_STEP void advance(double t) const {
         for (idx p = 0; p < k; ++p) zb[p] += t * dzb[p];
         for (idx i = 0; i < n; ++i)
             if (apos[i] < 0) wv[i] += t * dw[i];
     }
 
-    void place(double t, idx entering) const {
+    LEMKE_STEP void place(double t, idx entering) const {
         if (entering >= n) zb[bpos[entering - n]] = t;
         else wv[entering] = t;
     }
 
     // How far the values are from the basis's, row by row relative (unrevised.drift).
-    double drift() const {
+    LEMKE_STEP double drift() const {
         double res = 0.0;
         for (idx i = 0; i < n; ++i) {
             double mz, size;
@@ -174,7 +232,7 @@ struct Run {
 
     // The change of every basic variable per unit of the non-basic `label`: dz (k, beta
     // order), dwv (n, at the basic w's). col: label's column of A when it is a z (or z0).
-    void direction(const double* col, idx label, double* dz, double* dwv) const {
+    LEMKE_STEP void direction(const double* col, idx label, double* dz, double* dwv) const {
         if (label < n) {  // a w leaves zero: H dz = e_p
             idx p = apos[label];
             for (idx r = 0; r < k; ++r) dz[r] = G(r, p);
@@ -187,7 +245,7 @@ struct Run {
     }
 
     // The basic variables in pair order (z0 last) into rlab, rv, rc; returns how many.
-    idx gather() const {
+    LEMKE_STEP idx gather() const {
         idx m = 0;
         for (idx i = 0; i < n + 1; ++i) {
             if (bpos[i] >= 0) {
@@ -206,13 +264,14 @@ struct Run {
     }
 
     // The leaving variable's position in (rlab, rv, rc), -1 when nothing blocks.
-    idx ratio_test(idx m, double pivot_tol, double tie_tol) {
+    LEMKE_STEP idx ratio_test(idx m, double pivot_tol, double tie_tol) {
         idx art = 2 * n;
         idx r_art = m > 0 && rlab[m - 1] == art ? m - 1 : -1;
         if (r_art >= 0) z0_max = pmax(z0_max, rv[r_art]);
-        double cmax = 0.0;
-        for (idx i = 0; i < m; ++i) cmax = pmax(cmax, std::fabs(rc[i]));
-        idx nc = blocking_rows(rv, rv, rc, m, -pivot_tol * cmax, tie_tol, cand, r_art, z0_max);
+        double cmax = absmax(rc, m);  // (the scalar pmax's answer: NaNs never win either)
+        // the ratio test's vector passes pay from some 64 rows, as in tableau_lemke
+        idx nc = blocking_rows(rv, rv, rc, m, -pivot_tol * cmax, tie_tol, cand, r_art, z0_max,
+                               m >= 64 ? ratios : nullptr);
         if (nc <= 1) return nc == 1 ? cand[0] : -1;
         for (idx c = 0; c < nc; ++c)
             if (rlab[cand[c]] == art) return cand[c];
@@ -242,7 +301,7 @@ struct Run {
     // The index sets, AB and G for `entering` replacing `leaving` (one of four cases);
     // false when the update's pivot is too small to trust. Changes k where H grows or shrinks
     // after the update (the caller's k += 1 / k -= 1).
-    bool update_basis(idx entering, idx leaving) {
+    LEMKE_STEP bool update_basis(idx entering, idx leaving) {
         if (entering >= n && leaving < n) {
             // z_e enters, w_i leaves: H gains row i and column e.
             idx e = entering - n, i = leaving;
@@ -317,6 +376,7 @@ struct Run {
 
 }  // namespace
 
+LEMKE_CLONES
 Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots,
                        double pivot_tol, double tie_tol, double* x_out, double* ray_out,
                        std::uint8_t* z_basic_out, idx& pivots) {

@@ -25,8 +25,8 @@ struct ColumnSource {
 // The unrevised method's workspace, laid out once per size (one per thread, reused).
 // f:     A (n x acols: n + 1 dense, 1 factored) and qs (n): the scaled system;
 //        AB (n x kmax): AB[:, c] = A[:, blist[c]];  G (kmax x kmax): H^-1;
-//        15 vectors of n: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys, rv, rc, acol, lcol,
-//        coef;  then 4 kmax: invert_in_place's work.
+//        16 vectors of n: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys, rv, rc, acol, lcol,
+//        coef, ratios (the ratio test's vector passes);  then 4 kmax: invert_in_place's work.
 // i:     alist (n), blist (n), apos (n), bpos (n + 1), cand (n), rlab (n), piv (kmax).
 // flags: z_start (n).
 struct UnrevisedWork {
@@ -39,8 +39,8 @@ struct UnrevisedWork {
     double* qs() { return f.data() + n * acols; }
     Mat<double> AB() { return Mat<double>(qs() + n, n, kmax); }
     Mat<double> G() { return Mat<double>(qs() + n + n * kmax, kmax, kmax); }
-    double* vec(idx which) { return qs() + n + n * kmax + kmax * kmax + which * n; }  // < 15
-    double* inv_work() { return vec(15); }
+    double* vec(idx which) { return qs() + n + n * kmax + kmax * kmax + which * n; }  // < 16
+    double* inv_work() { return vec(16); }
     idx* alist() { return i.data(); }
     idx* blist() { return alist() + n; }
     idx* apos() { return blist() + n; }
