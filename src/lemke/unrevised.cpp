@@ -221,7 +221,7 @@ struct Run {
         double res = 0.0;
         for (idx i = 0; i < n; ++i) {
             double mz, size;
-            row_dot_and_size(AB.row(i), zb, k, mz, size);
+            dot_and_size_lanes(AB.row(i), zb, k, mz, size);
             double w = q[i] + mz;
             wv[i] = w;
             if (apos[i] >= 0) {
@@ -248,8 +248,11 @@ struct Run {
 
     LEMKE_STEP void advance(double t) const {
         for (idx p = 0; p < k; ++p) zb[p] += t * dzb[p];
-        for (idx i = 0; i < n; ++i)
-            if (apos[i] < 0) wv[i] += t * dw[i];
+        // (a select, not a branch: a non-basic w's dw is stale and never kept)
+        for (idx i = 0; i < n; ++i) {
+            double v = wv[i], moved = v + t * dw[i];
+            wv[i] = apos[i] < 0 ? moved : v;
+        }
     }
 
     LEMKE_STEP void place(double t, idx entering) const {
@@ -262,7 +265,7 @@ struct Run {
         double res = 0.0;
         for (idx i = 0; i < n; ++i) {
             double mz, size;
-            row_dot_and_size(AB.row(i), zb, k, mz, size);
+            dot_and_size_lanes(AB.row(i), zb, k, mz, size);
             size += std::fabs(q[i]);
             double w = q[i] + mz - (apos[i] < 0 ? wv[i] : 0.0);
             if (std::fabs(w) > res * size) res = std::fabs(w) / size;
@@ -285,20 +288,23 @@ struct Run {
     }
 
     // The basic variables in pair order (z0 last) into rlab, rv, rc; returns how many.
+    // (Selects, not branches: which of a pair is basic is unpredictable.)
     LEMKE_STEP idx gather() const {
         idx m = 0;
-        for (idx i = 0; i < n + 1; ++i) {
-            if (bpos[i] >= 0) {
-                rlab[m] = n + i;
-                rv[m] = zb[bpos[i]];
-                rc[m] = dzb[bpos[i]];
-                ++m;
-            } else if (i < n && apos[i] < 0) {
-                rlab[m] = i;
-                rv[m] = wv[i];
-                rc[m] = dw[i];
-                ++m;
-            }
+        for (idx i = 0; i < n; ++i) {
+            idx p = bpos[i];
+            bool z = p >= 0;
+            idx pz = z ? p : 0;
+            rlab[m] = z ? n + i : i;
+            rv[m] = z ? zb[pz] : wv[i];
+            rc[m] = z ? dzb[pz] : dw[i];
+            m += z || apos[i] < 0 ? 1 : 0;
+        }
+        if (bpos[n] >= 0) {
+            rlab[m] = 2 * n;
+            rv[m] = zb[bpos[n]];
+            rc[m] = dzb[bpos[n]];
+            ++m;
         }
         return m;
     }
