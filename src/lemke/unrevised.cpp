@@ -13,12 +13,12 @@ void UnrevisedWork::layout(idx size, idx block_max, idx a_cols) {
     kmax = block_max;
     acols = a_cols;
     ld = (kmax + 7) / 8 * 8;
-    nv = (n + 7) / 8 * 8;
+    nv = (n + 8) / 8 * 8;  // (n + 1: rv, rc, ratios, keys have a row for z0)
     f.resize(static_cast<std::size_t>(7 + (n + kmax) * ld + 16 * nv + n * acols + n +
                                       4 * kmax + 1));
     auto at = reinterpret_cast<std::uintptr_t>(f.data());
     off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
-    i.resize(static_cast<std::size_t>(6 * n + 1 + kmax + 1));
+    i.resize(static_cast<std::size_t>(5 * n + 2 + kmax));
     flags.resize(static_cast<std::size_t>(n + 1));
 }
 
@@ -171,7 +171,7 @@ struct Run {
     double *zb, *wv, *dzb, *dw, *lz, *lw, *tmp, *tmp2, *row, *keys, *rv, *rc, *acol, *lcol,
         *coef, *ratios, *inv_work;
     double z0_max = 0.0;
-    idx *alist, *blist, *apos, *bpos, *cand, *rlab, *piv;
+    idx *alist, *blist, *apos, *bpos, *cand, *piv;
 
     Run(UnrevisedWork& w, const ColumnSource& s)
         : n(w.n), kmax(w.kmax), src(s), q(w.qs()), z_start(w.z_start()), AB(w.AB()), G(w.G()) {
@@ -184,7 +184,6 @@ struct Run {
         apos = w.apos();
         bpos = w.bpos();
         cand = w.cand();
-        rlab = w.rlab();
         piv = w.piv();
     }
 
@@ -233,9 +232,9 @@ struct Run {
     }
 
     // zb = -G q_alpha, every wv; one refinement when the residual is above RESIDUAL_TOL.
-    double basic_point() const {
+    LEMKE_STEP double basic_point() const {
         for (idx r = 0; r < k; ++r) tmp[r] = -q[alist[r]];
-        for (idx r = 0; r < k; ++r) zb[r] = dot(G.row(r), tmp, k);
+        matvec(G, k, tmp, zb);  // (each row by dot's sums)
         double res = all_w();
         if (res > RESIDUAL_TOL) {
             for (idx r = 0; r < k; ++r) tmp[r] = wv[alist[r]];
@@ -287,32 +286,32 @@ struct Run {
         }
     }
 
-    // The basic variables in pair order (z0 last) into rlab, rv, rc; returns how many.
-    // (Selects, not branches: which of a pair is basic is unpredictable.)
-    LEMKE_STEP idx gather() const {
-        idx m = 0;
+    // Row i of the ratio test is pair i's basic variable (row n: z0), its value in rv and
+    // its change in rc; the one pair with neither basic gets 0 and 0 there, a row that never
+    // blocks (rc = 0 is neither below the ratio test's threshold nor above 0 for first_row),
+    // so the rows that can block are the basic variables in pair order. Selects, not
+    // branches: which of a pair is basic is unpredictable.
+    LEMKE_STEP void pairs() const {
         for (idx i = 0; i < n; ++i) {
             idx p = bpos[i];
-            bool z = p >= 0;
+            bool z = p >= 0, basic = z || apos[i] < 0;
             idx pz = z ? p : 0;
-            rlab[m] = z ? n + i : i;
-            rv[m] = z ? zb[pz] : wv[i];
-            rc[m] = z ? dzb[pz] : dw[i];
-            m += z || apos[i] < 0 ? 1 : 0;
+            double v = z ? zb[pz] : wv[i], c = z ? dzb[pz] : dw[i];
+            rv[i] = basic ? v : 0.0;
+            rc[i] = basic ? c : 0.0;
         }
-        if (bpos[n] >= 0) {
-            rlab[m] = 2 * n;
-            rv[m] = zb[bpos[n]];
-            rc[m] = dzb[bpos[n]];
-            ++m;
-        }
-        return m;
+        idx p = bpos[n];
+        rv[n] = p >= 0 ? zb[p] : 0.0;
+        rc[n] = p >= 0 ? dzb[p] : 0.0;
     }
 
-    // The leaving variable's position in (rlab, rv, rc), -1 when nothing blocks.
-    LEMKE_STEP idx ratio_test(idx m, double pivot_tol, double tie_tol) {
-        idx art = 2 * n;
-        idx r_art = m > 0 && rlab[m - 1] == art ? m - 1 : -1;
+    // The basic variable of ratio-test row i.
+    LEMKE_STEP idx label(idx i) const { return i == n ? 2 * n : bpos[i] >= 0 ? n + i : i; }
+
+    // The leaving variable's row of the ratio test (pairs), -1 when nothing blocks.
+    LEMKE_STEP idx ratio_test(double pivot_tol, double tie_tol) {
+        idx m = n + 1;
+        idx r_art = bpos[n] >= 0 ? n : -1;
         if (r_art >= 0) z0_max = pmax(z0_max, rv[r_art]);
         double cmax = absmax(rc, m);  // (the scalar pmax's answer: NaNs never win either)
         // the ratio test's vector passes pay from some 64 rows, as in tableau_lemke
@@ -320,7 +319,7 @@ struct Run {
                                m >= 64 ? ratios : nullptr);
         if (nc <= 1) return nc == 1 ? cand[0] : -1;
         for (idx c = 0; c < nc; ++c)
-            if (rlab[cand[c]] == art) return cand[c];
+            if (cand[c] == r_art) return cand[c];
         // Column j of the basis inverse relative to the starting basis: the unit vector of
         // its pair-j variable when that is basic, else minus its direction.
         for (idx j = 0; j < n; ++j) {
@@ -332,7 +331,7 @@ struct Run {
                 direction(lcol, lab, lz, lw);
             }
             for (idx c = 0; c < nc; ++c) {
-                idx cl = rlab[cand[c]];
+                idx cl = label(cand[c]);
                 double b;
                 if (basic) b = cl == lab ? 1.0 : 0.0;
                 else b = -(cl >= n ? lz[bpos[cl - n]] : lw[cl]);
@@ -487,19 +486,19 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
             u.direction(u.acol, entering, u.dzb, u.dw);
         }
         ready = false;
-        idx m = u.gather();
+        u.pairs();
         idx r, leaving;
         if (pivots == 0) {
             // z0 rises until every basic variable is >= 0.
-            r = first_row(u.rv, u.rc, m, tie_tol);
+            r = first_row(u.rv, u.rc, n + 1, tie_tol);
             if (r < 0) {
                 status = NUMERICAL_FAILURE;
                 break;
             }
-            leaving = u.rlab[r];
+            leaving = u.label(r);
         } else {
-            r = u.ratio_test(m, pivot_tol, tie_tol);
-            leaving = r >= 0 ? u.rlab[r] : -1;
+            r = u.ratio_test(pivot_tol, tie_tol);
+            leaving = r >= 0 ? u.label(r) : -1;
             if (leaving < 0) {
                 status = RAY_TERMINATION;
                 if (entering >= n) ray_out[entering - n] = 1.0;

@@ -27,10 +27,10 @@ struct ColumnSource {
 //        G (kmax x ld): H^-1; 16 vectors of nv: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys,
 //        rv, rc, acol, lcol, coef, ratios (the ratio test's vector passes); then A (n x acols:
 //        n + 1 dense, 1 factored) and qs (n): the scaled system; then 4 kmax:
-//        invert_in_place's work. ld = kmax and nv = n rounded up to a multiple of 8: the rows
+//        invert_in_place's work. ld = kmax and nv = n + 1 rounded up to a multiple of 8: the rows
 //        of AB and G and the vectors start on 64-byte boundaries (a row update's vector
 //        stores then never straddle two cache lines); the padding is never read.
-// i:     alist (n), blist (n), apos (n), bpos (n + 1), cand (n), rlab (n), piv (kmax).
+// i:     alist (n), blist (n), apos (n), bpos (n + 1), cand (n + 1), piv (kmax).
 // flags: z_start (n).
 struct UnrevisedWork {
     std::vector<double> f;
@@ -50,8 +50,7 @@ struct UnrevisedWork {
     idx* apos() { return blist() + n; }
     idx* bpos() { return apos() + n; }
     idx* cand() { return bpos() + n + 1; }
-    idx* rlab() { return cand() + n; }
-    idx* piv() { return rlab() + n; }
+    idx* piv() { return cand() + n + 1; }
     std::uint8_t* z_start() { return flags.data(); }
 };
 
