@@ -89,8 +89,8 @@ inline double dot_lanes(const double* x, const double* y, idx k) {
 
 // dot_lanes of four rows with one y: out[t] = dot_lanes(x[t], y, k), each row's sums in
 // dot's order (the same bits), y's loads shared by the four rows. On vector types: left to
-// the vectorizer, the four rows' lanes came out interleaved by permutes (2x slower than
-// four calls of dot_lanes).
+// the vectorizer, the four rows' lanes came out interleaved by permutes (slower than four
+// calls of dot_lanes).
 LEMKE_LANES_INLINE void dot_lanes4(const double* const* x, const double* y, idx k, double* out) {
     const double *x0 = x[0], *x1 = x[1], *x2 = x[2], *x3 = x[3];
     idx j = 0;

@@ -121,7 +121,8 @@ void row_times(const double* x, Mat<const double> G, idx k, double* __restrict o
 // dwv[i] = base[i] + AB[i, :k] dz for the rows with a basic w (apos[i] < 0; base nullptr:
 // 0 +), each by dot's sum (inlined: a call per row cost as much as a short row), four rows
 // at a time (dot_lanes4: dz's loads shared, each row's sums its own). The rows are listed
-// first, without a branch (n = 300: 5 % of a solve faster than a branch per row on apos).
+// first, without a branch (n = 300: a solve 5 % faster than with a branch per row on apos;
+// n = 100: within the noise).
 LEMKE_CLONES
 void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos,
                   const double* base, double* dwv) {
