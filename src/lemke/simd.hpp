@@ -42,6 +42,27 @@ LEMKE_SIMD_INLINE v8d abs8(v8d x) {
 }
 // pmax(a, b) lane by lane: b where b > a, else a (Python's max).
 LEMKE_SIMD_INLINE v8d max8(v8d a, v8d b) { return b > a ? b : a; }
+
+// Lanes of two vectors picked by index (0-7: a's, 8-15: b's).
+#if defined(__clang__)
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
+#else
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shuffle(a, b, v8l{__VA_ARGS__})
+#endif
+
+// out[0..3] = ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7])) for the
+// lanes x of a, b, c, d: the eight running sums' pairwise order, the same additions, taken
+// by shuffles on whole vectors instead of lane by lane.
+LEMKE_SIMD_INLINE void hsum4(v8d a, v8d b, v8d c, v8d d, double* out) {
+    v8d ab = LEMKE_SHUFFLE8(a, b, 0, 8, 2, 10, 4, 12, 6, 14) +
+             LEMKE_SHUFFLE8(a, b, 1, 9, 3, 11, 5, 13, 7, 15);  // (a0+a1, b0+b1, a2+a3, ...)
+    v8d cd = LEMKE_SHUFFLE8(c, d, 0, 8, 2, 10, 4, 12, 6, 14) +
+             LEMKE_SHUFFLE8(c, d, 1, 9, 3, 11, 5, 13, 7, 15);
+    v8d h = LEMKE_SHUFFLE8(ab, cd, 0, 1, 8, 9, 4, 5, 12, 13) +
+            LEMKE_SHUFFLE8(ab, cd, 2, 3, 10, 11, 6, 7, 14, 15);  // halves: a, b, c, d
+    v8d s = h + LEMKE_SHUFFLE8(h, h, 4, 5, 6, 7, 0, 1, 2, 3);
+    for (int l = 0; l < 4; ++l) out[l] = s[l];
+}
 #endif
 
 }  // namespace simd
