@@ -164,53 +164,47 @@ double sweep_q(const double* q, const double* R, double cq, idx n, double* rmax,
 
 // Whether every x[i] (i < k) that is not zero lies in [0.5, 2] (balanced), and each x[i]
 // replaced by pow2_rsqrt(x[i]): by exponent arithmetic without a branch when every x[i] is
-// zero or a positive normal float (a vector loop), else one by one.
+// zero or a positive normal float, else one by one. The tests read the bits as integers
+// (for a float of sign 0 that is not NaN, the order of its bits is the order of the
+// numbers): integer compares, which the compiler makes vector loops (its float compares
+// on vectors of masks it had made one by one). `same`: whether every new x[i] is 1.
 LEMKE_CLONES
-bool rsqrt_all(double* x, idx k) {
-    bool fast = true, balanced = true;
-    idx i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8l all = simd::v8l{} - 1, off = simd::v8l{};
-        simd::v8d zero = simd::splat8(0.0), tiny = simd::splat8(2.2250738585072014e-308);
-        simd::v8d inf = simd::splat8(INF), half = simd::splat8(0.5), two = simd::splat8(2.0);
-        for (; i + 8 <= k; i += 8) {
-            simd::v8d a = simd::load8(x + i);
-            all &= (a == zero) | ((a >= tiny) & (a < inf));
-            off |= (a > zero) & ((a < half) | (a > two));
-        }
-        for (int l = 0; l < 8; ++l) {
-            fast &= all[l] != 0;
-            balanced &= off[l] == 0;
-        }
+bool rsqrt_all(double* x, idx k, bool& same) {
+    const std::uint64_t TINY = 0x0010000000000000ULL, INF_BITS = 0x7FF0000000000000ULL;
+    const std::uint64_t HALF = 0x3FE0000000000000ULL, TWO = 0x4000000000000000ULL;
+    std::uint64_t slow = 0, off = 0;
+    for (idx i = 0; i < k; ++i) {
+        std::uint64_t b;
+        std::memcpy(&b, x + i, 8);
+        std::uint64_t mag = b & 0x7FFFFFFFFFFFFFFFULL;
+        // fast: a == 0 (either sign) or TINY <= a < INF (a positive normal float)
+        slow |= static_cast<std::uint64_t>(mag != 0 && b - TINY >= INF_BITS - TINY);
+        // a > 0 and a < 0.5 or a > 2, a not NaN (sign 0, 0 < bits <= INF's)
+        off |= static_cast<std::uint64_t>(b - 1 < INF_BITS && b - HALF > TWO - HALF);
     }
-#endif
-    for (; i < k; ++i) {
-        double a = x[i];
-        fast &= (a == 0.0) | ((a >= 2.2250738585072014e-308) & (a < INF));
-        balanced &= !((a > 0.0) & ((a < 0.5) | (a > 2.0)));
-    }
-    if (!fast) {
-        for (idx i = 0; i < k; ++i) x[i] = pow2_rsqrt(x[i]);
+    bool balanced = off == 0;
+    if (slow != 0) {
+        same = true;
+        for (idx i = 0; i < k; ++i) {
+            x[i] = pow2_rsqrt(x[i]);
+            same &= x[i] == 1.0;
+        }
         return balanced;
     }
-    i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d zero = simd::splat8(0.0), one = simd::splat8(1.0);
-        for (; i + 8 <= k; i += 8) {
-            simd::v8d a = simd::load8(x + i);
-            simd::v8l e = reinterpret_cast<simd::v8l>(a) >> 52;
-            simd::v8d v = reinterpret_cast<simd::v8d>((1023 - ((e - 1022) >> 1)) << 52);
-            simd::store8(x + i, a == zero ? one : v);
-        }
+    // pow2_rsqrt of a positive normal float: 2^-((e - 1022) >> 1) for the biased exponent e
+    const std::uint64_t ONE = 0x3FF0000000000000ULL;
+    std::uint64_t other = 0;
+    for (idx i = 0; i < k; ++i) {
+        std::uint64_t b;
+        std::memcpy(&b, x + i, 8);
+        std::uint64_t mag = b & 0x7FFFFFFFFFFFFFFFULL;
+        std::int64_t e = static_cast<std::int64_t>(mag >> 52);
+        std::uint64_t v = static_cast<std::uint64_t>(1023 - ((e - 1022) >> 1)) << 52;
+        v = mag == 0 ? ONE : v;
+        other |= static_cast<std::uint64_t>(v != ONE);
+        std::memcpy(x + i, &v, 8);
     }
-#endif
-    for (; i < k; ++i) {
-        double a = x[i];
-        double v = bits_float((1023 - (((float_bits(a) >> 52) - 1022) >> 1)) << 52);
-        x[i] = a == 0.0 ? 1.0 : v;
-    }
+    same = other == 0;
     return balanced;
 }
 
@@ -243,17 +237,16 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
         bool balanced;
         if (same) {
             // cmax's factors are all 1 (and balanced) from the last sweep: the rows alone
+            // (so `same` stays true when the rows' factors are all 1 too)
             qmax = sweep_q(q, R, cq, n, rmax, mrow);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
-            balanced &= rsqrt_all(work, n);
+            balanced &= rsqrt_all(work, n, same);
         } else {
             if (sweep_no > 0 || !finite) qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
-            balanced &= rsqrt_all(work, 2 * n);
+            balanced &= rsqrt_all(work, 2 * n, same);
         }
         if (balanced) break;
-        same = true;
-        for (idx i = 0; i < 2 * n; ++i) same &= work[i] == 1.0;
         for (idx i = 0; i < n; ++i) {
             R[i] = R[i] * rmax[i];
             C[i] = C[i] * cmax[i];
