@@ -86,64 +86,100 @@ namespace {
 
 constexpr int EQUILIBRATE_SWEEPS = 16;
 
+// One row of sweep: row i's largest entry into the return value, every column's into
+// cmax; with FINITE, the sum of 0 * M[i, j] into *z (all_finite's test); with UNIT (R and
+// C all 1, the first sweep) the entries' sizes are |M[i, j]| itself (|M[i, j]| 1 1, the
+// same number). A maximum of terms >= +0 that are not NaN is exact in any order: eight
+// lanes, then four, then one by one.
+template <bool UNIT, bool FINITE>
+LEMKE_ALWAYS_INLINE double sweep_row(const double* row, double r, const double* C, idx n, double* cmax,
+                        double* z) {
+    double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    double zs[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r), vz = simd::splat8(0.0);
+        for (; j + 8 <= n; j += 8) {
+            simd::v8d x = simd::load8(row + j);
+            if (FINITE) vz += simd::splat8(0.0) * x;
+            simd::v8d a = UNIT ? simd::abs8(x) : (simd::abs8(x) * rr) * simd::load8(C + j);
+            vr = simd::max8(vr, a);
+            simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
+        }
+        for (int l = 0; l < 8; ++l) {
+            rm[l] = vr[l];
+            zs[l] = vz[l];
+        }
+    }
+#else
+    for (; j + 8 <= n; j += 8) {
+        for (int l = 0; l < 8; ++l) {
+            if (FINITE) zs[l] += 0.0 * row[j + l];
+            double a = UNIT ? std::fabs(row[j + l]) : std::fabs(row[j + l]) * r * C[j + l];
+            rm[l] = pmax(rm[l], a);
+            cmax[j + l] = pmax(cmax[j + l], a);
+        }
+    }
+#endif
+    if (j + 4 <= n) {
+        for (int l = 0; l < 4; ++l) {
+            if (FINITE) zs[l] += 0.0 * row[j + l];
+            double a = UNIT ? std::fabs(row[j + l]) : std::fabs(row[j + l]) * r * C[j + l];
+            rm[l] = pmax(rm[l], a);
+            cmax[j + l] = pmax(cmax[j + l], a);
+        }
+        j += 4;
+    }
+    for (; j < n; ++j) {
+        if (FINITE) zs[0] += 0.0 * row[j];
+        double a = UNIT ? std::fabs(row[j]) : std::fabs(row[j]) * r * C[j];
+        rm[0] = pmax(rm[0], a);
+        cmax[j] = pmax(cmax[j], a);
+    }
+    if (FINITE) *z = ((zs[0] + zs[1]) + (zs[2] + zs[3])) + ((zs[4] + zs[5]) + (zs[6] + zs[7]));
+    return pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
+                pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
+}
+
+template <bool UNIT, bool FINITE>
+LEMKE_ALWAYS_INLINE double sweep_rows(Mat<const double> M, const double* q, const double* R, const double* C,
+                         double cq, double* rmax, double* cmax, double* mrow, bool& all) {
+    idx n = M.rows;
+    double qmax = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double r = R[i];
+        double z = 0.0;
+        double m = sweep_row<UNIT, FINITE>(M.row(i), r, C, n, cmax, &z);
+        if (FINITE) all &= z == 0.0;
+        mrow[i] = m;
+        double a = std::fabs(q[i]) * r * cq;
+        rmax[i] = pmax(m, a);
+        qmax = pmax(qmax, a);
+    }
+    return qmax;
+}
+
 // One sweep: the largest entry of each row (q's times cq included) and column of
 // diag(R) M diag(C) into rmax, cmax, the rows' largest entries of M's part alone into mrow;
 // returns q's largest. Every term is >= +0 and not NaN (M is finite, the scales positive and
 // finite, or the sweeps stop), and a maximum of such terms is exact in any order: eight
 // running maxima per row, so the loop is a vector loop. With `finite`, also whether every
 // entry of M is finite (the sums of 0 * M[i, j], all_finite's test, in the same pass).
+// `unit`: R and C are all 1 (the first sweep).
 LEMKE_CLONES
 double sweep(Mat<const double> M, const double* q, const double* R, const double* C, double cq,
-             double* rmax, double* cmax, double* mrow, bool* finite) {
+             double* rmax, double* cmax, double* mrow, bool* finite, bool unit) {
     idx n = M.rows;
     for (idx j = 0; j < n; ++j) cmax[j] = 0.0;
-    double qmax = 0.0;
     bool all = true;
-    for (idx i = 0; i < n; ++i) {
-        double r = R[i];
-        double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        double z[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        const double* row = M.row(i);
-        idx j = 0;
-#ifdef LEMKE_SIMD
-        {
-            simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r), vz = simd::splat8(0.0);
-            for (; j + 8 <= n; j += 8) {
-                simd::v8d x = simd::load8(row + j);
-                if (finite) vz += simd::splat8(0.0) * x;
-                simd::v8d a = (simd::abs8(x) * rr) * simd::load8(C + j);
-                vr = simd::max8(vr, a);
-                simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
-            }
-            for (int l = 0; l < 8; ++l) {
-                rm[l] = vr[l];
-                z[l] = vz[l];
-            }
-        }
-#else
-        for (; j + 8 <= n; j += 8) {
-            for (int l = 0; l < 8; ++l) {
-                if (finite) z[l] += 0.0 * row[j + l];
-                double a = std::fabs(row[j + l]) * r * C[j + l];
-                rm[l] = pmax(rm[l], a);
-                cmax[j + l] = pmax(cmax[j + l], a);
-            }
-        }
-#endif
-        for (; j < n; ++j) {
-            if (finite) z[0] += 0.0 * row[j];
-            double a = std::fabs(row[j]) * r * C[j];
-            rm[0] = pmax(rm[0], a);
-            cmax[j] = pmax(cmax[j], a);
-        }
-        if (finite) all &= ((z[0] + z[1]) + (z[2] + z[3])) + ((z[4] + z[5]) + (z[6] + z[7])) == 0.0;
-        double m = pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
-                        pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
-        mrow[i] = m;
-        double a = std::fabs(q[i]) * r * cq;
-        rmax[i] = pmax(m, a);
-        qmax = pmax(qmax, a);
-    }
+    double qmax;
+    if (finite)
+        qmax = unit ? sweep_rows<true, true>(M, q, R, C, cq, rmax, cmax, mrow, all)
+                    : sweep_rows<false, true>(M, q, R, C, cq, rmax, cmax, mrow, all);
+    else
+        qmax = unit ? sweep_rows<true, false>(M, q, R, C, cq, rmax, cmax, mrow, all)
+                    : sweep_rows<false, false>(M, q, R, C, cq, rmax, cmax, mrow, all);
     if (finite) *finite = all;
     return qmax;
 }
@@ -226,7 +262,7 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
     double* cmax = work + n;
     double qmax = 0.0;
     if (finite) {
-        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite);
+        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true);
         if (!*finite) return;
     }
     bool same = false;  // the last sweep left R and C as they were
@@ -242,7 +278,8 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
             balanced &= rsqrt_all(work, n, same);
         } else {
-            if (sweep_no > 0 || !finite) qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr);
+            if (sweep_no > 0 || !finite)
+                qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr, sweep_no == 0);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
             balanced &= rsqrt_all(work, 2 * n, same);
         }

@@ -25,7 +25,7 @@ void TableauWork::layout(idx size) {
 namespace {
 
 // t[j] += f * v[j] for j < m (eight lanes at a time, then one by one).
-inline void axpy(double* t, double f, const double* v, idx m) {
+LEMKE_ALWAYS_INLINE void axpy(double* t, double f, const double* v, idx m) {
     idx j = 0;
 #ifdef LEMKE_SIMD
     simd::v8d vf = simd::splat8(f);
@@ -46,7 +46,7 @@ inline void axpy(double* t, double f, const double* v, idx m) {
 // address matched one of theirs modulo 4096, which depended on where the stack lay: the
 // same solve took 2.9 or 4.9 us from one process to the next at n = 24).
 template <bool RHS, bool MAGB, bool NEXT>
-inline void update_rows(double* ti, idx ld, idx m, idx count, const double* col, double* rhs,
+LEMKE_ALWAYS_INLINE void update_rows(double* ti, idx ld, idx m, idx count, const double* col, double* rhs,
                         double* magb, double* col_next, const double* prow, idx s, idx s_next,
                         double inv, double rr, double mr) {
     double pn = NEXT ? prow[s_next] : 0.0;
@@ -69,7 +69,7 @@ inline void update_rows(double* ti, idx ld, idx m, idx count, const double* col,
 }
 
 template <bool RHS, bool MAGB, bool NEXT>
-inline void update_all(const Mat<double>& T, idx r, const double* col, double* rhs, double* magb,
+LEMKE_ALWAYS_INLINE void update_all(const Mat<double>& T, idx r, const double* col, double* rhs, double* magb,
                        double* col_next, const double* prow, idx s, idx s_next, double inv,
                        double rr, double mr) {
     idx m = T.ld;
