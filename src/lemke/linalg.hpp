@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "multiversion.hpp"
 #include "simd.hpp"
 #include "span.hpp"
 
@@ -27,6 +28,44 @@ inline double bits_float(std::int64_t b) { double x; std::memcpy(&x, &b, 8); ret
 // (lane j mod 8 of the first 8 floor(k / 8) terms, the rest into lane 0), added pairwise.
 void row_dot_and_size(const double* row, const double* y, idx k, double& dot, double& size);
 double dot(const double* x, const double* y, idx k);
+
+// row_dot_and_size's body, inlined by loops compiled per instruction set that take one per
+// row (a call per row through the clones' dispatch costs as much as a short row).
+LEMKE_ALWAYS_INLINE void row_dot_and_size_lanes(const double* row, const double* y, idx k,
+                                                double& dot_out, double& size_out) {
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d va = simd::splat8(0.0), vs = simd::splat8(0.0);
+        for (; j + 8 <= k; j += 8) {
+            simd::v8d t = simd::load8(row + j) * simd::load8(y + j);
+            va += t;
+            vs += simd::abs8(t);
+        }
+        for (int l = 0; l < 8; ++l) {
+            a[l] = va[l];
+            s[l] = vs[l];
+        }
+    }
+#else
+    for (; j + 8 <= k; j += 8) {
+        for (int l = 0; l < 8; ++l) {
+            double t = row[j + l] * y[j + l];
+            a[l] += t;
+            s[l] += std::fabs(t);
+        }
+    }
+#endif
+    for (; j < k; ++j) {
+        double t = row[j] * y[j];
+        a[0] += t;
+        s[0] += std::fabs(t);
+    }
+    dot_out = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+    size_out = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
 
 // dot's body, inlined by loops compiled per instruction set that take many short dot
 // products (a call per row through the clones' dispatch costs as much as a short row).
