@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "multiversion.hpp"
 #include "simd.hpp"
 #include "span.hpp"
 
@@ -28,18 +29,12 @@ inline double bits_float(std::int64_t b) { double x; std::memcpy(&x, &b, 8); ret
 void row_dot_and_size(const double* row, const double* y, idx k, double& dot, double& size);
 double dot(const double* x, const double* y, idx k);
 
-// The lane helpers below are always inlined where the compiler allows (GCC/clang): a copy of
-// their own would be compiled for the baseline instruction set, where a vector of 8 doubles
-// is four registers, and called once per row.
-#ifdef LEMKE_SIMD
-#define LEMKE_LANES_INLINE LEMKE_SIMD_INLINE
-#else
-#define LEMKE_LANES_INLINE inline
-#endif
-
-// row_dot_and_size's body, for loops compiled per instruction set that take it row by row.
-LEMKE_LANES_INLINE void dot_and_size_lanes(const double* row, const double* y, idx k,
-                                           double& dot_out, double& size_out) {
+// row_dot_and_size's body, for loops compiled per instruction set that take it row by row:
+// always inlined (a copy of its own would be compiled for the baseline instruction set,
+// where a vector of 8 doubles is four registers, and called once per row through the
+// clones' dispatch, which costs as much as a short row).
+LEMKE_ALWAYS_INLINE void dot_and_size_lanes(const double* row, const double* y, idx k,
+                                            double& dot_out, double& size_out) {
     double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
@@ -91,7 +86,7 @@ inline double dot_lanes(const double* x, const double* y, idx k) {
 // dot's order (the same bits), y's loads shared by the four rows. On vector types: left to
 // the vectorizer, the four rows' lanes came out interleaved by permutes (slower than four
 // calls of dot_lanes).
-LEMKE_LANES_INLINE void dot_lanes4(const double* const* x, const double* y, idx k, double* out) {
+LEMKE_ALWAYS_INLINE void dot_lanes4(const double* const* x, const double* y, idx k, double* out) {
     const double *x0 = x[0], *x1 = x[1], *x2 = x[2], *x3 = x[3];
     idx j = 0;
 #ifdef LEMKE_SIMD
