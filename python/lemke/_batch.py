@@ -11,7 +11,7 @@ from operator import attrgetter
 import numpy as np
 
 from . import _core, _progress, _validate
-from ._lcp import METHODS, _outcome
+from ._lcp import METHODS, _outcome, solve_lcp as _solve_lcp
 from ._options import as_options, time_limited, timed
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
@@ -397,6 +397,12 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         return timed(timing, solve_lcp_many, M, q, method=method, workers=workers,
                      warm_start=warm_start, sizes=sizes, progress=progress)
     _validate.method(method, METHODS)
+    if (options is None and sizes is None and (progress is None or progress is False)
+            and type(M) in _SEQ and type(q) in _SEQ and 0 < len(M) <= FEW):
+        _validate.positive_int_or_none(workers, "workers")
+        res = _few(M, q, method, warm_start)
+        if res is not None:
+            return res
     opts = as_options(options)
     workers = _workers(workers)
     if progress is not None:
@@ -455,6 +461,45 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
 
 
 _RAY = int(Status.RAY_TERMINATION)
+#: The most problems that solve_lcp_many solves one by one with solve_lcp (its native front:
+#: a microsecond or so each), when each is ready for the kernels, with the default options
+#: and no progress report: the batch's own set-up (its arrays and offsets, some tens of
+#: numpy calls) costs about 30 us, more than such a batch takes to solve; the answers are
+#: the same (item b is solve_lcp's result, bit for bit, either way).
+FEW = 4
+_SEQ = (list, tuple)
+
+
+def _few(M, q, method, warm_start):
+    """solve_lcp_many's result for the few problems (M, q) (lists or tuples of the same
+    length, at most FEW) solved one by one by ``solve_lcp``, or None when they are not all
+    ready for the kernels (``_ready``, n >= 1) or the warm starts are not None, a
+    WarmStartBatch or a sequence of WarmStart or None, all of the problems' sizes: the
+    batch path then checks and solves them, saying what is wrong."""
+    B = len(M)
+    if len(q) != B or not all(map(_ready, M, q)):
+        return None
+    sizes = [len(qb) for qb in q]
+    if 0 in sizes:
+        return None
+    if warm_start is None:
+        ws = [None] * B
+    elif type(warm_start) is WarmStartBatch:
+        if len(warm_start) != B or warm_start.n.tolist() != sizes:
+            return None
+        ws = list(warm_start)
+    elif type(warm_start) in _SEQ and len(warm_start) == B and all(
+            w is None or (type(w) is WarmStart and w.n == n) for w, n in zip(warm_start, sizes)):
+        ws = warm_start
+    else:
+        return None
+    items = []
+    for b in range(B):
+        try:
+            items.append(_solve_lcp(M[b], q[b], method=method, warm_start=ws[b]))
+        except ValueError as exc:  # NaN or infinity: as _checked says it, naming the problem
+            raise ValueError(f"problem {b}: {exc}") from None
+    return LCPManyResult._of(items)
 
 
 def _cubes(n_b):
