@@ -40,6 +40,10 @@ struct Front {
     PyObject* ray = nullptr;         // Status.RAY_TERMINATION
     PyObject* empty = nullptr;       // numpy.empty
     PyObject *k_status, *k_pivots, *k_residual, *k_recoveries, *k_src, *k_warm_start;
+    PyObject* zero = nullptr;  // 0
+    // The result's __dict__ of each kind (recoveries | warm start << 1): its keys in _lazy's
+    // order, status SOLVED; lcp_front copies one.
+    PyObject* templates[4] = {};
     int int64_num = -1;  // NumPy's type number of int64 here (7 or 9 by platform)
     double pivot_tol = 0, tie_tol = 0, tol = 0;
     // NumPy's PyArray_NewFromDescr (its C API table's entry 94, the same in NumPy 1.x and
@@ -138,8 +142,19 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
     front.pivot_tol = pivot_tol;
     front.tie_tol = tie_tol;
     front.tol = tol;
+    front.zero = PyLong_FromLong(0);
     front.on = front.k_status && front.k_pivots && front.k_residual && front.k_recoveries &&
-               front.k_src && front.k_warm_start;
+               front.k_src && front.k_warm_start && front.zero;
+    for (int v = 0; v < 4 && front.on; ++v) {
+        PyObject* t = front.templates[v] = PyDict_New();
+        front.on = t != nullptr && PyDict_SetItem(t, front.k_status, solved.ptr()) == 0 &&
+                   PyDict_SetItem(t, front.k_pivots, Py_None) == 0 &&
+                   PyDict_SetItem(t, front.k_residual, Py_None) == 0 &&
+                   ((v & 1) == 0 || PyDict_SetItem(t, front.k_recoveries, Py_None) == 0) &&
+                   PyDict_SetItem(t, front.k_src, Py_None) == 0 &&
+                   ((v & 2) == 0 || PyDict_SetItem(t, front.k_warm_start, Py_None) == 0);
+    }
+    if (!front.on) PyErr_Clear();
     if (front.on) find_new_from_descr(api);
 }
 
@@ -187,22 +202,34 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
                             r.code == lemke::RAY_TERMINATION);
     if (!settled)
         return nb::make_tuple(r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage, buf);
-    // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0) and the source
-    // of the fields made when first read, (buf, 0, None, at, n, k).
-    auto [res, dict] = new_result(front.result_cls);
+    // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0), the source of
+    // the fields made when first read, (buf, 0, None, at, n, k), and the warm start when its
+    // own basis solved it; in a copy of the template of its kind (its keys in that order:
+    // the values replaced, no dict growth).
+    auto* cls = reinterpret_cast<PyTypeObject*>(front.result_cls);
+    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nb::python_error();
+    bool warm = r.stage == 0;  // the warm start's own basis solved it: the result keeps it
+    nb::object dict = nb::steal(PyDict_Copy(front.templates[int(r.recoveries != 0) | int(warm) << 1]));
+    if (!dict.is_valid()) throw nb::python_error();
     PyObject* d = dict.ptr();
-    PyObject* status = r.code == lemke::RAY_TERMINATION ? front.ray : front.solved;
-    Py_INCREF(status);
-    bool ok = put(d, front.k_status, status) &&
+    PyObject* src = PyTuple_New(6);
+    if (src != nullptr) {
+        PyObject* items[] = {buf.release().ptr(), front.zero, Py_None, PyLong_FromSsize_t(at),
+                             PyLong_FromSsize_t(n), PyLong_FromSsize_t(r.k)};
+        Py_INCREF(front.zero);
+        Py_INCREF(Py_None);
+        for (int i = 0; i < 6; ++i) PyTuple_SET_ITEM(src, i, items[i]);  // (a null: error below)
+        if (!items[3] || !items[4] || !items[5]) Py_CLEAR(src);
+    }
+    bool ok = (r.code != lemke::RAY_TERMINATION ||
+               PyDict_SetItem(d, front.k_status, front.ray) == 0) &&
               put(d, front.k_pivots, PyLong_FromLongLong(r.pivots)) &&
               put(d, front.k_residual, PyFloat_FromDouble(r.residual)) &&
-              (r.recoveries == 0 || put(d, front.k_recoveries, PyLong_FromLongLong(r.recoveries)));
-    if (ok) {
-        nb::object src = nb::make_tuple(buf, 0, nb::none(), at, n, r.k);
-        ok = PyDict_SetItem(d, front.k_src, src.ptr()) == 0;
-    }
-    if (ok && r.stage == 0)  // the warm start's own basis solved it: the result keeps it
-        ok = PyDict_SetItem(d, front.k_warm_start, ws.ptr()) == 0;
+              (r.recoveries == 0 || put(d, front.k_recoveries, PyLong_FromLongLong(r.recoveries))) &&
+              put(d, front.k_src, src) &&
+              (!warm || PyDict_SetItem(d, front.k_warm_start, ws.ptr()) == 0) &&
+              PyObject_GenericSetDict(res.ptr(), d, nullptr) == 0;
     if (!ok) throw nb::python_error();
     return res;
 }
