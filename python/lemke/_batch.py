@@ -396,10 +396,12 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp_many, M, q, method=method, workers=workers,
                      warm_start=warm_start, sizes=sizes, progress=progress)
-    _validate.method(method, METHODS)
+    if method != "tableau":
+        _validate.method(method, METHODS)
     if (options is None and sizes is None and (progress is None or progress is False)
             and type(M) in _SEQ and type(q) in _SEQ and 0 < len(M) <= FEW):
-        _validate.positive_int_or_none(workers, "workers")
+        if workers is not None:
+            _validate.positive_int_or_none(workers, "workers")
         res = _few(M, q, method, warm_start)
         if res is not None:
             return res
@@ -473,33 +475,41 @@ _SEQ = (list, tuple)
 def _few(M, q, method, warm_start):
     """solve_lcp_many's result for the few problems (M, q) (lists or tuples of the same
     length, at most FEW) solved one by one by ``solve_lcp``, or None when they are not all
-    ready for the kernels (``_ready``, n >= 1) or the warm starts are not None, a
-    WarmStartBatch or a sequence of WarmStart or None, all of the problems' sizes: the
-    batch path then checks and solves them, saying what is wrong."""
+    float64 ndarrays, a square M_b of q_b's size n_b >= 1 (a problem the batch path would
+    convert or refuse before solving any: it then does all, saying what is wrong), or the
+    warm starts are not None, a WarmStartBatch or a sequence of WarmStart or None, all of
+    the problems' sizes."""
     B = len(M)
-    if len(q) != B or not all(map(_ready, M, q)):
+    if len(q) != B:
         return None
-    sizes = [len(qb) for qb in q]
-    if 0 in sizes:
-        return None
+    for b in range(B):
+        Mb, qb = M[b], q[b]
+        if not (type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
+                and qb.ndim == 1 and Mb.shape == qb.shape * 2 and qb.shape[0]):
+            return None
     if warm_start is None:
-        ws = [None] * B
+        ws = (None,) * B
     elif type(warm_start) is WarmStartBatch:
-        if len(warm_start) != B or warm_start.n.tolist() != sizes:
+        if len(warm_start) != B or warm_start.n.tolist() != [len(qb) for qb in q]:
             return None
         ws = list(warm_start)
     elif type(warm_start) in _SEQ and len(warm_start) == B and all(
-            w is None or (type(w) is WarmStart and w.n == n) for w, n in zip(warm_start, sizes)):
+            w is None or (type(w) is WarmStart and w.n == len(qb)) for w, qb in zip(warm_start, q)):
         ws = warm_start
     else:
         return None
     items = []
-    for b in range(B):
-        try:
-            items.append(_solve_lcp(M[b], q[b], method=method, warm_start=ws[b]))
-        except ValueError as exc:  # NaN or infinity: as _checked says it, naming the problem
-            raise ValueError(f"problem {b}: {exc}") from None
+    try:
+        if method == "tableau":  # (solve_lcp's native entry takes (M, q, warm_start=) whole)
+            for b in range(B):
+                items.append(_solve_lcp(M[b], q[b], warm_start=ws[b]))
+        else:
+            for b in range(B):
+                items.append(_solve_lcp(M[b], q[b], method=method, warm_start=ws[b]))
+    except ValueError as exc:  # NaN or infinity: as _checked says it, naming the problem
+        raise ValueError(f"problem {len(items)}: {exc}") from None
     return LCPManyResult._of(items)
+
 
 
 def _cubes(n_b):
