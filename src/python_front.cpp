@@ -253,7 +253,30 @@ struct Entry {
     PyObject* front;    // _core.lcp_front as first bound
     PyObject* ws_cls;   // WarmStart
     PyObject *k_front, *k_warm_start, *k_beta, *k_n;
+    // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
+    // each call), LCPManyResult and the keys of what LCPManyResult._of sets
+    PyObject *many_globals, *many_cls, *k_few, *k_items, *k_special, *k_off;
 };
+
+// The index array of a warm start ws for a problem of size n: true when ws is a WarmStart of
+// that size with its index array (WarmStart._beta), as the Python front asks; else false
+// (no error set), and the Python front does it (and makes _beta).
+bool warm_beta(Entry* e, PyObject* ws, Py_ssize_t n, nb::object& beta) {
+    if (Py_TYPE(ws) != reinterpret_cast<PyTypeObject*>(e->ws_cls)) return false;
+    nb::object size = nb::steal(PyObject_GetAttr(ws, e->k_n));
+    if (size.is_valid()) beta = nb::steal(PyObject_GetAttr(ws, e->k_beta));
+    if (beta.is_valid() && PyLong_CheckExact(size.ptr()) && PyLong_AsSsize_t(size.ptr()) == n)
+        return true;
+    PyErr_Clear();
+    return false;
+}
+
+// Whether kwnames (of a call with two positional arguments) is only warm_start.
+bool only_warm_start(Entry* e, PyObject* kwnames) {
+    if (PyTuple_GET_SIZE(kwnames) != 1) return false;
+    PyObject* key = PyTuple_GET_ITEM(kwnames, 0);
+    return key == e->k_warm_start || PyUnicode_Compare(key, e->k_warm_start) == 0;
+}
 
 PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta) {
     try {
@@ -278,36 +301,95 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     auto* e = reinterpret_cast<Entry*>(self);
     Py_ssize_t nargs = PyVectorcall_NARGS(nargsf);
     if (nargs == 2 && front.on) {
-        PyObject* ws = Py_None;
-        bool plain = kwnames == nullptr;
-        if (!plain && PyTuple_GET_SIZE(kwnames) == 1) {
-            PyObject* key = PyTuple_GET_ITEM(kwnames, 0);
-            plain = key == e->k_warm_start || PyUnicode_Compare(key, e->k_warm_start) == 0;
-            if (plain) ws = args[2];
-        }
+        bool plain = kwnames == nullptr || only_warm_start(e, kwnames);
+        PyObject* ws = kwnames == nullptr ? Py_None : args[2];
         PyObject* now = plain ? PyDict_GetItemWithError(e->globals, e->k_front) : nullptr;
         if (now == e->front) {
             PyObject* res = nullptr;
+            nb::object beta;
             if (ws == Py_None) {
                 res = entry_front(e, args[0], args[1], Py_None, Py_None);
-            } else if (Py_TYPE(ws) == reinterpret_cast<PyTypeObject*>(e->ws_cls) &&
-                       Py_TYPE(args[1]) == front.ndarray) {
-                // warm_start.n == len(q) and its index array (WarmStart._beta), as the
-                // Python front asks; else that front does it (and makes _beta)
-                auto* q = reinterpret_cast<const ArrayFields*>(args[1]);
-                nb::object n = nb::steal(PyObject_GetAttr(ws, e->k_n));
-                nb::object beta = nb::steal(n.is_valid() ? PyObject_GetAttr(ws, e->k_beta) : nullptr);
-                if (beta.is_valid() && q->nd == 1 && PyLong_CheckExact(n.ptr()) &&
-                    PyLong_AsSsize_t(n.ptr()) == q->dimensions[0])
-                    res = entry_front(e, args[0], args[1], ws, beta.ptr());
-                else
-                    PyErr_Clear();
+            } else if (Py_TYPE(args[1]) == front.ndarray &&
+                       reinterpret_cast<const ArrayFields*>(args[1])->nd == 1 &&
+                       warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(args[1])->dimensions[0],
+                                 beta)) {
+                res = entry_front(e, args[0], args[1], ws, beta.ptr());
             }
             if (res == Py_None) return nullptr;  // an error, set
             if (res != nullptr) return res;
         } else if (now == nullptr && PyErr_Occurred()) {
             return nullptr;
         }
+    }
+    return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
+}
+
+// solve_lcp_many(Ms, qs) and solve_lcp_many(Ms, qs, warm_start=ws) of 1..FEW problems, lists
+// or tuples of plain arrays (n >= 1) and of None or WarmStart: each problem's lcp_front, as
+// _batch._few calls solve_lcp, and the LCPManyResult that LCPManyResult._of makes of them.
+// nullptr: declined (the Python function does it all: any problem that lcp_front declines
+// or does not settle, a WarmStartBatch, ...); Py_None: an error, set.
+PyObject* many_front(Entry* e, PyObject* M, PyObject* q, PyObject* wss) {
+    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
+    if (!seq(M) || !seq(q)) return nullptr;
+    Py_ssize_t B = PySequence_Fast_GET_SIZE(M);
+    if (B < 1 || PySequence_Fast_GET_SIZE(q) != B) return nullptr;
+    if (wss != Py_None && (!seq(wss) || PySequence_Fast_GET_SIZE(wss) != B)) return nullptr;
+    PyObject* now = PyDict_GetItemWithError(e->globals, e->k_front);
+    PyObject* few = now == e->front ? PyDict_GetItemWithError(e->many_globals, e->k_few) : nullptr;
+    if (few == nullptr || !PyLong_CheckExact(few)) return PyErr_Occurred() ? Py_None : nullptr;
+    if (B > PyLong_AsSsize_t(few)) {
+        PyErr_Clear();  // (an overflow)
+        return nullptr;
+    }
+    PyObject** Ms = PySequence_Fast_ITEMS(M);
+    PyObject** qs = PySequence_Fast_ITEMS(q);
+    PyObject** ws = wss == Py_None ? nullptr : PySequence_Fast_ITEMS(wss);
+    try {
+        nb::object items = nb::steal(PyList_New(B));
+        if (!items.is_valid()) return Py_None;
+        for (Py_ssize_t b = 0; b < B; ++b) {
+            auto* qb = reinterpret_cast<const ArrayFields*>(qs[b]);
+            if (Py_TYPE(qs[b]) != front.ndarray || qb->nd != 1 || qb->dimensions[0] < 1)
+                return nullptr;
+            PyObject* w = ws == nullptr ? Py_None : ws[b];
+            nb::object beta = nb::none();
+            if (w != Py_None && !warm_beta(e, w, qb->dimensions[0], beta)) return nullptr;
+            nb::object r = lcp_front(Ms[b], qs[b], w, beta);
+            if (r.is_none() || PyTuple_CheckExact(r.ptr())) return nullptr;
+            PyList_SET_ITEM(items.ptr(), b, r.release().ptr());
+        }
+        // LCPManyResult._of(items): _items, _special ({b: item}), _off None
+        auto* cls = reinterpret_cast<PyTypeObject*>(e->many_cls);
+        nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+        nb::object special = nb::steal(PyDict_New());
+        nb::object dict = nb::steal(PyDict_New());
+        bool ok = res.is_valid() && special.is_valid() && dict.is_valid();
+        for (Py_ssize_t b = 0; ok && b < B; ++b)
+            ok = PyDict_SetItem(special.ptr(), nb::int_(b).ptr(), PyList_GET_ITEM(items.ptr(), b)) == 0;
+        ok = ok && PyDict_SetItem(dict.ptr(), e->k_items, items.ptr()) == 0 &&
+             PyDict_SetItem(dict.ptr(), e->k_special, special.ptr()) == 0 &&
+             PyDict_SetItem(dict.ptr(), e->k_off, Py_None) == 0 &&
+             PyObject_GenericSetDict(res.ptr(), dict.ptr(), nullptr) == 0;
+        return ok ? res.release().ptr() : Py_None;
+    } catch (nb::python_error& err) {
+        err.restore();
+    } catch (const std::bad_alloc&) {
+        PyErr_NoMemory();
+    } catch (const std::exception& err) {
+        PyErr_SetString(PyExc_RuntimeError, err.what());
+    }
+    return Py_None;
+}
+
+PyObject* many_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                    PyObject* kwnames) {
+    auto* e = reinterpret_cast<Entry*>(self);
+    if (PyVectorcall_NARGS(nargsf) == 2 && front.on &&
+        (kwnames == nullptr || only_warm_start(e, kwnames))) {
+        PyObject* res = many_front(e, args[0], args[1], kwnames == nullptr ? Py_None : args[2]);
+        if (res == Py_None) return nullptr;  // an error, set
+        if (res != nullptr) return res;
     }
     return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
 }
@@ -340,7 +422,7 @@ PyTypeObject entry_type = [] {
     t.tp_name = "lemke._core.LCPEntry";
     t.tp_basicsize = sizeof(Entry);
     t.tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL;
-    t.tp_doc = "solve_lcp's entry (src/python_front.cpp)";
+    t.tp_doc = "solve_lcp's or solve_lcp_many's entry (src/python_front.cpp)";
     t.tp_call = PyVectorcall_Call;
     t.tp_vectorcall_offset = offsetof(Entry, vectorcall);
     t.tp_dictoffset = offsetof(Entry, dict);
@@ -353,23 +435,36 @@ PyTypeObject entry_type = [] {
     return t;
 }();
 
-nb::object lcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
-                     nb::handle ws_cls) {
+// An entry wrapping py: solve_lcp's (many_globals and many_cls None), or solve_lcp_many's.
+nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
+                      nb::handle ws_cls, nb::handle many_globals, nb::handle many_cls) {
     if (PyType_Ready(&entry_type) < 0) throw nb::python_error();
     auto* e = PyObject_New(Entry, &entry_type);
     if (e == nullptr) throw nb::python_error();
     e->dict = nullptr;
-    e->vectorcall = entry_call;
-    PyObject** keep[] = {&e->py, &e->after, &e->globals, &e->front, &e->ws_cls};
-    nb::handle given[] = {py, after, globals, front_fn, ws_cls};
-    for (int i = 0; i < 5; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
-    e->k_front = PyUnicode_InternFromString("_FRONT");
-    e->k_warm_start = PyUnicode_InternFromString("warm_start");
-    e->k_beta = PyUnicode_InternFromString("_beta");
-    e->k_n = PyUnicode_InternFromString("n");
+    bool many = !many_cls.is_none();
+    e->vectorcall = many ? many_call : entry_call;
+    PyObject** keep[] = {&e->py, &e->after, &e->globals, &e->front, &e->ws_cls,
+                         &e->many_globals, &e->many_cls};
+    nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
+    for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
+    PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n,
+                         &e->k_few, &e->k_items, &e->k_special, &e->k_off};
+    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special", "_off"};
     nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
-    if (!e->k_front || !e->k_warm_start || !e->k_beta || !e->k_n) throw nb::python_error();
+    for (int i = 0; i < 8; ++i)
+        if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
     return res;
+}
+
+nb::object lcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
+                     nb::handle ws_cls) {
+    return make_entry(py, after, globals, front_fn, ws_cls, nb::none(), nb::none());
+}
+
+nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn,
+                          nb::handle ws_cls, nb::handle many_globals, nb::handle many_cls) {
+    return make_entry(py, nb::none(), globals, front_fn, ws_cls, many_globals, many_cls);
 }
 
 }  // namespace
@@ -399,4 +494,6 @@ void bind_front(nb::module_& m) {
     m.def("lcp_front", &lcp_front, "M"_a, "q"_a, "ws"_a.none(), "beta"_a.none());
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
+    m.def("lcp_many_entry", &lcp_many_entry, "py"_a, "globals"_a, "front"_a, "ws_cls"_a,
+          "many_globals"_a, "many_cls"_a);
 }

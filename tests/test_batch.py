@@ -513,3 +513,41 @@ def test_a_few_problems_bad_input_says_what_the_batch_path_says(monkeypatch):
         assert said[0] == said[1], said
         if i < 2:  # a NaN or an infinity: the problem and the argument named
             assert said[0][0] is ValueError and "problem 1" in said[0][1] and "MqMq"[i] in said[0][1]
+
+
+def test_solve_lcp_many_entry_is_the_python_function_to_its_callers(monkeypatch):
+    """``lemke.solve_lcp_many`` is the core's entry (``_core.lcp_many_entry``): a call of up to
+    FEW plain problems is made there whole, as ``_batch._few`` makes it (the same items and
+    flat fields), reading ``_batch.FEW`` and ``_lcp._FRONT`` on each call; every other call
+    is the Python function's, whose name, docstring and signature it shows."""
+    import inspect
+    from lemke import _batch, _lcp
+
+    f = lemke.solve_lcp_many
+    assert f.__wrapped__ is _batch._solve_lcp_many and f.__doc__ == _batch._solve_lcp_many.__doc__
+    assert str(inspect.signature(f)) == str(inspect.signature(_batch._solve_lcp_many))
+    assert pickle.loads(pickle.dumps(f)) is f
+    Ms, qs, qs2 = _islands(9, count=12)
+    keep = [b for b in range(len(Ms)) if len(qs[b])]
+    Ms, qs, qs2 = [Ms[b] for b in keep][:3], [qs[b] for b in keep][:3], [qs2[b] for b in keep][:3]
+    cold = f(Ms, qs)
+    ws = [r.warm_start for r in cold]
+    warm = f(Ms, qs2, warm_start=ws)
+    assert cold._off is None and warm._off is None and (warm.pivots == 0).any()
+    for res, args in ((cold, (Ms, qs)), (warm, (Ms, qs2, ws))):
+        kw = {"warm_start": args[2]} if len(args) > 2 else {}
+        python = _batch._solve_lcp_many(*args[:2], **kw)  # (_few, through solve_lcp)
+        assert res == python and _flat_fields(res) == _flat_fields(python)
+        assert res.warm_start == python.warm_start
+        _assert_flat_is_items(res, Ms, args[1])
+    calls = []
+    front = _lcp._FRONT
+    monkeypatch.setattr(_lcp, "_FRONT", lambda *a: calls.append(a) or front(*a))
+    assert f(Ms, qs) == cold and len(calls) == len(Ms)  # (through the Python path's solve_lcp)
+    monkeypatch.setattr(_batch, "FEW", 2)
+    assert f(Ms, qs)._off is not None  # 3 problems: the batch
+    monkeypatch.undo()
+    with pytest.raises(ValueError, match="problem 1"):
+        f([np.eye(2), np.eye(2)], [np.ones(2), np.array([np.nan, 1.0])])
+    with pytest.raises(ValueError, match="warm_start\\[0\\]"):
+        f([np.eye(2)], [np.ones(2)], warm_start=[lemke.WarmStart(3, (0,))])

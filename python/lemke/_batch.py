@@ -2,6 +2,7 @@
 the GIL), each exactly as :func:`lemke.solve_lcp` solves it."""
 from __future__ import annotations
 
+import functools
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
@@ -10,7 +11,7 @@ from operator import attrgetter
 
 import numpy as np
 
-from . import _core, _progress, _validate
+from . import _core, _lcp, _progress, _validate
 from ._lcp import METHODS, _outcome, solve_lcp as _solve_lcp
 from ._options import as_options, time_limited, timed
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
@@ -461,6 +462,16 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
                               bufs[bo : int(buff[b + 1])], recoveries)
     return LCPManyResult(sizes, off, out_i, out_f, bufs, basics, ws, special)
 
+
+#: The Python function; ``solve_lcp_many`` is the core's entry that wraps it
+#: (src/python_front.cpp, ``lcp_many_entry``): a call ``solve_lcp_many(Ms, qs)`` or
+#: ``solve_lcp_many(Ms, qs, warm_start=ws)`` of up to FEW plain problems (float64 arrays,
+#: warm starts None or WarmStart) that ``_lcp._FRONT`` settles is made there whole, as
+#: ``_few`` makes it, with no Python frame; every other call is the function's.
+_solve_lcp_many = solve_lcp_many
+solve_lcp_many = functools.update_wrapper(
+    _core.lcp_many_entry(_solve_lcp_many, _lcp.__dict__, _lcp._FRONT, WarmStart, globals(),
+                         LCPManyResult), _solve_lcp_many)
 
 _RAY = int(Status.RAY_TERMINATION)
 #: The most problems that solve_lcp_many solves one by one with solve_lcp (its native front:
