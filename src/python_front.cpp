@@ -278,6 +278,23 @@ bool only_warm_start(Entry* e, PyObject* kwnames) {
     return key == e->k_warm_start || PyUnicode_Compare(key, e->k_warm_start) == 0;
 }
 
+// The exception in flight (in a catch block) set as Python's error; Py_None, which the
+// entries' helpers return for "an error, set".
+PyObject* error_set() {
+    try {
+        throw;
+    } catch (nb::python_error& err) {
+        err.restore();
+    } catch (const std::bad_alloc&) {
+        PyErr_NoMemory();
+    } catch (const std::exception& err) {
+        PyErr_SetString(PyExc_RuntimeError, err.what());
+    } catch (...) {
+        PyErr_SetString(PyExc_RuntimeError, "unknown C++ exception");
+    }
+    return Py_None;
+}
+
 PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta) {
     try {
         nb::object r = lcp_front(M, q, ws, beta);
@@ -286,14 +303,9 @@ PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject
         PyObject* args[] = {M, q, ws, beta, r.ptr()};
         PyObject* res = PyObject_Vectorcall(e->after, args, 5, nullptr);
         return res != nullptr ? res : Py_None;  // (Py_None, not owned: an error is set)
-    } catch (nb::python_error& err) {
-        err.restore();
-    } catch (const std::bad_alloc&) {
-        PyErr_NoMemory();
-    } catch (const std::exception& err) {
-        PyErr_SetString(PyExc_RuntimeError, err.what());
+    } catch (...) {
+        return error_set();
     }
-    return Py_None;
 }
 
 PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
@@ -372,14 +384,9 @@ PyObject* many_front(Entry* e, PyObject* M, PyObject* q, PyObject* wss) {
              PyDict_SetItem(dict.ptr(), e->k_off, Py_None) == 0 &&
              PyObject_GenericSetDict(res.ptr(), dict.ptr(), nullptr) == 0;
         return ok ? res.release().ptr() : Py_None;
-    } catch (nb::python_error& err) {
-        err.restore();
-    } catch (const std::bad_alloc&) {
-        PyErr_NoMemory();
-    } catch (const std::exception& err) {
-        PyErr_SetString(PyExc_RuntimeError, err.what());
+    } catch (...) {
+        return error_set();
     }
-    return Py_None;
 }
 
 PyObject* many_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
