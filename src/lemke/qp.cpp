@@ -146,6 +146,32 @@ void householder_apply(Mat<const double> V, const double* beta, idx k, double* x
         for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
 }
 
+// householder_apply of reflector k to every row of X, in row order (factors' loop).
+LEMKE_CLONES
+void householder_rows(Mat<const double> V, const double* beta, idx k, Mat<double> X) {
+    idx n = V.cols;
+    const double* v = V.row(k) + k;
+    for (idx i = 0; i < X.rows; ++i) {
+        double* r = X.row(i) + k;
+        double s = beta[k] * dot_lanes(v, r, n - k);
+        if (s != 0.0)
+            for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+    }
+}
+
+// The multiplier matrix M = F2 F2' (F2 = C[:, p:]): M[i, j] = M[j, i] = dot(F2i, F2j) for
+// j <= i, rows [i0, i1) (solve's loop, in blocks between its deadline checks).
+LEMKE_CLONES
+void gram_rows(Mat<const double> C, idx p, idx i0, idx i1, Mat<double> M) {
+    idx r = C.cols - p;
+    for (idx i = i0; i < i1; ++i) {
+        const double* F2i = C.row(i) + p;
+        double* Mi = M.row(i);
+        for (idx j = 0; j <= i; ++j) Mi[j] = dot_lanes(F2i, C.row(j) + p, r);
+        for (idx j = 0; j < i; ++j) M(j, i) = Mi[j];
+    }
+}
+
 // ----------------------------------------------------------------------------- compensated sums
 
 struct Dot2 {
@@ -373,7 +399,7 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     for (idx k = 0; k < p; ++k) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
         householder_apply(w.V, w.beta, k, c);
-        for (idx i = 0; i < m; ++i) householder_apply(w.V, w.beta, k, R.C.row(i));
+        householder_rows(w.V, w.beta, k, R.C);
     }
     lcp_rhs(R, w, n);
     return OK;
@@ -905,17 +931,12 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
 LEMKE_CLONES
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
-    const double* rr[4] = {r0, r1, r2, r3};
-    double s[4][8] = {};
-    idx j = 0;
-    for (; j + 8 <= len; j += 8)
-        for (int q = 0; q < 4; ++q)
-            for (int l = 0; l < 8; ++l) s[q][l] += a[j + l] * rr[q][j + l];
-    for (; j < len; ++j)
-        for (int q = 0; q < 4; ++q) s[q][0] += a[j] * rr[q][j];
-    for (int q = 0; q < 4; ++q)
-        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
-                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
+    // (dot_lanes per row, a in cache: written as one loop over the four rows' lanes GCC
+    // vectorized it across the rows, with shuffles, 10-20x slower at n = 300)
+    out[0] = dot_lanes(a, r0, len);
+    out[1] = dot_lanes(a, r1, len);
+    out[2] = dot_lanes(a, r2, len);
+    out[3] = dot_lanes(a, r3, len);
 }
 
 LEMKE_CLONES
@@ -995,6 +1016,11 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     return screen_bounds(dt, lo, up);
 }
 
+// Row by row (L's row i from rows < i), each entry in dot's fixed order; the rows in panels
+// of four, whose entries left of the panel are four independent chains (one row alone is a
+// chain of dependent dots and divisions: latency-bound, 2-3x slower at n = 100). The panel
+// is built aside and copied row by row, so that on failure L holds what the row-by-row
+// loop wrote: the rows above the failing one, its entries left of the diagonal.
 LEMKE_CLONES
 bool cholesky(Mat<const double> P, Mat<double> L) {
     idx n = P.rows;
@@ -1002,16 +1028,44 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
     for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
     double floor = DEFINITE_TOL * top;
     if (!(top > 0.0)) return false;
-    for (idx i = 0; i < n; ++i) {
+    thread_local std::vector<double> panel;
+    panel.resize(static_cast<std::size_t>(4 * n));
+    double* R[4] = {panel.data(), panel.data() + n, panel.data() + 2 * n, panel.data() + 3 * n};
+    for (idx i0 = 0; i0 < n; i0 += 4) {
+        idx c = std::min<idx>(4, n - i0);
         // (the thread's deadline, every 32 rows: false then, and the callers ask
         // deadline_passed() before they read false as "not definite")
-        if ((i & 31) == 31 && deadline_passed() >= 0) return false;
-        double* Li = L.row(i);
-        for (idx j = 0; j < i; ++j) Li[j] = (P(i, j) - dot(Li, L.row(j), j)) / L(j, j);
-        double d = P(i, i) - dot(Li, Li, i);
-        if (!(d > floor)) return false;
-        Li[i] = std::sqrt(d);
-        for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
+        if ((i0 & 31) == 28 && deadline_passed() >= 0) return false;
+        if (c == 4) {
+            const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
+                         *P3 = P.row(i0 + 3);
+            for (idx j = 0; j < i0; ++j) {
+                const double* Lj = L.row(j);
+                double ljj = Lj[j];
+                R[0][j] = (P0[j] - dot_lanes(R[0], Lj, j)) / ljj;
+                R[1][j] = (P1[j] - dot_lanes(R[1], Lj, j)) / ljj;
+                R[2][j] = (P2[j] - dot_lanes(R[2], Lj, j)) / ljj;
+                R[3][j] = (P3[j] - dot_lanes(R[3], Lj, j)) / ljj;
+            }
+        } else {
+            for (idx j = 0; j < i0; ++j) {
+                const double* Lj = L.row(j);
+                for (idx q = 0; q < c; ++q)
+                    R[q][j] = (P(i0 + q, j) - dot_lanes(R[q], Lj, j)) / Lj[j];
+            }
+        }
+        for (idx q = 0; q < c; ++q) {
+            idx i = i0 + q;
+            double* Ri = R[q];
+            for (idx j = i0; j < i; ++j)
+                Ri[j] = (P(i, j) - dot_lanes(Ri, R[j - i0], j)) / R[j - i0][j];
+            double d = P(i, i) - dot_lanes(Ri, Ri, i);
+            double* Li = L.row(i);
+            for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
+            if (!(d > floor)) return false;
+            Li[i] = Ri[i] = std::sqrt(d);
+            for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
+        }
     }
     return true;
 }
@@ -1255,16 +1309,11 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
             res.code = code;
             return res;
         }
-        idx r = n - p;
         if ((res.code = deadline_passed()) >= 0) return res;  // (after the factorizations)
         res.code = OK;
-        for (idx i = 0; i < m; ++i) {  // (a stop here leaves the cache empty: layout dropped it)
-            if ((i & 15) == 15 && (res.code = deadline_passed()) >= 0) return res;
-            const double* F2i = R.C.row(i) + p;
-            for (idx j = 0; j <= i; ++j) {
-                w.M(i, j) = dot(F2i, R.C.row(j) + p, r);
-                w.M(j, i) = w.M(i, j);
-            }
+        for (idx i0 = 0; i0 < m; i0 += 16) {  // (a stop here leaves the cache empty: layout dropped it)
+            if (i0 > 0 && (res.code = deadline_passed()) >= 0) return res;
+            gram_rows(R.C, p, i0, std::min<idx>(i0 + 16, m), w.M);
         }
         if ((res.code = deadline_passed()) >= 0) return res;
         remember(dt, ds, lo, up, w, R.m_g);
