@@ -146,16 +146,74 @@ void householder_apply(Mat<const double> V, const double* beta, idx k, double* x
         for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
 }
 
-// householder_apply of reflector k to every row of X, in row order (factors' loop).
+// qp::dot4's body, inlined by the cloned loops that call it (below).
+inline __attribute__((always_inline)) void dot4_lanes(const double* a, const double* r0, const double* r1, const double* r2,
+          const double* r3, idx len, double* out) {
+#ifdef LEMKE_SIMD
+    // (on eight-lane vectors, four independent sums; written on scalar lanes GCC vectorized
+    // the loop across the four rows, with shuffles, 10-20x slower at n = 300)
+    using simd::load8;
+    simd::v8d v0 = simd::splat8(0.0), v1 = v0, v2 = v0, v3 = v0;
+    idx j = 0;
+    for (; j + 8 <= len; j += 8) {
+        simd::v8d x = load8(a + j);
+        v0 += x * load8(r0 + j);
+        v1 += x * load8(r1 + j);
+        v2 += x * load8(r2 + j);
+        v3 += x * load8(r3 + j);
+    }
+    double s[4][8];
+    simd::store8(s[0], v0);
+    simd::store8(s[1], v1);
+    simd::store8(s[2], v2);
+    simd::store8(s[3], v3);
+    for (; j < len; ++j) {
+        s[0][0] += a[j] * r0[j];
+        s[1][0] += a[j] * r1[j];
+        s[2][0] += a[j] * r2[j];
+        s[3][0] += a[j] * r3[j];
+    }
+    for (int q = 0; q < 4; ++q)
+        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
+                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
+#else
+    out[0] = dot_lanes(a, r0, len);
+    out[1] = dot_lanes(a, r1, len);
+    out[2] = dot_lanes(a, r2, len);
+    out[3] = dot_lanes(a, r3, len);
+#endif
+}
+
+// The reflectors 0..p-1 (householder_apply's, in that order) applied to every row of X:
+// four rows at a time, each reflector's four sums in one pass (dot4_lanes), the rows in
+// cache through all p reflectors. Each row gets householder_apply's operations exactly.
 LEMKE_CLONES
-void householder_rows(Mat<const double> V, const double* beta, idx k, Mat<double> X) {
+void householder_rows(Mat<const double> V, const double* beta, idx p, Mat<double> X) {
     idx n = V.cols;
-    const double* v = V.row(k) + k;
-    for (idx i = 0; i < X.rows; ++i) {
-        double* r = X.row(i) + k;
-        double s = beta[k] * dot_lanes(v, r, n - k);
-        if (s != 0.0)
-            for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+    idx i = 0;
+    for (; i + 4 <= X.rows; i += 4) {
+        double* r[4] = {X.row(i), X.row(i + 1), X.row(i + 2), X.row(i + 3)};
+        for (idx k = 0; k < p; ++k) {
+            const double* v = V.row(k) + k;
+            double d[4];
+            dot4_lanes(v, r[0] + k, r[1] + k, r[2] + k, r[3] + k, n - k, d);
+            for (int q = 0; q < 4; ++q) {
+                double s = beta[k] * d[q];
+                double* rq = r[q] + k;
+                if (s != 0.0)
+                    for (idx t = 0; t < n - k; ++t) rq[t] -= s * v[t];
+            }
+        }
+    }
+    for (; i < X.rows; ++i) {
+        double* x = X.row(i);
+        for (idx k = 0; k < p; ++k) {
+            const double* v = V.row(k) + k;
+            double* rr = x + k;
+            double s = beta[k] * dot_lanes(v, rr, n - k);
+            if (s != 0.0)
+                for (idx t = 0; t < n - k; ++t) rr[t] -= s * v[t];
+        }
     }
 }
 
@@ -167,9 +225,47 @@ void gram_rows(Mat<const double> C, idx p, idx i0, idx i1, Mat<double> M) {
     for (idx i = i0; i < i1; ++i) {
         const double* F2i = C.row(i) + p;
         double* Mi = M.row(i);
-        for (idx j = 0; j <= i; ++j) Mi[j] = dot_lanes(F2i, C.row(j) + p, r);
+        idx j = 0;
+        for (; j + 4 <= i + 1; j += 4)
+            dot4_lanes(F2i, C.row(j) + p, C.row(j + 1) + p, C.row(j + 2) + p, C.row(j + 3) + p, r,
+                       Mi + j);
+        for (; j <= i; ++j) Mi[j] = dot_lanes(F2i, C.row(j) + p, r);
         for (idx j = 0; j < i; ++j) M(j, i) = Mi[j];
     }
+}
+
+// screen's symmetric part: Ps = (P + P')/2 (each entry 0.5 (P_ij + P_ji), the same bits as
+// 0.5 (P_ji + P_ij)); returns max |P_ij - P_ji| (a maximum, exact in any order; NaN entries
+// are screen's to refuse). P' first, by 32 x 32 blocks, then one pass along the rows in
+// eight lanes (the maximum was one chain of dependent comparisons: latency-bound).
+LEMKE_CLONES
+double symmetrize(Mat<const double> P, Mat<double> Ps) {
+    idx n = P.rows;
+    const idx B = 32;
+    for (idx i0 = 0; i0 < n; i0 += B)
+        for (idx j0 = 0; j0 < n; j0 += B)
+            for (idx i = i0; i < std::min(i0 + B, n); ++i)
+                for (idx j = j0; j < std::min(j0 + B, n); ++j) Ps(j, i) = P(i, j);
+    double am[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    for (idx i = 0; i < n; ++i) {
+        const double* Pi = P.row(i);
+        double* Si = Ps.row(i);
+        idx j = 0;
+        for (; j + 8 <= n; j += 8)
+            for (int l = 0; l < 8; ++l) {
+                double a = Pi[j + l], c = Si[j + l];
+                am[l] = pmax(am[l], std::fabs(a - c));
+                Si[j + l] = 0.5 * (a + c);
+            }
+        for (; j < n; ++j) {
+            double a = Pi[j], c = Si[j];
+            am[0] = pmax(am[0], std::fabs(a - c));
+            Si[j] = 0.5 * (a + c);
+        }
+    }
+    double asym = 0.0;
+    for (int l = 0; l < 8; ++l) asym = pmax(asym, am[l]);
+    return asym;
 }
 
 // ----------------------------------------------------------------------------- compensated sums
@@ -396,10 +492,11 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     }
     forward(L, c);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
-    for (idx k = 0; k < p; ++k) {
+    for (idx k = 0; k < p; ++k) householder_apply(w.V, w.beta, k, c);
+    // (C's rows in blocks of 32, the thread's deadline looked at between them)
+    for (idx i0 = 0; i0 < m && p > 0; i0 += 32) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
-        householder_apply(w.V, w.beta, k, c);
-        householder_rows(w.V, w.beta, k, R.C);
+        householder_rows(w.V, w.beta, p, Mat<double>(R.C.row(i0), std::min<idx>(32, m - i0), n));
     }
     lcp_rhs(R, w, n);
     return OK;
@@ -931,12 +1028,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
 LEMKE_CLONES
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
-    // (dot_lanes per row, a in cache: written as one loop over the four rows' lanes GCC
-    // vectorized it across the rows, with shuffles, 10-20x slower at n = 300)
-    out[0] = dot_lanes(a, r0, len);
-    out[1] = dot_lanes(a, r1, len);
-    out[2] = dot_lanes(a, r2, len);
-    out[3] = dot_lanes(a, r3, len);
+    dot4_lanes(a, r0, r1, r2, r3, len, out);
 }
 
 LEMKE_CLONES
@@ -950,7 +1042,7 @@ void forward_rows(Mat<const double> L, Mat<double> R) {
         for (idx j = s; j < n; ++j) {
             const double* Lj = L.row(j);
             double d[4];
-            dot4(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
+            dot4_lanes(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
             double inv = 1.0 / Lj[j];
             r0[j] = (r0[j] - d[0]) * inv;
             r1[j] = (r1[j] - d[1]) * inv;
@@ -988,23 +1080,16 @@ double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     return p ? worst : INF;
 }
 
+// (cloned: absmax's and all_finite's eight-lane vectors, lowered to SSE2 by the default
+// build, went through the stack: 30 us of a 200 us solve at n = 100)
+LEMKE_CLONES
 bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     idx n = dt.n();
     Mat<double> Ps(Ps_, n, n);
     bool finite = all_finite(dt.q, n);
     finite &= all_finite(dt.P.p, n * n);
     double top = absmax(dt.P.p, n * n);
-    double asym = 0.0;
-    const idx B = 32;
-    for (idx i0 = 0; i0 < n; i0 += B)
-        for (idx j0 = 0; j0 < i0 + 1; j0 += B)
-            for (idx i = i0; i < std::min(i0 + B, n); ++i)
-                for (idx j = j0; j < std::min(j0 + B, i + 1); ++j) {
-                    double a = dt.P(i, j), c = dt.P(j, i);
-                    asym = pmax(asym, std::fabs(a - c));
-                    Ps(i, j) = 0.5 * (a + c);
-                    Ps(j, i) = Ps(i, j);
-                }
+    double asym = symmetrize(dt.P, Ps);
     idx m0 = dt.m0();
     finite &= all_finite(dt.G.p, m0 * n);
     for (idx i = 0; i < m0; ++i)
@@ -1041,11 +1126,12 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
                          *P3 = P.row(i0 + 3);
             for (idx j = 0; j < i0; ++j) {
                 const double* Lj = L.row(j);
-                double ljj = Lj[j];
-                R[0][j] = (P0[j] - dot_lanes(R[0], Lj, j)) / ljj;
-                R[1][j] = (P1[j] - dot_lanes(R[1], Lj, j)) / ljj;
-                R[2][j] = (P2[j] - dot_lanes(R[2], Lj, j)) / ljj;
-                R[3][j] = (P3[j] - dot_lanes(R[3], Lj, j)) / ljj;
+                double ljj = Lj[j], d[4];
+                dot4_lanes(Lj, R[0], R[1], R[2], R[3], j, d);
+                R[0][j] = (P0[j] - d[0]) / ljj;
+                R[1][j] = (P1[j] - d[1]) / ljj;
+                R[2][j] = (P2[j] - d[2]) / ljj;
+                R[3][j] = (P3[j] - d[3]) / ljj;
             }
         } else {
             for (idx j = 0; j < i0; ++j) {
