@@ -256,35 +256,63 @@ void gram_rows(Mat<const double> C, idx p, idx i0, idx i1, Mat<double> M) {
 
 // screen's symmetric part: Ps = (P + P')/2 (each entry 0.5 (P_ij + P_ji), the same bits as
 // 0.5 (P_ji + P_ij)); returns max |P_ij - P_ji| (a maximum, exact in any order; NaN entries
-// are screen's to refuse). P' first, by 32 x 32 blocks, then one pass along the rows in
-// eight lanes (the maximum was one chain of dependent comparisons: latency-bound).
+// are screen's to refuse). By 8 x 8 tiles of the lower triangle, each with its mirror tile
+// transposed in registers (the maximum was one chain of dependent comparisons, and the
+// mirror's entries strided loads); the edges that are no whole tile one entry at a time.
 LEMKE_CLONES
 double symmetrize(Mat<const double> P, Mat<double> Ps) {
     idx n = P.rows;
-    const idx B = 32;
-    for (idx i0 = 0; i0 < n; i0 += B)
-        for (idx j0 = 0; j0 < n; j0 += B)
-            for (idx i = i0; i < std::min(i0 + B, n); ++i)
-                for (idx j = j0; j < std::min(j0 + B, n); ++j) Ps(j, i) = P(i, j);
-    double am[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    for (idx i = 0; i < n; ++i) {
-        const double* Pi = P.row(i);
-        double* Si = Ps.row(i);
-        idx j = 0;
-        for (; j + 8 <= n; j += 8)
-            for (int l = 0; l < 8; ++l) {
-                double a = Pi[j + l], c = Si[j + l];
-                am[l] = pmax(am[l], std::fabs(a - c));
-                Si[j + l] = 0.5 * (a + c);
-            }
-        for (; j < n; ++j) {
-            double a = Pi[j], c = Si[j];
-            am[0] = pmax(am[0], std::fabs(a - c));
-            Si[j] = 0.5 * (a + c);
-        }
-    }
     double asym = 0.0;
+    idx nt = n - n % 8;
+#ifdef LEMKE_SIMD
+    using simd::v8d;
+    v8d am = simd::splat8(0.0);
+    // the 8 x 8 transpose of rows c[0..7], in three rounds of two-vector shuffles
+    auto transpose = [](v8d* c) {
+        v8d t[8];
+        for (int k = 0; k < 8; k += 2) {
+            t[k] = LEMKE_SHUFFLE8(c[k], c[k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+            t[k + 1] = LEMKE_SHUFFLE8(c[k], c[k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+        }
+        for (int k = 0; k < 8; k += 4)
+            for (int h = 0; h < 2; ++h) {
+                c[k + h] = LEMKE_SHUFFLE8(t[k + h], t[k + h + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+                c[k + h + 2] = LEMKE_SHUFFLE8(t[k + h], t[k + h + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+            }
+        for (int h = 0; h < 4; ++h) {
+            t[h] = LEMKE_SHUFFLE8(c[h], c[h + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+            t[h + 4] = LEMKE_SHUFFLE8(c[h], c[h + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+        }
+        for (int k = 0; k < 8; ++k) c[k] = t[k];
+    };
+    for (idx i0 = 0; i0 < nt; i0 += 8)
+        for (idx j0 = 0; j0 <= i0; j0 += 8) {
+            v8d a[8], c[8];
+            for (int k = 0; k < 8; ++k) {
+                a[k] = simd::load8(P.row(i0 + k) + j0);  // P[i0 + k, j0 + l]
+                c[k] = simd::load8(P.row(j0 + k) + i0);  // P[j0 + k, i0 + l]
+            }
+            transpose(c);  // c[k][l] = P[j0 + l, i0 + k]
+            for (int k = 0; k < 8; ++k) {
+                am = simd::max8(am, simd::abs8(a[k] - c[k]));
+                a[k] = simd::splat8(0.5) * (a[k] + c[k]);  // Ps[i0 + k, j0 + l]
+                simd::store8(Ps.row(i0 + k) + j0, a[k]);
+            }
+            transpose(a);  // a[k][l] = Ps[i0 + l, j0 + k]
+            for (int k = 0; k < 8; ++k) simd::store8(Ps.row(j0 + k) + i0, a[k]);
+        }
     for (int l = 0; l < 8; ++l) asym = pmax(asym, am[l]);
+#else
+    nt = 0;
+#endif
+    // the rest: rows i >= nt against every column j <= i
+    for (idx i = nt; i < n; ++i)
+        for (idx j = 0; j <= i; ++j) {
+            double a = P(i, j), c = P(j, i);
+            asym = pmax(asym, std::fabs(a - c));
+            Ps(i, j) = 0.5 * (a + c);
+            Ps(j, i) = Ps(i, j);
+        }
     return asym;
 }
 
