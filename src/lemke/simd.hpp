@@ -58,11 +58,14 @@ LEMKE_SIMD_INLINE v8d abs8(v8d x) {
 // pmax(a, b) lane by lane: b where b > a, else a (Python's max).
 LEMKE_SIMD_INLINE v8d max8(v8d a, v8d b) { return b > a ? b : a; }
 
-// Lanes of two vectors picked by index (0-7: a's, 8-15: b's).
-#if defined(__clang__)
+// The lanes of two vectors picked by constant indices (0-7: a's, 8-15: b's).
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
 #define LEMKE_SHUFFLE8(a, b, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
-#else
-#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shuffle(a, b, v8l{__VA_ARGS__})
+#endif
+#endif
+#ifndef LEMKE_SHUFFLE8
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shuffle(a, b, ::lemke::simd::v8l{__VA_ARGS__})
 #endif
 
 // out[0..3] = ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7])) for the
