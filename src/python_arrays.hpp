@@ -90,3 +90,10 @@ struct NumpyLayout {
     PyObject* empty;
 };
 NumpyLayout numpy_layout();
+
+// A new 1-D array of len float64 (int64 with ints), uninitialized, as numpy.empty(len) (or
+// numpy.empty(len, int64)) makes it: through NumPy's C API (PyArray_NewFromDescr, read
+// from its _ARRAY_API capsule: about half of numpy.empty's cost, which parses its
+// arguments) when lcp_front_init found it makes such arrays, else numpy.empty itself.
+// Raises (nb::python_error) when NumPy does.
+nanobind::object new_array(Py_ssize_t len, bool ints = false);

@@ -1,8 +1,9 @@
 // lemke._core.lcp_front: solve_lcp's common call whole in one native call (issue 31's thin
 // front): plain float64 arrays, the tableau, no covering vector, cold or warm from a
 // WarmStart (its int64 index array), default options. It reads the two ndarrays' fields directly (no DLPack capsule, no buffer view:
-// those cost more than a small solve), allocates the output buffer with numpy.empty, runs
-// lemke::first_run without the GIL and builds the LCPResult as LCPResult._lazy does.
+// those cost more than a small solve), allocates the output buffer as numpy.empty does
+// (new_array: through NumPy's C API), runs lemke::first_run (without the GIL) and builds
+// the LCPResult as LCPResult._lazy does.
 //
 // Returns the LCPResult when first_run settles the solve (solved and checked, q >= 0, or
 // a checked ray); the tuple (code, pivots, k, ok, residual, recoveries, stage, buf) when
@@ -16,8 +17,11 @@
 // reports; if anything disagrees the fast front stays off (every call returns None).
 #include <nanobind/nanobind.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <exception>
+#include <new>
 
 #include "lemke/lcp.hpp"
 #include "lemke/pivoting.hpp"
@@ -36,11 +40,52 @@ struct Front {
     PyObject* ray = nullptr;         // Status.RAY_TERMINATION
     PyObject* empty = nullptr;       // numpy.empty
     PyObject *k_status, *k_pivots, *k_residual, *k_recoveries, *k_src, *k_warm_start;
+    PyObject* zero = nullptr;  // 0
+    // The result's __dict__ of each kind (recoveries | warm start << 1): its keys in _lazy's
+    // order, status SOLVED; lcp_front copies one.
+    PyObject* templates[4] = {};
     int int64_num = -1;  // NumPy's type number of int64 here (7 or 9 by platform)
     double pivot_tol = 0, tie_tol = 0, tol = 0;
+    // NumPy's PyArray_NewFromDescr (its C API table's entry 94, the same in NumPy 1.x and
+    // 2.x) and the float64 and int64 dtypes it is given (stolen: a reference each call);
+    // new_from_descr stays null (numpy.empty is called) unless its probe array is right.
+    using NewFromDescr = PyObject* (*)(PyTypeObject*, PyObject*, int, const Py_ssize_t*,
+                                       const Py_ssize_t*, void*, int, PyObject*);
+    NewFromDescr new_from_descr = nullptr;
+    PyObject *f64 = nullptr, *i64 = nullptr;
 } front;
 
+constexpr int OWNDATA = 0x0004;
+constexpr int kNewFromDescr = 94;  // PyArray_NewFromDescr's index in NumPy's API table
+
+PyObject* new_from_descr(Py_ssize_t len, PyObject* descr) {
+    Py_INCREF(descr);  // (stolen by NumPy)
+    return front.new_from_descr(front.ndarray, descr, 1, &len, nullptr, nullptr, 0, nullptr);
+}
+
+// NumPy's C API from its _ARRAY_API capsule (None: not found), kept when a probe array it
+// makes is what numpy.empty(3) makes: a 1-D float64 array of 3 that owns its data, C-
+// contiguous, aligned and writable.
+void find_new_from_descr(nb::handle api) {
+    front.new_from_descr = nullptr;
+    if (!PyCapsule_CheckExact(api.ptr())) return;
+    auto** table = static_cast<void**>(PyCapsule_GetPointer(api.ptr(), nullptr));
+    if (table == nullptr) {
+        PyErr_Clear();
+        return;
+    }
+    front.new_from_descr = reinterpret_cast<Front::NewFromDescr>(table[kNewFromDescr]);
+    nb::object probe = nb::steal(new_from_descr(3, front.f64));
+    auto* a = probe.is_valid() ? plain_f64(probe.ptr(), 1, front.ndarray) : nullptr;
+    if (a == nullptr || a->dimensions[0] != 3 || a->strides[0] != 8 || a->base != nullptr ||
+        (a->flags & OWNDATA) == 0) {
+        PyErr_Clear();
+        front.new_from_descr = nullptr;
+    }
+}
+
 const ArrayFields* plain(PyObject* o, int nd) { return plain_f64(o, nd, front.ndarray); }
+
 
 // The layout check on probes made by Python: (a 2 x 3 float64 C array, its data address,
 // a read-only 1-D float64 array, an int64 array of 3, a float64 array of the other byte
@@ -67,11 +112,16 @@ bool layout_agrees(nb::handle probe2, std::uintptr_t address, nb::handle probe_r
 void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::handle ray,
           nb::handle empty, double pivot_tol, double tie_tol, double tol, nb::handle probe2,
           std::uintptr_t address, nb::handle probe_ro, nb::handle probe_int,
-          nb::handle probe_swapped) {
+          nb::handle probe_swapped, nb::handle api) {
     front.on = false;
+    front.new_from_descr = nullptr;
     front.ndarray = reinterpret_cast<PyTypeObject*>(ndarray.ptr());
     if (!layout_agrees(probe2, address, probe_ro, probe_int, probe_swapped)) return;
     for (nb::handle h : {ndarray, result_cls, solved, ray, empty}) h.inc_ref();  // kept for good
+    front.f64 = reinterpret_cast<const ArrayFields*>(probe2.ptr())->descr;
+    front.i64 = reinterpret_cast<const ArrayFields*>(probe_int.ptr())->descr;
+    Py_INCREF(front.f64);
+    Py_INCREF(front.i64);
     front.result_cls = result_cls.ptr();
     front.solved = solved.ptr();
     front.ray = ray.ptr();
@@ -87,8 +137,20 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
     front.pivot_tol = pivot_tol;
     front.tie_tol = tie_tol;
     front.tol = tol;
+    front.zero = PyLong_FromLong(0);
     front.on = front.k_status && front.k_pivots && front.k_residual && front.k_recoveries &&
-               front.k_src && front.k_warm_start;
+               front.k_src && front.k_warm_start && front.zero;
+    for (int v = 0; v < 4 && front.on; ++v) {
+        PyObject* t = front.templates[v] = PyDict_New();
+        front.on = t != nullptr && PyDict_SetItem(t, front.k_status, solved.ptr()) == 0 &&
+                   PyDict_SetItem(t, front.k_pivots, Py_None) == 0 &&
+                   PyDict_SetItem(t, front.k_residual, Py_None) == 0 &&
+                   ((v & 1) == 0 || PyDict_SetItem(t, front.k_recoveries, Py_None) == 0) &&
+                   PyDict_SetItem(t, front.k_src, Py_None) == 0 &&
+                   ((v & 2) == 0 || PyDict_SetItem(t, front.k_warm_start, Py_None) == 0);
+    }
+    if (!front.on) PyErr_Clear();
+    if (front.on) find_new_from_descr(api);
 }
 
 nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle beta_h) {
@@ -113,44 +175,299 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
     }
     lemke::BufferLayout L{n};
     idx at = L.length();
-    nb::object size = nb::steal(PyLong_FromSsize_t(at + n));
-    if (!size.is_valid()) throw nb::python_error();
-    PyObject* args[] = {size.ptr()};
-    nb::object buf = nb::steal(PyObject_Vectorcall(front.empty, args, 1, nullptr));
-    if (!buf.is_valid()) throw nb::python_error();
+    nb::object buf = new_array(at + n);
     auto* b = reinterpret_cast<const ArrayFields*>(buf.ptr());
     double* out = reinterpret_cast<double*>(b->data);
     idx* basic = reinterpret_cast<idx*>(out + at);
     const double* Md = reinterpret_cast<const double*>(M->data);
     const double* qd = reinterpret_cast<const double*>(q->data);
+    auto run = [&] {
+        return lemke::first_run(lemke::Mat<const double>(Md, n, n), qd, nullptr, beta, k,
+                                100 * (n + 1), front.pivot_tol, front.tie_tol, front.tol, out,
+                                basic);
+    };
     lemke::RunResult r;
     {
+        // every solve releases the GIL (the project's rule), even a solve of one row, whose
+        // release and retake (~0.1 us) is a fifth of the call: another Python thread never
+        // waits on a solve
         nb::gil_scoped_release release;
-        r = lemke::first_run(lemke::Mat<const double>(Md, n, n), qd, nullptr, beta, k,
-                             100 * (n + 1), front.pivot_tol, front.tie_tol, front.tol, out, basic);
+        r = run();
     }
     bool settled = r.ok && (r.code == lemke::SOLVED || r.code == lemke::TRIVIAL ||
                             r.code == lemke::RAY_TERMINATION);
     if (!settled)
         return nb::make_tuple(r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage, buf);
-    // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0) and the source
-    // of the fields made when first read, (buf, 0, None, at, n, k).
-    auto [res, dict] = new_result(front.result_cls);
+    // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0), the source of
+    // the fields made when first read, (buf, 0, None, at, n, k), and the warm start when its
+    // own basis solved it; in a copy of the template of its kind (its keys in that order:
+    // the values replaced, no dict growth).
+    auto* cls = reinterpret_cast<PyTypeObject*>(front.result_cls);
+    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nb::python_error();
+    bool warm = r.stage == 0;  // the warm start's own basis solved it: the result keeps it
+    nb::object dict = nb::steal(PyDict_Copy(front.templates[int(r.recoveries != 0) | int(warm) << 1]));
+    if (!dict.is_valid()) throw nb::python_error();
     PyObject* d = dict.ptr();
-    PyObject* status = r.code == lemke::RAY_TERMINATION ? front.ray : front.solved;
-    Py_INCREF(status);
-    bool ok = put(d, front.k_status, status) &&
+    PyObject* src = PyTuple_New(6);
+    if (src != nullptr) {
+        PyObject* items[] = {buf.release().ptr(), front.zero, Py_None, PyLong_FromSsize_t(at),
+                             PyLong_FromSsize_t(n), PyLong_FromSsize_t(r.k)};
+        Py_INCREF(front.zero);
+        Py_INCREF(Py_None);
+        for (int i = 0; i < 6; ++i) PyTuple_SET_ITEM(src, i, items[i]);  // (a null: error below)
+        if (!items[3] || !items[4] || !items[5]) Py_CLEAR(src);
+    }
+    bool ok = (r.code != lemke::RAY_TERMINATION ||
+               PyDict_SetItem(d, front.k_status, front.ray) == 0) &&
               put(d, front.k_pivots, PyLong_FromLongLong(r.pivots)) &&
               put(d, front.k_residual, PyFloat_FromDouble(r.residual)) &&
-              (r.recoveries == 0 || put(d, front.k_recoveries, PyLong_FromLongLong(r.recoveries)));
-    if (ok) {
-        nb::object src = nb::make_tuple(buf, 0, nb::none(), at, n, r.k);
-        ok = PyDict_SetItem(d, front.k_src, src.ptr()) == 0;
-    }
-    if (ok && r.stage == 0)  // the warm start's own basis solved it: the result keeps it
-        ok = PyDict_SetItem(d, front.k_warm_start, ws.ptr()) == 0;
+              (r.recoveries == 0 || put(d, front.k_recoveries, PyLong_FromLongLong(r.recoveries))) &&
+              put(d, front.k_src, src) &&
+              (!warm || PyDict_SetItem(d, front.k_warm_start, ws.ptr()) == 0) &&
+              PyObject_GenericSetDict(res.ptr(), d, nullptr) == 0;
     if (!ok) throw nb::python_error();
     return res;
+}
+
+// lemke._lcp.solve_lcp itself: a callable object whose calls solve_lcp(M, q) and
+// solve_lcp(M, q, warm_start=ws) go to lcp_front without a Python frame (the frame of a
+// function of six keyword-only arguments, their defaults looked up one by one, costs a
+// fifth of such a call at n = 1); any other call, and any that lcp_front declines, is the
+// Python function's (_lcp._solve_lcp), which the entry wraps (functools.update_wrapper:
+// its name, docstring, signature). A run that first_run did not settle goes on in
+// _lcp._after_front, as in the Python front. The entry steps aside (the Python function
+// does it all) when _lcp._FRONT is no longer _core.lcp_front (a test that switches the
+// front off) or when the warm start is not a WarmStart of q's size with its index array.
+struct Entry {
+    PyObject_HEAD
+    PyObject* dict;  // __doc__, __wrapped__, ... (set by functools.update_wrapper)
+    vectorcallfunc vectorcall;
+    PyObject* py;       // _lcp._solve_lcp
+    PyObject* after;    // _lcp._after_front(M, q, warm_start, beta, r)
+    PyObject* globals;  // _lcp's namespace (its _FRONT read each call)
+    PyObject* front;    // _core.lcp_front as first bound
+    PyObject* ws_cls;   // WarmStart
+    PyObject *k_front, *k_warm_start, *k_beta, *k_n;
+    // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
+    // each call), LCPManyResult and the keys of what LCPManyResult._of sets
+    PyObject *many_globals, *many_cls, *k_few, *k_items, *k_special, *k_off;
+};
+
+// The index array of a warm start ws for a problem of size n: true when ws is a WarmStart of
+// that size with its index array (WarmStart._beta), as the Python front asks; else false
+// (no error set), and the Python front does it (and makes _beta).
+bool warm_beta(Entry* e, PyObject* ws, Py_ssize_t n, nb::object& beta) {
+    if (Py_TYPE(ws) != reinterpret_cast<PyTypeObject*>(e->ws_cls)) return false;
+    nb::object size = nb::steal(PyObject_GetAttr(ws, e->k_n));
+    if (size.is_valid()) beta = nb::steal(PyObject_GetAttr(ws, e->k_beta));
+    if (beta.is_valid() && PyLong_CheckExact(size.ptr()) && PyLong_AsSsize_t(size.ptr()) == n)
+        return true;
+    PyErr_Clear();
+    return false;
+}
+
+// Whether kwnames (of a call with two positional arguments) is only warm_start.
+bool only_warm_start(Entry* e, PyObject* kwnames) {
+    if (PyTuple_GET_SIZE(kwnames) != 1) return false;
+    PyObject* key = PyTuple_GET_ITEM(kwnames, 0);
+    return key == e->k_warm_start || PyUnicode_Compare(key, e->k_warm_start) == 0;
+}
+
+// The exception in flight (in a catch block) set as Python's error; Py_None, which the
+// entries' helpers return for "an error, set".
+PyObject* error_set() {
+    try {
+        throw;
+    } catch (nb::python_error& err) {
+        err.restore();
+    } catch (const std::bad_alloc&) {
+        PyErr_NoMemory();
+    } catch (const std::exception& err) {
+        PyErr_SetString(PyExc_RuntimeError, err.what());
+    } catch (...) {
+        PyErr_SetString(PyExc_RuntimeError, "unknown C++ exception");
+    }
+    return Py_None;
+}
+
+PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta) {
+    try {
+        nb::object r = lcp_front(M, q, ws, beta);
+        if (r.is_none()) return nullptr;  // (no error set: the Python function's to do)
+        if (!PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+        PyObject* args[] = {M, q, ws, beta, r.ptr()};
+        PyObject* res = PyObject_Vectorcall(e->after, args, 5, nullptr);
+        return res != nullptr ? res : Py_None;  // (Py_None, not owned: an error is set)
+    } catch (...) {
+        return error_set();
+    }
+}
+
+PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                     PyObject* kwnames) {
+    auto* e = reinterpret_cast<Entry*>(self);
+    Py_ssize_t nargs = PyVectorcall_NARGS(nargsf);
+    if (nargs == 2 && front.on) {
+        bool plain = kwnames == nullptr || only_warm_start(e, kwnames);
+        PyObject* ws = kwnames == nullptr ? Py_None : args[2];
+        PyObject* now = plain ? PyDict_GetItemWithError(e->globals, e->k_front) : nullptr;
+        if (now == e->front) {
+            PyObject* res = nullptr;
+            nb::object beta;
+            if (ws == Py_None) {
+                res = entry_front(e, args[0], args[1], Py_None, Py_None);
+            } else if (Py_TYPE(args[1]) == front.ndarray &&
+                       reinterpret_cast<const ArrayFields*>(args[1])->nd == 1 &&
+                       warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(args[1])->dimensions[0],
+                                 beta)) {
+                res = entry_front(e, args[0], args[1], ws, beta.ptr());
+            }
+            if (res == Py_None) return nullptr;  // an error, set
+            if (res != nullptr) return res;
+        } else if (now == nullptr && PyErr_Occurred()) {
+            return nullptr;
+        }
+    }
+    return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
+}
+
+// solve_lcp_many(Ms, qs) and solve_lcp_many(Ms, qs, warm_start=ws) of 1..FEW problems, lists
+// or tuples of plain arrays (n >= 1) and of None or WarmStart: each problem's lcp_front, as
+// _batch._few calls solve_lcp, and the LCPManyResult that LCPManyResult._of makes of them.
+// nullptr: declined (the Python function does it all: any problem that lcp_front declines
+// or does not settle, a WarmStartBatch, ...); Py_None: an error, set.
+PyObject* many_front(Entry* e, PyObject* M, PyObject* q, PyObject* wss) {
+    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
+    if (!seq(M) || !seq(q)) return nullptr;
+    Py_ssize_t B = PySequence_Fast_GET_SIZE(M);
+    if (B < 1 || PySequence_Fast_GET_SIZE(q) != B) return nullptr;
+    if (wss != Py_None && (!seq(wss) || PySequence_Fast_GET_SIZE(wss) != B)) return nullptr;
+    PyObject* now = PyDict_GetItemWithError(e->globals, e->k_front);
+    PyObject* few = now == e->front ? PyDict_GetItemWithError(e->many_globals, e->k_few) : nullptr;
+    if (few == nullptr || !PyLong_CheckExact(few)) return PyErr_Occurred() ? Py_None : nullptr;
+    if (B > PyLong_AsSsize_t(few)) {
+        PyErr_Clear();  // (an overflow)
+        return nullptr;
+    }
+    PyObject** Ms = PySequence_Fast_ITEMS(M);
+    PyObject** qs = PySequence_Fast_ITEMS(q);
+    PyObject** ws = wss == Py_None ? nullptr : PySequence_Fast_ITEMS(wss);
+    try {
+        nb::object items = nb::steal(PyList_New(B));
+        if (!items.is_valid()) return Py_None;
+        for (Py_ssize_t b = 0; b < B; ++b) {
+            auto* qb = reinterpret_cast<const ArrayFields*>(qs[b]);
+            if (Py_TYPE(qs[b]) != front.ndarray || qb->nd != 1 || qb->dimensions[0] < 1)
+                return nullptr;
+            PyObject* w = ws == nullptr ? Py_None : ws[b];
+            nb::object beta = nb::none();
+            if (w != Py_None && !warm_beta(e, w, qb->dimensions[0], beta)) return nullptr;
+            nb::object r = lcp_front(Ms[b], qs[b], w, beta);
+            if (r.is_none() || PyTuple_CheckExact(r.ptr())) return nullptr;
+            PyList_SET_ITEM(items.ptr(), b, r.release().ptr());
+        }
+        // LCPManyResult._of(items): _items, _special ({b: item}), _off None
+        auto* cls = reinterpret_cast<PyTypeObject*>(e->many_cls);
+        nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+        nb::object special = nb::steal(PyDict_New());
+        nb::object dict = nb::steal(PyDict_New());
+        bool ok = res.is_valid() && special.is_valid() && dict.is_valid();
+        for (Py_ssize_t b = 0; ok && b < B; ++b)
+            ok = PyDict_SetItem(special.ptr(), nb::int_(b).ptr(), PyList_GET_ITEM(items.ptr(), b)) == 0;
+        ok = ok && PyDict_SetItem(dict.ptr(), e->k_items, items.ptr()) == 0 &&
+             PyDict_SetItem(dict.ptr(), e->k_special, special.ptr()) == 0 &&
+             PyDict_SetItem(dict.ptr(), e->k_off, Py_None) == 0 &&
+             PyObject_GenericSetDict(res.ptr(), dict.ptr(), nullptr) == 0;
+        return ok ? res.release().ptr() : Py_None;
+    } catch (...) {
+        return error_set();
+    }
+}
+
+PyObject* many_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                    PyObject* kwnames) {
+    auto* e = reinterpret_cast<Entry*>(self);
+    if (PyVectorcall_NARGS(nargsf) == 2 && front.on &&
+        (kwnames == nullptr || only_warm_start(e, kwnames))) {
+        PyObject* res = many_front(e, args[0], args[1], kwnames == nullptr ? Py_None : args[2]);
+        if (res == Py_None) return nullptr;  // an error, set
+        if (res != nullptr) return res;
+    }
+    return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
+}
+
+PyObject* entry_get(PyObject* self, PyObject*, PyObject*) {  // (not bound, as a function)
+    Py_INCREF(self);
+    return self;
+}
+
+PyObject* entry_repr(PyObject* self) {  // the wrapped function's
+    return PyObject_Repr(reinterpret_cast<Entry*>(self)->py);
+}
+
+PyObject* entry_reduce(PyObject* self, PyObject*) {  // pickled by name, as a function
+    return PyObject_GetAttrString(self, "__name__");
+}
+
+PyMethodDef entry_methods[] = {
+    {"__reduce__", entry_reduce, METH_NOARGS, nullptr},
+    {nullptr, nullptr, 0, nullptr},
+};
+
+PyGetSetDef entry_getset[] = {
+    {"__dict__", PyObject_GenericGetDict, PyObject_GenericSetDict, nullptr, nullptr},
+    {nullptr, nullptr, nullptr, nullptr, nullptr},
+};
+
+PyTypeObject entry_type = [] {
+    PyTypeObject t{PyVarObject_HEAD_INIT(nullptr, 0)};
+    t.tp_name = "lemke._core.LCPEntry";
+    t.tp_basicsize = sizeof(Entry);
+    t.tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL;
+    t.tp_doc = "solve_lcp's or solve_lcp_many's entry (src/python_front.cpp)";
+    t.tp_call = PyVectorcall_Call;
+    t.tp_vectorcall_offset = offsetof(Entry, vectorcall);
+    t.tp_dictoffset = offsetof(Entry, dict);
+    t.tp_getattro = PyObject_GenericGetAttr;
+    t.tp_setattro = PyObject_GenericSetAttr;
+    t.tp_descr_get = entry_get;
+    t.tp_methods = entry_methods;
+    t.tp_getset = entry_getset;
+    t.tp_repr = entry_repr;
+    return t;
+}();
+
+// An entry wrapping py: solve_lcp's (many_globals and many_cls None), or solve_lcp_many's.
+nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
+                      nb::handle ws_cls, nb::handle many_globals, nb::handle many_cls) {
+    if (PyType_Ready(&entry_type) < 0) throw nb::python_error();
+    auto* e = PyObject_New(Entry, &entry_type);
+    if (e == nullptr) throw nb::python_error();
+    e->dict = nullptr;
+    bool many = !many_cls.is_none();
+    e->vectorcall = many ? many_call : entry_call;
+    PyObject** keep[] = {&e->py, &e->after, &e->globals, &e->front, &e->ws_cls,
+                         &e->many_globals, &e->many_cls};
+    nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
+    for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
+    PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n,
+                         &e->k_few, &e->k_items, &e->k_special, &e->k_off};
+    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special", "_off"};
+    nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
+    for (int i = 0; i < 8; ++i)
+        if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
+    return res;
+}
+
+nb::object lcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
+                     nb::handle ws_cls) {
+    return make_entry(py, after, globals, front_fn, ws_cls, nb::none(), nb::none());
+}
+
+nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn,
+                          nb::handle ws_cls, nb::handle many_globals, nb::handle many_cls) {
+    return make_entry(py, nb::none(), globals, front_fn, ws_cls, many_globals, many_cls);
 }
 
 }  // namespace
@@ -159,10 +476,27 @@ NumpyLayout numpy_layout() {
     return {front.on, front.ndarray, front.int64_num, front.empty};
 }
 
+nb::object new_array(Py_ssize_t len, bool ints) {
+    PyObject* a;
+    if (front.new_from_descr != nullptr) {
+        a = new_from_descr(len, ints ? front.i64 : front.f64);
+    } else {
+        nb::object size = nb::steal(PyLong_FromSsize_t(len));
+        if (!size.is_valid()) throw nb::python_error();
+        PyObject* args[] = {size.ptr(), front.i64};
+        a = PyObject_Vectorcall(front.empty, args, ints ? 2 : 1, nullptr);
+    }
+    if (a == nullptr) throw nb::python_error();
+    return nb::steal(a);
+}
+
 void bind_front(nb::module_& m) {
     m.def("lcp_front_init", &init, "ndarray"_a, "result_cls"_a, "solved"_a, "ray"_a, "empty"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a, "probe2"_a, "address"_a, "probe_ro"_a,
-          "probe_int"_a, "probe_swapped"_a);
+          "probe_int"_a, "probe_swapped"_a, "api"_a.none());
     m.def("lcp_front", &lcp_front, "M"_a, "q"_a, "ws"_a.none(), "beta"_a.none());
     m.def("lcp_front_on", [] { return front.on; });
+    m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
+    m.def("lcp_many_entry", &lcp_many_entry, "py"_a, "globals"_a, "front"_a, "ws_cls"_a,
+          "many_globals"_a, "many_cls"_a);
 }

@@ -42,7 +42,6 @@ struct BoxFront {
     PyObject* ws_cls = nullptr;      // BoxWarmStart
     PyObject* solved = nullptr;      // Status.SOLVED
     PyObject* spans = nullptr;       // _blcp._spans
-    PyObject* i64 = nullptr;         // numpy.dtype(numpy.int64)
     PyObject* zero = nullptr;        // 0.0
     PyObject *k_status, *k_pivots, *k_residual, *k_ray, *k_z0, *k_lo, *k_hi, *k_recoveries,
         *k_warm_start, *k_src, *k_n, *k_friction, *k_row_states, *k_codes;
@@ -55,14 +54,13 @@ struct BoxFront {
 } bf;
 
 void init(nb::handle result_cls, nb::handle ws_cls, nb::handle solved, nb::handle spans,
-          nb::handle i64, double pivot_tol, double tie_tol, double tol) {
+          double pivot_tol, double tie_tol, double tol) {
     bf.on = false;
-    for (nb::handle h : {result_cls, ws_cls, solved, spans, i64}) h.inc_ref();  // kept for good
+    for (nb::handle h : {result_cls, ws_cls, solved, spans}) h.inc_ref();  // kept for good
     bf.result_cls = result_cls.ptr();
     bf.ws_cls = ws_cls.ptr();
     bf.solved = solved.ptr();
     bf.spans = spans.ptr();
-    bf.i64 = i64.ptr();
     bf.zero = PyFloat_FromDouble(0.0);
     PyObject** keys[] = {&bf.k_status, &bf.k_pivots, &bf.k_residual, &bf.k_ray, &bf.k_z0,
                          &bf.k_lo, &bf.k_hi, &bf.k_recoveries, &bf.k_warm_start, &bf.k_src,
@@ -95,16 +93,6 @@ void init(nb::handle result_cls, nb::handle ws_cls, nb::handle solved, nb::handl
     bf.tie_tol = tie_tol;
     bf.tol = tol;
     bf.on = numpy_layout().ok;
-}
-
-// numpy.empty(len) (float64) or numpy.empty(len, int64).
-nb::object empty(idx len, bool ints) {
-    nb::object size = nb::steal(PyLong_FromSsize_t(len));
-    if (!size.is_valid()) throw nb::python_error();
-    PyObject* args[] = {size.ptr(), bf.i64};
-    nb::object a = nb::steal(PyObject_Vectorcall(numpy_layout().empty, args, ints ? 2 : 1, nullptr));
-    if (!a.is_valid()) throw nb::python_error();
-    return a;
 }
 
 template <class T>
@@ -155,8 +143,8 @@ nb::object lazy(const nb::object& buf, const nb::object& ints, idx N, idx k, idx
 // (a) the cold fast path.
 nb::object cold(const ArrayFields* M, const ArrayFields* q, const ArrayFields* lo,
                 const ArrayFields* hi, nb::handle lo_h, nb::handle hi_h, idx n) {
-    nb::object buf = empty(lemke::boxed::BoxLayout{n}.length(), false);
-    nb::object final = empty(n, true);
+    nb::object buf = new_array(lemke::boxed::BoxLayout{n}.length(), false);
+    nb::object final = new_array(n, true);
     static const std::uint8_t no[2 * COLD_MAX] = {};  // _blcp._NO[n]: no warm start
     const double *Md = reinterpret_cast<const double*>(M->data),
                  *qd = reinterpret_cast<const double*>(q->data),
@@ -245,8 +233,8 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
     }
     lemke::boxed::FrontLayout FL{n, nf, friction};
     idx buf_len = FL.length(), ints_len = FL.ints_length();
-    nb::object buf = empty(buf_len, false);
-    nb::object ints = empty(ints_len, true);
+    nb::object buf = new_array(buf_len, false);
+    nb::object ints = new_array(ints_len, true);
     const double *Md = reinterpret_cast<const double*>(M->data),
                  *qd = reinterpret_cast<const double*>(q->data),
                  *ld = reinterpret_cast<const double*>(lo->data),
@@ -297,7 +285,7 @@ nb::object blcp_front(nb::handle M_h, nb::handle q_h, nb::handle lo_h, nb::handl
 }  // namespace
 
 void bind_front_box(nb::module_& m) {
-    m.def("blcp_front_init", &init, "result_cls"_a, "ws_cls"_a, "solved"_a, "spans"_a, "i64"_a,
+    m.def("blcp_front_init", &init, "result_cls"_a, "ws_cls"_a, "solved"_a, "spans"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a);
     m.def("blcp_front", &blcp_front, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a.none(),
           "ws"_a.none());

@@ -89,16 +89,6 @@ qp::Data data_of(const ArrayFields* P, const ArrayFields* q, const double* G, co
             lemke::Mat<const double>(A, p, n), b, lo, up};
 }
 
-// numpy.empty(length): float64
-nb::object new_buffer(const NumpyLayout& lay, idx length) {
-    nb::object size = nb::steal(PyLong_FromSsize_t(length));
-    if (!size.is_valid()) throw nb::python_error();
-    PyObject* args[] = {size.ptr()};
-    nb::object buf = nb::steal(PyObject_Vectorcall(lay.empty, args, 1, nullptr));
-    if (!buf.is_valid()) throw nb::python_error();
-    return buf;
-}
-
 // The solved QPResult as _qp._fused_result (or _solve_box_small) builds it: the buffer
 // read-only (out.setflags(write=False): NumPy's PyArray_CLEARFLAGS, on the field), x its
 // first n entries, status, pivots and certificate now, the rest from fields(*src) when first
@@ -125,12 +115,12 @@ nb::object solved(const nb::object& buf, idx n, idx pivots, PyObject* fields,
 
 // _qp._solve_box_small: qp::solve_box from no warm start (solve_blcp's pivot budget), one
 // buffer (BoxOutLayout, the final bases in its tail); the result, or the kernel's code.
-nb::object box_small(const qp::Data& data, const NumpyLayout& lay) {
+nb::object box_small(const qp::Data& data) {
     idx n = data.n();
     thread_local std::vector<std::uint8_t> no_warm;
     no_warm.assign(static_cast<std::size_t>(2 * n), 0);
     qp::BoxOutLayout L{n};
-    nb::object buf = new_buffer(lay, L.length());
+    nb::object buf = new_array(L.length());
     double* out = reinterpret_cast<double*>(reinterpret_cast<ArrayFields*>(buf.ptr())->data);
     qp::Result r;
     {
@@ -224,13 +214,13 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
         idx bounds = !lb_h.is_none() + !ub_h.is_none();
         if (box && bounds > 0) {
             if (n >= qf.box_first) return nb::none();
-            return box_small(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up), lay);
+            return box_small(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up));
         }
         if (m + n * bounds >= qp::GRAM_RATIO * n) return nb::none();
         pairs = 0;
     }
     qp::OutLayout L{n, p, m};
-    nb::object buf = new_buffer(lay, L.length());
+    nb::object buf = new_array(L.length());
     double* out = reinterpret_cast<double*>(reinterpret_cast<ArrayFields*>(buf.ptr())->data);
     qp::Result r;
     {

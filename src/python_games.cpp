@@ -157,11 +157,7 @@ nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
     long long k = PyLong_AsLongLongAndOverflow(k_h.ptr(), &overflow);
     if (overflow != 0 || k < 0 || k >= m + n) return nb::none();
     lemke::games::LHLayout at{m, n};
-    nb::object size = nb::steal(PyLong_FromSsize_t(at.length()));
-    if (!size.is_valid()) throw nb::python_error();
-    PyObject* args[] = {size.ptr()};
-    nb::object buf = nb::steal(PyObject_Vectorcall(np.empty, args, 1, nullptr));
-    if (!buf.is_valid()) throw nb::python_error();
+    nb::object buf = new_array(at.length());
     double* out = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(buf.ptr())->data);
     thread_local std::vector<idx> start;
     start.resize(static_cast<std::size_t>(m + n));

@@ -447,3 +447,107 @@ def test_a_forked_child_runs_parallel_batches():
     assert np.array_equal(np.array(got), here.z)
     for b in range(q.shape[0]):
         assert_lcp_solution(M[b], q[b], here.z[b])
+
+
+# --- a few problems: solved one by one with solve_lcp (_batch.FEW) ----------------------
+
+def _flat_fields(res):
+    return [getattr(res, name).tobytes() for name in
+            ("offsets", "z", "w", "status", "success", "pivots", "recoveries", "residual")]
+
+
+@pytest.mark.parametrize("method", lemke.METHODS)
+def test_a_few_problems_give_the_batch_paths_bits(method, monkeypatch):
+    """Up to FEW problems ready for the kernels go through solve_lcp one by one: every item
+    and every flat field (the final bases included) is what the batch path gives, bit for
+    bit, cold, warm from a list and warm from a WarmStartBatch; rays and q >= 0 included."""
+    from lemke import _batch
+    Ms, qs, qs2 = _islands(7, count=48)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    qs2[5] = qs[5]
+    keep = [b for b in range(len(Ms)) if len(qs[b])]  # (an empty problem takes the batch path)
+    Ms, qs, qs2 = [Ms[b] for b in keep], [qs[b] for b in keep], [qs2[b] for b in keep]
+    seen, FEW = set(), _batch.FEW
+    for lo in range(0, len(Ms), FEW):
+        M, q, q2 = Ms[lo : lo + FEW], qs[lo : lo + FEW], qs2[lo : lo + FEW]
+        runs = {}
+        for few in (FEW, 0):
+            monkeypatch.setattr(_batch, "FEW", few)
+            cold = lemke.solve_lcp_many(M, q, method=method)
+            listed = lemke.solve_lcp_many(M, q2, method=method, warm_start=[r.warm_start for r in cold])
+            flat = lemke.solve_lcp_many(tuple(M), q2, method=method, warm_start=cold.warm_start, workers=1)
+            runs[few] = (cold, listed, flat)
+            for res, qq in ((cold, q), (listed, q2), (flat, q2)):
+                assert isinstance(res, lemke.LCPManyResult)
+                _assert_flat_is_items(res, M, qq)
+        for a, b in zip(runs[FEW], runs[0]):
+            assert a._off is None and b._off is not None  # the two paths, taken
+            assert a == b and list(a) == list(b)  # every field of every item, bit for bit
+            assert _flat_fields(a) == _flat_fields(b)
+            assert a.warm_start == b.warm_start
+            seen |= set(a.status.tolist()) | {int(p == 0) for p in a.pivots.tolist()}
+        monkeypatch.setattr(_batch, "FEW", FEW)
+    assert {int(Status.SOLVED), int(Status.RAY_TERMINATION)} <= seen and {0, 1} <= seen
+
+
+def test_a_few_problems_bad_input_says_what_the_batch_path_says(monkeypatch):
+    from lemke import _batch
+    FEW = _batch.FEW
+    bad_M = np.eye(2)
+    bad_M[1, 0] = np.nan
+    cases = [
+        ([np.eye(2), bad_M], [np.ones(2), -np.ones(2)], {}),
+        ([np.eye(2), np.eye(2)], [-np.ones(2), np.array([np.inf, -1.0])], {}),
+        ([np.eye(2)], [np.ones(2)], {"warm_start": [lemke.WarmStart(3, ())]}),
+        ([np.eye(2)], [np.ones(2)], {"workers": 0}),
+        ([np.eye(2)], [np.ones(2)], {"method": "nope"}),
+        ([np.eye(2)], [np.ones(3)], {}),
+    ]
+    for i, (M, q, kw) in enumerate(cases):
+        said = []
+        for few in (FEW, 0):
+            monkeypatch.setattr(_batch, "FEW", few)
+            with pytest.raises((ValueError, TypeError)) as e:
+                lemke.solve_lcp_many(M, q, **kw)
+            said.append((e.type, str(e.value)))
+        assert said[0] == said[1], said
+        if i < 2:  # a NaN or an infinity: the problem and the argument named
+            assert said[0][0] is ValueError and "problem 1" in said[0][1] and "MqMq"[i] in said[0][1]
+
+
+def test_solve_lcp_many_entry_is_the_python_function_to_its_callers(monkeypatch):
+    """``lemke.solve_lcp_many`` is the core's entry (``_core.lcp_many_entry``): a call of up to
+    FEW plain problems is made there whole, as ``_batch._few`` makes it (the same items and
+    flat fields), reading ``_batch.FEW`` and ``_lcp._FRONT`` on each call; every other call
+    is the Python function's, whose name, docstring and signature it shows."""
+    import inspect
+    from lemke import _batch, _lcp
+
+    f = lemke.solve_lcp_many
+    assert f.__wrapped__ is _batch._solve_lcp_many and f.__doc__ == _batch._solve_lcp_many.__doc__
+    assert str(inspect.signature(f)) == str(inspect.signature(_batch._solve_lcp_many))
+    assert pickle.loads(pickle.dumps(f)) is f
+    Ms, qs, qs2 = _islands(9, count=12)
+    keep = [b for b in range(len(Ms)) if len(qs[b])]
+    Ms, qs, qs2 = [Ms[b] for b in keep][:3], [qs[b] for b in keep][:3], [qs2[b] for b in keep][:3]
+    cold = f(Ms, qs)
+    ws = [r.warm_start for r in cold]
+    warm = f(Ms, qs2, warm_start=ws)
+    assert cold._off is None and warm._off is None and (warm.pivots == 0).any()
+    for res, args in ((cold, (Ms, qs)), (warm, (Ms, qs2, ws))):
+        kw = {"warm_start": args[2]} if len(args) > 2 else {}
+        python = _batch._solve_lcp_many(*args[:2], **kw)  # (_few, through solve_lcp)
+        assert res == python and _flat_fields(res) == _flat_fields(python)
+        assert res.warm_start == python.warm_start
+        _assert_flat_is_items(res, Ms, args[1])
+    calls = []
+    front = _lcp._FRONT
+    monkeypatch.setattr(_lcp, "_FRONT", lambda *a: calls.append(a) or front(*a))
+    assert f(Ms, qs) == cold and len(calls) == len(Ms)  # (through the Python path's solve_lcp)
+    monkeypatch.setattr(_batch, "FEW", 2)
+    assert f(Ms, qs)._off is not None  # 3 problems: the batch
+    monkeypatch.undo()
+    with pytest.raises(ValueError, match="problem 1"):
+        f([np.eye(2), np.eye(2)], [np.ones(2), np.array([np.nan, 1.0])])
+    with pytest.raises(ValueError, match="warm_start\\[0\\]"):
+        f([np.eye(2)], [np.ones(2)], warm_start=[lemke.WarmStart(3, (0,))])

@@ -293,3 +293,44 @@ def test_the_native_front_declines_what_is_not_plain():
     with pytest.raises(ValueError, match="q"):
         lemke.solve_lcp(M, q[:1])
     assert lemke.solve_lcp(np.asfortranarray(M), ro).z.tolist() == lemke.solve_lcp(M, q).z.tolist()
+
+
+def test_solve_lcp_entry_is_the_python_function_to_its_callers(monkeypatch):
+    """``lemke.solve_lcp`` is the core's entry (``_core.lcp_entry``, src/python_front.cpp):
+    solve_lcp(M, q) and solve_lcp(M, q, warm_start=ws) go to ``_lcp._FRONT`` with no Python
+    frame, everything else to the Python function it wraps; it reads ``_FRONT`` on each
+    call (a test that switches the front off switches it off), takes only a warm start of
+    q's size, and shows the function's name, docstring, signature and pickles by name."""
+    import inspect
+
+    f = lemke.solve_lcp
+    assert f is _lcp.solve_lcp and f.__wrapped__ is _lcp._solve_lcp and f is not f.__wrapped__
+    assert (f.__name__, f.__module__, f.__doc__) == ("solve_lcp", "lemke._lcp", _lcp._solve_lcp.__doc__)
+    assert str(inspect.signature(f)) == str(inspect.signature(_lcp._solve_lcp))
+    assert "warm_start=None" in str(inspect.signature(f)) and repr(f) == repr(_lcp._solve_lcp)
+    assert pickle.loads(pickle.dumps(f)) is f
+    M = np.array([[2.0, 1.0], [1.0, 2.0]])
+    q = np.array([-5.0, -6.0])
+    r = f(M, q)
+    ws = r.warm_start
+    assert r == _lcp._solve_lcp(M, q) and f(M, q, warm_start=ws) == _lcp._solve_lcp(M, q, warm_start=ws)
+    assert f(M, q, warm_start=ws).pivots == 0 and f(M, q, warm_start=None) == r
+    calls = []
+    monkeypatch.setattr(_lcp, "_FRONT", lambda *a: calls.append(a) or None)
+    assert f(M, q) == r and f(M, q, warm_start=ws) == f(M, q, warm_start=ws)
+    assert len(calls) == 3 and calls[0][2:] == (None, None) and calls[1][2] is ws
+    monkeypatch.undo()
+    # a warm start of another size whose basis is in range for q: the Python front refuses it
+    with pytest.raises(ValueError, match="warm_start is for a problem of size 3, this one has n = 2"):
+        f(M, q, warm_start=WarmStart(3, (0,)))
+    with pytest.raises(TypeError):
+        f(M, q, warm_start=(0,))
+    with pytest.raises(TypeError):
+        f(M)
+    with pytest.raises(TypeError):
+        f(M, q, None)  # keyword-only, as the Python function's
+    # the entry's other calls: the Python function's (lists, options, the unrevised method)
+    assert f(M.tolist(), q.tolist()) == r
+    assert f(M, q, method="unrevised") == _lcp._solve_lcp(M, q, method="unrevised")
+    assert_lcp_solution(M, q, f(M, q, method="unrevised").z)
+    assert f(M, q, options={"max_pivots": 10}) == r

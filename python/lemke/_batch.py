@@ -2,6 +2,7 @@
 the GIL), each exactly as :func:`lemke.solve_lcp` solves it."""
 from __future__ import annotations
 
+import functools
 import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
@@ -10,8 +11,8 @@ from operator import attrgetter
 
 import numpy as np
 
-from . import _core, _progress, _validate
-from ._lcp import METHODS, _outcome
+from . import _core, _lcp, _progress, _validate
+from ._lcp import METHODS, _outcome, solve_lcp as _solve_lcp
 from ._options import as_options, time_limited, timed
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
@@ -396,7 +397,15 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp_many, M, q, method=method, workers=workers,
                      warm_start=warm_start, sizes=sizes, progress=progress)
-    _validate.method(method, METHODS)
+    if method != "tableau":
+        _validate.method(method, METHODS)
+    if (options is None and sizes is None and (progress is None or progress is False)
+            and type(M) in _SEQ and type(q) in _SEQ and 0 < len(M) <= FEW):
+        if workers is not None:
+            _validate.positive_int_or_none(workers, "workers")
+        res = _few(M, q, method, warm_start)
+        if res is not None:
+            return res
     opts = as_options(options)
     workers = _workers(workers)
     if progress is not None:
@@ -454,7 +463,64 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     return LCPManyResult(sizes, off, out_i, out_f, bufs, basics, ws, special)
 
 
+#: The Python function; ``solve_lcp_many`` is the core's entry that wraps it
+#: (src/python_front.cpp, ``lcp_many_entry``): a call ``solve_lcp_many(Ms, qs)`` or
+#: ``solve_lcp_many(Ms, qs, warm_start=ws)`` of up to FEW plain problems (float64 arrays,
+#: warm starts None or WarmStart) that ``_lcp._FRONT`` settles is made there whole, as
+#: ``_few`` makes it, with no Python frame; every other call is the function's.
+_solve_lcp_many = solve_lcp_many
+solve_lcp_many = functools.update_wrapper(
+    _core.lcp_many_entry(_solve_lcp_many, _lcp.__dict__, _lcp._FRONT, WarmStart, globals(),
+                         LCPManyResult), _solve_lcp_many)
+
 _RAY = int(Status.RAY_TERMINATION)
+#: The most problems that solve_lcp_many solves one by one with solve_lcp (its native front:
+#: a microsecond or so each), when each is ready for the kernels, with the default options
+#: and no progress report: the batch's own set-up (its arrays and offsets, some tens of
+#: numpy calls) costs about 30 us, more than such a batch takes to solve; the answers are
+#: the same (item b is solve_lcp's result, bit for bit, either way).
+FEW = 4
+_SEQ = (list, tuple)
+
+
+def _few(M, q, method, warm_start):
+    """solve_lcp_many's result for the few problems (M, q) (lists or tuples of the same
+    length, at most FEW) solved one by one by ``solve_lcp``, or None when they are not all
+    float64 ndarrays, a square M_b of q_b's size n_b >= 1 (a problem the batch path would
+    convert or refuse before solving any: it then does all, saying what is wrong), or the
+    warm starts are not None, a WarmStartBatch or a sequence of WarmStart or None, all of
+    the problems' sizes."""
+    B = len(M)
+    if len(q) != B:
+        return None
+    for b in range(B):
+        Mb, qb = M[b], q[b]
+        if not (type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
+                and qb.ndim == 1 and Mb.shape == qb.shape * 2 and qb.shape[0]):
+            return None
+    if warm_start is None:
+        ws = (None,) * B
+    elif type(warm_start) is WarmStartBatch:
+        if len(warm_start) != B or warm_start.n.tolist() != [len(qb) for qb in q]:
+            return None
+        ws = list(warm_start)
+    elif type(warm_start) in _SEQ and len(warm_start) == B and all(
+            w is None or (type(w) is WarmStart and w.n == len(qb)) for w, qb in zip(warm_start, q)):
+        ws = warm_start
+    else:
+        return None
+    items = []
+    try:
+        if method == "tableau":  # (solve_lcp's native entry takes (M, q, warm_start=) whole)
+            for b in range(B):
+                items.append(_solve_lcp(M[b], q[b], warm_start=ws[b]))
+        else:
+            for b in range(B):
+                items.append(_solve_lcp(M[b], q[b], method=method, warm_start=ws[b]))
+    except ValueError as exc:  # NaN or infinity: as _checked says it, naming the problem
+        raise ValueError(f"problem {len(items)}: {exc}") from None
+    return LCPManyResult._of(items)
+
 
 
 def _cubes(n_b):

@@ -1091,5 +1091,5 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
 #: left to do (a tuple for _finish, False for _general), or None (not plain: all here).
 _FRONT = _core.blcp_front
 native_fronts_init()  # (NumPy's layout checked: _FRONT relies on it)
-_core.blcp_front_init(BLCPResult, BoxWarmStart, Status.SOLVED, _spans, _I64, _DEFAULT.pivot_tol,
+_core.blcp_front_init(BLCPResult, BoxWarmStart, Status.SOLVED, _spans, _DEFAULT.pivot_tol,
                       _DEFAULT.tie_tol, _DEFAULT.tol)

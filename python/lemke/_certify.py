@@ -3,8 +3,8 @@ a proof -- for every kind, on the caller's data.
 
 The same functions serve the solvers (to accept or downgrade a result), the tests and the
 benchmarks, so every part of the project judges answers the same way.  The kernels keep a
-fused copy of the LCP test for speed (``kernels/certify.py``, in the C++ core
-``src/lemke/certify.cpp``, which *is* the LCP rule below: ``check_lcp`` calls it, and
+fused copy of the LCP test for speed (the C++ core's ``src/lemke/certify.cpp``,
+which *is* the LCP rule below: ``check_lcp`` calls it, and
 ``tests/test_certify.py`` checks that the fused check inside a solve gives the verdict of
 ``is_lcp_solution``).
 
@@ -14,7 +14,7 @@ formed from, plus the rounding of forming it:
 
 * **LCP point** (``check_lcp``): row by row, ``t = tol + (n + 2) eps`` times
   ``r_i = |M_i.| |z| + |q_i|`` (the componentwise backward error; details in
-  ``kernels/certify.py``), and a point so large that the rounding of M z dwarfs the data is
+  ``src/lemke/certify.hpp``), and a point so large that the rounding of M z dwarfs the data is
   refused (``CERTIFIABLE``).
 * **MLCP point** (``check_mlcp``): the same rule on the stacked system ``E x + e``, against
   the size of the whole stacked system (its rows have no common scale once a QP's KKT rows
@@ -26,7 +26,7 @@ formed from, plus the rounding of forming it:
   normalized to largest entry 1, each condition against ``tol`` times the data's size,
   times ``RAY_SLACK`` (a direction is formed by subtracting two points, each accepted with
   the point allowance).  The LCP ray is judged row by row like an LCP point instead
-  (``kernels/certify.py``), and its z part must be non-zero next to the whole direction:
+  (``src/lemke/certify.hpp``), and its z part must be non-zero next to the whole direction:
   a direction that only moves z0 is the primary ray, which every LCP has.
 """
 from __future__ import annotations
@@ -44,8 +44,8 @@ CERTIFIABLE = _core.CERTIFIABLE
 
 EPS = float(np.finfo(np.float64).eps)
 #: The rounding allowance of ``E x + e`` in check_mlcp: x86's long double epsilon, in which
-#: it was once computed; the double-double sums (``residual2`` of the C++ core, the port of
-#: ``kernels.linalg.residual2``) are more accurate than that, on every platform alike.
+#: it was once computed; the double-double sums (``residual2`` of the C++ core,
+#: ``src/lemke/linalg.cpp``) are more accurate than that, on every platform alike.
 EPS_EXT = 2.0 ** -63
 RAY_SLACK = 10.0  # directions (rays, Farkas vectors, descent) get 10x the point's allowance
 
@@ -67,7 +67,7 @@ def is_lcp_solution(M, q, z, tol: float = 1e-9) -> bool:
     with ``r_i = |M_i.| |z| + |q_i|`` and ``t = tol + (n + 2) eps``, every row has
     ``w_i >= -t r_i``, and ``|w_i| <= t r_i`` unless z_i is zero (small enough that zeroing
     it moves no w_j by more than ``t r_j``); z >= 0 in the same sense; and z is not so large
-    that the rounding of M z dwarfs the data (see ``lemke.kernels.certify``)."""
+    that the rounding of M z dwarfs the data (see ``src/lemke/certify.hpp``)."""
     M = square_matrix(M)
     q = vector(q, M.shape[0], "q")
     z = vector(z, M.shape[0], "z")

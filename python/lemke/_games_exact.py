@@ -241,7 +241,7 @@ def lemke_howson(Aint, Bint, k, max_pivots, start=None) -> Path:
     relative to the slack basis (the rule of the float kernels), from the artificial
     equilibrium, or with ``start = (P labels, Q labels, entering, side)`` from that vertex
     pair, where the label ``entering`` is about to enter in tableau ``side`` (0: P, 1: Q):
-    the state a float path reports (``kernels.games.lh_path``).  Such a start must be a
+    the state a float path reports (``_core.lemke_howson``, src/lemke/games.cpp).  Such a start must be a
     vertex pair of the perturbed polytopes (non-singular, lexicographically feasible, which
     is checked: else ``"infeasible"``) whose label ``entering`` is non-basic in ``side``."""
     m, n = Aint.shape

@@ -1,6 +1,8 @@
 """solve_lcp: validate -> set up the tableau -> kernel -> check on the caller's data -> result."""
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from . import _core, _progress, _validate
@@ -115,12 +117,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
         else:
             r = None
         if r is not None:
-            if type(r) is not tuple:
-                return r
-            n = len(q)
-            return _go_on(M, q, _NO_D, method, _DEFAULT, warm_start, beta,
-                          0 if beta is None else len(beta), 100 * (n + 1), _PIVOT_TOL,
-                          _TIE_TOL, _TOL, r[7], _LEN_N * n + _LEN_1, n, *r[:7])
+            return r if type(r) is not tuple else _after_front(M, q, warm_start, beta, r)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start
@@ -188,6 +185,15 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
         return res
     return _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf, at, n,
                   code, pivots, k, ok, residual, recoveries, stage)
+
+
+def _after_front(M, q, warm_start, beta, r):
+    """solve_lcp after its native front (``_FRONT``, by the tableau, default options) handed
+    back first_run's answer ``r`` and buffer: the driver goes on from there."""
+    n = len(q)
+    return _go_on(M, q, _NO_D, "tableau", _DEFAULT, warm_start, beta,
+                  0 if beta is None else len(beta), 100 * (n + 1), _PIVOT_TOL, _TIE_TOL, _TOL,
+                  r[7], _LEN_N * n + _LEN_1, n, *r[:7])
 
 
 def _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf, at, n,
@@ -286,3 +292,10 @@ def _result(z, w, residual, status, pivots, ray, z0, cov, warm_start, row_scale,
 
 
 native_fronts_init()  # (solve_lcp's front and the layout check the native fronts rely on)
+
+#: The Python function; ``solve_lcp`` is the core's entry that wraps it (src/python_front.cpp,
+#: ``lcp_entry``): the calls ``solve_lcp(M, q)`` and ``solve_lcp(M, q, warm_start=ws)`` go
+#: to ``_FRONT`` with no Python frame, every other call (and any the front declines) to it.
+_solve_lcp = solve_lcp
+solve_lcp = functools.update_wrapper(
+    _core.lcp_entry(_solve_lcp, _after_front, globals(), _FRONT, WarmStart), _solve_lcp)

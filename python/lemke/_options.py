@@ -16,11 +16,11 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     Two keys of the lexicographic ratio rule (the ratios first, then the entries of the
     basis inverse divided by the pivot entries) are tied when they agree to within
     ``tie_tol`` relative to their own size: ``x <= m + tie_tol * max(|x|, |m|)``; never
-    because both are near zero.  0 asks for exact ties.  See ``lemke.kernels.pivoting`` for
+    because both are near zero.  0 asks for exact ties.  See ``src/lemke/pivoting.hpp`` for
     the rule and why the default sits above the rounding of well-conditioned bases.
 ``tol`` (default ``1e-9``)
     Acceptance test for a solution, made on the caller's data row by row
-    (``lemke.kernels.certify``): with ``r_i = |M_i.| |z| + |q_i|``, ``t = tol + (n + 2) eps``
+    (``src/lemke/certify.hpp``): with ``r_i = |M_i.| |z| + |q_i|``, ``t = tol + (n + 2) eps``
     and f_i the rounding of q's largest entry in row i's equilibrated units,
     ``w_i >= -(t r_i + f_i)``, and ``|w_i| <= t r_i + f_i`` unless z_i is zero (small enough
     that zeroing it moves no w_j by more than row j's allowance); and z must be small

@@ -112,7 +112,7 @@ def _solve_block(A: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """``A^{-1} rhs``; LinAlgError when ``A`` is singular to working precision.
 
     With the core's own single-threaded elimination (``invert_in_place`` and ``linalg_solve``
-    of ``src/lemke/linalg.cpp``, the ports of ``kernels.linalg``'s: no LAPACK, so no BLAS
+    of ``src/lemke/linalg.cpp``: no LAPACK, so no BLAS
     thread pool): the inverse gives the exact 1-norm condition number, and the solve
     is an LU solve with partial pivoting."""
     m = A.shape[0]

@@ -6,6 +6,7 @@ and ``hash`` follows the same fields, so results can be dict keys and set member
 """
 from __future__ import annotations
 
+import importlib
 import operator
 import struct
 from collections.abc import Sequence
@@ -605,6 +606,16 @@ class LCPManyResult(ManyItems):
         for b, res in special.items():
             self._items[b] = res
 
+    @classmethod
+    def _of(cls, items) -> "LCPManyResult":
+        """The result of a few problems that ``solve_lcp_many`` solved one by one with
+        ``solve_lcp`` (``items``, a list of its results, none empty): the flat fields made
+        from them when first read, as the kernels' arrays give them (the final bases read
+        from the items' buffers, as the batch reads its own)."""
+        res = object.__new__(cls)
+        res._items, res._special, res._off = items, dict(enumerate(items)), None
+        return res
+
     def _build(self, lo, hi, _new=object.__new__, _SOLVED=Status.SOLVED,
                _RAY_TERMINATION=Status.RAY_TERMINATION, _RAY=int(Status.RAY_TERMINATION)):
         """Items lo..hi-1 not built yet, as solve_lcp builds them (``LCPResult._lazy``,
@@ -632,11 +643,20 @@ class LCPManyResult(ManyItems):
 
     @cached_property
     def offsets(self) -> np.ndarray:
+        if self._off is None:  # (_of)
+            off = np.zeros(len(self._items) + 1, dtype=np.int64)
+            np.cumsum([len(r.z) for r in self._items], out=off[1:])
+            off.setflags(write=False)
+            return off
         return self._off[0]
 
     def _gather(self, name):
         """Field ``name`` (``z`` or ``w``) of every problem, end to end: read from the output
         buffers, and from the results built already (their points recomputed)."""
+        if self._off is None:  # (_of)
+            v = np.concatenate([getattr(r, name) for r in self._items])
+            v.setflags(write=False)
+            return v
         a, c, _, _ = _SPANS[name]
         qo, bo = self._off[0], self._off[2]
         n = np.diff(qo)
@@ -656,31 +676,52 @@ class LCPManyResult(ManyItems):
     def w(self) -> np.ndarray:
         return self._gather("w")
 
+    def _ints(self, j):
+        """Column j of the kernels' integer results (zeros for _of: every item patched in)."""
+        return np.zeros(len(self._items), dtype=np.int64) if self._off is None else self._out_i[:, j]
+
     @cached_property
     def status(self) -> np.ndarray:
-        code = self._out_i[:, 0]
+        code = self._ints(0)
         return self._column(np.where(code == _layout.TRIVIAL, 0, code), "status", int)
 
     @cached_property
     def pivots(self) -> np.ndarray:
-        return self._column(self._out_i[:, 1], "pivots", int)
+        return self._column(self._ints(1), "pivots", int)
 
     @cached_property
     def recoveries(self) -> np.ndarray:
-        return self._column(self._out_i[:, 3], "recoveries", int)
+        return self._column(self._ints(3), "recoveries", int)
 
     @cached_property
     def residual(self) -> np.ndarray:
+        if self._off is None:
+            return self._column(np.zeros(len(self._items)), "residual", float)
         return self._column(self._out_f[:, 1], "residual", float)
 
     @cached_property
     def warm_start(self) -> WarmStartBatch:
+        if self._off is None:  # (_of) each item's final basis, from its buffer when it has one
+            bases = [_final_basis(r) for r in self._items]
+            off = np.zeros(len(bases) + 1, dtype=np.int64)
+            np.cumsum([len(b) for b in bases], out=off[1:])
+            return WarmStartBatch._trusted(np.diff(self.offsets), np.concatenate(bases), off)
         k = self._out_i[:, 2]
         off = np.zeros(len(k) + 1, dtype=np.int64)
         np.cumsum(k, out=off[1:])
         idx = np.arange(off[-1], dtype=np.int64)
         idx += np.repeat(self._off[0, :-1] - off[:-1], k)
         return WarmStartBatch._trusted(np.diff(self._off[0]), self._basics.take(idx), off)
+
+
+def _final_basis(res) -> np.ndarray:
+    """The final basic z's of a result of solve_lcp (int64): as the kernel left them in its
+    buffer (a lazily built result), else its warm start's."""
+    src = res.__dict__.get("_src")
+    if src is None:
+        return np.array(res.warm_start.z_basic, dtype=np.int64)
+    buf, _, basic, bo, _, k = src
+    return (buf.view(np.int64) if basic is None else basic)[bo : bo + k].copy()
 
 
 @frozen(eq=False)
@@ -728,4 +769,15 @@ def native_fronts_init():
     _core.lcp_front_init(np.ndarray, LCPResult, Status.SOLVED, Status.RAY_TERMINATION, np.empty,
                          _DEFAULT.pivot_tol, _DEFAULT.tie_tol, _DEFAULT.tol, probe,
                          probe.__array_interface__["data"][0], ro, np.zeros(3, dtype=np.int64),
-                         np.zeros(3, dtype=np.dtype(np.float64).newbyteorder()))
+                         np.zeros(3, dtype=np.dtype(np.float64).newbyteorder()), _numpy_api())
+
+
+def _numpy_api():
+    """NumPy's C API table (the ``_ARRAY_API`` capsule of its ``_multiarray_umath``; NumPy
+    2.x, then 1.x), or None: the native fronts then make their arrays with ``numpy.empty``."""
+    for name in ("numpy._core._multiarray_umath", "numpy.core._multiarray_umath"):
+        try:
+            return importlib.import_module(name)._ARRAY_API
+        except (ImportError, AttributeError):
+            pass
+    return None

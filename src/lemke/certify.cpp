@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include "multiversion.hpp"
+
 namespace lemke {
 
 // The largest z_i that counts as zero: min_j (t rows[j] + floors[j]) / |M_ji| over M_ji != 0.
@@ -14,6 +16,9 @@ double zero_size(Mat<const double> M, const double* rows, idx i, double t, const
     return s < INF ? s : 0.0;
 }
 
+// Compiled per instruction set, with each row's dot product inlined (dot_and_size_lanes,
+// the same operations): every solve ends here.
+LEMKE_CLONES
 bool check_rows(Mat<const double> M, const double* q, const double* z, double tol, double* w,
                 const double* R, double* work, bool early, double& residual) {
     idx n = M.rows;
@@ -25,7 +30,7 @@ bool check_rows(Mat<const double> M, const double* q, const double* z, double to
     for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
     for (idx i = 0; i < n; ++i) {
         double mz, size;
-        row_dot_and_size(M.row(i), z, n, mz, size);
+        dot_and_size_lanes(M.row(i), z, n, mz, size);
         w[i] = q[i] + mz;
         rows[i] = size + std::fabs(q[i]);
         floors[i] = static_cast<double>(n + 2) * EPS * q_top / R[i];

@@ -11,38 +11,7 @@ namespace lemke {
 LEMKE_CLONES
 void row_dot_and_size(const double* row, const double* y, idx k, double& dot_out,
                       double& size_out) {
-    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    idx j = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d va = simd::splat8(0.0), vs = simd::splat8(0.0);
-        for (; j + 8 <= k; j += 8) {
-            simd::v8d t = simd::load8(row + j) * simd::load8(y + j);
-            va += t;
-            vs += simd::abs8(t);
-        }
-        for (int l = 0; l < 8; ++l) {
-            a[l] = va[l];
-            s[l] = vs[l];
-        }
-    }
-#else
-    for (; j + 8 <= k; j += 8) {
-        for (int l = 0; l < 8; ++l) {
-            double t = row[j + l] * y[j + l];
-            a[l] += t;
-            s[l] += std::fabs(t);
-        }
-    }
-#endif
-    for (; j < k; ++j) {
-        double t = row[j] * y[j];
-        a[0] += t;
-        s[0] += std::fabs(t);
-    }
-    dot_out = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
-    size_out = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    dot_and_size_lanes(row, y, k, dot_out, size_out);
 }
 
 LEMKE_CLONES
@@ -86,64 +55,100 @@ namespace {
 
 constexpr int EQUILIBRATE_SWEEPS = 16;
 
+// One row of sweep: row i's largest entry into the return value, every column's into
+// cmax; with FINITE, the sum of 0 * M[i, j] into *z (all_finite's test); with UNIT (R and
+// C all 1, the first sweep) the entries' sizes are |M[i, j]| itself (|M[i, j]| 1 1, the
+// same number). A maximum of terms >= +0 that are not NaN is exact in any order: eight
+// lanes, then four, then one by one.
+template <bool UNIT, bool FINITE>
+LEMKE_ALWAYS_INLINE double sweep_row(const double* row, double r, const double* C, idx n, double* cmax,
+                        double* z) {
+    double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    double zs[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r), vz = simd::splat8(0.0);
+        for (; j + 8 <= n; j += 8) {
+            simd::v8d x = simd::load8(row + j);
+            if (FINITE) vz += simd::splat8(0.0) * x;
+            simd::v8d a = UNIT ? simd::abs8(x) : (simd::abs8(x) * rr) * simd::load8(C + j);
+            vr = simd::max8(vr, a);
+            simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
+        }
+        for (int l = 0; l < 8; ++l) {
+            rm[l] = vr[l];
+            zs[l] = vz[l];
+        }
+    }
+#else
+    for (; j + 8 <= n; j += 8) {
+        for (int l = 0; l < 8; ++l) {
+            if (FINITE) zs[l] += 0.0 * row[j + l];
+            double a = UNIT ? std::fabs(row[j + l]) : std::fabs(row[j + l]) * r * C[j + l];
+            rm[l] = pmax(rm[l], a);
+            cmax[j + l] = pmax(cmax[j + l], a);
+        }
+    }
+#endif
+    if (j + 4 <= n) {
+        for (int l = 0; l < 4; ++l) {
+            if (FINITE) zs[l] += 0.0 * row[j + l];
+            double a = UNIT ? std::fabs(row[j + l]) : std::fabs(row[j + l]) * r * C[j + l];
+            rm[l] = pmax(rm[l], a);
+            cmax[j + l] = pmax(cmax[j + l], a);
+        }
+        j += 4;
+    }
+    for (; j < n; ++j) {
+        if (FINITE) zs[0] += 0.0 * row[j];
+        double a = UNIT ? std::fabs(row[j]) : std::fabs(row[j]) * r * C[j];
+        rm[0] = pmax(rm[0], a);
+        cmax[j] = pmax(cmax[j], a);
+    }
+    if (FINITE) *z = ((zs[0] + zs[1]) + (zs[2] + zs[3])) + ((zs[4] + zs[5]) + (zs[6] + zs[7]));
+    return pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
+                pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
+}
+
+template <bool UNIT, bool FINITE>
+LEMKE_ALWAYS_INLINE double sweep_rows(Mat<const double> M, const double* q, const double* R, const double* C,
+                         double cq, double* rmax, double* cmax, double* mrow, bool& all) {
+    idx n = M.rows;
+    double qmax = 0.0;
+    for (idx i = 0; i < n; ++i) {
+        double r = R[i];
+        double z = 0.0;
+        double m = sweep_row<UNIT, FINITE>(M.row(i), r, C, n, cmax, &z);
+        if (FINITE) all &= z == 0.0;
+        mrow[i] = m;
+        double a = std::fabs(q[i]) * r * cq;
+        rmax[i] = pmax(m, a);
+        qmax = pmax(qmax, a);
+    }
+    return qmax;
+}
+
 // One sweep: the largest entry of each row (q's times cq included) and column of
 // diag(R) M diag(C) into rmax, cmax, the rows' largest entries of M's part alone into mrow;
 // returns q's largest. Every term is >= +0 and not NaN (M is finite, the scales positive and
 // finite, or the sweeps stop), and a maximum of such terms is exact in any order: eight
 // running maxima per row, so the loop is a vector loop. With `finite`, also whether every
 // entry of M is finite (the sums of 0 * M[i, j], all_finite's test, in the same pass).
+// `unit`: R and C are all 1 (the first sweep).
 LEMKE_CLONES
 double sweep(Mat<const double> M, const double* q, const double* R, const double* C, double cq,
-             double* rmax, double* cmax, double* mrow, bool* finite) {
+             double* rmax, double* cmax, double* mrow, bool* finite, bool unit) {
     idx n = M.rows;
     for (idx j = 0; j < n; ++j) cmax[j] = 0.0;
-    double qmax = 0.0;
     bool all = true;
-    for (idx i = 0; i < n; ++i) {
-        double r = R[i];
-        double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        double z[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-        const double* row = M.row(i);
-        idx j = 0;
-#ifdef LEMKE_SIMD
-        {
-            simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r), vz = simd::splat8(0.0);
-            for (; j + 8 <= n; j += 8) {
-                simd::v8d x = simd::load8(row + j);
-                if (finite) vz += simd::splat8(0.0) * x;
-                simd::v8d a = (simd::abs8(x) * rr) * simd::load8(C + j);
-                vr = simd::max8(vr, a);
-                simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
-            }
-            for (int l = 0; l < 8; ++l) {
-                rm[l] = vr[l];
-                z[l] = vz[l];
-            }
-        }
-#else
-        for (; j + 8 <= n; j += 8) {
-            for (int l = 0; l < 8; ++l) {
-                if (finite) z[l] += 0.0 * row[j + l];
-                double a = std::fabs(row[j + l]) * r * C[j + l];
-                rm[l] = pmax(rm[l], a);
-                cmax[j + l] = pmax(cmax[j + l], a);
-            }
-        }
-#endif
-        for (; j < n; ++j) {
-            if (finite) z[0] += 0.0 * row[j];
-            double a = std::fabs(row[j]) * r * C[j];
-            rm[0] = pmax(rm[0], a);
-            cmax[j] = pmax(cmax[j], a);
-        }
-        if (finite) all &= ((z[0] + z[1]) + (z[2] + z[3])) + ((z[4] + z[5]) + (z[6] + z[7])) == 0.0;
-        double m = pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
-                        pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
-        mrow[i] = m;
-        double a = std::fabs(q[i]) * r * cq;
-        rmax[i] = pmax(m, a);
-        qmax = pmax(qmax, a);
-    }
+    double qmax;
+    if (finite)
+        qmax = unit ? sweep_rows<true, true>(M, q, R, C, cq, rmax, cmax, mrow, all)
+                    : sweep_rows<false, true>(M, q, R, C, cq, rmax, cmax, mrow, all);
+    else
+        qmax = unit ? sweep_rows<true, false>(M, q, R, C, cq, rmax, cmax, mrow, all)
+                    : sweep_rows<false, false>(M, q, R, C, cq, rmax, cmax, mrow, all);
     if (finite) *finite = all;
     return qmax;
 }
@@ -164,53 +169,47 @@ double sweep_q(const double* q, const double* R, double cq, idx n, double* rmax,
 
 // Whether every x[i] (i < k) that is not zero lies in [0.5, 2] (balanced), and each x[i]
 // replaced by pow2_rsqrt(x[i]): by exponent arithmetic without a branch when every x[i] is
-// zero or a positive normal float (a vector loop), else one by one.
+// zero or a positive normal float, else one by one. The tests read the bits as integers
+// (for a float of sign 0 that is not NaN, the order of its bits is the order of the
+// numbers): integer compares, which the compiler makes vector loops (its float compares
+// on vectors of masks it had made one by one). `same`: whether every new x[i] is 1.
 LEMKE_CLONES
-bool rsqrt_all(double* x, idx k) {
-    bool fast = true, balanced = true;
-    idx i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8l all = simd::v8l{} - 1, off = simd::v8l{};
-        simd::v8d zero = simd::splat8(0.0), tiny = simd::splat8(2.2250738585072014e-308);
-        simd::v8d inf = simd::splat8(INF), half = simd::splat8(0.5), two = simd::splat8(2.0);
-        for (; i + 8 <= k; i += 8) {
-            simd::v8d a = simd::load8(x + i);
-            all &= (a == zero) | ((a >= tiny) & (a < inf));
-            off |= (a > zero) & ((a < half) | (a > two));
-        }
-        for (int l = 0; l < 8; ++l) {
-            fast &= all[l] != 0;
-            balanced &= off[l] == 0;
-        }
+bool rsqrt_all(double* x, idx k, bool& same) {
+    const std::uint64_t TINY = 0x0010000000000000ULL, INF_BITS = 0x7FF0000000000000ULL;
+    const std::uint64_t HALF = 0x3FE0000000000000ULL, TWO = 0x4000000000000000ULL;
+    std::uint64_t slow = 0, off = 0;
+    for (idx i = 0; i < k; ++i) {
+        std::uint64_t b;
+        std::memcpy(&b, x + i, 8);
+        std::uint64_t mag = b & 0x7FFFFFFFFFFFFFFFULL;
+        // fast: a == 0 (either sign) or TINY <= a < INF (a positive normal float)
+        slow |= static_cast<std::uint64_t>(mag != 0 && b - TINY >= INF_BITS - TINY);
+        // a > 0 and a < 0.5 or a > 2, a not NaN (sign 0, 0 < bits <= INF's)
+        off |= static_cast<std::uint64_t>(b - 1 < INF_BITS && b - HALF > TWO - HALF);
     }
-#endif
-    for (; i < k; ++i) {
-        double a = x[i];
-        fast &= (a == 0.0) | ((a >= 2.2250738585072014e-308) & (a < INF));
-        balanced &= !((a > 0.0) & ((a < 0.5) | (a > 2.0)));
-    }
-    if (!fast) {
-        for (idx i = 0; i < k; ++i) x[i] = pow2_rsqrt(x[i]);
+    bool balanced = off == 0;
+    if (slow != 0) {
+        same = true;
+        for (idx i = 0; i < k; ++i) {
+            x[i] = pow2_rsqrt(x[i]);
+            same &= x[i] == 1.0;
+        }
         return balanced;
     }
-    i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d zero = simd::splat8(0.0), one = simd::splat8(1.0);
-        for (; i + 8 <= k; i += 8) {
-            simd::v8d a = simd::load8(x + i);
-            simd::v8l e = reinterpret_cast<simd::v8l>(a) >> 52;
-            simd::v8d v = reinterpret_cast<simd::v8d>((1023 - ((e - 1022) >> 1)) << 52);
-            simd::store8(x + i, a == zero ? one : v);
-        }
+    // pow2_rsqrt of a positive normal float: 2^-((e - 1022) >> 1) for the biased exponent e
+    const std::uint64_t ONE = 0x3FF0000000000000ULL;
+    std::uint64_t other = 0;
+    for (idx i = 0; i < k; ++i) {
+        std::uint64_t b;
+        std::memcpy(&b, x + i, 8);
+        std::uint64_t mag = b & 0x7FFFFFFFFFFFFFFFULL;
+        std::int64_t e = static_cast<std::int64_t>(mag >> 52);
+        std::uint64_t v = static_cast<std::uint64_t>(1023 - ((e - 1022) >> 1)) << 52;
+        v = mag == 0 ? ONE : v;
+        other |= static_cast<std::uint64_t>(v != ONE);
+        std::memcpy(x + i, &v, 8);
     }
-#endif
-    for (; i < k; ++i) {
-        double a = x[i];
-        double v = bits_float((1023 - (((float_bits(a) >> 52) - 1022) >> 1)) << 52);
-        x[i] = a == 0.0 ? 1.0 : v;
-    }
+    same = other == 0;
     return balanced;
 }
 
@@ -232,7 +231,7 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
     double* cmax = work + n;
     double qmax = 0.0;
     if (finite) {
-        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite);
+        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true);
         if (!*finite) return;
     }
     bool same = false;  // the last sweep left R and C as they were
@@ -243,17 +242,17 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
         bool balanced;
         if (same) {
             // cmax's factors are all 1 (and balanced) from the last sweep: the rows alone
+            // (so `same` stays true when the rows' factors are all 1 too)
             qmax = sweep_q(q, R, cq, n, rmax, mrow);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
-            balanced &= rsqrt_all(work, n);
+            balanced &= rsqrt_all(work, n, same);
         } else {
-            if (sweep_no > 0 || !finite) qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr);
+            if (sweep_no > 0 || !finite)
+                qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr, sweep_no == 0);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
-            balanced &= rsqrt_all(work, 2 * n);
+            balanced &= rsqrt_all(work, 2 * n, same);
         }
         if (balanced) break;
-        same = true;
-        for (idx i = 0; i < 2 * n; ++i) same &= work[i] == 1.0;
         for (idx i = 0; i < n; ++i) {
             R[i] = R[i] * rmax[i];
             C[i] = C[i] * cmax[i];
@@ -551,8 +550,14 @@ void principal_block(Mat<const double> M, const idx* index, idx k, double* out) 
     }
 }
 
+LEMKE_CLONES
 void matvec(Mat<const double> G, idx k, const double* x, double* out) {
-    for (idx r = 0; r < k; ++r) out[r] = dot(G.row(r), x, k);
+    idx r = 0;
+    for (; r + 4 <= k; r += 4) {
+        const double* rows[4] = {G.row(r), G.row(r + 1), G.row(r + 2), G.row(r + 3)};
+        dot_lanes4(rows, x, k, out + r);
+    }
+    for (; r < k; ++r) out[r] = dot_lanes(G.row(r), x, k);
 }
 
 namespace {

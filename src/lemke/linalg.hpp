@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "multiversion.hpp"
 #include "simd.hpp"
 #include "span.hpp"
 
@@ -28,6 +29,46 @@ inline double bits_float(std::int64_t b) { double x; std::memcpy(&x, &b, 8); ret
 void row_dot_and_size(const double* row, const double* y, idx k, double& dot, double& size);
 double dot(const double* x, const double* y, idx k);
 
+// row_dot_and_size's body, for loops compiled per instruction set that take it row by row:
+// always inlined (a copy of its own would be compiled for the baseline instruction set,
+// where a vector of 8 doubles is four registers, and called once per row through the
+// clones' dispatch, which costs as much as a short row).
+LEMKE_ALWAYS_INLINE void dot_and_size_lanes(const double* row, const double* y, idx k,
+                                            double& dot_out, double& size_out) {
+    double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d va = simd::splat8(0.0), vs = simd::splat8(0.0);
+        for (; j + 8 <= k; j += 8) {
+            simd::v8d t = simd::load8(row + j) * simd::load8(y + j);
+            va += t;
+            vs += simd::abs8(t);
+        }
+        for (int l = 0; l < 8; ++l) {
+            a[l] = va[l];
+            s[l] = vs[l];
+        }
+    }
+#else
+    for (; j + 8 <= k; j += 8) {
+        for (int l = 0; l < 8; ++l) {
+            double t = row[j + l] * y[j + l];
+            a[l] += t;
+            s[l] += std::fabs(t);
+        }
+    }
+#endif
+    for (; j < k; ++j) {
+        double t = row[j] * y[j];
+        a[0] += t;
+        s[0] += std::fabs(t);
+    }
+    dot_out = ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+    size_out = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+}
+
 // dot's body, inlined by loops compiled per instruction set that take many short dot
 // products (a call per row through the clones' dispatch costs as much as a short row).
 inline double dot_lanes(const double* x, const double* y, idx k) {
@@ -39,6 +80,63 @@ inline double dot_lanes(const double* x, const double* y, idx k) {
         for (int l = 0; l < 8; ++l) a[l] += x[j + l] * y[j + l];
     for (; j < k; ++j) a[0] += x[j] * y[j];
     return ((a[0] + a[1]) + (a[2] + a[3])) + ((a[4] + a[5]) + (a[6] + a[7]));
+}
+
+// dot_lanes of four rows with one y: out[t] = dot_lanes(x[t], y, k), each row's sums in
+// dot's order (the same bits), y's loads shared by the four rows. On vector types: left to
+// the vectorizer, the four rows' lanes came out interleaved by permutes (slower than four
+// calls of dot_lanes).
+LEMKE_ALWAYS_INLINE void dot_lanes4(const double* const* x, const double* y, idx k, double* out) {
+    const double *x0 = x[0], *x1 = x[1], *x2 = x[2], *x3 = x[3];
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d s0 = simd::splat8(0.0), s1 = s0, s2 = s0, s3 = s0;
+    for (; j + 8 <= k; j += 8) {
+        simd::v8d v = simd::load8(y + j);
+        s0 += simd::load8(x0 + j) * v;
+        s1 += simd::load8(x1 + j) * v;
+        s2 += simd::load8(x2 + j) * v;
+        s3 += simd::load8(x3 + j) * v;
+    }
+    if (j < k) {
+        double a0 = s0[0], a1 = s1[0], a2 = s2[0], a3 = s3[0];
+        for (; j < k; ++j) {
+            double v = y[j];
+            a0 += x0[j] * v;
+            a1 += x1[j] * v;
+            a2 += x2[j] * v;
+            a3 += x3[j] * v;
+        }
+        s0[0] = a0;
+        s1[0] = a1;
+        s2[0] = a2;
+        s3[0] = a3;
+    }
+    simd::hsum4(s0, s1, s2, s3, out);
+#else
+    double a[4][8];
+    for (int t = 0; t < 4; ++t)
+        for (int l = 0; l < 8; ++l) a[t][l] = 0.0;
+    for (; j + 8 <= k; j += 8)
+        for (int l = 0; l < 8; ++l) {
+            double v = y[j + l];
+            a[0][l] += x0[j + l] * v;
+            a[1][l] += x1[j + l] * v;
+            a[2][l] += x2[j + l] * v;
+            a[3][l] += x3[j + l] * v;
+        }
+    for (; j < k; ++j) {
+        double v = y[j];
+        a[0][0] += x0[j] * v;
+        a[1][0] += x1[j] * v;
+        a[2][0] += x2[j] * v;
+        a[3][0] += x3[j] * v;
+    }
+    for (int t = 0; t < 4; ++t) {
+        const double* b = a[t];
+        out[t] = ((b[0] + b[1]) + (b[2] + b[3])) + ((b[4] + b[5]) + (b[6] + b[7]));
+    }
+#endif
 }
 
 // Whether every x[j] is finite: sum 0 * x[j] is 0 then and NaN otherwise, in any order, so
@@ -141,7 +239,8 @@ bool invert_in_place(Mat<double> G, idx k);
 // out (k x k, row-major) = M[index][:, index] (linalg.principal_block).
 void principal_block(Mat<const double> M, const idx* index, idx k, double* out);
 
-// out[:k] = G[:k, :k] x[:k], each row by `dot` (linalg.matvec).
+// out[:k] = G[:k, :k] x[:k], each row by `dot`'s sums (linalg.matvec; four rows at a time,
+// dot_lanes4).
 void matvec(Mat<const double> G, idx k, const double* x, double* out);
 
 // Replace G[:k, :k] by its inverse (linalg.invert_in_place, the same operations in the same

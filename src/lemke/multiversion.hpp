@@ -9,3 +9,10 @@
 #else
 #define LEMKE_CLONES
 #endif
+// For the helpers that a cloned function calls in its loops: inlined into every clone (a
+// helper GCC chose not to inline was compiled once, for the baseline instruction set).
+#if defined(__GNUC__)
+#define LEMKE_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define LEMKE_ALWAYS_INLINE inline
+#endif

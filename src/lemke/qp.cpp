@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "boxed.hpp"
@@ -30,8 +32,26 @@ namespace {
 //       size (n) and kkt_check's 4n.
 //   i:  ekind (p), ckind (m), up_row (n), S (m), lcp basic (m).
 //   b:  mlcp_basis's flags (m + 2n), gram's flags (m).
+// An allocator whose resize leaves new doubles unset (every part of f is written before it
+// is read: what a larger earlier layout left there is as good as zeros), so that a layout
+// that grows does not first clear it (a first solve at n = 100 spent ~5% there).
+template <class T>
+struct Unset : std::allocator<T> {
+    template <class U>
+    struct rebind {
+        using other = Unset<U>;
+    };
+    Unset() = default;
+    template <class U>
+    Unset(const Unset<U>&) {}
+    template <class U>
+    void construct(U* p) { ::new (static_cast<void*>(p)) U; }
+    template <class U, class... A>
+    void construct(U* p, A&&... a) { ::new (static_cast<void*>(p)) U(std::forward<A>(a)...); }
+};
+
 struct QPWork {
-    std::vector<double> f;
+    std::vector<double, Unset<double>> f;
     std::vector<idx> i;
     std::vector<std::uint8_t> b;
     idx n = 0, p = 0, m = 0, r = 0, pv = 0, kr = 0;
@@ -144,6 +164,156 @@ void householder_apply(Mat<const double> V, const double* beta, idx k, double* x
     double s = beta[k] * dot(v, r, n - k);
     if (s != 0.0)
         for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+}
+
+// qp::dot4's body, inlined by the cloned loops that call it (below).
+inline __attribute__((always_inline)) void dot4_lanes(const double* a, const double* r0, const double* r1, const double* r2,
+          const double* r3, idx len, double* out) {
+#ifdef LEMKE_SIMD
+    // (on eight-lane vectors, four independent sums; written on scalar lanes GCC vectorized
+    // the loop across the four rows, with shuffles, 10-20x slower at n = 300)
+    using simd::load8;
+    simd::v8d v0 = simd::splat8(0.0), v1 = v0, v2 = v0, v3 = v0;
+    idx j = 0;
+    for (; j + 8 <= len; j += 8) {
+        simd::v8d x = load8(a + j);
+        v0 += x * load8(r0 + j);
+        v1 += x * load8(r1 + j);
+        v2 += x * load8(r2 + j);
+        v3 += x * load8(r3 + j);
+    }
+    double s[4][8];
+    simd::store8(s[0], v0);
+    simd::store8(s[1], v1);
+    simd::store8(s[2], v2);
+    simd::store8(s[3], v3);
+    for (; j < len; ++j) {
+        s[0][0] += a[j] * r0[j];
+        s[1][0] += a[j] * r1[j];
+        s[2][0] += a[j] * r2[j];
+        s[3][0] += a[j] * r3[j];
+    }
+    for (int q = 0; q < 4; ++q)
+        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
+                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
+#else
+    out[0] = dot_lanes(a, r0, len);
+    out[1] = dot_lanes(a, r1, len);
+    out[2] = dot_lanes(a, r2, len);
+    out[3] = dot_lanes(a, r3, len);
+#endif
+}
+
+// The reflectors 0..p-1 (householder_apply's, in that order) applied to every row of X:
+// four rows at a time, each reflector's four sums in one pass (dot4_lanes), the rows in
+// cache through all p reflectors. Each row gets householder_apply's operations exactly.
+LEMKE_CLONES
+void householder_rows(Mat<const double> V, const double* beta, idx p, Mat<double> X) {
+    idx n = V.cols;
+    idx i = 0;
+    for (; i + 4 <= X.rows; i += 4) {
+        double* r[4] = {X.row(i), X.row(i + 1), X.row(i + 2), X.row(i + 3)};
+        for (idx k = 0; k < p; ++k) {
+            const double* v = V.row(k) + k;
+            double d[4];
+            dot4_lanes(v, r[0] + k, r[1] + k, r[2] + k, r[3] + k, n - k, d);
+            for (int q = 0; q < 4; ++q) {
+                double s = beta[k] * d[q];
+                double* rq = r[q] + k;
+                if (s != 0.0)
+                    for (idx t = 0; t < n - k; ++t) rq[t] -= s * v[t];
+            }
+        }
+    }
+    for (; i < X.rows; ++i) {
+        double* x = X.row(i);
+        for (idx k = 0; k < p; ++k) {
+            const double* v = V.row(k) + k;
+            double* rr = x + k;
+            double s = beta[k] * dot_lanes(v, rr, n - k);
+            if (s != 0.0)
+                for (idx t = 0; t < n - k; ++t) rr[t] -= s * v[t];
+        }
+    }
+}
+
+// The multiplier matrix M = F2 F2' (F2 = C[:, p:]): M[i, j] = M[j, i] = dot(F2i, F2j) for
+// j <= i, rows [i0, i1) (solve's loop, in blocks between its deadline checks).
+LEMKE_CLONES
+void gram_rows(Mat<const double> C, idx p, idx i0, idx i1, Mat<double> M) {
+    idx r = C.cols - p;
+    for (idx i = i0; i < i1; ++i) {
+        const double* F2i = C.row(i) + p;
+        double* Mi = M.row(i);
+        idx j = 0;
+        for (; j + 4 <= i + 1; j += 4)
+            dot4_lanes(F2i, C.row(j) + p, C.row(j + 1) + p, C.row(j + 2) + p, C.row(j + 3) + p, r,
+                       Mi + j);
+        for (; j <= i; ++j) Mi[j] = dot_lanes(F2i, C.row(j) + p, r);
+        for (idx j = 0; j < i; ++j) M(j, i) = Mi[j];
+    }
+}
+
+// screen's symmetric part: Ps = (P + P')/2 (each entry 0.5 (P_ij + P_ji), the same bits as
+// 0.5 (P_ji + P_ij)); returns max |P_ij - P_ji| (a maximum, exact in any order; NaN entries
+// are screen's to refuse). By 8 x 8 tiles of the lower triangle, each with its mirror tile
+// transposed in registers (the maximum was one chain of dependent comparisons, and the
+// mirror's entries strided loads); the edges that are no whole tile one entry at a time.
+LEMKE_CLONES
+double symmetrize(Mat<const double> P, Mat<double> Ps) {
+    idx n = P.rows;
+    double asym = 0.0;
+    idx nt = n - n % 8;
+#ifdef LEMKE_SIMD
+    using simd::v8d;
+    v8d am = simd::splat8(0.0);
+    // the 8 x 8 transpose of rows c[0..7], in three rounds of two-vector shuffles
+    auto transpose = [](v8d* c) {
+        v8d t[8];
+        for (int k = 0; k < 8; k += 2) {
+            t[k] = LEMKE_SHUFFLE8(c[k], c[k + 1], 0, 8, 2, 10, 4, 12, 6, 14);
+            t[k + 1] = LEMKE_SHUFFLE8(c[k], c[k + 1], 1, 9, 3, 11, 5, 13, 7, 15);
+        }
+        for (int k = 0; k < 8; k += 4)
+            for (int h = 0; h < 2; ++h) {
+                c[k + h] = LEMKE_SHUFFLE8(t[k + h], t[k + h + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+                c[k + h + 2] = LEMKE_SHUFFLE8(t[k + h], t[k + h + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+            }
+        for (int h = 0; h < 4; ++h) {
+            t[h] = LEMKE_SHUFFLE8(c[h], c[h + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+            t[h + 4] = LEMKE_SHUFFLE8(c[h], c[h + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+        }
+        for (int k = 0; k < 8; ++k) c[k] = t[k];
+    };
+    for (idx i0 = 0; i0 < nt; i0 += 8)
+        for (idx j0 = 0; j0 <= i0; j0 += 8) {
+            v8d a[8], c[8];
+            for (int k = 0; k < 8; ++k) {
+                a[k] = simd::load8(P.row(i0 + k) + j0);  // P[i0 + k, j0 + l]
+                c[k] = simd::load8(P.row(j0 + k) + i0);  // P[j0 + k, i0 + l]
+            }
+            transpose(c);  // c[k][l] = P[j0 + l, i0 + k]
+            for (int k = 0; k < 8; ++k) {
+                am = simd::max8(am, simd::abs8(a[k] - c[k]));
+                a[k] = simd::splat8(0.5) * (a[k] + c[k]);  // Ps[i0 + k, j0 + l]
+                simd::store8(Ps.row(i0 + k) + j0, a[k]);
+            }
+            transpose(a);  // a[k][l] = Ps[i0 + l, j0 + k]
+            for (int k = 0; k < 8; ++k) simd::store8(Ps.row(j0 + k) + i0, a[k]);
+        }
+    for (int l = 0; l < 8; ++l) asym = pmax(asym, am[l]);
+#else
+    nt = 0;
+#endif
+    // the rest: rows i >= nt against every column j <= i
+    for (idx i = nt; i < n; ++i)
+        for (idx j = 0; j <= i; ++j) {
+            double a = P(i, j), c = P(j, i);
+            asym = pmax(asym, std::fabs(a - c));
+            Ps(i, j) = 0.5 * (a + c);
+            Ps(j, i) = Ps(i, j);
+        }
+    return asym;
 }
 
 // ----------------------------------------------------------------------------- compensated sums
@@ -370,10 +540,11 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     }
     forward(L, c);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
-    for (idx k = 0; k < p; ++k) {
+    for (idx k = 0; k < p; ++k) householder_apply(w.V, w.beta, k, c);
+    // (C's rows in blocks of 32, the thread's deadline looked at between them)
+    for (idx i0 = 0; i0 < m && p > 0; i0 += 32) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
-        householder_apply(w.V, w.beta, k, c);
-        for (idx i = 0; i < m; ++i) householder_apply(w.V, w.beta, k, R.C.row(i));
+        householder_rows(w.V, w.beta, p, Mat<double>(R.C.row(i0), std::min<idx>(32, m - i0), n));
     }
     lcp_rhs(R, w, n);
     return OK;
@@ -455,11 +626,16 @@ bool screen_vectors(const Data& dt, double* lo, double* up) {
     return screen_bounds(dt, lo, up);
 }
 
+// (scr: the buffer that holds ds.P when it is screen's, taken over instead of copied; ds's
+// pointers stay valid, in w.keyPs now)
 void remember(const Data& dt, const Data& ds, const double* lo, const double* up, QPWork& w,
-              idx m_g) {
+              idx m_g, std::vector<double>& scr) {
     idx n = dt.n();
     w.keyP.assign(dt.P.p, dt.P.p + n * n);
-    w.keyPs.assign(ds.P.p, ds.P.p + n * n);
+    if (ds.P.p == scr.data())
+        std::swap(w.keyPs, scr);
+    else
+        w.keyPs.assign(ds.P.p, ds.P.p + n * n);
     w.keyA.assign(dt.A.p, dt.A.p + dt.p0() * n);
     w.keyG.assign(dt.G.p, dt.G.p + dt.m0() * n);
     structure(dt, lo, up, w.keyPat);
@@ -905,17 +1081,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
 LEMKE_CLONES
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
-    const double* rr[4] = {r0, r1, r2, r3};
-    double s[4][8] = {};
-    idx j = 0;
-    for (; j + 8 <= len; j += 8)
-        for (int q = 0; q < 4; ++q)
-            for (int l = 0; l < 8; ++l) s[q][l] += a[j + l] * rr[q][j + l];
-    for (; j < len; ++j)
-        for (int q = 0; q < 4; ++q) s[q][0] += a[j] * rr[q][j];
-    for (int q = 0; q < 4; ++q)
-        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
-                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
+    dot4_lanes(a, r0, r1, r2, r3, len, out);
 }
 
 LEMKE_CLONES
@@ -929,7 +1095,7 @@ void forward_rows(Mat<const double> L, Mat<double> R) {
         for (idx j = s; j < n; ++j) {
             const double* Lj = L.row(j);
             double d[4];
-            dot4(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
+            dot4_lanes(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
             double inv = 1.0 / Lj[j];
             r0[j] = (r0[j] - d[0]) * inv;
             r1[j] = (r1[j] - d[1]) * inv;
@@ -967,23 +1133,16 @@ double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     return p ? worst : INF;
 }
 
+// (cloned: absmax's and all_finite's eight-lane vectors, lowered to SSE2 by the default
+// build, went through the stack: 30 us of a 200 us solve at n = 100)
+LEMKE_CLONES
 bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     idx n = dt.n();
     Mat<double> Ps(Ps_, n, n);
     bool finite = all_finite(dt.q, n);
     finite &= all_finite(dt.P.p, n * n);
     double top = absmax(dt.P.p, n * n);
-    double asym = 0.0;
-    const idx B = 32;
-    for (idx i0 = 0; i0 < n; i0 += B)
-        for (idx j0 = 0; j0 < i0 + 1; j0 += B)
-            for (idx i = i0; i < std::min(i0 + B, n); ++i)
-                for (idx j = j0; j < std::min(j0 + B, i + 1); ++j) {
-                    double a = dt.P(i, j), c = dt.P(j, i);
-                    asym = pmax(asym, std::fabs(a - c));
-                    Ps(i, j) = 0.5 * (a + c);
-                    Ps(j, i) = Ps(i, j);
-                }
+    double asym = symmetrize(dt.P, Ps);
     idx m0 = dt.m0();
     finite &= all_finite(dt.G.p, m0 * n);
     for (idx i = 0; i < m0; ++i)
@@ -995,6 +1154,11 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     return screen_bounds(dt, lo, up);
 }
 
+// Row by row (L's row i from rows < i), each entry in dot's fixed order; the rows in panels
+// of four, whose entries left of the panel are four independent chains (one row alone is a
+// chain of dependent dots and divisions: latency-bound, 2-3x slower at n = 100). The panel
+// is built aside and copied row by row, so that on failure L holds what the row-by-row
+// loop wrote: the rows above the failing one, its entries left of the diagonal.
 LEMKE_CLONES
 bool cholesky(Mat<const double> P, Mat<double> L) {
     idx n = P.rows;
@@ -1002,16 +1166,45 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
     for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
     double floor = DEFINITE_TOL * top;
     if (!(top > 0.0)) return false;
-    for (idx i = 0; i < n; ++i) {
+    thread_local std::vector<double> panel;
+    panel.resize(static_cast<std::size_t>(4 * n));
+    double* R[4] = {panel.data(), panel.data() + n, panel.data() + 2 * n, panel.data() + 3 * n};
+    for (idx i0 = 0; i0 < n; i0 += 4) {
+        idx c = std::min<idx>(4, n - i0);
         // (the thread's deadline, every 32 rows: false then, and the callers ask
         // deadline_passed() before they read false as "not definite")
-        if ((i & 31) == 31 && deadline_passed() >= 0) return false;
-        double* Li = L.row(i);
-        for (idx j = 0; j < i; ++j) Li[j] = (P(i, j) - dot(Li, L.row(j), j)) / L(j, j);
-        double d = P(i, i) - dot(Li, Li, i);
-        if (!(d > floor)) return false;
-        Li[i] = std::sqrt(d);
-        for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
+        if ((i0 & 31) == 28 && deadline_passed() >= 0) return false;
+        if (c == 4) {
+            const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
+                         *P3 = P.row(i0 + 3);
+            for (idx j = 0; j < i0; ++j) {
+                const double* Lj = L.row(j);
+                double ljj = Lj[j], d[4];
+                dot4_lanes(Lj, R[0], R[1], R[2], R[3], j, d);
+                R[0][j] = (P0[j] - d[0]) / ljj;
+                R[1][j] = (P1[j] - d[1]) / ljj;
+                R[2][j] = (P2[j] - d[2]) / ljj;
+                R[3][j] = (P3[j] - d[3]) / ljj;
+            }
+        } else {
+            for (idx j = 0; j < i0; ++j) {
+                const double* Lj = L.row(j);
+                for (idx q = 0; q < c; ++q)
+                    R[q][j] = (P(i0 + q, j) - dot_lanes(R[q], Lj, j)) / Lj[j];
+            }
+        }
+        for (idx q = 0; q < c; ++q) {
+            idx i = i0 + q;
+            double* Ri = R[q];
+            for (idx j = i0; j < i; ++j)
+                Ri[j] = (P(i, j) - dot_lanes(Ri, R[j - i0], j)) / R[j - i0][j];
+            double d = P(i, i) - dot_lanes(Ri, Ri, i);
+            double* Li = L.row(i);
+            for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
+            if (!(d > floor)) return false;
+            Li[i] = Ri[i] = std::sqrt(d);
+            for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
+        }
     }
     return true;
 }
@@ -1255,19 +1448,14 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
             res.code = code;
             return res;
         }
-        idx r = n - p;
         if ((res.code = deadline_passed()) >= 0) return res;  // (after the factorizations)
         res.code = OK;
-        for (idx i = 0; i < m; ++i) {  // (a stop here leaves the cache empty: layout dropped it)
-            if ((i & 15) == 15 && (res.code = deadline_passed()) >= 0) return res;
-            const double* F2i = R.C.row(i) + p;
-            for (idx j = 0; j <= i; ++j) {
-                w.M(i, j) = dot(F2i, R.C.row(j) + p, r);
-                w.M(j, i) = w.M(i, j);
-            }
+        for (idx i0 = 0; i0 < m; i0 += 16) {  // (a stop here leaves the cache empty: layout dropped it)
+            if (i0 > 0 && (res.code = deadline_passed()) >= 0) return res;
+            gram_rows(R.C, p, i0, std::min<idx>(i0 + 16, m), w.M);
         }
         if ((res.code = deadline_passed()) >= 0) return res;
-        remember(dt, ds, lo, up, w, R.m_g);
+        remember(dt, ds, lo, up, w, R.m_g, scr);
         if ((res.code = deadline_passed()) >= 0) return res;
         res.code = OK;
     }

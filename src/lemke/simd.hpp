@@ -18,6 +18,7 @@ namespace simd {
 typedef double v8d __attribute__((vector_size(64)));
 typedef std::int64_t v8l __attribute__((vector_size(64)));
 typedef double v4d __attribute__((vector_size(32)));
+typedef std::int64_t v4l __attribute__((vector_size(32)));
 
 #define LEMKE_SIMD_INLINE inline __attribute__((always_inline))
 
@@ -27,14 +28,28 @@ LEMKE_SIMD_INLINE v8d load8(const double* p) {
     return v;
 }
 LEMKE_SIMD_INLINE void store8(double* p, v8d v) { __builtin_memcpy(p, &v, sizeof v); }
-LEMKE_SIMD_INLINE v8d splat8(double x) { return v8d{x, x, x, x, x, x, x, x}; }
+// x in every lane: a shuffle of lane 0, one broadcast (GCC built v8d{x, x, ...} from x by
+// one masked broadcast per lane, ten instructions, which costs in a loop over short rows).
+LEMKE_SIMD_INLINE v8d splat8(double x) {
+#if defined(__clang__)
+    return __builtin_shufflevector(v8d{x}, v8d{x}, 0, 0, 0, 0, 0, 0, 0, 0);
+#else
+    return __builtin_shuffle(v8d{x}, v8l{0, 0, 0, 0, 0, 0, 0, 0});
+#endif
+}
 LEMKE_SIMD_INLINE v4d load4(const double* p) {
     v4d v;
     __builtin_memcpy(&v, p, sizeof v);
     return v;
 }
 LEMKE_SIMD_INLINE void store4(double* p, v4d v) { __builtin_memcpy(p, &v, sizeof v); }
-LEMKE_SIMD_INLINE v4d splat4(double x) { return v4d{x, x, x, x}; }
+LEMKE_SIMD_INLINE v4d splat4(double x) {
+#if defined(__clang__)
+    return __builtin_shufflevector(v4d{x}, v4d{x}, 0, 0, 0, 0);
+#else
+    return __builtin_shuffle(v4d{x}, v4l{0, 0, 0, 0});
+#endif
+}
 // |x| lane by lane (the sign bit cleared, as std::fabs).
 LEMKE_SIMD_INLINE v8d abs8(v8d x) {
     const std::int64_t m = 0x7FFFFFFFFFFFFFFFLL;
@@ -42,6 +57,30 @@ LEMKE_SIMD_INLINE v8d abs8(v8d x) {
 }
 // pmax(a, b) lane by lane: b where b > a, else a (Python's max).
 LEMKE_SIMD_INLINE v8d max8(v8d a, v8d b) { return b > a ? b : a; }
+
+// The lanes of two vectors picked by constant indices (0-7: a's, 8-15: b's).
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
+#endif
+#endif
+#ifndef LEMKE_SHUFFLE8
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shuffle(a, b, ::lemke::simd::v8l{__VA_ARGS__})
+#endif
+
+// out[0..3] = ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7])) for the
+// lanes x of a, b, c, d: the eight running sums' pairwise order, the same additions, taken
+// by shuffles on whole vectors instead of lane by lane.
+LEMKE_SIMD_INLINE void hsum4(v8d a, v8d b, v8d c, v8d d, double* out) {
+    v8d ab = LEMKE_SHUFFLE8(a, b, 0, 8, 2, 10, 4, 12, 6, 14) +
+             LEMKE_SHUFFLE8(a, b, 1, 9, 3, 11, 5, 13, 7, 15);  // (a0+a1, b0+b1, a2+a3, ...)
+    v8d cd = LEMKE_SHUFFLE8(c, d, 0, 8, 2, 10, 4, 12, 6, 14) +
+             LEMKE_SHUFFLE8(c, d, 1, 9, 3, 11, 5, 13, 7, 15);
+    v8d h = LEMKE_SHUFFLE8(ab, cd, 0, 1, 8, 9, 4, 5, 12, 13) +
+            LEMKE_SHUFFLE8(ab, cd, 2, 3, 10, 11, 6, 7, 14, 15);  // halves: a, b, c, d
+    v8d s = h + LEMKE_SHUFFLE8(h, h, 4, 5, 6, 7, 0, 1, 2, 3);
+    for (int l = 0; l < 4; ++l) out[l] = s[l];
+}
 #endif
 
 }  // namespace simd

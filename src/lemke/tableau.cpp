@@ -25,7 +25,7 @@ void TableauWork::layout(idx size) {
 namespace {
 
 // t[j] += f * v[j] for j < m (eight lanes at a time, then one by one).
-inline void axpy(double* t, double f, const double* v, idx m) {
+LEMKE_ALWAYS_INLINE void axpy(double* t, double f, const double* v, idx m) {
     idx j = 0;
 #ifdef LEMKE_SIMD
     simd::v8d vf = simd::splat8(f);
@@ -39,12 +39,61 @@ inline void axpy(double* t, double f, const double* v, idx m) {
     for (; j < m; ++j) t[j] += f * v[j];
 }
 
-// The pivot row's rhs and magb (pivot_now and pivot_delayed alike): rr, mr their new values.
-inline void pivot_rhs_row(double* rhs, double* magb, idx r, double inv, double& rr, double& mr) {
-    rhs[r] = -rhs[r] * inv;
-    rr = rhs[r];
-    magb[r] *= std::fabs(inv);
-    mr = magb[r];
+// The rows count of T from ti (stride ld) updated by the pivot row prow (m columns), their
+// factors in col and their rhs, magb, col_next entries at the same offsets; a template per
+// kept vector, so that the loop carries no test and few values (with more, GCC kept some
+// on the stack, and a load from the stack each row waited on the row's stores whenever its
+// address matched one of theirs modulo 4096, which depended on where the stack lay: the
+// same solve took 2.9 or 4.9 us from one process to the next at n = 24).
+template <bool RHS, bool MAGB, bool NEXT>
+LEMKE_ALWAYS_INLINE void update_rows(double* ti, idx ld, idx m, idx count, const double* col, double* rhs,
+                        double* magb, double* col_next, const double* prow, idx s, idx s_next,
+                        double inv, double rr, double mr) {
+    double pn = NEXT ? prow[s_next] : 0.0;
+    for (idx c = 0; c < count; ++c, ti += ld) {
+        double f = col[c];
+        // col_next: the entry s_next after the update, computed before the row's vector
+        // loop by that loop's operation (t + f v) rather than read back after its stores
+        double next = NEXT ? ti[s_next] : 0.0;
+        if (f != 0.0) {
+            if (NEXT) next = next + f * pn;
+            if (RHS) rhs[c] += f * rr;
+            if (MAGB) magb[c] += std::fabs(f) * mr;
+            axpy(ti, f, prow, m);
+            ti[s] = f * inv + f * 0.0;
+        } else {
+            ti[s] = f * inv;
+        }
+        if (NEXT) col_next[c] = next;
+    }
+}
+
+template <bool RHS, bool MAGB, bool NEXT>
+LEMKE_ALWAYS_INLINE void update_all(const Mat<double>& T, idx r, const double* col, double* rhs, double* magb,
+                       double* col_next, const double* prow, idx s, idx s_next, double inv,
+                       double rr, double mr) {
+    idx m = T.ld;
+    update_rows<RHS, MAGB, NEXT>(T.row(0), T.ld, m, r, col, rhs, magb, col_next, prow, s,
+                                 s_next, inv, rr, mr);
+    idx r1 = r + 1;
+    update_rows<RHS, MAGB, NEXT>(T.row(0) + r1 * T.ld, T.ld, m, T.rows - r1, col + r1,
+                                 RHS ? rhs + r1 : rhs, MAGB ? magb + r1 : magb,
+                                 NEXT ? col_next + r1 : col_next, prow, s, s_next, inv, rr, mr);
+    if (NEXT) col_next[r] = prow[s_next];  // (row r is prow but for column s)
+}
+
+// The pivot row's rhs and magb entries (pivot_now and pivot_delayed alike; either may be
+// nullptr: not kept): rr, mr get their new values (0 when not kept).
+LEMKE_ALWAYS_INLINE void pivot_row_values(double* rhs, double* magb, idx r, double inv, double& rr,
+                                          double& mr) {
+    if (rhs) {
+        rhs[r] = -rhs[r] * inv;
+        rr = rhs[r];
+    }
+    if (magb) {
+        magb[r] *= std::fabs(inv);
+        mr = magb[r];
+    }
 }
 
 }  // namespace
@@ -52,7 +101,7 @@ inline void pivot_rhs_row(double* rhs, double* magb, idx r, double inv, double& 
 LEMKE_CLONES
 void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, const double* col,
                double* prow, idx s_next, double* col_next) {
-    idx n = T.rows, m = T.ld;
+    idx m = T.ld;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
     for (idx j = 0; j < m; ++j) {
@@ -62,23 +111,17 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
     }
     tr[s] = inv;
     double rr = 0.0, mr = 0.0;
-    if (rhs) pivot_rhs_row(rhs, magb, r, inv, rr, mr);
-    for (idx i = 0; i < n; ++i) {
-        double* ti = T.row(i);
-        if (i != r) {
-            double f = col[i];
-            if (f != 0.0) {
-                if (rhs) {
-                    rhs[i] += f * rr;
-                    magb[i] += std::fabs(f) * mr;
-                }
-                axpy(ti, f, prow, m);
-                ti[s] = f * inv + f * 0.0;
-            } else {
-                ti[s] = f * inv;
-            }
-        }
-        if (s_next >= 0) col_next[i] = ti[s_next];
+    pivot_row_values(rhs, magb, r, inv, rr, mr);
+    bool next = s_next >= 0;
+    if (rhs && magb) {
+        if (next) update_all<true, true, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        else update_all<true, true, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+    } else if (rhs) {
+        if (next) update_all<true, false, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        else update_all<true, false, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+    } else {
+        if (next) update_all<false, false, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        else update_all<false, false, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
     }
 }
 
@@ -185,7 +228,7 @@ void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
     prow[s] = inv;
     for (idx j = 0; j < m; ++j) tr[j] = prow[j];
     double rr = 0.0, mr = 0.0;
-    if (rhs) pivot_rhs_row(rhs, magb, r, inv, rr, mr);
+    pivot_row_values(rhs, magb, r, inv, rr, mr);
     for (idx p = 0; p < k; ++p) {
         P.U[p * n + r] = 0.0;
         P.V[p * m + s] = 0.0;
@@ -195,9 +238,9 @@ void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
         P.U[k * n + i] = f;
         if (i != r) {
             T(i, s) = f * inv;
-            if (rhs && f != 0.0) {
-                rhs[i] += f * rr;
-                magb[i] += std::fabs(f) * mr;
+            if (f != 0.0) {
+                if (rhs) rhs[i] += f * rr;
+                if (magb) magb[i] += std::fabs(f) * mr;
             }
         }
     }
@@ -261,7 +304,9 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     idx n = w.n;
     idx artificial = 2 * n;
     Mat<double> T = w.T();
-    double *rhs = w.rhs(), *col = w.col(), *col_next = w.col2(), *q0 = w.q0(), *magb = w.magb(), *mags = w.mags();
+    double *rhs = w.rhs(), *col = w.col(), *col_next = w.col2(), *q0 = w.q0(), *mags = w.mags();
+    // the rows' running bounds |B^-1| |q| serve only the careful run's sizes (careful_sizes)
+    double* magb = careful ? w.magb() : nullptr;
     double *prow = w.prow(), *keys = w.keys();
     idx *basis = w.basis(), *nonbasic = w.nonbasic(), *pos = w.pos();
     idx *start_basis = w.start_basis(), *cand = w.cand();
@@ -291,9 +336,11 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     for (idx i = 0; i < n; ++i) h ^= label_key(basis[i]);
     Detector detector;
     double z0_max = 0.0;
-    for (idx i = 0; i < n; ++i) {
-        q0[i] = rhs[i];
-        magb[i] = std::fabs(rhs[i]);
+    if (careful) {
+        for (idx i = 0; i < n; ++i) {
+            q0[i] = rhs[i];
+            magb[i] = std::fabs(rhs[i]);
+        }
     }
     Poll poll;
     std::int64_t work = n * (n + 1);

@@ -45,7 +45,8 @@ struct TableauWork {
 
 // The pivot on row r and column s of T (entering column in col, prow: scratch of T.ld),
 // rhs and magb updated with it (the same operations in the same order as the goldens
-// record; rhs = nullptr: neither is kept, magb unused, as the box engine needs neither). The row updates run over T.ld columns: padding columns past T.cols are updated
+// record; rhs = nullptr: rhs not kept, magb = nullptr: magb not kept -- the box engine
+// keeps neither, a run that is not careful only rhs, magb serving careful_sizes alone). The row updates run over T.ld columns: padding columns past T.cols are updated
 // too (values nobody reads), each column on its own, so the bits of the others are those of
 // the scalar loop. With s_next >= 0 (not s), col_next gets the column s_next after the pivot,
 // read as each row is done. Also the box LCP engine's pivot (boxed.cpp).
@@ -82,7 +83,7 @@ void pending_column(Mat<double> T, const Pending& P, idx s, double* col);
 void flush(Mat<double> T, Pending& P);
 
 // The pivot on row r and column s with P.k pivots pending: the pivot row and column made
-// exact in T (and rhs, magb with it; rhs = nullptr: neither, as pivot_now), the rank-one
+// exact in T (and rhs, magb with it; either nullptr: not kept, as in pivot_now), the rank-one
 // update kept pending; flushed when P.b are. The same bits as pivot_now once flushed.
 void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
                    double* prow, Pending& P);

@@ -1,6 +1,7 @@
 #include "unrevised.hpp"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "multiversion.hpp"
 #include "tableau.hpp"
@@ -11,9 +12,13 @@ void UnrevisedWork::layout(idx size, idx block_max, idx a_cols) {
     n = size;
     kmax = block_max;
     acols = a_cols;
-    f.resize(static_cast<std::size_t>(n * acols + n + n * kmax + kmax * kmax + 15 * n +
+    ld = (kmax + 7) / 8 * 8;
+    nv = (n + 8) / 8 * 8;  // (n + 1: rv, rc, ratios, keys have a row for z0)
+    f.resize(static_cast<std::size_t>(7 + (n + kmax) * ld + 16 * nv + n * acols + n +
                                       4 * kmax + 1));
-    i.resize(static_cast<std::size_t>(6 * n + 1 + kmax + 1));
+    auto at = reinterpret_cast<std::uintptr_t>(f.data());
+    off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
+    i.resize(static_cast<std::size_t>(5 * n + 2 + kmax));
     flags.resize(static_cast<std::size_t>(n + 1));
 }
 
@@ -26,42 +31,136 @@ constexpr double UPDATE_PIVOT = 1e-13;  // an update's pivot at or below this: r
 
 // G[r, :k] += a[r] x[:k] for every r < k (but those with a[r] == 0 when skip_zero)
 // (unrevised.add_rows). Compiled per instruction set: with the row products, the update of
-// G is a pivot's O(k^2) part.
+// G is a pivot's O(k^2) part. Four rows at a time share x's loads (each entry's operation
+// is its own: the same bits).
 LEMKE_CLONES
 void add_rows(Mat<double> G, idx k, const double* a, const double* x, bool skip_zero) {
+    idx rows[4];
+    int nr = 0;
     for (idx r = 0; r < k; ++r) {
-        double f = a[r];
-        if (f != 0.0 || !skip_zero) {
-            double* g = G.row(r);
-            for (idx c = 0; c < k; ++c) g[c] += f * x[c];
+        if (a[r] == 0.0 && skip_zero) continue;
+        rows[nr++] = r;
+        if (nr < 4) continue;
+        nr = 0;
+        double f0 = a[rows[0]], f1 = a[rows[1]], f2 = a[rows[2]], f3 = a[rows[3]];
+        // (four distinct rows of G, none of them x: no store reaches a load of another)
+        double *__restrict g0 = G.row(rows[0]), *__restrict g1 = G.row(rows[1]),
+                           *__restrict g2 = G.row(rows[2]), *__restrict g3 = G.row(rows[3]);
+        for (idx c = 0; c < k; ++c) {
+            double v = x[c];
+            g0[c] += f0 * v;
+            g1[c] += f1 * v;
+            g2[c] += f2 * v;
+            g3[c] += f3 * v;
+        }
+    }
+    for (int t = 0; t < nr; ++t) {
+        double f = a[rows[t]];
+        double* g = G.row(rows[t]);
+        for (idx c = 0; c < k; ++c) g[c] += f * x[c];
+    }
+}
+
+// add_rows, then out[r] = dot_lanes(G.row(r), y, ky) for every r < k (the rows add_rows
+// skips too; G.cols >= ky): the next direction's G y (matvec's numbers, as matvec would take
+// them after the update) while the rows are in cache.
+LEMKE_CLONES
+void add_rows_dot(Mat<double> G, idx k, const double* a, const double* __restrict x,
+                  bool skip_zero, const double* y, idx ky, double* out) {
+    idx r = 0;
+    for (; r < k; r += 4) {
+        idx end = r + 4 < k ? r + 4 : k;
+        for (idx t = r; t < end; ++t) {
+            double f = a[t];
+            if (f != 0.0 || !skip_zero) {
+                double* g = G.row(t);
+                for (idx c = 0; c < k; ++c) g[c] += f * x[c];
+            }
+        }
+        if (end == r + 4) {
+            const double* rows[4] = {G.row(r), G.row(r + 1), G.row(r + 2), G.row(r + 3)};
+            dot_lanes4(rows, y, ky, out + r);
+        } else {
+            for (idx t = r; t < end; ++t) out[t] = dot_lanes(G.row(t), y, ky);
         }
     }
 }
 
-// out[:k] = x[:k] G[:k, :k], row by row of G (unrevised._row_times).
+// out[:k] = x[:k] G[:k, :k], row by row of G (unrevised._row_times): out[c] gets the terms
+// x[p] G[p, c] of the rows with x[p] != 0 in increasing p, four rows a pass (the same sums
+// in the same order, out read and written once a pass instead of once a row).
 LEMKE_CLONES
-void row_times(const double* x, Mat<const double> G, idx k, double* out) {
+void row_times(const double* x, Mat<const double> G, idx k, double* __restrict out) {
     for (idx c = 0; c < k; ++c) out[c] = 0.0;
+    idx rows[4];
+    int nr = 0;
     for (idx p = 0; p < k; ++p) {
-        double xp = x[p];
-        if (xp != 0.0) {
-            const double* g = G.row(p);
-            for (idx c = 0; c < k; ++c) out[c] += xp * g[c];
+        if (x[p] == 0.0) continue;
+        rows[nr++] = p;
+        if (nr < 4) continue;
+        nr = 0;
+        double x0 = x[rows[0]], x1 = x[rows[1]], x2 = x[rows[2]], x3 = x[rows[3]];
+        const double *g0 = G.row(rows[0]), *g1 = G.row(rows[1]), *g2 = G.row(rows[2]),
+                     *g3 = G.row(rows[3]);
+        for (idx c = 0; c < k; ++c) {
+            double o = out[c];
+            o += x0 * g0[c];
+            o += x1 * g1[c];
+            o += x2 * g2[c];
+            o += x3 * g3[c];
+            out[c] = o;
         }
+    }
+    for (int t = 0; t < nr; ++t) {
+        double xp = x[rows[t]];
+        const double* g = G.row(rows[t]);
+        for (idx c = 0; c < k; ++c) out[c] += xp * g[c];
     }
 }
 
 // dwv[i] = base[i] + AB[i, :k] dz for the rows with a basic w (apos[i] < 0; base nullptr:
-// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row).
+// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row), four rows
+// at a time (dot_lanes4: dz's loads shared, each row's sums its own). The rows are listed
+// first, without a branch (n = 300: a solve 5 % faster than with a branch per row on apos;
+// n = 100: within the noise).
 LEMKE_CLONES
 void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos,
                   const double* base, double* dwv) {
-    for (idx i = 0; i < AB.rows; ++i) {
-        if (apos[i] >= 0) continue;
-        double d = dot_lanes(AB.row(i), dz, k);
-        dwv[i] = base ? base[i] + d : d;
+    constexpr idx CHUNK = 256;
+    idx rows[CHUNK];
+    const double* ptr[4];
+    double d[4];
+    idx n = AB.rows, i = 0;
+    while (i < n) {
+        idx nr = 0;
+        for (; i < n && nr < CHUNK; ++i) {
+            rows[nr] = i;
+            nr += apos[i] < 0 ? 1 : 0;
+        }
+        idx t = 0;
+        for (; t + 4 <= nr; t += 4) {
+            for (int l = 0; l < 4; ++l) ptr[l] = AB.row(rows[t + l]);
+            dot_lanes4(ptr, dz, k, d);
+            for (int l = 0; l < 4; ++l) {
+                idx r = rows[t + l];
+                dwv[r] = base ? base[r] + d[l] : d[l];
+            }
+        }
+        for (; t < nr; ++t) {
+            idx r = rows[t];
+            double dt = dot_lanes(AB.row(r), dz, k);
+            dwv[r] = base ? base[r] + dt : dt;
+        }
     }
 }
+
+// The pivot loop's steps are inlined into unrevised_lemke's instruction-set variants (a
+// copy of their own would be compiled for the baseline instruction set only).
+#if defined(__GNUC__)
+#define LEMKE_STEP inline __attribute__((always_inline))
+#else
+#define LEMKE_STEP inline
+#endif
 
 // One run's state: views of the workspace and the sizes (one run's locals).
 struct Run {
@@ -71,28 +170,27 @@ struct Run {
     const std::uint8_t* z_start;
     Mat<double> AB, G;
     double *zb, *wv, *dzb, *dw, *lz, *lw, *tmp, *tmp2, *row, *keys, *rv, *rc, *acol, *lcol,
-        *coef, *inv_work;
+        *coef, *ratios, *inv_work;
     double z0_max = 0.0;
-    idx *alist, *blist, *apos, *bpos, *cand, *rlab, *piv;
+    idx *alist, *blist, *apos, *bpos, *cand, *piv;
 
     Run(UnrevisedWork& w, const ColumnSource& s)
         : n(w.n), kmax(w.kmax), src(s), q(w.qs()), z_start(w.z_start()), AB(w.AB()), G(w.G()) {
         double** v[] = {&zb, &wv, &dzb, &dw, &lz, &lw, &tmp, &tmp2, &row, &keys, &rv, &rc,
-                        &acol, &lcol, &coef};
-        for (idx j = 0; j < 15; ++j) *v[j] = w.vec(j);
+                        &acol, &lcol, &coef, &ratios};
+        for (idx j = 0; j < 16; ++j) *v[j] = w.vec(j);
         inv_work = w.inv_work();
         alist = w.alist();
         blist = w.blist();
         apos = w.apos();
         bpos = w.bpos();
         cand = w.cand();
-        rlab = w.rlab();
         piv = w.piv();
     }
 
     // out = column e of A (e = n: the covering column). The one place that reads A: the
     // dense A, or with Fs, d (e = n) or the column Fs Fs[e]' of M (unrevised.fetch_column).
-    void fetch_column(idx e, double* out) const {
+    LEMKE_STEP void fetch_column(idx e, double* out) const {
         if (src.Fs.rows == 0) {
             for (idx i = 0; i < n; ++i) out[i] = src.A(i, e);
         } else if (e == n) {
@@ -104,7 +202,7 @@ struct Run {
         }
     }
 
-    void set_column(idx j, const double* col) const {
+    LEMKE_STEP void set_column(idx j, const double* col) const {
         for (idx r = 0; r < n; ++r) AB(r, j) = col[r];
     }
 
@@ -119,11 +217,11 @@ struct Run {
     }
 
     // wv = q + AB[:, :k] zb; the residual over alpha, row-wise relative (unrevised._all_w).
-    double all_w() const {
+    LEMKE_STEP double all_w() const {
         double res = 0.0;
         for (idx i = 0; i < n; ++i) {
             double mz, size;
-            row_dot_and_size(AB.row(i), zb, k, mz, size);
+            dot_and_size_lanes(AB.row(i), zb, k, mz, size);
             double w = q[i] + mz;
             wv[i] = w;
             if (apos[i] >= 0) {
@@ -135,9 +233,9 @@ struct Run {
     }
 
     // zb = -G q_alpha, every wv; one refinement when the residual is above RESIDUAL_TOL.
-    double basic_point() const {
+    LEMKE_STEP double basic_point() const {
         for (idx r = 0; r < k; ++r) tmp[r] = -q[alist[r]];
-        for (idx r = 0; r < k; ++r) zb[r] = dot(G.row(r), tmp, k);
+        matvec(G, k, tmp, zb);  // (each row by dot's sums)
         double res = all_w();
         if (res > RESIDUAL_TOL) {
             for (idx r = 0; r < k; ++r) tmp[r] = wv[alist[r]];
@@ -148,23 +246,26 @@ struct Run {
         return res;
     }
 
-    void advance(double t) const {
+    LEMKE_STEP void advance(double t) const {
         for (idx p = 0; p < k; ++p) zb[p] += t * dzb[p];
-        for (idx i = 0; i < n; ++i)
-            if (apos[i] < 0) wv[i] += t * dw[i];
+        // (a select, not a branch: a non-basic w's dw is stale and never kept)
+        for (idx i = 0; i < n; ++i) {
+            double v = wv[i], moved = v + t * dw[i];
+            wv[i] = apos[i] < 0 ? moved : v;
+        }
     }
 
-    void place(double t, idx entering) const {
+    LEMKE_STEP void place(double t, idx entering) const {
         if (entering >= n) zb[bpos[entering - n]] = t;
         else wv[entering] = t;
     }
 
     // How far the values are from the basis's, row by row relative (unrevised.drift).
-    double drift() const {
+    LEMKE_STEP double drift() const {
         double res = 0.0;
         for (idx i = 0; i < n; ++i) {
             double mz, size;
-            row_dot_and_size(AB.row(i), zb, k, mz, size);
+            dot_and_size_lanes(AB.row(i), zb, k, mz, size);
             size += std::fabs(q[i]);
             double w = q[i] + mz - (apos[i] < 0 ? wv[i] : 0.0);
             if (std::fabs(w) > res * size) res = std::fabs(w) / size;
@@ -174,7 +275,7 @@ struct Run {
 
     // The change of every basic variable per unit of the non-basic `label`: dz (k, beta
     // order), dwv (n, at the basic w's). col: label's column of A when it is a z (or z0).
-    void direction(const double* col, idx label, double* dz, double* dwv) const {
+    LEMKE_STEP void direction(const double* col, idx label, double* dz, double* dwv) const {
         if (label < n) {  // a w leaves zero: H dz = e_p
             idx p = apos[label];
             for (idx r = 0; r < k; ++r) dz[r] = G(r, p);
@@ -186,36 +287,40 @@ struct Run {
         }
     }
 
-    // The basic variables in pair order (z0 last) into rlab, rv, rc; returns how many.
-    idx gather() const {
-        idx m = 0;
-        for (idx i = 0; i < n + 1; ++i) {
-            if (bpos[i] >= 0) {
-                rlab[m] = n + i;
-                rv[m] = zb[bpos[i]];
-                rc[m] = dzb[bpos[i]];
-                ++m;
-            } else if (i < n && apos[i] < 0) {
-                rlab[m] = i;
-                rv[m] = wv[i];
-                rc[m] = dw[i];
-                ++m;
-            }
+    // Row i of the ratio test is pair i's basic variable (row n: z0), its value in rv and
+    // its change in rc; the one pair with neither basic gets 0 and 0 there, a row that never
+    // blocks (rc = 0 is neither below the ratio test's threshold nor above 0 for first_row),
+    // so the rows that can block are the basic variables in pair order. Selects, not
+    // branches: which of a pair is basic is unpredictable.
+    LEMKE_STEP void pairs() const {
+        for (idx i = 0; i < n; ++i) {
+            idx p = bpos[i];
+            bool z = p >= 0, basic = z || apos[i] < 0;
+            idx pz = z ? p : 0;
+            double v = z ? zb[pz] : wv[i], c = z ? dzb[pz] : dw[i];
+            rv[i] = basic ? v : 0.0;
+            rc[i] = basic ? c : 0.0;
         }
-        return m;
+        idx p = bpos[n];
+        rv[n] = p >= 0 ? zb[p] : 0.0;
+        rc[n] = p >= 0 ? dzb[p] : 0.0;
     }
 
-    // The leaving variable's position in (rlab, rv, rc), -1 when nothing blocks.
-    idx ratio_test(idx m, double pivot_tol, double tie_tol) {
-        idx art = 2 * n;
-        idx r_art = m > 0 && rlab[m - 1] == art ? m - 1 : -1;
+    // The basic variable of ratio-test row i.
+    LEMKE_STEP idx label(idx i) const { return i == n ? 2 * n : bpos[i] >= 0 ? n + i : i; }
+
+    // The leaving variable's row of the ratio test (pairs), -1 when nothing blocks.
+    LEMKE_STEP idx ratio_test(double pivot_tol, double tie_tol) {
+        idx m = n + 1;
+        idx r_art = bpos[n] >= 0 ? n : -1;
         if (r_art >= 0) z0_max = pmax(z0_max, rv[r_art]);
-        double cmax = 0.0;
-        for (idx i = 0; i < m; ++i) cmax = pmax(cmax, std::fabs(rc[i]));
-        idx nc = blocking_rows(rv, rv, rc, m, -pivot_tol * cmax, tie_tol, cand, r_art, z0_max);
+        double cmax = absmax(rc, m);  // (the scalar pmax's answer: NaNs never win either)
+        // the ratio test's vector passes pay from some 64 rows, as in tableau_lemke
+        idx nc = blocking_rows(rv, rv, rc, m, -pivot_tol * cmax, tie_tol, cand, r_art, z0_max,
+                               m >= 64 ? ratios : nullptr);
         if (nc <= 1) return nc == 1 ? cand[0] : -1;
         for (idx c = 0; c < nc; ++c)
-            if (rlab[cand[c]] == art) return cand[c];
+            if (cand[c] == r_art) return cand[c];
         // Column j of the basis inverse relative to the starting basis: the unit vector of
         // its pair-j variable when that is basic, else minus its direction.
         for (idx j = 0; j < n; ++j) {
@@ -227,7 +332,7 @@ struct Run {
                 direction(lcol, lab, lz, lw);
             }
             for (idx c = 0; c < nc; ++c) {
-                idx cl = rlab[cand[c]];
+                idx cl = label(cand[c]);
                 double b;
                 if (basic) b = cl == lab ? 1.0 : 0.0;
                 else b = -(cl >= n ? lz[bpos[cl - n]] : lw[cl]);
@@ -241,8 +346,10 @@ struct Run {
 
     // The index sets, AB and G for `entering` replacing `leaving` (one of four cases);
     // false when the update's pivot is too small to trust. Changes k where H grows or shrinks
-    // after the update (the caller's k += 1 / k -= 1).
-    bool update_basis(idx entering, idx leaving) {
+    // after the update (the caller's k += 1 / k -= 1). When a w leaves, the next entering
+    // variable is its z: its column goes to acol and its direction's G-part (matvec's
+    // G tmp) to dzb, taken with the update of G's rows (add_rows_dot), and `ready` is set.
+    LEMKE_STEP bool update_basis(idx entering, idx leaving, bool& ready) {
         if (entering >= n && leaving < n) {
             // z_e enters, w_i leaves: H gains row i and column e.
             idx e = entering - n, i = leaving;
@@ -252,14 +359,21 @@ struct Run {
                 coef[p] = -dzb[p] / s;
                 G(p, k) = dzb[p] / s;
             }
-            add_rows(G, k, coef, row, false);
+            // z_i enters next: -A[alpha, i] over the new alpha (alpha, then i)
+            fetch_column(i, lcol);
+            for (idx r = 0; r < k; ++r) tmp[r] = -lcol[alist[r]];
+            tmp[k] = -lcol[i];
+            add_rows_dot(G, k, coef, row, false, tmp, k + 1, dzb);
             for (idx c = 0; c < k; ++c) G(k, c) = -row[c] / s;
             G(k, k) = 1.0 / s;
+            dzb[k] = dot_lanes(G.row(k), tmp, k + 1);
             alist[k] = i;
             apos[i] = k;
             blist[k] = e;
             bpos[e] = k;
             set_column(k, acol);
+            std::swap(acol, lcol);
+            ready = true;
             return std::fabs(s) > UPDATE_PIVOT;
         }
         if (entering >= n) {
@@ -284,10 +398,15 @@ struct Run {
             double pv = row[p];
             row[p] -= 1.0;
             for (idx r = 0; r < k; ++r) coef[r] = -(dzb[r] / pv);
-            add_rows(G, k, coef, row, true);
+            // z_i enters next: -A[alpha, i] over the new alpha (i in place p)
+            fetch_column(i, lcol);
+            for (idx r = 0; r < k; ++r) tmp[r] = -lcol[r == p ? i : alist[r]];
+            add_rows_dot(G, k, coef, row, true, tmp, k, dzb);
             alist[p] = i;
             apos[j] = -1;
             apos[i] = p;
+            std::swap(acol, lcol);
+            ready = true;
             return std::fabs(pv) > UPDATE_PIVOT;
         }
         // w_j enters, z_l leaves: H loses row p and column m; the last row and column move
@@ -317,6 +436,7 @@ struct Run {
 
 }  // namespace
 
+LEMKE_CLONES
 Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots,
                        double pivot_tol, double tie_tol, double* x_out, double* ray_out,
                        std::uint8_t* z_basic_out, idx& pivots) {
@@ -353,27 +473,33 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
     for (idx i = 0; i < n; ++i) h ^= label_key(u.bpos[i] >= 0 ? n + i : i);
     Detector detector;
     Poll poll;
+    bool ready = false;
     std::int64_t work = n * (n + 1);
     while (pivots < max_pivots) {
         if (int stop = poll.tick(work); stop >= 0) {
             status = static_cast<Status>(stop);
             break;
         }
-        if (entering >= n) u.fetch_column(entering - n, u.acol);
-        u.direction(u.acol, entering, u.dzb, u.dw);
-        idx m = u.gather();
+        if (ready) {  // (update_basis took G's part; entering is a z)
+            basic_w_rows(u.AB, u.dzb, u.k, u.apos, u.acol, u.dw);
+        } else {
+            if (entering >= n) u.fetch_column(entering - n, u.acol);
+            u.direction(u.acol, entering, u.dzb, u.dw);
+        }
+        ready = false;
+        u.pairs();
         idx r, leaving;
         if (pivots == 0) {
             // z0 rises until every basic variable is >= 0.
-            r = first_row(u.rv, u.rc, m, tie_tol);
+            r = first_row(u.rv, u.rc, n + 1, tie_tol);
             if (r < 0) {
                 status = NUMERICAL_FAILURE;
                 break;
             }
-            leaving = u.rlab[r];
+            leaving = u.label(r);
         } else {
-            r = u.ratio_test(m, pivot_tol, tie_tol);
-            leaving = r >= 0 ? u.rlab[r] : -1;
+            r = u.ratio_test(pivot_tol, tie_tol);
+            leaving = r >= 0 ? u.label(r) : -1;
             if (leaving < 0) {
                 status = RAY_TERMINATION;
                 if (entering >= n) ray_out[entering - n] = 1.0;
@@ -392,7 +518,7 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
         }
         double t = -u.rv[r] / u.rc[r];
         u.advance(t);
-        bool ok = u.update_basis(entering, leaving);
+        bool ok = u.update_basis(entering, leaving, ready);
         if (entering >= n && leaving < n) u.k += 1;
         else if (entering < n && leaving >= n) u.k -= 1;
         u.place(t, entering);
@@ -411,6 +537,7 @@ Status unrevised_lemke(UnrevisedWork& w, const ColumnSource& src, idx max_pivots
             }
             since_refactor = 0;
             since_check = 0;
+            ready = false;  // (G is recomputed)
             if (u.k > 0 && !u.invert()) {
                 status = NUMERICAL_FAILURE;
                 break;

@@ -23,31 +23,34 @@ struct ColumnSource {
 };
 
 // The unrevised method's workspace, laid out once per size (one per thread, reused).
-// f:     A (n x acols: n + 1 dense, 1 factored) and qs (n): the scaled system;
-//        AB (n x kmax): AB[:, c] = A[:, blist[c]];  G (kmax x kmax): H^-1;
-//        15 vectors of n: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys, rv, rc, acol, lcol,
-//        coef;  then 4 kmax: invert_in_place's work.
-// i:     alist (n), blist (n), apos (n), bpos (n + 1), cand (n), rlab (n), piv (kmax).
+// f:     from `off` (the first 64-byte boundary): AB (n x ld): AB[:, c] = A[:, blist[c]];
+//        G (kmax x ld): H^-1; 16 vectors of nv: zb, wv, dzb, dw, lz, lw, tmp, tmp2, row, keys,
+//        rv, rc, acol, lcol, coef, ratios (the ratio test's vector passes); then A (n x acols:
+//        n + 1 dense, 1 factored) and qs (n): the scaled system; then 4 kmax:
+//        invert_in_place's work. ld = kmax and nv = n + 1 rounded up to a multiple of 8: the rows
+//        of AB and G and the vectors start on 64-byte boundaries (a row update's vector
+//        stores then never straddle two cache lines); the padding is never read.
+// i:     alist (n), blist (n), apos (n), bpos (n + 1), cand (n + 1), piv (kmax).
 // flags: z_start (n).
 struct UnrevisedWork {
     std::vector<double> f;
     std::vector<idx> i;
     std::vector<std::uint8_t> flags;
     idx n = -1, kmax = -1, acols = -1;
+    idx ld = 0, nv = 0, off = 0;
     void layout(idx size, idx block_max, idx a_cols);
-    Mat<double> A() { return Mat<double>(f.data(), n, acols); }
-    double* qs() { return f.data() + n * acols; }
-    Mat<double> AB() { return Mat<double>(qs() + n, n, kmax); }
-    Mat<double> G() { return Mat<double>(qs() + n + n * kmax, kmax, kmax); }
-    double* vec(idx which) { return qs() + n + n * kmax + kmax * kmax + which * n; }  // < 15
-    double* inv_work() { return vec(15); }
+    Mat<double> AB() { return Mat<double>(f.data() + off, n, kmax, ld); }
+    Mat<double> G() { return Mat<double>(f.data() + off + n * ld, kmax, kmax, ld); }
+    double* vec(idx which) { return f.data() + off + (n + kmax) * ld + which * nv; }  // < 16
+    Mat<double> A() { return Mat<double>(vec(16), n, acols); }
+    double* qs() { return vec(16) + n * acols; }
+    double* inv_work() { return qs() + n; }
     idx* alist() { return i.data(); }
     idx* blist() { return alist() + n; }
     idx* apos() { return blist() + n; }
     idx* bpos() { return apos() + n; }
     idx* cand() { return bpos() + n + 1; }
-    idx* rlab() { return cand() + n; }
-    idx* piv() { return rlab() + n; }
+    idx* piv() { return cand() + n + 1; }
     std::uint8_t* z_start() { return flags.data(); }
 };
 

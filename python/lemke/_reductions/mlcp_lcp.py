@@ -7,7 +7,7 @@ The mixed LCP in Siconos' form: find u (free, n of them) and v (m of them) with
 1. equilibrate E (row and column scaling; a pair's row and column get the same factor,
    which keeps v ⊥ w);
 2. exchange pivots make every u basic and every equation's slack non-basic
-   (``kernels.mlcp``, in the C++ core ``src/lemke/mlcp.cpp``): the free variables enter and
+   (the C++ core's ``src/lemke/mlcp.cpp``): the free variables enter and
    stay basic, never split into two signs;
 3. what is left is an LCP in the m pairs (some swapped: v_k basic, w_k the LCP's variable).
 
@@ -29,8 +29,7 @@ def equilibrate(E, n, iterations=10):
     """Scaling vectors ``(r, s)`` that bring every row and column of ``r E s`` near size 1
     (Ruiz's method): free rows and columns get their own factors, and a pair's row and
     column the same one, so that v ⊥ w is kept.  The sweeps run in the C++ core
-    (``mlcp_equilibrate``, the port of ``kernels.mlcp.equilibrate``: numpy's operations in
-    numpy's order, the same bits);
+    (``mlcp_equilibrate``: numpy's operations in numpy's order, the same bits);
     ``_equilibrate_numpy`` is the same in numpy, for the tests."""
     N = E.shape[0]
     r = np.ones(N)
@@ -181,7 +180,7 @@ def _all_but(n, drop):
 
 def refined_solve(K, rhs, steps=2, given=None, low=False):
     """Solve K x = rhs with iterative refinement whose residuals are summed in double-double
-    (``refined_solve`` of the C++ core, the port of ``kernels.linalg.refined_solve``: one LU
+    (``refined_solve`` of the C++ core, ``src/lemke/linalg.cpp``: one LU
     factorization on one thread, reused by every
     step; x carried in double-double, so that it comes out as the rounding of the exact
     solution): on a degenerate basis a variable that is zero comes out zero to the last
