@@ -510,9 +510,9 @@ void check_scales_in(Mat<const double> M, const double* q, const double* lo, con
 
 int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi) {
     idx n = M.rows;
-    double m_max;
-    bool finite = finite_absmax(M, m_max);
-    if (!(finite && all_finite(q, n))) return NOT_FINITE;
+    bool finite = all_finite(q, n);  // (M's largest entry is not needed here: not computed)
+    for (idx i = 0; i < n && finite; ++i) finite = all_finite(M.row(i), n);
+    if (!finite) return NOT_FINITE;
     for (idx i = 0; i < n; ++i) {
         if (!(lo[i] <= hi[i])) return (lo[i] != lo[i] || hi[i] != hi[i]) ? NOT_FINITE : BAD_BOUNDS;
         if (lo[i] == INF || hi[i] == -INF) return BAD_BOUNDS;
