@@ -67,24 +67,6 @@ Range payoff_range(Mat<const double> A) {
 
 double positive_scale(double lo, double hi) { return hi > lo ? pow2_scale(hi - lo) : 0.0; }
 
-// The pivots kept pending on one tableau (Lemke-Howson, from LH_DELAY_FROM entries on):
-// the current tableau is T + f_0 v_0 + f_1 v_1 + ..., row by row, the terms added in pivot
-// order and those with a zero factor skipped, as exchange's immediate updates do. fac + p
-// rows: pivot p's factors f_p (zero on its pivot row and on rows brought up to date);
-// prow + p ld: its pivot row v_p, zero in its own column and in later pivots' columns.
-// Pivot p's column is written in T at once: f * inv where the factor f is not zero (the
-// earlier pending terms there are then f_e * 0 = +-0, which leave a nonzero number as it
-// is); elsewhere the entry is a zero that exchange leaves as it is, its row brought up to
-// date first when it has pending terms (adding f_e * 0 could change the zero's sign). A
-// pivot with a factor that is not finite, or whose f * inv is 0, is done immediately.
-constexpr int LH_BLOCK = 4;
-struct Delayed {
-    int b = 0;  // the most pivots kept pending (0: every pivot immediate)
-    int k = 0;
-    double* fac = nullptr;
-    double* prow = nullptr;
-};
-
 // One condensed tableau and its labels (basic[i] = rhs[i] + sum_j T[i, j] nonbasic[j]);
 // magb: running bounds on the values' sizes; start: the labels basic at the start, row by
 // row (the lexicographic keys are relative to them); wlab, wcol: see row_size.
@@ -99,7 +81,6 @@ struct Tab {
     const idx* start;
     double* wlab;
     double* wcol;
-    Delayed d;
 };
 
 // The scratch that a pivot uses (col: the entering column; prow: the pivot row).
@@ -113,8 +94,7 @@ struct Scratch {
 };
 
 // games.exchange: the pivot on row r and column s (entering column in col). Rows whose
-// entry is zero are left alone, their entry s included (it keeps its sign of zero).
-// rows = false: only the pivot row, the values and the bounds (the rest kept pending). With
+// entry is zero are left alone, their entry s included (it keeps its sign of zero). With
 // `wlab` and `wcol`, magb[r] is first set to row r's size (row_size, summed in the same
 // order in the loop that reads the row for the pivot), as games.step does before its pivot.
 // The bounds magb are updated after the tableau (other arrays, the same operations), so
@@ -122,7 +102,7 @@ struct Scratch {
 LEMKE_CLONES
 void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
               double* prow, const idx* basis = nullptr, const double* wlab = nullptr,
-              const double* wcol = nullptr, bool rows = true) {
+              const double* wcol = nullptr) {
     idx n = T.rows, k = T.cols;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
@@ -150,7 +130,6 @@ void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const doub
         double f = col[i];
         if (i != r && f != 0.0) {
             rhs[i] += f * rr;
-            if (!rows) continue;
             double* ti = T.row(i);
             for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
             ti[s] = f * inv;
@@ -162,100 +141,6 @@ void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const doub
         double f = col[i];
         if (i != r && f != 0.0) magb[i] += std::fabs(f) * mr;
     }
-}
-
-// Row i brought up to date (its pending terms in one pass, each entry's in pivot order)
-// and its factors zeroed. Over the padded width: the padding of T's rows and of the pivot
-// rows is zero (tableau_setup, lh_path), so it stays +-0.
-LEMKE_ALWAYS_INLINE void flush_row(Mat<double> T, Delayed& d, idx i) {
-    double a[LH_BLOCK];
-    const double* v[LH_BLOCK];
-    int na = 0;
-    for (int p = 0; p < d.k; ++p) {
-        double& f = d.fac[p * T.rows + i];
-        if (f != 0.0) {
-            a[na] = f;
-            v[na++] = d.prow + p * T.ld;
-            f = 0.0;
-        }
-    }
-    if (na > 0) simd::add_terms_n(T.row(i), a, v, T.ld, na);
-}
-
-// Every pending pivot applied: the rows with b nonzero factors (most) in one pass of b
-// terms, the others by flush_row.
-LEMKE_CLONES
-void flush(Mat<double> T, Delayed& d) {
-    const double* v[LH_BLOCK];
-    for (int p = 0; p < LH_BLOCK; ++p) v[p] = d.prow + p * T.ld;
-    for (idx i = 0; i < T.rows; ++i) {
-        double a[LH_BLOCK];
-        bool all = d.k == LH_BLOCK;
-        for (int p = 0; p < LH_BLOCK; ++p) {
-            a[p] = p < d.k ? d.fac[p * T.rows + i] : 0.0;
-            all &= a[p] != 0.0;
-        }
-        if (all)
-            simd::add_terms<LH_BLOCK>(T.row(i), a, v, T.ld);
-        else
-            flush_row(T, d, i);
-    }
-    d.k = 0;
-}
-
-// Column s of the current tableau into col: a pending pivot at a time over all rows (each
-// entry's terms in pivot order; a zero factor's term is -0.0, which leaves any number as it
-// is, as flush skips it).
-LEMKE_CLONES
-void pending_column(Mat<double> T, const Delayed& d, idx s, double* col) {
-    idx n = T.rows;
-    for (idx i = 0; i < n; ++i) col[i] = T(i, s);
-    for (int p = 0; p < d.k; ++p) {
-        const double* u = d.fac + p * n;
-        double vp = d.prow[p * T.ld + s];
-        for (idx i = 0; i < n; ++i) {
-            double f = u[i];
-            double t = f * vp;
-            col[i] = col[i] + (f != 0.0 ? t : -0.0);
-        }
-    }
-}
-
-// games.exchange on row r and column s kept pending (see Delayed; flushed when b are).
-// prow: exchange's scratch, for a pivot done immediately.
-LEMKE_CLONES
-void exchange_delayed(Tab& t, idx r, idx s, const double* col, double* prow) {
-    Delayed& d = t.d;
-    Mat<double> T = t.T;
-    idx n = T.rows;
-    double inv = 1.0 / col[r];
-    flush_row(T, d, r);
-    // Column s written (harmless if the pivot is then done immediately: exchange writes
-    // it again), the zeros' rows brought up to date, pivot k's factors kept.
-    bool exact = true;
-    double* u = d.fac + d.k * n;
-    for (idx i = 0; i < n; ++i) {
-        double f = col[i];
-        u[i] = f;
-        if (i == r) continue;
-        if (f != 0.0) {
-            double e = f * inv;
-            exact &= std::fabs(f) < INF && e != 0.0;
-            T(i, s) = e;
-        } else if (d.k > 0) {
-            flush_row(T, d, i);
-        }
-    }
-    u[r] = 0.0;
-    if (!exact) {
-        flush(T, d);
-        exchange(T, t.rhs, t.magb, r, s, col, prow, t.basis, t.wlab, t.wcol);
-        return;
-    }
-    double* v = d.prow + d.k * T.ld;
-    exchange(T, t.rhs, t.magb, r, s, col, v, t.basis, t.wlab, t.wcol, false);
-    for (int p = 0; p <= d.k; ++p) d.prow[p * T.ld + s] = 0.0;
-    if (++d.k == d.b) flush(T, d);
 }
 
 // games.binv: entry i of the basis inverse's column for the label lab basic at the start.
@@ -370,15 +255,10 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     double* col = w.col;
     double cmax = 0.0;
     bool sized = false;
-    const double* T = t.T.p + s;
+    const double* T = t.T.p;
     idx ld = t.T.ld;
-    if (t.d.k > 0) {
-        pending_column(t.T, t.d, s, col);
-        T = col;
-        ld = 1;
-    }
     for (idx i = 0; i < rows; ++i) {
-        double v = T[i * ld];
+        double v = T[i * ld + s];
         col[i] = v;
         cmax = pmax(cmax, std::fabs(v));
         double b = t.rhs[i];
@@ -386,12 +266,10 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     }
     idx r;
     if (has_free || art >= 0 || sized) {
-        if (t.d.k > 0) flush(t.T, t.d);  // the rows' sizes and the keys read the tableau
         r = leaving_row(t, col, has_free, free, art, z0_max, pivot_tol, tie_tol, w);
     } else {
         idx nc = plain_blocking_rows(t.rhs, col, rows, -pivot_tol * cmax, tie_tol, w.cand,
                                      w.mags);
-        if (nc != 1 && t.d.k > 0) flush(t.T, t.d);
         r = nc == 1 ? w.cand[0]
                     : lex_break(t.T, col, t.pos, t.inb, t.start, art, pivot_tol, tie_tol, w.cand,
                                 w.keys, nc);
@@ -400,10 +278,7 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     if (r >= 0 && !(std::fabs(col[r]) < INF)) {
         leaving = -2;
     } else if (r >= 0) {
-        if (t.d.b > 1)
-            exchange_delayed(t, r, s, col, w.prow);
-        else  // row_size too
-            exchange(t.T, t.rhs, t.magb, r, s, col, w.prow, t.basis, t.wlab, t.wcol);
+        exchange(t.T, t.rhs, t.magb, r, s, col, w.prow, t.basis, t.wlab, t.wcol);  // row_size too
         leaving = swap_labels(t.basis, t.nonbasic, t.pos, t.inb, r, s);
         t.wcol[s] = t.wlab[leaving];
     }
@@ -549,18 +424,10 @@ struct LHViews {
 constexpr idx ALIGN = 8;  // doubles
 inline idx padded(idx k) { return (k + ALIGN - 1) / ALIGN * ALIGN; }
 
-// Lemke-Howson keeps LH_BLOCK pivots pending on each tableau when the two tableaux
-// together have at least this many entries (padded): there they no longer fit the
-// first-level data cache (32 KB) and the pivots, alternating between them, would stream
-// each from the second level once a pivot.
-constexpr idx LH_DELAY_FROM = 3072;
-
 LHViews lh_layout(GamesWork& g, idx m, idx n) {
     idx L = m + n, big = std::max(m, n);
     idx ldP = padded(m), ldQ = padded(n);  // P is n x m, Q m x n
-    int b = n * ldP + m * ldQ >= LH_DELAY_FROM ? LH_BLOCK : 0;
-    g.reserve(ALIGN + (n + b) * ldP + (m + b) * ldQ + padded(big) + 4 * L + 2 * L + 4 * big +
-                  n + b * L,
+    g.reserve(ALIGN + n * ldP + m * ldQ + padded(big) + 4 * L + 2 * L + 4 * big + n,
               6 * L + 2 * big, 3 * L);
     LHViews v;
     double* f = g.f.data();
@@ -573,12 +440,7 @@ LHViews lh_layout(GamesWork& g, idx m, idx n) {
     v.Q.T = Mat<double>(f, m, n);
     v.Q.T.ld = ldQ;
     f += m * ldQ;
-    v.P.d.b = v.Q.d.b = b;
-    v.P.d.prow = f; f += b * ldP;
-    v.Q.d.prow = f; f += b * ldQ;
     v.w.prow = f; f += padded(big);
-    v.P.d.fac = f; f += b * n;
-    v.Q.d.fac = f; f += b * m;
     v.P.rhs = f; v.P.magb = f + n; f += 2 * n;
     v.Q.rhs = f; v.Q.magb = f + m; f += 2 * m;
     v.P.wlab = f; v.Q.wlab = f + L; f += 2 * L;
@@ -605,7 +467,6 @@ void tableau_setup(Get get, double lo, double f, Tab& t, idx first) {
     for (idx r = 0; r < rows; ++r) {
         double* tr = t.T.row(r);
         for (idx c = 0; c < cols; ++c) tr[c] = -(1.0 + (get(r, c) - lo) * f);
-        for (idx c = cols; c < t.T.ld; ++c) tr[c] = 0.0;  // the padding (flush adds to it)
         t.rhs[r] = 1.0;
         idx lab = (first + r) % L;
         t.basis[r] = lab;
@@ -631,9 +492,6 @@ int lh_path(Mat<const double> A, Mat<const double> B, const double* scale, idx k
     Tab& Q = v.Q;
     tableau_setup([&](idx r, idx c) { return B(c, r); }, scale[2], scale[3], P, m);
     tableau_setup([&](idx r, idx c) { return A(r, c); }, scale[0], scale[1], Q, 0);
-    P.d.k = Q.d.k = 0;
-    for (idx e = 0; e < P.d.b * P.T.ld; ++e) P.d.prow[e] = 0.0;  // the padding stays zero
-    for (idx e = 0; e < Q.d.b * Q.T.ld; ++e) Q.d.prow[e] = 0.0;
     for (idx j = 0; j < n; ++j) v.slackP[j] = P.basis[j];
     for (idx i = 0; i < m; ++i) v.slackQ[i] = Q.basis[i];
     if (perturb) {

@@ -7,8 +7,6 @@
 #pragma once
 #include <cstdint>
 
-#include "multiversion.hpp"
-
 namespace lemke {
 namespace simd {
 
@@ -84,41 +82,6 @@ LEMKE_SIMD_INLINE void hsum4(v8d a, v8d b, v8d c, v8d d, double* out) {
     for (int l = 0; l < 4; ++l) out[l] = s[l];
 }
 #endif
-
-// t[j] = ((t[j] + a[0] v[0][j]) + a[1] v[1][j]) + ... for j < m: K terms in one pass (the
-// delayed pivots' flushes, tableau.cpp and games.cpp; each entry gets its terms in order).
-template <int K>
-LEMKE_ALWAYS_INLINE void add_terms(double* t, const double* a, const double* const* v, std::int64_t m) {
-    std::int64_t j = 0;
-#ifdef LEMKE_SIMD
-    v8d va[K];
-    for (int c = 0; c < K; ++c) va[c] = splat8(a[c]);
-    for (; j + 8 <= m; j += 8) {
-        v8d x = load8(t + j);
-        for (int c = 0; c < K; ++c) x = x + va[c] * load8(v[c] + j);
-        store8(t + j, x);
-    }
-#endif
-    for (; j < m; ++j) {
-        double x = t[j];
-        for (int c = 0; c < K; ++c) x = x + a[c] * v[c][j];
-        t[j] = x;
-    }
-}
-
-// add_terms for 1 <= na <= 8 terms.
-LEMKE_ALWAYS_INLINE void add_terms_n(double* t, const double* a, const double* const* v, std::int64_t m, int na) {
-    switch (na) {
-        case 1: add_terms<1>(t, a, v, m); break;
-        case 2: add_terms<2>(t, a, v, m); break;
-        case 3: add_terms<3>(t, a, v, m); break;
-        case 4: add_terms<4>(t, a, v, m); break;
-        case 5: add_terms<5>(t, a, v, m); break;
-        case 6: add_terms<6>(t, a, v, m); break;
-        case 7: add_terms<7>(t, a, v, m); break;
-        default: add_terms<8>(t, a, v, m); break;
-    }
-}
 
 }  // namespace simd
 }  // namespace lemke

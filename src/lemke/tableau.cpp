@@ -140,6 +140,26 @@ inline double entry(Mat<double> T, const Pending& P, idx i, idx j) {
     return t;
 }
 
+// t[j] = ((t[j] + a[0] v[0][j]) + a[1] v[1][j]) + ... for j < m: K terms in one pass.
+template <int K>
+inline void add_terms(double* t, const double* a, const double* const* v, idx m) {
+    idx j = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d va[K];
+    for (int c = 0; c < K; ++c) va[c] = simd::splat8(a[c]);
+    for (; j + 8 <= m; j += 8) {
+        simd::v8d x = simd::load8(t + j);
+        for (int c = 0; c < K; ++c) x = x + va[c] * simd::load8(v[c] + j);
+        simd::store8(t + j, x);
+    }
+#endif
+    for (; j < m; ++j) {
+        double x = t[j];
+        for (int c = 0; c < K; ++c) x = x + a[c] * v[c][j];
+        t[j] = x;
+    }
+}
+
 // Column s of the current tableau into col: entry() for every row, a pending pivot at a
 // time over all rows (each entry's terms in pivot order; a zero factor's term is -0.0, which
 // leaves any number as it is, as entry() skips it), so the rows' sums run side by side.
@@ -181,7 +201,16 @@ void flush(Mat<double> T, Pending& P) {
                     v[na++] = P.v(p) + j0;
                 }
                 if (na == 8 || (p + 1 == P.k && na > 0)) {
-                    simd::add_terms_n(ti, a, v, w, static_cast<int>(na));
+                    switch (na) {
+                        case 1: add_terms<1>(ti, a, v, w); break;
+                        case 2: add_terms<2>(ti, a, v, w); break;
+                        case 3: add_terms<3>(ti, a, v, w); break;
+                        case 4: add_terms<4>(ti, a, v, w); break;
+                        case 5: add_terms<5>(ti, a, v, w); break;
+                        case 6: add_terms<6>(ti, a, v, w); break;
+                        case 7: add_terms<7>(ti, a, v, w); break;
+                        default: add_terms<8>(ti, a, v, w); break;
+                    }
                     na = 0;
                 }
             }
