@@ -1,9 +1,11 @@
 #include "mlcp.hpp"
 
+#include <cfloat>
 #include <cmath>
 #include <vector>
 
 #include "linalg.hpp"
+#include "multiversion.hpp"
 
 namespace lemke {
 
@@ -34,6 +36,8 @@ thread_local MlcpWork mlcp_work;
 // where the pivot row has few non-zeros only those columns of the other rows are updated.
 // c = -1 is read from the end, as a Python index (T's last column, col_label's last entry):
 // reduce can pass it when no free column is left in the row (the bits the tests record).
+// Per instruction set (the row updates are elementwise: the same bits in every variant).
+LEMKE_CLONES
 void exchange(Mat<double> T, idx r, idx c, idx* row_label, idx* col_label, double* prow,
               idx* nz) {
     idx rows = T.rows, cols = T.cols;
@@ -87,24 +91,93 @@ void enter_free(Mat<double> T, idx c, idx n, double rank_tol, idx* row_label, id
 
 }  // namespace
 
+namespace {
+
+// One sweep's row and column maxima of |E| r s over the non-zeros of E alone (their
+// columns and |E_ij| by rows, nz_start: N + 1 offsets), for r and s finite and positive:
+// then every v = |E_ij| r_i s_j is +0 or more and not NaN, a zero E_ij gives +0, and the
+// maxima start at +0 instead of -inf: the dense sweep's maxima, bit for bit.
+LEMKE_CLONES
+void sparse_maxima(idx N, const idx* nz_start, const idx* nz_col, const double* nz_abs,
+                   const double* r, const double* s, double* rows, double* cols) {
+    for (idx i = 0; i < N; ++i) {
+        rows[i] = 0.0;
+        cols[i] = 0.0;
+    }
+    for (idx i = 0; i < N; ++i) {
+        double ri = r[i], best = 0.0;
+        for (idx t = nz_start[i]; t < nz_start[i + 1]; ++t) {
+            idx j = nz_col[t];
+            double v = nz_abs[t] * ri * s[j];
+            if (v > best) best = v;
+            if (v > cols[j]) cols[j] = v;
+        }
+        rows[i] = best;
+    }
+}
+
+bool finite_positive(const double* a, idx N) {
+    for (idx i = 0; i < N; ++i)
+        if (!(a[i] > 0.0 && a[i] <= DBL_MAX)) return false;
+    return true;
+}
+
+}  // namespace
+
+LEMKE_CLONES
 void mlcp_equilibrate(Mat<const double> E, idx n, idx iterations, double* r, double* s) {
     idx N = E.rows;
     thread_local std::vector<double> work;
+    thread_local std::vector<idx> nz_idx;
     work.resize(static_cast<std::size_t>(2 * N));
     double* rows = work.data();
     double* cols = rows + N;
-    for (idx it = 0; it < iterations; ++it) {
+    // E's non-zeros by rows, when they are under a third of it (the KKT systems of LP-like
+    // QPs: a few per cent): each sweep then reads them alone.
+    idx nnz = 0;
+    for (idx i = 0; i < N; ++i) {
+        const double* ei = E.row(i);
+        for (idx j = 0; j < N; ++j) nnz += ei[j] != 0.0;
+    }
+    bool sparse = N > 0 && 3 * nnz < N * N;
+    if (sparse) {
+        work.resize(static_cast<std::size_t>(2 * N + nnz));
+        rows = work.data();
+        cols = rows + N;
+        nz_idx.resize(static_cast<std::size_t>(N + 1 + nnz));
+        idx* nz_start = nz_idx.data();
+        idx* nz_col = nz_start + N + 1;
+        double* nz_abs = cols + N;
+        idx t = 0;
         for (idx i = 0; i < N; ++i) {
-            rows[i] = -INF;
-            cols[i] = -INF;
-        }
-        for (idx i = 0; i < N; ++i) {
+            nz_start[i] = t;
             const double* ei = E.row(i);
-            double ri = r[i];
             for (idx j = 0; j < N; ++j) {
-                double v = std::fabs(ei[j]) * ri * s[j];
-                if (v > rows[i] || v != v) rows[i] = v;
-                if (v > cols[j] || v != v) cols[j] = v;
+                if (ei[j] != 0.0) {
+                    nz_col[t] = j;
+                    nz_abs[t++] = std::fabs(ei[j]);
+                }
+            }
+        }
+        nz_start[N] = t;
+    }
+    for (idx it = 0; it < iterations; ++it) {
+        if (sparse && finite_positive(r, N) && finite_positive(s, N)) {
+            const idx* nz_start = nz_idx.data();
+            sparse_maxima(N, nz_start, nz_start + N + 1, cols + N, r, s, rows, cols);
+        } else {
+            for (idx i = 0; i < N; ++i) {
+                rows[i] = -INF;
+                cols[i] = -INF;
+            }
+            for (idx i = 0; i < N; ++i) {
+                const double* ei = E.row(i);
+                double ri = r[i];
+                for (idx j = 0; j < N; ++j) {
+                    double v = std::fabs(ei[j]) * ri * s[j];
+                    if (v > rows[i] || v != v) rows[i] = v;
+                    if (v > cols[j] || v != v) cols[j] = v;
+                }
             }
         }
         bool done = true;
@@ -124,6 +197,19 @@ void mlcp_equilibrate(Mat<const double> E, idx n, idx iterations, double* r, dou
             s[i] *= f;
         }
         if (done) break;
+    }
+}
+
+LEMKE_CLONES
+void mlcp_scale(Mat<const double> E, const double* e, const double* r, const double* s,
+                Mat<double> T) {
+    idx N = E.rows;
+    for (idx i = 0; i < N; ++i) {
+        const double* ei = E.row(i);
+        double* ti = T.row(i);
+        double ri = r[i];
+        for (idx j = 0; j < N; ++j) ti[j] = ei[j] * (ri * s[j]);
+        ti[N] = e[i] * ri;
     }
 }
 
