@@ -74,19 +74,48 @@ void exchange(Mat<double> T, idx r, idx c, idx* row_label, idx* col_label, doubl
     col_label[cL] = tmp;
 }
 
+// Remove entry t of the ascending list of slack rows (the order kept).
+void drop_slack(idx* slack, idx& ns, idx t) {
+    for (idx u = t + 1; u < ns; ++u) slack[u - 1] = slack[u];
+    --ns;
+}
+
+// Row r in the ascending list of slack rows iff its basic variable is a slack (label < n),
+// after an exchange there.
+void sync_slack(idx r, const idx* row_label, idx n, idx* slack, idx& ns) {
+    idx t = 0;
+    while (t < ns && slack[t] < r) ++t;
+    bool listed = t < ns && slack[t] == r;
+    if (row_label[r] < n) {
+        if (listed) return;
+        for (idx u = ns; u > t; --u) slack[u] = slack[u - 1];
+        slack[t] = r;
+        ++ns;
+    } else if (listed) {
+        drop_slack(slack, ns, t);
+    }
+}
+
 // The free variable of column c enters in place of the slack of an equation, the one with
 // the largest entry in that column, if that entry exceeds rank_tol (kmlcp.enter_free).
-void enter_free(Mat<double> T, idx c, idx n, double rank_tol, idx* row_label, idx* col_label,
-                double* prow, idx* nz) {
+// slack (ns of them, ascending): the rows whose basic variable is a slack (row_label < n),
+// the only rows looked at (the first largest in row order, as a scan of every row), and the
+// row that takes the free variable leaves the list.
+void enter_free(Mat<double> T, idx c, double rank_tol, idx* row_label, idx* col_label,
+                double* prow, idx* nz, idx* slack, idx& ns) {
     double best = 0.0;
-    idx r_best = -1;
-    for (idx r = 0; r < T.rows; ++r) {
-        if (row_label[r] < n && std::fabs(T(r, c)) > best) {
-            best = std::fabs(T(r, c));
-            r_best = r;
+    idx t_best = -1;
+    for (idx t = 0; t < ns; ++t) {
+        double v = std::fabs(T(slack[t], c));
+        if (v > best) {
+            best = v;
+            t_best = t;
         }
     }
-    if (r_best >= 0 && best > rank_tol) exchange(T, r_best, c, row_label, col_label, prow, nz);
+    if (t_best >= 0 && best > rank_tol) {
+        exchange(T, slack[t_best], c, row_label, col_label, prow, nz);
+        drop_slack(slack, ns, t_best);
+    }
 }
 
 }  // namespace
@@ -225,12 +254,16 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
         col_label[i] = N + i;
     }
     auto is_free = [N, n](idx label) { return N <= label && label < N + n; };
+    // The rows whose basic variable is a slack, ascending (rows 0 .. n-1 at first): each
+    // exchange below puts a free or pair variable in one of them, none puts a slack back.
+    idx* srows = w.srows();
+    idx ns = n;
+    for (idx r = 0; r < n; ++r) srows[r] = r;
     // 1. u_c enters in place of the slack of an equation (column by column, largest pivot).
-    for (idx c = 0; c < n; ++c) enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz);
+    for (idx c = 0; c < n; ++c) enter_free(T, c, rank_tol, row_label, col_label, prow, nz, srows, ns);
 
     // 2. Swap a pair k to make room: 2 x 2 exchanges while slacks and free columns remain.
     idx* fcols = w.fcols();
-    idx* srows = w.srows();
     idx* col_of = w.col_of();
     auto col = [&T](idx j) { return j < 0 ? j + T.cols : j; };  // a negative index counts from the end
     while (true) {
@@ -241,9 +274,6 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
             col_of[lc] = c;
             if (is_free(lc)) fcols[nf++] = c;
         }
-        idx ns = 0;
-        for (idx r = 0; r < N; ++r)
-            if (row_label[r] < n) srows[ns++] = r;
         // Rows of pair variables: for each, its largest entry over the free columns.
         double best = 0.0;
         idx r_best = -1, k_col = -1, k_row = -1;
@@ -270,6 +300,7 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
         }
         if (r_best < 0) break;
         exchange(T, r_best, k_col, row_label, col_label, prow, nz);
+        sync_slack(r_best, row_label, n, srows, ns);
         idx c_best = -1;
         double cbest = 0.0;
         const double* tk = T.row(k_row);
@@ -280,9 +311,11 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
             }
         }
         exchange(T, k_row, c_best, row_label, col_label, prow, nz);
+        sync_slack(k_row, row_label, n, srows, ns);
         // The 1-step pivot may now succeed in a column that failed before.
         for (idx c = 0; c < N; ++c)
-            if (is_free(col_label[c])) enter_free(T, c, n, rank_tol, row_label, col_label, prow, nz);
+            if (is_free(col_label[c]))
+                enter_free(T, c, rank_tol, row_label, col_label, prow, nz, srows, ns);
     }
 
     // 3. What remains must be redundant: zero rows (slacks) and zero columns (free variables).
