@@ -163,6 +163,17 @@ void mlcp_equilibrate(In2 E, std::int64_t n, std::int64_t iterations, Out1 r, Ou
     lemke::mlcp_equilibrate(mat(E), n, iterations, r.data(), s.data());
 }
 
+// mlcp.scale(E, e, r, s, T): T = [E * (r s') | e * r] (N x (N + 1)).
+void mlcp_scale(In2 E, In1 e, In1 r, In1 s, Out2 T) {
+    idx N = len(E, 0);
+    if (len(E, 1) != N || len(e) != N || len(r) != N || len(s) != N || len(T, 0) != N ||
+        len(T, 1) != N + 1)
+        throw nb::value_error("mlcp_scale: E must be N x N, e, r and s of length N, T N x (N + 1)");
+    nb::gil_scoped_release release;
+    lemke::mlcp_scale(mat(E), e.data(), r.data(), s.data(),
+                      lemke::Mat<double>(T.data(), N, N + 1));
+}
+
 // mlcp.reduce(T, n, rank_tol, e_size, row_label, col_label) -> (code, row).
 std::tuple<int, std::int64_t> mlcp_reduce(Out2 T, std::int64_t n, double rank_tol,
                                           double e_size, IdxOut row_label, IdxOut col_label) {
@@ -207,6 +218,7 @@ void bind_support(nb::module_& m) {
           nb::arg("C").noconvert());
     m.def("mlcp_equilibrate", &mlcp_equilibrate, "E"_a, "n"_a, "iterations"_a,
           nb::arg("r").noconvert(), nb::arg("s").noconvert());
+    m.def("mlcp_scale", &mlcp_scale, "E"_a, "e"_a, "r"_a, "s"_a, nb::arg("T").noconvert());
     m.def("mlcp_reduce", &mlcp_reduce, nb::arg("T").noconvert(), "n"_a, "rank_tol"_a,
           "e_size"_a, nb::arg("row_label").noconvert(), nb::arg("col_label").noconvert());
     m.def("relabel_ids", &relabel_ids, "old"_a, "new"_a, "basic"_a, nb::arg("out").noconvert());

@@ -4,7 +4,7 @@ Every solved QP is checked by the tests' own KKT check (helpers.assert_qp_kkt), 
 certificate by the tests' own Farkas / direction checks."""
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import lemke
@@ -282,6 +282,39 @@ def test_bad_types():
 def test_symmetric_up_to_rounding_is_accepted():
     P = np.array([[2.0, 1.0], [1.0 + 1e-14, 2.0]])
     solve_checked(P, [-1.0, -1.0])
+
+
+
+def _lapack_has_cholesky(S, shift):
+    try:
+        np.linalg.cholesky(S + shift * np.eye(S.shape[0]))
+    except np.linalg.LinAlgError:
+        return False
+    return True
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_psd_check_on_coupled_rows_agrees_with_lapack(seed):
+    """_validate's convexity check factors only the rows with an off-diagonal non-zero (the
+    others are 1 x 1 blocks): the same verdict as LAPACK's Cholesky of the whole shifted P,
+    decoupled diagonals at, just above and below -shift included."""
+    from lemke._validate import _has_cholesky
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 9))
+    k = int(rng.integers(0, n + 1))
+    coupled = rng.permutation(n)[:k]
+    B = rng.standard_normal((k, k)) * rng.integers(0, 2, (k, k))
+    S = np.zeros((n, n))
+    S[np.ix_(coupled, coupled)] = B @ B.T - rng.choice([0.0, 0.0, 1e-3, 1.0]) * np.eye(k)
+    shift = float(rng.choice([0.0, 1e-10, 1e-3]))
+    if k:  # a coupled block at its rounding margin may go either way in either factorization
+        lam = np.linalg.eigvalsh(S[np.ix_(coupled, coupled)] + shift * np.eye(k))
+        assume(abs(lam[0]) > 1e-8 * max(1.0, abs(lam[-1])))
+    for j in np.setdiff1d(np.arange(n), coupled):
+        S[j, j] = rng.choice([0.0, 1.0, -shift, np.nextafter(-shift, 1.0),
+                              np.nextafter(-shift, -1.0), -1.0])
+    assert _has_cholesky(S, shift) == _lapack_has_cholesky(S, shift)
 
 
 # ------------------------------------------------------------------ warm starts

@@ -96,19 +96,41 @@ def test_mlcp_to_lcp_finds_contradictory_equations():
     assert MLCPToLCP(E, e, 2).code == _core.MLCP_INCONSISTENT
 
 
-@pytest.mark.parametrize("seed", range(20))
+@pytest.mark.parametrize("seed", range(60))
 def test_equilibrate_kernel_matches_numpy_bit_for_bit(seed):
     """The MLCP reduction's Ruiz scaling runs in a kernel (lemke::mlcp_equilibrate); it
     must give numpy's bits (the QP goldens depend on them), zero rows and columns, wide
-    ranges of magnitudes and every split of free and paired variables included."""
+    ranges of magnitudes and every split of free and paired variables included; dense E
+    and E under a third non-zero (the kernel's sweeps over the non-zeros alone, up to
+    N = 200)."""
     from lemke._reductions.mlcp_lcp import _equilibrate_numpy, equilibrate
 
     rng = np.random.default_rng(seed)
-    N = int(rng.integers(1, 30))
+    N = int(rng.integers(1, 30 if seed % 3 == 0 else 200))
     n = int(rng.integers(0, N + 1))
     E = rng.standard_normal((N, N)) * np.exp(rng.uniform(-10, 10, (N, N)))
-    E[rng.random((N, N)) < 0.4] = 0.0
+    E[rng.random((N, N)) < (0.4, 0.8, 0.97)[seed % 3]] = 0.0
     if seed % 4 == 0:
         E[int(rng.integers(N))] = 0.0  # a zero row
+    if seed % 5 == 0:
+        E[:, int(rng.integers(N))] = 0.0  # a zero column
     for a, b in zip(equilibrate(E, n), _equilibrate_numpy(E, n)):
-        assert np.array_equal(a, b)
+        assert np.array_equal(a.view(np.int64), b.view(np.int64))
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_mlcp_scale_matches_numpy_bit_for_bit(seed):
+    """The reduction's scaled dictionary T = [E * (r s') | e * r] comes from a kernel
+    (lemke::mlcp_scale): numpy's bits, signed zeros included."""
+    from lemke import _core
+
+    rng = np.random.default_rng(seed)
+    N = int(rng.integers(0, 40))
+    E = rng.standard_normal((N, N)) * np.exp(rng.uniform(-300, 300, (N, N)))
+    E[rng.random((N, N)) < 0.5] = rng.choice([0.0, -0.0])
+    e = rng.standard_normal(N)
+    r, s = np.exp(rng.uniform(-20, 20, N)), np.exp(rng.uniform(-20, 20, N))
+    T = np.empty((N, N + 1))
+    _core.mlcp_scale(E, e, r, s, T)
+    assert np.array_equal(T[:, :N].view(np.int64), (E * (r[:, None] * s[None, :])).view(np.int64))
+    assert np.array_equal(T[:, N].view(np.int64), (e * r).view(np.int64))

@@ -66,7 +66,10 @@ def _warm_up():
     solve_qp(M, q, lb=-one, ub=one)
     solve_qp(M, q, G=row, h=one[:1])
     solve_qp(M, q, A=row, b=one[:1])
-    solve_qp(np.zeros((2, 2)), q, G=row, h=one[:1], lb=-one)
+    # the KKT-MLCP path, P semidefinite with a coupled block (its Cholesky check's LAPACK call)
+    flat = np.zeros((3, 3))
+    flat[:2, :2] = 1.0
+    solve_qp(flat, np.array([-1.0, 1.0, 1.0]), G=np.ones((1, 3)), h=one[:1], lb=-np.ones(3))
     solve_mlcp(M[:1, :1], M[:1, 1:], M[1:, :1], M[1:, 1:], q[:1], q[1:])
     solve_bimatrix(M + 1.0, M.T + 2.0)
 

@@ -925,14 +925,14 @@ def _solve(qp, method, opts, warm_start, certify):
         raise _bad_warm(warm_start, m_pairs)
     r = solve_stacked(qp.E, qp.e, qp.n_free, method, opts, warm_start)
     x, y, z, z_box = qp.recover(np.concatenate([r.u, r.v]), r.w)
-    status, certificate = r.status, None
+    status, certificate, stats = r.status, None, None
     if certify and status == Status.SOLVED:
-        x, y, z, z_box = _polished(qp, (x, y, z, z_box), r.warm_start, opts.tol)
+        (x, y, z, z_box), stats = _polished(qp, (x, y, z, z_box), r.warm_start, opts.tol)
     if certify and status != Status.SOLVED and status != Status.MAX_PIVOTS and status not in STOPPED:
         status, certificate = _verdict(qp, r, method, opts)
     elif status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
         status = Status.NUMERICAL_FAILURE  # an auxiliary problem: no certificate sought
-    return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start)
+    return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start, stats)
 
 
 def kkt(data, x, y, z, z_box, tol):
@@ -953,9 +953,11 @@ def _data(qp):
     return qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
 
 
-def _result(qp, x, y, z, z_box, status, pivots, certificate, warm_start):
+def _result(qp, x, y, z, z_box, status, pivots, certificate, warm_start, stats=None):
+    """The QPResult of the point; ``stats``: kkt's (primal, dual, gap, obj) at it when the
+    caller has them (they do not depend on kkt's tol), else they are computed here."""
     y, z = y.copy(), z.copy()
-    _, primal, dual, gap, obj = kkt(_data(qp), x, y, z, z_box, 0.0)
+    primal, dual, gap, obj = kkt(_data(qp), x, y, z, z_box, 0.0)[1:] if stats is None else stats
     for a in (x, y, z, z_box):
         a.setflags(write=False)
     return QPResult(x, y, z, z_box, obj, status, int(pivots), primal, dual, gap, certificate, warm_start)
@@ -983,7 +985,8 @@ def _polished(qp, point, basis, tol):
     rounding level of the solve made zero).  It replaces ``point`` only when it passes the
     row-wise KKT check at ``tol`` and its largest residual (primal, dual, gap, summed in
     double-double) is smaller; a singular system (dependent active rows) leaves ``point``
-    as it is."""
+    as it is.  Returns ``(point, stats)``: the point kept and kkt's (primal, dual, gap, obj)
+    at it, None where they were not computed."""
     n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
     nn, nb = qp.shifted.size, qp.boxed.size
     v = np.zeros(nn + mg + nb, dtype=bool)
@@ -1012,7 +1015,7 @@ def _polished(qp, point, basis, tol):
     out = refined_solve(K, np.concatenate([-qp.q[F], qp.b, qp.h[S]]), steps=3, given=bound[B],
                         low=True)
     if out is None:
-        return point
+        return point, None
     sol, lo = out
     x = np.empty(n)
     x[F] = sol[:f]
@@ -1036,9 +1039,9 @@ def _polished(qp, point, basis, tol):
     new = (x, mult[:p].copy(), z, z_box)
     ok, *res = kkt(_data(qp), *new, tol)
     if not ok:
-        return point
+        return point, None
     res0 = kkt(_data(qp), *point, tol)[1:]
-    return new if max(res[:3]) < max(res0[:3]) else point
+    return (new, res) if max(res[:3]) < max(res0[:3]) else (point, res0)
 
 
 # ----------------------------------------------------------------------------- certificates

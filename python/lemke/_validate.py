@@ -496,9 +496,7 @@ def symmetric_psd(P):
             "(pass the full symmetric matrix, not one triangle)"
         )
     Ps = 0.5 * (P + P.T)
-    try:
-        np.linalg.cholesky(Ps + (CONVEXITY_TOL * scale) * np.eye(P.shape[0]))
-    except np.linalg.LinAlgError:
+    if not _has_cholesky(Ps, CONVEXITY_TOL * scale):
         lam = np.linalg.eigvalsh(Ps)
         raise ValueError(
             f"P is not positive semidefinite: its smallest eigenvalue is {lam[0]:.3g} (largest "
@@ -506,6 +504,28 @@ def symmetric_psd(P):
             "need not be a minimum"
         ) from None
     return Ps
+
+
+def _has_cholesky(Ps, shift):
+    """Whether ``Ps + shift I`` has a Cholesky factor (LAPACK's, ``np.linalg.cholesky``), the
+    factorization restricted to the rows that have an off-diagonal non-zero: a row and
+    column of Ps that are zero off the diagonal stay zero in the factor (each of its
+    entries a sum of products with a zero factor), so LAPACK's step there computes
+    ``sqrt(Ps_jj + shift)`` exactly and fails iff that argument is not positive; the coupled
+    rows' factor is the factor of their own block.  On the LP-like Maros-Meszaros problems
+    (a few tens of coupled rows among hundreds, PRIMAL*'s P diagonal) this skips an
+    n x n factorization."""
+    d = Ps.diagonal()
+    coupled = np.count_nonzero(Ps, axis=1) > (d != 0.0)
+    if not np.all(d[~coupled] + shift > 0.0):  # (a NaN fails, as in LAPACK)
+        return False
+    idx = np.flatnonzero(coupled)
+    if idx.size:
+        try:
+            np.linalg.cholesky(Ps[np.ix_(idx, idx)] + shift * np.eye(idx.size))
+        except np.linalg.LinAlgError:
+            return False
+    return True
 
 
 def positive_int_or_none(value, name: str):

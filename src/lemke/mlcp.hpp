@@ -13,6 +13,12 @@ constexpr int MLCP_SINGULAR = 2;      // no exchange makes the free block nonsin
 // first) into r and s (all ones on entry), numpy's operations in numpy's order.
 void mlcp_equilibrate(Mat<const double> E, idx n, idx iterations, double* r, double* s);
 
+// The dictionary T = [E | e] scaled (N x (N + 1)): T_ij = E_ij (r_i s_j), T_iN = e_i r_i,
+// numpy's `E * (r[:, None] * s[None, :])` and `e * r` bit for bit, without the N x N
+// temporary.
+void mlcp_scale(Mat<const double> E, const double* e, const double* r, const double* s,
+                Mat<double> T);
+
 struct ReduceResult {
     int code;  // MLCP_OK, MLCP_INCONSISTENT or MLCP_SINGULAR
     idx row;   // the offending row, -1 when OK

@@ -16,6 +16,8 @@ the caller's data (one dense solve, refined with residuals in double-double).
 """
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from .. import _core
@@ -80,9 +82,8 @@ class MLCPToLCP:
         N = e.size
         self.n, self.N, self.m = n, N, N - n
         self.r, self.s = equilibrate(E, n)
-        T = np.empty((N, N + 1))
-        np.multiply(E, self.r[:, None] * self.s[None, :], out=T[:, :N])
-        T[:, N] = e * self.r
+        T = np.empty((N, N + 1))  # [E * (r s') | e * r], numpy's bits (the core's mlcp_scale)
+        _core.mlcp_scale(np.ascontiguousarray(E, dtype=np.float64), e, self.r, self.s, T)
         self.row_label = np.empty(N, dtype=np.int64)
         self.col_label = np.empty(N, dtype=np.int64)
         self.code, self.bad_row = _core.mlcp_reduce(
@@ -109,15 +110,22 @@ class MLCPToLCP:
         self.posc = np.where(self.swapped, where_col[n + k], where_col[N + n + k])
         self.M = np.ascontiguousarray(T[np.ix_(self.posr, self.posc)])
         self.q = T[self.posr, N].copy()
-        # The same for the matrix, as a second try (see solve_stacked): left in, noise can be
-        # pivoted on (a column of pure noise passes any test relative to its own size), but
-        # zeroing it changes the tie-breaking of degenerate paths, so it is not the first try.
-        self.M_clean = np.where(np.abs(self.M) < N * EPS * max(1.0, _size(T[:, :N])), 0.0, self.M)
         # Rows where a free variable is basic, and what stayed behind (redundant pairs).
         self.free_rows = np.flatnonzero((self.row_label >= N) & (self.row_label < N + n))
         self.redundant = np.sort(self.row_label[self.row_label < n])  # equations left out
         undetermined = self.col_label[(self.col_label >= N) & (self.col_label < N + n)] - N
         self.undetermined = np.sort(undetermined)  # free variables set to 0
+
+    @functools.cached_property
+    def M_clean(self):
+        """M with its rounding noise zeroed, the ladder's second try (see solve_stacked): left
+        in, noise can be pivoted on (a column of pure noise passes any test relative to its own
+        size), but zeroing it changes the tie-breaking of degenerate paths, so it is not the
+        first try.  Made when first read (most solves end on the first try; an m x m pass):
+        M and T are not written after the reduction, so it has the bits it had when made at
+        once."""
+        N = self.N
+        return np.where(np.abs(self.M) < N * EPS * max(1.0, _size(self.T[:, :N])), 0.0, self.M)
 
     def to_reduced(self, v_basic: np.ndarray) -> np.ndarray:
         """Which LCP z's are basic, for the basis where v_k is basic when v_basic[k]."""
