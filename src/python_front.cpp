@@ -470,6 +470,52 @@ nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn
     return make_entry(py, nb::none(), globals, front_fn, ws_cls, many_globals, many_cls);
 }
 
+// solve_lcp_many's problems given as lists: (Mflat, qflat, n_b) with every M's rows and
+// every q end to end in two new float64 arrays and the sizes in an int64 array, when M and
+// q are lists (or tuples) of the same length B >= 1 whose items are all ready for the
+// kernels as they are (plain(): float64 ndarrays in the machine's byte order, C arrays; M
+// square of q's size), else None: the Python path then checks and converts them and
+// names what is wrong. One pass of checks, then the copies (a few nanoseconds per island,
+// where Python's checks and joins took about half a microsecond); finiteness is the
+// kernels'.
+nb::object lcp_pack(nb::handle M_h, nb::handle q_h) {
+    using lemke::idx;
+    PyObject *M = M_h.ptr(), *q = q_h.ptr();
+    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
+    if (!front.on || !seq(M) || !seq(q)) return nb::none();
+    Py_ssize_t B = PySequence_Fast_GET_SIZE(M);
+    if (B < 1 || PySequence_Fast_GET_SIZE(q) != B) return nb::none();
+    PyObject** Ms = PySequence_Fast_ITEMS(M);
+    PyObject** qs = PySequence_Fast_ITEMS(q);
+    idx m_len = 0, q_len = 0;
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        const ArrayFields* Mb = plain(Ms[b], 2);
+        const ArrayFields* qb = plain(qs[b], 1);
+        if (Mb == nullptr || qb == nullptr) return nb::none();
+        idx n = qb->dimensions[0];
+        if (Mb->dimensions[0] != n || Mb->dimensions[1] != n) return nb::none();
+        q_len += n;
+        m_len += n * n;
+    }
+    nb::object Mf = new_array(m_len), qf = new_array(q_len), sizes = new_array(B, true);
+    auto data = [](const nb::object& a) { return reinterpret_cast<const ArrayFields*>(a.ptr())->data; };
+    char *mo = data(Mf), *qo = data(qf);
+    auto* no = reinterpret_cast<std::int64_t*>(data(sizes));
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        auto* Mb = reinterpret_cast<const ArrayFields*>(Ms[b]);
+        auto* qb = reinterpret_cast<const ArrayFields*>(qs[b]);
+        idx n = qb->dimensions[0];
+        std::size_t mbytes = static_cast<std::size_t>(n * n) * sizeof(double);
+        std::size_t qbytes = static_cast<std::size_t>(n) * sizeof(double);
+        if (mbytes) std::memcpy(mo, Mb->data, mbytes);
+        if (qbytes) std::memcpy(qo, qb->data, qbytes);
+        mo += mbytes;
+        qo += qbytes;
+        no[b] = n;
+    }
+    return nb::make_tuple(Mf, qf, sizes);
+}
+
 }  // namespace
 
 NumpyLayout numpy_layout() {
@@ -496,6 +542,7 @@ void bind_front(nb::module_& m) {
           "probe_int"_a, "probe_swapped"_a, "api"_a.none());
     m.def("lcp_front", &lcp_front, "M"_a, "q"_a, "ws"_a.none(), "beta"_a.none());
     m.def("lcp_front_on", [] { return front.on; });
+    m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("lcp_many_entry", &lcp_many_entry, "py"_a, "globals"_a, "front"_a, "ws_cls"_a,
           "many_globals"_a, "many_cls"_a);

@@ -363,6 +363,43 @@ def _pack(Ms, qs):
             np.concatenate([np.asarray(q, float) for q in qs] + [np.zeros(0)]), sizes)
 
 
+def test_lists_packed_natively_or_by_python_are_the_same():
+    """_core.lcp_pack packs lists of ready arrays (what _pack does by hand) and declines
+    anything else (None: the Python path); both paths give the same results bit for bit."""
+    from lemke import _core
+    Ms, qs, qs2 = _islands(9, count=30)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    qs2[5] = qs[5]
+    Ms = [np.ascontiguousarray(M, float) for M in Ms]
+    qs = [np.asarray(q, float) for q in qs]
+    Mf, qf, n_b = _core.lcp_pack(Ms, qs)
+    Mp, qp, sizes = _pack(Ms, qs)
+    assert Mf.tobytes() == Mp.tobytes() and qf.tobytes() == qp.tobytes()
+    assert n_b.dtype == np.int64 and n_b.tolist() == sizes.tolist()
+    assert _core.lcp_pack(tuple(Ms), tuple(qs))[0].tobytes() == Mp.tobytes()
+    ro = Ms[3].copy()
+    ro.setflags(write=False)
+    declined = [  # each makes the native packing decline (the Python path then runs)
+        (Ms[:3] + [ro] + Ms[4:], qs),  # a read-only M
+        (Ms[:3] + [np.asfortranarray(Ms[3]) if len(qs[3]) > 1 else Ms[3].tolist()] + Ms[4:], qs),
+        (Ms, qs[:3] + [qs[3].astype(">f8" if np.little_endian else "<f8")] + qs[4:]),  # byte order
+        (Ms, qs[:3] + [qs[3].tolist()] + qs[4:]),  # a list
+        (Ms, qs[:-1]),  # lengths differ
+        (iter(Ms), qs),  # not a list or tuple
+        ([], []),
+    ]
+    for M, q in declined:
+        assert _core.lcp_pack(M, q) is None
+    native = lemke.solve_lcp_many(Ms, qs)
+    warm = lemke.solve_lcp_many(Ms, qs2, warm_start=native.warm_start)
+    for M, q in declined[:4]:
+        assert lemke.solve_lcp_many(M, q) == native
+    assert warm == lemke.solve_lcp_many(declined[0][0], qs2, warm_start=native.warm_start)
+    assert warm == [lemke.solve_lcp(M, q, warm_start=r.warm_start) for M, q, r in zip(Ms, qs2, native)]
+    with pytest.raises(ValueError):
+        lemke.solve_lcp_many(Ms, qs[:-1])
+
+
 @pytest.mark.parametrize("method", lemke.METHODS)
 def test_packed_problems_are_the_lists_bit_for_bit(method):
     Ms, qs, qs2 = _islands(9, count=50)

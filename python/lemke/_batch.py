@@ -411,7 +411,13 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     if progress is not None:
         progress = _progress.check(progress)
     # offsets: of q and the basic z's, of M, of the output buffers (_layout.buffer_length)
-    if sizes is None:
+    packed = _core.lcp_pack(M, q) if sizes is None else None  # lists ready as they are
+    if packed is not None:
+        Mflat, qflat, n_b = packed
+        off = _offsets(n_b)
+        sizes = n_b.tolist()
+        B = len(sizes)
+    elif sizes is None:
         Ms, qs = list(M), list(q)
         B = len(Ms)
         if B != len(qs):

@@ -164,10 +164,9 @@ bool ray_check(Mat<const double> M, const double* q, const double* d, const doub
     }
     if (!nonzero) return false;  // the primary ray: no certificate
     double mdz = 0.0;
-    for (idx i = 0; i < n; ++i) {
-        double a, size;
-        row_dot_and_size(M.row(i), dz, n, a, size);
-        mdz = pmax(mdz, size);
+    for (idx i = 0; i < n; ++i) {  // (M dz and its sizes, kept in du and rdu for below)
+        row_dot_and_size(M.row(i), dz, n, du[i], rdu[i]);
+        mdz = pmax(mdz, rdu[i]);
     }
     dz[n] = std::fabs(ray[n]) * d_max > g * mdz ? ray[n] : 0.0;
     double dz0 = dz[n];
@@ -179,14 +178,13 @@ bool ray_check(Mat<const double> M, const double* q, const double* d, const doub
         no_floor[i] = 0.0;
     }
     for (idx i = 0; i < n; ++i) {
-        double mz, sz, md, sd;
+        double mz, sz;
         row_dot_and_size(M.row(i), z, n, mz, sz);
         w[i] = q[i] + mz;
         u[i] = w[i] + d[i] * z0;
         ru[i] = std::fabs(q[i]) + sz + std::fabs(d[i] * z0);
-        row_dot_and_size(M.row(i), dz, n, md, sd);
-        du[i] = md + d[i] * dz0;
-        rdu[i] = sd + std::fabs(d[i] * dz0);
+        du[i] = du[i] + d[i] * dz0;
+        rdu[i] = rdu[i] + std::fabs(d[i] * dz0);
     }
     for (idx i = 0; i < n; ++i) {
         double s_u = t * ru[i] + floors[i];

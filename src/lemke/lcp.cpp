@@ -64,15 +64,29 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
 }
 
 // The first stage of a warm start. Returns 0 (the old basis solves it), 1 (its point fails),
-// 2 (its block is singular), -1 (not finite).
+// 2 (its block is singular), -1 (not finite). `fused` (a batch's islands): M's finite check
+// in the scales' first sweep (equilibrate_finite: the same scales) instead of a pass of its
+// own (finite_absmax; m_max is then not computed), and the buffer's scales put back as they
+// were when M or q is not finite, as that pass leaves them.
 int old_basis(Mat<const double> M, const double* q, const double* d, const idx* beta, idx k,
               double tol, const Views& v, idx* basic, double& residual, double& m_max,
-              std::vector<double>& work) {
+              std::vector<double>& work, bool fused = false) {
     idx n = M.rows;
     residual = 0.0;
-    if (!finite_absmax(M, m_max) || !all_finite(q, n)) return -1;
-    work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
-    equilibrate(M, q, v.R, v.C, work.data());
+    m_max = 0.0;
+    if (fused) {
+        work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 4 * n)));
+        double* kept = work.data() + 2 * n;  // (equilibrate's work is the first 2n)
+        for (idx i = 0; i < n; ++i) { kept[i] = v.R[i]; kept[n + i] = v.C[i]; }
+        if (!equilibrate_finite(M, q, v.R, v.C, work.data())) {
+            for (idx i = 0; i < n; ++i) { v.R[i] = kept[i]; v.C[i] = kept[n + i]; }
+            return -1;
+        }
+    } else {
+        if (!finite_absmax(M, m_max) || !all_finite(q, n)) return -1;
+        work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
+        equilibrate(M, q, v.R, v.C, work.data());
+    }
     v.x[n] = 0.0;
     if (!basis_point(M, q, beta, k, v.x, work.data())) return 2;
     if (!check_rows(M, q, v.x, tol, v.w, v.R, work.data(), true, residual)) {
@@ -105,7 +119,7 @@ RunResult warm_verdict(int found, idx k, double residual) {
 
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
                     idx k, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                    double* buf, idx* basic) {
+                    double* buf, idx* basic, bool island) {
     thread_local std::vector<double> work;
     thread_local std::vector<std::uint8_t> z_basic;
     RunResult out;
@@ -113,7 +127,7 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     Views v(buf, n);
     if (k > 0) {
         double residual, m_max;
-        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
+        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work, island);
         if (found <= 0) return warm_verdict(found, k, residual);
         if (found == 1 && n >= RESTART_FROM) {
             out.stage = -2;
@@ -525,10 +539,11 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
 
 RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                double tol, double* buf, idx* basic) {
+                double tol, double* buf, idx* basic, bool island) {
     if (method != TABLEAU)
         return solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
-    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
+    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
+                            island);
     if (r.stage >= 0) return r;
     idx n = M.rows;
     if (r.stage == -1 && r.code == RAY_TERMINATION) {
@@ -568,7 +583,8 @@ void batch(Method method, const double* Ms, const idx* mstart, const double* qs,
             r.code = INTERRUPTED;
         } else
         r = solve(method, M, qs + qoff[b], nullptr, beta + boff[b], boff[b + 1] - boff[b],
-                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b]);
+                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b],
+                  true);
         idx* oi = out_i + 5 * b;
         oi[0] = r.code;
         oi[1] = r.pivots;
