@@ -343,3 +343,52 @@ def test_batch_take_relabel_across_islands():
     assert pickle.loads(pickle.dumps(t)) == t
     with pytest.raises(ValueError, match="sizes"):
         wb.take(idx, [1, 2], findex=fnew)
+
+
+def _fields(res):
+    """Every flat field of a BLCPManyResult, as bytes, and its items."""
+    return ([getattr(res, name).tobytes() for name in ("z", "w", "lo", "hi", "status", "pivots",
+                                                         "recoveries", "residual", "offsets",
+                                                         "success")]
+            + [res.warm_start.n.tobytes(), res.warm_start.state.tobytes(), list(res)])
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_few_islands_one_by_one_are_the_batch_path(seed):
+    """Up to FEW islands are solved one by one by solve_blcp (no batch set-up); the batch
+    path (taken here by passing options) gives every field and item bit for bit, cold, warm
+    from a BoxWarmStartBatch or a list, with rays and bad warm starts alike."""
+    from lemke._batch import FEW
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=FEW)
+    Ms, qs, los, his, fis, qs2 = Ms[:FEW], qs[:FEW], los[:FEW], his[:FEW], fis[:FEW], qs2[:FEW]
+    if seed == 2:  # an island with no solution: a checked ray
+        Ms[1], qs[1], qs2[1] = -np.eye(2), np.array([-1.0, -1.0]), np.array([-1.0, -2.0])
+        los[1], his[1], fis[1] = np.zeros(2), np.full(2, np.inf), None
+    opts = lemke.Options()
+    for B in range(1, FEW + 1):
+        args = (Ms[:B], qs[:B], los[:B], his[:B])
+        few = lemke.solve_blcp_many(*args, findex=fis[:B])
+        assert few._qoff is None  # (the one-by-one path was taken)
+        batch = lemke.solve_blcp_many(*args, findex=fis[:B], options=opts)
+        assert batch._qoff is not None
+        assert _fields(few) == _fields(batch)
+        _same_as_one_by_one(few, *args, fis[:B])
+        args2 = (Ms[:B], qs2[:B], los[:B], his[:B])
+        for ws in (few.warm_start, list(few.warm_start), [None] + list(few.warm_start)[1:]):
+            a = lemke.solve_blcp_many(*args2, findex=fis[:B], warm_start=ws, workers=1)
+            b = lemke.solve_blcp_many(*args2, findex=fis[:B], warm_start=ws, options=opts)
+            assert a._qoff is None and _fields(a) == _fields(b)
+    # refused the same way (the general path says it, naming the island)
+    lcp = lemke.solve_lcp(np.eye(2), [-1.0, 1.0])
+    with pytest.raises(ValueError, match=r"warm_start\[1\] must be a lemke.BoxWarmStart"):
+        lemke.solve_blcp_many(Ms[:2], qs[:2], los[:2], his[:2], findex=fis[:2],
+                              warm_start=[None, lcp.warm_start])
+    qbad = [q.copy() for q in qs[:3]]
+    qbad[2][0] = np.nan
+    with pytest.raises(ValueError, match="problem 2: q has a NaN"):
+        lemke.solve_blcp_many(Ms[:3], qbad, los[:3], his[:3], findex=fis[:3])
+    short = [M[:-1, :-1] for M in Ms[:2]], [q[:-1] for q in qs[:2]], [v[:-1] for v in los[:2]], \
+        [v[:-1] for v in his[:2]]
+    with pytest.raises(ValueError, match=r"warm_start\[0\] is for a problem of size"):
+        lemke.solve_blcp_many(*short, warm_start=lemke.solve_blcp_many(
+            Ms[:2], qs[:2], los[:2], his[:2]).warm_start)

@@ -277,6 +277,8 @@ def _carried(codes, idx, findex):
 def _from_codes(c):
     """The BoxWarmStart of the row states c (int8, codes 0..29)."""
     rows = c.size
+    if rows <= _FEW_ROWS:
+        return _from_codes_small(c)
     F = np.flatnonzero(c >= 3)
     nf = F.size
     s = np.zeros(rows + 2 * nf, dtype=np.int8)
@@ -288,6 +290,29 @@ def _from_codes(c):
         s[rows + nf:] = e % 3
     ws = BoxWarmStart._trusted(rows + 2 * nf, tuple(np.flatnonzero(s == 2).tolist()),
                                tuple(np.flatnonzero(s == 1).tolist()), tuple(F.tolist()))
+    c = c.copy()
+    c.setflags(write=False)
+    ws.__dict__["_codes"] = c
+    return ws
+
+
+_FEW_ROWS = 48  # up to this many rows, _from_codes loops in Python: cheaper than its numpy calls
+
+
+def _from_codes_small(c):
+    """_from_codes for a few rows: the same BoxWarmStart, by a loop over c's codes (the
+    extended variables in their order: the caller's rows, then β- and λ of each friction
+    row)."""
+    cl = c.tolist()
+    rows = len(cl)
+    F = [i for i, x in enumerate(cl) if x >= 3]
+    nf = len(F)
+    states = [x if x < 3 else (x - 3) // 9 for x in cl]
+    if nf:
+        states += [((cl[i] - 3) // 3) % 3 for i in F]
+        states += [(cl[i] - 3) % 3 for i in F]
+    ws = BoxWarmStart._trusted(rows + 2 * nf, tuple([i for i, s in enumerate(states) if s == 2]),
+                               tuple([i for i, s in enumerate(states) if s == 1]), tuple(F))
     c = c.copy()
     c.setflags(write=False)
     ws.__dict__["_codes"] = c

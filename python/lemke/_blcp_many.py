@@ -20,7 +20,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _validate
-from ._batch import _cubes, _flat, _packed, _run, _workers
+from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
@@ -182,6 +182,16 @@ class BLCPManyResult(ManyItems):
         for b, res in special.items():
             self._items[b] = res
 
+    @classmethod
+    def _of(cls, items) -> "BLCPManyResult":
+        """The result of a few islands that ``solve_blcp_many`` solved one by one with
+        ``solve_blcp`` (``items``, a list of its results, none empty): the flat fields made
+        from them when first read."""
+        res = object.__new__(cls)
+        res._items, res._special, res._qoff = items, dict(enumerate(items)), None
+        res._los = res._his = None
+        return res
+
     def _build(self, lo, hi):
         """Items lo..hi-1 not built yet, as solve_blcp builds them (``_blcp._lazy``): views
         of the shared buffers, made when a field is first read."""
@@ -202,6 +212,11 @@ class BLCPManyResult(ManyItems):
 
     @cached_property
     def offsets(self) -> np.ndarray:
+        if self._qoff is None:  # (_of)
+            off = np.zeros(len(self._items) + 1, dtype=np.int64)
+            np.cumsum([len(r.z) for r in self._items], out=off[1:])
+            off.setflags(write=False)
+            return off
         return self._qoff
 
     @cached_property
@@ -217,6 +232,10 @@ class BLCPManyResult(ManyItems):
         return np.diff(self._qoff)
 
     def _gather(self, name, shift, flat=None):
+        if self._qoff is None:  # (_of: every item built)
+            v = np.concatenate([getattr(r, name) for r in self._items])
+            v.setflags(write=False)
+            return v
         # the field ``shift`` n-blocks after the answer's z (FrontLayout: the caller's z, w,
         # lo, hi with a friction index, the run's z, w without; tests/test_structure.py)
         at = self._where
@@ -253,20 +272,31 @@ class BLCPManyResult(ManyItems):
     def status(self) -> np.ndarray:
         return self._column(np.zeros(len(self._items), dtype=np.int64), "status", int)
 
+    def _int_column(self, j):
+        """Column j of the kernels' integer results (zeros for _of: every item patched in)."""
+        return np.zeros(len(self._items), dtype=np.int64) if self._qoff is None else self._out_i[:, j]
+
     @cached_property
     def pivots(self) -> np.ndarray:
-        return self._column(self._out_i[:, 1], "pivots", int)
+        return self._column(self._int_column(1), "pivots", int)
 
     @cached_property
     def recoveries(self) -> np.ndarray:
-        return self._column(self._out_i[:, 4], "recoveries", int)
+        return self._column(self._int_column(4), "recoveries", int)
 
     @cached_property
     def residual(self) -> np.ndarray:
+        if self._qoff is None:
+            return self._column(np.zeros(len(self._items)), "residual", float)
         return self._column(self._out_f, "residual", float)
 
     @cached_property
     def warm_start(self) -> BoxWarmStartBatch:
+        if self._qoff is None:  # (_of: as the batch path writes a special island's states)
+            codes = [r.warm_start.row_states() if r.warm_start is not None
+                     else np.zeros(len(r.z), np.int8) for r in self._items]
+            return BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
+                                              np.concatenate(codes))
         return BoxWarmStartBatch._trusted(np.diff(self._qoff), self._state)
 
 
@@ -327,6 +357,11 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp_many, M, q, lo, hi, findex=findex, warm_start=warm_start,
                      sizes=sizes, workers=workers)
+    if (options is None and sizes is None and type(M) in _SEQ and 0 < len(M) <= FEW
+            and (workers is None or (type(workers) is int and workers > 0))):
+        res = _few(M, q, lo, hi, findex, warm_start)
+        if res is not None:
+            return res
     opts = as_options(options)
     workers = _workers(workers)
     if sizes is None:
@@ -396,6 +431,49 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
                             else np.zeros(n, np.int8))
     return BLCPManyResult(sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state_out, fflag,
                           loflat, hiflat, given, special, answer)
+
+
+def _few(M, q, lo, hi, findex, warm_start):
+    """solve_blcp_many's result for a few islands (M a list or tuple of at most FEW) solved
+    one by one by ``solve_blcp`` (its native front: microseconds each, where the batch's
+    set-up of its flat arrays and offsets costs tens of microseconds), or None for the
+    general path: when M_b, q_b are not float64 ndarrays of sizes n_b >= 1, the sequences'
+    lengths differ, the warm starts are not None, a BoxWarmStartBatch of the islands' sizes
+    or a sequence of BoxWarmStart or None, or a solve refuses its arguments (the general
+    path then says what is wrong, naming the island, as it always has). Item b is
+    solve_blcp's result either way, bit for bit."""
+    B = len(M)
+    if not (type(q) in _SEQ and type(lo) in _SEQ and type(hi) in _SEQ
+            and len(q) == len(lo) == len(hi) == B):
+        return None
+    if findex is None:
+        fis = (None,) * B
+    elif type(findex) in _SEQ and len(findex) == B:
+        fis = findex
+    else:
+        return None
+    for b in range(B):
+        Mb, qb = M[b], q[b]
+        if not (type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
+                and qb.ndim == 1 and Mb.shape == qb.shape * 2 and qb.shape[0]):
+            return None
+    if warm_start is None:
+        ws = (None,) * B
+    elif type(warm_start) is BoxWarmStartBatch:
+        if warm_start.n.tolist() != [qb.shape[0] for qb in q]:
+            return None
+        ws = list(warm_start)
+    elif (type(warm_start) in _SEQ and len(warm_start) == B
+          and all(w is None or type(w) is BoxWarmStart for w in warm_start)):
+        ws = warm_start
+    else:
+        return None
+    try:
+        items = [solve_blcp(M[b], q[b], lo[b], hi[b], findex=fis[b], warm_start=ws[b])
+                 for b in range(B)]
+    except (TypeError, ValueError):
+        return None
+    return BLCPManyResult._of(items)
 
 
 _NO_FINDEX = np.zeros(0, dtype=np.int64)
