@@ -489,6 +489,17 @@ FEW = 4
 _SEQ = (list, tuple)
 
 
+def _plain(M, q):
+    """Whether every (M_b, q_b) is a float64 ndarray pair, M_b square of q_b's size n_b >= 1
+    (M and q sequences of the same length): the problems a few-problem call solves one by
+    one."""
+    for Mb, qb in zip(M, q):
+        if not (type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
+                and qb.ndim == 1 and Mb.shape == qb.shape * 2 and qb.shape[0]):
+            return False
+    return True
+
+
 def _few(M, q, method, warm_start):
     """solve_lcp_many's result for the few problems (M, q) (lists or tuples of the same
     length, at most FEW) solved one by one by ``solve_lcp``, or None when they are not all
@@ -497,13 +508,8 @@ def _few(M, q, method, warm_start):
     warm starts are not None, a WarmStartBatch or a sequence of WarmStart or None, all of
     the problems' sizes."""
     B = len(M)
-    if len(q) != B:
+    if len(q) != B or not _plain(M, q):
         return None
-    for b in range(B):
-        Mb, qb = M[b], q[b]
-        if not (type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
-                and qb.ndim == 1 and Mb.shape == qb.shape * 2 and qb.shape[0]):
-            return None
     if warm_start is None:
         ws = (None,) * B
     elif type(warm_start) is WarmStartBatch:

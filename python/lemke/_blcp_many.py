@@ -20,7 +20,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _validate
-from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _run, _workers
+from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _plain, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
@@ -452,11 +452,8 @@ def _few(M, q, lo, hi, findex, warm_start):
         fis = findex
     else:
         return None
-    for b in range(B):
-        Mb, qb = M[b], q[b]
-        if not (type(Mb) is _ND and type(qb) is _ND and Mb.dtype is _F64 and qb.dtype is _F64
-                and qb.ndim == 1 and Mb.shape == qb.shape * 2 and qb.shape[0]):
-            return None
+    if not _plain(M, q):
+        return None
     if warm_start is None:
         ws = (None,) * B
     elif type(warm_start) is BoxWarmStartBatch:
