@@ -64,15 +64,17 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
 }
 
 // The first stage of a warm start. Returns 0 (the old basis solves it), 1 (its point fails),
-// 2 (its block is singular), -1 (not finite).
+// 2 (its block is singular), -1 (not finite). The finite test rides on the equilibration's
+// first sweep (equilibrate_finite: the same test and the same scales as all_finite and
+// equilibrate apart), so a basis that still fits costs one pass over M fewer; max |M|, which
+// only a restart needs, is left to it.
 int old_basis(Mat<const double> M, const double* q, const double* d, const idx* beta, idx k,
-              double tol, const Views& v, idx* basic, double& residual, double& m_max,
+              double tol, const Views& v, idx* basic, double& residual,
               std::vector<double>& work) {
     idx n = M.rows;
     residual = 0.0;
-    if (!finite_absmax(M, m_max) || !all_finite(q, n)) return -1;
     work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
-    equilibrate(M, q, v.R, v.C, work.data());
+    if (!equilibrate_finite(M, q, v.R, v.C, work.data())) return -1;
     v.x[n] = 0.0;
     if (!basis_point(M, q, beta, k, v.x, work.data())) return 2;
     if (!check_rows(M, q, v.x, tol, v.w, v.R, work.data(), true, residual)) {
@@ -112,8 +114,8 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     idx n = M.rows;
     Views v(buf, n);
     if (k > 0) {
-        double residual, m_max;
-        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
+        double residual;
+        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
         if (found <= 0) return warm_verdict(found, k, residual);
         if (found == 1 && n >= RESTART_FROM) {
             out.stage = -2;
@@ -480,15 +482,11 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
         // the warm start's stages (cold.warm_stages)
         int found;
         double m_max, residual = 0.0;
-        if (tried) {
-            found = 1;
-            finite_absmax(M, m_max);
-        } else {
-            found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
-        }
+        found = tried ? 1 : old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
         if (found <= 0) return warm_verdict(found, k, residual);
         RunResult out;
         if (found != 2 && n >= RESTART_FROM) {
+            finite_absmax(M, m_max);  // (M is finite: old_basis, or first_run's, tested it)
             std::vector<std::uint8_t> flags(static_cast<std::size_t>(2 * n), 0);
             std::uint8_t* z_start = flags.data();
             std::uint8_t* z_basic = flags.data() + n;
