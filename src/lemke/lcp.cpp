@@ -64,28 +64,29 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
 }
 
 // The first stage of a warm start. Returns 0 (the old basis solves it), 1 (its point fails),
-// 2 (its block is singular), -1 (not finite). `fused` (a batch's islands): M's finite check
-// in the scales' first sweep (equilibrate_finite: the same scales) instead of a pass of its
-// own (finite_absmax; m_max is then not computed), and the buffer's scales put back as they
-// were when M or q is not finite, as that pass leaves them.
+// 2 (its block is singular), -1 (not finite). The finite test rides on the equilibration's
+// first sweep (equilibrate_finite: the same test and the same scales as all_finite and
+// equilibrate apart), so a basis that still fits costs one pass over M fewer; max |M|, which
+// only a restart needs, is left to it. When M or q is not finite, the buffer's scales are
+// put back as they were (as the separate finite test, made before any scale was written,
+// left them).
 int old_basis(Mat<const double> M, const double* q, const double* d, const idx* beta, idx k,
-              double tol, const Views& v, idx* basic, double& residual, double& m_max,
-              std::vector<double>& work, bool fused = false) {
+              double tol, const Views& v, idx* basic, double& residual,
+              std::vector<double>& work) {
     idx n = M.rows;
     residual = 0.0;
-    m_max = 0.0;
-    if (fused) {
-        work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 4 * n)));
-        double* kept = work.data() + 2 * n;  // (equilibrate's work is the first 2n)
-        for (idx i = 0; i < n; ++i) { kept[i] = v.R[i]; kept[n + i] = v.C[i]; }
-        if (!equilibrate_finite(M, q, v.R, v.C, work.data())) {
-            for (idx i = 0; i < n; ++i) { v.R[i] = kept[i]; v.C[i] = kept[n + i]; }
-            return -1;
+    work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 4 * n)));
+    double* kept = work.data() + 2 * n;  // (equilibrate's work is the first 2n)
+    for (idx i = 0; i < n; ++i) {
+        kept[i] = v.R[i];
+        kept[n + i] = v.C[i];
+    }
+    if (!equilibrate_finite(M, q, v.R, v.C, work.data())) {
+        for (idx i = 0; i < n; ++i) {
+            v.R[i] = kept[i];
+            v.C[i] = kept[n + i];
         }
-    } else {
-        if (!finite_absmax(M, m_max) || !all_finite(q, n)) return -1;
-        work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
-        equilibrate(M, q, v.R, v.C, work.data());
+        return -1;
     }
     v.x[n] = 0.0;
     if (!basis_point(M, q, beta, k, v.x, work.data())) return 2;
@@ -119,15 +120,15 @@ RunResult warm_verdict(int found, idx k, double residual) {
 
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
                     idx k, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                    double* buf, idx* basic, bool island) {
+                    double* buf, idx* basic) {
     thread_local std::vector<double> work;
     thread_local std::vector<std::uint8_t> z_basic;
     RunResult out;
     idx n = M.rows;
     Views v(buf, n);
     if (k > 0) {
-        double residual, m_max;
-        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work, island);
+        double residual;
+        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
         if (found <= 0) return warm_verdict(found, k, residual);
         if (found == 1 && n >= RESTART_FROM) {
             out.stage = -2;
@@ -494,15 +495,11 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
         // the warm start's stages (cold.warm_stages)
         int found;
         double m_max, residual = 0.0;
-        if (tried) {
-            found = 1;
-            finite_absmax(M, m_max);
-        } else {
-            found = old_basis(M, q, d, beta, k, tol, v, basic, residual, m_max, work);
-        }
+        found = tried ? 1 : old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
         if (found <= 0) return warm_verdict(found, k, residual);
         RunResult out;
         if (found != 2 && n >= RESTART_FROM) {
+            finite_absmax(M, m_max);  // (M is finite: old_basis, or first_run's, tested it)
             std::vector<std::uint8_t> flags(static_cast<std::size_t>(2 * n), 0);
             std::uint8_t* z_start = flags.data();
             std::uint8_t* z_basic = flags.data() + n;
@@ -539,11 +536,10 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
 
 RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                double tol, double* buf, idx* basic, bool island) {
+                double tol, double* buf, idx* basic) {
     if (method != TABLEAU)
         return solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
-    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
-                            island);
+    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
     if (r.stage >= 0) return r;
     idx n = M.rows;
     if (r.stage == -1 && r.code == RAY_TERMINATION) {
@@ -583,8 +579,7 @@ void batch(Method method, const double* Ms, const idx* mstart, const double* qs,
             r.code = INTERRUPTED;
         } else
         r = solve(method, M, qs + qoff[b], nullptr, beta + boff[b], boff[b + 1] - boff[b],
-                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b],
-                  true);
+                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b]);
         idx* oi = out_i + 5 * b;
         oi[0] = r.code;
         oi[1] = r.pivots;

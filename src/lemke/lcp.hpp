@@ -39,12 +39,10 @@ enum Method : int { TABLEAU = 0, UNREVISED = 1 };
 
 // What solve_lcp runs first (tableau method), cold (k == 0) or warm from the basic z's
 // beta[:k]. d: the covering vector (nullptr: all ones). buf: BufferLayout(n).length()
-// doubles; basic: n int64 (the basic z's, or on stage -1 the final flags). `island` (batch's
-// calls): a warm start's finite check of M done in the scales' first sweep, not a pass of
-// its own (the same bits).
+// doubles; basic: n int64 (the basic z's, or on stage -1 the final flags).
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
                     idx k, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                    double* buf, idx* basic, bool island = false);
+                    double* buf, idx* basic);
 
 // What solve_lcp runs for one problem, and every batch per problem (cold.solve_one): a warm
 // start's stages from beta[:k] when k > 0, then, unless they solved it, the cold solve with
@@ -63,7 +61,7 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
 // solve_one would give it.
 RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                double tol, double* buf, idx* basic, bool island = false);
+                double tol, double* buf, idx* basic);
 
 // checked_once: checked() with the covering vector d given (so no recovery runs after a
 // failed check) and a ray not judged (ok false): the prologue, one run of `method` with the
