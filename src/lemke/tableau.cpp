@@ -12,7 +12,8 @@ void TableauWork::layout(idx size) {
     block = block_size(n);
     idx lanes = n < 48 ? 4 : 8;
     ld = (n + lanes) / lanes * lanes;
-    f.resize(static_cast<std::size_t>(7 + n * ld + 7 * n + ld + n * block + block * ld));
+    nv = (n + 7) / 8 * 8;
+    f.resize(static_cast<std::size_t>(7 + n * ld + 7 * nv + ld + nv * block + block * ld));
     auto at = reinterpret_cast<std::uintptr_t>(f.data());
     off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
     i.resize(static_cast<std::size_t>(6 * n + 2));

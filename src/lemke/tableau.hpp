@@ -23,18 +23,19 @@ struct TableauWork {
     idx n = -1;
     idx ld = 0;              // T's row stride: n + 1 rounded up to a multiple of 8
     idx off = 0;             // T's offset in f: its first row on a 64-byte boundary
+    idx nv = 0;              // a vector's length in f: n rounded up to 8 (every one 64-byte aligned)
     idx block = 1;
     void layout(idx size);
     Mat<double> T() { return Mat<double>(f.data() + off, n, n + 1, ld); }
     double* rhs() { return f.data() + off + n * ld; }
-    double* col() { return rhs() + n; }
-    double* q0() { return col() + n; }
-    double* magb() { return q0() + n; }
-    double* mags() { return magb() + n; }
-    double* prow() { return mags() + n; }
+    double* col() { return rhs() + nv; }
+    double* q0() { return col() + nv; }
+    double* magb() { return q0() + nv; }
+    double* mags() { return magb() + nv; }
+    double* prow() { return mags() + nv; }
     double* keys() { return prow() + ld; }
-    double* U() { return keys() + n; }        // block x n: the pending pivots' columns
-    double* V() { return U() + n * block; }   // block x ld: their rows
+    double* U() { return keys() + nv; }        // block x n: the pending pivots' columns
+    double* V() { return U() + nv * block; }   // block x ld: their rows
     double* col2() { return V() + block * ld; }  // the next entering column
     idx* basis() { return i.data(); }
     idx* nonbasic() { return basis() + n; }
