@@ -392,3 +392,22 @@ def test_a_few_islands_one_by_one_are_the_batch_path(seed):
     with pytest.raises(ValueError, match=r"warm_start\[0\] is for a problem of size"):
         lemke.solve_blcp_many(*short, warm_start=lemke.solve_blcp_many(
             Ms[:2], qs[:2], los[:2], his[:2]).warm_start)
+
+
+def test_from_codes_small_is_the_numpy_rule():
+    """_blcp._from_codes_small (a Python loop for a few rows) gives the BoxWarmStart the numpy
+    version gives, friction rows included, on random row states."""
+    from lemke import _blcp
+    rng = np.random.default_rng(31)
+    for _ in range(2000):
+        n = int(rng.integers(0, _blcp._FEW_ROWS + 1))
+        c = np.where(rng.random(n) < 0.3, rng.integers(3, 30, n), rng.integers(0, 3, n)).astype(np.int8)
+        a = _blcp._from_codes_small(c)
+        F = np.flatnonzero(c >= 3)
+        e = c[F].astype(np.int64) - 3
+        states = np.concatenate([np.where(c >= 3, (c.astype(np.int64) - 3) // 9, c), (e // 3) % 3, e % 3])
+        assert a.n == n + 2 * F.size
+        assert a.z_basic == tuple(np.flatnonzero(states == 2).tolist())
+        assert a.at_upper == tuple(np.flatnonzero(states == 1).tolist())
+        assert a.friction == tuple(F.tolist())
+        assert a.row_states().tobytes() == c.tobytes()
