@@ -185,6 +185,10 @@ def main(argv=None):
     lines.append(f"- steps that leave the fused kernel for the KKT-MLCP path (its code not OK: "
                  f"a failed KKT check, ...): cold {kr[3]} of {len(steps)}, warm {kr[4]} of "
                  f"{len(steps) - 1}")
+    if kr[5] is not None:
+        lines.append(f"- the kernel's warm steps end on the old active set or its updates "
+                     f"{kr[5][0]}, on Lemke's method restarted from the nearest set tried "
+                     f"{kr[5][1]}, on the cold LCP {kr[5][2]} (`_core.qp_warm_ends`)")
     zero = (piv["lemke warm"] == 0).mean()
     lines.append(f"- lemke warm steps with 0 pivots (the old active set solved the new step): {100 * zero:.0f} %")
     text = "\n".join(lines) + "\n"
@@ -195,25 +199,31 @@ def main(argv=None):
 
 
 def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
-    """(median, worst, count, cold fallbacks, warm fallbacks): the per-step ratio of the
-    fused kernel's time from the previous step's basis to its cold time (the best of
+    """(median, worst, count, cold fallbacks, warm fallbacks, ends): the per-step ratio of
+    the fused kernel's time from the previous step's basis to its cold time (the best of
     ``repeats`` calls each, interleaved), over the steps where both end solved and checked
-    (code 0), no Python front; and the number of steps where the cold kernel, and the warm
-    one, does not (the front then takes the KKT-MLCP path)."""
+    (code 0), no Python front; the number of steps where the cold kernel, and the warm
+    one, does not (the front then takes the KKT-MLCP path); and how the warm steps' first
+    calls ended (kept, restarted, cold: ``_core.qp_warm_ends``, None where the kernel has
+    no such count)."""
     from lemke import _core, _qp
     n, p, m = P.shape[0], A.shape[0], G.shape[0]
     out = np.empty(_qp._layout(n, p, m)[-1])  # (qp::OutLayout's length)
-    ws, ratios, cold_out, warm_out = None, [], 0, 0
+    ends = getattr(_core, "qp_warm_ends", None)
+    ws, ratios, cold_out, warm_out, ended = None, [], 0, 0, np.zeros(3, dtype=int)
     for q, b in steps:
         r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, warm_start=ws)
         cold_out += _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)[0] != 0
         if ws is not None:
             wv = np.array(ws.z_basic, dtype=np.int64)
             tw, tc = [], []
-            for _ in range(repeats):
+            for rep in range(repeats):
+                e0 = np.array(ends()) if ends is not None and rep == 0 else None
                 t0 = time.perf_counter()
                 cw = _core.qp_solve_warm(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out, wv, ws.n)
                 tw.append(time.perf_counter() - t0)
+                if e0 is not None:
+                    ended += np.array(ends()) - e0
                 t0 = time.perf_counter()
                 cc = _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)
                 tc.append(time.perf_counter() - t0)
@@ -221,7 +231,8 @@ def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
             if cw[0] == 0 and cc[0] == 0:
                 ratios.append(min(tw) / min(tc))
         ws = r.warm_start
-    return float(np.median(ratios)), float(np.max(ratios)), len(ratios), cold_out, warm_out
+    return (float(np.median(ratios)), float(np.max(ratios)), len(ratios), cold_out, warm_out,
+            None if ends is None else ended.tolist())
 
 
 def _commit():

@@ -155,8 +155,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         ``n``, the number of pairs of the KKT-MLCP, must match: else ``ValueError``).  Its
         active set is tried first: with P definite the fused kernel solves the old active
         set's KKT system on the new data and checks it (0 pivots when it holds), else
-        makes up to 3 active-set updates (3 more while each moves a single row), else solves
-        cold; P, A and G equal to the last call's (on
+        makes up to 3 active-set updates (3 more while each moves a single row), else
+        restarts Lemke's method from the nearest set those tried (kept when its point passes
+        the KKT check), else solves cold; P, A and G equal to the last call's (on
         the same thread) reuse its factors whether warm or cold.  Another kind of warm start
         (a ``BoxWarmStart``, a ``WarmStartBatch``) is a ``ValueError``, anything else a
         ``TypeError``.
@@ -675,7 +676,8 @@ def _solve_warm(args, method, opts, warm_start, x0=None):
     """The fused kernel from a warm start (``_core.qp_solve_warm``), or from qpsolvers'
     initvals x0 (``_core.qp_solve_guess``, which reads the rows active at x0 itself, the
     rule of :func:`_initvals_start`): that active set first (its KKT point on the new data,
-    checked; a few active-set updates), else cold; the factors of P, A, G reused when they
+    checked; a few active-set updates; Lemke's method restarted from the nearest set
+    tried), else cold; the factors of P, A, G reused when they
     are the last call's.  None when it does not end solved and checked (P not definite,
     dependent equalities, ...): the caller then takes the KKT-MLCP path from the same start.
     A warm start with another number of pairs is a ValueError."""

@@ -950,11 +950,15 @@ void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m)
 // a cheap try). A set that passes gives the
 // point, caller_form and the KKT check on the data as for a solved LCP: true (Result OK,
 // pivots the number of rows that entered or left S, the basis written; or CHECK_FAILED when
-// the point fails the KKT check); false (Result.pivots the updates tried) leaves zz zero for
-// the cold LCP, whose answer a failed warm start then gives bit for bit.
+// the point fails the KKT check); false (Result.pivots the updates tried) leaves zz zero and
+// `nearest` the set tried (M_SS factored) with the fewest rows to move, where restart takes
+// the LCP on from.
 bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
-                const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
+                const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res,
+                std::vector<idx>& nearest) {
     idx n = ds.n(), p = R.p, m = R.m;
+    nearest.clear();
+    idx fewest = m + 1;  // the rows nearest's set had to move
     thread_local std::vector<double> lu, ws;
     thread_local std::vector<idx> S, next, seen, starts, last_set;  // seen: the sets tried, sorted
     S.assign(beta.begin(), beta.end());
@@ -1024,6 +1028,10 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             ok = true;
             break;
         }
+        if (moved < fewest) {
+            fewest = moved;
+            nearest.assign(S.begin(), S.end());
+        }
         if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
         // a set tried before: the steps repeat (each set gives the same next one), never
         // one that holds; the cold LCP, without the rest of the tries
@@ -1068,6 +1076,82 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
     mlcp_basis(lo, up, n, R.m_g, R.ckind, m, S.data(), kb, basic, w.bflags, res.k, res.pairs);
     res.code = OK;
     return true;
+}
+
+// A failed warm start taken on from where warm_point left it: Lemke's method from the
+// complementary basis with z_S basic, S = nearest (warm_point factored M_SS), covering vector
+// d = c e_N - M[:, S] 1 (lcp.cpp's restart's; c = max_i M_ii >= max |M|, M positive
+// semidefinite), so that z0 lifts z_S = zbar_S + z0 1 and w_N = wbar_N + c z0 together: the
+// pivots move the rows the updates could not, not the whole path from the all-w basis. By
+// the unrevised method with M read in place (unrevised_symmetric, H at most r + 1 wide),
+// capped at cap pivots. Returns its status (NOT_SOLVED when it does not run: S empty, c not
+// positive), pivots in `pivots`; on SOLVED the basic z's into lcp_basic (k of them) and zz
+// (clipped at 0) from M_SS z_S = -g_S on them (the method's own z when M_SS is singular).
+int restart(const QPWork& w, const Rows& R, idx r, const std::vector<idx>& nearest, idx cap,
+            double pivot_tol, double tie_tol, idx* lcp_basic, idx& k, idx& pivots) {
+    idx m = R.m;
+    pivots = 0;
+    k = 0;
+    if (nearest.empty()) return NOT_SOLVED;
+    double c = 0.0;
+    for (idx i = 0; i < m; ++i) c = pmax(c, w.M(i, i));
+    if (!(c > 0.0 && c < INF)) return NOT_SOLVED;
+    thread_local std::vector<double> buf;
+    thread_local std::vector<std::uint8_t> flags;
+    buf.resize(static_cast<std::size_t>(3 * m + 2));
+    flags.assign(static_cast<std::size_t>(2 * m), 0);
+    double* x = buf.data();
+    double* ray = x + m + 1;
+    double* d = ray + m + 1;
+    std::uint8_t* start = flags.data();
+    std::uint8_t* basic = start + m;
+    for (idx i : nearest) start[i] = 1;
+    for (idx i = 0; i < m; ++i) d[i] = start[i] ? 0.0 : c;
+    for (idx j : nearest) {  // (M symmetric to the bit: column j is row j)
+        const double* Mj = w.M.row(j);
+        for (idx i = 0; i < m; ++i) d[i] -= Mj[i];
+    }
+    Status st = unrevised_symmetric(w.M, d, w.g, start, r + 1, cap, pivot_tol, tie_tol, x, ray,
+                                    basic, pivots);
+    if (st != SOLVED) return st;
+    for (idx i = 0; i < m; ++i)
+        if (basic[i]) lcp_basic[k++] = i;
+    // z_S of the final basis S from M_SS z_S = -g_S (LU, as warm_point's sets): nearer the
+    // KKT point than the method's own values, kept to RESIDUAL_TOL of their block
+    thread_local std::vector<double> lu;
+    lu.resize(static_cast<std::size_t>(k * (k + 2)));
+    double* y = lu.data() + k * k;
+    double* zS = y + k;
+    for (idx i = 0; i < k; ++i) y[i] = -w.g[lcp_basic[i]];
+    bool exact = k > 0 && solve_gathered(w.M, lcp_basic, lu.data(), y, zS, k);
+    for (idx i = 0; i < m; ++i) w.zz[i] = exact ? 0.0 : pmax(x[i], 0.0);
+    if (exact)
+        for (idx i = 0; i < k; ++i) w.zz[lcp_basic[i]] = pmax(zS[i], 0.0);
+    return SOLVED;
+}
+
+// solve's end from the multiplier LCP's answer (w.zz, the basic z's lcp_basic[:k]): the
+// basis as mlcp_basis numbers it into basic (res.k, res.pairs), the point, caller_form and
+// the KKT check on the data; whether it passes.
+bool finish(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
+            const idx* lcp_basic, idx k, double tol, const Outs& o, idx* basic, Result& res) {
+    idx n = ds.n(), p = R.p, m = R.m;
+    // mlcp_basis reads the LCP's basis whole before it writes there (they may share `basic`)
+    idx* lb_copy = w.lcp_basic;
+    for (idx i = 0; i < k; ++i) lb_copy[i] = lcp_basic[i];
+    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k, basic, w.bflags, res.k, res.pairs);
+    double* v = w.v;
+    for (idx t = p; t < n; ++t) v[t] = -w.c[t];
+    for (idx i = 0; i < m; ++i) {
+        double zi = w.zz[i];
+        if (zi != 0.0) {
+            const double* Ci = R.C.row(i);
+            for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
+        }
+    }
+    point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
+    caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
+    return kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
 }
 
 }  // namespace
@@ -1394,6 +1478,11 @@ static bool screened(const Data& dt, std::vector<double>& scr, Data& ds) {
     return true;
 }
 
+WarmEnds& warm_ends() {
+    thread_local WarmEnds ends;
+    return ends;
+}
+
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs,
              const double* x0) {
@@ -1472,13 +1561,34 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     }
     idx pivots = 0, k_basic = 0;
     idx* lcp_basic = basic;
-    if ((warm != nullptr || x0 != nullptr) && m > 0 &&
-        warm_point(ds, lo, up, w, R, beta, tol, o, basic, res)) return res;
+    idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
+    if ((warm != nullptr || x0 != nullptr) && m > 0) {
+        thread_local std::vector<idx> nearest;
+        WarmEnds& ends = warm_ends();
+        if (warm_point(ds, lo, up, w, R, beta, tol, o, basic, res, nearest)) {
+            ++ends.kept;
+            return res;
+        }
+        // the old set failed: Lemke's method on from the nearest set tried (restart); the
+        // cold LCP only when that does not end on a point that passes the KKT check
+        idx rp = 0;
+        int st = restart(w, R, n - p, nearest, cap, pivot_tol, tie_tol, lcp_basic, k_basic, rp);
+        res.pivots += rp;
+        if (is_stop(st)) {
+            res.code = st;  // a stop ends the QP too
+            return res;
+        }
+        if (st == SOLVED && finish(ds, lo, up, w, R, lcp_basic, k_basic, tol, o, basic, res)) {
+            ++ends.restarted;
+            res.code = OK;
+            return res;
+        }
+        ++ends.cold;
+        for (idx i = 0; i < m; ++i) w.zz[i] = 0.0;
+    }
     if (m > 0) {
-        idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
         Method mt = method == TABLEAU ? TABLEAU : UNREVISED;
-        // cold (also after a warm start that warm_point could not finish: measured on the MPC
-        // benchmark, Lemke restarted from the old basis cost more than the cold run)
+        // cold (also after a warm start that neither warm_point nor restart could finish)
         RunResult rr = checked_once(mt, w.M, w.g, w.ones, cap, pivot_tol, tie_tol, tol, w.buf,
                                     lcp_basic);
         pivots = rr.pivots + res.pivots;
@@ -1490,27 +1600,9 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         }
         for (idx i = 0; i < m; ++i) w.zz[i] = pmax(w.buf[i], 0.0);
     }
-    // mlcp_basis reads the LCP's basis whole before it writes there (they share `basic`)
-    idx* lb_copy = w.lcp_basic;
-    for (idx i = 0; i < k_basic; ++i) lb_copy[i] = lcp_basic[i];
-    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k_basic, basic, w.bflags, res.k, res.pairs);
-    double* v = w.v;
-    for (idx t = p; t < n; ++t) v[t] = -w.c[t];
-    for (idx i = 0; i < m; ++i) {
-        double zi = w.zz[i];
-        if (zi != 0.0) {
-            const double* Ci = R.C.row(i);
-            for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
-        }
-    }
-    point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
-    caller_form(o, n, p0, m0, w.yy, w.zz, R, true);
+    bool passed = finish(ds, lo, up, w, R, lcp_basic, k_basic, tol, o, basic, res);
     res.pivots = pivots;
-    if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
-        res.code = CHECK_FAILED;
-        return res;
-    }
-    res.code = OK;
+    res.code = passed ? OK : CHECK_FAILED;
     return res;
 }
 
