@@ -972,7 +972,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
     bool ok = false;
     for (idx step = 0; step <= ACTIVE_SET_STEPS + ACTIVE_SET_MORE; ++step) {
         // beyond the first ACTIVE_SET_STEPS updates, only while the last one moved a single
-        // row (close: a cheap step more; else the cold LCP, without more tries)
+        // row (close: a cheap step more; else the restart, without more tries)
         if (step > ACTIVE_SET_STEPS && last != 1) break;
         idx kb = static_cast<idx>(S.size());
         if (kb > n - p) break;  // more active rows than free directions: singular
@@ -1032,9 +1032,9 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             fewest = moved;
             nearest.assign(S.begin(), S.end());
         }
-        if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
+        if (step > 0 && moved > last) break;  // moving away: the restart, without more tries
         // a set tried before: the steps repeat (each set gives the same next one), never
-        // one that holds; the cold LCP, without the rest of the tries
+        // one that holds; the restart, without the rest of the tries
         seen.insert(seen.end(), S.begin(), S.end());
         std::sort(seen.end() - kb, seen.end());
         starts.push_back(static_cast<idx>(seen.size()));
