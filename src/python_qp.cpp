@@ -82,15 +82,16 @@ bool cholesky(In2 P, Out2 L) {
 }
 
 bool kkt_check(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 x, In1 y, In1 z,
-               In1 zb, double tol, Out1 stats) {
+               In1 zb, double tol, Out1 stats, bool sparse) {
     idx n = len(q);
     if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(x) != n || len(y) != len(A, 0) ||
         len(z) != len(G, 0) || len(zb) != n || len(stats) < 4)
         throw nb::value_error("qp_kkt_check: P must be n x n, G m x n, A p x n, h and z of "
                               "length m, b and y p, q, lb, ub, x, zb n, stats at least 4");
     nb::gil_scoped_release release;
-    return qp::kkt_check(data(P, q, G, h, A, b, lb, ub), x.data(), y.data(), z.data(), zb.data(),
-                         tol, stats.data());
+    return (sparse ? qp::kkt_check_sparse : qp::kkt_check)(data(P, q, G, h, A, b, lb, ub),
+                                                           x.data(), y.data(), z.data(),
+                                                           zb.data(), tol, stats.data());
 }
 
 // qp.solve, cold (warm nullptr) or warm, for qp_solve and qp_solve_warm.
@@ -284,7 +285,8 @@ void bind_qp(nb::module_& m) {
     m.def("qp_screen", &screen, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a);
     m.def("qp_cholesky", &cholesky, "P"_a, nb::arg("L").noconvert());
     m.def("qp_kkt_check", &kkt_check, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
-          "x"_a, "y"_a, "z"_a, "zb"_a, "tol"_a, nb::arg("stats").noconvert());
+          "x"_a, "y"_a, "z"_a, "zb"_a, "tol"_a, nb::arg("stats").noconvert(),
+          "sparse"_a = false);
     m.def("qp_solve", &solve, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           "method"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
           nb::arg("out").noconvert());

@@ -50,6 +50,26 @@ struct Unset : std::allocator<T> {
     void construct(U* p, A&&... a) { ::new (static_cast<void*>(p)) U(std::forward<A>(a)...); }
 };
 
+// The nonzeros of a matrix by rows, in row order (the factor cache's Ps, A and G, for
+// kkt_check's sums, which skip their exact zeros with the same bits): on when at most a
+// quarter of the entries are nonzero (else the dense, vectorized loops are as quick).
+struct SparseRows {
+    std::vector<idx> start, col;
+    bool on = false;
+    void build(const double* M, idx rows, idx cols, bool always = false) {
+        start.resize(static_cast<std::size_t>(rows + 1));
+        col.clear();
+        for (idx i = 0; i < rows; ++i) {
+            start[i] = static_cast<idx>(col.size());
+            const double* Mi = M + i * cols;
+            for (idx j = 0; j < cols; ++j)
+                if (Mi[j] != 0.0) col.push_back(j);
+        }
+        start[rows] = static_cast<idx>(col.size());
+        on = always || (rows > 0 && 4 * static_cast<idx>(col.size()) <= rows * cols);
+    }
+};
+
 struct QPWork {
     std::vector<double, Unset<double>> f;
     std::vector<idx> i;
@@ -65,9 +85,14 @@ struct QPWork {
     idx key_p0 = 0, key_m0 = 0, m_g = 0;
     std::vector<double> keyP, keyA, keyG, keyPs;  // the caller's P, A, G; screen's Ps of P
     std::vector<std::uint8_t> keyPat;
+    // With the cache (remember): the nonzeros of keyPs, keyA, keyG by rows, and whether C is
+    // finite (point's sums then skip the rows with zz = 0: see point).
+    SparseRows spP, spA, spG;
+    bool c_finite = false;
 
     void layout(idx n_, idx p_, idx m_, bool dense) {
         cached = false;
+        c_finite = false;
         n = n_;
         p = p_;
         m = m_;
@@ -335,15 +360,18 @@ Dot2 dot2(const double* x, const double* y, idx n, double c) {
     return {s + err, size, norm};
 }
 
+// One term a x of axpy2 into (s, err, size).
+inline void axpy2_term(double& s, double& err, double& size, double a, double x) {
+    double p, e, t, f;
+    two_product(a, x, p, e);
+    two_sum(s, p, t, f);
+    s = t;
+    err += e + f;
+    size += std::fabs(p);
+}
+
 inline void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
-    for (idx j = 0; j < n; ++j) {
-        double p, e, t, f;
-        two_product(a, x[j], p, e);
-        two_sum(s[j], p, t, f);
-        s[j] = t;
-        err[j] += e + f;
-        size[j] += std::fabs(p);
-    }
+    for (idx j = 0; j < n; ++j) axpy2_term(s[j], err[j], size[j], a, x[j]);
 }
 
 // axpy2 of every row of M with coefficient coef[i] (qp.axpy2_matrix, axpy2_rows).
@@ -551,12 +579,29 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 }
 
 // qp.point: x and yy from v (v1, v2 filled), c and zz (v is overwritten).
+// With w.c_finite (solve's cache: C finite), yy's sums over the rows of C take only the
+// rows with zz_i != 0 (NaN included), in the same order: a row with zz_i = 0 adds C_ik zz_i
+// = +-0, which leaves a nonzero sum as it is and a zero one zero, so every sum that ends
+// nonzero has the same bits; one that ends zero (its sign might differ) is summed again
+// whole.
 void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c, double* v,
            const double* zz, double* x, double* yy) {
     idx p = R.p, m = R.m, n = L.rows;
+    thread_local std::vector<idx> on;
+    on.clear();
+    if (w.c_finite && w.cached)
+        for (idx i = 0; i < m; ++i)
+            if (zz[i] != 0.0) on.push_back(i);
+    bool skip = w.c_finite && w.cached;
     for (idx k = 0; k < p; ++k) {
         double acc = v[k] + c[k];
-        for (idx i = 0; i < m; ++i) acc += R.C(i, k) * zz[i];
+        if (skip) {
+            for (idx i : on) acc += R.C(i, k) * zz[i];
+        }
+        if (!skip || acc == 0.0) {
+            acc = v[k] + c[k];
+            for (idx i = 0; i < m; ++i) acc += R.C(i, k) * zz[i];
+        }
         yy[k] = acc;
     }
     for (idx k = p - 1; k >= 0; --k) {
@@ -642,6 +687,10 @@ void remember(const Data& dt, const Data& ds, const double* lo, const double* up
     w.key_p0 = dt.p0();
     w.key_m0 = dt.m0();
     w.m_g = m_g;
+    w.spP.build(w.keyPs.data(), n, n);
+    w.spA.build(w.keyA.data(), dt.p0(), n);
+    w.spG.build(w.keyG.data(), dt.m0(), n);
+    w.c_finite = all_finite(w.C.p, w.m * w.n);
     w.cached = true;
 }
 
@@ -930,6 +979,176 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
+// axpy2_matrix over M's nonzeros only (sp), rows with coef[i] = 0 skipped: each term it
+// skips is an exact +-0 (kkt_rows says why that keeps the bits).
+LEMKE_CLONES
+void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<const double> M,
+                  const SparseRows& sp) {
+    for (idx i = 0; i < M.rows; ++i) {
+        double a = coef[i];
+        if (a == 0.0) continue;
+        const double* Mi = M.row(i);
+        for (idx t = sp.start[i]; t < sp.start[i + 1]; ++t) {
+            idx j = sp.col[t];
+            axpy2_term(s[j], err[j], size[j], a, Mi[j]);
+        }
+    }
+}
+
+// add_abs_rows, over M's nonzeros only when sp is given (the terms skipped add +0).
+void add_abs(double* acc, idx n, double a, Mat<const double> M, const SparseRows* sp) {
+    if (sp == nullptr) {
+        add_abs_rows(acc, n, a, M);
+        return;
+    }
+    if (!(a > 0.0)) return;
+    for (idx i = 0; i < M.rows; ++i) {
+        const double* Mi = M.row(i);
+        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(Mi[sp->col[t]]);
+    }
+}
+
+// dot2(M_i, x, n, c), over M_i's nonzeros only when sp is given (the same size and norm; the
+// same sum but perhaps the sign of a zero one, which kkt_rows reads only through |.| and
+// comparisons).
+LEMKE_CLONES
+Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x, double c) {
+    const double* Mi = M.row(i);
+    if (sp == nullptr) return dot2(Mi, x, M.cols, c);
+    double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
+    for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) {
+        idx j = sp->col[t];
+        acc2(s, err, Mi[j], x[j]);
+        size += std::fabs(Mi[j] * x[j]);
+        norm += std::fabs(Mi[j]);
+    }
+    return {s + err, size, norm};
+}
+
+// kkt_check; with sw (solve's cache, whose Ps, A, G are dt's P, A, G: same_matrices) the
+// sums over P, A and G take only their nonzeros (sw's SparseRows, where on) when x, y, z, zb
+// are finite: a skipped term is an exact +-0 (a finite number times 0), which changes no sum
+// and no error term (the errors never hold -0), only perhaps the sign of a sum that is zero,
+// and no sign of a zero reaches a verdict or a stat: the residuals are read through |.|,
+// comparisons and pmax from +0, and the gap's double-double sum starts at +0, to which
+// x_j s_j = +-0 adds +0. The same bits as the dense loops (tests/test_qp_kkt_sparse.py
+// compares them).
+bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
+              const double* z, const double* zb, double tol, double* stats) {
+    idx n = dt.n();
+    double t = tol + 4.0 * EPS;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(4 * n + 1));
+    double* s = work.data();
+    double* err = s + n;
+    double* size = s + 2 * n;
+    double* allow = s + 3 * n;
+    for (idx j = 0; j < n; ++j) {
+        s[j] = dt.q[j];
+        err[j] = 0.0;
+        size[j] = std::fabs(dt.q[j]);
+    }
+    const SparseRows *sP = nullptr, *sA = nullptr, *sG = nullptr;
+    if (sw != nullptr && all_finite(x, n) && all_finite(y, dt.p0()) && all_finite(z, dt.m0()) &&
+        all_finite(zb, n)) {
+        if (sw->spP.on) sP = &sw->spP;
+        if (sw->spA.on) sA = &sw->spA;
+        if (sw->spG.on) sG = &sw->spG;
+    }
+    if (sP != nullptr) axpy2_sparse(s, err, size, x, dt.P, *sP);
+    else axpy2_matrix(s, err, size, n, x, dt.P);
+    double gap_hi = 0.0, gap_lo = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        acc2(gap_hi, gap_lo, x[j], s[j]);
+        gap_lo += x[j] * err[j];
+    }
+    double xPq_hi = gap_hi, xPq_lo = gap_lo;
+    if (sA != nullptr) axpy2_sparse(s, err, size, y, dt.A, *sA);
+    else axpy2_matrix(s, err, size, n, y, dt.A);
+    if (sG != nullptr) axpy2_sparse(s, err, size, z, dt.G, *sG);
+    else axpy2_matrix(s, err, size, n, z, dt.G);
+    // The rounding floor (qp.kkt_check states the rule): each of x, y, z, zb is exact only to
+    // f = 4 (n + 2) eps times its own largest entry; allow[j] first holds what those errors
+    // move stationarity row j by, divided by f.
+    double f = 4.0 * static_cast<double>(n + 2) * EPS;
+    double x_top = 0.0, y_top = 0.0, z_top = 0.0, zb_top = 0.0;
+    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
+    for (idx i = 0; i < dt.p0(); ++i) y_top = pmax(y_top, std::fabs(y[i]));
+    for (idx i = 0; i < dt.m0(); ++i) z_top = pmax(z_top, std::fabs(z[i]));
+    for (idx j = 0; j < n; ++j) zb_top = pmax(zb_top, std::fabs(zb[j]));
+    for (idx j = 0; j < n; ++j) allow[j] = zb_top;
+    add_abs(allow, n, x_top, dt.P, sP);
+    add_abs(allow, n, y_top, dt.A, sA);
+    add_abs(allow, n, z_top, dt.G, sG);
+    bool ok = true;
+    double dual = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        double r, e;
+        two_sum(s[j], zb[j], r, e);
+        r += e + err[j];
+        allow[j] = t * (size[j] + std::fabs(zb[j])) + f * allow[j];
+        dual = pmax(dual, std::fabs(r));
+        if (!(std::fabs(r) <= allow[j])) ok = false;
+    }
+    double floor = f * x_top;
+    double primal = 0.0;
+    for (idx i = 0; i < dt.p0(); ++i) {
+        Dot2 d = row_dot2(dt.A, sA, i, x, -dt.b[i]);
+        primal = pmax(primal, std::fabs(d.sum));
+        acc2(gap_hi, gap_lo, dt.b[i], y[i]);
+        if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
+    }
+    for (idx i = 0; i < dt.m0(); ++i) {
+        if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
+            if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
+            continue;
+        }
+        Dot2 d = row_dot2(dt.G, sG, i, x, -dt.h[i]);
+        double r = d.sum;
+        double sz = t * d.size + floor * d.norm;
+        primal = pmax(primal, r);
+        acc2(gap_hi, gap_lo, dt.h[i], z[i]);
+        double zi = z[i];
+        if (!(r <= sz && zi >= 0.0)) {
+            ok = false;
+        } else if (zi > 0.0 && -r > sz && !counts_as_zero(zi, dt.G.row(i), allow, n)) {
+            ok = false;
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        double zj = zb[j];
+        bool lo = dt.lb[j] > -INF, up = dt.ub[j] < INF;
+        double s_lo = t * (std::fabs(dt.lb[j]) + std::fabs(x[j])) + floor;
+        double s_up = t * (std::fabs(dt.ub[j]) + std::fabs(x[j])) + floor;
+        if (lo) {
+            double r = dt.lb[j] - x[j];
+            primal = pmax(primal, r);
+            if (zj < 0.0) acc2(gap_hi, gap_lo, dt.lb[j], zj);
+            if (r > s_lo) ok = false;
+        }
+        if (up) {
+            double r = x[j] - dt.ub[j];
+            primal = pmax(primal, r);
+            if (zj > 0.0) acc2(gap_hi, gap_lo, dt.ub[j], zj);
+            if (r > s_up) ok = false;
+        }
+        bool active;
+        if (dt.lb[j] == dt.ub[j]) active = true;
+        else if (zj < 0.0) active = lo && x[j] - dt.lb[j] <= s_lo;
+        else if (zj > 0.0) active = up && dt.ub[j] - x[j] <= s_up;
+        else active = true;
+        if (!active && std::fabs(zj) > allow[j]) ok = false;
+        if (!(x[j] == x[j])) ok = false;
+    }
+    double obj_hi = xPq_hi, obj_lo = xPq_lo;
+    for (idx j = 0; j < n; ++j) acc2(obj_hi, obj_lo, dt.q[j], x[j]);
+    stats[0] = primal;
+    stats[1] = dual;
+    stats[2] = std::fabs(gap_hi + gap_lo);
+    stats[3] = 0.5 * (obj_hi + obj_lo);
+    return ok;
+}
+
 // acc[i] += Mj[i] z, size[i] += |Mj[i] z| (i < m): one term of warm_point's sums per row.
 LEMKE_CLONES
 void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m) {
@@ -1060,7 +1279,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         }
         point(w.L, R, w, w.c, v, zz, o.x, w.yy);
         caller_form(o, n, ds.p0(), ds.m0(), w.yy, zz, R, true);
-        if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+        if (!kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
             // the LCP is solved and its point fails the check: what the cold LCP would give
             // (x is unique, P definite), so the caller's fallback, not another LCP run
             res.code = CHECK_FAILED;
@@ -1151,7 +1370,7 @@ bool finish(const Data& ds, const double* lo, const double* up, QPWork& w, const
     }
     point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
     caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
-    return kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    return kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
 }
 
 }  // namespace
@@ -1295,108 +1514,16 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
 
 bool kkt_check(const Data& dt, const double* x, const double* y, const double* z,
                const double* zb, double tol, double* stats) {
-    idx n = dt.n();
-    double t = tol + 4.0 * EPS;
-    thread_local std::vector<double> work;
-    work.resize(static_cast<std::size_t>(4 * n + 1));
-    double* s = work.data();
-    double* err = s + n;
-    double* size = s + 2 * n;
-    double* allow = s + 3 * n;
-    for (idx j = 0; j < n; ++j) {
-        s[j] = dt.q[j];
-        err[j] = 0.0;
-        size[j] = std::fabs(dt.q[j]);
-    }
-    axpy2_matrix(s, err, size, n, x, dt.P);
-    double gap_hi = 0.0, gap_lo = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        acc2(gap_hi, gap_lo, x[j], s[j]);
-        gap_lo += x[j] * err[j];
-    }
-    double xPq_hi = gap_hi, xPq_lo = gap_lo;
-    axpy2_matrix(s, err, size, n, y, dt.A);
-    axpy2_matrix(s, err, size, n, z, dt.G);
-    // The rounding floor (qp.kkt_check states the rule): each of x, y, z, zb is exact only to
-    // f = 4 (n + 2) eps times its own largest entry; allow[j] first holds what those errors
-    // move stationarity row j by, divided by f.
-    double f = 4.0 * static_cast<double>(n + 2) * EPS;
-    double x_top = 0.0, y_top = 0.0, z_top = 0.0, zb_top = 0.0;
-    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
-    for (idx i = 0; i < dt.p0(); ++i) y_top = pmax(y_top, std::fabs(y[i]));
-    for (idx i = 0; i < dt.m0(); ++i) z_top = pmax(z_top, std::fabs(z[i]));
-    for (idx j = 0; j < n; ++j) zb_top = pmax(zb_top, std::fabs(zb[j]));
-    for (idx j = 0; j < n; ++j) allow[j] = zb_top;
-    add_abs_rows(allow, n, x_top, dt.P);
-    add_abs_rows(allow, n, y_top, dt.A);
-    add_abs_rows(allow, n, z_top, dt.G);
-    bool ok = true;
-    double dual = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        double r, e;
-        two_sum(s[j], zb[j], r, e);
-        r += e + err[j];
-        allow[j] = t * (size[j] + std::fabs(zb[j])) + f * allow[j];
-        dual = pmax(dual, std::fabs(r));
-        if (!(std::fabs(r) <= allow[j])) ok = false;
-    }
-    double floor = f * x_top;
-    double primal = 0.0;
-    for (idx i = 0; i < dt.p0(); ++i) {
-        Dot2 d = dot2(dt.A.row(i), x, n, -dt.b[i]);
-        primal = pmax(primal, std::fabs(d.sum));
-        acc2(gap_hi, gap_lo, dt.b[i], y[i]);
-        if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
-    }
-    for (idx i = 0; i < dt.m0(); ++i) {
-        if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
-            if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
-            continue;
-        }
-        Dot2 d = dot2(dt.G.row(i), x, n, -dt.h[i]);
-        double r = d.sum;
-        double sz = t * d.size + floor * d.norm;
-        primal = pmax(primal, r);
-        acc2(gap_hi, gap_lo, dt.h[i], z[i]);
-        double zi = z[i];
-        if (!(r <= sz && zi >= 0.0)) {
-            ok = false;
-        } else if (zi > 0.0 && -r > sz && !counts_as_zero(zi, dt.G.row(i), allow, n)) {
-            ok = false;
-        }
-    }
-    for (idx j = 0; j < n; ++j) {
-        double zj = zb[j];
-        bool lo = dt.lb[j] > -INF, up = dt.ub[j] < INF;
-        double s_lo = t * (std::fabs(dt.lb[j]) + std::fabs(x[j])) + floor;
-        double s_up = t * (std::fabs(dt.ub[j]) + std::fabs(x[j])) + floor;
-        if (lo) {
-            double r = dt.lb[j] - x[j];
-            primal = pmax(primal, r);
-            if (zj < 0.0) acc2(gap_hi, gap_lo, dt.lb[j], zj);
-            if (r > s_lo) ok = false;
-        }
-        if (up) {
-            double r = x[j] - dt.ub[j];
-            primal = pmax(primal, r);
-            if (zj > 0.0) acc2(gap_hi, gap_lo, dt.ub[j], zj);
-            if (r > s_up) ok = false;
-        }
-        bool active;
-        if (dt.lb[j] == dt.ub[j]) active = true;
-        else if (zj < 0.0) active = lo && x[j] - dt.lb[j] <= s_lo;
-        else if (zj > 0.0) active = up && dt.ub[j] - x[j] <= s_up;
-        else active = true;
-        if (!active && std::fabs(zj) > allow[j]) ok = false;
-        if (!(x[j] == x[j])) ok = false;
-    }
-    double obj_hi = xPq_hi, obj_lo = xPq_lo;
-    for (idx j = 0; j < n; ++j) acc2(obj_hi, obj_lo, dt.q[j], x[j]);
-    stats[0] = primal;
-    stats[1] = dual;
-    stats[2] = std::fabs(gap_hi + gap_lo);
-    stats[3] = 0.5 * (obj_hi + obj_lo);
-    return ok;
+    return kkt_rows(dt, nullptr, x, y, z, zb, tol, stats);
+}
+
+bool kkt_check_sparse(const Data& dt, const double* x, const double* y, const double* z,
+                      const double* zb, double tol, double* stats) {
+    QPWork sw;
+    sw.spP.build(dt.P.p, dt.n(), dt.n(), true);
+    sw.spA.build(dt.A.p, dt.p0(), dt.n(), true);
+    sw.spG.build(dt.G.p, dt.m0(), dt.n(), true);
+    return kkt_rows(dt, &sw, x, y, z, zb, tol, stats);
 }
 
 idx zero_diagonal(Mat<const double> P) {

@@ -101,6 +101,11 @@ bool cholesky(Mat<const double> P, Mat<double> L);
 // gets (primal, dual, gap, obj).
 bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
                const double* zb, double tol, double* stats);
+// kkt_check as solve runs it on its cached matrices: the sums over P, A and G over their
+// nonzeros only (every matrix, however dense); the same verdict and stats bit for bit (for
+// tests/test_qp_kkt_sparse.py, which compares the two).
+bool kkt_check_sparse(const Data& d, const double* x, const double* y, const double* z,
+                      const double* zb, double tol, double* stats);
 
 // qp.solve on data of matching shapes: writes out[:2n + p0 + m0 + 4] (x, y, z, zb,
 // stats) and the basis (int64) after it (room for m0 + 2n); method 0 tableau, 1 unrevised.
