@@ -519,16 +519,32 @@ void mlcp_basis(const double* lb, const double* ub, idx n, idx m_g, const idx* c
 
 // The end of qp.factors: v1 (the equalities' particular point, from f) and g, the multiplier
 // LCP's right-hand side, from d, v1 and c (in w.c, through L and the QR).
+// out[i] = dot(C_i[col0:col0 + len], x, len) for every row i of C, four rows at a time
+// (dot_lanes4: x's loads shared, each row's sums in dot's order, so dot's bits).
+LEMKE_CLONES
+void rows_dot(Mat<const double> C, idx col0, idx len, const double* x, double* out) {
+    idx i = 0;
+    for (; i + 4 <= C.rows; i += 4) {
+        const double* rows[4] = {C.row(i) + col0, C.row(i + 1) + col0, C.row(i + 2) + col0,
+                                 C.row(i + 3) + col0};
+        dot_lanes4(rows, x, len, out + i);
+    }
+    for (; i < C.rows; ++i) out[i] = dot_lanes(C.row(i) + col0, x, len);
+}
+
 void lcp_rhs(const Rows& R, QPWork& w, idx n) {
     idx p = R.p, m = R.m;
     double* v = w.v;
     for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
     idx r = n - p;
     const double* c2 = w.c + p;
-    for (idx i = 0; i < m; ++i) {
-        const double* Fi = R.C.row(i);
-        w.g[i] = R.d[i] - dot(Fi, v, p) + dot(Fi + p, c2, r);
-    }
+    // g_i = d_i - dot(F_i, v1, p) + dot(F_i[p:], c2, r), the two dots by rows_dot
+    thread_local std::vector<double> t;
+    t.resize(static_cast<std::size_t>(m));
+    Mat<const double> C(R.C.p, m, R.C.cols, R.C.ld);
+    rows_dot(C, 0, p, v, t.data());
+    rows_dot(C, p, r, c2, w.g);
+    for (idx i = 0; i < m; ++i) w.g[i] = R.d[i] - t[i] + w.g[i];
 }
 
 // qp.factors: steps 2 and 3 and g, given L (in w.L). Returns OK or DEPENDENT_EQUALITIES.
