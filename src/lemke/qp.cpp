@@ -59,14 +59,20 @@ struct SparseRows {
     void build(const double* M, idx rows, idx cols, bool always = false) {
         start.resize(static_cast<std::size_t>(rows + 1));
         col.clear();
+        on = false;
+        idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
         for (idx i = 0; i < rows; ++i) {
             start[i] = static_cast<idx>(col.size());
             const double* Mi = M + i * cols;
             for (idx j = 0; j < cols; ++j)
                 if (Mi[j] != 0.0) col.push_back(j);
+            if (static_cast<idx>(col.size()) > most) {
+                col.clear();
+                return;
+            }
         }
         start[rows] = static_cast<idx>(col.size());
-        on = always || (rows > 0 && 4 * static_cast<idx>(col.size()) <= rows * cols);
+        on = rows > 0;
     }
 };
 
