@@ -13,6 +13,7 @@ import numpy as np
 _and = np.logical_and.reduce
 _or = np.logical_or.reduce
 _max = np.maximum.reduce
+_min = np.minimum.reduce
 _add = np.add.reduce
 
 
@@ -21,9 +22,22 @@ def nz(mask):
     return mask.nonzero()[0]
 
 
+def _run(idx):
+    """``idx`` as a slice when it is ``i, i + 1, ..., j - 1`` (else None)."""
+    k = idx.size
+    if k and idx[k - 1] - idx[0] == k - 1 and (k == 1 or _and(idx[1:] - idx[:-1] == 1)):
+        return slice(int(idx[0]), int(idx[0]) + k)
+    return None
+
+
 def sub(M, rows, cols):
-    """``M[np.ix_(rows, cols)]`` (a copy) for 1-D integer index arrays: the same fancy
-    index, the rows as a column."""
+    """``M[np.ix_(rows, cols)]`` (a copy) for 1-D integer index arrays: a block copied
+    by slices where both are runs of consecutive indices (numpy's fancy index reads about
+    5 ns an entry: 0.8 ms on PRIMAL1's 325 x 325 P), else the same fancy index, the rows
+    as a column."""
+    r, c = _run(rows), _run(cols)
+    if r is not None and c is not None:
+        return M[r, c].copy()
     return M[rows[:, None], cols]
 
 
@@ -38,8 +52,12 @@ def some(a) -> bool:
 
 
 def absmax(a) -> float:
-    """``float(np.max(np.abs(a)))``, 0.0 for an empty ``a`` (NaN when it holds one)."""
-    return float(_max(np.abs(a), axis=None)) if a.size else 0.0
+    """``float(np.max(np.abs(a)))``, 0.0 for an empty ``a`` (NaN when it holds one), as the
+    larger of ``max(a)`` and ``-min(a)`` (exact): no temporary of a's size, whose fresh pages
+    cost a minor fault each (PRIMAL1's dictionary, 410 x 411: 330 per call)."""
+    if not a.size:
+        return 0.0
+    return abs(float(np.maximum(_max(a, axis=None), -_min(a, axis=None))))
 
 
 def count(mask, axis=None):
