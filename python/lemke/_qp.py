@@ -222,10 +222,14 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                                 0 if G is None else len(G))
             if warm_start is None and initvals is None:
                 cold = code
+                # (it ran _solve_definite's kernels, the semidefinite step included, on all
+                # but a small box-only QP, whose box kernel it ran: the steps below go on)
+                tried = not (G is None and h is None and A is None and b is None
+                             and (lb is not None or ub is not None))
             else:
                 warm_tried = True
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
-            and not warm_tried
+            and not warm_tried and cold is None
             and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
@@ -287,7 +291,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         elif plain:
             opts = _DEFAULT_OPTIONS if options is None else as_options(options)
             if box and (lb is not None or ub is not None):
-                if n < BOX_FIRST and cold is None:  # (else the front ran it: not solved)
+                if n < BOX_FIRST:
                     res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
@@ -296,19 +300,17 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                 if res is not None:
                     return res
                 tried = True
-            else:  # _solve_definite, inline (unless the front ran it: code cold)
-                code = cold
-                if code is None:
-                    p, m = len(Ak), len(Gk)
-                    out = np.empty(_layout(n, p, m)[-1])
-                    mp = opts.max_pivots
-                    code, pivots, k, pairs = _core.qp_solve(
-                        P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method],
-                        -1 if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, out)
-                    if code == _OK:
-                        return _fused_result(out, n, p, m, k, pairs, pivots)
-                    if code in _STOP_CODES:
-                        return _stopped(code, pivots, n, len(Ak), len(Gk))
+            else:  # _solve_definite, inline
+                p, m = len(Ak), len(Gk)
+                out = np.empty(_layout(n, p, m)[-1])
+                mp = opts.max_pivots
+                code, pivots, k, pairs = _core.qp_solve(
+                    P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method],
+                    -1 if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, out)
+                if code == _OK:
+                    return _fused_result(out, n, p, m, k, pairs, pivots)
+                if code in _STOP_CODES:
+                    return _stopped(code, pivots, n, len(Ak), len(Gk))
                 if code == _NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
