@@ -68,8 +68,8 @@ inline bool z0_leaves_harmlessly(const double* vals, const double* mags, const d
 }
 
 // blocking_rows' answer in three passes over the rows, with ratios (m doubles) of work:
-// each row's ratio (NaN where the row does not block; eight lanes at a time, the same
-// operations as row_value and the division), their minimum theta, then the rows with ratio
+// each row's ratio (NaN where the row does not block; the same operations as row_value
+// and the division), their minimum theta, then the rows with ratio
 // <= theta + tie_tol theta. The one-pass rule keeps exactly those rows: every ratio is >= 0
 // or NaN, so the bound only falls as theta does, a row it drops stays above the final bound
 // and a row it keeps is below it; a NaN ratio never blocks.
@@ -77,31 +77,22 @@ inline idx blocking_rows_vector(const double* vals, const double* mags, const do
                                 idx m, double thr, double tie_tol, idx* cand, idx art,
                                 double z0_max, double* ratios) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    idx i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d vthr = simd::splat8(thr), vround = simd::splat8(VALUE_ROUNDING);
-        simd::v8d zero = simd::splat8(0.0), vnan = simd::splat8(nan);
-        for (; i + 8 <= m; i += 8) {
-            simd::v8d c = simd::load8(col + i), v = simd::load8(vals + i);
-            simd::v8d g = simd::load8(mags + i);
-            simd::v8d value = v > vround * g ? v : zero;
-            simd::v8d t = value / -c;
-            simd::store8(ratios + i, c < vthr ? t : vnan);
-        }
-    }
-#endif
-    for (; i < m; ++i) {
-        double c = col[i];
-        double value = vals[i] > VALUE_ROUNDING * mags[i] ? vals[i] : 0.0;
-        ratios[i] = c < thr ? value / -c : nan;
+    // a plain loop, which GCC makes a vector loop on every instruction set (masked compares
+    // and selects, one vector division; written on v8d, the AVX-512F clones made the
+    // compares and selects a lane at a time); the division runs in every lane, its result
+    // kept where the row blocks (the number of the row-by-row rule)
+    for (idx i = 0; i < m; ++i) {
+        double c = col[i], v = vals[i];
+        double value = v > VALUE_ROUNDING * mags[i] ? v : 0.0;
+        double t = value / -c;
+        ratios[i] = c < thr ? t : nan;
     }
     if (art >= 0 && art < m) {
         double c = col[art];
         ratios[art] = c < thr ? row_value(vals, mags, art, art, z0_max) / -c : nan;
     }
     double theta = INF;  // (a minimum of numbers that are not NaN: exact in any order)
-    i = 0;
+    idx i = 0;
 #ifdef LEMKE_SIMD
     {
         simd::v8d vt = simd::splat8(INF);
@@ -116,21 +107,7 @@ inline idx blocking_rows_vector(const double* vals, const double* mags, const do
     if (!(theta < INF)) return 0;
     double lim = theta + tie_tol * theta;
     idx nc = 0;
-    i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d vl = simd::splat8(lim);
-        for (; i + 8 <= m; i += 8) {
-            simd::v8l hit = simd::load8(ratios + i) <= vl;
-            std::int64_t any = 0;
-            for (int l = 0; l < 8; ++l) any |= hit[l];
-            if (any == 0) continue;
-            for (idx j = i; j < i + 8; ++j)
-                if (ratios[j] <= lim) cand[nc++] = j;
-        }
-    }
-#endif
-    for (; i < m; ++i)
+    for (i = 0; i < m; ++i)
         if (ratios[i] <= lim) cand[nc++] = i;
     return nc;
 }
