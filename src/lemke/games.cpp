@@ -93,12 +93,42 @@ struct Scratch {
     double* mags;
 };
 
+// The row updates of games.exchange: t_i += f_i prow, t_i[s] = f_i inv, rhs_i += f_i rr for
+// every row i but r whose factor f_i = col[i] is not zero. W > 0: the rows are W x 8 doubles
+// wide, prow's padding (past the columns) zero, and the pivot row is held in registers
+// (each entry gets the scalar loop's t + f p, the padding f * 0, which nothing reads).
+template <int W>
+LEMKE_ALWAYS_INLINE void update_rows(Mat<double> T, double* rhs, idx r, idx s, const double* col,
+                                     const double* prow, double inv, double rr) {
+    idx n = T.rows, k = T.cols;
+#ifdef LEMKE_SIMD
+    using namespace simd;
+    v8d p[W > 0 ? W : 1];
+    for (int q = 0; q < W; ++q) p[q] = load8(prow + 8 * q);
+#endif
+    for (idx i = 0; i < n; ++i) {
+        double f = col[i];
+        if (i != r && f != 0.0) {
+            rhs[i] += f * rr;
+            double* ti = T.row(i);
+#ifdef LEMKE_SIMD
+            if (W > 0) {
+                for (int q = 0; q < W; ++q) store8(ti + 8 * q, load8(ti + 8 * q) + f * p[q]);
+            } else
+#endif
+                for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
+            ti[s] = f * inv;
+        }
+    }
+}
+
 // games.exchange: the pivot on row r and column s (entering column in col). Rows whose
 // entry is zero are left alone, their entry s included (it keeps its sign of zero). With
 // `wlab` and `wcol`, magb[r] is first set to row r's size (row_size, summed in the same
 // order in the loop that reads the row for the pivot), as games.step does before its pivot.
 // The bounds magb are updated after the tableau (other arrays, the same operations), so
-// that the rows' updates need not wait for the size's chain of additions.
+// that the rows' updates need not wait for the size's chain of additions. prow holds
+// T.ld doubles.
 LEMKE_CLONES
 void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
               double* prow, const idx* basis = nullptr, const double* wlab = nullptr,
@@ -126,14 +156,19 @@ void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const doub
     tr[s] = inv;
     double rr = -rhs[r] * inv;
     rhs[r] = rr;
-    for (idx i = 0; i < n; ++i) {
-        double f = col[i];
-        if (i != r && f != 0.0) {
-            rhs[i] += f * rr;
-            double* ti = T.row(i);
-            for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
-            ti[s] = f * inv;
-        }
+    idx width = T.ld % 8 == 0 ? T.ld / 8 : 0;
+    if (width > 0)
+        for (idx j = k; j < T.ld; ++j) prow[j] = 0.0;
+    switch (width) {
+        case 1: update_rows<1>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 2: update_rows<2>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 3: update_rows<3>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 4: update_rows<4>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 5: update_rows<5>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 6: update_rows<6>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 7: update_rows<7>(T, rhs, r, s, col, prow, inv, rr); break;
+        case 8: update_rows<8>(T, rhs, r, s, col, prow, inv, rr); break;
+        default: update_rows<0>(T, rhs, r, s, col, prow, inv, rr); break;
     }
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
@@ -253,17 +288,35 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     idx s = t.pos[entering];
     idx rows = t.T.rows;
     double* col = w.col;
-    double cmax = 0.0;
     bool sized = false;
     const double* T = t.T.p;
     idx ld = t.T.ld;
-    for (idx i = 0; i < rows; ++i) {
+    // cmax: the largest |entry| (pivoting.min_ratio's), taken in four running maxima (the
+    // maximum does not depend on the order; pmax skips a NaN either way), so that the
+    // column's loads need not wait for one chain of comparisons.
+    double c0 = 0.0, c1 = 0.0;
+    const double* rhs = t.rhs;
+    const double* magb = t.magb;
+    auto blocks_small = [&](double v, idx i) {
+        double b = rhs[i];
+        return (v < 0.0) & (b > 0.0) & (b <= VALUE_ROUNDING * magb[i]);
+    };
+    idx i = 0;
+    for (; i + 2 <= rows; i += 2) {
+        double v0 = T[i * ld + s], v1 = T[(i + 1) * ld + s];
+        col[i] = v0;
+        col[i + 1] = v1;
+        c0 = pmax(c0, std::fabs(v0));
+        c1 = pmax(c1, std::fabs(v1));
+        sized |= blocks_small(v0, i) | blocks_small(v1, i + 1);
+    }
+    if (i < rows) {
         double v = T[i * ld + s];
         col[i] = v;
-        cmax = pmax(cmax, std::fabs(v));
-        double b = t.rhs[i];
-        sized |= (v < 0.0) & (b > 0.0) & (b <= VALUE_ROUNDING * t.magb[i]);
+        c0 = pmax(c0, std::fabs(v));
+        sized |= blocks_small(v, i);
     }
+    double cmax = pmax(c0, c1);
     idx r;
     if (has_free || art >= 0 || sized) {
         r = leaving_row(t, col, has_free, free, art, z0_max, pivot_tol, tie_tol, w);
@@ -467,6 +520,7 @@ void tableau_setup(Get get, double lo, double f, Tab& t, idx first) {
     for (idx r = 0; r < rows; ++r) {
         double* tr = t.T.row(r);
         for (idx c = 0; c < cols; ++c) tr[c] = -(1.0 + (get(r, c) - lo) * f);
+        for (idx c = cols; c < t.T.ld; ++c) tr[c] = 0.0;  // the padding: read, never used
         t.rhs[r] = 1.0;
         idx lab = (first + r) % L;
         t.basis[r] = lab;
