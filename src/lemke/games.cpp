@@ -32,6 +32,10 @@ struct Range {
 LEMKE_CLONES
 Range payoff_range(Mat<const double> A) {
     idx m = A.rows, n = A.cols;
+    if (A.ld == n) {  // one run of m n payoffs: no short rows' scalar tails
+        n *= m;
+        m = m > 0 ? 1 : 0;
+    }
     double lo = INF, hi = -INF, z = 0.0;
 #ifdef LEMKE_SIMD
     using namespace simd;
@@ -513,22 +517,36 @@ LHViews lh_layout(GamesWork& g, idx m, idx n) {
     return v;
 }
 
-// games.tableau_setup: one tableau at the artificial equilibrium; get(r, c) is P[c, r].
-template <class Get>
-void tableau_setup(Get get, double lo, double f, Tab& t, idx first) {
+// The entries of a tableau at the artificial equilibrium: T[r, c] = -(1 + (P[c, r] - lo) f)
+// with P[c, r] = src[r * rs + c * cs] (rs = 1: the payoffs transposed), the rows' padding 0.
+LEMKE_CLONES
+void setup_entries(Mat<double> T, const double* src, idx rs, idx cs, double lo, double f) {
+    for (idx r = 0; r < T.rows; ++r) {
+        double* tr = T.row(r);
+        const double* p = src + r * rs;
+        if (cs == 1) {
+            for (idx c = 0; c < T.cols; ++c) tr[c] = -(1.0 + (p[c] - lo) * f);
+        } else {
+            for (idx c = 0; c < T.cols; ++c) tr[c] = -(1.0 + (p[c * cs] - lo) * f);
+        }
+        for (idx c = T.cols; c < T.ld; ++c) tr[c] = 0.0;  // the padding: read, never used
+    }
+}
+
+// games.tableau_setup: one tableau at the artificial equilibrium from the payoffs src (see
+// setup_entries).
+void tableau_setup(const double* src, idx rs, idx cs, double lo, double f, Tab& t, idx first) {
     idx rows = t.T.rows, cols = t.T.cols, L = rows + cols;
+    setup_entries(t.T, src, rs, cs, lo, f);
     for (idx r = 0; r < rows; ++r) {
-        double* tr = t.T.row(r);
-        for (idx c = 0; c < cols; ++c) tr[c] = -(1.0 + (get(r, c) - lo) * f);
-        for (idx c = cols; c < t.T.ld; ++c) tr[c] = 0.0;  // the padding: read, never used
         t.rhs[r] = 1.0;
-        idx lab = (first + r) % L;
+        idx lab = first + r < L ? first + r : first + r - L;  // (first + r) % L
         t.basis[r] = lab;
         t.pos[lab] = r;
         t.inb[lab] = 1;
     }
     for (idx c = 0; c < cols; ++c) {
-        idx lab = (first + rows + c) % L;
+        idx lab = first + rows + c < L ? first + rows + c : first + rows + c - L;
         t.nonbasic[c] = lab;
         t.pos[lab] = c;
         t.inb[lab] = 0;
@@ -544,8 +562,8 @@ int lh_path(Mat<const double> A, Mat<const double> B, const double* scale, idx k
     idx m = A.rows, n = A.cols, L = m + n;
     Tab& P = v.P;
     Tab& Q = v.Q;
-    tableau_setup([&](idx r, idx c) { return B(c, r); }, scale[2], scale[3], P, m);
-    tableau_setup([&](idx r, idx c) { return A(r, c); }, scale[0], scale[1], Q, 0);
+    tableau_setup(B.p, 1, B.ld, scale[2], scale[3], P, m);     // P[r, c] from B[c, r]
+    tableau_setup(A.p, A.ld, 1, scale[0], scale[1], Q, 0);     // Q[r, c] from A[r, c]
     for (idx j = 0; j < n; ++j) v.slackP[j] = P.basis[j];
     for (idx i = 0; i < m; ++i) v.slackQ[i] = Q.basis[i];
     if (perturb) {
