@@ -98,10 +98,11 @@ struct Scratch {
 };
 
 // The row updates of games.exchange: t_i += f_i prow, t_i[s] = f_i inv, rhs_i += f_i rr for
-// every row i but r whose factor f_i = col[i] is not zero. W > 0: the rows are W x 8 doubles
-// wide, prow's padding (past the columns) zero, and the pivot row is held in registers
-// (each entry gets the scalar loop's t + f p, the padding f * 0, which nothing reads).
-template <int W>
+// every row i but r whose factor f_i = col[i] is not zero. W + H > 0: the rows' first W x 8
+// + H x 4 doubles, which hold the columns (prow zero past them), taken W vectors of eight
+// and H of four, with the pivot row held in registers (each entry gets the scalar loop's
+// t + f p, the padding f * 0, which nothing reads).
+template <int W, int H>
 LEMKE_ALWAYS_INLINE void update_rows(Mat<double> T, double* rhs, idx r, idx s, const double* col,
                                      const double* prow, double inv, double rr) {
     idx n = T.rows, k = T.cols;
@@ -109,6 +110,7 @@ LEMKE_ALWAYS_INLINE void update_rows(Mat<double> T, double* rhs, idx r, idx s, c
     using namespace simd;
     v8d p[W > 0 ? W : 1];
     for (int q = 0; q < W; ++q) p[q] = load8(prow + 8 * q);
+    v4d ph = H > 0 ? load4(prow + 8 * W) : v4d{};
 #endif
     for (idx i = 0; i < n; ++i) {
         double f = col[i];
@@ -116,14 +118,29 @@ LEMKE_ALWAYS_INLINE void update_rows(Mat<double> T, double* rhs, idx r, idx s, c
             rhs[i] += f * rr;
             double* ti = T.row(i);
 #ifdef LEMKE_SIMD
-            if (W > 0) {
+            if (W + H > 0) {
                 for (int q = 0; q < W; ++q) store8(ti + 8 * q, load8(ti + 8 * q) + f * p[q]);
+                if (H > 0) store4(ti + 8 * W, load4(ti + 8 * W) + f * ph);
             } else
 #endif
                 for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
             ti[s] = f * inv;
         }
     }
+}
+
+// update_rows for rows `width` fours wide (F: the first width tried; 0: the scalar loop).
+constexpr int MAX_FOURS = 32;  // rows up to 128 columns held in registers
+template <int F>
+LEMKE_ALWAYS_INLINE void update_rows_in(idx width, Mat<double> T, double* rhs, idx r, idx s,
+                                        const double* col, const double* prow, double inv,
+                                        double rr) {
+    if (width == F)
+        update_rows<F / 2, F % 2>(T, rhs, r, s, col, prow, inv, rr);
+    else if constexpr (F < MAX_FOURS)
+        update_rows_in<F + 1>(width, T, rhs, r, s, col, prow, inv, rr);
+    else
+        update_rows<0, 0>(T, rhs, r, s, col, prow, inv, rr);
 }
 
 // games.exchange: the pivot on row r and column s (entering column in col). Rows whose
@@ -160,20 +177,13 @@ void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const doub
     tr[s] = inv;
     double rr = -rhs[r] * inv;
     rhs[r] = rr;
-    idx width = T.ld % 8 == 0 ? T.ld / 8 : 0;
+    // The rows' vectors: W of eight and H (0 or 1) of four cover the k columns (width
+    // 8 W + 4 H, within the rows' padding to a multiple of 8); none (W = H = 0: the scalar
+    // loop) when the rows are not so padded or too wide.
+    idx width = T.ld % 8 == 0 && k <= 4 * MAX_FOURS ? (k + 3) / 4 : 0;  // in fours
     if (width > 0)
         for (idx j = k; j < T.ld; ++j) prow[j] = 0.0;
-    switch (width) {
-        case 1: update_rows<1>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 2: update_rows<2>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 3: update_rows<3>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 4: update_rows<4>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 5: update_rows<5>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 6: update_rows<6>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 7: update_rows<7>(T, rhs, r, s, col, prow, inv, rr); break;
-        case 8: update_rows<8>(T, rhs, r, s, col, prow, inv, rr); break;
-        default: update_rows<0>(T, rhs, r, s, col, prow, inv, rr); break;
-    }
+    update_rows_in<1>(width, T, rhs, r, s, col, prow, inv, rr);
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
     for (idx i = 0; i < n; ++i) {
