@@ -52,6 +52,7 @@ struct Front {
     using NewFromDescr = PyObject* (*)(PyTypeObject*, PyObject*, int, const Py_ssize_t*,
                                        const Py_ssize_t*, void*, int, PyObject*);
     NewFromDescr new_from_descr = nullptr;
+    bool views = false;  // new_view's arrays checked on a probe (else it declines)
     PyObject *f64 = nullptr, *i64 = nullptr;
 } front;
 
@@ -61,6 +62,20 @@ constexpr int kNewFromDescr = 94;  // PyArray_NewFromDescr's index in NumPy's AP
 PyObject* new_from_descr(Py_ssize_t len, PyObject* descr) {
     Py_INCREF(descr);  // (stolen by NumPy)
     return front.new_from_descr(front.ndarray, descr, 1, &len, nullptr, nullptr, 0, nullptr);
+}
+
+// new_view's array, unchecked: PyArray_NewFromDescr on base's data (not owned, not
+// writable), base set as slicing sets it (NumPy's dealloc releases it).
+PyObject* view_of(PyObject* base, Py_ssize_t offset, Py_ssize_t len) {
+    Py_INCREF(front.f64);  // (stolen by NumPy)
+    char* data = reinterpret_cast<const ArrayFields*>(base)->data + offset * sizeof(double);
+    PyObject* a = front.new_from_descr(front.ndarray, front.f64, 1, &len, nullptr, data,
+                                       C_CONTIGUOUS | ALIGNED, nullptr);
+    if (a != nullptr) {
+        Py_INCREF(base);
+        reinterpret_cast<ArrayFields*>(a)->base = base;
+    }
+    return a;
 }
 
 // NumPy's C API from its _ARRAY_API capsule (None: not found), kept when a probe array it
@@ -81,7 +96,17 @@ void find_new_from_descr(nb::handle api) {
         (a->flags & OWNDATA) == 0) {
         PyErr_Clear();
         front.new_from_descr = nullptr;
+        return;
     }
+    // a view of the probe's last two doubles: what probe[1:3] of a read-only probe is
+    nb::object v = nb::steal(view_of(probe.ptr(), 1, 2));
+    auto* w = reinterpret_cast<const ArrayFields*>(v.ptr());
+    front.views = v.is_valid() && Py_TYPE(v.ptr()) == front.ndarray && w->nd == 1 &&
+                  w->dimensions[0] == 2 && w->strides[0] == 8 && w->descr == front.f64 &&
+                  w->data == a->data + 8 && w->base == probe.ptr() &&
+                  (w->flags & (OWNDATA | WRITEABLE)) == 0 &&
+                  (w->flags & (C_CONTIGUOUS | ALIGNED)) == (C_CONTIGUOUS | ALIGNED);
+    if (!front.views) PyErr_Clear();
 }
 
 const ArrayFields* plain(PyObject* o, int nd) { return plain_f64(o, nd, front.ndarray); }
@@ -115,6 +140,7 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
           nb::handle probe_swapped, nb::handle api) {
     front.on = false;
     front.new_from_descr = nullptr;
+    front.views = false;
     front.ndarray = reinterpret_cast<PyTypeObject*>(ndarray.ptr());
     if (!layout_agrees(probe2, address, probe_ro, probe_int, probe_swapped)) return;
     for (nb::handle h : {ndarray, result_cls, solved, ray, empty}) h.inc_ref();  // kept for good
@@ -532,6 +558,13 @@ nb::object new_array(Py_ssize_t len, bool ints) {
         PyObject* args[] = {size.ptr(), front.i64};
         a = PyObject_Vectorcall(front.empty, args, ints ? 2 : 1, nullptr);
     }
+    if (a == nullptr) throw nb::python_error();
+    return nb::steal(a);
+}
+
+nb::object new_view(nb::handle base, Py_ssize_t offset, Py_ssize_t len) {
+    if (!front.views) return nb::object();
+    PyObject* a = view_of(base.ptr(), offset, len);
     if (a == nullptr) throw nb::python_error();
     return nb::steal(a);
 }

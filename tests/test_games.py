@@ -531,6 +531,10 @@ def test_front_is_the_python_path(kind, m, n, monkeypatch):
     assert fronts == paths
     for r in fronts + paths:  # read-only views of the kernel's buffer, as the lazy fields are
         assert not r.x.flags.writeable and not r.y.flags.writeable
+        assert not r.x.flags.owndata and r.x.base is not None and r.x.base is r.y.base
+        m, n = len(r.x), len(r.y)
+        assert r.x.base.shape == (_games._layout(m, n)["length"],)
+        assert np.shares_memory(r.x, r.x.base[:m]) and np.shares_memory(r.y, r.x.base[m : m + n])
         with pytest.raises(ValueError):
             r.x[0] = 2.0
     assert [(r.basis, r.payoffs, r.regret, r.init_label) for r in fronts] == [
