@@ -103,3 +103,8 @@ nanobind::object new_array(Py_ssize_t len, bool ints = false);
 // NumPy's C API; an invalid object (nothing made, no error) when lcp_front_init did not find
 // that API making such views (the caller slices). Raises when NumPy does.
 nanobind::object new_view(nanobind::handle base, Py_ssize_t offset, Py_ssize_t len);
+
+// _core.games_front (src/python_games.cpp): solve_bimatrix(A, B, init_label=k)'s common
+// call, the BimatrixResult, the kernel's (code, pivots, restarts, buf) to go on from, or
+// None (arguments of another kind).
+nanobind::object games_front(nanobind::handle A, nanobind::handle B, nanobind::handle k);

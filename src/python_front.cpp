@@ -274,7 +274,7 @@ struct Entry {
     PyObject* globals;  // _lcp's namespace (its _FRONT read each call)
     PyObject* front;    // _core.lcp_front as first bound
     PyObject* ws_cls;   // WarmStart
-    PyObject *k_front, *k_warm_start, *k_beta, *k_n;
+    PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label;
     // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
     // each call), LCPManyResult and the keys of what LCPManyResult._of sets
     PyObject *many_globals, *many_cls, *k_few, *k_items, *k_special, *k_off;
@@ -423,6 +423,38 @@ PyObject* many_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
 }
 
+// solve_bimatrix(A, B) and solve_bimatrix(A, B, init_label=k): games_front without a Python
+// frame, as entry_call does lcp_front; a run games_front does not settle goes on in
+// _games._after_front(A, B, k, (code, pivots, restarts, buf)); any other call, and any
+// that games_front declines, is the Python function's (_games._solve_bimatrix).
+PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                     PyObject* kwnames) {
+    auto* e = reinterpret_cast<Entry*>(self);
+    bool plain = kwnames == nullptr ||
+                 (PyTuple_GET_SIZE(kwnames) == 1 &&
+                  (PyTuple_GET_ITEM(kwnames, 0) == e->k_init_label ||
+                   PyUnicode_Compare(PyTuple_GET_ITEM(kwnames, 0), e->k_init_label) == 0));
+    if (PyVectorcall_NARGS(nargsf) == 2 && plain && front.on) {
+        PyObject* now = PyDict_GetItemWithError(e->globals, e->k_front);
+        if (now == nullptr && PyErr_Occurred()) return nullptr;
+        if (now == e->front) {
+            PyObject* k = kwnames == nullptr ? front.zero : args[2];
+            try {
+                nb::object r = games_front(args[0], args[1], k);
+                if (!r.is_none() && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                if (!r.is_none()) {
+                    PyObject* after[] = {args[0], args[1], k, r.ptr()};
+                    return PyObject_Vectorcall(e->after, after, 4, nullptr);
+                }
+            } catch (...) {
+                error_set();
+                return nullptr;
+            }
+        }
+    }
+    return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
+}
+
 PyObject* entry_get(PyObject* self, PyObject*, PyObject*) {  // (not bound, as a function)
     Py_INCREF(self);
     return self;
@@ -451,7 +483,7 @@ PyTypeObject entry_type = [] {
     t.tp_name = "lemke._core.LCPEntry";
     t.tp_basicsize = sizeof(Entry);
     t.tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL;
-    t.tp_doc = "solve_lcp's or solve_lcp_many's entry (src/python_front.cpp)";
+    t.tp_doc = "solve_lcp's, solve_lcp_many's or solve_bimatrix's entry (src/python_front.cpp)";
     t.tp_call = PyVectorcall_Call;
     t.tp_vectorcall_offset = offsetof(Entry, vectorcall);
     t.tp_dictoffset = offsetof(Entry, dict);
@@ -478,10 +510,11 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
     nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
     for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
     PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n,
-                         &e->k_few, &e->k_items, &e->k_special, &e->k_off};
-    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special", "_off"};
+                         &e->k_few, &e->k_items, &e->k_special, &e->k_off, &e->k_init_label};
+    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special",
+                           "_off", "init_label"};
     nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
-    for (int i = 0; i < 8; ++i)
+    for (int i = 0; i < 9; ++i)
         if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
     return res;
 }
@@ -489,6 +522,13 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
 nb::object lcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
                      nb::handle ws_cls) {
     return make_entry(py, after, globals, front_fn, ws_cls, nb::none(), nb::none());
+}
+
+// solve_bimatrix's entry (games_call).
+nb::object games_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn) {
+    nb::object res = make_entry(py, after, globals, front_fn, nb::none(), nb::none(), nb::none());
+    reinterpret_cast<Entry*>(res.ptr())->vectorcall = games_call;
+    return res;
 }
 
 nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn,
@@ -577,6 +617,7 @@ void bind_front(nb::module_& m) {
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
+    m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
     m.def("lcp_many_entry", &lcp_many_entry, "py"_a, "globals"_a, "front"_a, "ws_cls"_a,
           "many_globals"_a, "many_cls"_a);
 }

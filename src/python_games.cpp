@@ -106,13 +106,15 @@ bool check(Payoffs A, Payoffs B, VecIn x, VecIn y, double tol, VecOut out) {
 
 // --- solve_bimatrix's native front ---------------------------------------------------------
 //
-// games_front(A, B, init_label): solve_bimatrix's commonest call whole in one native call,
+// games_front(A, B, init_label): solve_bimatrix's commonest call whole in one native call
+// (reached with no Python frame through solve_bimatrix's entry, games_entry in python_front.cpp),
 // as lcp_front does solve_lcp's (src/python_front.cpp): A and B plain float64 (numpy_layout's
 // plain_f64: C-contiguous, aligned, writable, the machine's byte order), of one non-empty
 // shape, init_label an int in [0, m + n), Lemke-Howson from the artificial equilibrium,
 // default options, no exact certificate. The buffer from numpy.empty, the slack start, the
 // kernel without the GIL (the check on the caller's payoffs included), then:
-//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it (x and y made at once);
+//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it (x and y made at once, as
+//    read-only views of the buffer: new_view, NumPy's C API, else slices);
 //  - any other code: the tuple (code, pivots, restarts, buf), for the Python front to go on
 //    from (_finish, or the error naming a payoff that is not finite), as after its own call;
 //  - None: arguments of another kind; the Python front does everything (the same call).
@@ -156,6 +158,9 @@ void front_init(nb::handle result_cls, nb::handle solved, nb::handle method, Vec
     gf.on = numpy_layout().ok;
 }
 
+}  // namespace
+
+// (declared in python_arrays.hpp: solve_bimatrix's entry calls it too)
 nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
     if (!gf.on) return nb::none();
     NumpyLayout np = numpy_layout();
@@ -209,8 +214,6 @@ nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
     if (!ok) throw nb::python_error();
     return res;
 }
-
-}  // namespace
 
 void bind_games(nb::module_& m) {
     m.def("games_front_init", &front_init, "result_cls"_a, "solved"_a, "method"_a, "params"_a);
