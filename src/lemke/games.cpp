@@ -113,8 +113,9 @@ LEMKE_ALWAYS_INLINE void update_rows(Mat<double> T, double* rhs, idx r, idx s, c
     v4d ph = H > 0 ? load4(prow + 8 * W) : v4d{};
 #endif
     for (idx i = 0; i < n; ++i) {
+        if (i == r) continue;
         double f = col[i];
-        if (i != r && f != 0.0) {
+        if (f != 0.0) {
             rhs[i] += f * rr;
             double* ti = T.row(i);
 #ifdef LEMKE_SIMD
