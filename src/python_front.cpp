@@ -258,12 +258,17 @@ struct Entry {
 // The index array of a warm start ws for a problem of size n: true when ws is a WarmStart of
 // that size with its index array (WarmStart._beta), as the Python front asks; else false
 // (no error set), and the Python front does it (and makes _beta).
+// Both are read from the instance's __dict__ (where WarmStart keeps them: the class has no
+// descriptor of either name), two lookups instead of two attribute reads through the type.
 bool warm_beta(Entry* e, PyObject* ws, Py_ssize_t n, nb::object& beta) {
     if (Py_TYPE(ws) != reinterpret_cast<PyTypeObject*>(e->ws_cls)) return false;
-    nb::object size = nb::steal(PyObject_GetAttr(ws, e->k_n));
-    if (size.is_valid()) beta = nb::steal(PyObject_GetAttr(ws, e->k_beta));
-    if (beta.is_valid() && PyLong_CheckExact(size.ptr()) && PyLong_AsSsize_t(size.ptr()) == n)
+    nb::object dict = nb::steal(PyObject_GenericGetDict(ws, nullptr));
+    PyObject* size = dict.is_valid() ? PyDict_GetItemWithError(dict.ptr(), e->k_n) : nullptr;
+    PyObject* b = size != nullptr ? PyDict_GetItemWithError(dict.ptr(), e->k_beta) : nullptr;
+    if (b != nullptr && PyLong_CheckExact(size) && PyLong_AsSsize_t(size) == n) {
+        beta = nb::borrow(b);
         return true;
+    }
     PyErr_Clear();
     return false;
 }
