@@ -18,8 +18,10 @@ repeat, each answer checked (``w = M z + q`` recomputed here):
 and, in the same rounds, the unrevised method and the box LCP engine (lo = 0, hi = inf) on
 the same problem, both in the core.
 
-Then the 0-pivot warm re-solve (q moved by 1e-9, the old basis still solves it), and the
-fixed cost at n = 1 with q >= 0 (no pivot) and q < 0 (one pivot).  The table
+Then the 0-pivot warm re-solve (q moved by 1e-9, the old basis still solves it), timed in
+the same interleaved rounds as the cold calls again (its ratio compares one time window),
+and the fixed cost at n = 1 with q >= 0 (no pivot) and q < 0 (one pivot), with a batch of
+one (``solve_lcp_many([M], [q])``) beside ``solve_lcp(M, q)``.  The table
 gives medians in microseconds (each repeat times a batch of calls, so small n is not timer
 noise) and the ratios; the machine's load is recorded at both ends.
 
