@@ -276,19 +276,25 @@ struct Entry {
     PyObject* ws_cls;   // WarmStart
     PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label;
     // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
-    // each call), LCPManyResult and the keys of what LCPManyResult._of sets
-    PyObject *many_globals, *many_cls, *k_few, *k_items, *k_special, *k_off;
+    // each call), LCPManyResult, the key of what LCPManyResult._of sets and () for its
+    // object.__new__
+    PyObject *many_globals, *many_cls, *k_few, *k_items, *no_args;
 };
 
 // The index array of a warm start ws for a problem of size n: true when ws is a WarmStart of
 // that size with its index array (WarmStart._beta), as the Python front asks; else false
 // (no error set), and the Python front does it (and makes _beta).
+// Both are read from the instance's __dict__ (where WarmStart keeps them: the class has no
+// descriptor of either name), two lookups instead of two attribute reads through the type.
 bool warm_beta(Entry* e, PyObject* ws, Py_ssize_t n, nb::object& beta) {
     if (Py_TYPE(ws) != reinterpret_cast<PyTypeObject*>(e->ws_cls)) return false;
-    nb::object size = nb::steal(PyObject_GetAttr(ws, e->k_n));
-    if (size.is_valid()) beta = nb::steal(PyObject_GetAttr(ws, e->k_beta));
-    if (beta.is_valid() && PyLong_CheckExact(size.ptr()) && PyLong_AsSsize_t(size.ptr()) == n)
+    nb::object dict = nb::steal(PyObject_GenericGetDict(ws, nullptr));
+    PyObject* size = dict.is_valid() ? PyDict_GetItemWithError(dict.ptr(), e->k_n) : nullptr;
+    PyObject* b = size != nullptr ? PyDict_GetItemWithError(dict.ptr(), e->k_beta) : nullptr;
+    if (b != nullptr && PyLong_CheckExact(size) && PyLong_AsSsize_t(size) == n) {
+        beta = nb::borrow(b);
         return true;
+    }
     PyErr_Clear();
     return false;
 }
@@ -393,18 +399,12 @@ PyObject* many_front(Entry* e, PyObject* M, PyObject* q, PyObject* wss) {
             if (r.is_none() || PyTuple_CheckExact(r.ptr())) return nullptr;
             PyList_SET_ITEM(items.ptr(), b, r.release().ptr());
         }
-        // LCPManyResult._of(items): _items, _special ({b: item}), _off None
+        // LCPManyResult._of(items): object.__new__ (the instance's attribute values inline,
+        // no dictionary made) and _items set (_off is the class's None, _special made when
+        // first read)
         auto* cls = reinterpret_cast<PyTypeObject*>(e->many_cls);
-        nb::object res = nb::steal(cls->tp_alloc(cls, 0));
-        nb::object special = nb::steal(PyDict_New());
-        nb::object dict = nb::steal(PyDict_New());
-        bool ok = res.is_valid() && special.is_valid() && dict.is_valid();
-        for (Py_ssize_t b = 0; ok && b < B; ++b)
-            ok = PyDict_SetItem(special.ptr(), nb::int_(b).ptr(), PyList_GET_ITEM(items.ptr(), b)) == 0;
-        ok = ok && PyDict_SetItem(dict.ptr(), e->k_items, items.ptr()) == 0 &&
-             PyDict_SetItem(dict.ptr(), e->k_special, special.ptr()) == 0 &&
-             PyDict_SetItem(dict.ptr(), e->k_off, Py_None) == 0 &&
-             PyObject_GenericSetDict(res.ptr(), dict.ptr(), nullptr) == 0;
+        nb::object res = nb::steal(PyBaseObject_Type.tp_new(cls, e->no_args, nullptr));
+        bool ok = res.is_valid() && PyObject_SetAttr(res.ptr(), e->k_items, items.ptr()) == 0;
         return ok ? res.release().ptr() : Py_None;
     } catch (...) {
         return error_set();
@@ -509,13 +509,13 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
                          &e->many_globals, &e->many_cls};
     nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
     for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
-    PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n,
-                         &e->k_few, &e->k_items, &e->k_special, &e->k_off, &e->k_init_label};
-    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special",
-                           "_off", "init_label"};
+    PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n, &e->k_few,
+                         &e->k_items, &e->k_init_label};
+    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "init_label"};
     nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
-    for (int i = 0; i < 9; ++i)
+    for (int i = 0; i < 7; ++i)
         if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
+    if ((e->no_args = PyTuple_New(0)) == nullptr) throw nb::python_error();
     return res;
 }
 

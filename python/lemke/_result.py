@@ -537,6 +537,12 @@ class ManyItems(Sequence):
     def __repr__(self) -> str:
         return f"{type(self).__name__}(B={len(self)}, solved={int(self.success.sum())}/{len(self)})"
 
+    @cached_property
+    def _special(self) -> dict:
+        """``{b: result}`` of the results built already: set by ``__init__``; made here, when
+        first read, for a result of ``_of`` (every item built: all of them)."""
+        return dict(enumerate(self._items))
+
     def _column(self, values, field, convert):
         v = values.copy()
         for b, res in self._special.items():
@@ -589,6 +595,10 @@ class LCPManyResult(ManyItems):
     items.
     """
 
+    #: None in a result of ``_of`` (the items made one by one), which sets only ``_items``;
+    #: ``__init__`` sets the kernels' offsets.
+    _off = None
+
     def __init__(self, sizes, off, out_i, out_f, bufs, basics, ws, special):
         """``sizes`` (a list) and ``off`` (int64 (3, B + 1): the offsets of q and the basic
         z's, of M, of the output buffers), the kernels' ``out_i``, ``out_f``, ``bufs`` and
@@ -613,7 +623,7 @@ class LCPManyResult(ManyItems):
         from them when first read, as the kernels' arrays give them (the final bases read
         from the items' buffers, as the batch reads its own)."""
         res = object.__new__(cls)
-        res._items, res._special, res._off = items, dict(enumerate(items)), None
+        res._items = items  # (_off: the class's None; _special: made when first read)
         return res
 
     def _build(self, lo, hi, _new=object.__new__, _SOLVED=Status.SOLVED,
