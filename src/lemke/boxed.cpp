@@ -962,6 +962,35 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
         BoxLayout L = FL.run();
         double *w = buf + L.w(), *d = buf + L.covering(), *R = buf + L.row_scale();
         double* C = buf + L.col_scale();
+        if (nf > 0) {
+            // The check that decides 'solved' (on the caller's rows, the coupled bounds at
+            // this point) first: when it passes and the point's normals lie in their boxes
+            // (so that the friction rows' bounds in force are those of the z returned), the
+            // extended problem's own check (a second equilibration, of N rows) is not made.
+            // Otherwise that check decides first, as before: failed, a run from the basis
+            // (NEED_RUN); passed, the caller's check's verdict (SOLVED, or UNDECIDED: the
+            // general path).
+            bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf, residual);
+            bool inside = true;
+            for (idx c = 0; c < nf; ++c) {
+                idx f = F[nf + c];
+                inside = inside && z[f] >= lo[f] && z[f] <= hi[f];
+            }
+            if (!(ok && inside)) {
+                double ext_residual;
+                check_scales(A, qa, la, ha, R, C);
+                if (!box_check(A, qa, la, ha, z, tol, w, R, 0, ext_residual)) {
+                    residual = INF;
+                    return NEED_RUN;
+                }
+            }
+            for (idx i = 0; i < N; ++i) d[i] = 0.0;
+            if (!ok) {
+                residual = INF;
+                return UNDECIDED;
+            }
+            return SOLVED;
+        }
         check_scales(A, qa, la, ha, R, C);
         bool ok = box_check(A, qa, la, ha, z, tol, w, R, 0, residual);
         if (!ok) {
