@@ -275,10 +275,29 @@ def _carried(codes, idx, findex):
 
 
 def _from_codes(c):
-    """The BoxWarmStart of the row states c (int8, codes 0..29)."""
+    """The BoxWarmStart of the row states c (int8, codes 0..29): its size, friction rows and
+    codes now, its ``z_basic`` and ``at_upper`` when first read (:class:`_FromCodes`; the
+    kernels take the codes, so a warm start passed straight back builds neither)."""
+    if c.size <= _FEW_ROWS:
+        F = tuple([i for i, x in enumerate(c.tolist()) if x >= 3])
+    else:
+        F = tuple(np.flatnonzero(c >= 3).tolist())
+    ws = _new(BoxWarmStart)
+    c = c.copy()
+    c.setflags(write=False)
+    ws.__dict__.update(n=c.size + 2 * len(F), friction=F, _codes=c)
+    return ws
+
+
+_FEW_ROWS = 48  # up to this many rows, the codes are read in a Python loop: cheaper than numpy
+
+
+def _basis_of_codes(c):
+    """``(z_basic, at_upper)`` of the row states c (the extended variables in their order:
+    the caller's rows, then β- and λ of each friction row)."""
     rows = c.size
     if rows <= _FEW_ROWS:
-        return _from_codes_small(c)
+        return _basis_of_codes_small(c)
     F = np.flatnonzero(c >= 3)
     nf = F.size
     s = np.zeros(rows + 2 * nf, dtype=np.int8)
@@ -288,35 +307,39 @@ def _from_codes(c):
         s[F] = e // 9
         s[rows:rows + nf] = (e // 3) % 3
         s[rows + nf:] = e % 3
-    ws = BoxWarmStart._trusted(rows + 2 * nf, tuple(np.flatnonzero(s == 2).tolist()),
-                               tuple(np.flatnonzero(s == 1).tolist()), tuple(F.tolist()))
-    c = c.copy()
-    c.setflags(write=False)
-    ws.__dict__["_codes"] = c
-    return ws
+    return tuple(np.flatnonzero(s == 2).tolist()), tuple(np.flatnonzero(s == 1).tolist())
 
 
-_FEW_ROWS = 48  # up to this many rows, _from_codes loops in Python: cheaper than its numpy calls
-
-
-def _from_codes_small(c):
-    """_from_codes for a few rows: the same BoxWarmStart, by a loop over c's codes (the
-    extended variables in their order: the caller's rows, then β- and λ of each friction
-    row)."""
+def _basis_of_codes_small(c):
+    """:func:`_basis_of_codes` for a few rows, by a loop over c's codes."""
     cl = c.tolist()
-    rows = len(cl)
     F = [i for i, x in enumerate(cl) if x >= 3]
-    nf = len(F)
     states = [x if x < 3 else (x - 3) // 9 for x in cl]
-    if nf:
+    if F:
         states += [((cl[i] - 3) // 3) % 3 for i in F]
         states += [(cl[i] - 3) % 3 for i in F]
-    ws = BoxWarmStart._trusted(rows + 2 * nf, tuple([i for i, s in enumerate(states) if s == 2]),
-                               tuple([i for i, s in enumerate(states) if s == 1]), tuple(F))
-    c = c.copy()
-    c.setflags(write=False)
-    ws.__dict__["_codes"] = c
-    return ws
+    return (tuple([i for i, s in enumerate(states) if s == 2]),
+            tuple([i for i, s in enumerate(states) if s == 1]))
+
+
+class _FromCodes(LazyField):
+    """``z_basic`` / ``at_upper`` of a BoxWarmStart made from row states (``_from_codes``),
+    from its ``_codes`` when first read; a warm start built with its fields never reaches
+    it (they are in its ``__dict__``)."""
+
+    __slots__ = ()
+
+    def make(self, d):
+        codes = d.get("_codes")
+        if codes is None:
+            raise AttributeError(f"'BoxWarmStart' object has no attribute {self.name!r}")
+        z_basic, at_upper = _basis_of_codes(codes)
+        d["z_basic"], d["at_upper"] = z_basic, at_upper  # (both at once)
+        return z_basic if self.name == "z_basic" else at_upper
+
+
+BoxWarmStart.z_basic = _FromCodes("z_basic")
+BoxWarmStart.at_upper = _FromCodes("at_upper")
 
 
 @frozen(eq=False)
