@@ -185,6 +185,17 @@ def main(argv=None):
     lines.append(f"- steps that leave the fused kernel for the KKT-MLCP path (its code not OK: "
                  f"a failed KKT check, ...): cold {kr[3]} of {len(steps)}, warm {kr[4]} of "
                  f"{len(steps) - 1}")
+    if kr[5] is not None:
+        lines.append(f"- the kernel's warm steps end on the old active set or its updates "
+                     f"{kr[5][0]}, on Lemke's method restarted from the nearest set tried "
+                     f"{kr[5][1]}, on the cold LCP {kr[5][2]} (`_core.qp_warm_ends`)")
+    fr = far_ratios(P, G, h, A, lb, ub, steps)
+    lines.append(f"- far-off warm starts, the kernel alone (best of 7 each): this problem from "
+                 f"another step's basis (20 steps on) and from the reversed problem's, "
+                 f"{fr[0]} solves: warm / cold median {fr[1]:.2f}, worst {fr[2]:.2f}; "
+                 f"{fr[3]} random QPs (`random_convex_qp`, 20-80 variables) from the answer of "
+                 f"a far-off q: median {fr[4]:.2f}, 90th percentile {fr[5]:.2f}, worst "
+                 f"{fr[6]:.2f}, above 1.1: {100 * fr[7]:.0f} %")
     zero = (piv["lemke warm"] == 0).mean()
     lines.append(f"- lemke warm steps with 0 pivots (the old active set solved the new step): {100 * zero:.0f} %")
     text = "\n".join(lines) + "\n"
@@ -195,25 +206,31 @@ def main(argv=None):
 
 
 def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
-    """(median, worst, count, cold fallbacks, warm fallbacks): the per-step ratio of the
-    fused kernel's time from the previous step's basis to its cold time (the best of
+    """(median, worst, count, cold fallbacks, warm fallbacks, ends): the per-step ratio of
+    the fused kernel's time from the previous step's basis to its cold time (the best of
     ``repeats`` calls each, interleaved), over the steps where both end solved and checked
-    (code 0), no Python front; and the number of steps where the cold kernel, and the warm
-    one, does not (the front then takes the KKT-MLCP path)."""
+    (code 0), no Python front; the number of steps where the cold kernel, and the warm
+    one, does not (the front then takes the KKT-MLCP path); and how the warm steps' first
+    calls ended (kept, restarted, cold: ``_core.qp_warm_ends``, None where the kernel has
+    no such count)."""
     from lemke import _core, _qp
     n, p, m = P.shape[0], A.shape[0], G.shape[0]
     out = np.empty(_qp._layout(n, p, m)[-1])  # (qp::OutLayout's length)
-    ws, ratios, cold_out, warm_out = None, [], 0, 0
+    ends = getattr(_core, "qp_warm_ends", None)
+    ws, ratios, cold_out, warm_out, ended = None, [], 0, 0, np.zeros(3, dtype=int)
     for q, b in steps:
         r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, warm_start=ws)
         cold_out += _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)[0] != 0
         if ws is not None:
             wv = np.array(ws.z_basic, dtype=np.int64)
             tw, tc = [], []
-            for _ in range(repeats):
+            for rep in range(repeats):
+                e0 = np.array(ends()) if ends is not None and rep == 0 else None
                 t0 = time.perf_counter()
                 cw = _core.qp_solve_warm(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out, wv, ws.n)
                 tw.append(time.perf_counter() - t0)
+                if e0 is not None:
+                    ended += np.array(ends()) - e0
                 t0 = time.perf_counter()
                 cc = _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)
                 tc.append(time.perf_counter() - t0)
@@ -221,7 +238,60 @@ def kernel_ratios(P, G, h, A, lb, ub, steps, repeats=15):
             if cw[0] == 0 and cc[0] == 0:
                 ratios.append(min(tw) / min(tc))
         ws = r.warm_start
-    return float(np.median(ratios)), float(np.max(ratios)), len(ratios), cold_out, warm_out
+    return (float(np.median(ratios)), float(np.max(ratios)), len(ratios), cold_out, warm_out,
+            None if ends is None else ended.tolist())
+
+
+def _kernel_ratio(P, q, G, h, A, b, lb, ub, ws, repeats=7):
+    """The fused kernel's best time from the warm start ws over its best cold time on one
+    QP (calls interleaved), or None when either does not end solved and checked."""
+    from lemke import _core, _qp
+    out = np.empty(_qp._layout(P.shape[0], A.shape[0], G.shape[0])[-1])
+    wv = np.array(ws.z_basic, dtype=np.int64)
+    tw, tc = [], []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        cw = _core.qp_solve_warm(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out, wv, ws.n)
+        tw.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        cc = _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)
+        tc.append(time.perf_counter() - t0)
+    return min(tw) / min(tc) if cw[0] == 0 and cc[0] == 0 else None
+
+
+def far_ratios(P, G, h, A, lb, ub, steps, n_random=150, seed=0):
+    """Warm starts far from the answer, kernel warm / cold per solve: (count, median, worst)
+    on this problem (each 4th step from the basis of the step 20 on, and from the basis of
+    the problem with q and b reversed), then (count, median, 90th percentile, worst, share
+    above 1.1) on random convex QPs warm from the answer of the same QP with q moved by
+    0.1, 1 or 10 times a standard normal."""
+    from lemke.problems import random_convex_qp
+    mine = []
+    for t in range(0, len(steps) - 20, 4):
+        q, b = steps[t]
+        q2, b2 = steps[t + 20]
+        for ws in (lemke.solve_qp(P, q2, G, h, A, b2, lb, ub).warm_start,
+                   lemke.solve_qp(P, -q, G, h, A, -b, lb, ub).warm_start):
+            r = _kernel_ratio(P, q, G, h, A, b, lb, ub, ws)
+            if r is not None:
+                mine.append(r)
+    rng = np.random.default_rng(seed)
+    rand = []
+    for _ in range(n_random):
+        n = int(rng.integers(20, 80))
+        m, p = int(rng.integers(n // 2, 3 * n)), int(rng.integers(0, n // 2))
+        Pr, q, Gr, hr, Ar, br, lbr, ubr = random_convex_qp(n, rng, m, p)
+        q2 = q + rng.standard_normal(n) * rng.choice([0.1, 1.0, 10.0])
+        far = lemke.solve_qp(Pr, q2, Gr, hr, Ar, br, lbr, ubr)
+        if far.status != lemke.Status.SOLVED or far.warm_start is None:
+            continue
+        r = _kernel_ratio(Pr, q, Gr, hr, Ar, br, lbr, ubr, far.warm_start)
+        if r is not None:
+            rand.append(r)
+    mine, rand = np.array(mine), np.array(rand)
+    return (len(mine), float(np.median(mine)), float(mine.max()), len(rand),
+            float(np.median(rand)), float(np.percentile(rand, 90)), float(rand.max()),
+            float((rand > 1.1).mean()))
 
 
 def _commit():

@@ -97,3 +97,14 @@ NumpyLayout numpy_layout();
 // arguments) when lcp_front_init found it makes such arrays, else numpy.empty itself.
 // Raises (nb::python_error) when NumPy does.
 nanobind::object new_array(Py_ssize_t len, bool ints = false);
+
+// A read-only 1-D float64 view of the doubles [offset, offset + len) of the float64 array
+// base, as base[offset:offset + len] of a read-only base makes it (base its base), through
+// NumPy's C API; an invalid object (nothing made, no error) when lcp_front_init did not find
+// that API making such views (the caller slices). Raises when NumPy does.
+nanobind::object new_view(nanobind::handle base, Py_ssize_t offset, Py_ssize_t len);
+
+// _core.games_front (src/python_games.cpp): solve_bimatrix(A, B, init_label=k)'s common
+// call, the BimatrixResult, the kernel's (code, pivots, restarts, buf) to go on from, or
+// None (arguments of another kind).
+nanobind::object games_front(nanobind::handle A, nanobind::handle B, nanobind::handle k);

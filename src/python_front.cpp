@@ -52,6 +52,7 @@ struct Front {
     using NewFromDescr = PyObject* (*)(PyTypeObject*, PyObject*, int, const Py_ssize_t*,
                                        const Py_ssize_t*, void*, int, PyObject*);
     NewFromDescr new_from_descr = nullptr;
+    bool views = false;  // new_view's arrays checked on a probe (else it declines)
     PyObject *f64 = nullptr, *i64 = nullptr;
 } front;
 
@@ -61,6 +62,20 @@ constexpr int kNewFromDescr = 94;  // PyArray_NewFromDescr's index in NumPy's AP
 PyObject* new_from_descr(Py_ssize_t len, PyObject* descr) {
     Py_INCREF(descr);  // (stolen by NumPy)
     return front.new_from_descr(front.ndarray, descr, 1, &len, nullptr, nullptr, 0, nullptr);
+}
+
+// new_view's array, unchecked: PyArray_NewFromDescr on base's data (not owned, not
+// writable), base set as slicing sets it (NumPy's dealloc releases it).
+PyObject* view_of(PyObject* base, Py_ssize_t offset, Py_ssize_t len) {
+    Py_INCREF(front.f64);  // (stolen by NumPy)
+    char* data = reinterpret_cast<const ArrayFields*>(base)->data + offset * sizeof(double);
+    PyObject* a = front.new_from_descr(front.ndarray, front.f64, 1, &len, nullptr, data,
+                                       C_CONTIGUOUS | ALIGNED, nullptr);
+    if (a != nullptr) {
+        Py_INCREF(base);
+        reinterpret_cast<ArrayFields*>(a)->base = base;
+    }
+    return a;
 }
 
 // NumPy's C API from its _ARRAY_API capsule (None: not found), kept when a probe array it
@@ -81,7 +96,17 @@ void find_new_from_descr(nb::handle api) {
         (a->flags & OWNDATA) == 0) {
         PyErr_Clear();
         front.new_from_descr = nullptr;
+        return;
     }
+    // a view of the probe's last two doubles: what probe[1:3] of a read-only probe is
+    nb::object v = nb::steal(view_of(probe.ptr(), 1, 2));
+    auto* w = reinterpret_cast<const ArrayFields*>(v.ptr());
+    front.views = v.is_valid() && Py_TYPE(v.ptr()) == front.ndarray && w->nd == 1 &&
+                  w->dimensions[0] == 2 && w->strides[0] == 8 && w->descr == front.f64 &&
+                  w->data == a->data + 8 && w->base == probe.ptr() &&
+                  (w->flags & (OWNDATA | WRITEABLE)) == 0 &&
+                  (w->flags & (C_CONTIGUOUS | ALIGNED)) == (C_CONTIGUOUS | ALIGNED);
+    if (!front.views) PyErr_Clear();
 }
 
 const ArrayFields* plain(PyObject* o, int nd) { return plain_f64(o, nd, front.ndarray); }
@@ -115,6 +140,7 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
           nb::handle probe_swapped, nb::handle api) {
     front.on = false;
     front.new_from_descr = nullptr;
+    front.views = false;
     front.ndarray = reinterpret_cast<PyTypeObject*>(ndarray.ptr());
     if (!layout_agrees(probe2, address, probe_ro, probe_int, probe_swapped)) return;
     for (nb::handle h : {ndarray, result_cls, solved, ray, empty}) h.inc_ref();  // kept for good
@@ -248,7 +274,7 @@ struct Entry {
     PyObject* globals;  // _lcp's namespace (its _FRONT read each call)
     PyObject* front;    // _core.lcp_front as first bound
     PyObject* ws_cls;   // WarmStart
-    PyObject *k_front, *k_warm_start, *k_beta, *k_n;
+    PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label;
     // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
     // each call), LCPManyResult and the keys of what LCPManyResult._of sets
     PyObject *many_globals, *many_cls, *k_few, *k_items, *k_special, *k_off;
@@ -397,6 +423,38 @@ PyObject* many_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
 }
 
+// solve_bimatrix(A, B) and solve_bimatrix(A, B, init_label=k): games_front without a Python
+// frame, as entry_call does lcp_front; a run games_front does not settle goes on in
+// _games._after_front(A, B, k, (code, pivots, restarts, buf)); any other call, and any
+// that games_front declines, is the Python function's (_games._solve_bimatrix).
+PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                     PyObject* kwnames) {
+    auto* e = reinterpret_cast<Entry*>(self);
+    bool plain = kwnames == nullptr ||
+                 (PyTuple_GET_SIZE(kwnames) == 1 &&
+                  (PyTuple_GET_ITEM(kwnames, 0) == e->k_init_label ||
+                   PyUnicode_Compare(PyTuple_GET_ITEM(kwnames, 0), e->k_init_label) == 0));
+    if (PyVectorcall_NARGS(nargsf) == 2 && plain && front.on) {
+        PyObject* now = PyDict_GetItemWithError(e->globals, e->k_front);
+        if (now == nullptr && PyErr_Occurred()) return nullptr;
+        if (now == e->front) {
+            PyObject* k = kwnames == nullptr ? front.zero : args[2];
+            try {
+                nb::object r = games_front(args[0], args[1], k);
+                if (!r.is_none() && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                if (!r.is_none()) {
+                    PyObject* after[] = {args[0], args[1], k, r.ptr()};
+                    return PyObject_Vectorcall(e->after, after, 4, nullptr);
+                }
+            } catch (...) {
+                error_set();
+                return nullptr;
+            }
+        }
+    }
+    return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
+}
+
 PyObject* entry_get(PyObject* self, PyObject*, PyObject*) {  // (not bound, as a function)
     Py_INCREF(self);
     return self;
@@ -425,7 +483,7 @@ PyTypeObject entry_type = [] {
     t.tp_name = "lemke._core.LCPEntry";
     t.tp_basicsize = sizeof(Entry);
     t.tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL;
-    t.tp_doc = "solve_lcp's or solve_lcp_many's entry (src/python_front.cpp)";
+    t.tp_doc = "solve_lcp's, solve_lcp_many's or solve_bimatrix's entry (src/python_front.cpp)";
     t.tp_call = PyVectorcall_Call;
     t.tp_vectorcall_offset = offsetof(Entry, vectorcall);
     t.tp_dictoffset = offsetof(Entry, dict);
@@ -452,10 +510,11 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
     nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
     for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
     PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n,
-                         &e->k_few, &e->k_items, &e->k_special, &e->k_off};
-    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special", "_off"};
+                         &e->k_few, &e->k_items, &e->k_special, &e->k_off, &e->k_init_label};
+    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "_special",
+                           "_off", "init_label"};
     nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
-    for (int i = 0; i < 8; ++i)
+    for (int i = 0; i < 9; ++i)
         if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
     return res;
 }
@@ -463,6 +522,13 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
 nb::object lcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn,
                      nb::handle ws_cls) {
     return make_entry(py, after, globals, front_fn, ws_cls, nb::none(), nb::none());
+}
+
+// solve_bimatrix's entry (games_call).
+nb::object games_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn) {
+    nb::object res = make_entry(py, after, globals, front_fn, nb::none(), nb::none(), nb::none());
+    reinterpret_cast<Entry*>(res.ptr())->vectorcall = games_call;
+    return res;
 }
 
 nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn,
@@ -536,6 +602,13 @@ nb::object new_array(Py_ssize_t len, bool ints) {
     return nb::steal(a);
 }
 
+nb::object new_view(nb::handle base, Py_ssize_t offset, Py_ssize_t len) {
+    if (!front.views) return nb::object();
+    PyObject* a = view_of(base.ptr(), offset, len);
+    if (a == nullptr) throw nb::python_error();
+    return nb::steal(a);
+}
+
 void bind_front(nb::module_& m) {
     m.def("lcp_front_init", &init, "ndarray"_a, "result_cls"_a, "solved"_a, "ray"_a, "empty"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a, "probe2"_a, "address"_a, "probe_ro"_a,
@@ -544,6 +617,7 @@ void bind_front(nb::module_& m) {
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
+    m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
     m.def("lcp_many_entry", &lcp_many_entry, "py"_a, "globals"_a, "front"_a, "ws_cls"_a,
           "many_globals"_a, "many_cls"_a);
 }

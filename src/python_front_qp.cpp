@@ -8,8 +8,9 @@
 // GIL and builds the QPResult as _qp._fused_result (or _qp._solve_box_small) does (x,
 // status, pivots, certificate now, the rest from _qp._fused_fields / _box_small_fields
 // when first read). Cold, it chooses as solve_qp's inline lines do: a box-only QP below
-// BOX_FIRST variables qp::solve_box, fewer than GRAM_RATIO n inequalities qp::solve, the
-// rest None.
+// BOX_FIRST variables qp::solve_box, any other but a larger box-only one _qp._solve_definite's
+// kernels (cold(): the factored path first with at least GRAM_RATIO n inequalities, the fused
+// kernel, the semidefinite step), the rest None.
 //
 // Returns the QPResult when the kernel ends OK (solved and checked); the tuple (code,
 // pivots, k, pairs) for any other code (the Python front goes on from there, as from
@@ -23,8 +24,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include "lemke/budget.hpp"
 #include "lemke/qp.hpp"
 #include "python_arrays.hpp"
 
@@ -132,9 +135,57 @@ nb::object box_small(const qp::Data& data) {
     return solved(buf, n, r.pivots, qf.box_fields, nb::make_tuple(buf, n, r.k, r.pairs));
 }
 
+// The kernels the calling thread's last qp_front ran (qp::solve: 0, qp::solve_gram: 1), each
+// with its code, in order: qp_front_codes(), the tests' record of which path answered.
+thread_local std::vector<std::pair<int, int>> ran;
+
+// _qp._solve_definite (and its _solve_semidefinite) on plain data with the default options,
+// the same kernel calls in the same order: with at least GRAM_RATIO n inequalities (bounds
+// counted) the factored path first (the kernel's step 7); unless it solved or stopped, the
+// fused kernel; where that found P not definite and step 7 did not run, the proximal
+// factored path (step 8) unless P has more zero diagonal entries than equalities
+// (fixed variables counted; the kernel would decline at once). One buffer for all of them
+// (each kernel writes every entry it reports; solve_gram zeroes it whole first). The
+// result when one ends OK; else the last kernel's code, after which the Python steps go
+// straight to the KKT-MLCP path (a stop: its result, no other path).
+nb::object cold(const qp::Data& data, idx p, idx m, bool many) {
+    idx n = data.n();
+    qp::OutLayout L{n, p, m};
+    nb::object buf = new_array(L.length());
+    double* out = reinterpret_cast<double*>(reinterpret_cast<ArrayFields*>(buf.ptr())->data);
+    idx* basic = reinterpret_cast<idx*>(out + L.basis());
+    auto stopped = [](int code) {
+        return code == lemke::STOP_TIME_LIMIT || code == lemke::STOP_INTERRUPTED;
+    };
+    qp::Result r;
+    {
+        nb::gil_scoped_release release;
+        bool tried = false;  // step 7 ran (it did not answer NOT_APPLICABLE)
+        if (many) {
+            r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(), basic,
+                               false);
+            ran.emplace_back(1, r.code);
+            tried = r.code != qp::NOT_APPLICABLE;
+        }
+        if (!many || (r.code != qp::OK && !stopped(r.code))) {
+            r = qp::solve(data, qf.method, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, basic);
+            ran.emplace_back(0, r.code);
+            if (r.code == qp::NOT_DEFINITE && !tried &&
+                qp::zero_diagonal(data.P) <= qp::equalities(p, data.lb, data.ub, n)) {
+                r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(),
+                                   basic, true);
+                ran.emplace_back(1, r.code);
+            }
+        }
+    }
+    if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
+    return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
+}
+
 nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
                     nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
                     std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
+    ran.clear();
     if (!qf.on) return nb::none();
     NumpyLayout lay = numpy_layout();
     auto plain = [&](nb::handle o, int nd) { return plain_f64(o.ptr(), nd, lay.ndarray); };
@@ -207,17 +258,16 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
         pairs = 0;
     } else {
         // cold, as solve_qp's inline lines choose: a box-only QP with bounds below
-        // BOX_FIRST variables takes the box kernel; from there, or with at least
-        // GRAM_RATIO n inequalities (bounds counted), the Python steps (None); else the
-        // fused kernel
+        // BOX_FIRST variables takes the box kernel; from there, the Python steps (None);
+        // else _solve_definite's kernels (cold)
         bool box = G_h.is_none() && h_h.is_none() && A_h.is_none() && b_h.is_none();
         idx bounds = !lb_h.is_none() + !ub_h.is_none();
         if (box && bounds > 0) {
             if (n >= qf.box_first) return nb::none();
             return box_small(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up));
         }
-        if (m + n * bounds >= qp::GRAM_RATIO * n) return nb::none();
-        pairs = 0;
+        return cold(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up), p, m,
+                    m + n * bounds >= qp::GRAM_RATIO * n);
     }
     qp::OutLayout L{n, p, m};
     nb::object buf = new_array(L.length());
@@ -229,6 +279,7 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
                       qf.tie_tol, qf.tol, out, reinterpret_cast<idx*>(out + L.basis()), warm,
                       kw, pairs, x0);
     }
+    ran.emplace_back(0, r.code);
     if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
     return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
 }
@@ -242,4 +293,9 @@ void bind_front_qp(nb::module_& m) {
           "A"_a.none(), "b"_a.none(), "lb"_a.none(), "ub"_a.none(), "pairs"_a, "beta"_a.none(),
           "x0"_a.none());
     m.def("qp_front_on", [] { return qf.on; });
+    m.def("qp_front_codes", [] {
+        nb::list out;
+        for (auto [kernel, code] : ran) out.append(nb::make_tuple(kernel ? "solve_gram" : "solve", code));
+        return out;
+    });
 }

@@ -106,13 +106,15 @@ bool check(Payoffs A, Payoffs B, VecIn x, VecIn y, double tol, VecOut out) {
 
 // --- solve_bimatrix's native front ---------------------------------------------------------
 //
-// games_front(A, B, init_label): solve_bimatrix's commonest call whole in one native call,
+// games_front(A, B, init_label): solve_bimatrix's commonest call whole in one native call
+// (reached with no Python frame through solve_bimatrix's entry, games_entry in python_front.cpp),
 // as lcp_front does solve_lcp's (src/python_front.cpp): A and B plain float64 (numpy_layout's
 // plain_f64: C-contiguous, aligned, writable, the machine's byte order), of one non-empty
 // shape, init_label an int in [0, m + n), Lemke-Howson from the artificial equilibrium,
 // default options, no exact certificate. The buffer from numpy.empty, the slack start, the
 // kernel without the GIL (the check on the caller's payoffs included), then:
-//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it (x and y made at once);
+//  - SOLVED: the BimatrixResult as BimatrixResult._lazy builds it (x and y made at once, as
+//    read-only views of the buffer: new_view, NumPy's C API, else slices);
 //  - any other code: the tuple (code, pivots, restarts, buf), for the Python front to go on
 //    from (_finish, or the error naming a payoff that is not finite), as after its own call;
 //  - None: arguments of another kind; the Python front does everything (the same call).
@@ -123,6 +125,9 @@ struct GamesFront {
     PyObject* solved = nullptr;      // Status.SOLVED
     PyObject* method = nullptr;      // "lemke-howson"
     PyObject *k_status, *k_pivots, *k_init_label, *k_method, *k_restarts, *k_lazy, *k_x, *k_y;
+    // The result's __dict__: its keys in _lazy's order (then x, y), status SOLVED and method
+    // set; games_front copies it and replaces the other values (no dict growth).
+    PyObject* dict = nullptr;
     double params[4] = {0, 0, 0, 0};  // the defaults' (max_pivots, pivot_tol, tie_tol, tol)
 } gf;
 
@@ -142,9 +147,20 @@ void front_init(nb::handle result_cls, nb::handle solved, nb::handle method, Vec
         if (*keys[i] == nullptr) throw nb::python_error();
     }
     for (int i = 0; i < 4; ++i) gf.params[i] = params.data()[i];
+    nb::object d = nb::steal(PyDict_New());
+    if (!d.is_valid()) throw nb::python_error();
+    for (std::size_t i = 0; i < 8; ++i) {
+        PyObject* value = i == 0 ? solved.ptr() : i == 3 ? method.ptr() : Py_None;
+        if (PyDict_SetItem(d.ptr(), *keys[i], value) != 0) throw nb::python_error();
+    }
+    Py_XDECREF(gf.dict);
+    gf.dict = d.release().ptr();
     gf.on = numpy_layout().ok;
 }
 
+}  // namespace
+
+// (declared in python_arrays.hpp: solve_bimatrix's entry calls it too)
 nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
     if (!gf.on) return nb::none();
     NumpyLayout np = numpy_layout();
@@ -176,23 +192,28 @@ nb::object games_front(nb::handle A_h, nb::handle B_h, nb::handle k_h) {
     // once (every caller reads them; _FromKernel would make the same read-only views, the
     // buffer made read-only first, as NumPy's PyArray_CLEARFLAGS does, so views copy it).
     reinterpret_cast<ArrayFields*>(buf.ptr())->flags &= ~WRITEABLE;
-    nb::object x = buf[nb::slice(at.x(), at.x() + m)];
-    nb::object y = buf[nb::slice(at.y(), at.y() + n)];
-    auto [res, dict] = new_result(gf.result_cls);
+    nb::object x = new_view(buf, at.x(), m);
+    nb::object y = new_view(buf, at.y(), n);
+    if (!x.is_valid() || !y.is_valid()) {  // (NumPy's C API not found: slices)
+        x = buf[nb::slice(at.x(), at.x() + m)];
+        y = buf[nb::slice(at.y(), at.y() + n)];
+    }
+    auto* cls = reinterpret_cast<PyTypeObject*>(gf.result_cls);
+    nb::object res = nb::steal(cls->tp_alloc(cls, 0));
+    if (!res.is_valid()) throw nb::python_error();
+    nb::object dict = nb::steal(PyDict_Copy(gf.dict));
+    if (!dict.is_valid()) throw nb::python_error();
     PyObject* d = dict.ptr();
     nb::object lazy = nb::make_tuple(buf, m, n);
-    bool ok = PyDict_SetItem(d, gf.k_status, gf.solved) == 0 &&
-              put(d, gf.k_pivots, PyLong_FromLongLong(r.pivots)) &&
+    bool ok = put(d, gf.k_pivots, PyLong_FromLongLong(r.pivots)) &&
               PyDict_SetItem(d, gf.k_init_label, k_h.ptr()) == 0 &&
-              PyDict_SetItem(d, gf.k_method, gf.method) == 0 &&
               put(d, gf.k_restarts, PyLong_FromLongLong(r.restarts)) &&
               PyDict_SetItem(d, gf.k_lazy, lazy.ptr()) == 0 &&
-              PyDict_SetItem(d, gf.k_x, x.ptr()) == 0 && PyDict_SetItem(d, gf.k_y, y.ptr()) == 0;
+              PyDict_SetItem(d, gf.k_x, x.ptr()) == 0 && PyDict_SetItem(d, gf.k_y, y.ptr()) == 0 &&
+              PyObject_GenericSetDict(res.ptr(), d, nullptr) == 0;
     if (!ok) throw nb::python_error();
     return res;
 }
-
-}  // namespace
 
 void bind_games(nb::module_& m) {
     m.def("games_front_init", &front_init, "result_cls"_a, "solved"_a, "method"_a, "params"_a);

@@ -1,6 +1,7 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
 // qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box), and a few pieces whose bits the tests check
-// (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts).
+// (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts,
+// qp_warm_ends).
 // Sizes are checked here, before the GIL is released: where the kernel answers data
 // of mismatched shapes (screen: False; solve, solve_gram: BAD_INPUT) this answers the same;
 // where it would read or write out of bounds this raises ValueError. Arrays of the wrong
@@ -81,15 +82,16 @@ bool cholesky(In2 P, Out2 L) {
 }
 
 bool kkt_check(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 x, In1 y, In1 z,
-               In1 zb, double tol, Out1 stats) {
+               In1 zb, double tol, Out1 stats, bool sparse) {
     idx n = len(q);
     if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(x) != n || len(y) != len(A, 0) ||
         len(z) != len(G, 0) || len(zb) != n || len(stats) < 4)
         throw nb::value_error("qp_kkt_check: P must be n x n, G m x n, A p x n, h and z of "
                               "length m, b and y p, q, lb, ub, x, zb n, stats at least 4");
     nb::gil_scoped_release release;
-    return qp::kkt_check(data(P, q, G, h, A, b, lb, ub), x.data(), y.data(), z.data(), zb.data(),
-                         tol, stats.data());
+    return (sparse ? qp::kkt_check_sparse : qp::kkt_check)(data(P, q, G, h, A, b, lb, ub),
+                                                           x.data(), y.data(), z.data(),
+                                                           zb.data(), tol, stats.data());
 }
 
 // qp.solve, cold (warm nullptr) or warm, for qp_solve and qp_solve_warm.
@@ -283,7 +285,8 @@ void bind_qp(nb::module_& m) {
     m.def("qp_screen", &screen, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a);
     m.def("qp_cholesky", &cholesky, "P"_a, nb::arg("L").noconvert());
     m.def("qp_kkt_check", &kkt_check, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
-          "x"_a, "y"_a, "z"_a, "zb"_a, "tol"_a, nb::arg("stats").noconvert());
+          "x"_a, "y"_a, "z"_a, "zb"_a, "tol"_a, nb::arg("stats").noconvert(),
+          "sparse"_a = false);
     m.def("qp_solve", &solve, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           "method"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
           nb::arg("out").noconvert());
@@ -310,6 +313,10 @@ void bind_qp(nb::module_& m) {
     m.def("unrevised_factored", &unrevised_factored, "Fs"_a, "d"_a, "q"_a, "max_pivots"_a,
           "pivot_tol"_a, "tie_tol"_a, nb::arg("x_out").noconvert(),
           nb::arg("ray_out").noconvert(), nb::arg("z_basic_out").noconvert());
+    m.def("qp_warm_ends", []() {
+        const qp::WarmEnds& e = qp::warm_ends();
+        return std::make_tuple(e.kept, e.restarted, e.cold);
+    });
     m.def("qp_zero_diagonal", [](In2 P) {
         if (len(P, 0) != len(P, 1)) throw nb::value_error("qp_zero_diagonal: P must be square");
         return qp::zero_diagonal(mat(P));

@@ -531,6 +531,10 @@ def test_front_is_the_python_path(kind, m, n, monkeypatch):
     assert fronts == paths
     for r in fronts + paths:  # read-only views of the kernel's buffer, as the lazy fields are
         assert not r.x.flags.writeable and not r.y.flags.writeable
+        assert not r.x.flags.owndata and r.x.base is not None and r.x.base is r.y.base
+        m, n = len(r.x), len(r.y)
+        assert r.x.base.shape == (_games._layout(m, n)["length"],)
+        assert np.shares_memory(r.x, r.x.base[:m]) and np.shares_memory(r.y, r.x.base[m : m + n])
         with pytest.raises(ValueError):
             r.x[0] = 2.0
     assert [(r.basis, r.payoffs, r.regret, r.init_label) for r in fronts] == [
@@ -551,6 +555,48 @@ def test_front_declines_other_arguments():
         assert _core.games_front(A, B, k) is None
     assert_equilibrium(A, B, lemke.solve_bimatrix(ro, B))
     assert lemke.solve_bimatrix(ro, B) == lemke.solve_bimatrix(A, B)
+
+
+def test_solve_bimatrix_entry_is_the_python_function_to_its_callers(monkeypatch):
+    """``lemke.solve_bimatrix`` is the core's entry (``_core.games_entry``,
+    src/python_front.cpp): solve_bimatrix(A, B) and solve_bimatrix(A, B, init_label=k) go to
+    ``_games._FRONT`` with no Python frame (a run it does not settle to
+    ``_games._after_front``), everything else to the Python function it wraps; it reads
+    ``_FRONT`` on each call and shows the function's name, docstring, signature and pickles
+    by name."""
+    import inspect
+    import pickle
+
+    f = lemke.solve_bimatrix
+    assert f is _games.solve_bimatrix and f.__wrapped__ is _games._solve_bimatrix and f is not f.__wrapped__
+    assert (f.__name__, f.__module__, f.__doc__) == ("solve_bimatrix", "lemke._games", _games._solve_bimatrix.__doc__)
+    assert str(inspect.signature(f)) == str(inspect.signature(_games._solve_bimatrix))
+    assert repr(f) == repr(_games._solve_bimatrix) and pickle.loads(pickle.dumps(f)) is f
+    A, B = np.array(STENGEL_A, dtype=float), np.array(STENGEL_B, dtype=float)
+    py = _games._solve_bimatrix
+    for k in range(5):
+        assert f(A, B, init_label=k) == py(A, B, init_label=k)
+        assert_equilibrium(A, B, f(A, B, init_label=k))
+    assert f(A, B) == py(A, B) and f(A, B).init_label == 0
+    calls = []
+    front = _games._FRONT
+    monkeypatch.setattr(_games, "_FRONT", lambda *a: calls.append(a) or front(*a))
+    assert f(A, B) == py(A, B) and f(A, B, init_label=3) == py(A, B, init_label=3)
+    assert len(calls) == 4 and [c[2] for c in calls] == [0, 0, 3, 3]  # each through Python
+    monkeypatch.undo()
+    with pytest.raises(TypeError):
+        f(A)
+    with pytest.raises(TypeError):
+        f(A, B, 1)  # keyword-only, as the Python function's
+    with pytest.raises(ValueError, match="out of range"):
+        f(A, B, init_label=5)
+    with pytest.raises(ValueError, match="non-finite"):  # the front's code, then _after_front
+        f(np.array([[1.0, np.inf], [0.0, 2.0]]), np.ones((2, 2)))
+    # the entry's other calls: the Python function's (lists, options, exact, tracing)
+    assert f(A.tolist(), B.tolist()) == f(A, B)
+    assert f(A, B, options={"max_pivots": 100}) == f(A, B)
+    assert f(A, B, method="tracing") == py(A, B, method="tracing")
+    assert f(A, B, exact=True) == py(A, B, exact=True)
 
 
 def test_front_hands_back_what_it_does_not_settle():

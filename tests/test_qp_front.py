@@ -170,8 +170,10 @@ def test_front_results_are_values(no_front):
 def _cold_cases():
     """Cold QPs of every kind the front's cold lines choose between: mixed rows and bounds,
     no constraints, box-only below and at BOX_FIRST (the box kernel; None), many rows (at
-    GRAM_RATIO n: None), a linear program (P = 0: the kernel's NOT_DEFINITE handed back),
-    an infeasible QP (the kernel's code, then the KKT-MLCP path's certificate)."""
+    GRAM_RATIO n: the factored path first), a P semidefinite whose flat directions the
+    equalities pin (the semidefinite step after the fused kernel's NOT_DEFINITE), a linear
+    program (P = 0: a code handed back), an infeasible QP (the kernel's code, then the
+    KKT-MLCP path's certificate)."""
     rng = np.random.default_rng(77)
     P, q, G, h, A, b, lb, ub = random_convex_qp(10, rng, 6, 2)
     yield "mixed", (P, q, G, h, A, b, lb, ub)
@@ -185,6 +187,12 @@ def _cold_cases():
     yield "box at BOX_FIRST", (P2, q2, None, None, None, None, lb2, ub2)
     P3, q3, G3, h3, A3, b3, lb3, ub3 = random_convex_qp(5, rng, 25, 1)
     yield "many rows", (P3, q3, G3, h3, A3, b3, lb3, ub3)
+    Ps = np.zeros_like(P)  # two variables out of P (zero rows and columns), three equalities
+    Ps[:8, :8] = P[:8, :8]
+    A4 = rng.standard_normal((3, 10))
+    yield "semidefinite", (Ps, q, G, h, A4, A4 @ (0.1 * rng.standard_normal(10)), lb, ub)
+    yield "semidefinite, many rows", (Ps, q, np.vstack([G] * 7), np.concatenate([h] * 7), A4,
+                                      A4 @ np.zeros(10), None, None)
     yield "linear program", (np.zeros_like(P), q, G, h, A, b, lb, ub)
     g = rng.standard_normal(10)
     yield "infeasible", (P, q, np.vstack([G, g, -g]), np.concatenate([h, [-1.0, -1.0]]), A, b,
@@ -210,7 +218,7 @@ def test_cold_calls_bit_for_bit(no_front, name, args):
         assert name == "infeasible" and fr.status == Status.PRIMAL_INFEASIBLE
     P, q, G, h, A, b, lb, ub = args
     r = _core.qp_front(P, q, G, h, A, b, lb, ub, 0, None, None)
-    if name in ("box at BOX_FIRST", "many rows"):
+    if name == "box at BOX_FIRST":
         assert r is None
     elif name in ("linear program", "infeasible"):
         assert type(r) is tuple and r[0] != _core.QP_OK

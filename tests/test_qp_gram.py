@@ -27,43 +27,42 @@ QP_OK, QP_NOT_DEFINITE, QP_NOT_SOLVED, QP_CHECK_FAILED, QP_NOT_APPLICABLE = 0, 1
 
 
 @pytest.fixture
-def gram_calls(monkeypatch):
-    """The codes the kernel of the factored path (``_core.qp_solve_gram``) returned during the
-    test, in order; ``dense_calls`` those of the dense fused kernel (``_core.qp_solve``)."""
-    return _recorder(monkeypatch, "solve_gram")
+def kernel_codes(monkeypatch):
+    """The codes the fused kernels returned during the test, in order, by kernel: the
+    factored path's (``solve_gram``) and the dense one's (``solve``), called from Python
+    (``_core.qp_solve_gram``, ``_core.qp_solve``) or run inside the native front
+    (``_qp._QP_FRONT``, which says which it ran: ``_core.qp_front_codes``; not its box
+    kernel)."""
+    codes = {"solve_gram": [], "solve": []}
+    for name, calls in codes.items():
+        kernel = getattr(_core, "qp_" + name)
+
+        def recording(*args, kernel=kernel, calls=calls):
+            out = kernel(*args)
+            calls.append(out[0])
+            return out
+        monkeypatch.setattr(_core, "qp_" + name, recording)
+    front = _qp._QP_FRONT
+
+    def front_recording(*args):
+        r = front(*args)
+        for name, code in _core.qp_front_codes():
+            codes[name].append(code)
+        return r
+    monkeypatch.setattr(_qp, "_QP_FRONT", front_recording)
+    return codes
 
 
 @pytest.fixture
-def dense_calls(monkeypatch):
-    """(With the dense kernel's runs in the native front, ``_qp._QP_FRONT``: its result,
-    OK, or the code it hands back; not its box kernel's, nor its None.)"""
-    codes = _recorder(monkeypatch, "solve")
-    front = _qp._QP_FRONT
-
-    def recording(P, q, G, h, A, b, lb, ub, *rest):
-        r = front(P, q, G, h, A, b, lb, ub, *rest)
-        box = G is None and h is None and A is None and b is None and (
-            lb is not None or ub is not None)
-        if r is not None and not box:
-            codes.append(QP_OK if type(r) is _qp.QPResult else r[0])
-        return r
-    monkeypatch.setattr(_qp, "_QP_FRONT", recording)
-    return codes
+def gram_calls(kernel_codes):
+    """The codes the kernel of the factored path (``qp_solve_gram``) returned during the
+    test, in order; ``dense_calls`` those of the dense fused kernel (``qp_solve``)."""
+    return kernel_codes["solve_gram"]
 
 
-def _recorder(monkeypatch, name):
-    """Record the codes of the core's kernel ``qp_<name>`` (the front looks it up on
-    ``_core`` at each call)."""
-    codes = []
-    kernel = getattr(_core, "qp_" + name)
-
-    def recording(*args):
-        out = kernel(*args)
-        codes.append(out[0])
-        return out
-
-    monkeypatch.setattr(_core, "qp_" + name, recording)
-    return codes
+@pytest.fixture
+def dense_calls(kernel_codes):
+    return kernel_codes["solve"]
 
 
 def check_solved(problem, res):

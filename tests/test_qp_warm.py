@@ -223,3 +223,89 @@ def test_time_limit_with_a_warm_start(mpc):
         r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, options={"time_limit": 60.0}, **kw)
         check(P, q, G, h, A, b, lb, ub, r)
         assert r.pivots == 0
+
+
+def _ends():
+    from lemke import _core
+    return np.array(_core.qp_warm_ends())
+
+
+def test_failed_warm_steps_restart_from_their_set_and_pass_kkt(method):
+    """The MPC loop warm from the previous step: where the old active set and its updates
+    fail (warm_point), Lemke's method is restarted from the nearest set tried (qp.cpp's
+    restart) instead of the cold LCP. Every step's answer passes the KKT conditions checked
+    here and is cold's x; some steps end on the restart (lemke._core.qp_warm_ends counts it),
+    none on the cold LCP."""
+    (P, G, h, A, lb, ub), steps = mpc_problem.sequence(steps=100, seed=0)
+    ws = None
+    before = _ends()
+    for q, b in steps:
+        cold = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method)
+        warm = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method, warm_start=ws)
+        check(P, q, G, h, A, b, lb, ub, warm)
+        np.testing.assert_allclose(warm.x, cold.x, rtol=0, atol=1e-8)
+        ws = warm.warm_start
+    kept, restarted, fell_back = _ends() - before
+    assert kept + restarted + fell_back == len(steps) - 1
+    assert restarted >= 5 and fell_back == 0, (kept, restarted, fell_back)
+
+
+def test_a_warm_start_far_from_right_restarts_and_passes_kkt(method):
+    """Warm starts far from the answer: another step's basis (20 steps away), the basis of
+    the same QP with the reference and the state reversed, and the right basis with 3, 8, 15
+    of its pairs flipped (the more flipped, the more bounds taken as active: beyond the free
+    directions' count no set can be factored, and the cold LCP solves it): each solve passes
+    the KKT conditions checked here, at cold's x; the far bases end on the restart."""
+    (P, G, h, A, lb, ub), steps = mpc_problem.sequence(steps=60, seed=2)
+    rng = np.random.default_rng(7)
+    before = _ends()
+    solves = 0
+    for t in range(0, 40, 4):
+        q, b = steps[t]
+        cold = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method)
+        check(P, q, G, h, A, b, lb, ub, cold)
+        q2, b2 = steps[t + 20]
+        guesses = [lemke.solve_qp(P, q2, G, h, A, b2, lb, ub).warm_start,
+                   lemke.solve_qp(P, -q, G, h, A, -b, lb, ub).warm_start]
+        npairs = cold.warm_start.n
+        right = np.zeros(npairs, bool)
+        right[list(cold.warm_start.z_basic)] = True
+        for size in (3, 8, 15):
+            flip = right.copy()
+            flip[rng.choice(npairs, size, replace=False)] ^= True
+            guesses.append(lemke.WarmStart(npairs, tuple(np.flatnonzero(flip).tolist())))
+        for ws in guesses:
+            r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method, warm_start=ws)
+            check(P, q, G, h, A, b, lb, ub, r)
+            np.testing.assert_allclose(r.x, cold.x, rtol=0, atol=1e-8)
+            solves += 1
+    kept, restarted, fell_back = _ends() - before
+    assert kept + restarted + fell_back == solves
+    assert restarted >= 20, (kept, restarted, fell_back)  # of 50 (20 far bases)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_wrong_guesses_on_random_qps_pass_kkt(seed, method):
+    """Random convex QPs (inequalities, equalities, bounds), warm starts from random pairs
+    and wild initvals: every solve passes the KKT conditions checked here at cold's x,
+    whichever way it ends (the old set, the restart, the cold LCP); the restart is among
+    them."""
+    rng = np.random.default_rng(300 + seed)
+    before = _ends()
+    for n, m, p in ((30, 20, 5), (40, 45, 10)):
+        P, q, G, h, A, b, lb, ub = random_convex_qp(n, rng, m, p)
+        cold = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method)
+        check(P, q, G, h, A, b, lb, ub, cold)
+        npairs = cold.warm_start.n
+        for size in (1, 4, 10, 20):
+            basic = np.sort(rng.choice(npairs, min(size, npairs), replace=False))
+            ws = lemke.WarmStart(npairs, tuple(basic.tolist()))
+            r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method, warm_start=ws)
+            check(P, q, G, h, A, b, lb, ub, r)
+            np.testing.assert_allclose(r.x, cold.x, rtol=0, atol=1e-8)
+        for scale in (0.1, 10.0):
+            r = lemke.solve_qp(P, q, G, h, A, b, lb, ub, method=method,
+                               initvals=cold.x + scale * rng.standard_normal(n))
+            check(P, q, G, h, A, b, lb, ub, r)
+            np.testing.assert_allclose(r.x, cold.x, rtol=0, atol=1e-8)
+    assert (_ends() - before)[1] > 0

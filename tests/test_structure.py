@@ -18,7 +18,7 @@ PACKAGE = Path(lemke.__file__).parent
 #: Layer of each module (dotted, relative to lemke); a module may import only lower layers
 #: (or, inside the _io and _reductions packages, its siblings, acyclically).
 LAYERS = [
-    {"_layout", "_core", "_frozen"},  # (the compiled core imports nothing of the package)
+    {"_layout", "_core", "_frozen", "_npc"},  # (the compiled core imports nothing of the package)
     {"_status", "_options", "_validate", "_version", "_progress"},
     {"_result"},
     {"_certify"},

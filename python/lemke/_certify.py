@@ -35,7 +35,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._frozen import frozen
-from . import _core
+from . import _core, _npc
 from ._result import Value
 from ._validate import square_matrix, vector
 
@@ -132,8 +132,7 @@ def _check_mlcp_numpy(E, e, n, x, tol, residual2):
     return w, ok, residual
 
 
-def absmax(a) -> float:
-    return float(np.abs(a).max()) if a.size else 0.0
+absmax = _npc.absmax
 
 
 def is_mlcp_ray(E, n, direction, tol) -> bool:

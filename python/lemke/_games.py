@@ -292,11 +292,7 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     if options is None and method == "lemke-howson" and warm_start is None and not exact:
         got = _FRONT(A, B, init_label)  # None: arguments of another kind, done below
         if got is not None:
-            if type(got) is not tuple:
-                return got  # solved and checked
-            code, pivots, restarts, buf = got
-            return _after_kernel(A, B, init_label, code, pivots, restarts, buf, _DEFAULT,
-                                 False, None)
+            return got if type(got) is not tuple else _after_front(A, B, init_label, got)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_bimatrix, A, B, init_label=init_label, method=method,
                      prior=prior, warm_start=warm_start, exact=exact)
@@ -324,6 +320,13 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
     if code == SOLVED and not exact:  # the common case, without _finish's detours
         return BimatrixResult._lazy(buf, m, n, pivots, k, restarts)
     return _after_kernel(A, B, k, code, pivots, restarts, buf, opts, exact, warm_start)
+
+
+def _after_front(A, B, k, got):
+    """The result of a call that ``_FRONT`` (``_core.games_front``) ran but did not settle:
+    ``got`` is the kernel's (code, pivots, restarts, buf); default options."""
+    code, pivots, restarts, buf = got
+    return _after_kernel(A, B, k, code, pivots, restarts, buf, _DEFAULT, False, None)
 
 
 def _after_kernel(A, B, k, code, pivots, restarts, buf, opts, exact, warm_start):
@@ -410,6 +413,15 @@ def _params(opts: Options) -> np.ndarray:
 _DEFAULT_PARAMS = _params(_DEFAULT)
 native_fronts_init()  # (NumPy's layout checked: the front relies on it)
 _core.games_front_init(BimatrixResult, Status.SOLVED, "lemke-howson", _DEFAULT_PARAMS)
+
+#: The Python function; ``solve_bimatrix`` is the core's entry that wraps it
+#: (src/python_front.cpp, ``games_entry``): the calls ``solve_bimatrix(A, B)`` and
+#: ``solve_bimatrix(A, B, init_label=k)`` go to ``_FRONT`` with no Python frame (then
+#: ``_after_front`` when it does not settle), every other call (and any the front declines)
+#: to it.
+_solve_bimatrix = solve_bimatrix
+solve_bimatrix = functools.update_wrapper(
+    _core.games_entry(_solve_bimatrix, _after_front, globals(), _FRONT), _solve_bimatrix)
 
 
 @functools.lru_cache(maxsize=64)

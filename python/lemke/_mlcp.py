@@ -25,6 +25,7 @@ from ._frozen import frozen
 from . import _core, _progress, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
 from ._lcp import METHODS, solve_lcp
+from ._npc import nz
 from ._options import as_options, time_limited, timed
 from ._reductions.mlcp_lcp import MLCPToLCP
 from ._result import Outcome, WarmStart
@@ -161,7 +162,7 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
     if warm_start is not None:
         vb = np.zeros(m, dtype=bool)
         vb[list(warm_start.z_basic)] = True
-        lcp_ws = WarmStart._trusted(m, tuple(np.flatnonzero(red.to_reduced(vb)).tolist()))
+        lcp_ws = WarmStart._trusted(m, tuple(nz(red.to_reduced(vb)).tolist()))
     pivots = 0
     outcomes = []
     for _, M, o in _ladder(red, opts):
@@ -252,7 +253,7 @@ def _evaluate(E, e, n, red, res, tol):
     z_basic = np.zeros(m, dtype=bool)
     z_basic[list(res.warm_start.z_basic)] = True
     v_basic = red.v_basic(z_basic)
-    basis = WarmStart._trusted(m, tuple(np.flatnonzero(v_basic).tolist()))
+    basis = WarmStart._trusted(m, tuple(nz(v_basic).tolist()))
     x = red.point(res.z)
     w, ok, residual = check_mlcp(E, e, n, x, tol)
     if res.status in (Status.SOLVED, Status.NUMERICAL_FAILURE):

@@ -21,6 +21,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _progress, _validate
+from ._npc import count, every, filled, nz, sub
 from ._blcp import solve_blcp
 from ._certify import Certificate, absmax as _size, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
@@ -155,8 +156,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         ``n``, the number of pairs of the KKT-MLCP, must match: else ``ValueError``).  Its
         active set is tried first: with P definite the fused kernel solves the old active
         set's KKT system on the new data and checks it (0 pivots when it holds), else
-        makes up to 3 active-set updates (3 more while each moves a single row), else solves
-        cold; P, A and G equal to the last call's (on
+        makes up to 3 active-set updates (3 more while each moves a single row), else
+        restarts Lemke's method from the nearest set those tried (kept when its point passes
+        the KKT check), else solves cold; P, A and G equal to the last call's (on
         the same thread) reuse its factors whether warm or cold.  Another kind of warm start
         (a ``BoxWarmStart``, a ``WarmStartBatch``) is a ``ValueError``, anything else a
         ``TypeError``.
@@ -221,10 +223,14 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                                 0 if G is None else len(G))
             if warm_start is None and initvals is None:
                 cold = code
+                # (it ran _solve_definite's kernels, the semidefinite step included, on all
+                # but a small box-only QP, whose box kernel it ran: the steps below go on)
+                tried = not (G is None and h is None and A is None and b is None
+                             and (lb is not None or ub is not None))
             else:
                 warm_tried = True
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
-            and not warm_tried
+            and not warm_tried and cold is None
             and type(P) is _ND and type(q) is _ND
             and (P.dtype is _F64 or P.dtype == _F64) and (q.dtype is _F64 or q.dtype == _F64)
             and P.ndim == 2 and q.ndim == 1 and P.flags.carray and q.flags.carray
@@ -286,7 +292,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         elif plain:
             opts = _DEFAULT_OPTIONS if options is None else as_options(options)
             if box and (lb is not None or ub is not None):
-                if n < BOX_FIRST and cold is None:  # (else the front ran it: not solved)
+                if n < BOX_FIRST:
                     res = _solve_box_small((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
@@ -295,19 +301,17 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                 if res is not None:
                     return res
                 tried = True
-            else:  # _solve_definite, inline (unless the front ran it: code cold)
-                code = cold
-                if code is None:
-                    p, m = len(Ak), len(Gk)
-                    out = np.empty(_layout(n, p, m)[-1])
-                    mp = opts.max_pivots
-                    code, pivots, k, pairs = _core.qp_solve(
-                        P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method],
-                        -1 if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, out)
-                    if code == _OK:
-                        return _fused_result(out, n, p, m, k, pairs, pivots)
-                    if code in _STOP_CODES:
-                        return _stopped(code, pivots, n, len(Ak), len(Gk))
+            else:  # _solve_definite, inline
+                p, m = len(Ak), len(Gk)
+                out = np.empty(_layout(n, p, m)[-1])
+                mp = opts.max_pivots
+                code, pivots, k, pairs = _core.qp_solve(
+                    P, q, Gk, hk, Ak, bk, lo, up, _METHOD_CODES[method],
+                    -1 if mp is None else mp, opts.pivot_tol, opts.tie_tol, opts.tol, out)
+                if code == _OK:
+                    return _fused_result(out, n, p, m, k, pairs, pivots)
+                if code in _STOP_CODES:
+                    return _stopped(code, pivots, n, len(Ak), len(Gk))
                 if code == _NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
@@ -403,7 +407,9 @@ def qpsolvers_form(P, q, G, h, A, b, lb, ub):
     if P is not None and np.ndim(P) <= 1 and np.size(P) == 1 and np.size(q) == 1:
         P = np.reshape(_validate.real_array(P, "P"), (1, 1))
     keep = None
-    if G is not None and h is not None:
+    if type(h) is _ND and h.dtype == _F64 and h.ndim == 1 and every(np.isfinite(h)):
+        pass  # finite float64 rows, each a constraint: nothing to do (numpy's ufuncs alone)
+    elif G is not None and h is not None:
         h = np.asarray(h)
         if h.dtype.kind not in "fiub":
             return (P, q, G, h, A, b, lb, ub), None  # the validation raises TypeError
@@ -454,7 +460,7 @@ def _absent(n):
     only reads them."""
     absent = _ABSENT.get(n)
     if absent is None:
-        absent = np.zeros((0, n)), np.zeros(0), np.full(n, -np.inf), np.full(n, np.inf)
+        absent = np.zeros((0, n)), np.zeros(0), filled(n, -np.inf), filled(n, np.inf)
         if len(_ABSENT) >= 64:
             del _ABSENT[next(iter(_ABSENT))]
         _ABSENT[n] = absent
@@ -675,7 +681,8 @@ def _solve_warm(args, method, opts, warm_start, x0=None):
     """The fused kernel from a warm start (``_core.qp_solve_warm``), or from qpsolvers'
     initvals x0 (``_core.qp_solve_guess``, which reads the rows active at x0 itself, the
     rule of :func:`_initvals_start`): that active set first (its KKT point on the new data,
-    checked; a few active-set updates), else cold; the factors of P, A, G reused when they
+    checked; a few active-set updates; Lemke's method restarted from the nearest set
+    tried), else cold; the factors of P, A, G reused when they
     are the last call's.  None when it does not end solved and checked (P not definite,
     dependent equalities, ...): the caller then takes the KKT-MLCP path from the same start.
     A warm start with another number of pairs is a ValueError."""
@@ -821,7 +828,7 @@ def _solve_semidefinite(args, opts):
     when it does not end solved and checked."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    if np.count_nonzero(P.diagonal() == 0.0) > p + np.count_nonzero(lb == ub):
+    if count(P.diagonal() == 0.0) > p + count(lb == ub):
         # more zero diagonal entries (flat directions) than equality rows: the kernel would
         # decline at once (kernels.qp.zero_diagonal); a linear program, say, neither calls nor
         # compiles it
@@ -991,25 +998,25 @@ def _polished(qp, point, basis, tol):
     nn, nb = qp.shifted.size, qp.boxed.size
     v = np.zeros(nn + mg + nb, dtype=bool)
     v[list(basis.z_basic)] = True
-    bound = np.full(n, np.nan)  # the bound x_j is held at, NaN where it is free
+    bound = filled(n, np.nan)  # the bound x_j is held at, NaN where it is free
     lower = qp.shifted[~v[:nn]]
     bound[lower] = qp.x0[lower]
     upper = qp.shifted[qp.boxed[v[nn + mg:]]]
     bound[upper] = qp.ub[upper]
     bound[qp.fixed] = qp.lb[qp.fixed]
-    S = np.flatnonzero(v[nn:nn + mg])
+    S = nz(v[nn:nn + mg])
     held = ~np.isnan(bound)
-    B, F = np.flatnonzero(held), np.flatnonzero(~held)
+    B, F = nz(held), nz(~held)
     GS = qp.G[S]
     # Columns x_F, y, z_S, then x_B (given); rows: stationarity on F, A x = b, G_S x = h_S.
     f, k, s = F.size, F.size + p, F.size + p + S.size
     K = np.zeros((s, s + B.size))
-    K[:f, :f] = qp.P[np.ix_(F, F)]
+    K[:f, :f] = sub(qp.P, F, F)
     K[:f, f:k] = qp.A[:, F].T
     K[:f, k:s] = GS[:, F].T
     K[f:k, :f] = qp.A[:, F]
     K[k:s, :f] = GS[:, F]
-    K[:f, s:] = qp.P[np.ix_(F, B)]
+    K[:f, s:] = sub(qp.P, F, B)
     K[f:k, s:] = qp.A[:, B]
     K[k:s, s:] = GS[:, B]
     out = refined_solve(K, np.concatenate([-qp.q[F], qp.b, qp.h[S]]), steps=3, given=bound[B],
@@ -1025,9 +1032,9 @@ def _polished(qp, point, basis, tol):
     exact_lo = np.zeros(n + s - f)
     exact_lo[F] = lo[:f]
     exact_lo[n:] = lo[f:]
-    KB = np.hstack([qp.P[B], qp.A[:, B].T, GS[:, B].T])
+    KB = np.concatenate([qp.P[B], qp.A[:, B].T, GS[:, B].T], axis=1)
     zb = np.empty(B.size)
-    _core.residual2(np.hstack([KB, KB]), np.concatenate([x, sol[f:], exact_lo]), qp.q[B], zb)
+    _core.residual2(np.concatenate([KB, KB], axis=1), np.concatenate([x, sol[f:], exact_lo]), qp.q[B], zb)
     # A multiplier at the solve's rounding level (eps times the largest) is zero: left in,
     # it would fail the row-wise test in a stationarity row whose terms are all that small.
     mult = np.concatenate([sol[f:], -zb])

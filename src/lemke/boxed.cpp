@@ -301,9 +301,9 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     Detector detector;
     for (idx i = 0; i < 2 * n + 1; ++i) ray[i] = 0.0;
     pivots_out = 0;
-    // the ratio test's vector passes pay from some 64 rows (blocking_rows_vector, as the
-    // tableau's); keys (n + 1) hold the ratios, free until ratio_ties writes them
-    double* ratios = n >= 64 ? keys : nullptr;
+    // the ratios in one vector pass from 16 rows (blocking_rows_vector, as the tableau's;
+    // n = 48: 2 % of a cold solve); keys (n + 1) hold them, free until ratio_ties writes them
+    double* ratios = n >= 16 ? keys : nullptr;
     // First pivot: z0 rises until every basic variable is within its bounds.
     idx s = pos[art_lab];
     for (idx i = 0; i < n; ++i) col[i] = T(i, s);

@@ -28,9 +28,19 @@ bool check_rows(Mat<const double> M, const double* q, const double* z, double to
     double big = 0.0, data = 1.0, q_top = 0.0;
     residual = 0.0;
     for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
+    double pair[4];  // rows i and i + 1: their dot products and sizes (dot_and_size_lanes2)
     for (idx i = 0; i < n; ++i) {
         double mz, size;
-        dot_and_size_lanes(M.row(i), z, n, mz, size);
+        if (i % 2 == 0 && i + 1 < n) {
+            dot_and_size_lanes2(M.row(i), M.row(i + 1), z, n, pair);
+            mz = pair[0];
+            size = pair[2];
+        } else if (i % 2 == 1) {
+            mz = pair[1];
+            size = pair[3];
+        } else {
+            dot_and_size_lanes(M.row(i), z, n, mz, size);
+        }
         w[i] = q[i] + mz;
         rows[i] = size + std::fabs(q[i]);
         floors[i] = static_cast<double>(n + 2) * EPS * q_top / R[i];

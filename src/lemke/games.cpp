@@ -32,6 +32,10 @@ struct Range {
 LEMKE_CLONES
 Range payoff_range(Mat<const double> A) {
     idx m = A.rows, n = A.cols;
+    if (A.ld == n) {  // one run of m n payoffs: no short rows' scalar tails
+        n *= m;
+        m = m > 0 ? 1 : 0;
+    }
     double lo = INF, hi = -INF, z = 0.0;
 #ifdef LEMKE_SIMD
     using namespace simd;
@@ -93,12 +97,60 @@ struct Scratch {
     double* mags;
 };
 
+// The row updates of games.exchange: t_i += f_i prow, t_i[s] = f_i inv, rhs_i += f_i rr for
+// every row i but r whose factor f_i = col[i] is not zero. W + H > 0: the rows' first W x 8
+// + H x 4 doubles, which hold the columns (prow zero past them), taken W vectors of eight
+// and H of four, with the pivot row held in registers (each entry gets the scalar loop's
+// t + f p, the padding f * 0, which nothing reads).
+template <int W, int H>
+LEMKE_ALWAYS_INLINE void update_rows(Mat<double> T, double* rhs, idx r, idx s, const double* col,
+                                     const double* prow, double inv, double rr) {
+    idx n = T.rows, k = T.cols;
+#ifdef LEMKE_SIMD
+    using namespace simd;
+    v8d p[W > 0 ? W : 1];
+    for (int q = 0; q < W; ++q) p[q] = load8(prow + 8 * q);
+    v4d ph = H > 0 ? load4(prow + 8 * W) : v4d{};
+#endif
+    for (idx i = 0; i < n; ++i) {
+        if (i == r) continue;
+        double f = col[i];
+        if (f != 0.0) {
+            rhs[i] += f * rr;
+            double* ti = T.row(i);
+#ifdef LEMKE_SIMD
+            if (W + H > 0) {
+                for (int q = 0; q < W; ++q) store8(ti + 8 * q, load8(ti + 8 * q) + f * p[q]);
+                if (H > 0) store4(ti + 8 * W, load4(ti + 8 * W) + f * ph);
+            } else
+#endif
+                for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
+            ti[s] = f * inv;
+        }
+    }
+}
+
+// update_rows for rows `width` fours wide (F: the first width tried; 0: the scalar loop).
+constexpr int MAX_FOURS = 32;  // rows up to 128 columns held in registers
+template <int F>
+LEMKE_ALWAYS_INLINE void update_rows_in(idx width, Mat<double> T, double* rhs, idx r, idx s,
+                                        const double* col, const double* prow, double inv,
+                                        double rr) {
+    if (width == F)
+        update_rows<F / 2, F % 2>(T, rhs, r, s, col, prow, inv, rr);
+    else if constexpr (F < MAX_FOURS)
+        update_rows_in<F + 1>(width, T, rhs, r, s, col, prow, inv, rr);
+    else
+        update_rows<0, 0>(T, rhs, r, s, col, prow, inv, rr);
+}
+
 // games.exchange: the pivot on row r and column s (entering column in col). Rows whose
 // entry is zero are left alone, their entry s included (it keeps its sign of zero). With
 // `wlab` and `wcol`, magb[r] is first set to row r's size (row_size, summed in the same
 // order in the loop that reads the row for the pivot), as games.step does before its pivot.
 // The bounds magb are updated after the tableau (other arrays, the same operations), so
-// that the rows' updates need not wait for the size's chain of additions.
+// that the rows' updates need not wait for the size's chain of additions. prow holds
+// T.ld doubles.
 LEMKE_CLONES
 void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const double* col,
               double* prow, const idx* basis = nullptr, const double* wlab = nullptr,
@@ -126,15 +178,13 @@ void exchange(Mat<double> T, double* rhs, double* magb, idx r, idx s, const doub
     tr[s] = inv;
     double rr = -rhs[r] * inv;
     rhs[r] = rr;
-    for (idx i = 0; i < n; ++i) {
-        double f = col[i];
-        if (i != r && f != 0.0) {
-            rhs[i] += f * rr;
-            double* ti = T.row(i);
-            for (idx j = 0; j < k; ++j) ti[j] += f * prow[j];
-            ti[s] = f * inv;
-        }
-    }
+    // The rows' vectors: W of eight and H (0 or 1) of four cover the k columns (width
+    // 8 W + 4 H, within the rows' padding to a multiple of 8); none (W = H = 0: the scalar
+    // loop) when the rows are not so padded or too wide.
+    idx width = T.ld % 8 == 0 && k <= 4 * MAX_FOURS ? (k + 3) / 4 : 0;  // in fours
+    if (width > 0)
+        for (idx j = k; j < T.ld; ++j) prow[j] = 0.0;
+    update_rows_in<1>(width, T, rhs, r, s, col, prow, inv, rr);
     magb[r] *= std::fabs(inv);
     double mr = magb[r];
     for (idx i = 0; i < n; ++i) {
@@ -253,17 +303,35 @@ idx step(Tab& t, idx entering, bool has_free, const std::uint8_t* free, idx art,
     idx s = t.pos[entering];
     idx rows = t.T.rows;
     double* col = w.col;
-    double cmax = 0.0;
     bool sized = false;
     const double* T = t.T.p;
     idx ld = t.T.ld;
-    for (idx i = 0; i < rows; ++i) {
+    // cmax: the largest |entry| (pivoting.min_ratio's), taken in four running maxima (the
+    // maximum does not depend on the order; pmax skips a NaN either way), so that the
+    // column's loads need not wait for one chain of comparisons.
+    double c0 = 0.0, c1 = 0.0;
+    const double* rhs = t.rhs;
+    const double* magb = t.magb;
+    auto blocks_small = [&](double v, idx i) {
+        double b = rhs[i];
+        return (v < 0.0) & (b > 0.0) & (b <= VALUE_ROUNDING * magb[i]);
+    };
+    idx i = 0;
+    for (; i + 2 <= rows; i += 2) {
+        double v0 = T[i * ld + s], v1 = T[(i + 1) * ld + s];
+        col[i] = v0;
+        col[i + 1] = v1;
+        c0 = pmax(c0, std::fabs(v0));
+        c1 = pmax(c1, std::fabs(v1));
+        sized |= blocks_small(v0, i) | blocks_small(v1, i + 1);
+    }
+    if (i < rows) {
         double v = T[i * ld + s];
         col[i] = v;
-        cmax = pmax(cmax, std::fabs(v));
-        double b = t.rhs[i];
-        sized |= (v < 0.0) & (b > 0.0) & (b <= VALUE_ROUNDING * t.magb[i]);
+        c0 = pmax(c0, std::fabs(v));
+        sized |= blocks_small(v, i);
     }
+    double cmax = pmax(c0, c1);
     idx r;
     if (has_free || art >= 0 || sized) {
         r = leaving_row(t, col, has_free, free, art, z0_max, pivot_tol, tie_tol, w);
@@ -460,21 +528,36 @@ LHViews lh_layout(GamesWork& g, idx m, idx n) {
     return v;
 }
 
-// games.tableau_setup: one tableau at the artificial equilibrium; get(r, c) is P[c, r].
-template <class Get>
-void tableau_setup(Get get, double lo, double f, Tab& t, idx first) {
+// The entries of a tableau at the artificial equilibrium: T[r, c] = -(1 + (P[c, r] - lo) f)
+// with P[c, r] = src[r * rs + c * cs] (rs = 1: the payoffs transposed), the rows' padding 0.
+LEMKE_CLONES
+void setup_entries(Mat<double> T, const double* src, idx rs, idx cs, double lo, double f) {
+    for (idx r = 0; r < T.rows; ++r) {
+        double* tr = T.row(r);
+        const double* p = src + r * rs;
+        if (cs == 1) {
+            for (idx c = 0; c < T.cols; ++c) tr[c] = -(1.0 + (p[c] - lo) * f);
+        } else {
+            for (idx c = 0; c < T.cols; ++c) tr[c] = -(1.0 + (p[c * cs] - lo) * f);
+        }
+        for (idx c = T.cols; c < T.ld; ++c) tr[c] = 0.0;  // the padding: read, never used
+    }
+}
+
+// games.tableau_setup: one tableau at the artificial equilibrium from the payoffs src (see
+// setup_entries).
+void tableau_setup(const double* src, idx rs, idx cs, double lo, double f, Tab& t, idx first) {
     idx rows = t.T.rows, cols = t.T.cols, L = rows + cols;
+    setup_entries(t.T, src, rs, cs, lo, f);
     for (idx r = 0; r < rows; ++r) {
-        double* tr = t.T.row(r);
-        for (idx c = 0; c < cols; ++c) tr[c] = -(1.0 + (get(r, c) - lo) * f);
         t.rhs[r] = 1.0;
-        idx lab = (first + r) % L;
+        idx lab = first + r < L ? first + r : first + r - L;  // (first + r) % L
         t.basis[r] = lab;
         t.pos[lab] = r;
         t.inb[lab] = 1;
     }
     for (idx c = 0; c < cols; ++c) {
-        idx lab = (first + rows + c) % L;
+        idx lab = first + rows + c < L ? first + rows + c : first + rows + c - L;
         t.nonbasic[c] = lab;
         t.pos[lab] = c;
         t.inb[lab] = 0;
@@ -490,8 +573,8 @@ int lh_path(Mat<const double> A, Mat<const double> B, const double* scale, idx k
     idx m = A.rows, n = A.cols, L = m + n;
     Tab& P = v.P;
     Tab& Q = v.Q;
-    tableau_setup([&](idx r, idx c) { return B(c, r); }, scale[2], scale[3], P, m);
-    tableau_setup([&](idx r, idx c) { return A(r, c); }, scale[0], scale[1], Q, 0);
+    tableau_setup(B.p, 1, B.ld, scale[2], scale[3], P, m);     // P[r, c] from B[c, r]
+    tableau_setup(A.p, A.ld, 1, scale[0], scale[1], Q, 0);     // Q[r, c] from A[r, c]
     for (idx j = 0; j < n; ++j) v.slackP[j] = P.basis[j];
     for (idx i = 0; i < m; ++i) v.slackQ[i] = Q.basis[i];
     if (perturb) {

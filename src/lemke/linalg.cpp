@@ -55,60 +55,81 @@ namespace {
 
 constexpr int EQUILIBRATE_SWEEPS = 16;
 
-// One row of sweep: row i's largest entry into the return value, every column's into
-// cmax; with FINITE, the sum of 0 * M[i, j] into *z (all_finite's test); with UNIT (R and
-// C all 1, the first sweep) the entries' sizes are |M[i, j]| itself (|M[i, j]| 1 1, the
-// same number). A maximum of terms >= +0 that are not NaN is exact in any order: eight
-// lanes, then four, then one by one.
-template <bool UNIT, bool FINITE>
-LEMKE_ALWAYS_INLINE double sweep_row(const double* row, double r, const double* C, idx n, double* cmax,
-                        double* z) {
-    double rm[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    double zs[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+// K rows of sweep (rows[k], scaled by r[k]): each row's largest entry into out[k], every
+// column's into cmax; with FINITE, each row's sum of 0 * M[i, j] into z[k] (all_finite's
+// test); with UNIT (R and C all 1, the first sweep) the entries' sizes are |M[i, j]| itself
+// (|M[i, j]| 1 1, the same number). A maximum of terms >= +0 that are not NaN is exact in
+// any order: eight lanes, then four, then one by one, and cmax takes the K rows' terms at
+// once (two rows: half the loads and stores of cmax, whose chain from row to row through
+// memory bound the sweep at n = 24).
+template <bool UNIT, bool FINITE, int K>
+LEMKE_ALWAYS_INLINE void sweep_row(const double* const* rows, const double* r, const double* C,
+                                   idx n, double* cmax, double* z, double* out) {
+    double rm[K][8], zs[K][8];
+    for (int k = 0; k < K; ++k)
+        for (int l = 0; l < 8; ++l) rm[k][l] = zs[k][l] = 0.0;
     idx j = 0;
 #ifdef LEMKE_SIMD
     {
-        simd::v8d vr = simd::splat8(0.0), rr = simd::splat8(r), vz = simd::splat8(0.0);
+        simd::v8d vr[K], rr[K], vz[K];
+        for (int k = 0; k < K; ++k) {
+            vr[k] = simd::splat8(0.0);
+            rr[k] = simd::splat8(r[k]);
+            vz[k] = simd::splat8(0.0);
+        }
         for (; j + 8 <= n; j += 8) {
-            simd::v8d x = simd::load8(row + j);
-            if (FINITE) vz += simd::splat8(0.0) * x;
-            simd::v8d a = UNIT ? simd::abs8(x) : (simd::abs8(x) * rr) * simd::load8(C + j);
-            vr = simd::max8(vr, a);
-            simd::store8(cmax + j, simd::max8(simd::load8(cmax + j), a));
+            simd::v8d top = simd::load8(cmax + j);
+            for (int k = 0; k < K; ++k) {
+                simd::v8d x = simd::load8(rows[k] + j);
+                if (FINITE) vz[k] += simd::splat8(0.0) * x;
+                simd::v8d a = UNIT ? simd::abs8(x) : (simd::abs8(x) * rr[k]) * simd::load8(C + j);
+                vr[k] = simd::max8(vr[k], a);
+                top = simd::max8(top, a);
+            }
+            simd::store8(cmax + j, top);
         }
-        for (int l = 0; l < 8; ++l) {
-            rm[l] = vr[l];
-            zs[l] = vz[l];
-        }
+        for (int k = 0; k < K; ++k)
+            for (int l = 0; l < 8; ++l) {
+                rm[k][l] = vr[k][l];
+                zs[k][l] = vz[k][l];
+            }
     }
 #else
     for (; j + 8 <= n; j += 8) {
-        for (int l = 0; l < 8; ++l) {
-            if (FINITE) zs[l] += 0.0 * row[j + l];
-            double a = UNIT ? std::fabs(row[j + l]) : std::fabs(row[j + l]) * r * C[j + l];
-            rm[l] = pmax(rm[l], a);
-            cmax[j + l] = pmax(cmax[j + l], a);
-        }
+        for (int k = 0; k < K; ++k)
+            for (int l = 0; l < 8; ++l) {
+                if (FINITE) zs[k][l] += 0.0 * rows[k][j + l];
+                double a = UNIT ? std::fabs(rows[k][j + l]) : std::fabs(rows[k][j + l]) * r[k] * C[j + l];
+                rm[k][l] = pmax(rm[k][l], a);
+                cmax[j + l] = pmax(cmax[j + l], a);
+            }
     }
 #endif
     if (j + 4 <= n) {
-        for (int l = 0; l < 4; ++l) {
-            if (FINITE) zs[l] += 0.0 * row[j + l];
-            double a = UNIT ? std::fabs(row[j + l]) : std::fabs(row[j + l]) * r * C[j + l];
-            rm[l] = pmax(rm[l], a);
-            cmax[j + l] = pmax(cmax[j + l], a);
-        }
+        for (int k = 0; k < K; ++k)
+            for (int l = 0; l < 4; ++l) {
+                if (FINITE) zs[k][l] += 0.0 * rows[k][j + l];
+                double a = UNIT ? std::fabs(rows[k][j + l]) : std::fabs(rows[k][j + l]) * r[k] * C[j + l];
+                rm[k][l] = pmax(rm[k][l], a);
+                cmax[j + l] = pmax(cmax[j + l], a);
+            }
         j += 4;
     }
     for (; j < n; ++j) {
-        if (FINITE) zs[0] += 0.0 * row[j];
-        double a = UNIT ? std::fabs(row[j]) : std::fabs(row[j]) * r * C[j];
-        rm[0] = pmax(rm[0], a);
-        cmax[j] = pmax(cmax[j], a);
+        for (int k = 0; k < K; ++k) {
+            if (FINITE) zs[k][0] += 0.0 * rows[k][j];
+            double a = UNIT ? std::fabs(rows[k][j]) : std::fabs(rows[k][j]) * r[k] * C[j];
+            rm[k][0] = pmax(rm[k][0], a);
+            cmax[j] = pmax(cmax[j], a);
+        }
     }
-    if (FINITE) *z = ((zs[0] + zs[1]) + (zs[2] + zs[3])) + ((zs[4] + zs[5]) + (zs[6] + zs[7]));
-    return pmax(pmax(pmax(rm[0], rm[1]), pmax(rm[2], rm[3])),
-                pmax(pmax(rm[4], rm[5]), pmax(rm[6], rm[7])));
+    for (int k = 0; k < K; ++k) {
+        const double* q = zs[k];
+        const double* m = rm[k];
+        if (FINITE) z[k] = ((q[0] + q[1]) + (q[2] + q[3])) + ((q[4] + q[5]) + (q[6] + q[7]));
+        out[k] = pmax(pmax(pmax(m[0], m[1]), pmax(m[2], m[3])),
+                      pmax(pmax(m[4], m[5]), pmax(m[6], m[7])));
+    }
 }
 
 template <bool UNIT, bool FINITE>
@@ -116,15 +137,21 @@ LEMKE_ALWAYS_INLINE double sweep_rows(Mat<const double> M, const double* q, cons
                          double cq, double* rmax, double* cmax, double* mrow, bool& all) {
     idx n = M.rows;
     double qmax = 0.0;
-    for (idx i = 0; i < n; ++i) {
-        double r = R[i];
-        double z = 0.0;
-        double m = sweep_row<UNIT, FINITE>(M.row(i), r, C, n, cmax, &z);
-        if (FINITE) all &= z == 0.0;
-        mrow[i] = m;
-        double a = std::fabs(q[i]) * r * cq;
-        rmax[i] = pmax(m, a);
-        qmax = pmax(qmax, a);
+    idx i = 0;
+    for (; i < n; i += 2) {
+        const double* rows[2] = {M.row(i), i + 1 < n ? M.row(i + 1) : nullptr};
+        double z[2] = {0.0, 0.0}, m[2];
+        if (i + 1 < n)
+            sweep_row<UNIT, FINITE, 2>(rows, R + i, C, n, cmax, z, m);
+        else
+            sweep_row<UNIT, FINITE, 1>(rows, R + i, C, n, cmax, z, m);
+        for (idx k = i; k < i + 2 && k < n; ++k) {
+            if (FINITE) all &= z[k - i] == 0.0;
+            mrow[k] = m[k - i];
+            double a = std::fabs(q[k]) * R[k] * cq;
+            rmax[k] = pmax(m[k - i], a);
+            qmax = pmax(qmax, a);
+        }
     }
     return qmax;
 }

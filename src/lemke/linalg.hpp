@@ -69,6 +69,43 @@ LEMKE_ALWAYS_INLINE void dot_and_size_lanes(const double* row, const double* y, 
     size_out = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
+// dot_and_size_lanes of two rows with one y: out = {dot 0, dot 1, size 0, size 1}, each
+// row's sums in that function's order (the same bits), y's loads shared and the four
+// pairwise sums taken by shuffles at once (simd::hsum4) rather than lane by lane per row.
+LEMKE_ALWAYS_INLINE void dot_and_size_lanes2(const double* r0, const double* r1, const double* y,
+                                             idx k, double* out) {
+#ifdef LEMKE_SIMD
+    simd::v8d a0 = simd::splat8(0.0), a1 = a0, s0 = a0, s1 = a0;
+    idx j = 0;
+    for (; j + 8 <= k; j += 8) {
+        simd::v8d v = simd::load8(y + j);
+        simd::v8d t0 = simd::load8(r0 + j) * v, t1 = simd::load8(r1 + j) * v;
+        a0 += t0;
+        s0 += simd::abs8(t0);
+        a1 += t1;
+        s1 += simd::abs8(t1);
+    }
+    if (j < k) {
+        double b0 = a0[0], b1 = a1[0], c0 = s0[0], c1 = s1[0];
+        for (; j < k; ++j) {
+            double t0 = r0[j] * y[j], t1 = r1[j] * y[j];
+            b0 += t0;
+            c0 += std::fabs(t0);
+            b1 += t1;
+            c1 += std::fabs(t1);
+        }
+        a0[0] = b0;
+        a1[0] = b1;
+        s0[0] = c0;
+        s1[0] = c1;
+    }
+    simd::hsum4(a0, a1, s0, s1, out);
+#else
+    dot_and_size_lanes(r0, y, k, out[0], out[2]);
+    dot_and_size_lanes(r1, y, k, out[1], out[3]);
+#endif
+}
+
 // dot's body, inlined by loops compiled per instruction set that take many short dot
 // products (a call per row through the clones' dispatch costs as much as a short row).
 inline double dot_lanes(const double* x, const double* y, idx k) {

@@ -67,41 +67,61 @@ inline bool z0_leaves_harmlessly(const double* vals, const double* mags, const d
     return true;
 }
 
-// blocking_rows' answer in three passes over the rows, with ratios (m doubles) of work:
-// each row's ratio (NaN where the row does not block; eight lanes at a time, the same
-// operations as row_value and the division), their minimum theta, then the rows with ratio
-// <= theta + tie_tol theta. The one-pass rule keeps exactly those rows: every ratio is >= 0
-// or NaN, so the bound only falls as theta does, a row it drops stays above the final bound
-// and a row it keeps is below it; a NaN ratio never blocks.
-inline idx blocking_rows_vector(const double* vals, const double* mags, const double* col,
-                                idx m, double thr, double tie_tol, idx* cand, idx art,
-                                double z0_max, double* ratios) {
+// Each row's ratio into ratios (m doubles): NaN where the row does not block, else the
+// same operations as row_value and the division.
+LEMKE_ALWAYS_INLINE void blocking_ratios(const double* vals, const double* mags, const double* col,
+                                         idx m, double thr, idx art, double z0_max, double* ratios) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    idx i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d vthr = simd::splat8(thr), vround = simd::splat8(VALUE_ROUNDING);
-        simd::v8d zero = simd::splat8(0.0), vnan = simd::splat8(nan);
-        for (; i + 8 <= m; i += 8) {
-            simd::v8d c = simd::load8(col + i), v = simd::load8(vals + i);
-            simd::v8d g = simd::load8(mags + i);
-            simd::v8d value = v > vround * g ? v : zero;
-            simd::v8d t = value / -c;
-            simd::store8(ratios + i, c < vthr ? t : vnan);
-        }
-    }
-#endif
-    for (; i < m; ++i) {
-        double c = col[i];
-        double value = vals[i] > VALUE_ROUNDING * mags[i] ? vals[i] : 0.0;
-        ratios[i] = c < thr ? value / -c : nan;
+    // a plain loop, which GCC makes a vector loop on every instruction set (masked compares
+    // and selects, one vector division; written on v8d, the AVX-512F clones made the
+    // compares and selects a lane at a time); the division runs in every lane, its result
+    // kept where the row blocks (the number of the row-by-row rule)
+    for (idx i = 0; i < m; ++i) {
+        double c = col[i], v = vals[i];
+        double value = v > VALUE_ROUNDING * mags[i] ? v : 0.0;
+        double t = value / -c;
+        ratios[i] = c < thr ? t : nan;
     }
     if (art >= 0 && art < m) {
         double c = col[art];
         ratios[art] = c < thr ? row_value(vals, mags, art, art, z0_max) / -c : nan;
     }
+}
+
+// The one-pass rule (blocking_rows) on the ratios: a branch only where a row is within the
+// running bound (a few rows per ratio test), not on each row's sign (half the rows, at random).
+LEMKE_ALWAYS_INLINE idx blocking_rows_scan(const double* ratios, idx m, double tie_tol, idx* cand) {
+    double theta = INF, lim = INF;
+    idx nc = 0;
+    for (idx i = 0; i < m; ++i) {
+        double t = ratios[i];
+        if (t <= lim) {
+            if (t < theta) {
+                theta = t;
+                lim = theta + tie_tol * theta;
+                idx kept = 0;
+                for (idx q = 0; q < nc; ++q)
+                    if (ratios[cand[q]] <= lim) cand[kept++] = cand[q];
+                nc = kept;
+            }
+            cand[nc++] = i;
+        }
+    }
+    return theta < INF ? nc : 0;
+}
+
+// blocking_rows' answer from the ratios (blocking_ratios): below 64 rows by the one-pass
+// rule on them (blocking_rows_scan), else in two more passes, their minimum theta, then the
+// rows with ratio <= theta + tie_tol theta. The one-pass rule keeps exactly those rows:
+// every ratio is >= 0 or NaN, so the bound only falls as theta does, a row it drops stays
+// above the final bound and a row it keeps is below it; a NaN ratio never blocks.
+LEMKE_ALWAYS_INLINE idx blocking_rows_vector(const double* vals, const double* mags, const double* col,
+                                idx m, double thr, double tie_tol, idx* cand, idx art,
+                                double z0_max, double* ratios) {
+    blocking_ratios(vals, mags, col, m, thr, art, z0_max, ratios);
+    if (m < 64) return blocking_rows_scan(ratios, m, tie_tol, cand);
     double theta = INF;  // (a minimum of numbers that are not NaN: exact in any order)
-    i = 0;
+    idx i = 0;
 #ifdef LEMKE_SIMD
     {
         simd::v8d vt = simd::splat8(INF);
@@ -116,29 +136,16 @@ inline idx blocking_rows_vector(const double* vals, const double* mags, const do
     if (!(theta < INF)) return 0;
     double lim = theta + tie_tol * theta;
     idx nc = 0;
-    i = 0;
-#ifdef LEMKE_SIMD
-    {
-        simd::v8d vl = simd::splat8(lim);
-        for (; i + 8 <= m; i += 8) {
-            simd::v8l hit = simd::load8(ratios + i) <= vl;
-            std::int64_t any = 0;
-            for (int l = 0; l < 8; ++l) any |= hit[l];
-            if (any == 0) continue;
-            for (idx j = i; j < i + 8; ++j)
-                if (ratios[j] <= lim) cand[nc++] = j;
-        }
-    }
-#endif
-    for (; i < m; ++i)
+    for (i = 0; i < m; ++i)
         if (ratios[i] <= lim) cand[nc++] = i;
     return nc;
 }
 
 // The blocking rows tied at the minimum ratio, in increasing order, into cand; returns how
 // many (0: a ray). thr = -pivot_tol * max|col|. ratios: m doubles of work for the vector
-// passes (blocking_rows_vector), or nullptr (one pass, row by row).
-inline idx blocking_rows(const double* vals, const double* mags, const double* col, idx m,
+// pass (blocking_rows_vector), or nullptr (one pass, row by row). Always inlined: a copy of
+// its own would be baseline x86-64 in the engines' clones.
+LEMKE_ALWAYS_INLINE idx blocking_rows(const double* vals, const double* mags, const double* col, idx m,
                          double thr, double tie_tol, idx* cand, idx art, double z0_max,
                          double* ratios = nullptr) {
     double theta = INF, lim = INF;

@@ -50,6 +50,32 @@ struct Unset : std::allocator<T> {
     void construct(U* p, A&&... a) { ::new (static_cast<void*>(p)) U(std::forward<A>(a)...); }
 };
 
+// The nonzeros of a matrix by rows, in row order (the factor cache's Ps, A and G, for
+// kkt_check's sums, which skip their exact zeros with the same bits): on when at most a
+// quarter of the entries are nonzero (else the dense, vectorized loops are as quick).
+struct SparseRows {
+    std::vector<idx> start, col;
+    bool on = false;
+    void build(const double* M, idx rows, idx cols, bool always = false) {
+        start.resize(static_cast<std::size_t>(rows + 1));
+        col.clear();
+        on = false;
+        idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
+        for (idx i = 0; i < rows; ++i) {
+            start[i] = static_cast<idx>(col.size());
+            const double* Mi = M + i * cols;
+            for (idx j = 0; j < cols; ++j)
+                if (Mi[j] != 0.0) col.push_back(j);
+            if (static_cast<idx>(col.size()) > most) {
+                col.clear();
+                return;
+            }
+        }
+        start[rows] = static_cast<idx>(col.size());
+        on = rows > 0;
+    }
+};
+
 struct QPWork {
     std::vector<double, Unset<double>> f;
     std::vector<idx> i;
@@ -65,9 +91,14 @@ struct QPWork {
     idx key_p0 = 0, key_m0 = 0, m_g = 0;
     std::vector<double> keyP, keyA, keyG, keyPs;  // the caller's P, A, G; screen's Ps of P
     std::vector<std::uint8_t> keyPat;
+    // With the cache (remember): the nonzeros of keyPs, keyA, keyG by rows, and whether C is
+    // finite (point's sums then skip the rows with zz = 0: see point).
+    SparseRows spP, spA, spG;
+    bool c_finite = false;
 
     void layout(idx n_, idx p_, idx m_, bool dense) {
         cached = false;
+        c_finite = false;
         n = n_;
         p = p_;
         m = m_;
@@ -335,15 +366,18 @@ Dot2 dot2(const double* x, const double* y, idx n, double c) {
     return {s + err, size, norm};
 }
 
+// One term a x of axpy2 into (s, err, size).
+inline void axpy2_term(double& s, double& err, double& size, double a, double x) {
+    double p, e, t, f;
+    two_product(a, x, p, e);
+    two_sum(s, p, t, f);
+    s = t;
+    err += e + f;
+    size += std::fabs(p);
+}
+
 inline void axpy2(double* s, double* err, double* size, idx n, double a, const double* x) {
-    for (idx j = 0; j < n; ++j) {
-        double p, e, t, f;
-        two_product(a, x[j], p, e);
-        two_sum(s[j], p, t, f);
-        s[j] = t;
-        err[j] += e + f;
-        size[j] += std::fabs(p);
-    }
+    for (idx j = 0; j < n; ++j) axpy2_term(s[j], err[j], size[j], a, x[j]);
 }
 
 // axpy2 of every row of M with coefficient coef[i] (qp.axpy2_matrix, axpy2_rows).
@@ -491,16 +525,32 @@ void mlcp_basis(const double* lb, const double* ub, idx n, idx m_g, const idx* c
 
 // The end of qp.factors: v1 (the equalities' particular point, from f) and g, the multiplier
 // LCP's right-hand side, from d, v1 and c (in w.c, through L and the QR).
+// out[i] = dot(C_i[col0:col0 + len], x, len) for every row i of C, four rows at a time
+// (dot_lanes4: x's loads shared, each row's sums in dot's order, so dot's bits).
+LEMKE_CLONES
+void rows_dot(Mat<const double> C, idx col0, idx len, const double* x, double* out) {
+    idx i = 0;
+    for (; i + 4 <= C.rows; i += 4) {
+        const double* rows[4] = {C.row(i) + col0, C.row(i + 1) + col0, C.row(i + 2) + col0,
+                                 C.row(i + 3) + col0};
+        dot_lanes4(rows, x, len, out + i);
+    }
+    for (; i < C.rows; ++i) out[i] = dot_lanes(C.row(i) + col0, x, len);
+}
+
 void lcp_rhs(const Rows& R, QPWork& w, idx n) {
     idx p = R.p, m = R.m;
     double* v = w.v;
     for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
     idx r = n - p;
     const double* c2 = w.c + p;
-    for (idx i = 0; i < m; ++i) {
-        const double* Fi = R.C.row(i);
-        w.g[i] = R.d[i] - dot(Fi, v, p) + dot(Fi + p, c2, r);
-    }
+    // g_i = d_i - dot(F_i, v1, p) + dot(F_i[p:], c2, r), the two dots by rows_dot
+    thread_local std::vector<double> t;
+    t.resize(static_cast<std::size_t>(m));
+    Mat<const double> C(R.C.p, m, R.C.cols, R.C.ld);
+    rows_dot(C, 0, p, v, t.data());
+    rows_dot(C, p, r, c2, w.g);
+    for (idx i = 0; i < m; ++i) w.g[i] = R.d[i] - t[i] + w.g[i];
 }
 
 // qp.factors: steps 2 and 3 and g, given L (in w.L). Returns OK or DEPENDENT_EQUALITIES.
@@ -551,12 +601,29 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
 }
 
 // qp.point: x and yy from v (v1, v2 filled), c and zz (v is overwritten).
+// With w.c_finite (solve's cache: C finite), yy's sums over the rows of C take only the
+// rows with zz_i != 0 (NaN included), in the same order: a row with zz_i = 0 adds C_ik zz_i
+// = +-0, which leaves a nonzero sum as it is and a zero one zero, so every sum that ends
+// nonzero has the same bits; one that ends zero (its sign might differ) is summed again
+// whole.
 void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c, double* v,
            const double* zz, double* x, double* yy) {
     idx p = R.p, m = R.m, n = L.rows;
+    thread_local std::vector<idx> on;
+    on.clear();
+    if (w.c_finite && w.cached)
+        for (idx i = 0; i < m; ++i)
+            if (zz[i] != 0.0) on.push_back(i);
+    bool skip = w.c_finite && w.cached;
     for (idx k = 0; k < p; ++k) {
         double acc = v[k] + c[k];
-        for (idx i = 0; i < m; ++i) acc += R.C(i, k) * zz[i];
+        if (skip) {
+            for (idx i : on) acc += R.C(i, k) * zz[i];
+        }
+        if (!skip || acc == 0.0) {
+            acc = v[k] + c[k];
+            for (idx i = 0; i < m; ++i) acc += R.C(i, k) * zz[i];
+        }
         yy[k] = acc;
     }
     for (idx k = p - 1; k >= 0; --k) {
@@ -642,6 +709,10 @@ void remember(const Data& dt, const Data& ds, const double* lo, const double* up
     w.key_p0 = dt.p0();
     w.key_m0 = dt.m0();
     w.m_g = m_g;
+    w.spP.build(w.keyPs.data(), n, n);
+    w.spA.build(w.keyA.data(), dt.p0(), n);
+    w.spG.build(w.keyG.data(), dt.m0(), n);
+    w.c_finite = all_finite(w.C.p, w.m * w.n);
     w.cached = true;
 }
 
@@ -930,6 +1001,176 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
+// axpy2_matrix over M's nonzeros only (sp), rows with coef[i] = 0 skipped: each term it
+// skips is an exact +-0 (kkt_rows says why that keeps the bits).
+LEMKE_CLONES
+void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<const double> M,
+                  const SparseRows& sp) {
+    for (idx i = 0; i < M.rows; ++i) {
+        double a = coef[i];
+        if (a == 0.0) continue;
+        const double* Mi = M.row(i);
+        for (idx t = sp.start[i]; t < sp.start[i + 1]; ++t) {
+            idx j = sp.col[t];
+            axpy2_term(s[j], err[j], size[j], a, Mi[j]);
+        }
+    }
+}
+
+// add_abs_rows, over M's nonzeros only when sp is given (the terms skipped add +0).
+void add_abs(double* acc, idx n, double a, Mat<const double> M, const SparseRows* sp) {
+    if (sp == nullptr) {
+        add_abs_rows(acc, n, a, M);
+        return;
+    }
+    if (!(a > 0.0)) return;
+    for (idx i = 0; i < M.rows; ++i) {
+        const double* Mi = M.row(i);
+        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(Mi[sp->col[t]]);
+    }
+}
+
+// dot2(M_i, x, n, c), over M_i's nonzeros only when sp is given (the same size and norm; the
+// same sum but perhaps the sign of a zero one, which kkt_rows reads only through |.| and
+// comparisons).
+LEMKE_CLONES
+Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x, double c) {
+    const double* Mi = M.row(i);
+    if (sp == nullptr) return dot2(Mi, x, M.cols, c);
+    double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
+    for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) {
+        idx j = sp->col[t];
+        acc2(s, err, Mi[j], x[j]);
+        size += std::fabs(Mi[j] * x[j]);
+        norm += std::fabs(Mi[j]);
+    }
+    return {s + err, size, norm};
+}
+
+// kkt_check; with sw (solve's cache, whose Ps, A, G are dt's P, A, G: same_matrices) the
+// sums over P, A and G take only their nonzeros (sw's SparseRows, where on) when x, y, z, zb
+// are finite: a skipped term is an exact +-0 (a finite number times 0), which changes no sum
+// and no error term (the errors never hold -0), only perhaps the sign of a sum that is zero,
+// and no sign of a zero reaches a verdict or a stat: the residuals are read through |.|,
+// comparisons and pmax from +0, and the gap's double-double sum starts at +0, to which
+// x_j s_j = +-0 adds +0. The same bits as the dense loops (tests/test_qp_kkt_sparse.py
+// compares them).
+bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
+              const double* z, const double* zb, double tol, double* stats) {
+    idx n = dt.n();
+    double t = tol + 4.0 * EPS;
+    thread_local std::vector<double> work;
+    work.resize(static_cast<std::size_t>(4 * n + 1));
+    double* s = work.data();
+    double* err = s + n;
+    double* size = s + 2 * n;
+    double* allow = s + 3 * n;
+    for (idx j = 0; j < n; ++j) {
+        s[j] = dt.q[j];
+        err[j] = 0.0;
+        size[j] = std::fabs(dt.q[j]);
+    }
+    const SparseRows *sP = nullptr, *sA = nullptr, *sG = nullptr;
+    if (sw != nullptr && all_finite(x, n) && all_finite(y, dt.p0()) && all_finite(z, dt.m0()) &&
+        all_finite(zb, n)) {
+        if (sw->spP.on) sP = &sw->spP;
+        if (sw->spA.on) sA = &sw->spA;
+        if (sw->spG.on) sG = &sw->spG;
+    }
+    if (sP != nullptr) axpy2_sparse(s, err, size, x, dt.P, *sP);
+    else axpy2_matrix(s, err, size, n, x, dt.P);
+    double gap_hi = 0.0, gap_lo = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        acc2(gap_hi, gap_lo, x[j], s[j]);
+        gap_lo += x[j] * err[j];
+    }
+    double xPq_hi = gap_hi, xPq_lo = gap_lo;
+    if (sA != nullptr) axpy2_sparse(s, err, size, y, dt.A, *sA);
+    else axpy2_matrix(s, err, size, n, y, dt.A);
+    if (sG != nullptr) axpy2_sparse(s, err, size, z, dt.G, *sG);
+    else axpy2_matrix(s, err, size, n, z, dt.G);
+    // The rounding floor (qp.kkt_check states the rule): each of x, y, z, zb is exact only to
+    // f = 4 (n + 2) eps times its own largest entry; allow[j] first holds what those errors
+    // move stationarity row j by, divided by f.
+    double f = 4.0 * static_cast<double>(n + 2) * EPS;
+    double x_top = 0.0, y_top = 0.0, z_top = 0.0, zb_top = 0.0;
+    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
+    for (idx i = 0; i < dt.p0(); ++i) y_top = pmax(y_top, std::fabs(y[i]));
+    for (idx i = 0; i < dt.m0(); ++i) z_top = pmax(z_top, std::fabs(z[i]));
+    for (idx j = 0; j < n; ++j) zb_top = pmax(zb_top, std::fabs(zb[j]));
+    for (idx j = 0; j < n; ++j) allow[j] = zb_top;
+    add_abs(allow, n, x_top, dt.P, sP);
+    add_abs(allow, n, y_top, dt.A, sA);
+    add_abs(allow, n, z_top, dt.G, sG);
+    bool ok = true;
+    double dual = 0.0;
+    for (idx j = 0; j < n; ++j) {
+        double r, e;
+        two_sum(s[j], zb[j], r, e);
+        r += e + err[j];
+        allow[j] = t * (size[j] + std::fabs(zb[j])) + f * allow[j];
+        dual = pmax(dual, std::fabs(r));
+        if (!(std::fabs(r) <= allow[j])) ok = false;
+    }
+    double floor = f * x_top;
+    double primal = 0.0;
+    for (idx i = 0; i < dt.p0(); ++i) {
+        Dot2 d = row_dot2(dt.A, sA, i, x, -dt.b[i]);
+        primal = pmax(primal, std::fabs(d.sum));
+        acc2(gap_hi, gap_lo, dt.b[i], y[i]);
+        if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
+    }
+    for (idx i = 0; i < dt.m0(); ++i) {
+        if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
+            if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
+            continue;
+        }
+        Dot2 d = row_dot2(dt.G, sG, i, x, -dt.h[i]);
+        double r = d.sum;
+        double sz = t * d.size + floor * d.norm;
+        primal = pmax(primal, r);
+        acc2(gap_hi, gap_lo, dt.h[i], z[i]);
+        double zi = z[i];
+        if (!(r <= sz && zi >= 0.0)) {
+            ok = false;
+        } else if (zi > 0.0 && -r > sz && !counts_as_zero(zi, dt.G.row(i), allow, n)) {
+            ok = false;
+        }
+    }
+    for (idx j = 0; j < n; ++j) {
+        double zj = zb[j];
+        bool lo = dt.lb[j] > -INF, up = dt.ub[j] < INF;
+        double s_lo = t * (std::fabs(dt.lb[j]) + std::fabs(x[j])) + floor;
+        double s_up = t * (std::fabs(dt.ub[j]) + std::fabs(x[j])) + floor;
+        if (lo) {
+            double r = dt.lb[j] - x[j];
+            primal = pmax(primal, r);
+            if (zj < 0.0) acc2(gap_hi, gap_lo, dt.lb[j], zj);
+            if (r > s_lo) ok = false;
+        }
+        if (up) {
+            double r = x[j] - dt.ub[j];
+            primal = pmax(primal, r);
+            if (zj > 0.0) acc2(gap_hi, gap_lo, dt.ub[j], zj);
+            if (r > s_up) ok = false;
+        }
+        bool active;
+        if (dt.lb[j] == dt.ub[j]) active = true;
+        else if (zj < 0.0) active = lo && x[j] - dt.lb[j] <= s_lo;
+        else if (zj > 0.0) active = up && dt.ub[j] - x[j] <= s_up;
+        else active = true;
+        if (!active && std::fabs(zj) > allow[j]) ok = false;
+        if (!(x[j] == x[j])) ok = false;
+    }
+    double obj_hi = xPq_hi, obj_lo = xPq_lo;
+    for (idx j = 0; j < n; ++j) acc2(obj_hi, obj_lo, dt.q[j], x[j]);
+    stats[0] = primal;
+    stats[1] = dual;
+    stats[2] = std::fabs(gap_hi + gap_lo);
+    stats[3] = 0.5 * (obj_hi + obj_lo);
+    return ok;
+}
+
 // acc[i] += Mj[i] z, size[i] += |Mj[i] z| (i < m): one term of warm_point's sums per row.
 LEMKE_CLONES
 void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m) {
@@ -950,11 +1191,15 @@ void add_row_terms(const double* Mj, double z, double* acc, double* size, idx m)
 // a cheap try). A set that passes gives the
 // point, caller_form and the KKT check on the data as for a solved LCP: true (Result OK,
 // pivots the number of rows that entered or left S, the basis written; or CHECK_FAILED when
-// the point fails the KKT check); false (Result.pivots the updates tried) leaves zz zero for
-// the cold LCP, whose answer a failed warm start then gives bit for bit.
+// the point fails the KKT check); false (Result.pivots the updates tried) leaves zz zero and
+// `nearest` the set tried (M_SS factored) with the fewest rows to move, where restart takes
+// the LCP on from.
 bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
-                const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res) {
+                const std::vector<idx>& beta, double tol, const Outs& o, idx* basic, Result& res,
+                std::vector<idx>& nearest) {
     idx n = ds.n(), p = R.p, m = R.m;
+    nearest.clear();
+    idx fewest = m + 1;  // the rows nearest's set had to move
     thread_local std::vector<double> lu, ws;
     thread_local std::vector<idx> S, next, seen, starts, last_set;  // seen: the sets tried, sorted
     S.assign(beta.begin(), beta.end());
@@ -968,7 +1213,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
     bool ok = false;
     for (idx step = 0; step <= ACTIVE_SET_STEPS + ACTIVE_SET_MORE; ++step) {
         // beyond the first ACTIVE_SET_STEPS updates, only while the last one moved a single
-        // row (close: a cheap step more; else the cold LCP, without more tries)
+        // row (close: a cheap step more; else the restart, without more tries)
         if (step > ACTIVE_SET_STEPS && last != 1) break;
         idx kb = static_cast<idx>(S.size());
         if (kb > n - p) break;  // more active rows than free directions: singular
@@ -1024,9 +1269,13 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
             ok = true;
             break;
         }
-        if (step > 0 && moved > last) break;  // moving away: the cold LCP, without more tries
+        if (moved < fewest) {
+            fewest = moved;
+            nearest.assign(S.begin(), S.end());
+        }
+        if (step > 0 && moved > last) break;  // moving away: the restart, without more tries
         // a set tried before: the steps repeat (each set gives the same next one), never
-        // one that holds; the cold LCP, without the rest of the tries
+        // one that holds; the restart, without the rest of the tries
         seen.insert(seen.end(), S.begin(), S.end());
         std::sort(seen.end() - kb, seen.end());
         starts.push_back(static_cast<idx>(seen.size()));
@@ -1052,7 +1301,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         }
         point(w.L, R, w, w.c, v, zz, o.x, w.yy);
         caller_form(o, n, ds.p0(), ds.m0(), w.yy, zz, R, true);
-        if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+        if (!kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
             // the LCP is solved and its point fails the check: what the cold LCP would give
             // (x is unique, P definite), so the caller's fallback, not another LCP run
             res.code = CHECK_FAILED;
@@ -1068,6 +1317,82 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
     mlcp_basis(lo, up, n, R.m_g, R.ckind, m, S.data(), kb, basic, w.bflags, res.k, res.pairs);
     res.code = OK;
     return true;
+}
+
+// A failed warm start taken on from where warm_point left it: Lemke's method from the
+// complementary basis with z_S basic, S = nearest (warm_point factored M_SS), covering vector
+// d = c e_N - M[:, S] 1 (lcp.cpp's restart's; c = max_i M_ii >= max |M|, M positive
+// semidefinite), so that z0 lifts z_S = zbar_S + z0 1 and w_N = wbar_N + c z0 together: the
+// pivots move the rows the updates could not, not the whole path from the all-w basis. By
+// the unrevised method with M read in place (unrevised_symmetric, H at most r + 1 wide),
+// capped at cap pivots. Returns its status (NOT_SOLVED when it does not run: S empty, c not
+// positive), pivots in `pivots`; on SOLVED the basic z's into lcp_basic (k of them) and zz
+// (clipped at 0) from M_SS z_S = -g_S on them (the method's own z when M_SS is singular).
+int restart(const QPWork& w, const Rows& R, idx r, const std::vector<idx>& nearest, idx cap,
+            double pivot_tol, double tie_tol, idx* lcp_basic, idx& k, idx& pivots) {
+    idx m = R.m;
+    pivots = 0;
+    k = 0;
+    if (nearest.empty()) return NOT_SOLVED;
+    double c = 0.0;
+    for (idx i = 0; i < m; ++i) c = pmax(c, w.M(i, i));
+    if (!(c > 0.0 && c < INF)) return NOT_SOLVED;
+    thread_local std::vector<double> buf;
+    thread_local std::vector<std::uint8_t> flags;
+    buf.resize(static_cast<std::size_t>(3 * m + 2));
+    flags.assign(static_cast<std::size_t>(2 * m), 0);
+    double* x = buf.data();
+    double* ray = x + m + 1;
+    double* d = ray + m + 1;
+    std::uint8_t* start = flags.data();
+    std::uint8_t* basic = start + m;
+    for (idx i : nearest) start[i] = 1;
+    for (idx i = 0; i < m; ++i) d[i] = start[i] ? 0.0 : c;
+    for (idx j : nearest) {  // (M symmetric to the bit: column j is row j)
+        const double* Mj = w.M.row(j);
+        for (idx i = 0; i < m; ++i) d[i] -= Mj[i];
+    }
+    Status st = unrevised_symmetric(w.M, d, w.g, start, r + 1, cap, pivot_tol, tie_tol, x, ray,
+                                    basic, pivots);
+    if (st != SOLVED) return st;
+    for (idx i = 0; i < m; ++i)
+        if (basic[i]) lcp_basic[k++] = i;
+    // z_S of the final basis S from M_SS z_S = -g_S (LU, as warm_point's sets): nearer the
+    // KKT point than the method's own values, kept to RESIDUAL_TOL of their block
+    thread_local std::vector<double> lu;
+    lu.resize(static_cast<std::size_t>(k * (k + 2)));
+    double* y = lu.data() + k * k;
+    double* zS = y + k;
+    for (idx i = 0; i < k; ++i) y[i] = -w.g[lcp_basic[i]];
+    bool exact = k > 0 && solve_gathered(w.M, lcp_basic, lu.data(), y, zS, k);
+    for (idx i = 0; i < m; ++i) w.zz[i] = exact ? 0.0 : pmax(x[i], 0.0);
+    if (exact)
+        for (idx i = 0; i < k; ++i) w.zz[lcp_basic[i]] = pmax(zS[i], 0.0);
+    return SOLVED;
+}
+
+// solve's end from the multiplier LCP's answer (w.zz, the basic z's lcp_basic[:k]): the
+// basis as mlcp_basis numbers it into basic (res.k, res.pairs), the point, caller_form and
+// the KKT check on the data; whether it passes.
+bool finish(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
+            const idx* lcp_basic, idx k, double tol, const Outs& o, idx* basic, Result& res) {
+    idx n = ds.n(), p = R.p, m = R.m;
+    // mlcp_basis reads the LCP's basis whole before it writes there (they may share `basic`)
+    idx* lb_copy = w.lcp_basic;
+    for (idx i = 0; i < k; ++i) lb_copy[i] = lcp_basic[i];
+    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k, basic, w.bflags, res.k, res.pairs);
+    double* v = w.v;
+    for (idx t = p; t < n; ++t) v[t] = -w.c[t];
+    for (idx i = 0; i < m; ++i) {
+        double zi = w.zz[i];
+        if (zi != 0.0) {
+            const double* Ci = R.C.row(i);
+            for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
+        }
+    }
+    point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
+    caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
+    return kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
 }
 
 }  // namespace
@@ -1211,108 +1536,16 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
 
 bool kkt_check(const Data& dt, const double* x, const double* y, const double* z,
                const double* zb, double tol, double* stats) {
-    idx n = dt.n();
-    double t = tol + 4.0 * EPS;
-    thread_local std::vector<double> work;
-    work.resize(static_cast<std::size_t>(4 * n + 1));
-    double* s = work.data();
-    double* err = s + n;
-    double* size = s + 2 * n;
-    double* allow = s + 3 * n;
-    for (idx j = 0; j < n; ++j) {
-        s[j] = dt.q[j];
-        err[j] = 0.0;
-        size[j] = std::fabs(dt.q[j]);
-    }
-    axpy2_matrix(s, err, size, n, x, dt.P);
-    double gap_hi = 0.0, gap_lo = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        acc2(gap_hi, gap_lo, x[j], s[j]);
-        gap_lo += x[j] * err[j];
-    }
-    double xPq_hi = gap_hi, xPq_lo = gap_lo;
-    axpy2_matrix(s, err, size, n, y, dt.A);
-    axpy2_matrix(s, err, size, n, z, dt.G);
-    // The rounding floor (qp.kkt_check states the rule): each of x, y, z, zb is exact only to
-    // f = 4 (n + 2) eps times its own largest entry; allow[j] first holds what those errors
-    // move stationarity row j by, divided by f.
-    double f = 4.0 * static_cast<double>(n + 2) * EPS;
-    double x_top = 0.0, y_top = 0.0, z_top = 0.0, zb_top = 0.0;
-    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
-    for (idx i = 0; i < dt.p0(); ++i) y_top = pmax(y_top, std::fabs(y[i]));
-    for (idx i = 0; i < dt.m0(); ++i) z_top = pmax(z_top, std::fabs(z[i]));
-    for (idx j = 0; j < n; ++j) zb_top = pmax(zb_top, std::fabs(zb[j]));
-    for (idx j = 0; j < n; ++j) allow[j] = zb_top;
-    add_abs_rows(allow, n, x_top, dt.P);
-    add_abs_rows(allow, n, y_top, dt.A);
-    add_abs_rows(allow, n, z_top, dt.G);
-    bool ok = true;
-    double dual = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        double r, e;
-        two_sum(s[j], zb[j], r, e);
-        r += e + err[j];
-        allow[j] = t * (size[j] + std::fabs(zb[j])) + f * allow[j];
-        dual = pmax(dual, std::fabs(r));
-        if (!(std::fabs(r) <= allow[j])) ok = false;
-    }
-    double floor = f * x_top;
-    double primal = 0.0;
-    for (idx i = 0; i < dt.p0(); ++i) {
-        Dot2 d = dot2(dt.A.row(i), x, n, -dt.b[i]);
-        primal = pmax(primal, std::fabs(d.sum));
-        acc2(gap_hi, gap_lo, dt.b[i], y[i]);
-        if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
-    }
-    for (idx i = 0; i < dt.m0(); ++i) {
-        if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
-            if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
-            continue;
-        }
-        Dot2 d = dot2(dt.G.row(i), x, n, -dt.h[i]);
-        double r = d.sum;
-        double sz = t * d.size + floor * d.norm;
-        primal = pmax(primal, r);
-        acc2(gap_hi, gap_lo, dt.h[i], z[i]);
-        double zi = z[i];
-        if (!(r <= sz && zi >= 0.0)) {
-            ok = false;
-        } else if (zi > 0.0 && -r > sz && !counts_as_zero(zi, dt.G.row(i), allow, n)) {
-            ok = false;
-        }
-    }
-    for (idx j = 0; j < n; ++j) {
-        double zj = zb[j];
-        bool lo = dt.lb[j] > -INF, up = dt.ub[j] < INF;
-        double s_lo = t * (std::fabs(dt.lb[j]) + std::fabs(x[j])) + floor;
-        double s_up = t * (std::fabs(dt.ub[j]) + std::fabs(x[j])) + floor;
-        if (lo) {
-            double r = dt.lb[j] - x[j];
-            primal = pmax(primal, r);
-            if (zj < 0.0) acc2(gap_hi, gap_lo, dt.lb[j], zj);
-            if (r > s_lo) ok = false;
-        }
-        if (up) {
-            double r = x[j] - dt.ub[j];
-            primal = pmax(primal, r);
-            if (zj > 0.0) acc2(gap_hi, gap_lo, dt.ub[j], zj);
-            if (r > s_up) ok = false;
-        }
-        bool active;
-        if (dt.lb[j] == dt.ub[j]) active = true;
-        else if (zj < 0.0) active = lo && x[j] - dt.lb[j] <= s_lo;
-        else if (zj > 0.0) active = up && dt.ub[j] - x[j] <= s_up;
-        else active = true;
-        if (!active && std::fabs(zj) > allow[j]) ok = false;
-        if (!(x[j] == x[j])) ok = false;
-    }
-    double obj_hi = xPq_hi, obj_lo = xPq_lo;
-    for (idx j = 0; j < n; ++j) acc2(obj_hi, obj_lo, dt.q[j], x[j]);
-    stats[0] = primal;
-    stats[1] = dual;
-    stats[2] = std::fabs(gap_hi + gap_lo);
-    stats[3] = 0.5 * (obj_hi + obj_lo);
-    return ok;
+    return kkt_rows(dt, nullptr, x, y, z, zb, tol, stats);
+}
+
+bool kkt_check_sparse(const Data& dt, const double* x, const double* y, const double* z,
+                      const double* zb, double tol, double* stats) {
+    QPWork sw;
+    sw.spP.build(dt.P.p, dt.n(), dt.n(), true);
+    sw.spA.build(dt.A.p, dt.p0(), dt.n(), true);
+    sw.spG.build(dt.G.p, dt.m0(), dt.n(), true);
+    return kkt_rows(dt, &sw, x, y, z, zb, tol, stats);
 }
 
 idx zero_diagonal(Mat<const double> P) {
@@ -1394,6 +1627,11 @@ static bool screened(const Data& dt, std::vector<double>& scr, Data& ds) {
     return true;
 }
 
+WarmEnds& warm_ends() {
+    thread_local WarmEnds ends;
+    return ends;
+}
+
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs,
              const double* x0) {
@@ -1472,13 +1710,34 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     }
     idx pivots = 0, k_basic = 0;
     idx* lcp_basic = basic;
-    if ((warm != nullptr || x0 != nullptr) && m > 0 &&
-        warm_point(ds, lo, up, w, R, beta, tol, o, basic, res)) return res;
+    idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
+    if ((warm != nullptr || x0 != nullptr) && m > 0) {
+        thread_local std::vector<idx> nearest;
+        WarmEnds& ends = warm_ends();
+        if (warm_point(ds, lo, up, w, R, beta, tol, o, basic, res, nearest)) {
+            ++ends.kept;
+            return res;
+        }
+        // the old set failed: Lemke's method on from the nearest set tried (restart); the
+        // cold LCP only when that does not end on a point that passes the KKT check
+        idx rp = 0;
+        int st = restart(w, R, n - p, nearest, cap, pivot_tol, tie_tol, lcp_basic, k_basic, rp);
+        res.pivots += rp;
+        if (is_stop(st)) {
+            res.code = st;  // a stop ends the QP too
+            return res;
+        }
+        if (st == SOLVED && finish(ds, lo, up, w, R, lcp_basic, k_basic, tol, o, basic, res)) {
+            ++ends.restarted;
+            res.code = OK;
+            return res;
+        }
+        ++ends.cold;
+        for (idx i = 0; i < m; ++i) w.zz[i] = 0.0;
+    }
     if (m > 0) {
-        idx cap = max_pivots >= 0 ? max_pivots : 100 * (m + 1);
         Method mt = method == TABLEAU ? TABLEAU : UNREVISED;
-        // cold (also after a warm start that warm_point could not finish: measured on the MPC
-        // benchmark, Lemke restarted from the old basis cost more than the cold run)
+        // cold (also after a warm start that neither warm_point nor restart could finish)
         RunResult rr = checked_once(mt, w.M, w.g, w.ones, cap, pivot_tol, tie_tol, tol, w.buf,
                                     lcp_basic);
         pivots = rr.pivots + res.pivots;
@@ -1490,27 +1749,9 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         }
         for (idx i = 0; i < m; ++i) w.zz[i] = pmax(w.buf[i], 0.0);
     }
-    // mlcp_basis reads the LCP's basis whole before it writes there (they share `basic`)
-    idx* lb_copy = w.lcp_basic;
-    for (idx i = 0; i < k_basic; ++i) lb_copy[i] = lcp_basic[i];
-    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k_basic, basic, w.bflags, res.k, res.pairs);
-    double* v = w.v;
-    for (idx t = p; t < n; ++t) v[t] = -w.c[t];
-    for (idx i = 0; i < m; ++i) {
-        double zi = w.zz[i];
-        if (zi != 0.0) {
-            const double* Ci = R.C.row(i);
-            for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
-        }
-    }
-    point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
-    caller_form(o, n, p0, m0, w.yy, w.zz, R, true);
+    bool passed = finish(ds, lo, up, w, R, lcp_basic, k_basic, tol, o, basic, res);
     res.pivots = pivots;
-    if (!kkt_check(ds, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
-        res.code = CHECK_FAILED;
-        return res;
-    }
-    res.code = OK;
+    res.code = passed ? OK : CHECK_FAILED;
     return res;
 }
 

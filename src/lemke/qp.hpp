@@ -101,6 +101,11 @@ bool cholesky(Mat<const double> P, Mat<double> L);
 // gets (primal, dual, gap, obj).
 bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
                const double* zb, double tol, double* stats);
+// kkt_check as solve runs it on its cached matrices: the sums over P, A and G over their
+// nonzeros only (every matrix, however dense); the same verdict and stats bit for bit (for
+// tests/test_qp_kkt_sparse.py, which compares the two).
+bool kkt_check_sparse(const Data& d, const double* x, const double* y, const double* z,
+                      const double* zb, double tol, double* stats);
 
 // qp.solve on data of matching shapes: writes out[:2n + p0 + m0 + 4] (x, y, z, zb,
 // stats) and the basis (int64) after it (room for m0 + 2n); method 0 tableau, 1 unrevised.
@@ -111,13 +116,23 @@ bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
 // (as mlcp_basis numbers them): the multiplier LCP is solved (warm_point) from the
 // active rows they name (their point checked first, 0 pivots when it solves the LCP; then
 // up to ACTIVE_SET_STEPS active-set updates, ACTIVE_SET_MORE more while each moves a single
-// row; else checked_once, cold); BAD_WARM when
+// row; then Lemke's method restarted from the nearest set those tried, by the unrevised
+// method, kept when its point passes the KKT check; else checked_once, cold); BAD_WARM when
 // warm_pairs is not this QP's count (Result.pairs).
 // x0 (not nullptr, n entries, finite: the caller checks): qpsolvers' initvals, a primal
 // guess whose active rows (guess_rows, ACTIVE_TOL) are the warm start instead.
 Result solve(const Data& d, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic, const idx* warm = nullptr, idx k_warm = 0,
              idx warm_pairs = 0, const double* x0 = nullptr);
+
+// How this thread's warm solves (solve with warm or x0 and m > 0) ended since it began: on
+// the old set or its active-set updates (warm_point), on Lemke's method restarted from the
+// nearest set those tried, or on the cold LCP after both failed. For the tests and
+// benchmarks/bench_mpc.py (lemke._core.qp_warm_ends); nothing reads it in the solve.
+struct WarmEnds {
+    idx kept = 0, restarted = 0, cold = 0;
+};
+WarmEnds& warm_ends();
 
 // qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's

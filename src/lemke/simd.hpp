@@ -28,13 +28,27 @@ LEMKE_SIMD_INLINE v8d load8(const double* p) {
     return v;
 }
 LEMKE_SIMD_INLINE void store8(double* p, v8d v) { __builtin_memcpy(p, &v, sizeof v); }
-// x in every lane: a shuffle of lane 0, one broadcast (GCC built v8d{x, x, ...} from x by
-// one masked broadcast per lane, ten instructions, which costs in a loop over short rows).
-// x in every lane. Written as the vector of x's, not as a shuffle of lane 0: in the AVX-512
-// clones GCC 12 made the shuffle a permute with an index vector, which slowed the tableau's
-// pending-pivot flush (where it runs once per row and pending pivot) by 17-20 % at n = 100
-// and 300 (measured 2026-11-29: 82 -> 65 us at n = 100, 1260 -> 1060 us at n = 300).
-LEMKE_SIMD_INLINE v8d splat8(double x) { return v8d{x, x, x, x, x, x, x, x}; }
+// The lanes of two vectors picked by constant indices (0-7: a's, 8-15: b's).
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
+#endif
+#endif
+#ifndef LEMKE_SHUFFLE8
+#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shuffle(a, b, ::lemke::simd::v8l{__VA_ARGS__})
+#endif
+
+// x in every lane, as __builtin_shufflevector's shuffle of lane 0: one broadcast in every
+// clone. Two other forms cost in the AVX-512 clones of GCC 12: the vector of x's,
+// v8d{x, x, ...}, became one masked broadcast per lane (ten instructions, each merging into
+// the last: a chain of eight, once per row in pivot_now's row updates and per row and
+// pending pivot in flush; 2026-11-29, issue 31), and __builtin_shuffle's shuffle of lane 0
+// a permute with an index vector (flush 17-20 % slower at n = 100 and 300).
+LEMKE_SIMD_INLINE v8d splat8(double x) {
+    v8d v = {};
+    v[0] = x;
+    return LEMKE_SHUFFLE8(v, v, 0, 0, 0, 0, 0, 0, 0, 0);
+}
 LEMKE_SIMD_INLINE v4d load4(const double* p) {
     v4d v;
     __builtin_memcpy(&v, p, sizeof v);
@@ -55,16 +69,6 @@ LEMKE_SIMD_INLINE v8d abs8(v8d x) {
 }
 // pmax(a, b) lane by lane: b where b > a, else a (Python's max).
 LEMKE_SIMD_INLINE v8d max8(v8d a, v8d b) { return b > a ? b : a; }
-
-// The lanes of two vectors picked by constant indices (0-7: a's, 8-15: b's).
-#if defined(__has_builtin)
-#if __has_builtin(__builtin_shufflevector)
-#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shufflevector(a, b, __VA_ARGS__)
-#endif
-#endif
-#ifndef LEMKE_SHUFFLE8
-#define LEMKE_SHUFFLE8(a, b, ...) __builtin_shuffle(a, b, ::lemke::simd::v8l{__VA_ARGS__})
-#endif
 
 // out[0..3] = ((x[0] + x[1]) + (x[2] + x[3])) + ((x[4] + x[5]) + (x[6] + x[7])) for the
 // lanes x of a, b, c, d: the eight running sums' pairwise order, the same additions, taken

@@ -40,16 +40,53 @@ LEMKE_ALWAYS_INLINE void axpy(double* t, double f, const double* v, idx m) {
     for (; j < m; ++j) t[j] += f * v[j];
 }
 
-// The rows count of T from ti (stride ld) updated by the pivot row prow (m columns), their
-// factors in col and their rhs, magb, col_next entries at the same offsets; a template per
-// kept vector, so that the loop carries no test and few values (with more, GCC kept some
-// on the stack, and a load from the stack each row waited on the row's stores whenever its
-// address matched one of theirs modulo 4096, which depended on where the stack lay: the
-// same solve took 2.9 or 4.9 us from one process to the next at n = 24).
-template <bool RHS, bool MAGB, bool NEXT>
-LEMKE_ALWAYS_INLINE void update_rows(double* ti, idx ld, idx m, idx count, const double* col, double* rhs,
+// t[j] += f * v[j] over a row's m columns (axpy): the row updates' operation on a row.
+struct RowAxpy {
+    const double* v;
+    idx m;
+    LEMKE_ALWAYS_INLINE void operator()(double* t, double f) const { axpy(t, f, v, m); }
+};
+
+// The same on rows of exactly 4 Q doubles (T.ld <= 32: the small tableaux, whose pivots are
+// applied at once): the pivot row's vectors held in registers for all the rows and each
+// row's update unrolled (no loop over the row, no load of the pivot row per row; n = 24:
+// a cold solve 3.45 -> 2.98 us with the splat8 fix). Each entry gets the same operation,
+// t + f v, so the same bits as RowAxpy.
+template <int Q>
+struct RowAxpyFixed {
+#ifdef LEMKE_SIMD
+    static constexpr int H = Q / 2;  // whole eight-lane vectors, then four lanes when Q is odd
+    simd::v8d pv[H > 0 ? H : 1];
+    simd::v4d p4;
+    LEMKE_ALWAYS_INLINE explicit RowAxpyFixed(const double* v) {
+        for (int k = 0; k < H; ++k) pv[k] = simd::load8(v + 8 * k);
+        p4 = Q % 2 == 1 ? simd::load4(v + 8 * H) : simd::splat4(0.0);
+    }
+    LEMKE_ALWAYS_INLINE void operator()(double* t, double f) const {
+        simd::v8d vf = simd::splat8(f);
+        for (int k = 0; k < H; ++k) simd::store8(t + 8 * k, simd::load8(t + 8 * k) + vf * pv[k]);
+        if (Q % 2 == 1) {
+            simd::v4d wf = simd::splat4(f);
+            simd::store4(t + 8 * H, simd::load4(t + 8 * H) + wf * p4);
+        }
+    }
+#else
+    RowAxpy a;
+    explicit RowAxpyFixed(const double* v) : a{v, 4 * Q} {}
+    void operator()(double* t, double f) const { a(t, f); }
+#endif
+};
+
+// The rows count of T from ti (stride ld) updated by the pivot row (row(t, f): t += f
+// prow), their factors in col and their rhs, magb, col_next entries at the same offsets; a
+// template per kept vector, so that the loop carries no test and few values (with more,
+// GCC kept some on the stack, and a load from the stack each row waited on the row's
+// stores whenever its address matched one of theirs modulo 4096, which depended on where
+// the stack lay: the same solve took 2.9 or 4.9 us from one process to the next at n = 24).
+template <bool RHS, bool MAGB, bool NEXT, class Row>
+LEMKE_ALWAYS_INLINE void update_rows(double* ti, idx ld, idx count, const double* col, double* rhs,
                         double* magb, double* col_next, const double* prow, idx s, idx s_next,
-                        double inv, double rr, double mr) {
+                        double inv, double rr, double mr, const Row& row) {
     double pn = NEXT ? prow[s_next] : 0.0;
     for (idx c = 0; c < count; ++c, ti += ld) {
         double f = col[c];
@@ -60,7 +97,7 @@ LEMKE_ALWAYS_INLINE void update_rows(double* ti, idx ld, idx m, idx count, const
             if (NEXT) next = next + f * pn;
             if (RHS) rhs[c] += f * rr;
             if (MAGB) magb[c] += std::fabs(f) * mr;
-            axpy(ti, f, prow, m);
+            row(ti, f);
             ti[s] = f * inv + f * 0.0;
         } else {
             ti[s] = f * inv;
@@ -69,18 +106,41 @@ LEMKE_ALWAYS_INLINE void update_rows(double* ti, idx ld, idx m, idx count, const
     }
 }
 
-template <bool RHS, bool MAGB, bool NEXT>
+template <bool RHS, bool MAGB, bool NEXT, class Row>
 LEMKE_ALWAYS_INLINE void update_all(const Mat<double>& T, idx r, const double* col, double* rhs, double* magb,
                        double* col_next, const double* prow, idx s, idx s_next, double inv,
-                       double rr, double mr) {
-    idx m = T.ld;
-    update_rows<RHS, MAGB, NEXT>(T.row(0), T.ld, m, r, col, rhs, magb, col_next, prow, s,
-                                 s_next, inv, rr, mr);
+                       double rr, double mr, const Row& row) {
+    update_rows<RHS, MAGB, NEXT>(T.row(0), T.ld, r, col, rhs, magb, col_next, prow, s,
+                                 s_next, inv, rr, mr, row);
     idx r1 = r + 1;
-    update_rows<RHS, MAGB, NEXT>(T.row(0) + r1 * T.ld, T.ld, m, T.rows - r1, col + r1,
+    update_rows<RHS, MAGB, NEXT>(T.row(0) + r1 * T.ld, T.ld, T.rows - r1, col + r1,
                                  RHS ? rhs + r1 : rhs, MAGB ? magb + r1 : magb,
-                                 NEXT ? col_next + r1 : col_next, prow, s, s_next, inv, rr, mr);
+                                 NEXT ? col_next + r1 : col_next, prow, s, s_next, inv, rr, mr,
+                                 row);
     if (NEXT) col_next[r] = prow[s_next];  // (row r is prow but for column s)
+}
+
+// update_all over T.ld columns: the fixed widths (RowAxpyFixed) where T.ld <= 32 is a
+// multiple of 4 and magb is not kept, else RowAxpy.
+template <bool RHS, bool MAGB, bool NEXT>
+LEMKE_ALWAYS_INLINE void update_any(const Mat<double>& T, idx r, const double* col, double* rhs,
+                                    double* magb, double* col_next, const double* prow, idx s,
+                                    idx s_next, double inv, double rr, double mr) {
+#define LEMKE_UPDATE(ROW) update_all<RHS, MAGB, NEXT>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr, ROW)
+    if (!MAGB && T.ld <= 32 && T.ld % 4 == 0) {
+        switch (T.ld / 4) {
+            case 1: LEMKE_UPDATE(RowAxpyFixed<1>(prow)); return;
+            case 2: LEMKE_UPDATE(RowAxpyFixed<2>(prow)); return;
+            case 3: LEMKE_UPDATE(RowAxpyFixed<3>(prow)); return;
+            case 4: LEMKE_UPDATE(RowAxpyFixed<4>(prow)); return;
+            case 5: LEMKE_UPDATE(RowAxpyFixed<5>(prow)); return;
+            case 6: LEMKE_UPDATE(RowAxpyFixed<6>(prow)); return;
+            case 7: LEMKE_UPDATE(RowAxpyFixed<7>(prow)); return;
+            default: LEMKE_UPDATE(RowAxpyFixed<8>(prow)); return;
+        }
+    }
+    LEMKE_UPDATE((RowAxpy{prow, T.ld}));
+#undef LEMKE_UPDATE
 }
 
 // The pivot row's rhs and magb entries (pivot_now and pivot_delayed alike; either may be
@@ -115,14 +175,14 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
     pivot_row_values(rhs, magb, r, inv, rr, mr);
     bool next = s_next >= 0;
     if (rhs && magb) {
-        if (next) update_all<true, true, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
-        else update_all<true, true, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        if (next) update_any<true, true, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        else update_any<true, true, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
     } else if (rhs) {
-        if (next) update_all<true, false, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
-        else update_all<true, false, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        if (next) update_any<true, false, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        else update_any<true, false, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
     } else {
-        if (next) update_all<false, false, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
-        else update_all<false, false, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        if (next) update_any<false, false, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
+        else update_any<false, false, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
     }
 }
 
@@ -322,8 +382,10 @@ Status tableau_lemke(TableauWork& w, idx max_pivots, double pivot_tol, double ti
     for (idx j = 0; j < n + 1; ++j) pos[nonbasic[j]] = j;
     for (idx j = 0; j < n + 1; ++j) ray_out[j] = 0.0;
 
-    // the ratio test's vector passes pay from some 64 rows (blocking_rows_vector)
-    double* ratios = n >= 64 ? keys : nullptr;
+    // the ratios in one vector pass from 16 rows (blocking_rows_vector: then the one-pass
+    // rule on them below 64 rows, with a branch only on the rows within the running bound,
+    // and two more vector passes from 64; n = 24: 1 % of a cold solve)
+    double* ratios = n >= 16 ? keys : nullptr;
     Status status = MAX_PIVOTS;
     pivots = 0;
     idx s = pos[artificial];

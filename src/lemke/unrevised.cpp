@@ -191,10 +191,13 @@ struct Run {
     // out = column e of A (e = n: the covering column). The one place that reads A: the
     // dense A, or with Fs, d (e = n) or the column Fs Fs[e]' of M (unrevised.fetch_column).
     LEMKE_STEP void fetch_column(idx e, double* out) const {
-        if (src.Fs.rows == 0) {
+        if (src.Fs.rows == 0 && src.Ms.rows == 0) {
             for (idx i = 0; i < n; ++i) out[i] = src.A(i, e);
         } else if (e == n) {
             for (idx i = 0; i < n; ++i) out[i] = src.A(i, 0);
+        } else if (src.Ms.rows > 0) {
+            const double* me = src.Ms.row(e);
+            for (idx i = 0; i < n; ++i) out[i] = me[i];
         } else {
             idx r = src.Fs.cols;
             const double* fe = src.Fs.row(e);
@@ -568,30 +571,55 @@ Status unrevised_solve(Mat<const double> M, const double* q, const double* d, co
     double d_scale = scaled_into(M, q, d, R, C, A, w.qs());
     std::uint8_t* zs = w.z_start();
     for (idx i = 0; i < n; ++i) zs[i] = z_start && z_start[i] ? 1 : 0;
-    ColumnSource src{A, Mat<const double>()};
+    ColumnSource src{A, Mat<const double>(), Mat<const double>()};
     Status status = unrevised_lemke(w, src, max_pivots, pivot_tol, tie_tol, x_out, ray_out,
                                     z_basic_out, pivots);
     unscale(x_out, ray_out, C, 1.0 / d_scale, status == SOLVED, n);
     return status;
 }
 
-Status unrevised_factored(Mat<const double> Fs, const double* d, const double* q,
-                          idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
-                          double* ray_out, std::uint8_t* z_basic_out, idx& pivots) {
+namespace {
+
+// unrevised_lemke with A = d alone (n x 1), M's columns from Fs (M = Fs Fs') or Ms (M
+// symmetric, in place), from the basis z_start (nullptr: all w basic), H at most kmax wide.
+Status column_source_run(Mat<const double> Fs, Mat<const double> Ms, idx n, const double* d,
+                         const double* q, const std::uint8_t* z_start, idx kmax,
+                         idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
+                         double* ray_out, std::uint8_t* z_basic_out, idx& pivots) {
     thread_local UnrevisedWork w;
-    idx n = Fs.rows;
-    w.layout(n, std::min<idx>(n, Fs.cols + 1), 1);
+    w.layout(n, kmax, 1);
     Mat<double> A = w.A();
     double* qs = w.qs();
     std::uint8_t* zs = w.z_start();
     for (idx i = 0; i < n; ++i) {
         A(i, 0) = d[i];
         qs[i] = q[i];
-        zs[i] = 0;
+        zs[i] = z_start && z_start[i] ? 1 : 0;
     }
-    ColumnSource src{A, Fs};
+    ColumnSource src{A, Fs, Ms};
     return unrevised_lemke(w, src, max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
                            pivots);
+}
+
+}  // namespace
+
+Status unrevised_factored(Mat<const double> Fs, const double* d, const double* q,
+                          idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
+                          double* ray_out, std::uint8_t* z_basic_out, idx& pivots) {
+    idx n = Fs.rows;
+    return column_source_run(Fs, Mat<const double>(), n, d, q, nullptr,
+                             std::min<idx>(n, Fs.cols + 1), max_pivots, pivot_tol, tie_tol,
+                             x_out, ray_out, z_basic_out, pivots);
+}
+
+Status unrevised_symmetric(Mat<const double> M, const double* d, const double* q,
+                           const std::uint8_t* z_start, idx kmax, idx max_pivots,
+                           double pivot_tol, double tie_tol, double* x_out, double* ray_out,
+                           std::uint8_t* z_basic_out, idx& pivots) {
+    idx n = M.rows;
+    return column_source_run(Mat<const double>(), M, n, d, q, z_start, std::min(n, kmax),
+                             max_pivots, pivot_tol, tie_tol, x_out, ray_out, z_basic_out,
+                             pivots);
 }
 
 }  // namespace lemke

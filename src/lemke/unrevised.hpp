@@ -16,10 +16,12 @@
 namespace lemke {
 
 // Where the columns of A = [M | d] come from, in the scaled units: the dense A (n x (n + 1))
-// when Fs has no rows; else M = Fs Fs' (Fs n x r) and A is d alone (n x 1).
+// when Fs and Ms have no rows; else A is d alone (n x 1) and M is Fs Fs' (Fs n x r) or Ms,
+// a symmetric M read in place (its column e as its row e).
 struct ColumnSource {
     Mat<const double> A;
     Mat<const double> Fs;
+    Mat<const double> Ms;
 };
 
 // The unrevised method's workspace, laid out once per size (one per thread, reused).
@@ -76,5 +78,14 @@ Status unrevised_solve(Mat<const double> M, const double* q, const double* d, co
 Status unrevised_factored(Mat<const double> Fs, const double* d, const double* q,
                           idx max_pivots, double pivot_tol, double tie_tol, double* x_out,
                           double* ray_out, std::uint8_t* z_basic_out, idx& pivots);
+
+// Lemke's method from the basis z_start (n flags) on LCP(M, q) with covering vector d, M
+// symmetric (to the bit) and read in place, in the units given (no scaling here), H at most
+// kmax x kmax (NUMERICAL_FAILURE beyond: M's rank + 1 bounds it). qp.cpp's restart of a
+// failed warm start. Outputs as unrevised_lemke.
+Status unrevised_symmetric(Mat<const double> M, const double* d, const double* q,
+                           const std::uint8_t* z_start, idx kmax, idx max_pivots,
+                           double pivot_tol, double tie_tol, double* x_out, double* ray_out,
+                           std::uint8_t* z_basic_out, idx& pivots);
 
 }  // namespace lemke

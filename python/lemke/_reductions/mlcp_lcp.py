@@ -22,6 +22,7 @@ import numpy as np
 
 from .. import _core
 from .._certify import absmax as _size
+from .._npc import filled, nz, sub
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 EPS = float(np.finfo(np.float64).eps)
@@ -99,19 +100,19 @@ class MLCPToLCP:
         const = T[:, N]
         const[np.abs(const) < N * EPS * _size(e * self.r)] = 0.0
         # Pair k: output label n + k (w_k), input label N + n + k (v_k).  Where is each?
-        where_row = np.full(2 * N, -1)
+        where_row = filled(2 * N, -1, int)
         where_row[self.row_label] = np.arange(N)
-        where_col = np.full(2 * N, -1)
+        where_col = filled(2 * N, -1, int)
         where_col[self.col_label] = np.arange(N)
         k = np.arange(self.m)
         w_row, v_row = where_row[n + k], where_row[N + n + k]
         self.swapped = v_row >= 0  # v_k basic (in the row), w_k the LCP variable (column)
         self.posr = np.where(self.swapped, v_row, w_row)
         self.posc = np.where(self.swapped, where_col[n + k], where_col[N + n + k])
-        self.M = np.ascontiguousarray(T[np.ix_(self.posr, self.posc)])
+        self.M = np.ascontiguousarray(sub(T, self.posr, self.posc))
         self.q = T[self.posr, N].copy()
         # Rows where a free variable is basic, and what stayed behind (redundant pairs).
-        self.free_rows = np.flatnonzero((self.row_label >= N) & (self.row_label < N + n))
+        self.free_rows = nz((self.row_label >= N) & (self.row_label < N + n))
         self.redundant = np.sort(self.row_label[self.row_label < n])  # equations left out
         undetermined = self.col_label[(self.col_label >= N) & (self.col_label < N + n)] - N
         self.undetermined = np.sort(undetermined)  # free variables set to 0
@@ -161,14 +162,14 @@ def basis_point(E, e, n, v_basic, red):
     N = e.size
     keep_eq = _all_but(n, red.redundant)
     keep_u = _all_but(n, red.undetermined)
-    vb = n + np.flatnonzero(v_basic)
+    vb = n + nz(v_basic)
     rows = np.concatenate([keep_eq, vb])
     cols = np.concatenate([keep_u, vb])
     if rows.size != cols.size:
         return None
     x = np.zeros(N)
     if rows.size:
-        xb = refined_solve(E[np.ix_(rows, cols)], -e[rows])
+        xb = refined_solve(sub(E, rows, cols), -e[rows])
         if xb is None:
             return None
         x[cols] = xb
@@ -183,7 +184,7 @@ def _all_but(n, drop):
         return np.arange(n)
     keep = np.ones(n, dtype=bool)
     keep[drop] = False
-    return np.flatnonzero(keep)
+    return nz(keep)
 
 
 def refined_solve(K, rhs, steps=2, given=None, low=False):

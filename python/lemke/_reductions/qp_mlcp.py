@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._npc import filled, nz, sub
+
 EPS = float(np.finfo(np.float64).eps)
 
 
@@ -46,19 +48,19 @@ class QPToMLCP:
         self.n, self.q, self.P = n, q, P = q.size, q, P
         self.G, self.h = (np.zeros((0, n)), np.zeros(0)) if G is None else (G, h)
         self.A, self.b = (np.zeros((0, n)), np.zeros(0)) if A is None else (A, b)
-        self.lb = np.full(n, -np.inf) if lb is None else lb
-        self.ub = np.full(n, np.inf) if ub is None else ub
+        self.lb = filled(n, -np.inf) if lb is None else lb
+        self.ub = filled(n, np.inf) if ub is None else ub
         self._kinds()
         self._stack()
 
     def _kinds(self):
         lo, up = np.isfinite(self.lb), np.isfinite(self.ub)
         fixed = lo & up & (self.lb == self.ub)
-        self.free = np.flatnonzero(~lo & ~up)
-        self.shifted = np.flatnonzero((lo | up) & ~fixed)  # x = x0 + sign * x', x' >= 0
-        self.fixed = np.flatnonzero(fixed)
+        self.free = nz(~lo & ~up)
+        self.shifted = nz((lo | up) & ~fixed)  # x = x0 + sign * x', x' >= 0
+        self.fixed = nz(fixed)
         self.sign = np.where(lo[self.shifted], 1.0, -1.0)
-        self.boxed = np.flatnonzero(lo[self.shifted] & up[self.shifted])  # positions in shifted
+        self.boxed = nz(lo[self.shifted] & up[self.shifted])  # positions in shifted
         x0 = np.zeros(self.n)
         x0[lo] = self.lb[lo]
         x0[~lo & up] = self.ub[~lo & up]
@@ -77,13 +79,13 @@ class QPToMLCP:
         cf, cy, cx, cz, cb = 0, nf, nf + p, nf + p + nn, nf + p + nn + mg
         # row blocks: same order (free dual rows, equalities, x' rows, inequality rows, box rows)
         PS = P[:, Nn] * S
-        E[cf:cy, cf:cy] = P[np.ix_(F, F)]
+        E[cf:cy, cf:cy] = sub(P, F, F)
         E[cf:cy, cy:cx] = A[:, F].T
         E[cf:cy, cx:cz] = PS[F]
         E[cf:cy, cz:cb] = G[:, F].T
         E[cy:cx, cf:cy] = -A[:, F]
         E[cy:cx, cx:cz] = -A[:, Nn] * S
-        E[cx:cz, cf:cy] = S[:, None] * P[np.ix_(Nn, F)]
+        E[cx:cz, cf:cy] = S[:, None] * sub(P, Nn, F)
         E[cx:cz, cy:cx] = S[:, None] * A[:, Nn].T
         E[cx:cz, cx:cz] = S[:, None] * PS[Nn]
         E[cx:cz, cz:cb] = S[:, None] * G[:, Nn].T
