@@ -313,6 +313,53 @@ def assert_friction_solution(M, q, lo, hi, findex, z, rtol=1e-7):
     assert_box_solution(M, q, lo_c, hi_c, z, rtol=rtol)
 
 
+def test_a_warm_friction_basis_is_judged_on_the_callers_rows():
+    """A warm basis whose point solves the caller's problem but not the extended one's
+    own check (a sticking friction row with z_i < 0 given as β+ basic, β+ = z_i < 0, where
+    the solver's own basis has β- basic) is accepted with 0 pivots: the check on the
+    caller's rows with the coupled bounds decides, as it decides every answer.  Checked
+    here: the extended check does refuse that point, the answer passes the plain-numpy
+    friction check and equals the cold answer, and the general path (lists) and
+    solve_blcp_many give the same bits."""
+    from lemke import _blcp
+    from lemke._options import _DEFAULT
+    cboxed = _blcp.boxed
+    found = 0
+    for seed in range(120):
+        M, q, lo, hi, fi, mu = contacts(seed, 1 + seed % 6)
+        fi = fi.astype(np.int64)
+        r = lemke.solve_blcp(M, q, lo, hi, findex=fi)
+        assert r.success
+        codes = r.warm_start.row_states().copy()
+        flip = (codes == 3 + 3 * 2) & (np.asarray(r.z) < -1e-6 * np.abs(r.z).max())
+        if not flip.any():
+            continue
+        codes[flip] = 3 + 9 * 2  # β+ basic in place of β-: the same row equation, w_i = 0
+        ws = lemke.BoxWarmStart.from_row_states(codes)
+        Mx, qx, lox, hix, F, normal = _blcp.friction_lcp(M, q, lo, hi, fi)
+        N = qx.size
+        flags = ws._kernel_flags()
+        zx, R, C = np.empty(N), np.empty(N), np.empty(N)
+        assert cboxed.basis_point(Mx, qx, lox, hix, flags[:N], flags[N:], True, zx)
+        assert zx[np.flatnonzero(flip)].max() < 0.0
+        cboxed.check_scales(Mx, qx, lox, hix, R, C)
+        assert not cboxed.box_check(Mx, qx, lox, hix, zx, _DEFAULT.tol, np.empty(N), R)[0]
+        warm = lemke.solve_blcp(M, q, lo, hi, findex=fi, warm_start=ws)
+        assert warm.status == lemke.Status.SOLVED and warm.pivots == 0
+        assert warm.warm_start is ws
+        assert_friction_solution(M, q, lo, hi, fi, warm.z)
+        assert np.allclose(warm.z, r.z, rtol=1e-9, atol=1e-12 * np.abs(r.z).max())
+        lists = lemke.solve_blcp(M.tolist(), q.tolist(), lo.tolist(), hi.tolist(),
+                                 findex=fi.tolist(), warm_start=ws)
+        assert lists == warm
+        many = lemke.solve_blcp_many([M, M], [q, q], [lo, lo], [hi, hi], findex=[fi, fi],
+                                     warm_start=lemke.BoxWarmStartBatch.of([ws, ws]))
+        for item in many:
+            assert item.pivots == 0 and np.asarray(item.z).tobytes() == np.asarray(warm.z).tobytes()
+        found += 1
+    assert found >= 5, found
+
+
 _PILES = {}
 
 

@@ -395,14 +395,19 @@ def test_a_few_islands_one_by_one_are_the_batch_path(seed):
 
 
 def test_from_codes_small_is_the_numpy_rule():
-    """_blcp._from_codes_small (a Python loop for a few rows) gives the BoxWarmStart the numpy
-    version gives, friction rows included, on random row states."""
+    """_blcp._from_codes (a Python loop for up to _FEW_ROWS rows, numpy above; z_basic and
+    at_upper made when first read) gives the BoxWarmStart of the row-state rule computed
+    here, friction rows included, on random row states; and one made lazily equals (and
+    hashes as) the one built with its fields."""
     from lemke import _blcp
     rng = np.random.default_rng(31)
-    for _ in range(2000):
-        n = int(rng.integers(0, _blcp._FEW_ROWS + 1))
+    for k in range(2000):
+        n = int(rng.integers(0, 2 * _blcp._FEW_ROWS + 1))
         c = np.where(rng.random(n) < 0.3, rng.integers(3, 30, n), rng.integers(0, 3, n)).astype(np.int8)
-        a = _blcp._from_codes_small(c)
+        a = _blcp._from_codes(c)
+        assert "z_basic" not in a.__dict__ and "at_upper" not in a.__dict__
+        if k % 2:  # either field first
+            a.at_upper
         F = np.flatnonzero(c >= 3)
         e = c[F].astype(np.int64) - 3
         states = np.concatenate([np.where(c >= 3, (c.astype(np.int64) - 3) // 9, c), (e // 3) % 3, e % 3])
@@ -411,3 +416,5 @@ def test_from_codes_small_is_the_numpy_rule():
         assert a.at_upper == tuple(np.flatnonzero(states == 1).tolist())
         assert a.friction == tuple(F.tolist())
         assert a.row_states().tobytes() == c.tobytes()
+        b = lemke.BoxWarmStart(a.n, a.z_basic, a.at_upper, a.friction)
+        assert a == b and hash(a) == hash(b) and repr(a) == repr(b)

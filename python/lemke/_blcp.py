@@ -275,10 +275,29 @@ def _carried(codes, idx, findex):
 
 
 def _from_codes(c):
-    """The BoxWarmStart of the row states c (int8, codes 0..29)."""
+    """The BoxWarmStart of the row states c (int8, codes 0..29): its size, friction rows and
+    codes now, its ``z_basic`` and ``at_upper`` when first read (:class:`_FromCodes`; the
+    kernels take the codes, so a warm start passed straight back builds neither)."""
+    if c.size <= _FEW_ROWS:
+        F = tuple([i for i, x in enumerate(c.tolist()) if x >= 3])
+    else:
+        F = tuple(np.flatnonzero(c >= 3).tolist())
+    ws = _new(BoxWarmStart)
+    c = c.copy()
+    c.setflags(write=False)
+    ws.__dict__.update(n=c.size + 2 * len(F), friction=F, _codes=c)
+    return ws
+
+
+_FEW_ROWS = 48  # up to this many rows, the codes are read in a Python loop: cheaper than numpy
+
+
+def _basis_of_codes(c):
+    """``(z_basic, at_upper)`` of the row states c (the extended variables in their order:
+    the caller's rows, then β- and λ of each friction row)."""
     rows = c.size
     if rows <= _FEW_ROWS:
-        return _from_codes_small(c)
+        return _basis_of_codes_small(c)
     F = np.flatnonzero(c >= 3)
     nf = F.size
     s = np.zeros(rows + 2 * nf, dtype=np.int8)
@@ -288,35 +307,39 @@ def _from_codes(c):
         s[F] = e // 9
         s[rows:rows + nf] = (e // 3) % 3
         s[rows + nf:] = e % 3
-    ws = BoxWarmStart._trusted(rows + 2 * nf, tuple(np.flatnonzero(s == 2).tolist()),
-                               tuple(np.flatnonzero(s == 1).tolist()), tuple(F.tolist()))
-    c = c.copy()
-    c.setflags(write=False)
-    ws.__dict__["_codes"] = c
-    return ws
+    return tuple(np.flatnonzero(s == 2).tolist()), tuple(np.flatnonzero(s == 1).tolist())
 
 
-_FEW_ROWS = 48  # up to this many rows, _from_codes loops in Python: cheaper than its numpy calls
-
-
-def _from_codes_small(c):
-    """_from_codes for a few rows: the same BoxWarmStart, by a loop over c's codes (the
-    extended variables in their order: the caller's rows, then β- and λ of each friction
-    row)."""
+def _basis_of_codes_small(c):
+    """:func:`_basis_of_codes` for a few rows, by a loop over c's codes."""
     cl = c.tolist()
-    rows = len(cl)
     F = [i for i, x in enumerate(cl) if x >= 3]
-    nf = len(F)
     states = [x if x < 3 else (x - 3) // 9 for x in cl]
-    if nf:
+    if F:
         states += [((cl[i] - 3) // 3) % 3 for i in F]
         states += [(cl[i] - 3) % 3 for i in F]
-    ws = BoxWarmStart._trusted(rows + 2 * nf, tuple([i for i, s in enumerate(states) if s == 2]),
-                               tuple([i for i, s in enumerate(states) if s == 1]), tuple(F))
-    c = c.copy()
-    c.setflags(write=False)
-    ws.__dict__["_codes"] = c
-    return ws
+    return (tuple([i for i, s in enumerate(states) if s == 2]),
+            tuple([i for i, s in enumerate(states) if s == 1]))
+
+
+class _FromCodes(LazyField):
+    """``z_basic`` / ``at_upper`` of a BoxWarmStart made from row states (``_from_codes``),
+    from its ``_codes`` when first read; a warm start built with its fields never reaches
+    it (they are in its ``__dict__``)."""
+
+    __slots__ = ()
+
+    def make(self, d):
+        codes = d.get("_codes")
+        if codes is None:
+            raise AttributeError(f"'BoxWarmStart' object has no attribute {self.name!r}")
+        z_basic, at_upper = _basis_of_codes(codes)
+        d["z_basic"], d["at_upper"] = z_basic, at_upper  # (both at once)
+        return z_basic if self.name == "z_basic" else at_upper
+
+
+BoxWarmStart.z_basic = _FromCodes("z_basic")
+BoxWarmStart.at_upper = _FromCodes("at_upper")
 
 
 @frozen(eq=False)
@@ -1030,13 +1053,49 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     z = np.empty(n)
     if not refined_solve(K, rhs, 2, z, np.empty(n)) or not np.all(np.isfinite(z)):
         return None
-    mu = hi[F]
-    lo_in, hi_in = lo.copy(), hi.copy()
-    lo_in[F], hi_in[F] = -mu * z[normal], mu * z[normal]
-    z = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
+    z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
     w = np.empty(n)
     ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
     return (z, w, residual, lo_in, hi_in) if ok else None
+
+
+def _coupled(z, lo, hi, F, normal):
+    """The bounds in force at the caller's z (a friction row's -mu z_f, mu z_f) and z
+    clamped into them: ``(z, lo_in, hi_in)``."""
+    mu = hi[F]
+    lo_in, hi_in = lo.copy(), hi.copy()
+    lo_in[F], hi_in[F] = -mu * z[normal], mu * z[normal]
+    return np.clip(z, np.minimum(lo_in, hi_in), hi_in), lo_in, hi_in
+
+
+def _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, ws, opts):
+    """A warm start's own point with a friction index (``kernels.boxed.front``'s PREPARE
+    phase): the point of its basis on the extended data, judged by the check that decides
+    'solved', on the caller's rows with the coupled bounds, without the extended problem's
+    own check; the result with 0 pivots when it passes and the point's normal impulses lie
+    in their boxes (the friction rows' bounds are then those of the z returned), else None
+    (the extended problem's check then decides first, as :func:`_solve` makes it)."""
+    n, k, N = q.size, F.size, qx.size
+    flags = ws._kernel_flags()
+    zx = np.empty(N)
+    if not boxed.basis_point(Mx, qx, lox, hix, flags[:N], flags[N:], True, zx):
+        return None
+    z = zx[:n].copy()
+    z[F] = zx[F] - zx[n:n + k]
+    zn = z[normal]
+    if not np.all((zn >= lo[normal]) & (zn <= hi[normal])):
+        return None
+    z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
+    R, C, w = np.empty(n), np.empty(n), np.empty(n)
+    boxed.check_scales(M, q, lo, hi, R, C)
+    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, N)
+    if not ok:
+        return None
+    d = np.zeros(N)
+    for a in (z, w, lo_in, hi_in, R, C, d):
+        a.setflags(write=False)
+    return BLCPResult(z, w, Status.SOLVED, 0, float(residual), None, 0.0, d, ws, lo_in, hi_in,
+                      R, C, 0)
 
 
 def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
@@ -1052,16 +1111,17 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
         if res is not None:
             return res
     Mx, qx, lox, hix, F, normal = friction_lcp(M, q, lo, hi, findex)
+    if warm_start is not None and F.size:
+        got = _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, warm_start, opts)
+        if got is not None:
+            return got
     inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None,
                    reset=_friction_vars(F, n) if F.size and warm_start is not None else None)
     k = F.size
     zx = inner.z
     z = zx[:n].copy()
     z[F] = zx[F] - zx[n:n + k]
-    mu = hi[F]
-    lo_in, hi_in = lo.copy(), hi.copy()
-    lo_in[F] = -mu * z[normal]
-    hi_in[F] = mu * z[normal]
+    zc, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
     R, C = np.empty(n), np.empty(n)
     boxed.check_scales(M, q, lo, hi, R, C)
     w = np.empty(n)
@@ -1069,7 +1129,6 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     # (its rows λ ± w_i are sums of larger terms, and can miss that check by rounding where
     # the caller's rows pass).
     status = inner.status
-    zc = np.clip(z, np.minimum(lo_in, hi_in), hi_in)
     ok, residual = boxed.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
     flags = None if ok or inner.warm_start is None else inner.warm_start._kernel_flags()
     if flags is not None:
@@ -1079,9 +1138,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
         if zx2 is not None:
             z2 = zx2[:n].copy()
             z2[F] = zx2[F] - zx2[n:n + k]
-            lo2, hi2 = lo.copy(), hi.copy()
-            lo2[F], hi2[F] = -mu * z2[normal], mu * z2[normal]
-            z2 = np.clip(z2, np.minimum(lo2, hi2), hi2)
+            z2, lo2, hi2 = _coupled(z2, lo, hi, F, normal)
             w2 = np.empty(n)
             ok2, res2 = boxed.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
             if ok2:

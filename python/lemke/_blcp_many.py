@@ -110,7 +110,8 @@ class BoxWarmStartBatch(Value):
         return _from_codes(self.state[lo:hi])
 
     def __iter__(self):
-        return map(self.__getitem__, range(self.n.size))
+        off, s = self.offsets.tolist(), self.state
+        return (_from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size))
 
     def __repr__(self) -> str:
         return f"BoxWarmStartBatch(B={self.n.size}, rows={self.state.size})"

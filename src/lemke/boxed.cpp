@@ -34,6 +34,11 @@ idx* BoxedWork::check_indices(idx len) {
     return chk_i.data();
 }
 
+std::uint8_t* BoxedWork::check_flags(idx len) {
+    if (static_cast<idx>(chk_f.size()) < len + 1) chk_f.resize(static_cast<std::size_t>(len + 1));
+    return chk_f.data();
+}
+
 namespace {
 
 BoxedWork& work() {
@@ -637,15 +642,12 @@ idx friction_rows(const idx* findex, idx n) {
     return nf;
 }
 
-void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
-            const idx* findex, idx nf, double* work_out, idx* F) {
-    idx n = M.rows;
-    FrontLayout L{n, nf, true};
-    idx N = L.N();
-    Mat<double> Mx(work_out + L.work_M(), N, N);
-    double* qx = work_out + L.work_q();
-    double* lox = work_out + L.work_lo();
-    double* hix = work_out + L.work_hi();
+namespace {
+
+// extend's F (the friction rows, then their normal rows) and its right-hand side and
+// bounds (qx, lox, hix); the rows of Mx are ext_row's.
+void extend_vectors(const double* q, const double* lo, const double* hi, const idx* findex,
+                    idx n, idx nf, double* qx, double* lox, double* hix, idx* F) {
     idx c = 0;
     for (idx i = 0; i < n; ++i) {
         if (findex[i] >= 0) {
@@ -654,12 +656,7 @@ void extend(Mat<const double> M, const double* q, const double* lo, const double
             ++c;
         }
     }
-    for (idx r = 0; r < N; ++r)
-        for (idx j = 0; j < N; ++j) Mx(r, j) = 0.0;
     for (idx i = 0; i < n; ++i) {
-        const double* row = M.row(i);
-        for (idx j = 0; j < n; ++j) Mx(i, j) = row[j];
-        for (idx cc = 0; cc < nf; ++cc) Mx(i, n + cc) = -row[F[cc]];
         qx[i] = q[i];
         lox[i] = lo[i];
         hix[i] = hi[i];
@@ -667,14 +664,6 @@ void extend(Mat<const double> M, const double* q, const double* lo, const double
     for (idx cc = 0; cc < nf; ++cc) {
         idx i = F[cc];
         idx lam = n + nf + cc;
-        const double* row = M.row(i);
-        for (idx j = 0; j < n; ++j) Mx(n + cc, j) = -row[j];
-        for (idx d = 0; d < nf; ++d) Mx(n + cc, n + d) = row[F[d]];
-        Mx(i, lam) = 1.0;
-        Mx(n + cc, lam) = 1.0;
-        Mx(lam, F[nf + cc]) = hi[i];
-        Mx(lam, i) = -1.0;
-        Mx(lam, n + cc) = -1.0;
         qx[n + cc] = -q[i];
         qx[lam] = 0.0;
         lox[n + cc] = 0.0;
@@ -684,6 +673,58 @@ void extend(Mat<const double> M, const double* q, const double* lo, const double
         lox[i] = 0.0;
         hix[i] = INF;
     }
+}
+
+// Row r of the extended matrix Mx (N = n + 2 nf entries) into out: the caller's row r
+// (r < n: M's row with each friction column doubled, -, and 1 at λ for a friction row),
+// β-'s row (-the friction row, its friction columns +, 1 at λ), λ's row (mu at the
+// normal, -1 at β+ and β-). `fric`: the rank of each row among the friction rows, -1.
+void ext_row(Mat<const double> M, const double* hi, const idx* F, const idx* fric, idx nf,
+             idx r, double* out) {
+    idx n = M.rows;
+    idx N = n + 2 * nf;
+    for (idx j = 0; j < N; ++j) out[j] = 0.0;
+    if (r < n) {
+        const double* row = M.row(r);
+        for (idx j = 0; j < n; ++j) out[j] = row[j];
+        for (idx cc = 0; cc < nf; ++cc) out[n + cc] = -row[F[cc]];
+        if (fric[r] >= 0) out[n + nf + fric[r]] = 1.0;
+    } else if (r < n + nf) {
+        idx cc = r - n;
+        const double* row = M.row(F[cc]);
+        for (idx j = 0; j < n; ++j) out[j] = -row[j];
+        for (idx d = 0; d < nf; ++d) out[n + d] = row[F[d]];
+        out[n + nf + cc] = 1.0;
+    } else {
+        idx cc = r - n - nf;
+        idx i = F[cc];
+        out[F[nf + cc]] = hi[i];
+        out[i] = -1.0;
+        out[n + cc] = -1.0;
+    }
+}
+
+// extend with only the rows of Mx that `need` flags (the others left as they were).
+void extend_rows(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                 const idx* findex, idx nf, double* work_out, idx* F, const std::uint8_t* need) {
+    idx n = M.rows;
+    FrontLayout L{n, nf, true};
+    idx N = L.N();
+    double* Mx = work_out + L.work_M();
+    extend_vectors(q, lo, hi, findex, n, nf, work_out + L.work_q(), work_out + L.work_lo(),
+                   work_out + L.work_hi(), F);
+    idx* fric = work().check_indices(n);
+    for (idx i = 0; i < n; ++i) fric[i] = -1;
+    for (idx cc = 0; cc < nf; ++cc) fric[F[cc]] = cc;
+    for (idx r = 0; r < N; ++r)
+        if (need == nullptr || need[r]) ext_row(M, hi, F, fric, nf, r, Mx + r * N);
+}
+
+}  // namespace
+
+void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
+            const idx* findex, idx nf, double* work_out, idx* F) {
+    extend_rows(M, q, lo, hi, findex, nf, work_out, F, nullptr);
 }
 
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
@@ -948,20 +989,62 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
     if (phase == PREPARE) {
         Mat<const double> A = M;
         const double *qa = q, *la = lo, *ha = hi;
+        // With a warm start, only the rows of Mx that its point reads (the basic ones, and
+        // the free z's) are made first; the whole of it when more is needed (the extended
+        // check, a run).
+        bool part = false;
         if (nf > 0) {
-            extend(M, q, lo, hi, findex, nf, work_in, F);
+            std::uint8_t* need = nullptr;
+            if (has_warm) {
+                need = work().check_flags(N);
+                for (idx r = 0; r < N; ++r)
+                    need[r] = warm[r] || (r < n && findex[r] < 0 && lo[r] == -INF && hi[r] == INF);
+                part = true;
+            }
+            extend_rows(M, q, lo, hi, findex, nf, work_in, F, need);
             A = Mat<const double>(work_in + FL.work_M(), N, N);
             qa = work_in + FL.work_q();
             la = work_in + FL.work_lo();
             ha = work_in + FL.work_hi();
         }
         if (!has_warm || !basis_point(A, qa, la, ha, warm, warm + N, true, z)) {
+            if (part) extend(M, q, lo, hi, findex, nf, work_in, F);
             residual = INF;
             return NEED_RUN;
         }
         BoxLayout L = FL.run();
         double *w = buf + L.w(), *d = buf + L.covering(), *R = buf + L.row_scale();
         double* C = buf + L.col_scale();
+        if (nf > 0) {
+            // The check that decides 'solved' (on the caller's rows, the coupled bounds at
+            // this point) first: when it passes and the point's normals lie in their boxes
+            // (so that the friction rows' bounds in force are those of the z returned), the
+            // extended problem's own check (a second equilibration, of N rows) is not made.
+            // Otherwise that check decides first, as before: failed, a run from the basis
+            // (NEED_RUN); passed, the caller's check's verdict (SOLVED, or UNDECIDED: the
+            // general path).
+            bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf, residual);
+            bool inside = true;
+            for (idx c = 0; c < nf; ++c) {
+                idx f = F[nf + c];
+                inside = inside && z[f] >= lo[f] && z[f] <= hi[f];
+            }
+            if (!(ok && inside)) {
+                double ext_residual;
+                extend(M, q, lo, hi, findex, nf, work_in, F);  // (every row, for the check)
+                check_scales(A, qa, la, ha, R, C);
+                if (!box_check(A, qa, la, ha, z, tol, w, R, 0, ext_residual)) {
+                    residual = INF;
+                    return NEED_RUN;
+                }
+            }
+            for (idx i = 0; i < N; ++i) d[i] = 0.0;
+            if (!ok) {
+                residual = INF;
+                return UNDECIDED;
+            }
+            return SOLVED;
+        }
         check_scales(A, qa, la, ha, R, C);
         bool ok = box_check(A, qa, la, ha, z, tol, w, R, 0, residual);
         if (!ok) {

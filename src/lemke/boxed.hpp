@@ -101,11 +101,12 @@ struct SolveResult {
 // i:     basis (n), nonbasic (n + 1), pos (2n + 1), start_basis (n), cand (n + 1)
 // flags: z_basic, z_hi (n each), is_basic (2n + 1), want (n), low (n + 1)
 // chk:   the checks' scratch, outside the run's arrays (box_check 3n; check_scales 4n;
-//        basis_point k (k + 2) + n; is_ray n), with chk_i (basis_point's n indices).
+//        basis_point k (k + 2) + n; is_ray n), with chk_i (basis_point's n indices;
+//        extend's friction ranks) and chk_f (front's rows of the extended matrix to make).
 struct BoxedWork {
     std::vector<double> f, chk;
     std::vector<idx> i, chk_i;
-    std::vector<std::uint8_t> flags;
+    std::vector<std::uint8_t> flags, chk_f;
     idx n = -1;
     idx ld = 0;   // T's row stride: n + 1 rounded up to a multiple of 4 (n < 48) or 8
     idx off = 0;  // T's offset in f
@@ -113,6 +114,7 @@ struct BoxedWork {
     void layout(idx size);
     double* check_area(idx len);
     idx* check_indices(idx len);
+    std::uint8_t* check_flags(idx len);  // (front's rows of the extended matrix to make)
     // offsets in f
     idx at_qs() const { return off + n * ld; }
     idx at_los() const { return at_qs() + n; }
