@@ -440,7 +440,26 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     return status;
 }
 
-// The rows whose rounding box_check allows for; the check itself (see the header).
+// Each row's M z and size, the size of M p: two rows at a time (dot_and_size_lanes2, the
+// same bits as row_dot_and_size), inlined into box_check_in's clones.
+LEMKE_ALWAYS_INLINE void pair_rows(Mat<const double> M, const double* y, idx i, double* mz,
+                                   double* size) {
+    idx n = M.rows;
+    if (i + 1 < n) {
+        double pair[4];
+        dot_and_size_lanes2(M.row(i), M.row(i + 1), y, n, pair);
+        mz[0] = pair[0];
+        mz[1] = pair[1];
+        size[0] = pair[2];
+        size[1] = pair[3];
+    } else {
+        dot_and_size_lanes(M.row(i), y, n, mz[0], size[0]);
+    }
+}
+
+// The rows whose rounding box_check allows for; the check itself (see the header). Compiled
+// per instruction set, as check_rows: every box solve ends here.
+LEMKE_CLONES
 bool box_check_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const double* z, double tol, double* w, const double* R, idx n_round,
                   double& residual, double* work3) {
@@ -459,19 +478,18 @@ bool box_check_in(Mat<const double> M, const double* q, const double* lo, const 
     for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
     double big = 0.0, data = 1.0;
     bool z_zero = !nonzero(z, n);
+    double mz[2] = {0.0, 0.0}, size[2] = {0.0, 0.0}, pd[2], psize[2] = {0.0, 0.0};
     for (idx i = 0; i < n; ++i) {
-        double mz = 0.0, size = 0.0;
-        if (!z_zero) row_dot_and_size(M.row(i), z, n, mz, size);
-        w[i] = q[i] + mz;
-        rows[i] = size + std::fabs(q[i]);
-        floors[i] = static_cast<double>(nr + 2) * EPS * q_top / R[i];
-        big = pmax(big, R[i] * size);
-        double psize = 0.0;
-        if (!p_zero) {
-            double pd;
-            row_dot_and_size(M.row(i), p, n, pd, psize);
+        idx h = i % 2;  // rows i and i + 1 from even i (pair_rows)
+        if (h == 0) {
+            if (!z_zero) pair_rows(M, z, i, mz, size);
+            if (!p_zero) pair_rows(M, p, i, pd, psize);
         }
-        data = pmax(data, R[i] * (std::fabs(q[i]) + psize));
+        w[i] = q[i] + mz[h];
+        rows[i] = size[h] + std::fabs(q[i]);
+        floors[i] = static_cast<double>(nr + 2) * EPS * q_top / R[i];
+        big = pmax(big, R[i] * size[h]);
+        data = pmax(data, R[i] * (std::fabs(q[i]) + psize[h]));
     }
     bool ok = EPS * big <= CERTIFIABLE * t * data;
     residual = 0.0;
@@ -494,6 +512,29 @@ bool box_check_in(Mat<const double> M, const double* q, const double* lo, const 
         if (off > 0.0 && off > zero_size(M, rows, i, t, floors)) ok = false;
     }
     return ok;
+}
+
+// qs = q + M z (the start point's w), two rows at a time (pair_rows: row_dot_and_size's
+// bits); compiled per instruction set.
+LEMKE_CLONES
+void shifted_q(Mat<const double> M, const double* q, const double* z, double* qs) {
+    idx n = M.rows;
+    double mz[2], size[2];
+    for (idx i = 0; i < n; i += 2) {
+        pair_rows(M, z, i, mz, size);
+        qs[i] = q[i] + mz[0];
+        if (i + 1 < n) qs[i + 1] = q[i + 1] + mz[1];
+    }
+}
+
+// 1 / c into r when c is a power of two whose reciprocal is a normal double (then x * r is
+// x / c bit for bit: both round the same exact number once); false otherwise.
+inline bool pow2_reciprocal(double c, double& r) {
+    std::int64_t b = float_bits(c);
+    std::int64_t e = b >> 52;  // the biased exponent (sign 0)
+    if ((b & 0xFFFFFFFFFFFFFLL) != 0 || e < 1 || e > 2045) return false;
+    r = bits_float((2046 - e) << 52);
+    return true;
 }
 
 // check_scales with its 4n doubles of work given.
@@ -758,13 +799,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         z_hi[i] = ((z_hi[i] && hi[i] < INF) || (lo[i] == -INF && hi[i] < INF)) &&
                   !(cold && far_both(lo, hi, i));
     for (idx i = 0; i < n; ++i) qs[i] = q[i];
-    if (nonzero(z0s, n)) {
-        for (idx i = 0; i < n; ++i) {
-            double mz, size;
-            row_dot_and_size(M.row(i), z0s, n, mz, size);
-            qs[i] = q[i] + mz;
-        }
-    }
+    if (nonzero(z0s, n)) shifted_q(M, q, z0s, qs);
     if (cold && trivial_start(lo, hi, z_hi, qs, n)) {
         for (idx i = 0; i < n; ++i) {  // every w has its sign already: the start solves it
             z[i] = z0s[i];
@@ -797,9 +832,16 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * Cs[j];
         for (idx j = n; j < W.ld; ++j) trow[j] = 0.0;  // z0's column, then the padding
         x[i] = qs[i] * r;
-        x[n + i] = z0s[i] / Cs[i];
-        los[i] = lo[i] / Cs[i];
-        his[i] = hi[i] / Cs[i];
+        double c = Cs[i], rc;  // C's entries are powers of two (equilibrate): no division
+        if (pow2_reciprocal(c, rc)) {
+            x[n + i] = z0s[i] * rc;
+            los[i] = lo[i] * rc;
+            his[i] = hi[i] * rc;
+        } else {
+            x[n + i] = z0s[i] / c;
+            los[i] = lo[i] / c;
+            his[i] = hi[i] / c;
+        }
     }
     idx *basis = W.basis(), *nonbasic = W.nonbasic(), *pos = W.pos();
     for (idx i = 0; i < n; ++i) {
