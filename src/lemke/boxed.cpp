@@ -597,6 +597,9 @@ void check_scales_in(Mat<const double> M, const double* q, const double* lo, con
 
 }  // namespace
 
+// Compiled per instruction set: all_finite's eight running sums on vectors (every box solve
+// reads M once here).
+LEMKE_CLONES
 int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi) {
     idx n = M.rows;
     bool finite = all_finite(q, n);  // (M's largest entry is not needed here: not computed)
