@@ -477,6 +477,20 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     return status;
 }
 
+// T's rows: R M C, zeros in z0's column and the padding (to T.ld); compiled per instruction
+// set (the n^2 products of every cold box solve).
+LEMKE_CLONES
+void scaled_rows(Mat<const double> M, const double* R, const double* C, Mat<double> T) {
+    idx n = M.rows;
+    for (idx i = 0; i < n; ++i) {
+        double r = R[i];
+        const double* mrow = M.row(i);
+        double* trow = T.row(i);
+        for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * C[j];
+        for (idx j = n; j < T.ld; ++j) trow[j] = 0.0;
+    }
+}
+
 // 1 / c into r when c is a power of two whose reciprocal is a normal double (then x * r is
 // x / c bit for bit: both round the same exact number once); false otherwise.
 inline bool pow2_reciprocal(double c, double& r) {
@@ -871,12 +885,9 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     equilibrate(M, qs, Rs, Cs, W.eq_work());
     // The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C.
     for (idx i = 0; i < 2 * n + 1; ++i) x[i] = 0.0;
+    scaled_rows(M, Rs, Cs, T);
     for (idx i = 0; i < n; ++i) {
         double r = Rs[i];
-        const double* mrow = M.row(i);
-        double* trow = T.row(i);
-        for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * Cs[j];
-        for (idx j = n; j < W.ld; ++j) trow[j] = 0.0;  // z0's column, then the padding
         x[i] = qs[i] * r;
         double c = Cs[i], rc;  // C's entries are powers of two (equilibrate): no division
         if (pow2_reciprocal(c, rc)) {
