@@ -193,35 +193,70 @@ idx exchange(Run& R, const std::uint8_t* want) {
     }
 }
 
+// Row i's low flag (i < n) as boxed.ratio_rows defines it: the entering column c = sigma
+// col[i] is negative (the basic variable falls to its lower bound) or the bound it moves
+// towards is infinite. Taken for the few rows that need it (the blocking rows), not stored
+// for every row.
+LEMKE_ALWAYS_INLINE bool row_low(const double* col, double sigma, const double* rlo,
+                                 const double* rhi, idx i) {
+    double c = sigma * col[i];
+    bool neg = c < 0.0;
+    double bnd = neg ? rlo[i] : rhi[i];
+    return neg || !(std::fabs(bnd) < INF);
+}
+
 // The rows of the ratio test (boxed.ratio_rows): returns the artificial variable's row
-// (-1 when not basic), cmax the largest |cc|, kept as the rows go (a maximum of numbers that
-// no NaN ever changes, as pmax runs it, is the same in any order; it was a loop of its own).
-// Inlined into each of lemke_run's clones (LEMKE_CLONES). (An eight-lane form of this loop,
-// the basic values gathered and the low flags stored from the lane masks, was slower at
-// n = 48 than this one on AVX-512.)
-#if defined(__GNUC__)
-__attribute__((always_inline))
-#endif
-inline idx ratio_rows(const double* xb, const idx* pos,
-                      const std::uint8_t* is_basic, const double* col, double sigma, idx e,
-                      idx n, const double* lo, const double* hi, const double* rlo,
-                      const double* rhi, double* gaps, double* cc, std::uint8_t* low,
-                      double& cmax) {
+// (-1 when not basic), cmax the largest |cc|, kept as the rows go in eight running maxima
+// (a maximum of numbers that no NaN ever changes, as pmax runs it, is the same in any order;
+// it was a loop of its own). The low flags: row_low, for the rows that need them, and
+// low[n] here. Eight rows at a time on vectors, branch-free selects (both gaps computed,
+// each lane the scalar row's operations); the flags stored per row had made it a scalar
+// loop with a branch on each row's sign (GCC leaves the plain form scalar too). Inlined
+// into each of lemke_run's clones (LEMKE_CLONES).
+LEMKE_ALWAYS_INLINE idx ratio_rows(const double* xb, const idx* pos,
+                                   const std::uint8_t* is_basic, const double* col,
+                                   double sigma, idx e, idx n, const double* lo,
+                                   const double* hi, const double* rlo, const double* rhi,
+                                   double* gaps, double* cc, std::uint8_t* low, double& cmax) {
     idx art_lab = 2 * n;
     idx art = is_basic[art_lab] ? pos[art_lab] : -1;
-    double top = 0.0;
-    for (idx i = 0; i < n; ++i) {
+    double tops[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx i = 0;
+#ifdef LEMKE_SIMD
+    {
+        simd::v8d vsig = simd::splat8(sigma), vinf = simd::splat8(INF);
+        simd::v8d zero = simd::splat8(0.0), vtop = zero;
+        for (; i + 8 <= n; i += 8) {
+            simd::v8d c = vsig * simd::load8(col + i);
+            simd::v8d v = simd::load8(xb + i);
+            simd::v8d rl = simd::load8(rlo + i), rh = simd::load8(rhi + i);
+            simd::v8l neg = c < zero;
+            simd::v8d bnd = neg ? rl : rh;
+            simd::v8l fin = simd::abs8(bnd) < vinf;
+            simd::v8d a = simd::abs8(c);
+            simd::v8d g = neg ? (v - rl) : (rh - v);
+            simd::store8(gaps + i, fin ? g : vinf);
+            simd::store8(cc + i, fin ? -a : a);
+            vtop = simd::max8(vtop, a);
+        }
+        for (int l = 0; l < 8; ++l) tops[l] = vtop[l];
+    }
+#endif
+    for (; i < n; ++i) {
         double c = sigma * col[i];
         double v = xb[i];
+        double rl = rlo[i], rh = rhi[i];
         bool neg = c < 0.0;
-        double bnd = neg ? rlo[i] : rhi[i];
+        double bnd = neg ? rl : rh;
         bool fin = std::fabs(bnd) < INF;
         double a = std::fabs(c);
-        gaps[i] = fin ? (neg ? (v - bnd) : (bnd - v)) : INF;
+        double g = neg ? (v - rl) : (rh - v);
+        gaps[i] = fin ? g : INF;
         cc[i] = fin ? -a : a;
-        low[i] = neg || !fin;
-        top = pmax(top, a);
+        tops[0] = pmax(tops[0], a);
     }
+    double top = 0.0;
+    for (int l = 0; l < 8; ++l) top = pmax(top, tops[l]);
     if (art >= 0) gaps[art] = xb[art];
     gaps[n] = INF;
     cc[n] = 0.0;
@@ -419,6 +454,8 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
         if (nc <= 1) {
             r = nc == 1 ? cand[0] : -1;
         } else {
+            for (idx c = 0; c < nc; ++c)
+                if (cand[c] < n) low[cand[c]] = row_low(col, sigma, rlo, rhi, cand[c]);
             r = ratio_ties(T, P, pos, is_basic, start_basis, s0, n, pivot_tol, tie_tol, cc, low,
                            cand, keys, nc, art);
         }
@@ -428,7 +465,7 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
             ray[e] = sigma;
             break;
         }
-        low_r = low[r] != 0;
+        low_r = r < n ? row_low(col, sigma, rlo, rhi, r) : low[n] != 0;
         double g = gaps[r];
         double step = (cc[r] < 0.0 && g > 0.0 && g < INF) ? g / -cc[r] : 0.0;
         double delta = sigma * step;
@@ -440,7 +477,56 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     return status;
 }
 
-// The rows whose rounding box_check allows for; the check itself (see the header).
+// T's rows: R M C, zeros in z0's column and the padding (to T.ld); compiled per instruction
+// set (the n^2 products of every cold box solve).
+LEMKE_CLONES
+void scaled_rows(Mat<const double> M, const double* R, const double* C, Mat<double> T) {
+    idx n = M.rows;
+    for (idx i = 0; i < n; ++i) {
+        double r = R[i];
+        const double* mrow = M.row(i);
+        double* trow = T.row(i);
+        for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * C[j];
+        for (idx j = n; j < T.ld; ++j) trow[j] = 0.0;
+    }
+}
+
+// 1 / c into r when c is a power of two whose reciprocal is a normal double (then x * r is
+// x / c bit for bit: both round the same exact number once); false otherwise.
+inline bool pow2_reciprocal(double c, double& r) {
+    std::int64_t b = float_bits(c);
+    std::int64_t e = b >> 52;  // the biased exponent (sign 0)
+    if ((b & 0xFFFFFFFFFFFFFLL) != 0 || e < 1 || e > 2045) return false;
+    r = bits_float((2046 - e) << 52);
+    return true;
+}
+
+// x / c, by a multiplication where that is exact (pow2_reciprocal): the same bits.
+inline double div_exact(double x, double c) {
+    double r;
+    return pow2_reciprocal(c, r) ? x * r : x / c;
+}
+
+// Each row's M z and size, the size of M p: two rows at a time (dot_and_size_lanes2, the
+// same bits as row_dot_and_size), inlined into box_check_in's clones.
+LEMKE_ALWAYS_INLINE void pair_rows(Mat<const double> M, const double* y, idx i, double* mz,
+                                   double* size) {
+    idx n = M.rows;
+    if (i + 1 < n) {
+        double pair[4];
+        dot_and_size_lanes2(M.row(i), M.row(i + 1), y, n, pair);
+        mz[0] = pair[0];
+        mz[1] = pair[1];
+        size[0] = pair[2];
+        size[1] = pair[3];
+    } else {
+        dot_and_size_lanes(M.row(i), y, n, mz[0], size[0]);
+    }
+}
+
+// The rows whose rounding box_check allows for; the check itself (see the header). Compiled
+// per instruction set, as check_rows: every box solve ends here.
+LEMKE_CLONES
 bool box_check_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const double* z, double tol, double* w, const double* R, idx n_round,
                   double& residual, double* work3) {
@@ -459,19 +545,18 @@ bool box_check_in(Mat<const double> M, const double* q, const double* lo, const 
     for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
     double big = 0.0, data = 1.0;
     bool z_zero = !nonzero(z, n);
+    double mz[2] = {0.0, 0.0}, size[2] = {0.0, 0.0}, pd[2], psize[2] = {0.0, 0.0};
     for (idx i = 0; i < n; ++i) {
-        double mz = 0.0, size = 0.0;
-        if (!z_zero) row_dot_and_size(M.row(i), z, n, mz, size);
-        w[i] = q[i] + mz;
-        rows[i] = size + std::fabs(q[i]);
-        floors[i] = static_cast<double>(nr + 2) * EPS * q_top / R[i];
-        big = pmax(big, R[i] * size);
-        double psize = 0.0;
-        if (!p_zero) {
-            double pd;
-            row_dot_and_size(M.row(i), p, n, pd, psize);
+        idx h = i % 2;  // rows i and i + 1 from even i (pair_rows)
+        if (h == 0) {
+            if (!z_zero) pair_rows(M, z, i, mz, size);
+            if (!p_zero) pair_rows(M, p, i, pd, psize);
         }
-        data = pmax(data, R[i] * (std::fabs(q[i]) + psize));
+        w[i] = q[i] + mz[h];
+        rows[i] = size[h] + std::fabs(q[i]);
+        floors[i] = div_exact(static_cast<double>(nr + 2) * EPS * q_top, R[i]);
+        big = pmax(big, R[i] * size[h]);
+        data = pmax(data, R[i] * (std::fabs(q[i]) + psize[h]));
     }
     bool ok = EPS * big <= CERTIFIABLE * t * data;
     residual = 0.0;
@@ -496,6 +581,19 @@ bool box_check_in(Mat<const double> M, const double* q, const double* lo, const 
     return ok;
 }
 
+// qs = q + M z (the start point's w), two rows at a time (pair_rows: row_dot_and_size's
+// bits); compiled per instruction set.
+LEMKE_CLONES
+void shifted_q(Mat<const double> M, const double* q, const double* z, double* qs) {
+    idx n = M.rows;
+    double mz[2], size[2];
+    for (idx i = 0; i < n; i += 2) {
+        pair_rows(M, z, i, mz, size);
+        qs[i] = q[i] + mz[0];
+        if (i + 1 < n) qs[i + 1] = q[i + 1] + mz[1];
+    }
+}
+
 // check_scales with its 4n doubles of work given.
 void check_scales_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
                      double* R, double* C, double* work4) {
@@ -513,6 +611,9 @@ void check_scales_in(Mat<const double> M, const double* q, const double* lo, con
 
 }  // namespace
 
+// Compiled per instruction set: all_finite's eight running sums on vectors (every box solve
+// reads M once here).
+LEMKE_CLONES
 int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi) {
     idx n = M.rows;
     bool finite = all_finite(q, n);  // (M's largest entry is not needed here: not computed)
@@ -758,13 +859,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         z_hi[i] = ((z_hi[i] && hi[i] < INF) || (lo[i] == -INF && hi[i] < INF)) &&
                   !(cold && far_both(lo, hi, i));
     for (idx i = 0; i < n; ++i) qs[i] = q[i];
-    if (nonzero(z0s, n)) {
-        for (idx i = 0; i < n; ++i) {
-            double mz, size;
-            row_dot_and_size(M.row(i), z0s, n, mz, size);
-            qs[i] = q[i] + mz;
-        }
-    }
+    if (nonzero(z0s, n)) shifted_q(M, q, z0s, qs);
     if (cold && trivial_start(lo, hi, z_hi, qs, n)) {
         for (idx i = 0; i < n; ++i) {  // every w has its sign already: the start solves it
             z[i] = z0s[i];
@@ -790,16 +885,20 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     equilibrate(M, qs, Rs, Cs, W.eq_work());
     // The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C.
     for (idx i = 0; i < 2 * n + 1; ++i) x[i] = 0.0;
+    scaled_rows(M, Rs, Cs, T);
     for (idx i = 0; i < n; ++i) {
         double r = Rs[i];
-        const double* mrow = M.row(i);
-        double* trow = T.row(i);
-        for (idx j = 0; j < n; ++j) trow[j] = (mrow[j] * r) * Cs[j];
-        for (idx j = n; j < W.ld; ++j) trow[j] = 0.0;  // z0's column, then the padding
         x[i] = qs[i] * r;
-        x[n + i] = z0s[i] / Cs[i];
-        los[i] = lo[i] / Cs[i];
-        his[i] = hi[i] / Cs[i];
+        double c = Cs[i], rc;  // C's entries are powers of two (equilibrate): no division
+        if (pow2_reciprocal(c, rc)) {
+            x[n + i] = z0s[i] * rc;
+            los[i] = lo[i] * rc;
+            his[i] = hi[i] * rc;
+        } else {
+            x[n + i] = z0s[i] / c;
+            los[i] = lo[i] / c;
+            his[i] = hi[i] / c;
+        }
     }
     idx *basis = W.basis(), *nonbasic = W.nonbasic(), *pos = W.pos();
     for (idx i = 0; i < n; ++i) {
@@ -861,7 +960,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         double v = x[b];
         double mag;
         if (b < n) {
-            mag = mode == 0 ? Rs[b] / rmax : 1.0;
+            mag = mode == 0 ? div_exact(Rs[b], rmax) : 1.0;  // (powers of two)
         } else {
             mag = 1.0;
         }
@@ -882,7 +981,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     }
     for (idx i = 0; i < n; ++i) d[i] = 0.0;
     for (idx i = 0; i < n; ++i)
-        if (basis[i] < n) d[basis[i]] = T(i, n) / Rs[basis[i]];
+        if (basis[i] < n) d[basis[i]] = div_exact(T(i, n), Rs[basis[i]]);
     code = SOLVED;
     double z0 = 0.0;
     for (idx i = 0; i < 2 * n + 1; ++i) ray_lab[i] = 0.0;
