@@ -394,6 +394,37 @@ def test_a_few_islands_one_by_one_are_the_batch_path(seed):
             Ms[:2], qs[:2], los[:2], his[:2]).warm_start)
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_few_islands_carried_step_to_step(seed):
+    """Steps of a few islands, each warm from the last step's result.warm_start (a batch
+    that keeps the items' own warm starts made from codes, passed back as they are): every
+    field and item bit for bit the batch path's fed the same codes, and the batch's items
+    the values that its codes give (a batch of the same n and state without them)."""
+    from lemke._batch import FEW
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=FEW)
+    args = (Ms[:FEW], qs[:FEW], los[:FEW], his[:FEW])
+    opts = lemke.Options()
+    few = lemke.solve_blcp_many(*args, findex=fis[:FEW])
+    kept_seen = False
+    for step in range(4):
+        ws = few.warm_start
+        plain = BoxWarmStartBatch(ws.n, ws.state)  # (the same codes, nothing kept)
+        assert ws == plain and list(ws) == list(plain)
+        assert [ws[b] for b in range(len(ws))] == list(plain)
+        kept_seen |= any(w is not None for w in ws.__dict__.get("_kept", ()))
+        q = [qb * (1.0 + 1e-3 * step) for qb in (qs if step % 2 == 0 else qs2)[:FEW]]
+        args = (Ms[:FEW], q, los[:FEW], his[:FEW])
+        a = lemke.solve_blcp_many(*args, findex=fis[:FEW], warm_start=ws)
+        b = lemke.solve_blcp_many(*args, findex=fis[:FEW], warm_start=plain, options=opts)
+        assert a._qoff is None and b._qoff is not None
+        assert _fields(a) == _fields(b)
+        for r, Mb, qb, lb, hb, fb in zip(a, *args, fis[:FEW]):
+            if r.success:
+                _check(Mb, qb, lb, hb, fb, r.z)
+        few = a
+    assert kept_seen
+
+
 def test_from_codes_small_is_the_numpy_rule():
     """_blcp._from_codes (a Python loop for up to _FEW_ROWS rows, numpy above; z_basic and
     at_upper made when first read) gives the BoxWarmStart of the row-state rule computed

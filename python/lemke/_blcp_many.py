@@ -24,6 +24,7 @@ from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _plain, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
+from . import _blcp
 from ._options import as_options, time_limited, timed
 from ._result import ManyItems, Value, _index
 from ._status import Status
@@ -106,12 +107,25 @@ class BoxWarmStartBatch(Value):
 
     def __getitem__(self, b) -> BoxWarmStart:
         b = _index(b, self.n.size)
+        kept = self.__dict__.get("_kept")
+        if kept is not None and kept[b] is not None:
+            return kept[b]
         lo, hi = self.offsets[b: b + 2].tolist()
         return _from_codes(self.state[lo:hi])
 
     def __iter__(self):
+        return iter(self._list())
+
+    def _list(self) -> list:
+        """Every island's BoxWarmStart: those it was made of where it keeps them (a few
+        islands' batch, ``BLCPManyResult._of``: an item's own where it is one that
+        ``_from_codes`` made of the same codes), the others made from the codes."""
+        kept = self.__dict__.get("_kept")
+        if kept is not None and None not in kept:
+            return list(kept)
         off, s = self.offsets.tolist(), self.state
-        return (_from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size))
+        return [kept[b] if kept is not None and kept[b] is not None
+                else _from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size)]
 
     def __repr__(self) -> str:
         return f"BoxWarmStartBatch(B={self.n.size}, rows={self.state.size})"
@@ -189,9 +203,15 @@ class BLCPManyResult(ManyItems):
         ``solve_blcp`` (``items``, a list of its results, none empty): the flat fields made
         from them when first read."""
         res = object.__new__(cls)
-        res._items, res._special, res._qoff = items, dict(enumerate(items)), None
+        res._items, res._qoff = items, None  # (_special: made when first read)
         res._los = res._his = None
         return res
+
+    def _of_column(self, field, dtype):
+        """A column of a result of ``_of``, read from its items."""
+        v = np.array([getattr(r, field) for r in self._items], dtype=dtype)
+        v.setflags(write=False)
+        return v
 
     def _build(self, lo, hi):
         """Items lo..hi-1 not built yet, as solve_blcp builds them (``_blcp._lazy``): views
@@ -271,33 +291,42 @@ class BLCPManyResult(ManyItems):
 
     @cached_property
     def status(self) -> np.ndarray:
+        if self._qoff is None:
+            return self._of_column("status", np.int64)
         return self._column(np.zeros(len(self._items), dtype=np.int64), "status", int)
-
-    def _int_column(self, j):
-        """Column j of the kernels' integer results (zeros for _of: every item patched in)."""
-        return np.zeros(len(self._items), dtype=np.int64) if self._qoff is None else self._out_i[:, j]
 
     @cached_property
     def pivots(self) -> np.ndarray:
-        return self._column(self._int_column(1), "pivots", int)
+        if self._qoff is None:
+            return self._of_column("pivots", np.int64)
+        return self._column(self._out_i[:, 1], "pivots", int)
 
     @cached_property
     def recoveries(self) -> np.ndarray:
-        return self._column(self._int_column(4), "recoveries", int)
+        if self._qoff is None:
+            return self._of_column("recoveries", np.int64)
+        return self._column(self._out_i[:, 4], "recoveries", int)
 
     @cached_property
     def residual(self) -> np.ndarray:
         if self._qoff is None:
-            return self._column(np.zeros(len(self._items)), "residual", float)
+            return self._of_column("residual", np.float64)
         return self._column(self._out_f, "residual", float)
 
     @cached_property
     def warm_start(self) -> BoxWarmStartBatch:
         if self._qoff is None:  # (_of: as the batch path writes a special island's states)
-            codes = [r.warm_start.row_states() if r.warm_start is not None
-                     else np.zeros(len(r.z), np.int8) for r in self._items]
-            return BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
-                                              np.concatenate(codes))
+            kept = [r.warm_start for r in self._items]
+            codes = [w.row_states() if w is not None else np.zeros(len(r.z), np.int8)
+                     for w, r in zip(kept, self._items)]
+            ws = BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
+                                            np.concatenate(codes))
+            # the items' own warm starts made from codes (their z_basic, at_upper not set:
+            # what _from_codes makes of these codes, so batch[b] is the same value), passed
+            # back as they are (an island solved with 0 pivots keeps the one it was given)
+            ws.__dict__["_kept"] = [w if w is not None and "z_basic" not in w.__dict__ else None
+                                    for w in kept]
+            return ws
         return BoxWarmStartBatch._trusted(np.diff(self._qoff), self._state)
 
 
@@ -460,15 +489,22 @@ def _few(M, q, lo, hi, findex, warm_start):
     elif type(warm_start) is BoxWarmStartBatch:
         if warm_start.n.tolist() != [qb.shape[0] for qb in q]:
             return None
-        ws = list(warm_start)
+        ws = warm_start._list()
     elif (type(warm_start) in _SEQ and len(warm_start) == B
           and all(w is None or type(w) is BoxWarmStart for w in warm_start)):
         ws = warm_start
     else:
         return None
+    front = _blcp._FRONT
+    items = []
     try:
-        items = [solve_blcp(M[b], q[b], lo[b], hi[b], findex=fis[b], warm_start=ws[b])
-                 for b in range(B)]
+        for b in range(B):
+            # solve_blcp's own first step (its native front), the rest of solve_blcp (the
+            # same call again first) where that does not settle it
+            r = front(M[b], q[b], lo[b], hi[b], fis[b], ws[b])
+            if r is None or r is False or type(r) is tuple:
+                r = solve_blcp(M[b], q[b], lo[b], hi[b], findex=fis[b], warm_start=ws[b])
+            items.append(r)
     except (TypeError, ValueError):
         return None
     return BLCPManyResult._of(items)
