@@ -425,6 +425,38 @@ def test_a_few_islands_carried_step_to_step(seed):
     assert kept_seen
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_few_islands_in_one_native_call_are_the_loop(seed, monkeypatch):
+    """_core.blcp_front_many (every island's native front in one call) gives the items
+    that the Python loop of _few gives (solve_blcp's front island by island: taken here by
+    wrapping _blcp._FRONT), every field bit for bit, cold and warm; an island its front
+    does not settle (a ray) sends the whole call to the loop."""
+    from lemke import _blcp, _blcp_many, _core
+    from lemke._batch import FEW
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=FEW)
+    args = (Ms[:FEW], qs[:FEW], los[:FEW], his[:FEW])
+    args2 = (Ms[:FEW], qs2[:FEW], los[:FEW], his[:FEW])
+    items = _core.blcp_front_many(*args, fis[:FEW], None)
+    assert items is not None and len(items) == FEW
+    native = lemke.solve_blcp_many(*args, findex=fis[:FEW])
+    wss = (native.warm_start, list(native.warm_start))
+    native_warm = [lemke.solve_blcp_many(*args2, findex=fis[:FEW], warm_start=w) for w in wss]
+    ray = (Ms[:1] + [-np.eye(2)], qs[:1] + [np.array([-1.0, -1.0])], los[:1] + [np.zeros(2)],
+           his[:1] + [np.full(2, np.inf)])
+    assert _core.blcp_front_many(*ray, None, None) is None
+    native_ray = lemke.solve_blcp_many(*ray)
+    front = _blcp._FRONT
+    monkeypatch.setattr(_blcp, "_FRONT", lambda *a: front(*a))
+    loop = lemke.solve_blcp_many(*args, findex=fis[:FEW])
+    assert _fields(native) == _fields(loop)
+    for w, a in zip(wss, native_warm):
+        b = lemke.solve_blcp_many(*args2, findex=fis[:FEW], warm_start=w)
+        assert a._qoff is None and b._qoff is None and _fields(a) == _fields(b)
+    assert _fields(native_ray) == _fields(lemke.solve_blcp_many(*ray))
+    assert native_ray[1].status == lemke.Status.RAY_TERMINATION
+    _same_as_one_by_one(native, *args, fis[:FEW])
+
+
 def test_from_codes_small_is_the_numpy_rule():
     """_blcp._from_codes (a Python loop for up to _FEW_ROWS rows, numpy above; z_basic and
     at_upper made when first read) gives the BoxWarmStart of the row-state rule computed

@@ -14,8 +14,6 @@ and result type exact (``solve_lcp`` / ``solve_blcp``, ``solve_lcp_many`` /
 """
 from __future__ import annotations
 
-from functools import cached_property
-
 import numpy as np
 
 from ._frozen import frozen
@@ -24,9 +22,9 @@ from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _plain, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
-from . import _blcp
+from . import _blcp, _core
 from ._options import as_options, time_limited, timed
-from ._result import ManyItems, Value, _index
+from ._result import ManyItems, Value, _index, cached
 from ._status import Status
 
 _ND = np.ndarray
@@ -95,7 +93,7 @@ class BoxWarmStartBatch(Value):
     def __reduce__(self):
         return (BoxWarmStartBatch._trusted, (self.n.copy(), self.state.copy()))
 
-    @cached_property
+    @cached
     def offsets(self) -> np.ndarray:
         off = np.zeros(self.n.size + 1, dtype=np.int64)
         np.cumsum(self.n, out=off[1:])
@@ -203,8 +201,7 @@ class BLCPManyResult(ManyItems):
         ``solve_blcp`` (``items``, a list of its results, none empty): the flat fields made
         from them when first read."""
         res = object.__new__(cls)
-        res._items, res._qoff = items, None  # (_special: made when first read)
-        res._los = res._his = None
+        res._items = items  # (_special: made when first read)
         return res
 
     def _of_column(self, field, dtype):
@@ -212,6 +209,8 @@ class BLCPManyResult(ManyItems):
         v = np.array([getattr(r, field) for r in self._items], dtype=dtype)
         v.setflags(write=False)
         return v
+
+    _qoff = _los = _his = None  # (a result of _of: only _items set)
 
     def _build(self, lo, hi):
         """Items lo..hi-1 not built yet, as solve_blcp builds them (``_blcp._lazy``): views
@@ -231,7 +230,7 @@ class BLCPManyResult(ManyItems):
 
     # --- the flat fields ------------------------------------------------------------------
 
-    @cached_property
+    @cached
     def offsets(self) -> np.ndarray:
         if self._qoff is None:  # (_of)
             off = np.zeros(len(self._items) + 1, dtype=np.int64)
@@ -240,7 +239,7 @@ class BLCPManyResult(ManyItems):
             return off
         return self._qoff
 
-    @cached_property
+    @cached
     def _where(self):
         """Per row of the scene: where its z sits in the buffers."""
         qo = self._qoff
@@ -248,7 +247,7 @@ class BLCPManyResult(ManyItems):
         at += np.repeat(self._buff[:-1] + self._answer - qo[:-1], self._n_rows)
         return at
 
-    @cached_property
+    @cached
     def _n_rows(self):
         return np.diff(self._qoff)
 
@@ -273,54 +272,54 @@ class BLCPManyResult(ManyItems):
         v.setflags(write=False)
         return v
 
-    @cached_property
+    @cached
     def z(self) -> np.ndarray:
         return self._gather("z", 0)
 
-    @cached_property
+    @cached
     def w(self) -> np.ndarray:
         return self._gather("w", 1)
 
-    @cached_property
+    @cached
     def lo(self) -> np.ndarray:
         return self._gather("lo", 2, self._los)
 
-    @cached_property
+    @cached
     def hi(self) -> np.ndarray:
         return self._gather("hi", 3, self._his)
 
-    @cached_property
+    @cached
     def status(self) -> np.ndarray:
         if self._qoff is None:
             return self._of_column("status", np.int64)
         return self._column(np.zeros(len(self._items), dtype=np.int64), "status", int)
 
-    @cached_property
+    @cached
     def pivots(self) -> np.ndarray:
         if self._qoff is None:
             return self._of_column("pivots", np.int64)
         return self._column(self._out_i[:, 1], "pivots", int)
 
-    @cached_property
+    @cached
     def recoveries(self) -> np.ndarray:
         if self._qoff is None:
             return self._of_column("recoveries", np.int64)
         return self._column(self._out_i[:, 4], "recoveries", int)
 
-    @cached_property
+    @cached
     def residual(self) -> np.ndarray:
         if self._qoff is None:
             return self._of_column("residual", np.float64)
         return self._column(self._out_f, "residual", float)
 
-    @cached_property
+    @cached
     def warm_start(self) -> BoxWarmStartBatch:
         if self._qoff is None:  # (_of: as the batch path writes a special island's states)
             kept = [r.warm_start for r in self._items]
             codes = [w.row_states() if w is not None else np.zeros(len(r.z), np.int8)
                      for w, r in zip(kept, self._items)]
             ws = BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
-                                            np.concatenate(codes))
+                                            codes[0] if len(codes) == 1 else np.concatenate(codes))
             # the items' own warm starts made from codes (their z_basic, at_upper not set:
             # what _from_codes makes of these codes, so batch[b] is the same value), passed
             # back as they are (an island solved with 0 pivots keeps the one it was given)
@@ -472,6 +471,13 @@ def _few(M, q, lo, hi, findex, warm_start):
     or a sequence of BoxWarmStart or None, or a solve refuses its arguments (the general
     path then says what is wrong, naming the island, as it always has). Item b is
     solve_blcp's result either way, bit for bit."""
+    if _blcp._FRONT is _NATIVE_FRONT:  # (a test may switch solve_blcp's front off)
+        # every island's native front in one call (src/python_front_box.cpp): the items
+        # when each call settles its island, else None (then the loop below, from the start)
+        items = _FRONT_MANY(M, q, lo, hi, findex, warm_start._list()
+                            if type(warm_start) is BoxWarmStartBatch else warm_start)
+        if items is not None:
+            return BLCPManyResult._of(items)
     B = len(M)
     if not (type(q) in _SEQ and type(lo) in _SEQ and type(hi) in _SEQ
             and len(q) == len(lo) == len(hi) == B):
@@ -510,6 +516,7 @@ def _few(M, q, lo, hi, findex, warm_start):
     return BLCPManyResult._of(items)
 
 
+_NATIVE_FRONT, _FRONT_MANY = _core.blcp_front, _core.blcp_front_many
 _NO_FINDEX = np.zeros(0, dtype=np.int64)
 _BAD_DATA = -2  # boxed.batch's stage for data the kernels refuse
 
