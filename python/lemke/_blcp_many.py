@@ -71,11 +71,14 @@ class BoxWarmStartBatch(Value):
             object.__setattr__(self, name, v)
 
     @classmethod
-    def _trusted(cls, n, state) -> "BoxWarmStartBatch":
+    def _trusted(cls, n, state, read_only=False) -> "BoxWarmStartBatch":
+        """Made of arrays of the solver's own (``read_only``: both read-only already)."""
         ws = object.__new__(cls)
-        for name, v in (("n", n), ("state", state)):
-            v.setflags(write=False)
-            ws.__dict__[name] = v
+        if not read_only:
+            n.setflags(write=False)
+            state.setflags(write=False)
+        d = ws.__dict__
+        d["n"], d["state"] = n, state
         return ws
 
     @classmethod
@@ -316,10 +319,13 @@ class BLCPManyResult(ManyItems):
     def warm_start(self) -> BoxWarmStartBatch:
         if self._qoff is None:  # (_of: as the batch path writes a special island's states)
             kept = [r.warm_start for r in self._items]
-            codes = [w.row_states() if w is not None else np.zeros(len(r.z), np.int8)
-                     for w, r in zip(kept, self._items)]
-            ws = BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
-                                            codes[0] if len(codes) == 1 else np.concatenate(codes))
+            codes = [w.row_states() if w is not None else _cold_codes(len(r.z))
+                     for w, r in zip(kept, self._items)]  # (read-only, as row_states makes them)
+            if len(codes) == 1:
+                ws = BoxWarmStartBatch._trusted(_one_size(codes[0].size), codes[0], read_only=True)
+            else:
+                ws = BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
+                                                np.concatenate(codes))
             # the items' own warm starts made from codes (their z_basic, at_upper not set:
             # what _from_codes makes of these codes, so batch[b] is the same value), passed
             # back as they are (an island solved with 0 pivots keeps the one it was given)
@@ -514,6 +520,23 @@ def _few(M, q, lo, hi, findex, warm_start):
     except (TypeError, ValueError):
         return None
     return BLCPManyResult._of(items)
+
+
+def _cold_codes(n):
+    c = np.zeros(n, np.int8)
+    c.setflags(write=False)
+    return c
+
+
+def _one_size(n, _kept={}):
+    """The read-only array [n] (the sizes of a one-island batch), made once per n."""
+    a = _kept.get(n)
+    if a is None:
+        a = np.array([n], dtype=np.int64)
+        a.setflags(write=False)
+        if len(_kept) < 4096:
+            _kept[n] = a
+    return a
 
 
 _NATIVE_FRONT, _FRONT_MANY = _core.blcp_front, _core.blcp_front_many
