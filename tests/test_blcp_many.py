@@ -457,6 +457,39 @@ def test_a_few_islands_in_one_native_call_are_the_loop(seed, monkeypatch):
     _same_as_one_by_one(native, *args, fis[:FEW])
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_more_small_islands_one_by_one_are_the_batch_path(seed):
+    """More than FEW islands go one by one too when they are small (up to _FEW_SMALL of
+    them, _SMALL_ROWS rows in all): every field and item bit for bit the batch path's, cold
+    and warm from the result's batch (then from a batch made of the same codes, whose
+    islands it makes and keeps); more rows than that go to the batch path."""
+    from lemke._batch import FEW
+    from lemke._blcp_many import _FEW_SMALL, _SMALL_ROWS
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=24)
+    take = []
+    for b in range(24):  # (islands of rows > 0, as many as fit)
+        if qs[b].size and sum(qs[c].size for c in take) + qs[b].size <= _SMALL_ROWS \
+                and len(take) < _FEW_SMALL:
+            take.append(b)
+    assert len(take) > FEW
+    pick = lambda v: [v[b] for b in take]  # noqa: E731
+    args, args2, fi = (pick(Ms), pick(qs), pick(los), pick(his)), (pick(Ms), pick(qs2), pick(los), pick(his)), pick(fis)
+    opts = lemke.Options()
+    few = lemke.solve_blcp_many(*args, findex=fi)
+    assert few._qoff is None
+    assert _fields(few) == _fields(lemke.solve_blcp_many(*args, findex=fi, options=opts))
+    _same_as_one_by_one(few, *args, fi)
+    plain = BoxWarmStartBatch(few.warm_start.n, few.warm_start.state)
+    for ws in (few.warm_start, plain, plain):  # (plain twice: its kept islands the second time)
+        a = lemke.solve_blcp_many(*args2, findex=fi, warm_start=ws)
+        b = lemke.solve_blcp_many(*args2, findex=fi, warm_start=ws, options=opts)
+        assert a._qoff is None and _fields(a) == _fields(b)
+        assert list(ws) == list(BoxWarmStartBatch(ws.n, ws.state))
+    big = Ms[:4] * 5, qs[:4] * 5, los[:4] * 5, his[:4] * 5
+    assert sum(q.size for q in big[1]) > _SMALL_ROWS
+    assert lemke.solve_blcp_many(*big, findex=fis[:4] * 5)._qoff is not None
+
+
 def test_from_codes_small_is_the_numpy_rule():
     """_blcp._from_codes (a Python loop for up to _FEW_ROWS rows, numpy above; z_basic and
     at_upper made when first read) gives the BoxWarmStart of the row-state rule computed

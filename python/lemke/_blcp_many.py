@@ -120,13 +120,15 @@ class BoxWarmStartBatch(Value):
     def _list(self) -> list:
         """Every island's BoxWarmStart: those it was made of where it keeps them (a few
         islands' batch, ``BLCPManyResult._of``: an item's own where it is one that
-        ``_from_codes`` made of the same codes), the others made from the codes."""
+        ``_from_codes`` made of the same codes), the others made from the codes when first
+        asked for, then kept."""
         kept = self.__dict__.get("_kept")
-        if kept is not None and None not in kept:
-            return list(kept)
-        off, s = self.offsets.tolist(), self.state
-        return [kept[b] if kept is not None and kept[b] is not None
-                else _from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size)]
+        if kept is None or None in kept:
+            off, s = self.offsets.tolist(), self.state
+            kept = [kept[b] if kept is not None and kept[b] is not None
+                    else _from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size)]
+            self.__dict__["_kept"] = kept  # (kept: the batch is immutable, so are they)
+        return list(kept)
 
     def __repr__(self) -> str:
         return f"BoxWarmStartBatch(B={self.n.size}, rows={self.state.size})"
@@ -392,7 +394,8 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp_many, M, q, lo, hi, findex=findex, warm_start=warm_start,
                      sizes=sizes, workers=workers)
-    if (options is None and sizes is None and type(M) in _SEQ and 0 < len(M) <= FEW
+    if (options is None and sizes is None and type(M) in _SEQ and 0 < len(M) <= _FEW_SMALL
+            and (len(M) <= FEW or _small(q))
             and (workers is None or (type(workers) is int and workers > 0))):
         res = _few(M, q, lo, hi, findex, warm_start)
         if res is not None:
@@ -468,8 +471,28 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
                           loflat, hiflat, given, special, answer)
 
 
+# More islands than FEW also go one by one when they are small (a contact scene's small
+# steps: single contacts of 3 rows), up to _FEW_SMALL of them and _SMALL_ROWS rows in all:
+# each island's native front costs a few microseconds, the batch's set-up tens, and the
+# batch's threads gain nothing on so little work.
+_FEW_SMALL, _SMALL_ROWS = 16, 64
+
+
+def _small(q):
+    """Whether q is a list or tuple of ndarrays of _SMALL_ROWS entries in all, at most."""
+    if type(q) not in _SEQ:
+        return False
+    total = 0
+    for qb in q:
+        if type(qb) is not _ND:
+            return False
+        total += qb.size
+    return total <= _SMALL_ROWS
+
+
 def _few(M, q, lo, hi, findex, warm_start):
-    """solve_blcp_many's result for a few islands (M a list or tuple of at most FEW) solved
+    """solve_blcp_many's result for a few islands (M a list or tuple of at most FEW, or
+    of at most _FEW_SMALL small ones) solved
     one by one by ``solve_blcp`` (its native front: microseconds each, where the batch's
     set-up of its flat arrays and offsets costs tens of microseconds), or None for the
     general path: when M_b, q_b are not float64 ndarrays of sizes n_b >= 1, the sequences'
