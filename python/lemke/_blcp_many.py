@@ -117,7 +117,7 @@ class BoxWarmStartBatch(Value):
     def __iter__(self):
         return iter(self._list())
 
-    def _list(self) -> list:
+    def _list(self) -> tuple:
         """Every island's BoxWarmStart: those it was made of where it keeps them (a few
         islands' batch, ``BLCPManyResult._of``: an item's own where it is one that
         ``_from_codes`` made of the same codes), the others made from the codes when first
@@ -125,10 +125,10 @@ class BoxWarmStartBatch(Value):
         kept = self.__dict__.get("_kept")
         if kept is None or None in kept:
             off, s = self.offsets.tolist(), self.state
-            kept = [kept[b] if kept is not None and kept[b] is not None
-                    else _from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size)]
+            kept = tuple([kept[b] if kept is not None and kept[b] is not None
+                          else _from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size)])
             self.__dict__["_kept"] = kept  # (kept: the batch is immutable, so are they)
-        return list(kept)
+        return kept
 
     def __repr__(self) -> str:
         return f"BoxWarmStartBatch(B={self.n.size}, rows={self.state.size})"
@@ -331,8 +331,8 @@ class BLCPManyResult(ManyItems):
             # the items' own warm starts made from codes (their z_basic, at_upper not set:
             # what _from_codes makes of these codes, so batch[b] is the same value), passed
             # back as they are (an island solved with 0 pivots keeps the one it was given)
-            ws.__dict__["_kept"] = [w if w is not None and "z_basic" not in w.__dict__ else None
-                                    for w in kept]
+            ws.__dict__["_kept"] = tuple([w if w is not None and "z_basic" not in w.__dict__ else None
+                                          for w in kept])
             return ws
         return BoxWarmStartBatch._trusted(np.diff(self._qoff), self._state)
 
