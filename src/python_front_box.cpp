@@ -282,12 +282,46 @@ nb::object blcp_front(nb::handle M_h, nb::handle q_h, nb::handle lo_h, nb::handl
     return one_call(M, q, lo, hi, lo_h, hi_h, findex, ws, n);
 }
 
+// solve_blcp_many's few path (_blcp_many._few): blcp_front of each island of M, q, lo, hi
+// (lists or tuples of B islands), findex and ws (None, or such sequences of B: an island's
+// friction index or None, its BoxWarmStart or None), in order; the list of the B results
+// when each call gives one, else None (the Python front then does it all as before, each
+// island's first call the same call).
+nb::object blcp_front_many(nb::handle M, nb::handle q, nb::handle lo, nb::handle hi,
+                           nb::handle findex, nb::handle ws) {
+    auto seq = [](nb::handle o) { return PyList_CheckExact(o.ptr()) || PyTuple_CheckExact(o.ptr()); };
+    if (!bf.on || !seq(M) || !seq(q) || !seq(lo) || !seq(hi)) return nb::none();
+    Py_ssize_t B = PySequence_Fast_GET_SIZE(M.ptr());
+    auto sized = [&](nb::handle o) { return PySequence_Fast_GET_SIZE(o.ptr()) == B; };
+    if (B < 1 || !sized(q) || !sized(lo) || !sized(hi) ||
+        (!findex.is_none() && (!seq(findex) || !sized(findex))) ||
+        (!ws.is_none() && (!seq(ws) || !sized(ws))))
+        return nb::none();
+    PyObject** Ms = PySequence_Fast_ITEMS(M.ptr());
+    PyObject** qs = PySequence_Fast_ITEMS(q.ptr());
+    PyObject** los = PySequence_Fast_ITEMS(lo.ptr());
+    PyObject** his = PySequence_Fast_ITEMS(hi.ptr());
+    PyObject** fis = findex.is_none() ? nullptr : PySequence_Fast_ITEMS(findex.ptr());
+    PyObject** wss = ws.is_none() ? nullptr : PySequence_Fast_ITEMS(ws.ptr());
+    nb::object items = nb::steal(PyList_New(B));
+    if (!items.is_valid()) throw nb::python_error();
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        nb::object r = blcp_front(Ms[b], qs[b], los[b], his[b], fis ? fis[b] : Py_None,
+                                  wss ? wss[b] : Py_None);
+        if (r.is_none() || r.ptr() == Py_False || PyTuple_CheckExact(r.ptr())) return nb::none();
+        PyList_SET_ITEM(items.ptr(), b, r.release().ptr());
+    }
+    return items;
+}
+
 }  // namespace
 
 void bind_front_box(nb::module_& m) {
     m.def("blcp_front_init", &init, "result_cls"_a, "ws_cls"_a, "solved"_a, "spans"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a);
     m.def("blcp_front", &blcp_front, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a.none(),
+          "ws"_a.none());
+    m.def("blcp_front_many", &blcp_front_many, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a.none(),
           "ws"_a.none());
     m.def("blcp_front_on", [] { return bf.on; });
 }

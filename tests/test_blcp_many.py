@@ -394,6 +394,102 @@ def test_a_few_islands_one_by_one_are_the_batch_path(seed):
             Ms[:2], qs[:2], los[:2], his[:2]).warm_start)
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_few_islands_carried_step_to_step(seed):
+    """Steps of a few islands, each warm from the last step's result.warm_start (a batch
+    that keeps the items' own warm starts made from codes, passed back as they are): every
+    field and item bit for bit the batch path's fed the same codes, and the batch's items
+    the values that its codes give (a batch of the same n and state without them)."""
+    from lemke._batch import FEW
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=FEW)
+    args = (Ms[:FEW], qs[:FEW], los[:FEW], his[:FEW])
+    opts = lemke.Options()
+    few = lemke.solve_blcp_many(*args, findex=fis[:FEW])
+    kept_seen = False
+    for step in range(4):
+        ws = few.warm_start
+        plain = BoxWarmStartBatch(ws.n, ws.state)  # (the same codes, nothing kept)
+        assert ws == plain and list(ws) == list(plain)
+        assert [ws[b] for b in range(len(ws))] == list(plain)
+        kept_seen |= any(w is not None for w in ws.__dict__.get("_kept", ()))
+        q = [qb * (1.0 + 1e-3 * step) for qb in (qs if step % 2 == 0 else qs2)[:FEW]]
+        args = (Ms[:FEW], q, los[:FEW], his[:FEW])
+        a = lemke.solve_blcp_many(*args, findex=fis[:FEW], warm_start=ws)
+        b = lemke.solve_blcp_many(*args, findex=fis[:FEW], warm_start=plain, options=opts)
+        assert a._qoff is None and b._qoff is not None
+        assert _fields(a) == _fields(b)
+        for r, Mb, qb, lb, hb, fb in zip(a, *args, fis[:FEW]):
+            if r.success:
+                _check(Mb, qb, lb, hb, fb, r.z)
+        few = a
+    assert kept_seen
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_few_islands_in_one_native_call_are_the_loop(seed, monkeypatch):
+    """_core.blcp_front_many (every island's native front in one call) gives the items
+    that the Python loop of _few gives (solve_blcp's front island by island: taken here by
+    wrapping _blcp._FRONT), every field bit for bit, cold and warm; an island its front
+    does not settle (a ray) sends the whole call to the loop."""
+    from lemke import _blcp, _blcp_many, _core
+    from lemke._batch import FEW
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=FEW)
+    args = (Ms[:FEW], qs[:FEW], los[:FEW], his[:FEW])
+    args2 = (Ms[:FEW], qs2[:FEW], los[:FEW], his[:FEW])
+    items = _core.blcp_front_many(*args, fis[:FEW], None)
+    assert items is not None and len(items) == FEW
+    native = lemke.solve_blcp_many(*args, findex=fis[:FEW])
+    wss = (native.warm_start, list(native.warm_start))
+    native_warm = [lemke.solve_blcp_many(*args2, findex=fis[:FEW], warm_start=w) for w in wss]
+    ray = (Ms[:1] + [-np.eye(2)], qs[:1] + [np.array([-1.0, -1.0])], los[:1] + [np.zeros(2)],
+           his[:1] + [np.full(2, np.inf)])
+    assert _core.blcp_front_many(*ray, None, None) is None
+    native_ray = lemke.solve_blcp_many(*ray)
+    front = _blcp._FRONT
+    monkeypatch.setattr(_blcp, "_FRONT", lambda *a: front(*a))
+    loop = lemke.solve_blcp_many(*args, findex=fis[:FEW])
+    assert _fields(native) == _fields(loop)
+    for w, a in zip(wss, native_warm):
+        b = lemke.solve_blcp_many(*args2, findex=fis[:FEW], warm_start=w)
+        assert a._qoff is None and b._qoff is None and _fields(a) == _fields(b)
+    assert _fields(native_ray) == _fields(lemke.solve_blcp_many(*ray))
+    assert native_ray[1].status == lemke.Status.RAY_TERMINATION
+    _same_as_one_by_one(native, *args, fis[:FEW])
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_more_small_islands_one_by_one_are_the_batch_path(seed):
+    """More than FEW islands go one by one too when they are small (up to _FEW_SMALL of
+    them, _SMALL_ROWS rows in all): every field and item bit for bit the batch path's, cold
+    and warm from the result's batch (then from a batch made of the same codes, whose
+    islands it makes and keeps); more rows than that go to the batch path."""
+    from lemke._batch import FEW
+    from lemke._blcp_many import _FEW_SMALL, _SMALL_ROWS
+    Ms, qs, los, his, fis, qs2 = _islands(seed, B=24)
+    take = []
+    for b in range(24):  # (islands of rows > 0, as many as fit)
+        if qs[b].size and sum(qs[c].size for c in take) + qs[b].size <= _SMALL_ROWS \
+                and len(take) < _FEW_SMALL:
+            take.append(b)
+    assert len(take) > FEW
+    pick = lambda v: [v[b] for b in take]  # noqa: E731
+    args, args2, fi = (pick(Ms), pick(qs), pick(los), pick(his)), (pick(Ms), pick(qs2), pick(los), pick(his)), pick(fis)
+    opts = lemke.Options()
+    few = lemke.solve_blcp_many(*args, findex=fi)
+    assert few._qoff is None
+    assert _fields(few) == _fields(lemke.solve_blcp_many(*args, findex=fi, options=opts))
+    _same_as_one_by_one(few, *args, fi)
+    plain = BoxWarmStartBatch(few.warm_start.n, few.warm_start.state)
+    for ws in (few.warm_start, plain, plain):  # (plain twice: its kept islands the second time)
+        a = lemke.solve_blcp_many(*args2, findex=fi, warm_start=ws)
+        b = lemke.solve_blcp_many(*args2, findex=fi, warm_start=ws, options=opts)
+        assert a._qoff is None and _fields(a) == _fields(b)
+        assert list(ws) == list(BoxWarmStartBatch(ws.n, ws.state))
+    big = Ms[:4] * 5, qs[:4] * 5, los[:4] * 5, his[:4] * 5
+    assert sum(q.size for q in big[1]) > _SMALL_ROWS
+    assert lemke.solve_blcp_many(*big, findex=fis[:4] * 5)._qoff is not None
+
+
 def test_from_codes_small_is_the_numpy_rule():
     """_blcp._from_codes (a Python loop for up to _FEW_ROWS rows, numpy above; z_basic and
     at_upper made when first read) gives the BoxWarmStart of the row-state rule computed

@@ -14,8 +14,6 @@ and result type exact (``solve_lcp`` / ``solve_blcp``, ``solve_lcp_many`` /
 """
 from __future__ import annotations
 
-from functools import cached_property
-
 import numpy as np
 
 from ._frozen import frozen
@@ -24,8 +22,9 @@ from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _plain, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
+from . import _blcp, _core
 from ._options import as_options, time_limited, timed
-from ._result import ManyItems, Value, _index
+from ._result import ManyItems, Value, _index, cached
 from ._status import Status
 
 _ND = np.ndarray
@@ -72,11 +71,14 @@ class BoxWarmStartBatch(Value):
             object.__setattr__(self, name, v)
 
     @classmethod
-    def _trusted(cls, n, state) -> "BoxWarmStartBatch":
+    def _trusted(cls, n, state, read_only=False) -> "BoxWarmStartBatch":
+        """Made of arrays of the solver's own (``read_only``: both read-only already)."""
         ws = object.__new__(cls)
-        for name, v in (("n", n), ("state", state)):
-            v.setflags(write=False)
-            ws.__dict__[name] = v
+        if not read_only:
+            n.setflags(write=False)
+            state.setflags(write=False)
+        d = ws.__dict__
+        d["n"], d["state"] = n, state
         return ws
 
     @classmethod
@@ -94,7 +96,7 @@ class BoxWarmStartBatch(Value):
     def __reduce__(self):
         return (BoxWarmStartBatch._trusted, (self.n.copy(), self.state.copy()))
 
-    @cached_property
+    @cached
     def offsets(self) -> np.ndarray:
         off = np.zeros(self.n.size + 1, dtype=np.int64)
         np.cumsum(self.n, out=off[1:])
@@ -106,12 +108,27 @@ class BoxWarmStartBatch(Value):
 
     def __getitem__(self, b) -> BoxWarmStart:
         b = _index(b, self.n.size)
+        kept = self.__dict__.get("_kept")
+        if kept is not None and kept[b] is not None:
+            return kept[b]
         lo, hi = self.offsets[b: b + 2].tolist()
         return _from_codes(self.state[lo:hi])
 
     def __iter__(self):
-        off, s = self.offsets.tolist(), self.state
-        return (_from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size))
+        return iter(self._list())
+
+    def _list(self) -> tuple:
+        """Every island's BoxWarmStart: those it was made of where it keeps them (a few
+        islands' batch, ``BLCPManyResult._of``: an item's own where it is one that
+        ``_from_codes`` made of the same codes), the others made from the codes when first
+        asked for, then kept."""
+        kept = self.__dict__.get("_kept")
+        if kept is None or None in kept:
+            off, s = self.offsets.tolist(), self.state
+            kept = tuple([kept[b] if kept is not None and kept[b] is not None
+                          else _from_codes(s[off[b]:off[b + 1]]) for b in range(self.n.size)])
+            self.__dict__["_kept"] = kept  # (kept: the batch is immutable, so are they)
+        return kept
 
     def __repr__(self) -> str:
         return f"BoxWarmStartBatch(B={self.n.size}, rows={self.state.size})"
@@ -189,9 +206,16 @@ class BLCPManyResult(ManyItems):
         ``solve_blcp`` (``items``, a list of its results, none empty): the flat fields made
         from them when first read."""
         res = object.__new__(cls)
-        res._items, res._special, res._qoff = items, dict(enumerate(items)), None
-        res._los = res._his = None
+        res._items = items  # (_special: made when first read)
         return res
+
+    def _of_column(self, field, dtype):
+        """A column of a result of ``_of``, read from its items."""
+        v = np.array([getattr(r, field) for r in self._items], dtype=dtype)
+        v.setflags(write=False)
+        return v
+
+    _qoff = _los = _his = None  # (a result of _of: only _items set)
 
     def _build(self, lo, hi):
         """Items lo..hi-1 not built yet, as solve_blcp builds them (``_blcp._lazy``): views
@@ -211,7 +235,7 @@ class BLCPManyResult(ManyItems):
 
     # --- the flat fields ------------------------------------------------------------------
 
-    @cached_property
+    @cached
     def offsets(self) -> np.ndarray:
         if self._qoff is None:  # (_of)
             off = np.zeros(len(self._items) + 1, dtype=np.int64)
@@ -220,7 +244,7 @@ class BLCPManyResult(ManyItems):
             return off
         return self._qoff
 
-    @cached_property
+    @cached
     def _where(self):
         """Per row of the scene: where its z sits in the buffers."""
         qo = self._qoff
@@ -228,7 +252,7 @@ class BLCPManyResult(ManyItems):
         at += np.repeat(self._buff[:-1] + self._answer - qo[:-1], self._n_rows)
         return at
 
-    @cached_property
+    @cached
     def _n_rows(self):
         return np.diff(self._qoff)
 
@@ -253,51 +277,63 @@ class BLCPManyResult(ManyItems):
         v.setflags(write=False)
         return v
 
-    @cached_property
+    @cached
     def z(self) -> np.ndarray:
         return self._gather("z", 0)
 
-    @cached_property
+    @cached
     def w(self) -> np.ndarray:
         return self._gather("w", 1)
 
-    @cached_property
+    @cached
     def lo(self) -> np.ndarray:
         return self._gather("lo", 2, self._los)
 
-    @cached_property
+    @cached
     def hi(self) -> np.ndarray:
         return self._gather("hi", 3, self._his)
 
-    @cached_property
+    @cached
     def status(self) -> np.ndarray:
+        if self._qoff is None:
+            return self._of_column("status", np.int64)
         return self._column(np.zeros(len(self._items), dtype=np.int64), "status", int)
 
-    def _int_column(self, j):
-        """Column j of the kernels' integer results (zeros for _of: every item patched in)."""
-        return np.zeros(len(self._items), dtype=np.int64) if self._qoff is None else self._out_i[:, j]
-
-    @cached_property
+    @cached
     def pivots(self) -> np.ndarray:
-        return self._column(self._int_column(1), "pivots", int)
+        if self._qoff is None:
+            return self._of_column("pivots", np.int64)
+        return self._column(self._out_i[:, 1], "pivots", int)
 
-    @cached_property
+    @cached
     def recoveries(self) -> np.ndarray:
-        return self._column(self._int_column(4), "recoveries", int)
+        if self._qoff is None:
+            return self._of_column("recoveries", np.int64)
+        return self._column(self._out_i[:, 4], "recoveries", int)
 
-    @cached_property
+    @cached
     def residual(self) -> np.ndarray:
         if self._qoff is None:
-            return self._column(np.zeros(len(self._items)), "residual", float)
+            return self._of_column("residual", np.float64)
         return self._column(self._out_f, "residual", float)
 
-    @cached_property
+    @cached
     def warm_start(self) -> BoxWarmStartBatch:
         if self._qoff is None:  # (_of: as the batch path writes a special island's states)
-            codes = [r.warm_start.row_states() if r.warm_start is not None
-                     else np.zeros(len(r.z), np.int8) for r in self._items]
-            return BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
-                                              np.concatenate(codes))
+            kept = [r.warm_start for r in self._items]
+            codes = [w.row_states() if w is not None else _cold_codes(len(r.z))
+                     for w, r in zip(kept, self._items)]  # (read-only, as row_states makes them)
+            if len(codes) == 1:
+                ws = BoxWarmStartBatch._trusted(_one_size(codes[0].size), codes[0], read_only=True)
+            else:
+                ws = BoxWarmStartBatch._trusted(np.array([c.size for c in codes], dtype=np.int64),
+                                                np.concatenate(codes))
+            # the items' own warm starts made from codes (their z_basic, at_upper not set:
+            # what _from_codes makes of these codes, so batch[b] is the same value), passed
+            # back as they are (an island solved with 0 pivots keeps the one it was given)
+            ws.__dict__["_kept"] = tuple([w if w is not None and "z_basic" not in w.__dict__ else None
+                                          for w in kept])
+            return ws
         return BoxWarmStartBatch._trusted(np.diff(self._qoff), self._state)
 
 
@@ -358,7 +394,8 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp_many, M, q, lo, hi, findex=findex, warm_start=warm_start,
                      sizes=sizes, workers=workers)
-    if (options is None and sizes is None and type(M) in _SEQ and 0 < len(M) <= FEW
+    if (options is None and sizes is None and type(M) in _SEQ and 0 < len(M) <= _FEW_SMALL
+            and (len(M) <= FEW or _small(q))
             and (workers is None or (type(workers) is int and workers > 0))):
         res = _few(M, q, lo, hi, findex, warm_start)
         if res is not None:
@@ -434,8 +471,28 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
                           loflat, hiflat, given, special, answer)
 
 
+# More islands than FEW also go one by one when they are small (a contact scene's small
+# steps: single contacts of 3 rows), up to _FEW_SMALL of them and _SMALL_ROWS rows in all:
+# each island's native front costs a few microseconds, the batch's set-up tens, and the
+# batch's threads gain nothing on so little work.
+_FEW_SMALL, _SMALL_ROWS = 16, 64
+
+
+def _small(q):
+    """Whether q is a list or tuple of ndarrays of _SMALL_ROWS entries in all, at most."""
+    if type(q) not in _SEQ:
+        return False
+    total = 0
+    for qb in q:
+        if type(qb) is not _ND:
+            return False
+        total += qb.size
+    return total <= _SMALL_ROWS
+
+
 def _few(M, q, lo, hi, findex, warm_start):
-    """solve_blcp_many's result for a few islands (M a list or tuple of at most FEW) solved
+    """solve_blcp_many's result for a few islands (M a list or tuple of at most FEW, or
+    of at most _FEW_SMALL small ones) solved
     one by one by ``solve_blcp`` (its native front: microseconds each, where the batch's
     set-up of its flat arrays and offsets costs tens of microseconds), or None for the
     general path: when M_b, q_b are not float64 ndarrays of sizes n_b >= 1, the sequences'
@@ -443,6 +500,13 @@ def _few(M, q, lo, hi, findex, warm_start):
     or a sequence of BoxWarmStart or None, or a solve refuses its arguments (the general
     path then says what is wrong, naming the island, as it always has). Item b is
     solve_blcp's result either way, bit for bit."""
+    if _blcp._FRONT is _NATIVE_FRONT:  # (a test may switch solve_blcp's front off)
+        # every island's native front in one call (src/python_front_box.cpp): the items
+        # when each call settles its island, else None (then the loop below, from the start)
+        items = _FRONT_MANY(M, q, lo, hi, findex, warm_start._list()
+                            if type(warm_start) is BoxWarmStartBatch else warm_start)
+        if items is not None:
+            return BLCPManyResult._of(items)
     B = len(M)
     if not (type(q) in _SEQ and type(lo) in _SEQ and type(hi) in _SEQ
             and len(q) == len(lo) == len(hi) == B):
@@ -460,20 +524,45 @@ def _few(M, q, lo, hi, findex, warm_start):
     elif type(warm_start) is BoxWarmStartBatch:
         if warm_start.n.tolist() != [qb.shape[0] for qb in q]:
             return None
-        ws = list(warm_start)
+        ws = warm_start._list()
     elif (type(warm_start) in _SEQ and len(warm_start) == B
           and all(w is None or type(w) is BoxWarmStart for w in warm_start)):
         ws = warm_start
     else:
         return None
+    front = _blcp._FRONT
+    items = []
     try:
-        items = [solve_blcp(M[b], q[b], lo[b], hi[b], findex=fis[b], warm_start=ws[b])
-                 for b in range(B)]
+        for b in range(B):
+            # solve_blcp's own first step (its native front), the rest of solve_blcp (the
+            # same call again first) where that does not settle it
+            r = front(M[b], q[b], lo[b], hi[b], fis[b], ws[b])
+            if r is None or r is False or type(r) is tuple:
+                r = solve_blcp(M[b], q[b], lo[b], hi[b], findex=fis[b], warm_start=ws[b])
+            items.append(r)
     except (TypeError, ValueError):
         return None
     return BLCPManyResult._of(items)
 
 
+def _cold_codes(n):
+    c = np.zeros(n, np.int8)
+    c.setflags(write=False)
+    return c
+
+
+def _one_size(n, _kept={}):
+    """The read-only array [n] (the sizes of a one-island batch), made once per n."""
+    a = _kept.get(n)
+    if a is None:
+        a = np.array([n], dtype=np.int64)
+        a.setflags(write=False)
+        if len(_kept) < 4096:
+            _kept[n] = a
+    return a
+
+
+_NATIVE_FRONT, _FRONT_MANY = _core.blcp_front, _core.blcp_front_many
 _NO_FINDEX = np.zeros(0, dtype=np.int64)
 _BAD_DATA = -2  # boxed.batch's stage for data the kernels refuse
 
