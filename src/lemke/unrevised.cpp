@@ -307,20 +307,23 @@ struct Run {
     // Row i of the ratio test is pair i's basic variable (row n: z0), its value in rv and
     // its change in rc; the one pair with neither basic gets 0 and 0 there, a row that never
     // blocks (rc = 0 is neither below the ratio test's threshold nor above 0 for first_row),
-    // so the rows that can block are the basic variables in pair order. Selects, not
-    // branches: which of a pair is basic is unpredictable.
+    // so the rows that can block are the basic variables in pair order. The basic w's first
+    // (a select per row, a vector loop), then the basic z's written over their pairs from
+    // beta's list (a z before its w, as the select per pair on which is basic had it): the
+    // same values without that select's unpredictable branches (GCC made them branches).
     LEMKE_STEP void pairs() const {
         for (idx i = 0; i < n; ++i) {
-            idx p = bpos[i];
-            bool z = p >= 0, basic = z || apos[i] < 0;
-            idx pz = z ? p : 0;
-            double v = z ? zb[pz] : wv[i], c = z ? dzb[pz] : dw[i];
-            rv[i] = basic ? v : 0.0;
-            rc[i] = basic ? c : 0.0;
+            bool basic = apos[i] < 0;
+            rv[i] = basic ? wv[i] : 0.0;
+            rc[i] = basic ? dw[i] : 0.0;
         }
-        idx p = bpos[n];
-        rv[n] = p >= 0 ? zb[p] : 0.0;
-        rc[n] = p >= 0 ? dzb[p] : 0.0;
+        rv[n] = 0.0;
+        rc[n] = 0.0;
+        for (idx p = 0; p < k; ++p) {
+            idx b = blist[p];
+            rv[b] = zb[p];
+            rc[b] = dzb[p];
+        }
     }
 
     // The basic variable of ratio-test row i.
