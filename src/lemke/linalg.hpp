@@ -176,6 +176,34 @@ LEMKE_ALWAYS_INLINE void dot_lanes4(const double* const* x, const double* y, idx
 #endif
 }
 
+// dot_lanes of eight rows with one y: out[t] = dot_lanes(x[t], y, k), each row's sums in
+// dot's order (the same bits), y's loads shared and the eight rows' pairwise sums taken by
+// one hsum8 (for short rows, the sums cost as much as the products).
+LEMKE_ALWAYS_INLINE void dot_lanes8(const double* const* x, const double* y, idx k, double* out) {
+#ifdef LEMKE_SIMD
+    simd::v8d s[8];
+    for (int t = 0; t < 8; ++t) s[t] = simd::splat8(0.0);
+    idx j = 0;
+    for (; j + 8 <= k; j += 8) {
+        simd::v8d v = simd::load8(y + j);
+        for (int t = 0; t < 8; ++t) s[t] += simd::load8(x[t] + j) * v;
+    }
+    if (j < k) {
+        double a[8];
+        for (int t = 0; t < 8; ++t) a[t] = s[t][0];
+        for (; j < k; ++j) {
+            double v = y[j];
+            for (int t = 0; t < 8; ++t) a[t] += x[t][j] * v;
+        }
+        for (int t = 0; t < 8; ++t) s[t][0] = a[t];
+    }
+    simd::hsum8(s[0], s[1], s[2], s[3], s[4], s[5], s[6], s[7], out);
+#else
+    dot_lanes4(x, y, k, out);
+    dot_lanes4(x + 4, y, k, out + 4);
+#endif
+}
+
 // Whether every x[j] is finite: sum 0 * x[j] is 0 then and NaN otherwise, in any order, so
 // eight running sums (a vector loop without reordering permission).
 inline bool all_finite(const double* x, idx k) {

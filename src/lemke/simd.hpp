@@ -83,6 +83,22 @@ LEMKE_SIMD_INLINE void hsum4(v8d a, v8d b, v8d c, v8d d, double* out) {
     v8d s = h + LEMKE_SHUFFLE8(h, h, 4, 5, 6, 7, 0, 1, 2, 3);
     for (int l = 0; l < 4; ++l) out[l] = s[l];
 }
+
+// out[0..7] = the same pairwise sums for the lanes of eight vectors a..h, in three levels of
+// shuffles (pairs, quads, halves) that leave the eight sums in one vector, stored at once.
+LEMKE_SIMD_INLINE void hsum8(v8d a, v8d b, v8d c, v8d d, v8d e, v8d f, v8d g, v8d h,
+                             double* out) {
+#define LEMKE_PAIRS(x, y) (LEMKE_SHUFFLE8(x, y, 0, 8, 2, 10, 4, 12, 6, 14) + \
+                           LEMKE_SHUFFLE8(x, y, 1, 9, 3, 11, 5, 13, 7, 15))
+#define LEMKE_QUADS(x, y) (LEMKE_SHUFFLE8(x, y, 0, 1, 8, 9, 4, 5, 12, 13) + \
+                           LEMKE_SHUFFLE8(x, y, 2, 3, 10, 11, 6, 7, 14, 15))
+    v8d abcd = LEMKE_QUADS(LEMKE_PAIRS(a, b), LEMKE_PAIRS(c, d));  // (a0123 .. d0123, a4567 ..)
+    v8d efgh = LEMKE_QUADS(LEMKE_PAIRS(e, f), LEMKE_PAIRS(g, h));
+#undef LEMKE_PAIRS
+#undef LEMKE_QUADS
+    store8(out, LEMKE_SHUFFLE8(abcd, efgh, 0, 1, 2, 3, 8, 9, 10, 11) +
+                    LEMKE_SHUFFLE8(abcd, efgh, 4, 5, 6, 7, 12, 13, 14, 15));
+}
 #endif
 
 }  // namespace simd

@@ -63,13 +63,13 @@ void add_rows(Mat<double> G, idx k, const double* a, const double* x, bool skip_
 
 // add_rows, then out[r] = dot_lanes(G.row(r), y, ky) for every r < k (the rows add_rows
 // skips too; G.cols >= ky): the next direction's G y (matvec's numbers, as matvec would take
-// them after the update) while the rows are in cache.
+// them after the update) while the rows are in cache, eight rows a pass (dot_lanes8).
 LEMKE_CLONES
 void add_rows_dot(Mat<double> G, idx k, const double* a, const double* __restrict x,
                   bool skip_zero, const double* y, idx ky, double* out) {
     idx r = 0;
-    for (; r < k; r += 4) {
-        idx end = r + 4 < k ? r + 4 : k;
+    for (; r < k; r += 8) {
+        idx end = r + 8 < k ? r + 8 : k;
         for (idx t = r; t < end; ++t) {
             double f = a[t];
             if (f != 0.0 || !skip_zero) {
@@ -77,9 +77,14 @@ void add_rows_dot(Mat<double> G, idx k, const double* a, const double* __restric
                 for (idx c = 0; c < k; ++c) g[c] += f * x[c];
             }
         }
-        if (end == r + 4) {
+        if (end == r + 8) {
+            const double* rows[8];
+            for (int l = 0; l < 8; ++l) rows[l] = G.row(r + l);
+            dot_lanes8(rows, y, ky, out + r);
+        } else if (end >= r + 4) {
             const double* rows[4] = {G.row(r), G.row(r + 1), G.row(r + 2), G.row(r + 3)};
             dot_lanes4(rows, y, ky, out + r);
+            for (idx t = r + 4; t < end; ++t) out[t] = dot_lanes(G.row(t), y, ky);
         } else {
             for (idx t = r; t < end; ++t) out[t] = dot_lanes(G.row(t), y, ky);
         }
@@ -119,8 +124,9 @@ void row_times(const double* x, Mat<const double> G, idx k, double* __restrict o
 }
 
 // dwv[i] = base[i] + AB[i, :k] dz for the rows with a basic w (apos[i] < 0; base nullptr:
-// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row), four rows
-// at a time (dot_lanes4: dz's loads shared, each row's sums its own). The rows are listed
+// 0 +), each by dot's sum (inlined: a call per row cost as much as a short row), eight rows
+// at a time, then four (dot_lanes8 / dot_lanes4: dz's loads shared, each row's sums its
+// own; eight rows' pairwise sums in one hsum8). The rows are listed
 // first, without a branch (n = 300: a solve 5 % faster than with a branch per row on apos;
 // n = 100: within the noise).
 LEMKE_CLONES
@@ -128,8 +134,8 @@ void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos
                   const double* base, double* dwv) {
     constexpr idx CHUNK = 256;
     idx rows[CHUNK];
-    const double* ptr[4];
-    double d[4];
+    const double* ptr[8];
+    double d[8];
     idx n = AB.rows, i = 0;
     while (i < n) {
         idx nr = 0;
@@ -138,6 +144,14 @@ void basic_w_rows(Mat<const double> AB, const double* dz, idx k, const idx* apos
             nr += apos[i] < 0 ? 1 : 0;
         }
         idx t = 0;
+        for (; t + 8 <= nr; t += 8) {
+            for (int l = 0; l < 8; ++l) ptr[l] = AB.row(rows[t + l]);
+            dot_lanes8(ptr, dz, k, d);
+            for (int l = 0; l < 8; ++l) {
+                idx r = rows[t + l];
+                dwv[r] = base ? base[r] + d[l] : d[l];
+            }
+        }
         for (; t + 4 <= nr; t += 4) {
             for (int l = 0; l < 4; ++l) ptr[l] = AB.row(rows[t + l]);
             dot_lanes4(ptr, dz, k, d);
@@ -293,20 +307,23 @@ struct Run {
     // Row i of the ratio test is pair i's basic variable (row n: z0), its value in rv and
     // its change in rc; the one pair with neither basic gets 0 and 0 there, a row that never
     // blocks (rc = 0 is neither below the ratio test's threshold nor above 0 for first_row),
-    // so the rows that can block are the basic variables in pair order. Selects, not
-    // branches: which of a pair is basic is unpredictable.
+    // so the rows that can block are the basic variables in pair order. The basic w's first
+    // (a select per row, a vector loop), then the basic z's written over their pairs from
+    // beta's list (a z before its w, as the select per pair on which is basic had it): the
+    // same values without that select's unpredictable branches (GCC made them branches).
     LEMKE_STEP void pairs() const {
         for (idx i = 0; i < n; ++i) {
-            idx p = bpos[i];
-            bool z = p >= 0, basic = z || apos[i] < 0;
-            idx pz = z ? p : 0;
-            double v = z ? zb[pz] : wv[i], c = z ? dzb[pz] : dw[i];
-            rv[i] = basic ? v : 0.0;
-            rc[i] = basic ? c : 0.0;
+            bool basic = apos[i] < 0;
+            rv[i] = basic ? wv[i] : 0.0;
+            rc[i] = basic ? dw[i] : 0.0;
         }
-        idx p = bpos[n];
-        rv[n] = p >= 0 ? zb[p] : 0.0;
-        rc[n] = p >= 0 ? dzb[p] : 0.0;
+        rv[n] = 0.0;
+        rc[n] = 0.0;
+        for (idx p = 0; p < k; ++p) {
+            idx b = blist[p];
+            rv[b] = zb[p];
+            rc[b] = dzb[p];
+        }
     }
 
     // The basic variable of ratio-test row i.
