@@ -94,11 +94,13 @@ struct QPWork {
     // With the cache (remember): the nonzeros of keyPs, keyA, keyG by rows, and whether C is
     // finite (point's sums then skip the rows with zz = 0: see point).
     SparseRows spP, spA, spG;
-    bool c_finite = false;
+    bool c_finite = false, sparse_built = false;  // (sparse_ready's)
 
     void layout(idx n_, idx p_, idx m_, bool dense) {
         cached = false;
         c_finite = false;
+        sparse_built = false;
+        spP.on = spA.on = spG.on = false;
         n = n_;
         p = p_;
         m = m_;
@@ -709,11 +711,24 @@ void remember(const Data& dt, const Data& ds, const double* lo, const double* up
     w.key_p0 = dt.p0();
     w.key_m0 = dt.m0();
     w.m_g = m_g;
+    w.spP.on = w.spA.on = w.spG.on = false;  // (built at the first hit: sparse_ready)
+    w.c_finite = false;
+    w.sparse_built = false;
+    w.cached = true;
+}
+
+// The cache's SparseRows and c_finite, made at the first solve that reuses its factors (dt:
+// that solve's data, whose P, A, G are the cache's: same_matrices), not by remember: a first
+// solve of new matrices would pay a scan of Ps, A, G and C for sums that only the solves
+// reusing them save (the sums have the same bits either way).
+void sparse_ready(const Data& dt, QPWork& w) {
+    if (w.sparse_built) return;
+    idx n = dt.n();
     w.spP.build(w.keyPs.data(), n, n);
     w.spA.build(w.keyA.data(), dt.p0(), n);
     w.spG.build(w.keyG.data(), dt.m0(), n);
     w.c_finite = all_finite(w.C.p, w.m * w.n);
-    w.cached = true;
+    w.sparse_built = true;
 }
 
 // factors' right-hand sides on cached factors: f and d (rows_of's values), c, v and g, by
@@ -1669,6 +1684,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     Rows R;
     if (hit && same_structure(dt, lo, up, w, p, m, pat)) {
         // the matrices of the last solve on this thread: its factors and M, new right-hand sides
+        sparse_ready(dt, w);
         R = right_hand_sides(ds, lo, up, w);
     } else {
         if (hit) {  // the same matrices, another structure: the full screen's Ps (the same bits)
