@@ -108,3 +108,9 @@ nanobind::object new_view(nanobind::handle base, Py_ssize_t offset, Py_ssize_t l
 // call, the BimatrixResult, the kernel's (code, pivots, restarts, buf) to go on from, or
 // None (arguments of another kind).
 nanobind::object games_front(nanobind::handle A, nanobind::handle B, nanobind::handle k);
+
+// _core.blcp_front (src/python_front_box.cpp): solve_blcp(M, q, lo, hi, findex=, warm_start=)'s
+// common calls, the BLCPResult, what is left to do (a tuple for _blcp._finish, False for
+// _blcp._general), or None (arguments of another kind).
+nanobind::object blcp_front(nanobind::handle M, nanobind::handle q, nanobind::handle lo,
+                            nanobind::handle hi, nanobind::handle findex, nanobind::handle ws);

@@ -270,11 +270,11 @@ struct Entry {
     PyObject* dict;  // __doc__, __wrapped__, ... (set by functools.update_wrapper)
     vectorcallfunc vectorcall;
     PyObject* py;       // _lcp._solve_lcp
-    PyObject* after;    // _lcp._after_front(M, q, warm_start, beta, r)
+    PyObject* after;    // _lcp._after_front(M, q, warm_start, beta, r) (or _games', _blcp's)
     PyObject* globals;  // _lcp's namespace (its _FRONT read each call)
     PyObject* front;    // _core.lcp_front as first bound
     PyObject* ws_cls;   // WarmStart
-    PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label;
+    PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label, *k_findex;
     // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
     // each call), LCPManyResult, the key of what LCPManyResult._of sets and () for its
     // object.__new__
@@ -455,6 +455,50 @@ PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
 }
 
+// solve_blcp(M, q, lo, hi) with no keyword but findex= and/or warm_start=: blcp_front without
+// a Python frame, as games_call does games_front; a run blcp_front does not settle (a tuple
+// for _finish, False for _general) goes on in _blcp._after_front(M, q, lo, hi, findex,
+// warm_start, r); any other call, and any that blcp_front declines, is the Python
+// function's (_blcp._solve_blcp).
+PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
+                    PyObject* kwnames) {
+    auto* e = reinterpret_cast<Entry*>(self);
+    Py_ssize_t nargs = PyVectorcall_NARGS(nargsf);
+    Py_ssize_t nk = kwnames == nullptr ? 0 : PyTuple_GET_SIZE(kwnames);
+    bool plain = nargs == 4 && front.on;
+    PyObject *fi = Py_None, *ws = Py_None;
+    auto is = [](PyObject* key, PyObject* name) {
+        return key == name || PyUnicode_Compare(key, name) == 0;
+    };
+    for (Py_ssize_t i = 0; i < nk && plain; ++i) {
+        PyObject* key = PyTuple_GET_ITEM(kwnames, i);
+        if (is(key, e->k_findex))
+            fi = args[4 + i];
+        else if (is(key, e->k_warm_start))
+            ws = args[4 + i];
+        else
+            plain = false;
+    }
+    if (plain) {
+        PyObject* now = PyDict_GetItemWithError(e->globals, e->k_front);
+        if (now == nullptr && PyErr_Occurred()) return nullptr;
+        if (now == e->front) {
+            try {
+                nb::object r = blcp_front(args[0], args[1], args[2], args[3], fi, ws);
+                if (!r.is_none()) {
+                    if (r.ptr() != Py_False && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                    PyObject* after[] = {args[0], args[1], args[2], args[3], fi, ws, r.ptr()};
+                    return PyObject_Vectorcall(e->after, after, 7, nullptr);
+                }
+            } catch (...) {
+                error_set();
+                return nullptr;
+            }
+        }
+    }
+    return PyObject_Vectorcall(e->py, args, nargsf, kwnames);
+}
+
 PyObject* entry_get(PyObject* self, PyObject*, PyObject*) {  // (not bound, as a function)
     Py_INCREF(self);
     return self;
@@ -483,7 +527,7 @@ PyTypeObject entry_type = [] {
     t.tp_name = "lemke._core.LCPEntry";
     t.tp_basicsize = sizeof(Entry);
     t.tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL;
-    t.tp_doc = "solve_lcp's, solve_lcp_many's or solve_bimatrix's entry (src/python_front.cpp)";
+    t.tp_doc = "solve_lcp's, solve_lcp_many's, solve_bimatrix's or solve_blcp's entry (src/python_front.cpp)";
     t.tp_call = PyVectorcall_Call;
     t.tp_vectorcall_offset = offsetof(Entry, vectorcall);
     t.tp_dictoffset = offsetof(Entry, dict);
@@ -510,10 +554,11 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
     nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
     for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
     PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n, &e->k_few,
-                         &e->k_items, &e->k_init_label};
-    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "init_label"};
+                         &e->k_items, &e->k_init_label, &e->k_findex};
+    const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "init_label",
+                           "findex"};
     nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
-    for (int i = 0; i < 7; ++i)
+    for (int i = 0; i < 8; ++i)
         if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
     if ((e->no_args = PyTuple_New(0)) == nullptr) throw nb::python_error();
     return res;
@@ -528,6 +573,13 @@ nb::object lcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::ha
 nb::object games_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn) {
     nb::object res = make_entry(py, after, globals, front_fn, nb::none(), nb::none(), nb::none());
     reinterpret_cast<Entry*>(res.ptr())->vectorcall = games_call;
+    return res;
+}
+
+// solve_blcp's entry (blcp_call).
+nb::object blcp_entry(nb::handle py, nb::handle after, nb::handle globals, nb::handle front_fn) {
+    nb::object res = make_entry(py, after, globals, front_fn, nb::none(), nb::none(), nb::none());
+    reinterpret_cast<Entry*>(res.ptr())->vectorcall = blcp_call;
     return res;
 }
 
@@ -618,6 +670,7 @@ void bind_front(nb::module_& m) {
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
+    m.def("blcp_entry", &blcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
     m.def("lcp_many_entry", &lcp_many_entry, "py"_a, "globals"_a, "front"_a, "ws_cls"_a,
           "many_globals"_a, "many_cls"_a);
 }

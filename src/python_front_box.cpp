@@ -264,6 +264,8 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
     return nb::none();
 }
 
+}  // namespace
+
 nb::object blcp_front(nb::handle M_h, nb::handle q_h, nb::handle lo_h, nb::handle hi_h,
                       nb::handle findex, nb::handle ws) {
     if (!bf.on) return nb::none();
@@ -281,6 +283,8 @@ nb::object blcp_front(nb::handle M_h, nb::handle q_h, nb::handle lo_h, nb::handl
         return n < COLD_MAX ? cold(M, q, lo, hi, lo_h, hi_h, n) : nb::none();
     return one_call(M, q, lo, hi, lo_h, hi_h, findex, ws, n);
 }
+
+namespace {
 
 // solve_blcp_many's few path (_blcp_many._few): blcp_front of each island of M, q, lo, hi
 // (lists or tuples of B islands), findex and ws (None, or such sequences of B: an island's

@@ -696,3 +696,86 @@ def test_fast_path_result_is_lazy_and_equals_the_full_build():
     assert np.all(np.where(z >= hi - 1e-9, w <= 1e-9, True))
     inner = (z > lo + 1e-9) & (z < hi - 1e-9)
     assert np.all(np.abs(w[inner]) <= 1e-9)
+
+
+def test_solve_blcp_entry_is_the_python_function_to_its_callers(monkeypatch):
+    """``lemke.solve_blcp`` is the core's entry (``_core.blcp_entry``, src/python_front.cpp):
+    solve_blcp(M, q, lo, hi) with no keyword but findex= and/or warm_start= goes to
+    ``_blcp._FRONT`` with no Python frame (a run it does not settle to
+    ``_blcp._after_front``), everything else to the Python function it wraps; it reads
+    ``_FRONT`` on each call and shows the function's name, docstring, signature and pickles
+    by name.  Results equal the Python function's field by field (bit for bit), cold, warm
+    and with friction."""
+    import inspect
+    import pickle
+
+    from lemke import _blcp
+
+    f = lemke.solve_blcp
+    py = _blcp._solve_blcp
+    assert f is _blcp.solve_blcp and f.__wrapped__ is py and f is not py
+    assert (f.__name__, f.__module__, f.__doc__) == ("solve_blcp", "lemke._blcp", py.__doc__)
+    assert str(inspect.signature(f)) == str(inspect.signature(py))
+    assert repr(f) == repr(py) and pickle.loads(pickle.dumps(f)) is f
+    for seed in range(6):
+        M, q, lo, hi, fi, mu = contacts(seed, 1 + seed % 4)
+        for findex in (None, fi):
+            cold = f(M, q, lo, hi, findex=findex)
+            assert cold == py(M, q, lo, hi, findex=findex) and cold.success
+            if findex is None:
+                assert cold == f(M, q, lo, hi) == py(M, q, lo, hi)
+                assert_box_solution(M, q, lo, hi, cold.z, rtol=1e-7)
+            else:
+                assert_friction_solution(M, q, lo, hi, findex, cold.z)
+            ws = cold.warm_start
+            warm = f(M, q, lo, hi, warm_start=ws, findex=findex)  # (either keyword order)
+            assert warm == py(M, q, lo, hi, findex=findex, warm_start=ws) and warm.pivots == 0
+            q2 = q + 0.3
+            assert f(M, q2, lo, hi, findex=findex, warm_start=ws) == py(M, q2, lo, hi, findex=findex, warm_start=ws)
+    # no Python frame of solve_blcp's on the front's calls (the Python function's otherwise)
+    import sys
+
+    M, q, lo, hi, fi, mu = contacts(2, 3)
+    ws = f(M, q, lo, hi, findex=fi).warm_start
+    seen = []
+    sys.setprofile(lambda frame, event, arg: event == "call" and seen.append(frame.f_code.co_name))
+    try:
+        f(M, q, lo, hi)
+        f(M, q, lo, hi, findex=fi, warm_start=ws)
+        py(M, q, lo, hi)
+    finally:
+        sys.setprofile(None)
+    assert seen.count("solve_blcp") == 1  # py's own
+    # a cold run the front does not settle (a ray: _after_front's _finish) and a warm start
+    # it hands to the general path (another size: _after_front's _general raises)
+    M, q = -np.eye(2), np.array([-1.0, -1.0])
+    lo, hi = np.zeros(2), np.full(2, np.inf)
+    ray = f(M, q, lo, hi)
+    assert ray == py(M, q, lo, hi) and ray.status == lemke.Status.RAY_TERMINATION
+    calls = []
+    front = _blcp._FRONT
+    monkeypatch.setattr(_blcp, "_FRONT", lambda *a: calls.append(a) or front(*a))
+    M, q, lo, hi, fi, mu = contacts(3, 3)
+    assert f(M, q, lo, hi) == py(M, q, lo, hi) and f(M, q, lo, hi, findex=fi) == py(M, q, lo, hi, findex=fi)
+    assert len(calls) == 4 and [c[4] is fi for c in calls] == [False, False, True, True]  # each through Python
+    monkeypatch.undo()
+    with pytest.raises(TypeError):
+        f(M, q, lo)
+    with pytest.raises(TypeError):
+        f(M, q, lo, hi, fi)  # keyword-only, as the Python function's
+    with pytest.raises(TypeError):
+        f(M, q, lo, hi, bogus=1)
+    for call in (f, py):
+        with pytest.raises(ValueError, match="NaN"):
+            call(M, np.full(q.shape, np.nan), lo, hi)
+        with pytest.raises(ValueError, match=r"findex\[1\] = 1 points at its own row"):
+            call(M[:2, :2], q[:2], np.array([0.0, -1.0]), np.array([np.inf, 1.0]), findex=np.array([-1, 1]))
+        with pytest.raises(TypeError):
+            call(M, q, lo, hi, warm_start=object())
+    # the entry's other calls: the Python function's (lists, options, method, progress)
+    r = f(M, q, lo, hi, findex=fi)
+    assert f(M.tolist(), q.tolist(), lo.tolist(), hi.tolist(), findex=fi.tolist()) == r
+    assert f(M, q, lo, hi, findex=fi, options={"max_pivots": 1000}) == r
+    assert f(M, q, lo, hi, findex=fi, method="bounded") == r
+    with pytest.raises(ValueError, match="unknown method"):
+        f(M, q, lo, hi, method="nope")

@@ -34,7 +34,7 @@ evaluated at the final z.
 from __future__ import annotations
 
 from dataclasses import replace
-from functools import lru_cache
+from functools import lru_cache, update_wrapper
 from itertools import repeat
 
 import numpy as np
@@ -556,15 +556,9 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         # buffers for _finish; False: the general path, where _one_call would go), else None.
         r = _FRONT(M, q, lo, hi, findex, warm_start)
         if r is not None:
-            if r is False:
-                return _general(M, q, lo, hi, findex, warm_start, _DEFAULT)
-            if type(r) is not tuple:
-                return r
-            run = _Run(q.shape[0], r[7], r[8])
-            run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = r[:7]
-            with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-                return _from_final(_finish(M, q, lo, hi, _DEFAULT, run), M, q, lo, hi, None,
-                                   _DEFAULT)
+            if r is False or type(r) is tuple:
+                return _after_front(M, q, lo, hi, findex, warm_start, r)
+            return r
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp, M, q, lo, hi, findex=findex, method=method,
                      warm_start=warm_start)
@@ -627,6 +621,18 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         else:
             res = _solve_friction(M, q, lo, hi, findex, opts, warm_start)
         return _from_final(res, M, q, lo, hi, findex, opts)
+
+
+def _after_front(M, q, lo, hi, findex, warm_start, r):
+    """The result of a call that ``_FRONT`` (``_core.blcp_front``) ran but did not settle
+    (default options): ``r`` False, the general path (where _one_call would go), or the cold
+    run's (code, pivots, z0, ok, residual, k, m, buf, final) for _finish."""
+    if r is False:
+        return _general(M, q, lo, hi, findex, warm_start, _DEFAULT)
+    run = _Run(q.shape[0], r[7], r[8])
+    run.code, run.pivots, run.z0, run.ok, run.residual, run.k, run.m = r[:7]
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        return _from_final(_finish(M, q, lo, hi, _DEFAULT, run), M, q, lo, hi, None, _DEFAULT)
 
 
 def _general(M, q, lo, hi, findex, warm_start, opts):
@@ -1175,3 +1181,11 @@ _FRONT = _core.blcp_front
 native_fronts_init()  # (NumPy's layout checked: _FRONT relies on it)
 _core.blcp_front_init(BLCPResult, BoxWarmStart, Status.SOLVED, _spans, _DEFAULT.pivot_tol,
                       _DEFAULT.tie_tol, _DEFAULT.tol)
+
+#: The Python function; ``solve_blcp`` is the core's entry that wraps it (src/python_front.cpp,
+#: ``blcp_entry``): the calls ``solve_blcp(M, q, lo, hi)`` with no keyword but ``findex=``
+#: and/or ``warm_start=`` go to ``_FRONT`` with no Python frame (then ``_after_front`` when
+#: it does not settle), every other call (and any the front declines) to it.
+_solve_blcp = solve_blcp
+solve_blcp = update_wrapper(
+    _core.blcp_entry(_solve_blcp, _after_front, globals(), _FRONT), _solve_blcp)
