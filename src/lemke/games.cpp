@@ -277,23 +277,7 @@ void plain_ratios(const double* vals, const double* col, idx n, double thr, doub
 idx plain_blocking_rows(const double* vals, const double* col, idx n, double thr, double tie_tol,
                         idx* cand, double* ratio) {
     plain_ratios(vals, col, n, thr, ratio);
-    double theta = INF, lim = INF;
-    idx nc = 0;
-    for (idx i = 0; i < n; ++i) {
-        double t = ratio[i];
-        if (t <= lim) {  // false for NaN: the rows that do not block
-            if (t < theta) {
-                theta = t;
-                lim = theta + tie_tol * theta;
-                idx kept = 0;
-                for (idx q = 0; q < nc; ++q)
-                    if (ratio[cand[q]] <= lim) cand[kept++] = cand[q];
-                nc = kept;
-            }
-            cand[nc++] = i;
-        }
-    }
-    return theta < INF ? nc : 0;
+    return blocking_rows_scan(ratio, n, tie_tol, cand);  // (NaN ratios do not block)
 }
 
 // games.step: one pivot, the label `entering` enters; returns the label that left, -1 when
