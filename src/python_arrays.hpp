@@ -33,12 +33,14 @@ constexpr int WRITEABLE = 0x0400;
 constexpr int CARRAY = C_CONTIGUOUS | ALIGNED | WRITEABLE;  // ndarray.flags.carray
 
 // o when it is an ndarray (exactly) of nd dimensions, float64 in the machine's byte order
-// ('=': NumPy writes '<' or '>' only for the other), C-contiguous, aligned and writable;
-// else nullptr.
+// ('=': NumPy writes '<' or '>' only for the other), C-contiguous and aligned, writable or
+// not (the fronts only read their inputs: a read-only array, e.g. pandas' copy-on-write
+// to_numpy() or lemke.problems' arrays, is taken as it is); else nullptr.
 inline const ArrayFields* plain_f64(PyObject* o, int nd, PyTypeObject* ndarray) {
+    constexpr int need = C_CONTIGUOUS | ALIGNED;
     if (Py_TYPE(o) != ndarray) return nullptr;
     auto* a = reinterpret_cast<const ArrayFields*>(o);
-    if (a->nd != nd || (a->flags & CARRAY) != CARRAY) return nullptr;
+    if (a->nd != nd || (a->flags & need) != need) return nullptr;
     auto* t = reinterpret_cast<const DescrFields*>(a->descr);
     if (t->type_num != NPY_DOUBLE || t->byteorder != '=') return nullptr;
     return a;

@@ -93,7 +93,7 @@ void find_new_from_descr(nb::handle api) {
     nb::object probe = nb::steal(new_from_descr(3, front.f64));
     auto* a = probe.is_valid() ? plain_f64(probe.ptr(), 1, front.ndarray) : nullptr;
     if (a == nullptr || a->dimensions[0] != 3 || a->strides[0] != 8 || a->base != nullptr ||
-        (a->flags & OWNDATA) == 0) {
+        (a->flags & OWNDATA) == 0 || (a->flags & WRITEABLE) == 0) {
         PyErr_Clear();
         front.new_from_descr = nullptr;
         return;

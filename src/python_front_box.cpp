@@ -1,7 +1,7 @@
 // lemke._core.blcp_front: solve_blcp's commonest calls whole in one native call, as
 // _core.lcp_front does solve_lcp's (src/python_front.cpp): plain float64 M (n x n), q, lo,
-// hi (numpy_layout()'s plain_f64: C-contiguous, aligned, writable, the machine's byte
-// order), method "bounded", default options; then
+// hi (numpy_layout()'s plain_f64: C-contiguous, aligned, the machine's byte order,
+// writable or not), method "bounded", default options; then
 //  (a) no friction index and no warm start, 0 < n < 257: _blcp's cold fast path, one
 //      boxed::solve (GIL released); solved and checked gives the BLCPResult built as that
 //      path builds it (lazily: `_src`, read by _blcp._BoxField); any other code >= 0 the

@@ -109,7 +109,7 @@ bool check(Payoffs A, Payoffs B, VecIn x, VecIn y, double tol, VecOut out) {
 // games_front(A, B, init_label): solve_bimatrix's commonest call whole in one native call
 // (reached with no Python frame through solve_bimatrix's entry, games_entry in python_front.cpp),
 // as lcp_front does solve_lcp's (src/python_front.cpp): A and B plain float64 (numpy_layout's
-// plain_f64: C-contiguous, aligned, writable, the machine's byte order), of one non-empty
+// plain_f64: C-contiguous, aligned, the machine's byte order, writable or not), of one non-empty
 // shape, init_label an int in [0, m + n), Lemke-Howson from the artificial equilibrium,
 // default options, no exact certificate. The buffer from numpy.empty, the slack start, the
 // kernel without the GIL (the check on the caller's payoffs included), then:

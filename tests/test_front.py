@@ -277,9 +277,9 @@ def test_the_native_front_gives_the_python_fronts_results(monkeypatch):
 
 
 def test_the_native_front_declines_what_is_not_plain():
-    """Lists, float32, the other byte order, Fortran order, read-only and mismatched shapes
-    are the Python front's
-    (which validates them and says what is wrong)."""
+    """Lists, float32, the other byte order, Fortran order and mismatched shapes are the
+    Python front's (which validates them and says what is wrong); a read-only array is
+    the native front's (it only reads its inputs)."""
     from lemke import _core
 
     M = np.array([[2.0, 1.0], [1.0, 2.0]])
@@ -288,8 +288,9 @@ def test_the_native_front_declines_what_is_not_plain():
     ro.setflags(write=False)
     for a, b in ((M.tolist(), q), (M.astype(np.float32), q), (np.asfortranarray(M), q),
                  (M.astype(M.dtype.newbyteorder()), q), (M, q.astype(q.dtype.newbyteorder())),
-                 (M, ro), (M, q[:1]), (M[:1], q), (M, q.reshape(2, 1))):
+                 (M, q[:1]), (M[:1], q), (M, q.reshape(2, 1))):
         assert _core.lcp_front(a, b, None, None) is None
+    assert _core.lcp_front(M, ro, None, None).z.tolist() == lemke.solve_lcp(M, q).z.tolist()
     with pytest.raises(ValueError, match="q"):
         lemke.solve_lcp(M, q[:1])
     assert lemke.solve_lcp(np.asfortranarray(M), ro).z.tolist() == lemke.solve_lcp(M, q).z.tolist()
@@ -334,3 +335,64 @@ def test_solve_lcp_entry_is_the_python_function_to_its_callers(monkeypatch):
     assert f(M, q, method="unrevised") == _lcp._solve_lcp(M, q, method="unrevised")
     assert_lcp_solution(M, q, f(M, q, method="unrevised").z)
     assert f(M, q, options={"max_pivots": 10}) == r
+
+
+def test_read_only_inputs_take_the_native_fronts_and_give_the_same_bits():
+    """Read-only arrays (pandas' copy-on-write ``to_numpy()``, ``lemke.problems``' own
+    arrays) are read in place by the native fronts: the same bits as writable copies, on
+    solved, warm, ray, box, friction and game calls, and the inputs unchanged."""
+    from lemke import _core
+
+    def ro(*arrays):
+        out = []
+        for a in arrays:
+            a = np.array(a, dtype=float)
+            a.setflags(write=False)
+            out.append(a)
+        return out
+
+    def same(a, b, fields):
+        assert a.status == b.status and a.pivots == b.pivots
+        for f in fields:
+            x, y = getattr(a, f), getattr(b, f)
+            assert (x is None) == (y is None)
+            if x is not None:
+                assert np.asarray(x).tobytes() == np.asarray(y).tobytes(), f
+
+    rng = np.random.default_rng(31)
+    murty = problems.murty(4)  # its arrays are read-only already
+    assert not murty.M.flags.writeable
+    cases = [problems.contact_like(6, rng), (murty.M, murty.q)]
+    A = rng.standard_normal((5, 5))
+    cases.append((A @ A.T + np.eye(5), rng.standard_normal(5)))
+    cases.append((-np.eye(3), -np.ones(3)))  # a ray
+    for M, q in cases:
+        Mr, qr = ro(M, q)
+        ref = lemke.solve_lcp(np.array(M), np.array(q))
+        got = lemke.solve_lcp(Mr, qr)
+        same(got, ref, ("z", "w", "ray"))
+        if got.status == Status.SOLVED:
+            assert_lcp_solution(np.array(M), np.array(q), got.z)
+        assert _core.lcp_front(Mr, qr, None, None) is not None
+        if ref.warm_start is not None:
+            q2 = np.array(q) + 1e-9
+            (q2r,) = ro(q2)
+            same(lemke.solve_lcp(Mr, q2r, warm_start=ref.warm_start),
+                 lemke.solve_lcp(np.array(M), q2, warm_start=ref.warm_start), ("z", "w"))
+        assert not Mr.flags.writeable and Mr.tobytes() == np.array(M).tobytes()
+    # box LCPs, with and without friction, cold and warm
+    M, q = problems.contact_like(6, np.random.default_rng(5))
+    lo, hi = -np.ones(6), np.ones(6)
+    lo[[0, 3]], hi[[0, 3]] = 0.0, np.inf
+    findex = np.array([-1, 0, 0, -1, 3, 3], dtype=np.int64)
+    for kw in ({}, {"findex": findex}):
+        Mr, qr, lor, hir = ro(M, q, lo, hi)
+        ref = lemke.solve_blcp(M.copy(), q.copy(), lo.copy(), hi.copy(), **kw)
+        same(lemke.solve_blcp(Mr, qr, lor, hir, **kw), ref, ("z", "w"))
+        same(lemke.solve_blcp(Mr, qr, lor, hir, warm_start=ref.warm_start, **kw),
+             lemke.solve_blcp(M.copy(), q.copy(), lo.copy(), hi.copy(), warm_start=ref.warm_start, **kw),
+             ("z", "w"))
+    # a bimatrix game
+    Ag, Bg = rng.standard_normal((4, 3)), rng.standard_normal((4, 3))
+    Agr, Bgr = ro(Ag, Bg)
+    same(lemke.solve_bimatrix(Agr, Bgr), lemke.solve_bimatrix(Ag.copy(), Bg.copy()), ("x", "y"))

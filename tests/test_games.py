@@ -542,12 +542,14 @@ def test_front_is_the_python_path(kind, m, n, monkeypatch):
 
 
 def test_front_declines_other_arguments():
-    """Anything but plain float64 payoffs of one non-empty shape and an int label in range
-    goes to the Python path (None), which then answers or names the error."""
+    """Anything but plain float64 payoffs (C-contiguous, writable or not) of one non-empty
+    shape and an int label in range goes to the Python path (None), which then answers or
+    names the error."""
     A, B = np.array(STENGEL_A, dtype=float), np.array(STENGEL_B, dtype=float)
     ro = A.copy()
     ro.flags.writeable = False
-    for args in [(A.T, B.T), (np.asfortranarray(A), B), (A.astype(np.float32), B), (ro, B),
+    assert _core.games_front(ro, B, 0) is not None  # read-only: taken (only read)
+    for args in [(A.T, B.T), (np.asfortranarray(A), B), (A.astype(np.float32), B),
                  (A.astype(np.int64), B), (A[:, :1], B), (A.tolist(), B)]:
         assert _core.games_front(*args, 0) is None
         assert _core.games_front(args[1], args[0], 0) is None
