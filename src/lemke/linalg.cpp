@@ -132,12 +132,85 @@ LEMKE_ALWAYS_INLINE void sweep_row(const double* const* rows, const double* r, c
     }
 }
 
+#ifdef LEMKE_SIMD
+// The largest lane of each of a, b, c, d into out[0..3], by shuffles on whole vectors (as
+// simd::hsum4 takes sums; a maximum of terms >= +0 that are not NaN is exact in any order).
+LEMKE_ALWAYS_INLINE void hmax4(simd::v8d a, simd::v8d b, simd::v8d c, simd::v8d d,
+                               double* out) {
+    using simd::max8;
+    simd::v8d ab = max8(LEMKE_SHUFFLE8(a, b, 0, 8, 2, 10, 4, 12, 6, 14),
+                        LEMKE_SHUFFLE8(a, b, 1, 9, 3, 11, 5, 13, 7, 15));
+    simd::v8d cd = max8(LEMKE_SHUFFLE8(c, d, 0, 8, 2, 10, 4, 12, 6, 14),
+                        LEMKE_SHUFFLE8(c, d, 1, 9, 3, 11, 5, 13, 7, 15));
+    simd::v8d h = max8(LEMKE_SHUFFLE8(ab, cd, 0, 1, 8, 9, 4, 5, 12, 13),
+                       LEMKE_SHUFFLE8(ab, cd, 2, 3, 10, 11, 6, 7, 14, 15));
+    simd::v8d m = max8(h, LEMKE_SHUFFLE8(h, h, 4, 5, 6, 7, 0, 1, 2, 3));
+    for (int l = 0; l < 4; ++l) out[l] = m[l];
+}
+
+// sweep_row on four rows, their maxima kept in vectors to the end and taken by hmax4 (one
+// row at a time, each row's eight lanes went to scalars: most of a sweep at n = 24), the
+// FINITE sums of the four rows in one vector (every term is +-0 or NaN, so any sum of them
+// is 0 exactly when each row's is): `all` cleared when it is not 0.
+template <bool UNIT, bool FINITE>
+LEMKE_ALWAYS_INLINE void sweep_row4(const double* const* rows, const double* r, const double* C,
+                                    idx n, double* cmax, bool& all, double* out) {
+    simd::v8d vr[4], rr[4], vz = simd::splat8(0.0);
+    for (int k = 0; k < 4; ++k) {
+        vr[k] = simd::splat8(0.0);
+        rr[k] = simd::splat8(r[k]);
+    }
+    idx j = 0;
+    for (; j + 8 <= n; j += 8) {
+        simd::v8d top = simd::load8(cmax + j);
+        for (int k = 0; k < 4; ++k) {
+            simd::v8d x = simd::load8(rows[k] + j);
+            if (FINITE) vz += simd::splat8(0.0) * x;
+            simd::v8d a = UNIT ? simd::abs8(x) : (simd::abs8(x) * rr[k]) * simd::load8(C + j);
+            vr[k] = simd::max8(vr[k], a);
+            top = simd::max8(top, a);
+        }
+        simd::store8(cmax + j, top);
+    }
+    double tm[4] = {0.0, 0.0, 0.0, 0.0}, zt = 0.0;
+    for (; j < n; ++j) {
+        double top = cmax[j];
+        for (int k = 0; k < 4; ++k) {
+            if (FINITE) zt += 0.0 * rows[k][j];
+            double a = UNIT ? std::fabs(rows[k][j]) : std::fabs(rows[k][j]) * r[k] * C[j];
+            tm[k] = pmax(tm[k], a);
+            top = pmax(top, a);
+        }
+        cmax[j] = top;
+    }
+    hmax4(vr[0], vr[1], vr[2], vr[3], out);
+    for (int k = 0; k < 4; ++k) out[k] = pmax(out[k], tm[k]);
+    if (FINITE) {
+        for (int l = 0; l < 8; ++l) zt += vz[l];
+        all &= zt == 0.0;
+    }
+}
+#endif
+
 template <bool UNIT, bool FINITE>
 LEMKE_ALWAYS_INLINE double sweep_rows(Mat<const double> M, const double* q, const double* R, const double* C,
                          double cq, double* rmax, double* cmax, double* mrow, bool& all) {
     idx n = M.rows;
     double qmax = 0.0;
     idx i = 0;
+#ifdef LEMKE_SIMD
+    for (; i + 4 <= n; i += 4) {
+        const double* rows[4] = {M.row(i), M.row(i + 1), M.row(i + 2), M.row(i + 3)};
+        double m[4];
+        sweep_row4<UNIT, FINITE>(rows, R + i, C, n, cmax, all, m);
+        for (idx k = i; k < i + 4; ++k) {
+            mrow[k] = m[k - i];
+            double a = std::fabs(q[k]) * R[k] * cq;
+            rmax[k] = pmax(m[k - i], a);
+            qmax = pmax(qmax, a);
+        }
+    }
+#endif
     for (; i < n; i += 2) {
         const double* rows[2] = {M.row(i), i + 1 < n ? M.row(i + 1) : nullptr};
         double z[2] = {0.0, 0.0}, m[2];
@@ -245,7 +318,11 @@ bool rsqrt_all(double* x, idx k, bool& same) {
 namespace {
 
 // equilibrate's sweeps; with `finite`, the first sweep (run even past a deadline) also
-// tells whether M is finite, and the scales are left alone when it is not.
+// tells whether M is finite, and the scales are left alone when it is not. Compiled per
+// instruction set for its own loops: the baseline build of absmax(q) on eight-lane vectors
+// went through the stack (two scalar stores, then a 16-byte load, per lane pair and per
+// pass), half of this function's time at n = 24.
+LEMKE_CLONES
 void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* work,
             bool* finite) {
     idx n = M.rows;

@@ -157,6 +157,44 @@ LEMKE_ALWAYS_INLINE void pivot_row_values(double* rhs, double* magb, idx r, doub
     }
 }
 
+// The rows' rhs and col_next entries of a pivot on row r (T's rows not yet updated): for
+// every row c whose factor f = col[c] is not 0, rhs[c] + f rr and T[c, s_next] + f pn, else
+// rhs[c] and T[c, s_next] (update_rows's operations on them), eight rows at a time and
+// stored as whole vectors; rhs[r] and col_next[r] are set after (row r is the pivot row).
+// Done before the row updates rather than row by row among them: the scalar stores of
+// those entries, read next by the ratio test's and the column's vector loads, made those
+// loads wait for every store of the row updates (a vector load cannot take its bytes from
+// several smaller stores). Either pointer may be nullptr (not kept).
+LEMKE_ALWAYS_INLINE void side_entries(const Mat<double>& T, const double* col, double* rhs,
+                                      double* col_next, idx s_next, double pn, double rr) {
+    idx n = T.rows, c = 0;
+#ifdef LEMKE_SIMD
+    simd::v8d vr = simd::splat8(rr), vp = simd::splat8(pn), zero = simd::splat8(0.0);
+    for (; c + 8 <= n; c += 8) {
+        simd::v8d f = simd::load8(col + c);
+        auto kept = f != zero;
+        if (rhs) {
+            simd::v8d h = simd::load8(rhs + c);
+            simd::store8(rhs + c, kept ? h + f * vr : h);
+        }
+        if (col_next) {
+            const double* tc = T.row(c) + s_next;
+            simd::v8d t;
+            for (int l = 0; l < 8; ++l) t[l] = tc[l * T.ld];
+            simd::store8(col_next + c, kept ? t + f * vp : t);
+        }
+    }
+#endif
+    for (; c < n; ++c) {
+        double f = col[c];
+        if (rhs && f != 0.0) rhs[c] += f * rr;
+        if (col_next) {
+            double t = T(c, s_next);
+            col_next[c] = f != 0.0 ? t + f * pn : t;
+        }
+    }
+}
+
 }  // namespace
 
 LEMKE_CLONES
@@ -174,6 +212,17 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
     double rr = 0.0, mr = 0.0;
     pivot_row_values(rhs, magb, r, inv, rr, mr);
     bool next = s_next >= 0;
+    if (!magb && m <= 32 && m % 4 == 0 && T.rows >= 16) {
+        // the small tableaux of 16 rows or more (rows of at most 32 doubles, magb not
+        // kept), whose ratio test is a vector pass (tableau_lemke): rhs and col_next in
+        // their own vector pass, then the rows alone (the same operations on each entry;
+        // below 16 rows no faster: n = 12 1.03 -> 1.06 us)
+        side_entries(T, col, rhs, next ? col_next : nullptr, s_next, next ? prow[s_next] : 0.0, rr);
+        if (rhs) rhs[r] = rr;
+        if (next) col_next[r] = prow[s_next];
+        update_any<false, false, false>(T, r, col, nullptr, nullptr, nullptr, prow, s, -1, inv, 0.0, 0.0);
+        return;
+    }
     if (rhs && magb) {
         if (next) update_any<true, true, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
         else update_any<true, true, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
