@@ -1586,6 +1586,26 @@ idx equalities(idx p0, const double* lb, const double* ub, idx n) {
     return p;
 }
 
+// Step 8 with few inequalities (fewer than GRAM_RATIO n) takes on as many flat directions of P
+// (zero diagonal entries; then pivots of the proximal factor below FLAT) as there are
+// equality rows (fixed variables counted), which pin them; one more where the rows of G
+// outnumber the bounds' rows (PRIMAL1-3: one linear variable among hundreds, pinned at the
+// optimum by the rows of G); and any number below SMALL_FLAT variables, where a try costs
+// microseconds (ZECEVIC2, QAFIRO).  Beyond that the proximal point need not be the answer,
+// and on the Maros-Meszaros LPs with a few quadratic terms the step mostly ended
+// CHECK_FAILED or NOT_SOLVED after many pivots (QBEACONF, QSC205, QE226; with the bound
+// rows outnumbering G's, PRIMALC1-8 took 3-15x the KKT-MLCP path's time), so it declines.
+idx flat_allowed(idx p0, const double* h, idx m0, const double* lb, const double* ub, idx n) {
+    idx eq = equalities(p0, lb, ub, n);
+    if (n <= SMALL_FLAT) return n;
+    idx rows = 0, bounds = 0;
+    for (idx i = 0; i < m0; ++i)
+        if (h[i] < INF) ++rows;
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] != ub[j]) bounds += static_cast<idx>(ub[j] < INF) + static_cast<idx>(lb[j] > -INF);
+    return rows > bounds ? eq + 1 : eq;
+}
+
 idx inequalities(const double* h, idx m0, const double* lb, const double* ub, idx n) {
     idx m = 0;
     for (idx i = 0; i < m0; ++i)
@@ -1772,7 +1792,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
 }
 
 Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                  double* out, idx out_len, idx* basic, bool semidefinite) {
+                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
@@ -1800,7 +1820,8 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     if (!definite && (res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
     if (!definite) {
-        if (few && zero_diagonal(ds.P) > equalities(p0, lo, up, n)) {
+        idx allowed = !few ? n : relaxed ? flat_allowed(p0, dt.h, m0, lo, up, n) : equalities(p0, lo, up, n);
+        if (few && zero_diagonal(ds.P) > allowed) {
             res.code = NOT_APPLICABLE;
             return res;
         }
@@ -1808,7 +1829,7 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
             res.code = NOT_DEFINITE;
             return res;
         }
-        if (few && flat_directions(ds.P, w.L) > equalities(p0, lo, up, n)) {
+        if (few && flat_directions(ds.P, w.L) > allowed) {
             res.code = NOT_APPLICABLE;
             return res;
         }

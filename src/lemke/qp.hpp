@@ -31,6 +31,7 @@ constexpr double STRICT_TOL = 1e-12;
 constexpr idx GRAM_RATIO = 4;
 constexpr double PROXIMAL = 1e-6;
 constexpr double FLAT = 1e-3;
+constexpr idx SMALL_FLAT = 32;  // step 8 with few rows: any flat directions up to this many variables (flat_allowed)
 constexpr idx REFINE = 2;
 constexpr idx REFINE_PROXIMAL = 3;
 constexpr idx ACTIVE_SET_STEPS = 3;  // a warm start's active-set updates before Lemke (warm_point)
@@ -136,9 +137,11 @@ WarmEnds& warm_ends();
 
 // qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
-// tail.
+// tail.  semidefinite with few inequalities: P's flat directions taken on are as many as the
+// equalities (the kernel's own rule), or with relaxed as many as flat_allowed says (the
+// fronts' step 8).
 Result solve_gram(const Data& d, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                  double* out, idx out_len, idx* basic, bool semidefinite);
+                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed = false);
 
 // qp.solve_box on data of matching shapes (a QP whose only constraints are bounds): screen,
 // P definite (cholesky), one boxed::solve run on the box LCP (Ps, q, lo, up) from warm (2n
@@ -166,6 +169,8 @@ idx zero_diagonal(Mat<const double> P);
 idx flat_directions(Mat<const double> P, Mat<const double> L);
 idx equalities(idx p0, const double* lb, const double* ub, idx n);
 idx inequalities(const double* h, idx m0, const double* lb, const double* ub, idx n);
+// Step 8 with fewer than GRAM_RATIO n inequalities: how many flat directions of P it takes on.
+idx flat_allowed(idx p0, const double* h, idx m0, const double* lb, const double* ub, idx n);
 
 }  // namespace qp
 }  // namespace lemke
