@@ -1424,30 +1424,50 @@ void dot4(const double* a, const double* r0, const double* r1, const double* r2,
     dot4_lanes(a, r0, r1, r2, r3, len, out);
 }
 
+// Each row of R (k x n) replaced by L^-1 times it, four rows at a time, each sum from the
+// first column where one of the four rows is nonzero (s) in dot's order from there.  A
+// row of L that starts with zeros (its first nonzero at lstart, L's profile, P's) skips
+// the whole blocks of eight (counted from s) left of it while the rows' entries are
+// finite: each term skipped is +-0, added to a lane still at +0, so the sums keep their
+// bits (a diagonal L: O(n) per row instead of O(n^2)).
 LEMKE_CLONES
 void forward_rows(Mat<const double> L, Mat<double> R) {
     idx n = L.rows, k = R.rows;
+    thread_local std::vector<idx> lstart_v;
+    lstart_v.resize(static_cast<std::size_t>(n + 1));
+    idx* lstart = lstart_v.data();
+    for (idx j = 0; j < n; ++j) {
+        const double* Lj = L.row(j);
+        idx s = 0;
+        while (s < j && Lj[s] == 0.0) ++s;
+        lstart[j] = s;
+    }
     idx i = 0;
     while (i + 4 <= k) {
         double *r0 = R.row(i), *r1 = R.row(i + 1), *r2 = R.row(i + 2), *r3 = R.row(i + 3);
         idx s = 0;
         while (s < n && r0[s] == 0.0 && r1[s] == 0.0 && r2[s] == 0.0 && r3[s] == 0.0) ++s;
+        bool finite = true;  // the entries written so far (the only ones a skip passes over)
         for (idx j = s; j < n; ++j) {
             const double* Lj = L.row(j);
+            idx b = s;
+            if (finite && lstart[j] > s) b = s + ((lstart[j] - s) & ~static_cast<idx>(7));
             double d[4];
-            dot4_lanes(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
+            dot4_lanes(Lj + b, r0 + b, r1 + b, r2 + b, r3 + b, j - b, d);
             double inv = 1.0 / Lj[j];
             r0[j] = (r0[j] - d[0]) * inv;
             r1[j] = (r1[j] - d[1]) * inv;
             r2[j] = (r2[j] - d[2]) * inv;
             r3[j] = (r3[j] - d[3]) * inv;
+            if (!(std::isfinite(r0[j]) && std::isfinite(r1[j]) && std::isfinite(r2[j]) &&
+                  std::isfinite(r3[j])))
+                finite = false;
         }
         i += 4;
     }
     for (; i < k; ++i) forward(L, R.row(i));
 }
 
-LEMKE_CLONES
 double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     idx p = WE.rows, n = WE.cols;
     if (p > n) return 0.0;
@@ -1499,6 +1519,15 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
 // chain of dependent dots and divisions: latency-bound, 2-3x slower at n = 100). The panel
 // is built aside and copied row by row, so that on failure L holds what the row-by-row
 // loop wrote: the rows above the failing one, its entries left of the diagonal.
+//
+// Leading zeros (P's profile: row i's first nonzero left of the diagonal, start[i]): while
+// every entry computed so far is finite, L's row i is exactly P(i, j) / L(j, j) (+-0) left
+// of start[i] (its dot there sums +-0 terms into lanes that start at +0, and stays +0), and
+// a dot of two rows skips the whole blocks of eight (its lanes' blocks, counted from 0) left
+// of the larger start: the terms it skips are +-0, added to lanes still at +0, so every
+// lane, and the sum, keeps its bits.  A diagonal or banded P costs O(n) per row then, not
+// O(n^2) (PRIMAL1-3: P diagonal but for one zero).  An entry that is not finite (an
+// overflow) ends the skipping: the rest is summed whole, as before.
 LEMKE_CLONES
 bool cholesky(Mat<const double> P, Mat<double> L) {
     idx n = P.rows;
@@ -1507,7 +1536,24 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
     double floor = DEFINITE_TOL * top;
     if (!(top > 0.0)) return false;
     thread_local std::vector<double> panel;
+    thread_local std::vector<idx> start_v;
     panel.resize(static_cast<std::size_t>(4 * n));
+    start_v.resize(static_cast<std::size_t>(n + 1));
+    idx* start = start_v.data();
+    for (idx i = 0; i < n; ++i) {
+        const double* Pi = P.row(i);
+        idx s = 0;
+        while (s < i && Pi[s] == 0.0) ++s;
+        start[i] = s;
+    }
+    bool finite = true;  // every entry of L computed so far (skipping allowed)
+    // the first lane block a dot of length len may start at, both rows' leading zeros
+    // (from a and b) skipped: a multiple of 8, at most len
+    auto from = [&](idx a, idx b, idx len) -> idx {
+        if (!finite) return 0;
+        idx s = std::max(a, b) & ~static_cast<idx>(7);
+        return s < len ? s : len & ~static_cast<idx>(7);
+    };
     double* R[4] = {panel.data(), panel.data() + n, panel.data() + 2 * n, panel.data() + 3 * n};
     for (idx i0 = 0; i0 < n; i0 += 4) {
         idx c = std::min<idx>(4, n - i0);
@@ -1517,32 +1563,61 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
         if (c == 4) {
             const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
                          *P3 = P.row(i0 + 3);
+            idx s4 = std::min(std::min(start[i0], start[i0 + 1]), std::min(start[i0 + 2], start[i0 + 3]));
             for (idx j = 0; j < i0; ++j) {
                 const double* Lj = L.row(j);
                 double ljj = Lj[j], d[4];
-                dot4_lanes(Lj, R[0], R[1], R[2], R[3], j, d);
+                if (finite && j < s4) {  // every row's dot is +0 here
+                    R[0][j] = P0[j] / ljj;
+                    R[1][j] = P1[j] / ljj;
+                    R[2][j] = P2[j] / ljj;
+                    R[3][j] = P3[j] / ljj;
+                    continue;
+                }
+                idx b = from(s4, start[j], j);
+                dot4_lanes(Lj + b, R[0] + b, R[1] + b, R[2] + b, R[3] + b, j - b, d);
                 R[0][j] = (P0[j] - d[0]) / ljj;
                 R[1][j] = (P1[j] - d[1]) / ljj;
                 R[2][j] = (P2[j] - d[2]) / ljj;
                 R[3][j] = (P3[j] - d[3]) / ljj;
+                if (!(std::isfinite(R[0][j]) && std::isfinite(R[1][j]) && std::isfinite(R[2][j]) &&
+                      std::isfinite(R[3][j])))
+                    finite = false;
             }
         } else {
             for (idx j = 0; j < i0; ++j) {
                 const double* Lj = L.row(j);
-                for (idx q = 0; q < c; ++q)
-                    R[q][j] = (P(i0 + q, j) - dot_lanes(R[q], Lj, j)) / Lj[j];
+                for (idx q = 0; q < c; ++q) {
+                    idx i = i0 + q;
+                    if (finite && j < start[i]) {
+                        R[q][j] = P(i, j) / Lj[j];
+                        continue;
+                    }
+                    idx b = from(start[i], start[j], j);
+                    R[q][j] = (P(i, j) - dot_lanes(R[q] + b, Lj + b, j - b)) / Lj[j];
+                    if (!std::isfinite(R[q][j])) finite = false;
+                }
             }
         }
         for (idx q = 0; q < c; ++q) {
             idx i = i0 + q;
             double* Ri = R[q];
-            for (idx j = i0; j < i; ++j)
-                Ri[j] = (P(i, j) - dot_lanes(Ri, R[j - i0], j)) / R[j - i0][j];
-            double d = P(i, i) - dot_lanes(Ri, Ri, i);
+            for (idx j = i0; j < i; ++j) {
+                if (finite && j < start[i]) {
+                    Ri[j] = P(i, j) / R[j - i0][j];
+                    continue;
+                }
+                idx b = from(start[i], start[j], j);
+                Ri[j] = (P(i, j) - dot_lanes(Ri + b, R[j - i0] + b, j - b)) / R[j - i0][j];
+                if (!std::isfinite(Ri[j])) finite = false;
+            }
+            idx b = from(start[i], 0, i);
+            double d = P(i, i) - dot_lanes(Ri + b, Ri + b, i - b);
             double* Li = L.row(i);
             for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
             if (!(d > floor)) return false;
             Li[i] = Ri[i] = std::sqrt(d);
+            if (!std::isfinite(Li[i])) finite = false;
             for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
         }
     }
