@@ -85,6 +85,7 @@ struct QPWork {
     double *fv, *d, *beta, *c, *v, *g, *zz, *ones, *yy, *buf, *beta2, *rd, *rpE, *rpS, *xi, *dx, *dy, *dz, *zg, *cc, *va, *zS, *s, *err, *size, *kkt;
     idx *ekind, *ckind, *up_row, *S, *lcp_basic;
     std::uint8_t *bflags, *gflags;
+    std::vector<idx> lstart;  // L's profile (factors': profile), for forward and forward_rows
     // The factor cache (solve's, see same_factors): what the dense layout's L, E, V, beta, C,
     // the kinds, up_row and M were computed from. Any layout() call drops it.
     bool cached = false;
@@ -168,15 +169,38 @@ QPWork& work() {
 
 // ----------------------------------------------------------------------------- factors
 
-void forward(Mat<const double> L, double* r) {
+// r := L^-1 r, each sum from r's first nonzero (s) in dot's order from there; with L's
+// profile (lstart: row j's first nonzero), the whole blocks of eight (counted from s) left of
+// row j's start skipped while r's entries are finite (forward_rows says why the bits stay).
+void forward(Mat<const double> L, double* r, const idx* lstart = nullptr) {
     idx n = L.rows;
     idx s = 0;
     while (s < n && r[s] == 0.0) ++s;
-    const double* rs = r + s;
+    bool skip = lstart != nullptr;
     for (idx j = s; j < n; ++j) {
         const double* Lj = L.row(j);
-        r[j] = (r[j] - dot(Lj + s, rs, j - s)) / Lj[j];
+        idx b = s;
+        if (skip && lstart[j] > s) b = s + ((lstart[j] - s) & ~static_cast<idx>(7));
+        r[j] = (r[j] - dot(Lj + b, r + b, j - b)) / Lj[j];
+        if (skip && !std::isfinite(r[j])) skip = false;
     }
+}
+
+// L's profile: start[j] is row j's first nonzero left of the diagonal (j where none).
+void profile(Mat<const double> L, idx* start) {
+    for (idx j = 0; j < L.rows; ++j) {
+        const double* Lj = L.row(j);
+        idx s = 0;
+        while (s < j && Lj[s] == 0.0) ++s;
+        start[j] = s;
+    }
+}
+
+// The screened copy of P and the bounds (screened), one per thread for solve and solve_gram:
+// the front's step 8 after solve's NOT_DEFINITE writes the pages solve's screen touched.
+std::vector<double>& screen_scratch() {
+    thread_local std::vector<double> scr;
+    return scr;
 }
 
 void backward_transposed(Mat<const double> L, double* r) {
@@ -567,14 +591,17 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
     if (p > n) return DEPENDENT_EQUALITIES;
     Mat<const double> L = w.L;
-    forward_rows(L, R.E);
+    w.lstart.resize(static_cast<std::size_t>(n + 1));
+    const idx* lstart = w.lstart.data();
+    profile(L, w.lstart.data());
+    forward_rows_from(L, R.E, lstart);
     idx m_u = m_g;
     while (m_u < m && R.ckind[m_u] < n) ++m_u;
     // in blocks of 32 rows (forward_rows takes rows by fours: the same bits), the thread's
     // deadline looked at between them
     for (idx i0 = 0; i0 < m_u; i0 += 32) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
-        forward_rows(L, Mat<double>(R.C.row(i0), std::min<idx>(32, m_u - i0), n));
+        forward_rows_from(L, Mat<double>(R.C.row(i0), std::min<idx>(32, m_u - i0), n), lstart);
     }
     idx* up_row = w.up_row;
     for (idx j = 0; j < n; ++j) up_row[j] = -1;
@@ -587,10 +614,10 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
             const double* Cu = R.C.row(up_row[j]);
             for (idx t = 0; t < n; ++t) Ci[t] = -Cu[t];
         } else {
-            forward(L, R.C.row(i));
+            forward(L, R.C.row(i), lstart);
         }
     }
-    forward(L, c);
+    forward(L, c, lstart);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
     for (idx k = 0; k < p; ++k) householder_apply(w.V, w.beta, k, c);
     // (C's rows in blocks of 32, the thread's deadline looked at between them)
@@ -892,7 +919,7 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
     idx n = L.rows, p = R.p;
     double* cc = w.cc;
     for (idx t = 0; t < n; ++t) cc[t] = rd[t];
-    forward(L, cc);
+    forward(L, cc, w.lstart.data());
     for (idx j = 0; j < p; ++j) householder_apply(w.V, w.beta, j, cc);
     double* v = w.va;
     for (idx j = 0; j < p; ++j) v[j] = (rpE[j] - dot(R.E.row(j), v, j)) / R.E(j, j);
@@ -1431,17 +1458,8 @@ void dot4(const double* a, const double* r0, const double* r1, const double* r2,
 // finite: each term skipped is +-0, added to a lane still at +0, so the sums keep their
 // bits (a diagonal L: O(n) per row instead of O(n^2)).
 LEMKE_CLONES
-void forward_rows(Mat<const double> L, Mat<double> R) {
+void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
     idx n = L.rows, k = R.rows;
-    thread_local std::vector<idx> lstart_v;
-    lstart_v.resize(static_cast<std::size_t>(n + 1));
-    idx* lstart = lstart_v.data();
-    for (idx j = 0; j < n; ++j) {
-        const double* Lj = L.row(j);
-        idx s = 0;
-        while (s < j && Lj[s] == 0.0) ++s;
-        lstart[j] = s;
-    }
     idx i = 0;
     while (i + 4 <= k) {
         double *r0 = R.row(i), *r1 = R.row(i + 1), *r2 = R.row(i + 2), *r3 = R.row(i + 3);
@@ -1465,7 +1483,14 @@ void forward_rows(Mat<const double> L, Mat<double> R) {
         }
         i += 4;
     }
-    for (; i < k; ++i) forward(L, R.row(i));
+    for (; i < k; ++i) forward(L, R.row(i), lstart);
+}
+
+void forward_rows(Mat<const double> L, Mat<double> R) {
+    thread_local std::vector<idx> lstart;
+    lstart.resize(static_cast<std::size_t>(L.rows + 1));
+    profile(L, lstart.data());
+    forward_rows_from(L, R, lstart.data());
 }
 
 double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
@@ -1539,13 +1564,7 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
     thread_local std::vector<idx> start_v;
     panel.resize(static_cast<std::size_t>(4 * n));
     start_v.resize(static_cast<std::size_t>(n + 1));
-    idx* start = start_v.data();
-    for (idx i = 0; i < n; ++i) {
-        const double* Pi = P.row(i);
-        idx s = 0;
-        while (s < i && Pi[s] == 0.0) ++s;
-        start[i] = s;
-    }
+    idx* start = start_v.data();  // (each panel's rows' starts found as it begins)
     bool finite = true;  // every entry of L computed so far (skipping allowed)
     // the first lane block a dot of length len may start at, both rows' leading zeros
     // (from a and b) skipped: a multiple of 8, at most len
@@ -1560,6 +1579,12 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
         // (the thread's deadline, every 32 rows: false then, and the callers ask
         // deadline_passed() before they read false as "not definite")
         if ((i0 & 31) == 28 && deadline_passed() >= 0) return false;
+        for (idx i = i0; i < i0 + c; ++i) {
+            const double* Pi = P.row(i);
+            idx s = 0;
+            while (s < i && Pi[s] == 0.0) ++s;
+            start[i] = s;
+        }
         if (c == 4) {
             const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
                          *P3 = P.row(i0 + 3);
@@ -1753,7 +1778,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     res.code = OK;
     QPWork& w = work();
     // the sizes first (screen's bounds decide them): the workspace's layout, then screen
-    thread_local std::vector<double> scr;
+    std::vector<double>& scr = screen_scratch();
     thread_local std::vector<std::uint8_t> pat;
     Data ds;
     bool hit = same_matrices(dt, w);
@@ -1873,7 +1898,7 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
     if ((res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
-    thread_local std::vector<double> scr;
+    std::vector<double>& scr = screen_scratch();
     Data ds;
     if (!screened(dt, scr, ds)) {
         res.code = BAD_INPUT;

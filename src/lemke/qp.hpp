@@ -158,6 +158,8 @@ void box_basis(const double* lo, const double* up, idx n, const idx* final, idx 
 
 // Pieces bound for the tests that check their bits (tests/test_core_qp.py).
 void forward_rows(Mat<const double> L, Mat<double> R);
+// forward_rows with L's profile given (lstart: row j's first nonzero left of the diagonal).
+void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart);
 // qp._dot4: the four sums a' r_k, each in linalg's fixed order (dot).
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out);
