@@ -1546,8 +1546,8 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
 // loop wrote: the rows above the failing one, its entries left of the diagonal.
 //
 // Leading zeros (P's profile: row i's first nonzero left of the diagonal, start[i]): while
-// every entry computed so far is finite, L's row i is exactly P(i, j) / L(j, j) (+-0) left
-// of start[i] (its dot there sums +-0 terms into lanes that start at +0, and stays +0), and
+// every entry computed so far is finite, L's row i is exactly P(i, j) / L(j, j) = P(i, j)
+// (+-0, L(j, j) > 0) left of start[i] (its dot there sums +-0 terms into lanes that start at +0, and stays +0), and
 // a dot of two rows skips the whole blocks of eight (its lanes' blocks, counted from 0) left
 // of the larger start: the terms it skips are +-0, added to lanes still at +0, so every
 // lane, and the sum, keeps its bits.  A diagonal or banded P costs O(n) per row then, not
@@ -1592,11 +1592,11 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
             for (idx j = 0; j < i0; ++j) {
                 const double* Lj = L.row(j);
                 double ljj = Lj[j], d[4];
-                if (finite && j < s4) {  // every row's dot is +0 here
-                    R[0][j] = P0[j] / ljj;
-                    R[1][j] = P1[j] / ljj;
-                    R[2][j] = P2[j] / ljj;
-                    R[3][j] = P3[j] / ljj;
+                if (finite && j < s4) {  // every row's dot is +0 here: (P - 0) / ljj = P (+-0)
+                    R[0][j] = P0[j];
+                    R[1][j] = P1[j];
+                    R[2][j] = P2[j];
+                    R[3][j] = P3[j];
                     continue;
                 }
                 idx b = from(s4, start[j], j);
@@ -1615,7 +1615,7 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
                 for (idx q = 0; q < c; ++q) {
                     idx i = i0 + q;
                     if (finite && j < start[i]) {
-                        R[q][j] = P(i, j) / Lj[j];
+                        R[q][j] = P(i, j);
                         continue;
                     }
                     idx b = from(start[i], start[j], j);
@@ -1629,7 +1629,7 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
             double* Ri = R[q];
             for (idx j = i0; j < i; ++j) {
                 if (finite && j < start[i]) {
-                    Ri[j] = P(i, j) / R[j - i0][j];
+                    Ri[j] = P(i, j);
                     continue;
                 }
                 idx b = from(start[i], start[j], j);
