@@ -23,7 +23,7 @@ namespace {
 // The QP kernels' workspace, one per thread, laid out in one place (QPWork::layout) for a
 // QP with p equality rows and m inequality rows (qp.rows_of) of n variables, r = n - p:
 // (screen's Ps, lo, up come first, in a block of their own: the bounds decide p and m.)
-//   f:  L (n x n), Pd (n x n, the proximal copy), E (p x n),
+//   f:  L (n x n), E (p x n),
 //       C (m x n), f (p), d (m), V (pv x n, pv = min(p, n)), beta (pv), c, v (n), g (m);
 //       the fused path's LCP: M (m x m, only when dense), zz, ones (m), yy (p),
 //       buf (6m + 2: cold's buffer); the factored path (gram_lcp keeps its own: it is
@@ -81,7 +81,7 @@ struct QPWork {
     std::vector<idx> i;
     std::vector<std::uint8_t> b;
     idx n = 0, p = 0, m = 0, r = 0, pv = 0, kr = 0;
-    Mat<double> L, Pd, E, C, V, M, K2, V2;
+    Mat<double> L, E, C, V, M, K2, V2;
     double *fv, *d, *beta, *c, *v, *g, *zz, *ones, *yy, *buf, *beta2, *rd, *rpE, *rpS, *xi, *dx, *dy, *dz, *zg, *cc, *va, *zS, *s, *err, *size, *kkt;
     idx *ekind, *ckind, *up_row, *S, *lcp_basic;
     std::uint8_t *bflags, *gflags;
@@ -108,7 +108,7 @@ struct QPWork {
         r = std::max<idx>(n - p, 0);
         pv = std::min(p, n);
         kr = std::min(m, r);
-        idx total = 2 * n * n + p * n + m * n + p + m + pv * n + pv + 2 * n + m +
+        idx total = n * n + p * n + m * n + p + m + pv * n + pv + 2 * n + m +
                     (dense ? m * m : 0) + 2 * m + p + 6 * m + 2 + 2 * kr * r + kr + n + p + kr + 2 * n + p + 2 * m + 2 * n + kr + 3 * n +
                     4 * n + 1;
         f.resize(static_cast<std::size_t>(total));
@@ -118,7 +118,6 @@ struct QPWork {
         auto mat = [&](idx rows, idx cols) { return Mat<double>(cv.take(rows * cols).data(), rows, cols); };
         auto vec = [&](idx len) { return cv.take(len).data(); };
         L = mat(n, n);
-        Pd = mat(n, n);
         E = mat(p, n);
         C = mat(m, n);
         fv = vec(p);
@@ -899,16 +898,14 @@ Outs out_views(double* out, idx n, idx p0, idx m0) {
     return {out + L.x(), out + L.y(), out + L.z(), out + L.zb(), out + L.stats()};
 }
 
-bool proximal_cholesky(Mat<const double> P, Mat<double> Pd, Mat<double> L) {
+// The factor of P + PROXIMAL max_j P_jj I (cholesky_shifted: the shifted diagonal read in
+// place, not from a copy of P).
+bool proximal_cholesky(Mat<const double> P, Mat<double> L) {
     idx n = P.rows;
     double top = 0.0;
     for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
     if (!(top > 0.0)) return false;
-    for (idx i = 0; i < n; ++i) {
-        for (idx j = 0; j < n; ++j) Pd(i, j) = P(i, j);
-        Pd(i, i) += PROXIMAL * top;
-    }
-    return cholesky(Pd, L);
+    return cholesky_shifted(P, PROXIMAL * top, L);
 }
 
 // qp.active_solve. S (k), K2/V2/beta2 the QR of F2_S'; zz written at S (and zeroed).
@@ -1553,11 +1550,13 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
 // lane, and the sum, keeps its bits.  A diagonal or banded P costs O(n) per row then, not
 // O(n^2) (PRIMAL1-3: P diagonal but for one zero).  An entry that is not finite (an
 // overflow) ends the skipping: the rest is summed whole, as before.
-LEMKE_CLONES
-bool cholesky(Mat<const double> P, Mat<double> L) {
+// (shifted: P's diagonal read as P(i, i) + shift, the entry a shifted copy would hold)
+LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool shifted,
+                                       double shift) {
     idx n = P.rows;
+    auto diag = [&](idx i) { return shifted ? P(i, i) + shift : P(i, i); };
     double top = 0.0;
-    for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
+    for (idx j = 0; j < n; ++j) top = pmax(top, diag(j));
     double floor = DEFINITE_TOL * top;
     if (!(top > 0.0)) return false;
     thread_local std::vector<double> panel;
@@ -1637,7 +1636,7 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
                 if (!std::isfinite(Ri[j])) finite = false;
             }
             idx b = from(start[i], 0, i);
-            double d = P(i, i) - dot_lanes(Ri + b, Ri + b, i - b);
+            double d = diag(i) - dot_lanes(Ri + b, Ri + b, i - b);
             double* Li = L.row(i);
             for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
             if (!(d > floor)) return false;
@@ -1647,6 +1646,14 @@ bool cholesky(Mat<const double> P, Mat<double> L) {
         }
     }
     return true;
+}
+
+LEMKE_CLONES
+bool cholesky(Mat<const double> P, Mat<double> L) { return cholesky_body(P, L, false, 0.0); }
+
+LEMKE_CLONES
+bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L) {
+    return cholesky_body(P, L, true, shift);
 }
 
 bool kkt_check(const Data& dt, const double* x, const double* y, const double* z,
@@ -1925,7 +1932,7 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
             res.code = NOT_APPLICABLE;
             return res;
         }
-        if (!proximal_cholesky(ds.P, w.Pd, w.L)) {
+        if (!proximal_cholesky(ds.P, w.L)) {
             res.code = NOT_DEFINITE;
             return res;
         }

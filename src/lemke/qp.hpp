@@ -95,6 +95,9 @@ bool screen(const Data& d, double* Ps, double* lo, double* up);
 // qp.cholesky: L (n x n, lower, zeros above) with L L' = P; false when a pivot is not
 // clearly positive.
 bool cholesky(Mat<const double> P, Mat<double> L);
+// cholesky of P + shift I (P's diagonal entries plus shift, as a shifted copy of P would
+// hold them), without the copy.
+bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L);
 
 // qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check (each row against its
 // terms' sizes times tol + 4 eps, plus the rounding floor: each of x, y, z, zb exact only to
