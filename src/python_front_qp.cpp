@@ -173,7 +173,7 @@ nb::object cold(const qp::Data& data, idx p, idx m, bool many) {
             if ((r.code == qp::NOT_DEFINITE || r.code == qp::CHECK_FAILED) && !tried &&
                 qp::zero_diagonal(data.P) <= qp::flat_allowed(p, data.h, m, data.lb, data.ub, n)) {
                 r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(),
-                                   basic, true, true);
+                                   basic, true, true, true);
                 ran.emplace_back(1, r.code);
             }
         }

@@ -202,6 +202,28 @@ std::vector<double>& screen_scratch() {
     return scr;
 }
 
+// The data whose screen screen_scratch holds, when solve left it there on NOT_DEFINITE
+// (its Cholesky failed: nothing after screen wrote the buffer), for solve_gram's
+// reuse_screen (the front's step 8 right after that solve, on the same arrays).
+struct ScreenOf {
+    bool valid = false;
+    Data dt{};
+};
+
+ScreenOf& screen_of() {
+    thread_local ScreenOf s;
+    return s;
+}
+
+bool same_mat(Mat<const double> a, Mat<const double> b) {
+    return a.p == b.p && a.rows == b.rows && a.cols == b.cols && a.ld == b.ld;
+}
+
+bool same_arrays(const Data& a, const Data& b) {
+    return same_mat(a.P, b.P) && same_mat(a.G, b.G) && same_mat(a.A, b.A) && a.q == b.q &&
+           a.h == b.h && a.b == b.b && a.lb == b.lb && a.ub == b.ub;
+}
+
 void backward_transposed(Mat<const double> L, double* r) {
     idx n = L.rows;
     for (idx j = n - 1; j >= 0; --j) {
@@ -1783,6 +1805,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     for (idx t = 0; t < k0; ++t) out[t] = 0.0;
     if ((res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
+    screen_of().valid = false;
     QPWork& w = work();
     // the sizes first (screen's bounds decide them): the workspace's layout, then screen
     std::vector<double>& scr = screen_scratch();
@@ -1822,6 +1845,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         w.layout(n, p, m, true);
         if (!cholesky(ds.P, w.L)) {
             res.code = deadline_passed() >= 0 ? TIME_LIMIT : NOT_DEFINITE;
+            if (res.code == NOT_DEFINITE && ds.P.p == scr.data()) screen_of() = {true, dt};
             return res;
         }
         int code = factors(ds, lo, up, w, R);
@@ -1899,7 +1923,8 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
 }
 
 Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed) {
+                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed,
+                  bool reuse_screen) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
@@ -1907,10 +1932,18 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     res.code = OK;
     std::vector<double>& scr = screen_scratch();
     Data ds;
-    if (!screened(dt, scr, ds)) {
+    ScreenOf& memo = screen_of();
+    if (reuse_screen && memo.valid && same_arrays(memo.dt, dt)) {  // screened's, as solve left it
+        ds = dt;
+        ds.P = Mat<const double>(scr.data(), n, n);
+        ds.lb = scr.data() + n * n;
+        ds.ub = ds.lb + n;
+    } else if (!screened(dt, scr, ds)) {
+        memo.valid = false;
         res.code = BAD_INPUT;
         return res;
     }
+    memo.valid = false;
     const double* lo = ds.lb;
     const double* up = ds.ub;
     Outs o = out_views(out, n, p0, m0);

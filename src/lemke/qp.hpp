@@ -142,9 +142,11 @@ WarmEnds& warm_ends();
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
 // tail.  semidefinite with few inequalities: P's flat directions taken on are as many as the
 // equalities (the kernel's own rule), or with relaxed as many as flat_allowed says (the
-// fronts' step 8).
+// fronts' step 8).  reuse_screen: called right after solve on the same arrays, which ended
+// NOT_DEFINITE, its screen of the data is used as it is (the same bits as screening again).
 Result solve_gram(const Data& d, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed = false);
+                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed = false,
+                  bool reuse_screen = false);
 
 // qp.solve_box on data of matching shapes (a QP whose only constraints are bounds): screen,
 // P definite (cholesky), one boxed::solve run on the box LCP (Ps, q, lo, up) from warm (2n
