@@ -313,7 +313,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                     return _fused_result(out, n, p, m, k, pairs, pivots)
                 if code in _STOP_CODES:
                     return _stopped(code, pivots, n, len(Ak), len(Gk))
-                if code == _NOT_DEFINITE or code == _CHECK_FAILED:  # step 8 (as _solve_definite)
+                if code == _NOT_DEFINITE or (code == _CHECK_FAILED and _RELAXED):  # step 8
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
@@ -814,7 +814,7 @@ def _solve_definite(args, method, opts):
         code, pivots, k, pairs = _core.qp_solve(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method],
                                                 max_pivots, opts.pivot_tol, opts.tie_tol,
                                                 opts.tol, out)
-        if (code == _NOT_DEFINITE or code == _CHECK_FAILED) and not tried:
+        if (code == _NOT_DEFINITE or (code == _CHECK_FAILED and _RELAXED)) and not tried:
             return _solve_semidefinite(args, opts)
     if code in _STOP_CODES:
         return _stopped(code, pivots, n, p, m)
@@ -832,7 +832,8 @@ def _solve_semidefinite(args, opts):
     ``qp::flat_allowed``).  None when it does not end solved and checked."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    if count(P.diagonal() == 0.0) > _core.qp_flat_allowed(h, p, lb, ub):
+    allowed = _core.qp_flat_allowed(h, p, lb, ub) if _RELAXED else p + count(lb == ub)
+    if count(P.diagonal() == 0.0) > allowed:
         # more zero diagonal entries (flat directions) than that: the kernel would decline at
         # once (kernels.qp.zero_diagonal); a linear program, say, does not call it
         return None
@@ -840,7 +841,7 @@ def _solve_semidefinite(args, opts):
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
     code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                  opts.pivot_tol, opts.tie_tol, opts.tol, out,
-                                                 _basis_view(out, n, p, m), True, True)
+                                                 _basis_view(out, n, p, m), True, _RELAXED)
     if code in _STOP_CODES:
         return _stopped(code, pivots, n, p, m)
     if code != _OK:
@@ -907,6 +908,12 @@ _METHOD_CODES = dict(_METHOD_NAMES)
 _OK, _NOT_DEFINITE, _GRAM_RATIO = _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_GRAM_RATIO
 _NOT_APPLICABLE = _core.QP_NOT_APPLICABLE
 _CHECK_FAILED = _core.QP_CHECK_FAILED
+#: Step 8's reach on the Python path: P's flat directions up to qp::flat_allowed, and after
+#: the dense kernel's CHECK_FAILED (as the native front always does); False: the kernel's own
+#: rule (flat directions up to the equalities) after NOT_DEFINITE only, the routing the
+#: frozen references of the KKT-MLCP path's support calls were recorded with
+#: (tests/test_core_support.py switches the front off and this off).
+_RELAXED = True
 _BAD_WARM = _core.QP_BAD_WARM
 _QP_FRONT = _core.qp_front  # solve_qp's warm call, native (src/python_front_qp.cpp)
 
