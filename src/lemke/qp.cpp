@@ -961,6 +961,11 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
     point(L, R, w, cc, v, zz, x, yy);
 }
 
+void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
+             const QPWork& w);
+bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
+              const double* z, const double* zb, double tol, double* stats);
+
 // qp.active_residuals (P the screened Ps, lb/ub the screened bounds).
 void active_residuals(const Data& dt, const double* lb, const double* ub, const Outs& o,
                       const Rows& R, const idx* S, idx k, QPWork& w, double* rd, double* rpE,
@@ -972,7 +977,7 @@ void active_residuals(const Data& dt, const double* lb, const double* ub, const 
         err[j] = 0.0;
         size[j] = 0.0;
     }
-    axpy2_matrix(s, err, size, n, o.x, dt.P);
+    axpy2_P(s, err, size, o.x, dt, w);
     axpy2_matrix(s, err, size, n, o.y, dt.A);
     for (idx j = 0; j < k; ++j) {
         idx i = R.ckind[S[j]];
@@ -1038,6 +1043,10 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     Mat<const double> L = w.L;
     active_solve(L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, xi, yy, zz);
     idx p0 = dt.p0(), m0 = dt.m0();
+    // P's nonzeros by rows (kept where at most a quarter): the refinement's sums over P and
+    // the check's take them alone, with the same bits (axpy2_P, kkt_rows).  (layout() made
+    // w's SparseRows off and the cache empty: they are gram's own here.)
+    w.spP.build(dt.P.p, n, n);
     for (idx step = 0; step < steps; ++step) {
         for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
         caller_form(o, n, p0, m0, yy, zz, R, false);
@@ -1054,7 +1063,9 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     Data checked = dt;
     checked.lb = lb;
     checked.ub = ub;
-    if (!kkt_check(checked, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+    bool passed = kkt_rows(checked, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    w.spP.on = false;
+    if (!passed) {
         res.code = CHECK_FAILED;
         return res;
     }
@@ -1074,6 +1085,30 @@ void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<
         for (idx t = sp.start[i]; t < sp.start[i + 1]; ++t) {
             idx j = sp.col[t];
             axpy2_term(s[j], err[j], size[j], a, Mi[j]);
+        }
+    }
+}
+
+// active_residuals' sums over P (s, err, size from q, 0, 0): axpy2_matrix, or with w.spP (gram's:
+// P's nonzeros by rows, where at most a quarter) and x finite, axpy2_sparse.  A skipped
+// term is an exact +-0: it changes no error term (they never hold -0) and no sum but one
+// at -0 (-0 + +0 = +0), and a sum that differs so has only +-0 terms after it (the first
+// nonzero one gives both the same bits): a sum ending at -0 is summed again whole, in
+// order.  So the same bits as axpy2_matrix.
+void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
+             const QPWork& w) {
+    idx n = dt.n();
+    if (!(w.spP.on && all_finite(x, n))) {
+        axpy2_matrix(s, err, size, n, x, dt.P);
+        return;
+    }
+    axpy2_sparse(s, err, size, x, dt.P, w.spP);
+    for (idx j = 0; j < n; ++j) {
+        if (s[j] == 0.0 && std::signbit(s[j])) {
+            s[j] = dt.q[j];
+            err[j] = 0.0;
+            size[j] = 0.0;
+            for (idx i = 0; i < n; ++i) axpy2_term(s[j], err[j], size[j], x[i], dt.P(i, j));
         }
     }
 }
