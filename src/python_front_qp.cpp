@@ -142,9 +142,9 @@ thread_local std::vector<std::pair<int, int>> ran;
 // _qp._solve_definite (and its _solve_semidefinite) on plain data with the default options,
 // the same kernel calls in the same order: with at least GRAM_RATIO n inequalities (bounds
 // counted) the factored path first (the kernel's step 7); unless it solved or stopped, the
-// fused kernel; where that found P not definite and step 7 did not run, the proximal
-// factored path (step 8) unless P has more zero diagonal entries than equalities
-// (fixed variables counted; the kernel would decline at once). One buffer for all of them
+// fused kernel; where that found P not definite, or its point failed the KKT check, and
+// step 7 did not run, the proximal factored path (step 8) unless P has more zero diagonal
+// entries than qp::flat_allowed takes on (the kernel would decline at once). One buffer for all of them
 // (each kernel writes every entry it reports; solve_gram zeroes it whole first). The
 // result when one ends OK; else the last kernel's code, after which the Python steps go
 // straight to the KKT-MLCP path (a stop: its result, no other path).
@@ -170,10 +170,10 @@ nb::object cold(const qp::Data& data, idx p, idx m, bool many) {
         if (!many || (r.code != qp::OK && !stopped(r.code))) {
             r = qp::solve(data, qf.method, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, basic);
             ran.emplace_back(0, r.code);
-            if (r.code == qp::NOT_DEFINITE && !tried &&
-                qp::zero_diagonal(data.P) <= qp::equalities(p, data.lb, data.ub, n)) {
+            if ((r.code == qp::NOT_DEFINITE || r.code == qp::CHECK_FAILED) && !tried &&
+                qp::zero_diagonal(data.P) <= qp::flat_allowed(p, data.h, m, data.lb, data.ub, n)) {
                 r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(),
-                                   basic, true);
+                                   basic, true, true, true);
                 ran.emplace_back(1, r.code);
             }
         }

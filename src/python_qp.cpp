@@ -157,7 +157,7 @@ Code4 solve_guess(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int 
 
 Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
                  std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol, Out1 out,
-                 IdxOut basic, bool semidefinite) {
+                 IdxOut basic, bool semidefinite, bool relaxed) {
     idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
     idx k0 = qp::OutLayout{n, p0, m0}.basis();
     double* o = out.data();
@@ -169,7 +169,7 @@ Code4 solve_gram(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub,
     {
         nb::gil_scoped_release release;
         r = qp::solve_gram(data(P, q, G, h, A, b, lb, ub), max_pivots, pivot_tol, tie_tol, tol, o,
-                           len(out), basic.data(), semidefinite);
+                           len(out), basic.data(), semidefinite, relaxed);
     }
     return {r.code, r.pivots, r.k, r.pairs};
 }
@@ -298,7 +298,7 @@ void bind_qp(nb::module_& m) {
           nb::arg("out").noconvert(), "x0"_a);
     m.def("qp_solve_gram", &solve_gram, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, nb::arg("out").noconvert(),
-          nb::arg("basic").noconvert(), "semidefinite"_a);
+          nb::arg("basic").noconvert(), "semidefinite"_a, "relaxed"_a = false);
     m.def("qp_solve_box", &solve_box, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
           nb::arg("warm").noconvert(), "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a,
           nb::arg("out").noconvert(), nb::arg("final").noconvert());
@@ -325,6 +325,10 @@ void bind_qp(nb::module_& m) {
         if (len(lb) != len(ub)) throw nb::value_error("qp_equalities: lb and ub of one length");
         return qp::equalities(len(A, 0), lb.data(), ub.data(), len(lb));
     }, "A"_a, "lb"_a, "ub"_a);
+    m.def("qp_flat_allowed", [](In1 h, std::int64_t p, In1 lb, In1 ub) {
+        if (len(lb) != len(ub)) throw nb::value_error("qp_flat_allowed: lb and ub of one length");
+        return qp::flat_allowed(p, h.data(), len(h), lb.data(), ub.data(), len(lb));
+    }, "h"_a, "p"_a, "lb"_a, "ub"_a);
     m.def("qp_inequalities", [](In1 h, In1 lb, In1 ub) {
         if (len(lb) != len(ub)) throw nb::value_error("qp_inequalities: lb and ub of one length");
         return qp::inequalities(h.data(), len(h), lb.data(), ub.data(), len(lb));
@@ -342,6 +346,7 @@ void bind_qp(nb::module_& m) {
     m.attr("QP_OK") = qp::OK;
     m.attr("QP_NOT_DEFINITE") = qp::NOT_DEFINITE;
     m.attr("QP_NOT_APPLICABLE") = qp::NOT_APPLICABLE;
+    m.attr("QP_CHECK_FAILED") = qp::CHECK_FAILED;
     m.attr("QP_BAD_WARM") = qp::BAD_WARM;
     m.attr("QP_GRAM_RATIO") = qp::GRAM_RATIO;
 }

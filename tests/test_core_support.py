@@ -146,9 +146,16 @@ def test_the_mlcp_front_on_the_siconos_files(recorder):
     _replay(recorder, "solve_mlcp")
 
 
-def test_the_qp_front(recorder):
+def test_the_qp_front(recorder, monkeypatch):
     """solve_qp on the goldens' QPs (the small Maros-Meszaros files, HS21, random convex
-    QPs): the KKT systems' reduction, refined_solve with given unknowns, check_mlcp."""
+    QPs): the KKT systems' reduction, refined_solve with given unknowns, check_mlcp.  On
+    the Python path with step 8 as it was when the references were recorded (its own rule,
+    after NOT_DEFINITE only: ``_qp._RELAXED`` off), so that the QPs that step 8 now answers
+    (QAFIRO, QPCBLEND, random/20/10, ...) still reach the KKT-MLCP path here."""
+    from lemke import _qp
+
+    monkeypatch.setattr(_qp, "_QP_FRONT", lambda *a: None)
+    monkeypatch.setattr(_qp, "_RELAXED", False)
     for _, args in golden.qp_cases():
         for method in golden.METHODS:
             lemke.solve_qp(*args, method=method)

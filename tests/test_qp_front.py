@@ -194,6 +194,17 @@ def _cold_cases():
     yield "semidefinite, many rows", (Ps, q, np.vstack([G] * 7), np.concatenate([h] * 7), A4,
                                       A4 @ np.zeros(10), None, None)
     yield "linear program", (np.zeros_like(P), q, G, h, A, b, lb, ub)
+    # one flat direction (a linear variable with a lower bound) among more than SMALL_FLAT
+    # variables, more rows of G than bound rows: step 8 relaxed, on solve's screen
+    n5 = 40
+    Pf = np.diag(rng.uniform(0.5, 2.0, n5))
+    Pf[0, 0] = 0.0
+    qf = rng.standard_normal(n5)
+    qf[0] = abs(qf[0]) + 0.1
+    Gf = rng.standard_normal((6, n5))
+    lbf = np.full(n5, -np.inf)
+    lbf[0] = 0.0
+    yield "one flat direction", (Pf, qf, Gf, np.abs(rng.standard_normal(6)), None, None, lbf, None)
     g = rng.standard_normal(10)
     yield "infeasible", (P, q, np.vstack([G, g, -g]), np.concatenate([h, [-1.0, -1.0]]), A, b,
                          lb, ub)

@@ -228,30 +228,69 @@ def test_semidefinite_pinned_by_equalities(name, method, gram_calls, dense_calls
     assert abs(res.obj + r - REFS[name]) <= 1e-8 * max(1.0, abs(REFS[name]))
 
 
-@pytest.mark.parametrize("name", ["QAFIRO", "ZECEVIC2", "PRIMALC1", "QADLITTL"])
+def _kernel_gram(problem, relaxed):
+    """``(code, pivots)`` of the factored path's kernel called directly with ``semidefinite``
+    (its own rule for flat directions, or with ``relaxed`` the fronts' ``flat_allowed``)."""
+    P, q, G, h, A, b, lb, ub = _qp._plain_args(*problem)
+    n, p, m = q.size, A.shape[0], G.shape[0]
+    out = np.empty(_qp._layout(n, p, m)[-1])
+    o = lemke.Options()
+    code, pivots, _, _ = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, -1, o.pivot_tol, o.tie_tol,
+                                             o.tol, out, _qp._basis_view(out, n, p, m), True,
+                                             relaxed)
+    return code, pivots
+
+
+@pytest.mark.parametrize("name", ["PRIMALC1", "QADLITTL", "QSC205"])
 def test_flat_directions_not_pinned(name, gram_calls, dense_calls):
-    """Linear-program-like problems (P with more zero diagonal entries than equality rows):
-    step 8 is not even called (solve_qp counts them first), the KKT-MLCP path answers; the
-    kernel itself, called directly, declines before any pivot (NOT_APPLICABLE)."""
+    """Linear-program-like problems (P with more zero diagonal entries than equality rows,
+    more than SMALL_FLAT variables, and more bound rows than rows of G or more than one flat
+    direction beyond the equalities): step 8 is not even called (solve_qp counts them first),
+    the KKT-MLCP path answers; the kernel itself, called directly, declines before any pivot
+    (NOT_APPLICABLE), by its own rule and by the relaxed one."""
     problem, r = load(DATA / f"{name}.mat")
     res = lemke.solve_qp(*problem)
     check_solved(problem, res)
     assert dense_calls == [QP_NOT_DEFINITE]
     assert gram_calls == []
     assert abs(res.obj + r - REFS[name]) <= 1e-6 * max(1.0, abs(REFS[name]))
-    P, q, G, h, A, b, lb, ub = _qp._plain_args(*problem)
-    n, p, m = q.size, A.shape[0], G.shape[0]
-    out, basic = np.empty(2 * n + p + m + 4), np.empty(m + 2 * n, dtype=np.int64)
-    o = lemke.Options()
-    code, pivots, _, _ = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, -1, o.pivot_tol, o.tie_tol,
-                                             o.tol, out, basic, True)
-    assert (code, pivots) == (QP_NOT_APPLICABLE, 0)
+    assert _kernel_gram(problem, False) == (QP_NOT_APPLICABLE, 0)
+    assert _kernel_gram(problem, True) == (QP_NOT_APPLICABLE, 0)
+
+
+@pytest.mark.parametrize("name", ["QAFIRO", "ZECEVIC2", "PRIMAL1"])
+def test_flat_directions_allowed(name, gram_calls, dense_calls):
+    """Problems with more flat directions than equality rows that step 8 takes on all the
+    same (``qp::flat_allowed``): at most SMALL_FLAT variables (QAFIRO, ZECEVIC2), or one flat
+    direction beyond the equalities with more rows of G than bound rows (PRIMAL1: one linear
+    variable among 325).  The kernel's own rule declines them (the frozen references' calls);
+    relaxed, it answers, at the reference optimum and a KKT point by the tests' own check."""
+    problem, r = load(DATA / f"{name}.mat")
+    res = lemke.solve_qp(*problem)
+    check_solved(problem, res)
+    assert dense_calls == [QP_NOT_DEFINITE]
+    assert gram_calls == [QP_OK]
+    assert abs(res.obj + r - REFS[name]) <= 1e-8 * max(1.0, abs(REFS[name]))
+    assert _kernel_gram(problem, False) == (QP_NOT_APPLICABLE, 0)
+
+
+def test_check_failed_goes_to_step_8(gram_calls, dense_calls):
+    """QPCBLEND (P definite): the dense fused kernel's point fails its KKT check, and step 8
+    (the factored path, its active rows' point refined) answers before the KKT-MLCP path,
+    at the reference optimum, a KKT point by the tests' own check."""
+    problem, r = load(DATA / "QPCBLEND.mat")
+    res = lemke.solve_qp(*problem)
+    check_solved(problem, res)
+    assert dense_calls == [QP_CHECK_FAILED]
+    assert gram_calls == [QP_OK]
+    assert abs(res.obj + r - REFS["QPCBLEND"]) <= 1e-8 * max(1.0, abs(REFS["QPCBLEND"]))
 
 
 def test_flat_directions_counted_by_the_factor(gram_calls):
     """A P without a zero diagonal entry but with a two-dimensional null space (P = B B',
     B 4 x 2) and one equality: the proximal factor has two pivots of order delta, more than
-    the one equality row, so step 8 declines; with two equality rows it answers."""
+    the one equality row, so the kernel's own rule declines (solve_qp's relaxed one takes
+    any number at n <= SMALL_FLAT, and answers); with two equality rows both answer."""
     rng = np.random.default_rng(8)
     B = rng.standard_normal((4, 2))
     P = B @ B.T
@@ -259,11 +298,17 @@ def test_flat_directions_counted_by_the_factor(gram_calls):
     q = rng.standard_normal(4)
     lb, ub = -np.ones(4), np.ones(4)
     A1 = rng.standard_normal((1, 4))
-    res = lemke.solve_qp(P, q, A=A1, b=np.zeros(1), lb=lb, ub=ub)
-    assert gram_calls == [QP_NOT_APPLICABLE]
-    check_solved((P, q, None, None, A1, np.zeros(1), lb, ub), res)
+    one = (P, q, None, None, A1, np.zeros(1), lb, ub)
+    assert _kernel_gram(one, False)[0] == QP_NOT_APPLICABLE
+    gram_calls.clear()
+    res = lemke.solve_qp(*one)
+    assert gram_calls == [QP_OK]
+    check_solved(one, res)
     gram_calls.clear()
     A2 = rng.standard_normal((2, 4))
-    res = lemke.solve_qp(P, q, A=A2, b=np.zeros(2), lb=lb, ub=ub)
+    two = (P, q, None, None, A2, np.zeros(2), lb, ub)
+    assert _kernel_gram(two, False)[0] == QP_OK
+    gram_calls.clear()
+    res = lemke.solve_qp(*two)
     assert gram_calls == [QP_OK]
-    check_solved((P, q, None, None, A2, np.zeros(2), lb, ub), res)
+    check_solved(two, res)

@@ -148,8 +148,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         The Lemke method (see :func:`lemke.solve_lcp`).  A cold QP with at least 4n
         inequalities (bounds counted) first tries the unrevised method on its multiplier
         LCP in factored form, whatever the method (see ``kernels.qp``, step 7); so does
-        one whose P is only semidefinite where the equalities can pin its flat directions
-        (step 8).
+        one whose P is only semidefinite where its flat directions are few (as many as the
+        equalities, one more with more rows of G than bound rows, any up to 32 variables;
+        step 8), and one whose fused point failed its KKT check.
     warm_start : WarmStart, optional
         ``result.warm_start`` of an earlier QP with the same structure: the same number of
         variables, the same rows of G with a finite h and the same kinds of bounds (its
@@ -312,7 +313,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                     return _fused_result(out, n, p, m, k, pairs, pivots)
                 if code in _STOP_CODES:
                     return _stopped(code, pivots, n, len(Ak), len(Gk))
-                if code == _NOT_DEFINITE:  # the kernel's step 8 (as _solve_definite)
+                if code == _NOT_DEFINITE or (code == _CHECK_FAILED and _RELAXED):  # step 8
                     res = _solve_semidefinite((P, q, Gk, hk, Ak, bk, lo, up), opts)
                     if res is not None:
                         return res
@@ -787,8 +788,9 @@ def _solve_definite(args, method, opts):
     the KKT point on the data; with m >= 4n inequalities, first its LCP in factored form
     (``_core.qp_solve_gram``, the kernel's step 7, whatever ``method``; also for a P that is
     semidefinite to rounding; and, step 8, for a P that is not definite whose flat
-    directions the equalities can pin).  None when it does not apply (data that needs the full
-    validation, P only semidefinite, dependent equalities) or did not end solved and
+    directions are few enough, or where the fused kernel's point failed its check).  None
+    when it does not apply (data that needs the full validation, P only semidefinite,
+    dependent equalities) or did not end solved and
     checked: the caller then takes the KKT-MLCP path, which also finds the certificates of
     infeasible and unbounded QPs."""
     P, q, G, h, A, b, lb, ub = args
@@ -812,7 +814,7 @@ def _solve_definite(args, method, opts):
         code, pivots, k, pairs = _core.qp_solve(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method],
                                                 max_pivots, opts.pivot_tol, opts.tie_tol,
                                                 opts.tol, out)
-        if code == _NOT_DEFINITE and not tried:
+        if (code == _NOT_DEFINITE or (code == _CHECK_FAILED and _RELAXED)) and not tried:
             return _solve_semidefinite(args, opts)
     if code in _STOP_CODES:
         return _stopped(code, pivots, n, p, m)
@@ -822,22 +824,24 @@ def _solve_definite(args, method, opts):
 
 
 def _solve_semidefinite(args, opts):
-    """The kernel's step 8 for a P that the fused kernel found not definite: its proximal
-    factor and the factored path, where the equalities can pin P's flat directions
-    (``_core.qp_solve_gram`` with ``semidefinite``; NOT_APPLICABLE where they cannot).  None
-    when it does not end solved and checked."""
+    """The kernel's step 8 for a P that the fused kernel found not definite (or whose point
+    failed its KKT check): its proximal factor and the factored path, where P's flat
+    directions are few enough (``_core.qp_solve_gram`` with ``semidefinite``;
+    NOT_APPLICABLE where they are not: as many as the equality rows, one more where the
+    rows of G outnumber the bounds' rows, any number up to ``SMALL_FLAT`` variables,
+    ``qp::flat_allowed``).  None when it does not end solved and checked."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
-    if count(P.diagonal() == 0.0) > p + count(lb == ub):
-        # more zero diagonal entries (flat directions) than equality rows: the kernel would
-        # decline at once (kernels.qp.zero_diagonal); a linear program, say, neither calls nor
-        # compiles it
+    allowed = _core.qp_flat_allowed(h, p, lb, ub) if _RELAXED else p + count(lb == ub)
+    if count(P.diagonal() == 0.0) > allowed:
+        # more zero diagonal entries (flat directions) than that: the kernel would decline at
+        # once (kernels.qp.zero_diagonal); a linear program, say, does not call it
         return None
     out = np.empty(_layout(n, p, m)[-1])
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
     code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
                                                  opts.pivot_tol, opts.tie_tol, opts.tol, out,
-                                                 _basis_view(out, n, p, m), True)
+                                                 _basis_view(out, n, p, m), True, _RELAXED)
     if code in _STOP_CODES:
         return _stopped(code, pivots, n, p, m)
     if code != _OK:
@@ -903,6 +907,13 @@ _I64 = np.dtype(np.int64)
 _METHOD_CODES = dict(_METHOD_NAMES)
 _OK, _NOT_DEFINITE, _GRAM_RATIO = _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_GRAM_RATIO
 _NOT_APPLICABLE = _core.QP_NOT_APPLICABLE
+_CHECK_FAILED = _core.QP_CHECK_FAILED
+#: Step 8's reach on the Python path: P's flat directions up to qp::flat_allowed, and after
+#: the dense kernel's CHECK_FAILED (as the native front always does); False: the kernel's own
+#: rule (flat directions up to the equalities) after NOT_DEFINITE only, the routing the
+#: frozen references of the KKT-MLCP path's support calls were recorded with
+#: (tests/test_core_support.py switches the front off and this off).
+_RELAXED = True
 _BAD_WARM = _core.QP_BAD_WARM
 _QP_FRONT = _core.qp_front  # solve_qp's warm call, native (src/python_front_qp.cpp)
 

@@ -23,7 +23,7 @@ namespace {
 // The QP kernels' workspace, one per thread, laid out in one place (QPWork::layout) for a
 // QP with p equality rows and m inequality rows (qp.rows_of) of n variables, r = n - p:
 // (screen's Ps, lo, up come first, in a block of their own: the bounds decide p and m.)
-//   f:  L (n x n), Pd (n x n, the proximal copy), E (p x n),
+//   f:  L (n x n), E (p x n),
 //       C (m x n), f (p), d (m), V (pv x n, pv = min(p, n)), beta (pv), c, v (n), g (m);
 //       the fused path's LCP: M (m x m, only when dense), zz, ones (m), yy (p),
 //       buf (6m + 2: cold's buffer); the factored path (gram_lcp keeps its own: it is
@@ -81,10 +81,11 @@ struct QPWork {
     std::vector<idx> i;
     std::vector<std::uint8_t> b;
     idx n = 0, p = 0, m = 0, r = 0, pv = 0, kr = 0;
-    Mat<double> L, Pd, E, C, V, M, K2, V2;
+    Mat<double> L, E, C, V, M, K2, V2;
     double *fv, *d, *beta, *c, *v, *g, *zz, *ones, *yy, *buf, *beta2, *rd, *rpE, *rpS, *xi, *dx, *dy, *dz, *zg, *cc, *va, *zS, *s, *err, *size, *kkt;
     idx *ekind, *ckind, *up_row, *S, *lcp_basic;
     std::uint8_t *bflags, *gflags;
+    std::vector<idx> lstart;  // L's profile (factors': profile), for forward and forward_rows
     // The factor cache (solve's, see same_factors): what the dense layout's L, E, V, beta, C,
     // the kinds, up_row and M were computed from. Any layout() call drops it.
     bool cached = false;
@@ -107,7 +108,7 @@ struct QPWork {
         r = std::max<idx>(n - p, 0);
         pv = std::min(p, n);
         kr = std::min(m, r);
-        idx total = 2 * n * n + p * n + m * n + p + m + pv * n + pv + 2 * n + m +
+        idx total = n * n + p * n + m * n + p + m + pv * n + pv + 2 * n + m +
                     (dense ? m * m : 0) + 2 * m + p + 6 * m + 2 + 2 * kr * r + kr + n + p + kr + 2 * n + p + 2 * m + 2 * n + kr + 3 * n +
                     4 * n + 1;
         f.resize(static_cast<std::size_t>(total));
@@ -117,7 +118,6 @@ struct QPWork {
         auto mat = [&](idx rows, idx cols) { return Mat<double>(cv.take(rows * cols).data(), rows, cols); };
         auto vec = [&](idx len) { return cv.take(len).data(); };
         L = mat(n, n);
-        Pd = mat(n, n);
         E = mat(p, n);
         C = mat(m, n);
         fv = vec(p);
@@ -168,15 +168,60 @@ QPWork& work() {
 
 // ----------------------------------------------------------------------------- factors
 
-void forward(Mat<const double> L, double* r) {
+// r := L^-1 r, each sum from r's first nonzero (s) in dot's order from there; with L's
+// profile (lstart: row j's first nonzero), the whole blocks of eight (counted from s) left of
+// row j's start skipped while r's entries are finite (forward_rows says why the bits stay).
+void forward(Mat<const double> L, double* r, const idx* lstart = nullptr) {
     idx n = L.rows;
     idx s = 0;
     while (s < n && r[s] == 0.0) ++s;
-    const double* rs = r + s;
+    bool skip = lstart != nullptr;
     for (idx j = s; j < n; ++j) {
         const double* Lj = L.row(j);
-        r[j] = (r[j] - dot(Lj + s, rs, j - s)) / Lj[j];
+        idx b = s;
+        if (skip && lstart[j] > s) b = s + ((lstart[j] - s) & ~static_cast<idx>(7));
+        r[j] = (r[j] - dot(Lj + b, r + b, j - b)) / Lj[j];
+        if (skip && !std::isfinite(r[j])) skip = false;
     }
+}
+
+// L's profile: start[j] is row j's first nonzero left of the diagonal (j where none).
+void profile(Mat<const double> L, idx* start) {
+    for (idx j = 0; j < L.rows; ++j) {
+        const double* Lj = L.row(j);
+        idx s = 0;
+        while (s < j && Lj[s] == 0.0) ++s;
+        start[j] = s;
+    }
+}
+
+// The screened copy of P and the bounds (screened), one per thread for solve and solve_gram:
+// the front's step 8 after solve's NOT_DEFINITE writes the pages solve's screen touched.
+std::vector<double>& screen_scratch() {
+    thread_local std::vector<double> scr;
+    return scr;
+}
+
+// The data whose screen screen_scratch holds, when solve left it there on NOT_DEFINITE
+// (its Cholesky failed: nothing after screen wrote the buffer), for solve_gram's
+// reuse_screen (the front's step 8 right after that solve, on the same arrays).
+struct ScreenOf {
+    bool valid = false;
+    Data dt{};
+};
+
+ScreenOf& screen_of() {
+    thread_local ScreenOf s;
+    return s;
+}
+
+bool same_mat(Mat<const double> a, Mat<const double> b) {
+    return a.p == b.p && a.rows == b.rows && a.cols == b.cols && a.ld == b.ld;
+}
+
+bool same_arrays(const Data& a, const Data& b) {
+    return same_mat(a.P, b.P) && same_mat(a.G, b.G) && same_mat(a.A, b.A) && a.q == b.q &&
+           a.h == b.h && a.b == b.b && a.lb == b.lb && a.ub == b.ub;
 }
 
 void backward_transposed(Mat<const double> L, double* r) {
@@ -567,14 +612,17 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
     if (p > n) return DEPENDENT_EQUALITIES;
     Mat<const double> L = w.L;
-    forward_rows(L, R.E);
+    w.lstart.resize(static_cast<std::size_t>(n + 1));
+    const idx* lstart = w.lstart.data();
+    profile(L, w.lstart.data());
+    forward_rows_from(L, R.E, lstart);
     idx m_u = m_g;
     while (m_u < m && R.ckind[m_u] < n) ++m_u;
     // in blocks of 32 rows (forward_rows takes rows by fours: the same bits), the thread's
     // deadline looked at between them
     for (idx i0 = 0; i0 < m_u; i0 += 32) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
-        forward_rows(L, Mat<double>(R.C.row(i0), std::min<idx>(32, m_u - i0), n));
+        forward_rows_from(L, Mat<double>(R.C.row(i0), std::min<idx>(32, m_u - i0), n), lstart);
     }
     idx* up_row = w.up_row;
     for (idx j = 0; j < n; ++j) up_row[j] = -1;
@@ -587,10 +635,10 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
             const double* Cu = R.C.row(up_row[j]);
             for (idx t = 0; t < n; ++t) Ci[t] = -Cu[t];
         } else {
-            forward(L, R.C.row(i));
+            forward(L, R.C.row(i), lstart);
         }
     }
-    forward(L, c);
+    forward(L, c, lstart);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
     for (idx k = 0; k < p; ++k) householder_apply(w.V, w.beta, k, c);
     // (C's rows in blocks of 32, the thread's deadline looked at between them)
@@ -872,16 +920,14 @@ Outs out_views(double* out, idx n, idx p0, idx m0) {
     return {out + L.x(), out + L.y(), out + L.z(), out + L.zb(), out + L.stats()};
 }
 
-bool proximal_cholesky(Mat<const double> P, Mat<double> Pd, Mat<double> L) {
+// The factor of P + PROXIMAL max_j P_jj I (cholesky_shifted: the shifted diagonal read in
+// place, not from a copy of P).
+bool proximal_cholesky(Mat<const double> P, Mat<double> L) {
     idx n = P.rows;
     double top = 0.0;
     for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
     if (!(top > 0.0)) return false;
-    for (idx i = 0; i < n; ++i) {
-        for (idx j = 0; j < n; ++j) Pd(i, j) = P(i, j);
-        Pd(i, i) += PROXIMAL * top;
-    }
-    return cholesky(Pd, L);
+    return cholesky_shifted(P, PROXIMAL * top, L);
 }
 
 // qp.active_solve. S (k), K2/V2/beta2 the QR of F2_S'; zz written at S (and zeroed).
@@ -892,7 +938,7 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
     idx n = L.rows, p = R.p;
     double* cc = w.cc;
     for (idx t = 0; t < n; ++t) cc[t] = rd[t];
-    forward(L, cc);
+    forward(L, cc, w.lstart.data());
     for (idx j = 0; j < p; ++j) householder_apply(w.V, w.beta, j, cc);
     double* v = w.va;
     for (idx j = 0; j < p; ++j) v[j] = (rpE[j] - dot(R.E.row(j), v, j)) / R.E(j, j);
@@ -915,6 +961,11 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
     point(L, R, w, cc, v, zz, x, yy);
 }
 
+void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
+             const QPWork& w);
+bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
+              const double* z, const double* zb, double tol, double* stats);
+
 // qp.active_residuals (P the screened Ps, lb/ub the screened bounds).
 void active_residuals(const Data& dt, const double* lb, const double* ub, const Outs& o,
                       const Rows& R, const idx* S, idx k, QPWork& w, double* rd, double* rpE,
@@ -926,7 +977,7 @@ void active_residuals(const Data& dt, const double* lb, const double* ub, const 
         err[j] = 0.0;
         size[j] = 0.0;
     }
-    axpy2_matrix(s, err, size, n, o.x, dt.P);
+    axpy2_P(s, err, size, o.x, dt, w);
     axpy2_matrix(s, err, size, n, o.y, dt.A);
     for (idx j = 0; j < k; ++j) {
         idx i = R.ckind[S[j]];
@@ -992,6 +1043,10 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     Mat<const double> L = w.L;
     active_solve(L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, xi, yy, zz);
     idx p0 = dt.p0(), m0 = dt.m0();
+    // P's nonzeros by rows (kept where at most a quarter): the refinement's sums over P and
+    // the check's take them alone, with the same bits (axpy2_P, kkt_rows).  (layout() made
+    // w's SparseRows off and the cache empty: they are gram's own here.)
+    w.spP.build(dt.P.p, n, n);
     for (idx step = 0; step < steps; ++step) {
         for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
         caller_form(o, n, p0, m0, yy, zz, R, false);
@@ -1008,7 +1063,9 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     Data checked = dt;
     checked.lb = lb;
     checked.ub = ub;
-    if (!kkt_check(checked, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+    bool passed = kkt_rows(checked, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    w.spP.on = false;
+    if (!passed) {
         res.code = CHECK_FAILED;
         return res;
     }
@@ -1028,6 +1085,30 @@ void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<
         for (idx t = sp.start[i]; t < sp.start[i + 1]; ++t) {
             idx j = sp.col[t];
             axpy2_term(s[j], err[j], size[j], a, Mi[j]);
+        }
+    }
+}
+
+// active_residuals' sums over P (s, err, size from q, 0, 0): axpy2_matrix, or with w.spP (gram's:
+// P's nonzeros by rows, where at most a quarter) and x finite, axpy2_sparse.  A skipped
+// term is an exact +-0: it changes no error term (they never hold -0) and no sum but one
+// at -0 (-0 + +0 = +0), and a sum that differs so has only +-0 terms after it (the first
+// nonzero one gives both the same bits): a sum ending at -0 is summed again whole, in
+// order.  So the same bits as axpy2_matrix.
+void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
+             const QPWork& w) {
+    idx n = dt.n();
+    if (!(w.spP.on && all_finite(x, n))) {
+        axpy2_matrix(s, err, size, n, x, dt.P);
+        return;
+    }
+    axpy2_sparse(s, err, size, x, dt.P, w.spP);
+    for (idx j = 0; j < n; ++j) {
+        if (s[j] == 0.0 && std::signbit(s[j])) {
+            s[j] = dt.q[j];
+            err[j] = 0.0;
+            size[j] = 0.0;
+            for (idx i = 0; i < n; ++i) axpy2_term(s[j], err[j], size[j], x[i], dt.P(i, j));
         }
     }
 }
@@ -1424,30 +1505,48 @@ void dot4(const double* a, const double* r0, const double* r1, const double* r2,
     dot4_lanes(a, r0, r1, r2, r3, len, out);
 }
 
+// Each row of R (k x n) replaced by L^-1 times it, four rows at a time, each sum from the
+// first column where one of the four rows is nonzero (s) in dot's order from there.  A
+// row of L that starts with zeros (its first nonzero at lstart, L's profile, P's) skips
+// the whole blocks of eight (counted from s) left of it while the rows' entries are
+// finite: each term skipped is +-0, added to a lane still at +0, so the sums keep their
+// bits (a diagonal L: O(n) per row instead of O(n^2)).
 LEMKE_CLONES
-void forward_rows(Mat<const double> L, Mat<double> R) {
+void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
     idx n = L.rows, k = R.rows;
     idx i = 0;
     while (i + 4 <= k) {
         double *r0 = R.row(i), *r1 = R.row(i + 1), *r2 = R.row(i + 2), *r3 = R.row(i + 3);
         idx s = 0;
         while (s < n && r0[s] == 0.0 && r1[s] == 0.0 && r2[s] == 0.0 && r3[s] == 0.0) ++s;
+        bool finite = true;  // the entries written so far (the only ones a skip passes over)
         for (idx j = s; j < n; ++j) {
             const double* Lj = L.row(j);
+            idx b = s;
+            if (finite && lstart[j] > s) b = s + ((lstart[j] - s) & ~static_cast<idx>(7));
             double d[4];
-            dot4_lanes(Lj + s, r0 + s, r1 + s, r2 + s, r3 + s, j - s, d);
+            dot4_lanes(Lj + b, r0 + b, r1 + b, r2 + b, r3 + b, j - b, d);
             double inv = 1.0 / Lj[j];
             r0[j] = (r0[j] - d[0]) * inv;
             r1[j] = (r1[j] - d[1]) * inv;
             r2[j] = (r2[j] - d[2]) * inv;
             r3[j] = (r3[j] - d[3]) * inv;
+            if (!(std::isfinite(r0[j]) && std::isfinite(r1[j]) && std::isfinite(r2[j]) &&
+                  std::isfinite(r3[j])))
+                finite = false;
         }
         i += 4;
     }
-    for (; i < k; ++i) forward(L, R.row(i));
+    for (; i < k; ++i) forward(L, R.row(i), lstart);
 }
 
-LEMKE_CLONES
+void forward_rows(Mat<const double> L, Mat<double> R) {
+    thread_local std::vector<idx> lstart;
+    lstart.resize(static_cast<std::size_t>(L.rows + 1));
+    profile(L, lstart.data());
+    forward_rows_from(L, R, lstart.data());
+}
+
 double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     idx p = WE.rows, n = WE.cols;
     if (p > n) return 0.0;
@@ -1499,54 +1598,119 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
 // chain of dependent dots and divisions: latency-bound, 2-3x slower at n = 100). The panel
 // is built aside and copied row by row, so that on failure L holds what the row-by-row
 // loop wrote: the rows above the failing one, its entries left of the diagonal.
-LEMKE_CLONES
-bool cholesky(Mat<const double> P, Mat<double> L) {
+//
+// Leading zeros (P's profile: row i's first nonzero left of the diagonal, start[i]): while
+// every entry computed so far is finite, L's row i is exactly P(i, j) / L(j, j) = P(i, j)
+// (+-0, L(j, j) > 0) left of start[i] (its dot there sums +-0 terms into lanes that start at +0, and stays +0), and
+// a dot of two rows skips the whole blocks of eight (its lanes' blocks, counted from 0) left
+// of the larger start: the terms it skips are +-0, added to lanes still at +0, so every
+// lane, and the sum, keeps its bits.  A diagonal or banded P costs O(n) per row then, not
+// O(n^2) (PRIMAL1-3: P diagonal but for one zero).  An entry that is not finite (an
+// overflow) ends the skipping: the rest is summed whole, as before.
+// (shifted: P's diagonal read as P(i, i) + shift, the entry a shifted copy would hold)
+LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool shifted,
+                                       double shift) {
     idx n = P.rows;
+    auto diag = [&](idx i) { return shifted ? P(i, i) + shift : P(i, i); };
     double top = 0.0;
-    for (idx j = 0; j < n; ++j) top = pmax(top, P(j, j));
+    for (idx j = 0; j < n; ++j) top = pmax(top, diag(j));
     double floor = DEFINITE_TOL * top;
     if (!(top > 0.0)) return false;
     thread_local std::vector<double> panel;
+    thread_local std::vector<idx> start_v;
     panel.resize(static_cast<std::size_t>(4 * n));
+    start_v.resize(static_cast<std::size_t>(n + 1));
+    idx* start = start_v.data();  // (each panel's rows' starts found as it begins)
+    bool finite = true;  // every entry of L computed so far (skipping allowed)
+    // the first lane block a dot of length len may start at, both rows' leading zeros
+    // (from a and b) skipped: a multiple of 8, at most len
+    auto from = [&](idx a, idx b, idx len) -> idx {
+        if (!finite) return 0;
+        idx s = std::max(a, b) & ~static_cast<idx>(7);
+        return s < len ? s : len & ~static_cast<idx>(7);
+    };
     double* R[4] = {panel.data(), panel.data() + n, panel.data() + 2 * n, panel.data() + 3 * n};
     for (idx i0 = 0; i0 < n; i0 += 4) {
         idx c = std::min<idx>(4, n - i0);
         // (the thread's deadline, every 32 rows: false then, and the callers ask
         // deadline_passed() before they read false as "not definite")
         if ((i0 & 31) == 28 && deadline_passed() >= 0) return false;
+        for (idx i = i0; i < i0 + c; ++i) {
+            const double* Pi = P.row(i);
+            idx s = 0;
+            while (s < i && Pi[s] == 0.0) ++s;
+            start[i] = s;
+        }
         if (c == 4) {
             const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
                          *P3 = P.row(i0 + 3);
+            idx s4 = std::min(std::min(start[i0], start[i0 + 1]), std::min(start[i0 + 2], start[i0 + 3]));
             for (idx j = 0; j < i0; ++j) {
                 const double* Lj = L.row(j);
                 double ljj = Lj[j], d[4];
-                dot4_lanes(Lj, R[0], R[1], R[2], R[3], j, d);
+                if (finite && j < s4) {  // every row's dot is +0 here: (P - 0) / ljj = P (+-0)
+                    R[0][j] = P0[j];
+                    R[1][j] = P1[j];
+                    R[2][j] = P2[j];
+                    R[3][j] = P3[j];
+                    continue;
+                }
+                idx b = from(s4, start[j], j);
+                dot4_lanes(Lj + b, R[0] + b, R[1] + b, R[2] + b, R[3] + b, j - b, d);
                 R[0][j] = (P0[j] - d[0]) / ljj;
                 R[1][j] = (P1[j] - d[1]) / ljj;
                 R[2][j] = (P2[j] - d[2]) / ljj;
                 R[3][j] = (P3[j] - d[3]) / ljj;
+                if (!(std::isfinite(R[0][j]) && std::isfinite(R[1][j]) && std::isfinite(R[2][j]) &&
+                      std::isfinite(R[3][j])))
+                    finite = false;
             }
         } else {
             for (idx j = 0; j < i0; ++j) {
                 const double* Lj = L.row(j);
-                for (idx q = 0; q < c; ++q)
-                    R[q][j] = (P(i0 + q, j) - dot_lanes(R[q], Lj, j)) / Lj[j];
+                for (idx q = 0; q < c; ++q) {
+                    idx i = i0 + q;
+                    if (finite && j < start[i]) {
+                        R[q][j] = P(i, j);
+                        continue;
+                    }
+                    idx b = from(start[i], start[j], j);
+                    R[q][j] = (P(i, j) - dot_lanes(R[q] + b, Lj + b, j - b)) / Lj[j];
+                    if (!std::isfinite(R[q][j])) finite = false;
+                }
             }
         }
         for (idx q = 0; q < c; ++q) {
             idx i = i0 + q;
             double* Ri = R[q];
-            for (idx j = i0; j < i; ++j)
-                Ri[j] = (P(i, j) - dot_lanes(Ri, R[j - i0], j)) / R[j - i0][j];
-            double d = P(i, i) - dot_lanes(Ri, Ri, i);
+            for (idx j = i0; j < i; ++j) {
+                if (finite && j < start[i]) {
+                    Ri[j] = P(i, j);
+                    continue;
+                }
+                idx b = from(start[i], start[j], j);
+                Ri[j] = (P(i, j) - dot_lanes(Ri + b, R[j - i0] + b, j - b)) / R[j - i0][j];
+                if (!std::isfinite(Ri[j])) finite = false;
+            }
+            idx b = from(start[i], 0, i);
+            double d = diag(i) - dot_lanes(Ri + b, Ri + b, i - b);
             double* Li = L.row(i);
             for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
             if (!(d > floor)) return false;
             Li[i] = Ri[i] = std::sqrt(d);
+            if (!std::isfinite(Li[i])) finite = false;
             for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
         }
     }
     return true;
+}
+
+LEMKE_CLONES
+bool cholesky(Mat<const double> P, Mat<double> L) { return cholesky_body(P, L, false, 0.0); }
+
+LEMKE_CLONES
+bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L) {
+    return cholesky_body(P, L, true, shift);
 }
 
 bool kkt_check(const Data& dt, const double* x, const double* y, const double* z,
@@ -1584,6 +1748,26 @@ idx equalities(idx p0, const double* lb, const double* ub, idx n) {
     for (idx j = 0; j < n; ++j)
         if (lb[j] == ub[j]) ++p;
     return p;
+}
+
+// Step 8 with few inequalities (fewer than GRAM_RATIO n) takes on as many flat directions of P
+// (zero diagonal entries; then pivots of the proximal factor below FLAT) as there are
+// equality rows (fixed variables counted), which pin them; one more where the rows of G
+// outnumber the bounds' rows (PRIMAL1-3: one linear variable among hundreds, pinned at the
+// optimum by the rows of G); and any number below SMALL_FLAT variables, where a try costs
+// microseconds (ZECEVIC2, QAFIRO).  Beyond that the proximal point need not be the answer,
+// and on the Maros-Meszaros LPs with a few quadratic terms the step mostly ended
+// CHECK_FAILED or NOT_SOLVED after many pivots (QBEACONF, QSC205, QE226; with the bound
+// rows outnumbering G's, PRIMALC1-8 took 3-15x the KKT-MLCP path's time), so it declines.
+idx flat_allowed(idx p0, const double* h, idx m0, const double* lb, const double* ub, idx n) {
+    idx eq = equalities(p0, lb, ub, n);
+    if (n <= SMALL_FLAT) return n;
+    idx rows = 0, bounds = 0;
+    for (idx i = 0; i < m0; ++i)
+        if (h[i] < INF) ++rows;
+    for (idx j = 0; j < n; ++j)
+        if (lb[j] != ub[j]) bounds += static_cast<idx>(ub[j] < INF) + static_cast<idx>(lb[j] > -INF);
+    return rows > bounds ? eq + 1 : eq;
 }
 
 idx inequalities(const double* h, idx m0, const double* lb, const double* ub, idx n) {
@@ -1656,9 +1840,10 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     for (idx t = 0; t < k0; ++t) out[t] = 0.0;
     if ((res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
+    screen_of().valid = false;
     QPWork& w = work();
     // the sizes first (screen's bounds decide them): the workspace's layout, then screen
-    thread_local std::vector<double> scr;
+    std::vector<double>& scr = screen_scratch();
     thread_local std::vector<std::uint8_t> pat;
     Data ds;
     bool hit = same_matrices(dt, w);
@@ -1695,6 +1880,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
         w.layout(n, p, m, true);
         if (!cholesky(ds.P, w.L)) {
             res.code = deadline_passed() >= 0 ? TIME_LIMIT : NOT_DEFINITE;
+            if (res.code == NOT_DEFINITE && ds.P.p == scr.data()) screen_of() = {true, dt};
             return res;
         }
         int code = factors(ds, lo, up, w, R);
@@ -1772,18 +1958,27 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
 }
 
 Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                  double* out, idx out_len, idx* basic, bool semidefinite) {
+                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed,
+                  bool reuse_screen) {
     Result res;
     idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
     for (idx t = 0; t < out_len; ++t) out[t] = 0.0;
     if ((res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
-    thread_local std::vector<double> scr;
+    std::vector<double>& scr = screen_scratch();
     Data ds;
-    if (!screened(dt, scr, ds)) {
+    ScreenOf& memo = screen_of();
+    if (reuse_screen && memo.valid && same_arrays(memo.dt, dt)) {  // screened's, as solve left it
+        ds = dt;
+        ds.P = Mat<const double>(scr.data(), n, n);
+        ds.lb = scr.data() + n * n;
+        ds.ub = ds.lb + n;
+    } else if (!screened(dt, scr, ds)) {
+        memo.valid = false;
         res.code = BAD_INPUT;
         return res;
     }
+    memo.valid = false;
     const double* lo = ds.lb;
     const double* up = ds.ub;
     Outs o = out_views(out, n, p0, m0);
@@ -1800,15 +1995,16 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
     if (!definite && (res.code = deadline_passed()) >= 0) return res;
     res.code = OK;
     if (!definite) {
-        if (few && zero_diagonal(ds.P) > equalities(p0, lo, up, n)) {
+        idx allowed = !few ? n : relaxed ? flat_allowed(p0, dt.h, m0, lo, up, n) : equalities(p0, lo, up, n);
+        if (few && zero_diagonal(ds.P) > allowed) {
             res.code = NOT_APPLICABLE;
             return res;
         }
-        if (!proximal_cholesky(ds.P, w.Pd, w.L)) {
+        if (!proximal_cholesky(ds.P, w.L)) {
             res.code = NOT_DEFINITE;
             return res;
         }
-        if (few && flat_directions(ds.P, w.L) > equalities(p0, lo, up, n)) {
+        if (few && flat_directions(ds.P, w.L) > allowed) {
             res.code = NOT_APPLICABLE;
             return res;
         }

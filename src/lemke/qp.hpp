@@ -31,6 +31,7 @@ constexpr double STRICT_TOL = 1e-12;
 constexpr idx GRAM_RATIO = 4;
 constexpr double PROXIMAL = 1e-6;
 constexpr double FLAT = 1e-3;
+constexpr idx SMALL_FLAT = 32;  // step 8 with few rows: any flat directions up to this many variables (flat_allowed)
 constexpr idx REFINE = 2;
 constexpr idx REFINE_PROXIMAL = 3;
 constexpr idx ACTIVE_SET_STEPS = 3;  // a warm start's active-set updates before Lemke (warm_point)
@@ -94,6 +95,9 @@ bool screen(const Data& d, double* Ps, double* lo, double* up);
 // qp.cholesky: L (n x n, lower, zeros above) with L L' = P; false when a pivot is not
 // clearly positive.
 bool cholesky(Mat<const double> P, Mat<double> L);
+// cholesky of P + shift I (P's diagonal entries plus shift, as a shifted copy of P would
+// hold them), without the copy.
+bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L);
 
 // qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check (each row against its
 // terms' sizes times tol + 4 eps, plus the rounding floor: each of x, y, z, zb exact only to
@@ -136,9 +140,13 @@ WarmEnds& warm_ends();
 
 // qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
-// tail.
+// tail.  semidefinite with few inequalities: P's flat directions taken on are as many as the
+// equalities (the kernel's own rule), or with relaxed as many as flat_allowed says (the
+// fronts' step 8).  reuse_screen: called right after solve on the same arrays, which ended
+// NOT_DEFINITE, its screen of the data is used as it is (the same bits as screening again).
 Result solve_gram(const Data& d, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                  double* out, idx out_len, idx* basic, bool semidefinite);
+                  double* out, idx out_len, idx* basic, bool semidefinite, bool relaxed = false,
+                  bool reuse_screen = false);
 
 // qp.solve_box on data of matching shapes (a QP whose only constraints are bounds): screen,
 // P definite (cholesky), one boxed::solve run on the box LCP (Ps, q, lo, up) from warm (2n
@@ -155,6 +163,8 @@ void box_basis(const double* lo, const double* up, idx n, const idx* final, idx 
 
 // Pieces bound for the tests that check their bits (tests/test_core_qp.py).
 void forward_rows(Mat<const double> L, Mat<double> R);
+// forward_rows with L's profile given (lstart: row j's first nonzero left of the diagonal).
+void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart);
 // qp._dot4: the four sums a' r_k, each in linalg's fixed order (dot).
 void dot4(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out);
@@ -166,6 +176,8 @@ idx zero_diagonal(Mat<const double> P);
 idx flat_directions(Mat<const double> P, Mat<const double> L);
 idx equalities(idx p0, const double* lb, const double* ub, idx n);
 idx inequalities(const double* h, idx m0, const double* lb, const double* ub, idx n);
+// Step 8 with fewer than GRAM_RATIO n inequalities: how many flat directions of P it takes on.
+idx flat_allowed(idx p0, const double* h, idx m0, const double* lb, const double* ub, idx n);
 
 }  // namespace qp
 }  // namespace lemke
