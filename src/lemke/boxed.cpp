@@ -691,53 +691,48 @@ bool basis_point(Mat<const double> M, const double* q, const double* lo, const d
 bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
                     const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
                     double* z) {
+    // (Selects rather than branches where the row states decide: they follow the data.)
     idx n = M.rows;
     BoxedWork& W = work();
     double* A = W.check_area(n * n + 3 * n);  // the block (nb x nb), y, x, slope
     double* y = A + n * n;
     double* x = y + n;
     double* slope = x + n;  // a sliding row's z_i = slope_i z_f (+-mu)
-    idx* rank = W.check_indices(3 * n);  // each row's rank among the friction rows (-1)
-    idx* index = rank + n;               // the rows of the block (w_i = 0)
-    idx* pos = index + n;                // a row's place among them (-1)
+    idx* coupled = W.check_indices(3 * n);  // the ranks of the sliding rows whose normal is in
+    idx* index = coupled + n;               // the block; the rows of the block (w_i = 0);
+    idx* pos = index + n;                   // a row's place among them (-1)
     std::uint8_t* kind = W.check_flags(n);
     constexpr std::uint8_t FIXED = 0, EQUATION = 1, SLIDING = 2;
-    for (idx i = 0; i < n; ++i) rank[i] = -1;
-    for (idx c = 0; c < nf; ++c) rank[F[c]] = c;
+    for (idx i = 0; i < n; ++i) {  // an ordinary row: basis_point's warm rule
+        bool eq = zb[i] || (lo[i] == -INF && hi[i] == INF);
+        double v = hi[i] < INF ? hi[i] : 0.0;
+        v = lo[i] > -INF ? lo[i] : v;
+        v = zh[i] && hi[i] < INF ? hi[i] : v;
+        z[i] = eq ? 0.0 : v;
+        kind[i] = eq ? EQUATION : FIXED;
+    }
+    for (idx c = 0; c < nf; ++c) {  // a friction row: β+ (the row itself), β- (n + c), λ (n + nf + c)
+        idx i = F[c];
+        bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
+        if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
+        slope[i] = bp ? hi[i] : -hi[i];
+        kind[i] = lam && bp != bm ? SLIDING : (bp || bm ? EQUATION : FIXED);
+        z[i] = 0.0;
+    }
     idx nb = 0;
     for (idx i = 0; i < n; ++i) {
-        idx c = rank[i];
-        double v = 0.0;
-        std::uint8_t k = FIXED;
-        if (c < 0) {  // basis_point's warm rule
-            if (zb[i] || (lo[i] == -INF && hi[i] == INF)) k = EQUATION;
-            else if (zh[i] && hi[i] < INF) v = hi[i];
-            else if (lo[i] > -INF) v = lo[i];
-            else if (hi[i] < INF) v = hi[i];
-        } else {  // β+ (the row itself), β- (n + c), λ (n + nf + c)
-            bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
-            if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
-            if (lam && bp != bm) {
-                k = SLIDING;
-                slope[i] = bp ? hi[i] : -hi[i];
-            } else if (bp || bm) {
-                k = EQUATION;
-            }
-        }
-        kind[i] = k;
-        pos[i] = -1;
-        if (k == EQUATION) {
-            pos[i] = nb;
-            index[nb++] = i;
-        }
-        z[i] = v;
+        bool eq = kind[i] == EQUATION;
+        index[nb] = i;
+        pos[i] = eq ? nb : -1;
+        nb += eq;
     }
-    bool coupled = false;  // a sliding row whose normal is in the block
+    idx ns = 0;
     for (idx c = 0; c < nf; ++c) {
         idx i = F[c], f = F[nf + c];
-        if (kind[i] != SLIDING) continue;
-        if (kind[f] == EQUATION) coupled = true;
-        else z[i] = slope[i] * z[f];
+        bool sliding = kind[i] == SLIDING, in_block = kind[f] == EQUATION;
+        z[i] = sliding && !in_block ? slope[i] * z[f] : z[i];
+        coupled[ns] = c;
+        ns += sliding && in_block;
     }
     if (nb > 0) {
         for (idx t = 0; t < nb; ++t) {
@@ -746,19 +741,17 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
             y[t] = -(q[r] + dot(row, z, n));
             double* br = A + t * nb;
             for (idx u = 0; u < nb; ++u) br[u] = row[index[u]];
-            if (coupled)
-                for (idx c = 0; c < nf; ++c) {
-                    idx i = F[c], f = F[nf + c];
-                    if (kind[i] == SLIDING && kind[f] == EQUATION) br[pos[f]] += slope[i] * row[i];
-                }
+            for (idx k = 0; k < ns; ++k) {
+                idx c = coupled[k], i = F[c];
+                br[pos[F[nf + c]]] += slope[i] * row[i];
+            }
         }
         if (!solve_in_place(Mat<double>(A, nb, nb), y, x, nb)) return false;
         for (idx t = 0; t < nb; ++t) z[index[t]] = x[t];
-        if (coupled)
-            for (idx c = 0; c < nf; ++c) {
-                idx i = F[c], f = F[nf + c];
-                if (kind[i] == SLIDING && kind[f] == EQUATION) z[i] = slope[i] * z[f];
-            }
+        for (idx k = 0; k < ns; ++k) {
+            idx c = coupled[k];
+            z[F[c]] = slope[F[c]] * z[F[nf + c]];
+        }
     }
     return all_finite(z, n);
 }
