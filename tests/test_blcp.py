@@ -370,8 +370,10 @@ def test_a_warm_friction_point_is_solved_on_the_callers_rows():
     bound at it); the point agrees with the refined solve of the same system
     (``_blcp._caller_point``); the bases whose extended block is singular by its pattern
     are refused; a 0-pivot warm answer is that point in the coupled bounds (the same
-    numbers) and passes the plain-numpy friction check."""
+    numbers), passes the plain-numpy friction check, and is the general path's
+    (``_warm_friction``) answer."""
     from lemke import _blcp
+    from lemke._options import _DEFAULT
     cboxed = _blcp.boxed
     seen = Counter()
     for seed in range(60):
@@ -411,9 +413,14 @@ def test_a_warm_friction_point_is_solved_on_the_callers_rows():
         warm = lemke.solve_blcp(M, q2, lo, hi, findex=fi, warm_start=ws)
         assert warm.success
         assert_friction_solution(M, q2, lo, hi, fi, warm.z)
+        # the general path's same step (_warm_friction): the same verdict and point
+        general = _blcp._warm_friction(M, q2, lo, hi, *_blcp.friction_lcp(M, q2, lo, hi, fi), ws,
+                                       _DEFAULT)
+        assert (general is not None) == (warm.pivots == 0)
         if warm.pivots == 0:
             zc = _blcp._coupled(z, lo, hi, F, normal)[0]
             assert np.array_equal(warm.z, zc)  # (numpy's clip makes a -0.0 +0.0: == here)
+            assert np.array_equal(general.z, warm.z) and general.residual == warm.residual
             seen["0 pivots"] += 1
         seen["sliding"] += int(sliding.sum())
         # the patterns whose extended block is singular: refused
