@@ -1031,7 +1031,10 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     the block), and the tableau's point of such a basis carries errors of cond eps in rows
     whose own terms are ~1e-11, so that it fails the row-wise check that the caller's
     solution meets; the caller's system has no such column and its refined solution meets
-    the check in every row (issue 32's scene, islands of 75-120 rows)."""
+    the check in every row (issue 32's scene, islands of 75-120 rows).  A warm start's own
+    point is this system first too, unrefined and with each sliding row substituted into
+    its normal's column (``boxed.friction_point``, in ``kernels.boxed.front``), where the
+    patterns that make the extended block singular are left to the extended point."""
     n = q.size
     k = F.size
     K = np.zeros((n, n))
