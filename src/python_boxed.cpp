@@ -110,6 +110,24 @@ bool basis_point(CMatrix M, CVector q, CVector lo, CVector hi, CFlags zb, CFlags
                                      z.data());
 }
 
+bool friction_point(CMatrix M, CVector q, CVector lo, CVector hi, CIndices F, CFlags zb,
+                    CFlags zh, OutVector z) {
+    idx n = problem_size(M, q, lo, hi, "friction_point");
+    idx nf = static_cast<idx>(F.shape(0)) / 2;
+    const std::uint8_t* b = flag_data(zb, "friction_point", "zb");
+    const std::uint8_t* h = flag_data(zh, "friction_point", "zh");
+    const idx* f = F.data();
+    bool rows_ok = static_cast<idx>(F.shape(0)) == 2 * nf;
+    for (idx c = 0; c < 2 * nf && rows_ok; ++c) rows_ok = f[c] >= 0 && f[c] < n;
+    if (!rows_ok || static_cast<idx>(zb.shape(0)) < n + 2 * nf ||
+        static_cast<idx>(zh.shape(0)) < n + 2 * nf || static_cast<idx>(z.shape(0)) != n)
+        throw nb::value_error("friction_point: F must hold 2 nf rows of M, zb and zh n + 2 nf "
+                              "flags, z be of length n");
+    nb::gil_scoped_release release;
+    return lemke::boxed::friction_point(mat(M, n), q.data(), lo.data(), hi.data(), f, nf, b, h,
+                                        z.data());
+}
+
 bool is_ray(CMatrix M, CVector q, CVector lo, CVector hi, CVector d, CVector z, double z0,
             CVector ray, double tol) {
     idx n = problem_size(M, q, lo, hi, "is_ray");
@@ -328,6 +346,8 @@ void bind_boxed(nb::module_& m) {
           "C"_a.noconvert());
     b.def("basis_point", &basis_point, "M"_a, "q"_a, "lo"_a, "hi"_a, "zb"_a, "zh"_a,
           "warm_rule"_a, "z"_a.noconvert());
+    b.def("friction_point", &friction_point, "M"_a, "q"_a, "lo"_a, "hi"_a, "F"_a, "zb"_a, "zh"_a,
+          "z"_a.noconvert());
     b.def("is_ray", &is_ray, "M"_a, "q"_a, "lo"_a, "hi"_a, "d"_a, "z"_a, "z0"_a, "ray"_a,
           "tol"_a);
     b.def("extend", &extend, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "nf"_a, "work"_a,

@@ -3,6 +3,8 @@ data by an independent check and against the 2n reformulation, bad input, warm s
 the friction index."""
 from pathlib import Path
 
+from collections import Counter
+
 import numpy as np
 import pytest
 
@@ -358,6 +360,79 @@ def test_a_warm_friction_basis_is_judged_on_the_callers_rows():
             assert item.pivots == 0 and np.asarray(item.z).tobytes() == np.asarray(warm.z).tobytes()
         found += 1
     assert found >= 5, found
+
+
+def test_a_warm_friction_point_is_solved_on_the_callers_rows():
+    """A warm friction basis's point is solved on the caller's n rows (``boxed.friction_point``:
+    a sliding row's z_i = +-mu z_f substituted into its normal's column, no extended
+    matrix).  Checked with plain numpy: each row's own equation holds (w_i = 0 in the block's
+    rows to their terms' rounding, a sliding row exactly on its cone's edge, a row at a
+    bound at it); the point agrees with the refined solve of the same system
+    (``_blcp._caller_point``); the bases whose extended block is singular by its pattern
+    are refused; a 0-pivot warm answer is that point in the coupled bounds (the same
+    numbers), passes the plain-numpy friction check, and is the general path's
+    (``_warm_friction``) answer."""
+    from lemke import _blcp
+    from lemke._options import _DEFAULT
+    cboxed = _blcp.boxed
+    seen = Counter()
+    for seed in range(60):
+        M, q, lo, hi, fi, mu = contacts(seed, 1 + seed % 6)
+        fi = fi.astype(np.int64)
+        n = q.size
+        r = lemke.solve_blcp(M, q, lo, hi, findex=fi)
+        assert r.success
+        q2 = q + 1e-3 * np.abs(q) * np.random.default_rng(seed).standard_normal(n)
+        ws = r.warm_start
+        F = np.flatnonzero(fi >= 0)
+        normal = fi[F]
+        nf, N = F.size, n + 2 * F.size
+        flags = ws._kernel_flags()
+        zb, zh = flags[:N], flags[N:]
+        z = np.empty(n)
+        assert cboxed.friction_point(M, q2, lo, hi, np.concatenate([F, normal]), zb, zh, z)
+        bp, bm, lam = zb[F], zb[n:n + nf], zb[n + nf:]
+        sliding = lam & (bp != bm)
+        eq = np.zeros(n, dtype=bool)
+        eq[:n] = zb[:n]
+        eq[F] = (bp | bm) & ~sliding
+        w = M @ z + q2
+        size = np.abs(M) @ np.abs(z) + np.abs(q2)
+        assert np.all(np.abs(w[eq]) <= 1e-9 * size[eq]), seed
+        assert np.array_equal(z[F[sliding]], np.where(bp, mu, -mu)[sliding] * z[normal[sliding]])
+        assert np.all(z[F[~(bp | bm)]] == 0.0)
+        fixed = ~eq
+        fixed[F] = False
+        assert np.all(z[fixed] == np.where(zh[:n] & (hi < np.inf), hi, lo)[fixed])
+        R, C = np.empty(n), np.empty(n)
+        cboxed.check_scales(M, q2, lo, hi, R, C)
+        got = _blcp._caller_point(M, q2, lo, hi, F, normal, zb, zh, 1e-9, R, N)
+        if got is not None:
+            zr = got[0]
+            assert np.abs(np.clip(z, got[3], got[4]) - zr).max() <= 1e-8 * np.abs(zr).max()
+        warm = lemke.solve_blcp(M, q2, lo, hi, findex=fi, warm_start=ws)
+        assert warm.success
+        assert_friction_solution(M, q2, lo, hi, fi, warm.z)
+        # the general path's same step (_warm_friction): the same verdict and point
+        general = _blcp._warm_friction(M, q2, lo, hi, *_blcp.friction_lcp(M, q2, lo, hi, fi), ws,
+                                       _DEFAULT)
+        assert (general is not None) == (warm.pivots == 0)
+        if warm.pivots == 0:
+            zc = _blcp._coupled(z, lo, hi, F, normal)[0]
+            assert np.array_equal(warm.z, zc)  # (numpy's clip makes a -0.0 +0.0: == here)
+            assert np.array_equal(general.z, warm.z) and general.residual == warm.residual
+            seen["0 pivots"] += 1
+        seen["sliding"] += int(sliding.sum())
+        # the patterns whose extended block is singular: refused
+        for c in range(nf):
+            bad = zb.copy()
+            bad[F[c]] = bad[n + c] = False
+            bad[n + nf + c] = True  # λ basic, β+ and β- at 0
+            assert not cboxed.friction_point(M, q2, lo, hi, np.concatenate([F, normal]), bad, zh, z)
+            bad[F[c]] = bad[n + c] = True
+            bad[n + nf + c] = False  # β+ and β- basic, λ at 0
+            assert not cboxed.friction_point(M, q2, lo, hi, np.concatenate([F, normal]), bad, zh, z)
+    assert seen["0 pivots"] >= 30 and seen["sliding"] >= 20, seen
 
 
 _PILES = {}

@@ -6,8 +6,8 @@ write.
 Two ways in:
 
 * **through the front**: ``_blcp.boxed`` is replaced by a tee that runs each call of the
-  front (solve, front, box_check, check_scales, basis_point, is_ray, extend) on copies of
-  its arguments, checks the outputs and hands them on; then
+  front (solve, front, box_check, check_scales, basis_point, friction_point, is_ray, extend)
+  on copies of its arguments, checks the outputs and hands them on; then
   the box LCP tests' problems (tests/test_blcp.py: the Siconos relay files, the seeded
   family, degenerate ties, the small integer fuzz, extreme values, friction contacts, the
   pile of examples/box_pile.py cold and warm), the contact scenes of tests/contact_sim.py
@@ -27,7 +27,8 @@ import lemke
 from lemke import _blcp, _core
 
 cboxed = _core.boxed
-FUNCS = ("solve", "front", "box_check", "check_scales", "basis_point", "is_ray", "extend")
+FUNCS = ("solve", "front", "box_check", "check_scales", "basis_point", "friction_point", "is_ray",
+         "extend")
 TIES = (1e-11, 0.0, 1e-9)
 
 

@@ -1031,7 +1031,10 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     the block), and the tableau's point of such a basis carries errors of cond eps in rows
     whose own terms are ~1e-11, so that it fails the row-wise check that the caller's
     solution meets; the caller's system has no such column and its refined solution meets
-    the check in every row (issue 32's scene, islands of 75-120 rows)."""
+    the check in every row (issue 32's scene, islands of 75-120 rows).  A warm start's own
+    point is this system first too, unrefined and with each sliding row substituted into
+    its normal's column (``boxed.friction_point``, in ``kernels.boxed.front``), where the
+    patterns that make the extended block singular are left to the extended point."""
     n = q.size
     k = F.size
     K = np.zeros((n, n))
@@ -1076,32 +1079,49 @@ def _coupled(z, lo, hi, F, normal):
 
 def _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, ws, opts):
     """A warm start's own point with a friction index (``kernels.boxed.front``'s PREPARE
-    phase): the point of its basis on the extended data, judged by the check that decides
-    'solved', on the caller's rows with the coupled bounds, without the extended problem's
-    own check; the result with 0 pivots when it passes and the point's normal impulses lie
-    in their boxes (the friction rows' bounds are then those of the z returned), else None
-    (the extended problem's check then decides first, as :func:`_solve` makes it)."""
+    phase): the point of its basis solved on the caller's rows (``boxed.friction_point``: a
+    sliding row's z_i = +-mu z_f substituted, no extended matrix), else on the extended
+    data, judged by the check that decides 'solved', on the caller's rows with the coupled
+    bounds, without the extended problem's own check; the result with 0 pivots when one of
+    them passes with the point's normal impulses in their boxes (the friction rows' bounds
+    are then those of the z returned), else None (the extended problem's check then decides
+    first, as :func:`_solve` makes it)."""
     n, k, N = q.size, F.size, qx.size
     flags = ws._kernel_flags()
-    zx = np.empty(N)
-    if not boxed.basis_point(Mx, qx, lox, hix, flags[:N], flags[N:], True, zx):
-        return None
-    z = zx[:n].copy()
-    z[F] = zx[F] - zx[n:n + k]
-    zn = z[normal]
-    if not np.all((zn >= lo[normal]) & (zn <= hi[normal])):
-        return None
-    z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
-    R, C, w = np.empty(n), np.empty(n), np.empty(n)
-    boxed.check_scales(M, q, lo, hi, R, C)
-    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, N)
-    if not ok:
-        return None
+    got = None
+    z = np.empty(n)
+    if boxed.friction_point(M, q, lo, hi, np.concatenate([F, normal]), flags[:N], flags[N:], z):
+        got = _judged(M, q, lo, hi, F, normal, z, opts.tol, N)
+    if got is None:
+        zx = np.empty(N)
+        if not boxed.basis_point(Mx, qx, lox, hix, flags[:N], flags[N:], True, zx):
+            return None
+        z = zx[:n].copy()
+        z[F] = zx[F] - zx[n:n + k]
+        got = _judged(M, q, lo, hi, F, normal, z, opts.tol, N)
+        if got is None:
+            return None
+    z, w, residual, lo_in, hi_in, R, C = got
     d = np.zeros(N)
     for a in (z, w, lo_in, hi_in, R, C, d):
         a.setflags(write=False)
     return BLCPResult(z, w, Status.SOLVED, 0, float(residual), None, 0.0, d, ws, lo_in, hi_in,
                       R, C, 0)
+
+
+def _judged(M, q, lo, hi, F, normal, z, tol, N):
+    """The caller's point z of a warm friction basis judged as ``_warm_friction`` judges it
+    (its normals in their boxes, then the check with the coupled bounds): ``(z, w,
+    residual, lo_in, hi_in, R, C)`` when it passes, else None."""
+    zn = z[normal]
+    if not np.all((zn >= lo[normal]) & (zn <= hi[normal])):
+        return None
+    n = q.size
+    z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
+    R, C, w = np.empty(n), np.empty(n), np.empty(n)
+    boxed.check_scales(M, q, lo, hi, R, C)
+    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    return (z, w, residual, lo_in, hi_in, R, C) if ok else None
 
 
 def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):

@@ -688,6 +688,74 @@ bool basis_point(Mat<const double> M, const double* q, const double* lo, const d
     return true;
 }
 
+bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                    const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
+                    double* z) {
+    // (Selects rather than branches where the row states decide: they follow the data.)
+    idx n = M.rows;
+    BoxedWork& W = work();
+    double* A = W.check_area(n * n + 3 * n);  // the block (nb x nb), y, x, slope
+    double* y = A + n * n;
+    double* x = y + n;
+    double* slope = x + n;  // a sliding row's z_i = slope_i z_f (+-mu)
+    idx* coupled = W.check_indices(3 * n);  // the ranks of the sliding rows whose normal is in
+    idx* index = coupled + n;               // the block; the rows of the block (w_i = 0);
+    idx* pos = index + n;                   // a row's place among them (-1)
+    std::uint8_t* kind = W.check_flags(n);
+    constexpr std::uint8_t FIXED = 0, EQUATION = 1, SLIDING = 2;
+    for (idx i = 0; i < n; ++i) {  // an ordinary row: basis_point's warm rule
+        bool eq = zb[i] || (lo[i] == -INF && hi[i] == INF);
+        double v = hi[i] < INF ? hi[i] : 0.0;
+        v = lo[i] > -INF ? lo[i] : v;
+        v = zh[i] && hi[i] < INF ? hi[i] : v;
+        z[i] = eq ? 0.0 : v;
+        kind[i] = eq ? EQUATION : FIXED;
+    }
+    for (idx c = 0; c < nf; ++c) {  // a friction row: β+ (the row itself), β- (n + c), λ (n + nf + c)
+        idx i = F[c];
+        bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
+        if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
+        slope[i] = bp ? hi[i] : -hi[i];
+        kind[i] = lam && bp != bm ? SLIDING : (bp || bm ? EQUATION : FIXED);
+        z[i] = 0.0;
+    }
+    idx nb = 0;
+    for (idx i = 0; i < n; ++i) {
+        bool eq = kind[i] == EQUATION;
+        index[nb] = i;
+        pos[i] = eq ? nb : -1;
+        nb += eq;
+    }
+    idx ns = 0;
+    for (idx c = 0; c < nf; ++c) {
+        idx i = F[c], f = F[nf + c];
+        bool sliding = kind[i] == SLIDING, in_block = kind[f] == EQUATION;
+        z[i] = sliding && !in_block ? slope[i] * z[f] : z[i];
+        coupled[ns] = c;
+        ns += sliding && in_block;
+    }
+    if (nb > 0) {
+        for (idx t = 0; t < nb; ++t) {
+            idx r = index[t];
+            const double* row = M.row(r);
+            y[t] = -(q[r] + dot(row, z, n));
+            double* br = A + t * nb;
+            for (idx u = 0; u < nb; ++u) br[u] = row[index[u]];
+            for (idx k = 0; k < ns; ++k) {
+                idx c = coupled[k], i = F[c];
+                br[pos[F[nf + c]]] += slope[i] * row[i];
+            }
+        }
+        if (!solve_in_place(Mat<double>(A, nb, nb), y, x, nb)) return false;
+        for (idx t = 0; t < nb; ++t) z[index[t]] = x[t];
+        for (idx k = 0; k < ns; ++k) {
+            idx c = coupled[k];
+            z[F[c]] = slope[F[c]] * z[F[nf + c]];
+        }
+    }
+    return all_finite(z, n);
+}
+
 bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const double* d, const double* z, double z0, const double* ray, double tol) {
     idx n = M.rows;
@@ -747,8 +815,8 @@ namespace {
 
 // extend's F (the friction rows, then their normal rows) and its right-hand side and
 // bounds (qx, lox, hix); the rows of Mx are ext_row's.
-void extend_vectors(const double* q, const double* lo, const double* hi, const idx* findex,
-                    idx n, idx nf, double* qx, double* lox, double* hix, idx* F) {
+// extend's F: the friction rows in order, then their normal rows.
+void friction_order(const idx* findex, idx n, idx nf, idx* F) {
     idx c = 0;
     for (idx i = 0; i < n; ++i) {
         if (findex[i] >= 0) {
@@ -757,6 +825,11 @@ void extend_vectors(const double* q, const double* lo, const double* hi, const i
             ++c;
         }
     }
+}
+
+void extend_vectors(const double* q, const double* lo, const double* hi, const idx* findex,
+                    idx n, idx nf, double* qx, double* lox, double* hix, idx* F) {
+    friction_order(findex, n, nf, F);
     for (idx i = 0; i < n; ++i) {
         qx[i] = q[i];
         lox[i] = lo[i];
@@ -1024,21 +1097,18 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
 
 namespace {
 
-// The friction index's answer from the extended one zx, judged on the caller's data
-// (boxed.friction_check), into buf's caller's fields (FrontLayout).
-bool friction_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                    const idx* F, idx nf, const double* zx, idx N, double tol, double* buf,
-                    double& residual) {
+// The caller's z (buf's, FrontLayout) judged with the coupled bounds at it: friction_check's
+// verdict, once z is mapped back.
+bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual) {
     idx n = M.rows;
     FrontLayout L{n, nf, true};
     double *z = buf + L.z(), *w = buf + L.w(), *lo_in = buf + L.lo(), *hi_in = buf + L.hi();
     double *R = buf + L.row_scale(), *C = buf + L.col_scale();
     for (idx i = 0; i < n; ++i) {
-        z[i] = zx[i];
         lo_in[i] = lo[i];
         hi_in[i] = hi[i];
     }
-    for (idx c = 0; c < nf; ++c) z[F[c]] = zx[F[c]] - zx[n + c];
     for (idx c = 0; c < nf; ++c) {
         idx i = F[c];
         double mu = hi[i];
@@ -1048,6 +1118,29 @@ bool friction_check(Mat<const double> M, const double* q, const double* lo, cons
     check_scales(M, q, lo, hi, R, C);
     for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], pmin(lo_in[i], hi_in[i])), hi_in[i]);
     return box_check(M, q, lo_in, hi_in, z, tol, w, R, N, residual);
+}
+
+// The friction index's answer from the extended one zx, judged on the caller's data
+// (boxed.friction_check), into buf's caller's fields (FrontLayout).
+bool friction_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                    const idx* F, idx nf, const double* zx, idx N, double tol, double* buf,
+                    double& residual) {
+    idx n = M.rows;
+    double* z = buf + FrontLayout{n, nf, true}.z();
+    for (idx i = 0; i < n; ++i) z[i] = zx[i];
+    for (idx c = 0; c < nf; ++c) z[F[c]] = zx[F[c]] - zx[n + c];
+    return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual);
+}
+
+// Whether every friction row's normal impulse z_f lies in its box (so that the friction
+// rows' bounds in force are those of the z returned).
+bool normals_inside(const double* z, const double* lo, const double* hi, const idx* F, idx nf) {
+    bool inside = true;
+    for (idx c = 0; c < nf; ++c) {
+        idx f = F[nf + c];
+        inside = inside && z[f] >= lo[f] && z[f] <= hi[f];
+    }
+    return inside;
 }
 
 }  // namespace
@@ -1092,6 +1185,21 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
         // the free z's) are made first; the whole of it when more is needed (the extended
         // check, a run).
         bool part = false;
+        if (nf > 0 && has_warm) {
+            // The basis's point on the caller's rows first (friction_point: a block of the
+            // LCP's size, no extended matrix), judged by the check that decides 'solved' (on
+            // the caller's rows, the coupled bounds at this point); when it passes with the
+            // normals in their boxes, that is the answer (0 pivots). Otherwise the extended
+            // problem's point decides as before (below).
+            friction_order(findex, n, nf, F);
+            if (friction_point(M, q, lo, hi, F, nf, warm, warm + N, buf + FL.z()) &&
+                normals_inside(buf + FL.z(), lo, hi, F, nf) &&
+                coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual)) {
+                double* d = buf + FL.run().covering();
+                for (idx i = 0; i < N; ++i) d[i] = 0.0;
+                return SOLVED;
+            }
+        }
         if (nf > 0) {
             std::uint8_t* need = nullptr;
             if (has_warm) {
@@ -1123,11 +1231,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             // (NEED_RUN); passed, the caller's check's verdict (SOLVED, or UNDECIDED: the
             // general path).
             bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf, residual);
-            bool inside = true;
-            for (idx c = 0; c < nf; ++c) {
-                idx f = F[nf + c];
-                inside = inside && z[f] >= lo[f] && z[f] <= hi[f];
-            }
+            bool inside = normals_inside(z, lo, hi, F, nf);
             if (!(ok && inside)) {
                 double ext_residual;
                 extend(M, q, lo, hi, findex, nf, work_in, F);  // (every row, for the check)

@@ -199,6 +199,19 @@ void check_scales(Mat<const double> M, const double* q, const double* lo, const 
 bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
                  const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z);
 
+// The point of an extended problem's basis (zb basic, zh at hi: N = n + 2 nf flags, extend's
+// variables) solved on the caller's n rows (boxed.friction_point): each row one equation read
+// from its variables' states, as _blcp._caller_point reads them (an ordinary row w_i = 0
+// when z_i is basic or free, else z_i at its bound by basis_point's warm rule; a friction row
+// z_i = +-mu z_f when λ and one of β+, β- are basic, z_i = 0 when neither is, else w_i = 0),
+// a sliding row's z_i substituted into its normal's column: one block of the w_i = 0 rows,
+// the LCP's size, no extended matrix. F: the friction rows, then their normal rows (2 nf,
+// extend's F). False where the extended block is singular by its pattern (λ basic with β+
+// and β- at 0; β+ and β- both basic with λ at 0), the block singular or z not finite.
+bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                    const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
+                    double* z);
+
 // Whether (z, z0) + t ray is a ray of the augmented box problem (boxed.is_ray; the sizes
 // of d, z, ray are the binding's to check).
 bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,

@@ -438,6 +438,10 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y,
         const double* mrow = M.row(index[r]);
         for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
     }
+    return solve_in_place(A, y, x, k);
+}
+
+bool solve_in_place(Mat<double> A, double* y, double* x, idx k) {
     for (idx i = 0; i < k; ++i) x[i] = 0.0;
     return eliminate(A, y, x, k, nullptr);
 }

@@ -256,6 +256,9 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 // linalg._eliminate (pivots taken in pairs, no refinement). A: k*k doubles of work; y is
 // overwritten; x gets the solution. Returns whether the block is non-singular and x finite.
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
+// A x = y (k x k, A.ld = k) by the same elimination, A and y overwritten (solve_gathered's
+// solve, of a block assembled by the caller).
+bool solve_in_place(Mat<double> A, double* y, double* x, idx k);
 
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
 // residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c
