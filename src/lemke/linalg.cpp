@@ -348,7 +348,7 @@ void swap_rows(Mat<double> A, idx i, idx j, idx k) {
     }
 }
 
-bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv);
+bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse = true);
 
 }  // namespace
 
@@ -402,9 +402,10 @@ bool back_substitute(Mat<const double> A, const double* y, double* x, idx k) {
 // linalg._eliminate: A x = y in place (x starts at 0), two pivots per pass. piv: nullptr,
 // or 2k entries: the first k get each step's pivot row (for lu_solve), the second k list
 // the pivot rows' non-zero columns, whose updates alone are made when they are under a
-// quarter of the row.
+// quarter of the row (unless `sparse` is false: then every update is made, as with no piv,
+// the same operations as that call's).
 LEMKE_CLONES
-bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv) {
+bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse) {
     bool finite = all_finite(y, k);
     for (idx r = 0; r < k; ++r) finite &= all_finite(A.row(r), k);
     if (!finite) return false;
@@ -431,7 +432,7 @@ bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv) {
         idx m = -1;
         const double* aj = A.row(j);
         const double* aj1 = A.row(j + 1);
-        if (piv) m = nonzero_columns(aj, aj1, j + 2, k, piv + k);
+        if (piv && sparse) m = nonzero_columns(aj, aj1, j + 2, k, piv + k);
         for (idx r = j + 2; r < k; ++r) {
             double f = A(r, j);
             double g = (A(r, j + 1) - f * h) * inv1;
@@ -478,6 +479,16 @@ bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k) 
     return back_substitute(A, y, x, k);
 }
 
+// The last block solve_gathered_kept factored, per thread: the block as gathered, its
+// factors and pivots (eliminate's, dense), and its size (-1: none kept).
+struct KeptBlock {
+    std::vector<double> block, factors;
+    std::vector<idx> piv;
+    idx k = -1;
+};
+
+thread_local KeptBlock kept_block;
+
 // The work of solve and refined_solve, one per thread: A (k x k), y, d, and the pivots.
 struct SolveWork {
     std::vector<double> f;
@@ -505,6 +516,32 @@ bool solve(Mat<const double> H, const double* b, double* x, idx k) {
         y[r] = b[r];
     }
     return eliminate(A, y, x, k, nullptr);
+}
+
+bool solve_gathered_kept(Mat<const double> M, const idx* index, double* a, double* y,
+                         double* x, idx k) {
+    Mat<double> A(a, k, k);
+    for (idx r = 0; r < k; ++r) {
+        const double* mrow = M.row(index[r]);
+        for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
+    }
+    for (idx i = 0; i < k; ++i) x[i] = 0.0;
+    KeptBlock& kb = kept_block;
+    std::size_t bytes = static_cast<std::size_t>(k * k) * sizeof(double);
+    if (kb.k == k && std::memcmp(kb.block.data(), a, bytes) == 0) {
+        // the same block, bit for bit: eliminate would make the same factors and pivots
+        // (they depend on the block alone) and, on y, lu_solve's operations
+        if (!all_finite(y, k)) return false;
+        return lu_solve(Mat<const double>(kb.factors.data(), k, k), kb.piv.data(), y, x, k);
+    }
+    if (k > KEPT_BLOCK_MAX) return eliminate(A, y, x, k, nullptr);
+    kb.k = -1;
+    kb.block.assign(a, a + k * k);
+    kb.piv.resize(static_cast<std::size_t>(2 * k));
+    if (!eliminate(A, y, x, k, kb.piv.data(), false)) return false;
+    kb.factors.assign(a, a + k * k);
+    kb.k = k;
+    return true;
 }
 
 bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo) {

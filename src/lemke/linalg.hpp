@@ -257,6 +257,15 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 // overwritten; x gets the solution. Returns whether the block is non-singular and x finite.
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
 
+// solve_gathered, the same bits, keeping the last block it factored per thread (a warm
+// start re-solves its basis's block with a new right-hand side, often the same block): when
+// the block gathered equals the kept one bit for bit, its kept factors and pivots solve y
+// (lu_solve: the operations eliminate makes on y); otherwise eliminate, whose factors are
+// kept when it succeeds (blocks of up to KEPT_BLOCK_MAX rows: two copies of the block).
+constexpr idx KEPT_BLOCK_MAX = 512;
+bool solve_gathered_kept(Mat<const double> M, const idx* index, double* A, double* y, double* x,
+                         idx k);
+
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
 // residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c
 // rounded once on every instruction set.
