@@ -129,12 +129,14 @@ def test_any_warm_start_gives_a_right_answer(seed, n, method):
 
 
 @pytest.mark.parametrize("n", [1, 2, 3, 5, 12, 17, 24, 40])
-def test_a_repeated_basis_block_gives_the_same_bits(n, method):
-    """A warm start's old basis is solved by solve_gathered_kept, which reuses the last block's
-    factors per thread when the block repeats bit for bit: a re-solve right after another
-    of the same block (factors reused) is the same result, bit for bit, as one after a
-    different block (factored afresh), on the basis that still fits, on one that no longer
-    does, and on a singular block; every solved answer checked."""
+def test_a_repeated_matrix_gives_the_same_bits(n, method):
+    """A warm start's first stage keeps, per thread, the last basis block's factors
+    (solve_gathered_kept) and what the equilibration's sweeps found of M
+    (equilibrate_finite_kept), and reuses them when M repeats bit for bit: a re-solve right
+    after one on the same M with another q (factors and sweeps reused, or found stale: the
+    trajectory of the scales can part where q's terms differ) is the same result, bit for
+    bit, as one right after a different M (all computed afresh); on a basis that fits, one
+    that no longer does and a singular block. Every solved answer is checked."""
     rng = np.random.default_rng(1000 + n)
     A = rng.standard_normal((n, n))
     M = A @ A.T + 0.1 * np.eye(n)
@@ -144,18 +146,34 @@ def test_a_repeated_basis_block_gives_the_same_bits(n, method):
     M_sing = S @ S.T  # rank deficient: singular blocks
     other_M, other_q = M + np.eye(n), q.copy()
     other = lemke.solve_lcp(other_M, other_q, method=method)
-    ws = lemke.solve_lcp(M, q, method=method).warm_start
-    for data, start in ((M, ws), (M_sing, lemke.WarmStart(n, tuple(range(n))))):
-        for q2 in (q + 1e-9, q + 2e-9, q + 1e-3 * rng.standard_normal(n), -np.abs(q)):
-            lemke.solve_lcp(other_M, other_q + 1e-9, warm_start=other.warm_start, method=method)
-            fresh = lemke.solve_lcp(data, q2, warm_start=start, method=method)
-            again = lemke.solve_lcp(data, q2, warm_start=start, method=method)
-            assert again == fresh
-            for name in ("z", "w", "row_scale", "col_scale", "covering", "ray"):
-                a, b = getattr(again, name), getattr(fresh, name)
-                assert (a is None and b is None) or a.tobytes() == b.tobytes()
+
+    def evict():
+        lemke.solve_lcp(other_M, other_q + 1e-9, warm_start=other.warm_start, method=method)
+
+    D = 10.0 ** rng.uniform(-3, 3, n)
+    M_bad = D[:, None] * M * D  # badly scaled: q's terms steer the scales
+    starts = [lemke.solve_lcp(data, q, method=method).warm_start for data in (M, M_bad)]
+    qs = (q + 1e-9, q + 1e-3 * rng.standard_normal(n), -np.abs(q),
+          q * 10.0 ** rng.uniform(-8, 8, n), q * 10.0 ** rng.uniform(-8, 8, n))
+    scales = set()
+    for data, start in ((M, starts[0]), (M_bad, starts[1]),
+                        (M_sing, lemke.WarmStart(n, tuple(range(n))))):
+        for qb in qs:
+            evict()
+            fresh = lemke.solve_lcp(data, qb, warm_start=start, method=method)
+            scales.add((data is M_bad, fresh.row_scale.tobytes(), fresh.col_scale.tobytes()))
             if fresh.status == lemke.Status.SOLVED:
-                assert_lcp_solution(data, q2, fresh.z)
+                assert_lcp_solution(data, qb, fresh.z)
+            for qa in qs:
+                evict()
+                lemke.solve_lcp(data, qa, warm_start=start, method=method)
+                again = lemke.solve_lcp(data, qb, warm_start=start, method=method)
+                assert again == fresh
+                for name in ("z", "w", "row_scale", "col_scale", "covering", "ray"):
+                    a, b = getattr(again, name), getattr(fresh, name)
+                    assert (a is None and b is None) or a.tobytes() == b.tobytes()
+    if n > 2:  # the scales' trajectories part between some of the q's on M_bad
+        assert len([s for s in scales if s[0]]) > 1
 
 
 # --- warm starts across changes of size (WarmStart.take / relabel) ------------------------

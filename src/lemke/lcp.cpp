@@ -83,7 +83,7 @@ int old_basis(Mat<const double> M, const double* q, const double* d, const idx* 
         kept[i] = v.R[i];
         kept[n + i] = v.C[i];
     }
-    if (!equilibrate_finite(M, q, v.R, v.C, work.data())) {
+    if (!equilibrate_finite_kept(M, q, v.R, v.C, work.data())) {
         for (idx i = 0; i < n; ++i) {
             v.R[i] = kept[i];
             v.C[i] = kept[n + i];

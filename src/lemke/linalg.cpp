@@ -244,10 +244,76 @@ bool rsqrt_all(double* x, idx k, bool& same) {
 
 namespace {
 
+// What the full sweeps of the last equilibrate_finite_kept found, per thread: the matrix
+// (n x n, finite), and for the t-th full sweep of that call its R and C and what it
+// found of M alone, the rows' maxima of M's part (mrow) and the columns' (cmax). A full
+// sweep's mrow and cmax depend on M, R and C only (q enters rmax and qmax alone), so a
+// later call on the same M whose t-th full sweep starts from the same R and C finds the
+// same numbers: it takes them from here and computes q's terms (sweep_q: rmax and qmax,
+// the same operations as sweep's).
+struct SweepMemo {
+    std::vector<double> M, rec;  // rec: per full sweep t, [R | C | mrow | cmax] (4n)
+    idx n = -1;
+    int count = 0;  // records valid for M
+};
+
+thread_local SweepMemo sweep_memo;
+
+// Whether `memo` holds M (n x n); when it does not, M is copied in and its records dropped.
+bool memo_matches(SweepMemo& memo, Mat<const double> M) {
+    idx n = M.rows;
+    std::size_t row_bytes = static_cast<std::size_t>(n) * sizeof(double);
+    bool same = memo.n == n;
+    if (!same) {
+        memo.M.resize(static_cast<std::size_t>(n * n));
+        memo.rec.resize(static_cast<std::size_t>(4 * n * (EQUILIBRATE_SWEEPS + 1)));
+        memo.n = n;
+    }
+    for (idx i = 0; i < n; ++i) {
+        double* kept = memo.M.data() + i * n;
+        if (same && std::memcmp(kept, M.row(i), row_bytes) == 0) continue;
+        same = false;
+        std::memcpy(kept, M.row(i), row_bytes);
+    }
+    if (!same) memo.count = 0;
+    return same;
+}
+
+// One full sweep (sweep's outputs), the t-th of this call: from `memo` when it holds the
+// t-th sweep from these R and C, else sweep itself, recorded in `memo` (when not null).
+double full_sweep(Mat<const double> M, const double* q, const double* R, const double* C,
+                  double cq, double* rmax, double* cmax, double* mrow, bool* finite, bool unit,
+                  SweepMemo* memo, int t) {
+    idx n = M.rows;
+    std::size_t bytes = static_cast<std::size_t>(n) * sizeof(double);
+    double* rec = memo ? memo->rec.data() + 4 * n * t : nullptr;
+    if (memo && t < memo->count && std::memcmp(rec, R, bytes) == 0 &&
+        std::memcmp(rec + n, C, bytes) == 0) {
+        std::memcpy(mrow, rec + 2 * n, bytes);
+        std::memcpy(cmax, rec + 3 * n, bytes);
+        if (finite) *finite = true;  // (the records are of a finite M)
+        return sweep_q(q, R, cq, n, rmax, mrow);
+    }
+    double qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, unit);
+    if (memo) {
+        if (finite && !*finite) {
+            memo->n = -1;  // (not finite: nothing kept)
+            return qmax;
+        }
+        std::memcpy(rec, R, bytes);
+        std::memcpy(rec + n, C, bytes);
+        std::memcpy(rec + 2 * n, mrow, bytes);
+        std::memcpy(rec + 3 * n, cmax, bytes);
+        memo->count = t + 1;
+    }
+    return qmax;
+}
+
 // equilibrate's sweeps; with `finite`, the first sweep (run even past a deadline) also
-// tells whether M is finite, and the scales are left alone when it is not.
+// tells whether M is finite, and the scales are left alone when it is not. `memo`: the
+// full sweeps taken from and recorded in it (full_sweep; the same numbers).
 void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* work,
-            bool* finite) {
+            bool* finite, SweepMemo* memo = nullptr) {
     idx n = M.rows;
     thread_local std::vector<double> rows;
     rows.resize(static_cast<std::size_t>(n));
@@ -257,8 +323,10 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
     double* rmax = work;
     double* cmax = work + n;
     double qmax = 0.0;
+    int t = 0;  // full sweeps made
+    if (memo) memo_matches(*memo, M);
     if (finite) {
-        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true);
+        qmax = full_sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true, memo, t++);
         if (!*finite) return;
     }
     bool same = false;  // the last sweep left R and C as they were
@@ -275,7 +343,8 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
             balanced &= rsqrt_all(work, n, same);
         } else {
             if (sweep_no > 0 || !finite)
-                qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr, sweep_no == 0);
+                qmax = full_sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr, sweep_no == 0,
+                                  memo, t++);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
             balanced &= rsqrt_all(work, 2 * n, same);
         }
@@ -299,6 +368,15 @@ bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double*
     if (!all_finite(q, M.rows)) return false;
     bool finite = true;
     sweeps(M, q, R, C, work, &finite);
+    return finite;
+}
+
+bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
+                             double* work) {
+    if (M.rows > SWEEP_MEMO_MAX) return equilibrate_finite(M, q, R, C, work);
+    if (!all_finite(q, M.rows)) return false;
+    bool finite = true;
+    sweeps(M, q, R, C, work, &finite, &sweep_memo);
     return finite;
 }
 

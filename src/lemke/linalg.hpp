@@ -248,6 +248,16 @@ void equilibrate(Mat<const double> M, const double* q, double* R, double* C, dou
 bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double* C,
                         double* work);
 
+// equilibrate_finite, the same verdict and scales, keeping per thread what the sweeps found
+// of M alone (each full sweep's row and column maxima of M's part, with the R and C it
+// started from) for matrices of up to SWEEP_MEMO_MAX rows: a later call on the same M
+// (bit for bit) takes a sweep that starts from the same R and C from there and computes
+// only q's terms. A warm start's old basis (one M, q moved) pays one comparison of M
+// instead of the sweeps over it.
+constexpr idx SWEEP_MEMO_MAX = 256;
+bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
+                             double* work);
+
 // A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q; returns d_scale = max |R d|.
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,
                    const double* C, Mat<double> A, double* qs);
