@@ -49,9 +49,10 @@ int prologue(Mat<const double> M, const double* q, const double* d, const Views&
 
 // z of the complementary basis with z_i basic for i in beta[:k]: z_beta = -M_bb^-1 q_beta,
 // clipped at 0. work: at least k (k + 2) doubles. `kept`: by solve_gathered_kept (a warm
-// start's old basis: the same bits, the last block's factors reused when it repeats).
+// start's old basis: the same bits, the last block's factors reused when it repeats), with
+// M's id `id`.
 bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, double* z,
-                 double* work, bool kept = false) {
+                 double* work, bool kept = false, std::uint64_t id = 0) {
     idx n = M.rows;
     for (idx i = 0; i < n; ++i) z[i] = 0.0;
     if (k == 0) return true;
@@ -59,7 +60,8 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
     double* y = work + k * k;
     double* zb = work + k * (k + 1);
     for (idx i = 0; i < k; ++i) y[i] = -q[beta[i]];
-    if (!(kept ? solve_gathered_kept(M, beta, A, y, zb, k) : solve_gathered(M, beta, A, y, zb, k)))
+    if (!(kept ? solve_gathered_kept(M, beta, A, y, zb, k, id)
+               : solve_gathered(M, beta, A, y, zb, k)))
         return false;
     for (idx i = 0; i < k; ++i) z[beta[i]] = pmax(zb[i], 0.0);
     return true;
@@ -83,7 +85,8 @@ int old_basis(Mat<const double> M, const double* q, const double* d, const idx* 
         kept[i] = v.R[i];
         kept[n + i] = v.C[i];
     }
-    if (!equilibrate_finite_kept(M, q, v.R, v.C, work.data())) {
+    std::uint64_t id;
+    if (!equilibrate_finite_kept(M, q, v.R, v.C, work.data(), id)) {
         for (idx i = 0; i < n; ++i) {
             v.R[i] = kept[i];
             v.C[i] = kept[n + i];
@@ -91,7 +94,7 @@ int old_basis(Mat<const double> M, const double* q, const double* d, const idx* 
         return -1;
     }
     v.x[n] = 0.0;
-    if (!basis_point(M, q, beta, k, v.x, work.data(), true)) return 2;
+    if (!basis_point(M, q, beta, k, v.x, work.data(), true, id)) return 2;
     if (!check_rows(M, q, v.x, tol, v.w, v.R, work.data(), true, residual)) {
         residual = 0.0;
         return 1;

@@ -255,6 +255,7 @@ struct SweepMemo {
     std::vector<double> M, rec;  // rec: per full sweep t, [R | C | mrow | cmax] (4n)
     idx n = -1;
     int count = 0;  // records valid for M
+    std::uint64_t id = 0;  // a new number each time another M is copied in
 };
 
 thread_local SweepMemo sweep_memo;
@@ -275,7 +276,10 @@ bool memo_matches(SweepMemo& memo, Mat<const double> M) {
         same = false;
         std::memcpy(kept, M.row(i), row_bytes);
     }
-    if (!same) memo.count = 0;
+    if (!same) {
+        memo.count = 0;
+        memo.id += 1;
+    }
     return same;
 }
 
@@ -372,11 +376,13 @@ bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double*
 }
 
 bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
-                             double* work) {
+                             double* work, std::uint64_t& id) {
+    id = 0;
     if (M.rows > SWEEP_MEMO_MAX) return equilibrate_finite(M, q, R, C, work);
     if (!all_finite(q, M.rows)) return false;
     bool finite = true;
     sweeps(M, q, R, C, work, &finite, &sweep_memo);
+    if (finite) id = sweep_memo.id;
     return finite;
 }
 
@@ -561,8 +567,9 @@ bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k) 
 // factors and pivots (eliminate's, dense), and its size (-1: none kept).
 struct KeptBlock {
     std::vector<double> block, factors;
-    std::vector<idx> piv;
+    std::vector<idx> piv, index;
     idx k = -1;
+    std::uint64_t id = 0;  // the matrix's id (equilibrate_finite_kept's), 0: none
 };
 
 thread_local KeptBlock kept_block;
@@ -597,27 +604,38 @@ bool solve(Mat<const double> H, const double* b, double* x, idx k) {
 }
 
 bool solve_gathered_kept(Mat<const double> M, const idx* index, double* a, double* y,
-                         double* x, idx k) {
-    Mat<double> A(a, k, k);
-    for (idx r = 0; r < k; ++r) {
-        const double* mrow = M.row(index[r]);
-        for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
+                         double* x, idx k, std::uint64_t id) {
+    KeptBlock& kb = kept_block;
+    std::size_t index_bytes = static_cast<std::size_t>(k) * sizeof(idx);
+    // the same matrix (by its id) and the same rows: the same block, not gathered again
+    bool same = id != 0 && kb.id == id && kb.k == k &&
+                std::memcmp(kb.index.data(), index, index_bytes) == 0;
+    if (!same) {
+        Mat<double> A(a, k, k);
+        for (idx r = 0; r < k; ++r) {
+            const double* mrow = M.row(index[r]);
+            for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
+        }
+        same = kb.k == k && std::memcmp(kb.block.data(), a,
+                                        static_cast<std::size_t>(k * k) * sizeof(double)) == 0;
     }
     for (idx i = 0; i < k; ++i) x[i] = 0.0;
-    KeptBlock& kb = kept_block;
-    std::size_t bytes = static_cast<std::size_t>(k * k) * sizeof(double);
-    if (kb.k == k && std::memcmp(kb.block.data(), a, bytes) == 0) {
+    if (same) {
         // the same block, bit for bit: eliminate would make the same factors and pivots
         // (they depend on the block alone) and, on y, lu_solve's operations
+        kb.id = id;
+        kb.index.assign(index, index + k);
         if (!all_finite(y, k)) return false;
         return lu_solve(Mat<const double>(kb.factors.data(), k, k), kb.piv.data(), y, x, k);
     }
-    if (k > KEPT_BLOCK_MAX) return eliminate(A, y, x, k, nullptr);
+    if (k > KEPT_BLOCK_MAX) return eliminate(Mat<double>(a, k, k), y, x, k, nullptr);
     kb.k = -1;
     kb.block.assign(a, a + k * k);
     kb.piv.resize(static_cast<std::size_t>(2 * k));
-    if (!eliminate(A, y, x, k, kb.piv.data(), false)) return false;
+    if (!eliminate(Mat<double>(a, k, k), y, x, k, kb.piv.data(), false)) return false;
     kb.factors.assign(a, a + k * k);
+    kb.index.assign(index, index + k);
+    kb.id = id;
     kb.k = k;
     return true;
 }

@@ -253,10 +253,12 @@ bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double*
 // started from) for matrices of up to SWEEP_MEMO_MAX rows: a later call on the same M
 // (bit for bit) takes a sweep that starts from the same R and C from there and computes
 // only q's terms. A warm start's old basis (one M, q moved) pays one comparison of M
-// instead of the sweeps over it.
+// instead of the sweeps over it. `id`: when the result is true and M was kept, a number
+// that names M's bits among this thread's calls (the same id: the same M, bit for bit),
+// else 0.
 constexpr idx SWEEP_MEMO_MAX = 256;
 bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
-                             double* work);
+                             double* work, std::uint64_t& id);
 
 // A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q; returns d_scale = max |R d|.
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,
@@ -272,9 +274,11 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y,
 // the block gathered equals the kept one bit for bit, its kept factors and pivots solve y
 // (lu_solve: the operations eliminate makes on y); otherwise eliminate, whose factors are
 // kept when it succeeds (blocks of up to KEPT_BLOCK_MAX rows: two copies of the block).
+// `id`: equilibrate_finite_kept's id of M (0: none); the kept block of the same id and rows
+// is taken without gathering and comparing the block.
 constexpr idx KEPT_BLOCK_MAX = 512;
 bool solve_gathered_kept(Mat<const double> M, const idx* index, double* A, double* y, double* x,
-                         idx k);
+                         idx k, std::uint64_t id);
 
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
 // residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c
