@@ -244,41 +244,81 @@ bool rsqrt_all(double* x, idx k, bool& same) {
 
 namespace {
 
-// What the full sweeps of the last equilibrate_finite_kept found, per thread: the matrix
-// (n x n, finite), and for the t-th full sweep of that call its R and C and what it
-// found of M alone, the rows' maxima of M's part (mrow) and the columns' (cmax). A full
-// sweep's mrow and cmax depend on M, R and C only (q enters rmax and qmax alone), so a
-// later call on the same M whose t-th full sweep starts from the same R and C finds the
-// same numbers: it takes them from here and computes q's terms (sweep_q: rmax and qmax,
-// the same operations as sweep's).
+// What the full sweeps of an equilibrate_finite_kept call found of a matrix (n x n,
+// finite): for the t-th full sweep of that call its R and C and what it found of M alone,
+// the rows' maxima of M's part (mrow) and the columns' (cmax). A full sweep's mrow and
+// cmax depend on M, R and C only (q enters rmax and qmax alone), so a later call on the
+// same M whose t-th full sweep starts from the same R and C finds the same numbers: it
+// takes them from here and computes q's terms (sweep_q: rmax and qmax, the same
+// operations as sweep's).
 struct SweepMemo {
     std::vector<double> M, rec;  // rec: per full sweep t, [R | C | mrow | cmax] (4n)
     idx n = -1;
     int count = 0;  // records valid for M
-    std::uint64_t id = 0;  // a new number each time another M is copied in
 };
 
-thread_local SweepMemo sweep_memo;
+}  // namespace
 
-// Whether `memo` holds M (n x n); when it does not, M is copied in and its records dropped.
-bool memo_matches(SweepMemo& memo, Mat<const double> M) {
+// A kept matrix (equilibrate_finite_kept): its sweeps' memo, and the last basis block of it
+// that solve_gathered_kept factored (its rows, factors and eliminate's pivots; k = -1:
+// none). The block is dropped whenever another matrix takes the slot.
+struct KeptMatrix {
+    SweepMemo memo;
+    std::vector<double> factors;
+    std::vector<idx> piv, index;
+    idx k = -1;
+};
+
+namespace {
+
+// The table's slots: 2^KEPT_SLOT_BITS for matrices of up to KEPT_HASHED_MAX rows, chosen by
+// a hash of their bits, and one for the larger ones (a slot grows to what its largest
+// matrix needed: about 33 kB at KEPT_HASHED_MAX rows, 1 MB at SWEEP_MEMO_MAX).
+constexpr int KEPT_SLOT_BITS = 6;
+constexpr idx KEPT_HASHED_MAX = 32;
+constexpr std::size_t KEPT_SLOTS = std::size_t{1} << KEPT_SLOT_BITS;
+
+// The slot of this thread's table for M.
+KeptMatrix& kept_slot(Mat<const double> M) {
+    thread_local std::vector<KeptMatrix> table;
+    if (table.empty()) table.resize(KEPT_SLOTS + 1);
+    idx n = M.rows;
+    if (n > KEPT_HASHED_MAX) return table[KEPT_SLOTS];
+    std::uint64_t sum = 0, all = 0;
+    for (idx i = 0; i < n; ++i) {
+        const double* r = M.row(i);
+        for (idx j = 0; j < n; ++j) {
+            std::uint64_t b;
+            std::memcpy(&b, r + j, 8);
+            sum += b;
+            all ^= b;
+        }
+    }
+    std::uint64_t h = (sum ^ ((all << 17) | (all >> 47)) ^ static_cast<std::uint64_t>(n)) *
+                      0x9E3779B97F4A7C15ULL;
+    return table[static_cast<std::size_t>(h >> (64 - KEPT_SLOT_BITS))];
+}
+
+// Whether `kept` holds M (n x n); when it does not, M is copied in, and its records and
+// block are dropped.
+bool memo_matches(KeptMatrix& kept, Mat<const double> M) {
+    SweepMemo& memo = kept.memo;
     idx n = M.rows;
     std::size_t row_bytes = static_cast<std::size_t>(n) * sizeof(double);
     bool same = memo.n == n;
     if (!same) {
         memo.M.resize(static_cast<std::size_t>(n * n));
-        memo.rec.resize(static_cast<std::size_t>(4 * n * (EQUILIBRATE_SWEEPS + 1)));
         memo.n = n;
     }
     for (idx i = 0; i < n; ++i) {
-        double* kept = memo.M.data() + i * n;
-        if (same && std::memcmp(kept, M.row(i), row_bytes) == 0) continue;
+        double* m = memo.M.data() + i * n;
+        if (same && std::memcmp(m, M.row(i), row_bytes) == 0) continue;
         same = false;
-        std::memcpy(kept, M.row(i), row_bytes);
+        std::memcpy(m, M.row(i), row_bytes);
     }
     if (!same) {
         memo.count = 0;
-        memo.id += 1;
+        kept.k = -1;
     }
     return same;
 }
@@ -290,8 +330,8 @@ double full_sweep(Mat<const double> M, const double* q, const double* R, const d
                   SweepMemo* memo, int t) {
     idx n = M.rows;
     std::size_t bytes = static_cast<std::size_t>(n) * sizeof(double);
-    double* rec = memo ? memo->rec.data() + 4 * n * t : nullptr;
-    if (memo && t < memo->count && std::memcmp(rec, R, bytes) == 0 &&
+    double* rec = memo && t < memo->count ? memo->rec.data() + 4 * n * t : nullptr;
+    if (rec && std::memcmp(rec, R, bytes) == 0 &&
         std::memcmp(rec + n, C, bytes) == 0) {
         std::memcpy(mrow, rec + 2 * n, bytes);
         std::memcpy(cmax, rec + 3 * n, bytes);
@@ -304,6 +344,9 @@ double full_sweep(Mat<const double> M, const double* q, const double* R, const d
             memo->n = -1;  // (not finite: nothing kept)
             return qmax;
         }
+        if (memo->rec.size() < static_cast<std::size_t>(4 * n * (t + 1)))
+            memo->rec.resize(static_cast<std::size_t>(4 * n * (t + 1)));
+        rec = memo->rec.data() + 4 * n * t;
         std::memcpy(rec, R, bytes);
         std::memcpy(rec + n, C, bytes);
         std::memcpy(rec + 2 * n, mrow, bytes);
@@ -328,7 +371,6 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
     double* cmax = work + n;
     double qmax = 0.0;
     int t = 0;  // full sweeps made
-    if (memo) memo_matches(*memo, M);
     if (finite) {
         qmax = full_sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true, memo, t++);
         if (!*finite) return;
@@ -376,13 +418,15 @@ bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double*
 }
 
 bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
-                             double* work, std::uint64_t& id) {
-    id = 0;
+                             double* work, KeptMatrix*& kept) {
+    kept = nullptr;
     if (M.rows > SWEEP_MEMO_MAX) return equilibrate_finite(M, q, R, C, work);
     if (!all_finite(q, M.rows)) return false;
+    KeptMatrix& slot = kept_slot(M);
+    memo_matches(slot, M);
     bool finite = true;
-    sweeps(M, q, R, C, work, &finite, &sweep_memo);
-    if (finite) id = sweep_memo.id;
+    sweeps(M, q, R, C, work, &finite, &slot.memo);
+    if (finite) kept = &slot;
     return finite;
 }
 
@@ -563,17 +607,6 @@ bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k) 
     return back_substitute(A, y, x, k);
 }
 
-// The last block solve_gathered_kept factored, per thread: the block as gathered, its
-// factors and pivots (eliminate's, dense), and its size (-1: none kept).
-struct KeptBlock {
-    std::vector<double> block, factors;
-    std::vector<idx> piv, index;
-    idx k = -1;
-    std::uint64_t id = 0;  // the matrix's id (equilibrate_finite_kept's), 0: none
-};
-
-thread_local KeptBlock kept_block;
-
 // The work of solve and refined_solve, one per thread: A (k x k), y, d, and the pivots.
 struct SolveWork {
     std::vector<double> f;
@@ -604,39 +637,28 @@ bool solve(Mat<const double> H, const double* b, double* x, idx k) {
 }
 
 bool solve_gathered_kept(Mat<const double> M, const idx* index, double* a, double* y,
-                         double* x, idx k, std::uint64_t id) {
-    KeptBlock& kb = kept_block;
-    std::size_t index_bytes = static_cast<std::size_t>(k) * sizeof(idx);
-    // the same matrix (by its id) and the same rows: the same block, not gathered again
-    bool same = id != 0 && kb.id == id && kb.k == k &&
-                std::memcmp(kb.index.data(), index, index_bytes) == 0;
-    if (!same) {
-        Mat<double> A(a, k, k);
-        for (idx r = 0; r < k; ++r) {
-            const double* mrow = M.row(index[r]);
-            for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
-        }
-        same = kb.k == k && std::memcmp(kb.block.data(), a,
-                                        static_cast<std::size_t>(k * k) * sizeof(double)) == 0;
+                         double* x, idx k, KeptMatrix* kept) {
+    if (kept == nullptr || k > KEPT_BLOCK_MAX) return solve_gathered(M, index, a, y, x, k);
+    if (kept->k == k &&
+        std::memcmp(kept->index.data(), index, static_cast<std::size_t>(k) * sizeof(idx)) == 0) {
+        // the same block of the same matrix: eliminate would make the same factors and
+        // pivots (they depend on the block alone) and, on y, lu_solve's operations
+        for (idx i = 0; i < k; ++i) x[i] = 0.0;
+        if (!all_finite(y, k)) return false;
+        return lu_solve(Mat<const double>(kept->factors.data(), k, k), kept->piv.data(), y, x, k);
+    }
+    Mat<double> A(a, k, k);
+    for (idx r = 0; r < k; ++r) {
+        const double* mrow = M.row(index[r]);
+        for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
     }
     for (idx i = 0; i < k; ++i) x[i] = 0.0;
-    if (same) {
-        // the same block, bit for bit: eliminate would make the same factors and pivots
-        // (they depend on the block alone) and, on y, lu_solve's operations
-        kb.id = id;
-        kb.index.assign(index, index + k);
-        if (!all_finite(y, k)) return false;
-        return lu_solve(Mat<const double>(kb.factors.data(), k, k), kb.piv.data(), y, x, k);
-    }
-    if (k > KEPT_BLOCK_MAX) return eliminate(Mat<double>(a, k, k), y, x, k, nullptr);
-    kb.k = -1;
-    kb.block.assign(a, a + k * k);
-    kb.piv.resize(static_cast<std::size_t>(2 * k));
-    if (!eliminate(Mat<double>(a, k, k), y, x, k, kb.piv.data(), false)) return false;
-    kb.factors.assign(a, a + k * k);
-    kb.index.assign(index, index + k);
-    kb.id = id;
-    kb.k = k;
+    kept->k = -1;
+    kept->piv.resize(static_cast<std::size_t>(2 * k));
+    if (!eliminate(A, y, x, k, kept->piv.data(), false)) return false;
+    kept->factors.assign(a, a + k * k);
+    kept->index.assign(index, index + k);
+    kept->k = k;
     return true;
 }
 
