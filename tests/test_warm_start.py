@@ -1,5 +1,6 @@
 """Warm starts in the tableau method: the final basis handed back."""
 import pickle
+import threading
 
 import numpy as np
 import pytest
@@ -126,6 +127,82 @@ def test_any_warm_start_gives_a_right_answer(seed, n, method):
     res = lemke.solve_lcp(M, q, method=method, warm_start=ws)
     assert res.status == lemke.Status.SOLVED, res
     assert_lcp_solution(M, q, res.z)
+
+
+def _in_a_new_thread(f):
+    """f() in a thread of its own: the core's per-thread kept matrices start empty there."""
+    out = []
+    t = threading.Thread(target=lambda: out.append(f()))
+    t.start()
+    t.join()
+    return out[0]
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 5, 12, 17, 24, 40])
+def test_a_repeated_matrix_gives_the_same_bits(n, method):
+    """A warm start's first stage keeps, per thread, what the equilibration's sweeps found
+    of M and the last basis block's factors (equilibrate_finite_kept, solve_gathered_kept)
+    and reuses them when M repeats bit for bit: a re-solve right after one on the same M
+    with another q (sweeps and factors reused, or found stale: the trajectory of the scales
+    can part where q's terms differ) is the same result, bit for bit, as one in a new thread
+    (all computed afresh); on a basis that fits, one that no longer does and a singular
+    block. Every solved answer is checked."""
+    rng = np.random.default_rng(1000 + n)
+    A = rng.standard_normal((n, n))
+    M = A @ A.T + 0.1 * np.eye(n)
+    q = rng.standard_normal(n)
+    q[0] = -1.0 - abs(q[0])
+    S = rng.standard_normal((n, max(1, n // 2)))
+    M_sing = S @ S.T  # rank deficient: singular blocks
+    D = 10.0 ** rng.uniform(-3, 3, n)
+    M_bad = D[:, None] * M * D  # badly scaled: q's terms steer the scales
+    starts = [lemke.solve_lcp(data, q, method=method).warm_start for data in (M, M_bad)]
+    qs = (q + 1e-9, q + 1e-3 * rng.standard_normal(n), -np.abs(q),
+          q * 10.0 ** rng.uniform(-8, 8, n), q * 10.0 ** rng.uniform(-8, 8, n))
+    scales = set()
+    for data, start in ((M, starts[0]), (M_bad, starts[1]),
+                        (M_sing, lemke.WarmStart(n, tuple(range(n))))):
+        for qb in qs:
+            fresh = _in_a_new_thread(
+                lambda: lemke.solve_lcp(data, qb, warm_start=start, method=method))
+            scales.add((data is M_bad, fresh.row_scale.tobytes(), fresh.col_scale.tobytes()))
+            if fresh.status == lemke.Status.SOLVED:
+                assert_lcp_solution(data, qb, fresh.z)
+            for qa in qs:
+                lemke.solve_lcp(data, qa, warm_start=start, method=method)
+                again = lemke.solve_lcp(data, qb, warm_start=start, method=method)
+                assert again == fresh
+                for name in ("z", "w", "row_scale", "col_scale", "covering", "ray"):
+                    a, b = getattr(again, name), getattr(fresh, name)
+                    assert (a is None and b is None) or a.tobytes() == b.tobytes()
+    if n > 2:  # the scales' trajectories part between some of the q's on M_bad
+        assert len([s for s in scales if s[0]]) > 1
+
+
+def test_islands_kept_apart_give_the_same_bits():
+    """Many matrices kept at once (the table's slots, islands of a batch): warm re-solves of
+    300 small problems in turn, twice, give the bits of the same re-solves each in a new
+    thread."""
+    rng = np.random.default_rng(77)
+    probs = []
+    for i in range(300):
+        n = 1 + i % 12
+        A = rng.standard_normal((n, n))
+        M = A @ A.T + 0.1 * np.eye(n)
+        q = rng.standard_normal(n)
+        probs.append((M, q, lemke.solve_lcp(M, q).warm_start))
+    fresh = _in_a_new_thread(lambda: [
+        _in_a_new_thread(lambda: lemke.solve_lcp(M, q + 1e-3, warm_start=ws))
+        for M, q, ws in probs[:40]])
+    for _ in range(2):
+        again = [lemke.solve_lcp(M, q + 1e-3, warm_start=ws) for M, q, ws in probs]
+        assert again[:40] == fresh
+    batch = lemke.solve_lcp_many([p[0] for p in probs], [p[1] + 1e-3 for p in probs],
+                                 warm_start=[p[2] for p in probs])
+    assert list(batch) == again
+    for (M, q, _), r in zip(probs, again):
+        if r.status == lemke.Status.SOLVED:
+            assert_lcp_solution(M, q + 1e-3, r.z)
 
 
 # --- warm starts across changes of size (WarmStart.take / relabel) ------------------------

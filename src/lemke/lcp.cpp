@@ -48,9 +48,11 @@ int prologue(Mat<const double> M, const double* q, const double* d, const Views&
 }
 
 // z of the complementary basis with z_i basic for i in beta[:k]: z_beta = -M_bb^-1 q_beta,
-// clipped at 0. work: at least k (k + 2) doubles.
+// clipped at 0. work: at least k (k + 2) doubles. `kept`: by solve_gathered_kept (a warm
+// start's old basis: the same bits, the last block's factors reused when it repeats), with
+// M's entry `kept_m`.
 bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, double* z,
-                 double* work) {
+                 double* work, bool kept = false, KeptMatrix* kept_m = nullptr) {
     idx n = M.rows;
     for (idx i = 0; i < n; ++i) z[i] = 0.0;
     if (k == 0) return true;
@@ -58,7 +60,9 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
     double* y = work + k * k;
     double* zb = work + k * (k + 1);
     for (idx i = 0; i < k; ++i) y[i] = -q[beta[i]];
-    if (!solve_gathered(M, beta, A, y, zb, k)) return false;
+    if (!(kept ? solve_gathered_kept(M, beta, A, y, zb, k, kept_m)
+               : solve_gathered(M, beta, A, y, zb, k)))
+        return false;
     for (idx i = 0; i < k; ++i) z[beta[i]] = pmax(zb[i], 0.0);
     return true;
 }
@@ -72,7 +76,7 @@ bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, d
 // left them).
 int old_basis(Mat<const double> M, const double* q, const double* d, const idx* beta, idx k,
               double tol, const Views& v, idx* basic, double& residual,
-              std::vector<double>& work) {
+              std::vector<double>& work, bool keep) {
     idx n = M.rows;
     residual = 0.0;
     work.resize(static_cast<std::size_t>(std::max(k * (k + 2), 4 * n)));
@@ -81,7 +85,9 @@ int old_basis(Mat<const double> M, const double* q, const double* d, const idx* 
         kept[i] = v.R[i];
         kept[n + i] = v.C[i];
     }
-    if (!equilibrate_finite(M, q, v.R, v.C, work.data())) {
+    KeptMatrix* kept_m = nullptr;
+    if (!(keep ? equilibrate_finite_kept(M, q, v.R, v.C, work.data(), kept_m)
+               : equilibrate_finite(M, q, v.R, v.C, work.data()))) {
         for (idx i = 0; i < n; ++i) {
             v.R[i] = kept[i];
             v.C[i] = kept[n + i];
@@ -89,7 +95,7 @@ int old_basis(Mat<const double> M, const double* q, const double* d, const idx* 
         return -1;
     }
     v.x[n] = 0.0;
-    if (!basis_point(M, q, beta, k, v.x, work.data())) return 2;
+    if (!basis_point(M, q, beta, k, v.x, work.data(), keep, kept_m)) return 2;
     if (!check_rows(M, q, v.x, tol, v.w, v.R, work.data(), true, residual)) {
         residual = 0.0;
         return 1;
@@ -120,7 +126,7 @@ RunResult warm_verdict(int found, idx k, double residual) {
 
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
                     idx k, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                    double* buf, idx* basic) {
+                    double* buf, idx* basic, bool keep) {
     thread_local std::vector<double> work;
     thread_local std::vector<std::uint8_t> z_basic;
     RunResult out;
@@ -128,7 +134,7 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
     Views v(buf, n);
     if (k > 0) {
         double residual;
-        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
+        int found = old_basis(M, q, d, beta, k, tol, v, basic, residual, work, keep);
         if (found <= 0) return warm_verdict(found, k, residual);
         if (found == 1 && n >= RESTART_FROM) {
             out.stage = -2;
@@ -478,7 +484,7 @@ RunResult checked_once(Method method, Mat<const double> M, const double* q, cons
 
 RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
                     const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                    double tol, double* buf, idx* basic) {
+                    double tol, double* buf, idx* basic, bool keep) {
     thread_local std::vector<double> work;
     idx n = M.rows;
     Views v(buf, n);
@@ -495,7 +501,7 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
         // the warm start's stages (cold.warm_stages)
         int found;
         double m_max, residual = 0.0;
-        found = tried ? 1 : old_basis(M, q, d, beta, k, tol, v, basic, residual, work);
+        found = tried ? 1 : old_basis(M, q, d, beta, k, tol, v, basic, residual, work, keep);
         if (found <= 0) return warm_verdict(found, k, residual);
         RunResult out;
         if (found != 2 && n >= RESTART_FROM) {
@@ -536,10 +542,12 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
 
 RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                double tol, double* buf, idx* basic) {
+                double tol, double* buf, idx* basic, bool keep) {
     if (method != TABLEAU)
-        return solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
-    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic);
+        return solve_one(method, M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
+                         keep);
+    RunResult r = first_run(M, q, d, beta, k, max_pivots, pivot_tol, tie_tol, tol, buf, basic,
+                            keep);
     if (r.stage >= 0) return r;
     idx n = M.rows;
     if (r.stage == -1 && r.code == RAY_TERMINATION) {
@@ -579,7 +587,8 @@ void batch(Method method, const double* Ms, const idx* mstart, const double* qs,
             r.code = INTERRUPTED;
         } else
         r = solve(method, M, qs + qoff[b], nullptr, beta + boff[b], boff[b + 1] - boff[b],
-                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b]);
+                            max_pivots[b], pivot_tol, tie_tol, tol, bufs + buff[b], basics + qoff[b],
+                            false);
         idx* oi = out_i + 5 * b;
         oi[0] = r.code;
         oi[1] = r.pivots;

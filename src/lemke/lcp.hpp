@@ -39,10 +39,14 @@ enum Method : int { TABLEAU = 0, UNREVISED = 1 };
 
 // What solve_lcp runs first (tableau method), cold (k == 0) or warm from the basic z's
 // beta[:k]. d: the covering vector (nullptr: all ones). buf: BufferLayout(n).length()
-// doubles; basic: n int64 (the basic z's, or on stage -1 the final flags).
+// doubles; basic: n int64 (the basic z's, or on stage -1 the final flags). `keep`: a warm
+// start's old basis is equilibrated and solved through the thread's kept matrices
+// (equilibrate_finite_kept, solve_gathered_kept: the same bits, M's sweeps and the block's
+// factors reused when M repeats); false for the batch's islands, each its own M, where
+// keeping costs more than it saves.
 RunResult first_run(Mat<const double> M, const double* q, const double* d, const idx* beta,
                     idx k, idx max_pivots, double pivot_tol, double tie_tol, double tol,
-                    double* buf, idx* basic);
+                    double* buf, idx* basic, bool keep = true);
 
 // What solve_lcp runs for one problem, and every batch per problem (cold.solve_one): a warm
 // start's stages from beta[:k] when k > 0, then, unless they solved it, the cold solve with
@@ -53,7 +57,7 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
 // first_run tried (stage -2).
 RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
                     const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                    double tol, double* buf, idx* basic);
+                    double tol, double* buf, idx* basic, bool keep = true);
 
 // The first run and, when it does not settle the solve, solve_one from where it stopped: the
 // path of solve_lcp for one problem (and of a batch's problem), by either method. A first
@@ -61,7 +65,7 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
 // solve_one would give it.
 RunResult solve(Method method, Mat<const double> M, const double* q, const double* d,
                 const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                double tol, double* buf, idx* basic);
+                double tol, double* buf, idx* basic, bool keep = true);
 
 // checked_once: checked() with the covering vector d given (so no recovery runs after a
 // failed check) and a ray not judged (ok false): the prologue, one run of `method` with the

@@ -317,14 +317,127 @@ bool rsqrt_all(double* x, idx k, bool& same) {
 
 namespace {
 
+// What the full sweeps of an equilibrate_finite_kept call found of a matrix (n x n,
+// finite): for the t-th full sweep of that call its R and C and what it found of M alone,
+// the rows' maxima of M's part (mrow) and the columns' (cmax). A full sweep's mrow and
+// cmax depend on M, R and C only (q enters rmax and qmax alone), so a later call on the
+// same M whose t-th full sweep starts from the same R and C finds the same numbers: it
+// takes them from here and computes q's terms (sweep_q: rmax and qmax, the same
+// operations as sweep's).
+struct SweepMemo {
+    std::vector<double> M, rec;  // rec: per full sweep t, [R | C | mrow | cmax] (4n)
+    idx n = -1;
+    int count = 0;  // records valid for M
+};
+
+}  // namespace
+
+// A kept matrix (equilibrate_finite_kept): its sweeps' memo, and the last basis block of it
+// that solve_gathered_kept factored (its rows, factors and eliminate's pivots; k = -1:
+// none). The block is dropped whenever another matrix takes the slot.
+struct KeptMatrix {
+    SweepMemo memo;
+    std::vector<double> factors;
+    std::vector<idx> piv, index;
+    idx k = -1;
+};
+
+namespace {
+
+// The table's slots: 2^KEPT_SLOT_BITS for matrices of up to KEPT_HASHED_MAX rows, chosen by
+// a hash of their bits, and one for the larger ones (a slot grows to what its largest
+// matrix needed: about 33 kB at KEPT_HASHED_MAX rows, 1 MB at SWEEP_MEMO_MAX).
+constexpr int KEPT_SLOT_BITS = 6;
+constexpr idx KEPT_HASHED_MAX = 32;
+constexpr std::size_t KEPT_SLOTS = std::size_t{1} << KEPT_SLOT_BITS;
+
+// The slot of this thread's table for M.
+KeptMatrix& kept_slot(Mat<const double> M) {
+    thread_local std::vector<KeptMatrix> table;
+    if (table.empty()) table.resize(KEPT_SLOTS + 1);
+    idx n = M.rows;
+    if (n > KEPT_HASHED_MAX) return table[KEPT_SLOTS];
+    std::uint64_t sum = 0, all = 0;
+    for (idx i = 0; i < n; ++i) {
+        const double* r = M.row(i);
+        for (idx j = 0; j < n; ++j) {
+            std::uint64_t b;
+            std::memcpy(&b, r + j, 8);
+            sum += b;
+            all ^= b;
+        }
+    }
+    std::uint64_t h = (sum ^ ((all << 17) | (all >> 47)) ^ static_cast<std::uint64_t>(n)) *
+                      0x9E3779B97F4A7C15ULL;
+    return table[static_cast<std::size_t>(h >> (64 - KEPT_SLOT_BITS))];
+}
+
+// Whether `kept` holds M (n x n); when it does not, M is copied in, and its records and
+// block are dropped.
+bool memo_matches(KeptMatrix& kept, Mat<const double> M) {
+    SweepMemo& memo = kept.memo;
+    idx n = M.rows;
+    std::size_t row_bytes = static_cast<std::size_t>(n) * sizeof(double);
+    bool same = memo.n == n;
+    if (!same) {
+        memo.M.resize(static_cast<std::size_t>(n * n));
+        memo.n = n;
+    }
+    for (idx i = 0; i < n; ++i) {
+        double* m = memo.M.data() + i * n;
+        if (same && std::memcmp(m, M.row(i), row_bytes) == 0) continue;
+        same = false;
+        std::memcpy(m, M.row(i), row_bytes);
+    }
+    if (!same) {
+        memo.count = 0;
+        kept.k = -1;
+    }
+    return same;
+}
+
+// One full sweep (sweep's outputs), the t-th of this call: from `memo` when it holds the
+// t-th sweep from these R and C, else sweep itself, recorded in `memo` (when not null).
+double full_sweep(Mat<const double> M, const double* q, const double* R, const double* C,
+                  double cq, double* rmax, double* cmax, double* mrow, bool* finite, bool unit,
+                  SweepMemo* memo, int t) {
+    idx n = M.rows;
+    std::size_t bytes = static_cast<std::size_t>(n) * sizeof(double);
+    double* rec = memo && t < memo->count ? memo->rec.data() + 4 * n * t : nullptr;
+    if (rec && std::memcmp(rec, R, bytes) == 0 &&
+        std::memcmp(rec + n, C, bytes) == 0) {
+        std::memcpy(mrow, rec + 2 * n, bytes);
+        std::memcpy(cmax, rec + 3 * n, bytes);
+        if (finite) *finite = true;  // (the records are of a finite M)
+        return sweep_q(q, R, cq, n, rmax, mrow);
+    }
+    double qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, unit);
+    if (memo) {
+        if (finite && !*finite) {
+            memo->n = -1;  // (not finite: nothing kept)
+            return qmax;
+        }
+        if (memo->rec.size() < static_cast<std::size_t>(4 * n * (t + 1)))
+            memo->rec.resize(static_cast<std::size_t>(4 * n * (t + 1)));
+        rec = memo->rec.data() + 4 * n * t;
+        std::memcpy(rec, R, bytes);
+        std::memcpy(rec + n, C, bytes);
+        std::memcpy(rec + 2 * n, mrow, bytes);
+        std::memcpy(rec + 3 * n, cmax, bytes);
+        memo->count = t + 1;
+    }
+    return qmax;
+}
+
 // equilibrate's sweeps; with `finite`, the first sweep (run even past a deadline) also
-// tells whether M is finite, and the scales are left alone when it is not. Compiled per
+// tells whether M is finite, and the scales are left alone when it is not. `memo`: the
+// full sweeps taken from and recorded in it (full_sweep; the same numbers). Compiled per
 // instruction set for its own loops: the baseline build of absmax(q) on eight-lane vectors
 // went through the stack (two scalar stores, then a 16-byte load, per lane pair and per
 // pass), half of this function's time at n = 24.
 LEMKE_CLONES
 void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* work,
-            bool* finite) {
+            bool* finite, SweepMemo* memo = nullptr) {
     idx n = M.rows;
     thread_local std::vector<double> rows;
     rows.resize(static_cast<std::size_t>(n));
@@ -334,8 +447,9 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
     double* rmax = work;
     double* cmax = work + n;
     double qmax = 0.0;
+    int t = 0;  // full sweeps made
     if (finite) {
-        qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true);
+        qmax = full_sweep(M, q, R, C, cq, rmax, cmax, mrow, finite, true, memo, t++);
         if (!*finite) return;
     }
     bool same = false;  // the last sweep left R and C as they were
@@ -352,7 +466,8 @@ void sweeps(Mat<const double> M, const double* q, double* R, double* C, double* 
             balanced &= rsqrt_all(work, n, same);
         } else {
             if (sweep_no > 0 || !finite)
-                qmax = sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr, sweep_no == 0);
+                qmax = full_sweep(M, q, R, C, cq, rmax, cmax, mrow, nullptr, sweep_no == 0,
+                                  memo, t++);
             balanced = !(qmax > 0.0 && (qmax < 0.5 || qmax > 2.0));
             balanced &= rsqrt_all(work, 2 * n, same);
         }
@@ -376,6 +491,19 @@ bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double*
     if (!all_finite(q, M.rows)) return false;
     bool finite = true;
     sweeps(M, q, R, C, work, &finite);
+    return finite;
+}
+
+bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
+                             double* work, KeptMatrix*& kept) {
+    kept = nullptr;
+    if (M.rows > SWEEP_MEMO_MAX) return equilibrate_finite(M, q, R, C, work);
+    if (!all_finite(q, M.rows)) return false;
+    KeptMatrix& slot = kept_slot(M);
+    memo_matches(slot, M);
+    bool finite = true;
+    sweeps(M, q, R, C, work, &finite, &slot.memo);
+    if (finite) kept = &slot;
     return finite;
 }
 
@@ -425,7 +553,7 @@ void swap_rows(Mat<double> A, idx i, idx j, idx k) {
     }
 }
 
-bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv);
+bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse = true);
 
 }  // namespace
 
@@ -483,9 +611,10 @@ bool back_substitute(Mat<const double> A, const double* y, double* x, idx k) {
 // linalg._eliminate: A x = y in place (x starts at 0), two pivots per pass. piv: nullptr,
 // or 2k entries: the first k get each step's pivot row (for lu_solve), the second k list
 // the pivot rows' non-zero columns, whose updates alone are made when they are under a
-// quarter of the row.
+// quarter of the row (unless `sparse` is false: then every update is made, as with no piv,
+// the same operations as that call's).
 LEMKE_CLONES
-bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv) {
+bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse) {
     bool finite = all_finite(y, k);
     for (idx r = 0; r < k; ++r) finite &= all_finite(A.row(r), k);
     if (!finite) return false;
@@ -512,7 +641,7 @@ bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv) {
         idx m = -1;
         const double* aj = A.row(j);
         const double* aj1 = A.row(j + 1);
-        if (piv) m = nonzero_columns(aj, aj1, j + 2, k, piv + k);
+        if (piv && sparse) m = nonzero_columns(aj, aj1, j + 2, k, piv + k);
         for (idx r = j + 2; r < k; ++r) {
             double f = A(r, j);
             double g = (A(r, j + 1) - f * h) * inv1;
@@ -586,6 +715,32 @@ bool solve(Mat<const double> H, const double* b, double* x, idx k) {
         y[r] = b[r];
     }
     return eliminate(A, y, x, k, nullptr);
+}
+
+bool solve_gathered_kept(Mat<const double> M, const idx* index, double* a, double* y,
+                         double* x, idx k, KeptMatrix* kept) {
+    if (kept == nullptr || k > KEPT_BLOCK_MAX) return solve_gathered(M, index, a, y, x, k);
+    if (kept->k == k &&
+        std::memcmp(kept->index.data(), index, static_cast<std::size_t>(k) * sizeof(idx)) == 0) {
+        // the same block of the same matrix: eliminate would make the same factors and
+        // pivots (they depend on the block alone) and, on y, lu_solve's operations
+        for (idx i = 0; i < k; ++i) x[i] = 0.0;
+        if (!all_finite(y, k)) return false;
+        return lu_solve(Mat<const double>(kept->factors.data(), k, k), kept->piv.data(), y, x, k);
+    }
+    Mat<double> A(a, k, k);
+    for (idx r = 0; r < k; ++r) {
+        const double* mrow = M.row(index[r]);
+        for (idx c = 0; c < k; ++c) A(r, c) = mrow[index[c]];
+    }
+    for (idx i = 0; i < k; ++i) x[i] = 0.0;
+    kept->k = -1;
+    kept->piv.resize(static_cast<std::size_t>(2 * k));
+    if (!eliminate(A, y, x, k, kept->piv.data(), false)) return false;
+    kept->factors.assign(a, a + k * k);
+    kept->index.assign(index, index + k);
+    kept->k = k;
+    return true;
 }
 
 bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo) {

@@ -248,6 +248,21 @@ void equilibrate(Mat<const double> M, const double* q, double* R, double* C, dou
 bool equilibrate_finite(Mat<const double> M, const double* q, double* R, double* C,
                         double* work);
 
+// A matrix kept by equilibrate_finite_kept (linalg.cpp), with what was computed of it.
+struct KeptMatrix;
+
+// equilibrate_finite, the same verdict and scales, keeping what the sweeps found of M alone
+// (each full sweep's row and column maxima of M's part, with the R and C it started from)
+// for matrices of up to SWEEP_MEMO_MAX rows, in a table per thread (64 slots chosen by a
+// hash of M's bits for up to 32 rows, one slot for larger ones): a later call on the same
+// M (bit for bit) takes a sweep that starts from the same R and C from there and computes
+// only q's terms. A warm start's old basis (one M, q moved; or islands, each its own M)
+// pays a hash and a comparison of M instead of the sweeps over it. `kept`: M's entry when
+// the result is true and M is kept (for solve_gathered_kept), else nullptr.
+constexpr idx SWEEP_MEMO_MAX = 256;
+bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
+                             double* work, KeptMatrix*& kept);
+
 // A = [R M C | R d / d_scale] (n x (n + 1)) and qs = R q; returns d_scale = max |R d|.
 double scaled_into(Mat<const double> M, const double* q, const double* d, const double* R,
                    const double* C, Mat<double> A, double* qs);
@@ -259,6 +274,15 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y,
 // A x = y (k x k, A.ld = k) by the same elimination, A and y overwritten (solve_gathered's
 // solve, of a block assembled by the caller).
 bool solve_in_place(Mat<double> A, double* y, double* x, idx k);
+
+// solve_gathered, the same bits, for a block of a kept matrix (`kept`: equilibrate_finite_kept's;
+// nullptr: solve_gathered itself): the last block of it factored is kept (its rows, factors
+// and pivots), and a block of the same rows (a warm start re-solving its basis with a new
+// q) is solved with them (lu_solve: the operations eliminate makes on y), neither gathered
+// nor factored again; blocks of up to KEPT_BLOCK_MAX rows.
+constexpr idx KEPT_BLOCK_MAX = 256;
+bool solve_gathered_kept(Mat<const double> M, const idx* index, double* A, double* y, double* x,
+                         idx k, KeptMatrix* kept);
 
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
 // residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c
