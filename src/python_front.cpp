@@ -1,14 +1,15 @@
 // lemke._core.lcp_front: solve_lcp's common call whole in one native call (issue 31's thin
-// front): plain float64 arrays, the tableau, no covering vector, cold or warm from a
+// front): plain float64 arrays, either method, no covering vector, cold or warm from a
 // WarmStart (its int64 index array), default options. It reads the two ndarrays' fields directly (no DLPack capsule, no buffer view:
 // those cost more than a small solve), allocates the output buffer as numpy.empty does
-// (new_array: through NumPy's C API), runs lemke::first_run (without the GIL) and builds
-// the LCPResult as LCPResult._lazy does.
+// (new_array: through NumPy's C API), runs lemke::first_run for the tableau or
+// lemke::solve_one for the unrevised method (method 1; without the GIL) and builds the
+// LCPResult as LCPResult._lazy does.
 //
 // Returns the LCPResult when first_run settles the solve (solved and checked, q >= 0, or
 // a checked ray); the tuple (code, pivots, k, ok, residual, recoveries, stage, buf) when
-// the Python front must go on from first_run's answer (the same as _core.first_run's and
-// its buffer); None when the arguments are not of that plain kind (the Python front then
+// the Python front must go on from the core's answer (the same as _core.first_run's or
+// _core.solve_one's and its buffer); None when the arguments are not of that plain kind (the Python front then
 // does everything). The same solve, the same bits as the Python fast path.
 //
 // The ndarray fields are those of NumPy's PyArrayObject (data, nd, dimensions, strides,
@@ -179,9 +180,10 @@ void init(nb::handle ndarray, nb::handle result_cls, nb::handle solved, nb::hand
     if (front.on) find_new_from_descr(api);
 }
 
-nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle beta_h) {
+nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle beta_h,
+                     int method = lemke::TABLEAU) {
     using lemke::idx;
-    if (!front.on) return nb::none();
+    if (!front.on || (method != lemke::TABLEAU && method != lemke::UNREVISED)) return nb::none();
     const ArrayFields* M = plain(M_h.ptr(), 2);
     const ArrayFields* q = plain(q_h.ptr(), 1);
     if (M == nullptr || q == nullptr) return nb::none();
@@ -207,10 +209,17 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
     idx* basic = reinterpret_cast<idx*>(out + at);
     const double* Md = reinterpret_cast<const double*>(M->data);
     const double* qd = reinterpret_cast<const double*>(q->data);
+    // the tableau's first run (solve_one goes on from a stage -1 or -2 in _after_front), or
+    // the unrevised method's whole solve (solve_one: stage 0, 1 or 2), as the Python fast
+    // path calls them
     auto run = [&] {
-        return lemke::first_run(lemke::Mat<const double>(Md, n, n), qd, nullptr, beta, k,
-                                100 * (n + 1), front.pivot_tol, front.tie_tol, front.tol, out,
-                                basic);
+        lemke::Mat<const double> Mm(Md, n, n);
+        idx mp = 100 * (n + 1);
+        if (method == lemke::UNREVISED)
+            return lemke::solve_one(lemke::UNREVISED, Mm, qd, nullptr, beta, k, mp,
+                                    front.pivot_tol, front.tie_tol, front.tol, out, basic);
+        return lemke::first_run(Mm, qd, nullptr, beta, k, mp, front.pivot_tol, front.tie_tol,
+                                front.tol, out, basic);
     };
     lemke::RunResult r;
     {
@@ -257,12 +266,13 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
 }
 
 // lemke._lcp.solve_lcp itself: a callable object whose calls solve_lcp(M, q) and
-// solve_lcp(M, q, warm_start=ws) go to lcp_front without a Python frame (the frame of a
+// solve_lcp(M, q, warm_start=ws), either also with method="tableau" or "unrevised" (exact
+// str), go to lcp_front without a Python frame (the frame of a
 // function of six keyword-only arguments, their defaults looked up one by one, costs a
 // fifth of such a call at n = 1); any other call, and any that lcp_front declines, is the
 // Python function's (_lcp._solve_lcp), which the entry wraps (functools.update_wrapper:
 // its name, docstring, signature). A run that first_run did not settle goes on in
-// _lcp._after_front, as in the Python front. The entry steps aside (the Python function
+// _lcp._after_front (with the method when it is the unrevised one), as in the Python front. The entry steps aside (the Python function
 // does it all) when _lcp._FRONT is no longer _core.lcp_front (a test that switches the
 // front off) or when the warm start is not a WarmStart of q's size with its index array.
 struct Entry {
@@ -274,7 +284,8 @@ struct Entry {
     PyObject* globals;  // _lcp's namespace (its _FRONT read each call)
     PyObject* front;    // _core.lcp_front as first bound
     PyObject* ws_cls;   // WarmStart
-    PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label, *k_findex;
+    PyObject *k_front, *k_warm_start, *k_beta, *k_n, *k_init_label, *k_findex, *k_method;
+    PyObject *s_tableau, *s_unrevised;  // solve_lcp's method= values its front takes
     // solve_lcp_many's entry only (null in solve_lcp's): _batch's namespace (its FEW read
     // each call), LCPManyResult, the key of what LCPManyResult._of sets and () for its
     // object.__new__
@@ -299,11 +310,24 @@ bool warm_beta(Entry* e, PyObject* ws, Py_ssize_t n, nb::object& beta) {
     return false;
 }
 
+// Whether a keyword of a call is `name` (an interned string; a keyword is a str).
+bool is_key(PyObject* key, PyObject* name) {
+    return key == name || PyUnicode_Compare(key, name) == 0;
+}
+
 // Whether kwnames (of a call with two positional arguments) is only warm_start.
 bool only_warm_start(Entry* e, PyObject* kwnames) {
-    if (PyTuple_GET_SIZE(kwnames) != 1) return false;
-    PyObject* key = PyTuple_GET_ITEM(kwnames, 0);
-    return key == e->k_warm_start || PyUnicode_Compare(key, e->k_warm_start) == 0;
+    return PyTuple_GET_SIZE(kwnames) == 1 && is_key(PyTuple_GET_ITEM(kwnames, 0), e->k_warm_start);
+}
+
+// solve_lcp's method= value as the core's code, when it is the str "tableau" or
+// "unrevised" (false for anything else: the Python function's, which says what is wrong).
+bool method_code(Entry* e, PyObject* v, int& method) {
+    if (!PyUnicode_CheckExact(v)) return false;
+    if (is_key(v, e->s_tableau)) method = lemke::TABLEAU;
+    else if (is_key(v, e->s_unrevised)) method = lemke::UNREVISED;
+    else return false;
+    return true;
 }
 
 // The exception in flight (in a catch block) set as Python's error; Py_None, which the
@@ -323,13 +347,16 @@ PyObject* error_set() {
     return Py_None;
 }
 
-PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta) {
+PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta,
+                      int method) {
     try {
-        nb::object r = lcp_front(M, q, ws, beta);
+        nb::object r = lcp_front(M, q, ws, beta, method);
         if (r.is_none()) return nullptr;  // (no error set: the Python function's to do)
         if (!PyTuple_CheckExact(r.ptr())) return r.release().ptr();
-        PyObject* args[] = {M, q, ws, beta, r.ptr()};
-        PyObject* res = PyObject_Vectorcall(e->after, args, 5, nullptr);
+        // _after_front(M, q, ws, beta, r), with the method when it is not the tableau
+        PyObject* args[] = {M, q, ws, beta, r.ptr(), e->s_unrevised};
+        PyObject* res = PyObject_Vectorcall(e->after, args, method == lemke::TABLEAU ? 5 : 6,
+                                            nullptr);
         return res != nullptr ? res : Py_None;  // (Py_None, not owned: an error is set)
     } catch (...) {
         return error_set();
@@ -341,19 +368,29 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     auto* e = reinterpret_cast<Entry*>(self);
     Py_ssize_t nargs = PyVectorcall_NARGS(nargsf);
     if (nargs == 2 && front.on) {
-        bool plain = kwnames == nullptr || only_warm_start(e, kwnames);
-        PyObject* ws = kwnames == nullptr ? Py_None : args[2];
+        // the keywords taken: warm_start= and method= ("tableau" or "unrevised")
+        PyObject* ws = Py_None;
+        int method = lemke::TABLEAU;
+        bool plain = true;
+        Py_ssize_t nk = kwnames == nullptr ? 0 : PyTuple_GET_SIZE(kwnames);
+        for (Py_ssize_t i = 0; i < nk && plain; ++i) {
+            PyObject* key = PyTuple_GET_ITEM(kwnames, i);
+            if (is_key(key, e->k_warm_start))
+                ws = args[2 + i];
+            else
+                plain = is_key(key, e->k_method) && method_code(e, args[2 + i], method);
+        }
         PyObject* now = plain ? PyDict_GetItemWithError(e->globals, e->k_front) : nullptr;
         if (now == e->front) {
             PyObject* res = nullptr;
             nb::object beta;
             if (ws == Py_None) {
-                res = entry_front(e, args[0], args[1], Py_None, Py_None);
+                res = entry_front(e, args[0], args[1], Py_None, Py_None, method);
             } else if (Py_TYPE(args[1]) == front.ndarray &&
                        reinterpret_cast<const ArrayFields*>(args[1])->nd == 1 &&
                        warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(args[1])->dimensions[0],
                                  beta)) {
-                res = entry_front(e, args[0], args[1], ws, beta.ptr());
+                res = entry_front(e, args[0], args[1], ws, beta.ptr(), method);
             }
             if (res == Py_None) return nullptr;  // an error, set
             if (res != nullptr) return res;
@@ -432,8 +469,7 @@ PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     auto* e = reinterpret_cast<Entry*>(self);
     bool plain = kwnames == nullptr ||
                  (PyTuple_GET_SIZE(kwnames) == 1 &&
-                  (PyTuple_GET_ITEM(kwnames, 0) == e->k_init_label ||
-                   PyUnicode_Compare(PyTuple_GET_ITEM(kwnames, 0), e->k_init_label) == 0));
+                  is_key(PyTuple_GET_ITEM(kwnames, 0), e->k_init_label));
     if (PyVectorcall_NARGS(nargsf) == 2 && plain && front.on) {
         PyObject* now = PyDict_GetItemWithError(e->globals, e->k_front);
         if (now == nullptr && PyErr_Occurred()) return nullptr;
@@ -467,14 +503,11 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
     Py_ssize_t nk = kwnames == nullptr ? 0 : PyTuple_GET_SIZE(kwnames);
     bool plain = nargs == 4 && front.on;
     PyObject *fi = Py_None, *ws = Py_None;
-    auto is = [](PyObject* key, PyObject* name) {
-        return key == name || PyUnicode_Compare(key, name) == 0;
-    };
     for (Py_ssize_t i = 0; i < nk && plain; ++i) {
         PyObject* key = PyTuple_GET_ITEM(kwnames, i);
-        if (is(key, e->k_findex))
+        if (is_key(key, e->k_findex))
             fi = args[4 + i];
-        else if (is(key, e->k_warm_start))
+        else if (is_key(key, e->k_warm_start))
             ws = args[4 + i];
         else
             plain = false;
@@ -554,11 +587,12 @@ nb::object make_entry(nb::handle py, nb::handle after, nb::handle globals, nb::h
     nb::handle given[] = {py, after, globals, front_fn, ws_cls, many_globals, many_cls};
     for (int i = 0; i < 7; ++i) *keep[i] = given[i].inc_ref().ptr();  // kept for good
     PyObject** keys[] = {&e->k_front, &e->k_warm_start, &e->k_beta, &e->k_n, &e->k_few,
-                         &e->k_items, &e->k_init_label, &e->k_findex};
+                         &e->k_items, &e->k_init_label, &e->k_findex, &e->k_method,
+                         &e->s_tableau, &e->s_unrevised};
     const char* names[] = {"_FRONT", "warm_start", "_beta", "n", "FEW", "_items", "init_label",
-                           "findex"};
+                           "findex", "method", "tableau", "unrevised"};
     nb::object res = nb::steal(reinterpret_cast<PyObject*>(e));
-    for (int i = 0; i < 8; ++i)
+    for (int i = 0; i < 11; ++i)
         if ((*keys[i] = PyUnicode_InternFromString(names[i])) == nullptr) throw nb::python_error();
     if ((e->no_args = PyTuple_New(0)) == nullptr) throw nb::python_error();
     return res;
@@ -665,7 +699,8 @@ void bind_front(nb::module_& m) {
     m.def("lcp_front_init", &init, "ndarray"_a, "result_cls"_a, "solved"_a, "ray"_a, "empty"_a,
           "pivot_tol"_a, "tie_tol"_a, "tol"_a, "probe2"_a, "address"_a, "probe_ro"_a,
           "probe_int"_a, "probe_swapped"_a, "api"_a.none());
-    m.def("lcp_front", &lcp_front, "M"_a, "q"_a, "ws"_a.none(), "beta"_a.none());
+    m.def("lcp_front", &lcp_front, "M"_a, "q"_a, "ws"_a.none(), "beta"_a.none(),
+          "method"_a = static_cast<int>(lemke::TABLEAU));
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);

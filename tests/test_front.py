@@ -3,6 +3,7 @@ buffers are the values an eager build gives (q >= 0, rays, solved), their arrays
 and alias nothing writable, and ``solve_lcp_many`` gives every problem exactly what
 ``solve_lcp`` gives it, whatever the outcome and the form of the input."""
 import copy
+import functools
 import pickle
 
 import numpy as np
@@ -191,7 +192,8 @@ def test_solve_lcp_fast_path_and_its_edges():
     read-only or strided M goes the validated way and gets the same bits."""
     M, q = problems.contact_like(5, np.random.default_rng(8))
     ref = lemke.solve_lcp(M, q)
-    lemke.solve_lcp(M, q, method="unrevised")
+    # (options given: the Python fast path; without them the native front solves it)
+    lemke.solve_lcp(M, q, method="unrevised", options={"max_pivots": 100})
     assert _lcp._ENTRY.get("unrevised") is not None
     raw = np.zeros(M.size * 8 + 1, dtype=np.uint8)
     unaligned = raw[1:].view(np.float64).reshape(M.shape)
@@ -234,11 +236,13 @@ def test_arrays_of_another_float64_dtype_object_take_the_fast_path_with_the_same
     assert rk.z.min() >= 0 and w.min() >= -1e-12 and abs(rk.z @ w) <= 1e-12
 
 
-def test_the_native_front_gives_the_python_fronts_results(monkeypatch):
+@pytest.mark.parametrize("method", ["tableau", "unrevised"])
+def test_the_native_front_gives_the_python_fronts_results(monkeypatch, method):
     """solve_lcp's commonest call runs whole in src/python_front.cpp (it reads the ndarrays'
     fields itself, after checking NumPy's layout on probes): the same results, bit for bit,
     as the Python front's fast path, on the goldens' LCPs and on problems that need the
-    driver's later stages (rays, cycles, failed checks), lazily built fields included."""
+    driver's later stages (rays, cycles, failed checks), lazily built fields included; by
+    either method (the tableau's first_run, or the unrevised method's solve_one)."""
     from lemke import _core
     import golden
 
@@ -249,18 +253,27 @@ def test_the_native_front_gives_the_python_fronts_results(monkeypatch):
     for n in (1, 3, 8, 20):
         cases.append((rng.standard_normal((n, n)), rng.standard_normal(n)))  # rays, failures
     cases.append((problems.degenerate().M, problems.degenerate().q))
-    native = [lemke.solve_lcp(M, q) for M, q in cases]
+    if method == "unrevised":  # (a warm start's restart from its basis: n >= RESTART_FROM)
+        A = rng.standard_normal((_core.RESTART_FROM, _core.RESTART_FROM))
+        cases.append((A @ A.T, rng.standard_normal(_core.RESTART_FROM)))
+    solve = functools.partial(lemke.solve_lcp, method=method)
+    native = [solve(M, q) for M, q in cases]
     # warm: from each answer's own basis on a moved q (0 pivots or a restart), and from
     # another problem's basis of the same size
     moved = [(M, q + 1e-9 * np.abs(q).max(initial=1.0)) for M, q in cases]
-    warm = [lemke.solve_lcp(M, q2, warm_start=r.warm_start) for (M, q2), r in zip(moved, native)]
-    others = [lemke.solve_lcp(M, q, warm_start=WarmStart(len(q), tuple(range(len(q) // 2))))
+    warm = [solve(M, q2, warm_start=r.warm_start) for (M, q2), r in zip(moved, native)]
+    others = [solve(M, q, warm_start=WarmStart(len(q), tuple(range(len(q) // 2))))
               for M, q in cases]
-    monkeypatch.setattr(_lcp, "_FRONT", lambda M, q, ws, beta: None)
-    python = [lemke.solve_lcp(M, q) for M, q in cases]
-    python_warm = [lemke.solve_lcp(M, q2, warm_start=r.warm_start) for (M, q2), r in zip(moved, python)]
-    python_others = [lemke.solve_lcp(M, q, warm_start=WarmStart(len(q), tuple(range(len(q) // 2))))
+    calls = []
+    front = _lcp._FRONT
+    monkeypatch.setattr(_lcp, "_FRONT", lambda *a: calls.append(a) and None)
+    python = [solve(M, q) for M, q in cases]
+    python_warm = [solve(M, q2, warm_start=r.warm_start) for (M, q2), r in zip(moved, python)]
+    python_others = [solve(M, q, warm_start=WarmStart(len(q), tuple(range(len(q) // 2))))
                      for M, q in cases]
+    # (the Python function asked the front, for this method, and did it all itself)
+    assert len(calls) == 3 * len(cases) and all(len(a) == (4 if method == "tableau" else 5) for a in calls)
+    assert all(front(*a) is not None for a in calls[: len(cases)])
     assert sum(r.pivots == 0 and r.success for r in warm) >= len(cases) // 2
     native, python = native + warm + others, python + python_warm + python_others
     cases = cases + moved + cases
@@ -298,8 +311,8 @@ def test_the_native_front_declines_what_is_not_plain():
 
 def test_solve_lcp_entry_is_the_python_function_to_its_callers(monkeypatch):
     """``lemke.solve_lcp`` is the core's entry (``_core.lcp_entry``, src/python_front.cpp):
-    solve_lcp(M, q) and solve_lcp(M, q, warm_start=ws) go to ``_lcp._FRONT`` with no Python
-    frame, everything else to the Python function it wraps; it reads ``_FRONT`` on each
+    solve_lcp(M, q) and solve_lcp(M, q, warm_start=ws), each also with method="tableau" or
+    "unrevised", go to ``_lcp._FRONT`` with no Python frame, everything else to the Python function it wraps; it reads ``_FRONT`` on each
     call (a test that switches the front off switches it off), takes only a warm start of
     q's size, and shows the function's name, docstring, signature and pickles by name."""
     import inspect
@@ -320,7 +333,17 @@ def test_solve_lcp_entry_is_the_python_function_to_its_callers(monkeypatch):
     monkeypatch.setattr(_lcp, "_FRONT", lambda *a: calls.append(a) or None)
     assert f(M, q) == r and f(M, q, warm_start=ws) == f(M, q, warm_start=ws)
     assert len(calls) == 3 and calls[0][2:] == (None, None) and calls[1][2] is ws
+    # method= ("tableau" or "unrevised", in any order with warm_start=) is the front's too
+    u = f(M, q, method="unrevised")
+    assert f(M, q, warm_start=ws, method="unrevised") == f(M, q, method="unrevised", warm_start=ws)
+    assert f(M, q, method="tableau") == r and len(calls) == 7
+    assert calls[3][2:] == (None, None, 1) and calls[4][2:] == (ws, ws._beta, 1)
+    assert calls[6][2:] == (None, None)
     monkeypatch.undo()
+    assert f(M, q, method="unrevised") == u and u.pivots > 0
+    assert f(M, q, method="unrevised", warm_start=ws).warm_start is ws
+    with pytest.raises(ValueError, match="unknown method"):
+        f(M, q, method="Tableau")  # (a str the entry does not know: the Python function's)
     # a warm start of another size whose basis is in range for q: the Python front refuses it
     with pytest.raises(ValueError, match="warm_start is for a problem of size 3, this one has n = 2"):
         f(M, q, warm_start=WarmStart(3, (0,)))
@@ -330,7 +353,7 @@ def test_solve_lcp_entry_is_the_python_function_to_its_callers(monkeypatch):
         f(M)
     with pytest.raises(TypeError):
         f(M, q, None)  # keyword-only, as the Python function's
-    # the entry's other calls: the Python function's (lists, options, the unrevised method)
+    # the entry's other calls: the Python function's (lists, options)
     assert f(M.tolist(), q.tolist()) == r
     assert f(M, q, method="unrevised") == _lcp._solve_lcp(M, q, method="unrevised")
     assert_lcp_solution(M, q, f(M, q, method="unrevised").z)

@@ -17,8 +17,9 @@ METHODS = tuple(_layout.METHODS)
 #: module attributes, so that a test can stand a lying kernel in.  ``_SOLVE_ONE``: a whole solve, warm or cold, with its
 #: recoveries, either method.
 _SOLVE_ONE = _core.solve_one
-#: The commonest call whole (src/python_front.cpp): plain float64 M and q, the tableau,
-#: defaults; a result, first_run's answer and buffer as a tuple, or None (not plain).
+#: The commonest call whole (src/python_front.cpp): plain float64 M and q, either method
+#: (a fifth argument 1: the unrevised method), defaults; a result, the core's answer and
+#: buffer as a tuple, or None (not plain).
 _FRONT = _core.lcp_front
 #: The first stages of a solve by the tableau, cold or warm: the C++ core's port of
 #: ``_layout.first_run`` (the same arguments, results and bits; src/lemke/lcp.cpp).
@@ -102,22 +103,23 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
     if progress is not None and progress is not False:
         return _progress.reported(_progress.check(progress), "solve_lcp", solve_lcp, M, q,
                                   method=method, d=d, warm_start=warm_start, options=options)
-    if d is None and options is None and method == "tableau":
+    if d is None and options is None and (method == "tableau" or method == "unrevised"):
         # The commonest calls, whole in one native call (src/python_front.cpp): plain
         # float64 arrays give the result (or what first_run left to do), others None.
         if warm_start is None:
-            r = _FRONT(M, q, None, None)
+            r = _FRONT(M, q, None, None) if method == "tableau" else _FRONT(M, q, None, None, 1)
             beta = _NO_BASIS
         elif type(warm_start) is WarmStart and type(q) is _ND and warm_start.n == len(q):
             try:
                 beta = warm_start._beta  # (an attribute read: cheaper than __dict__.get)
             except AttributeError:
                 beta = warm_start.__dict__["_beta"] = np.array(warm_start.z_basic, dtype=np.int64)
-            r = _FRONT(M, q, warm_start, beta)
+            r = _FRONT(M, q, warm_start, beta) if method == "tableau" else _FRONT(
+                M, q, warm_start, beta, 1)
         else:
             r = None
         if r is not None:
-            return r if type(r) is not tuple else _after_front(M, q, warm_start, beta, r)
+            return r if type(r) is not tuple else _after_front(M, q, warm_start, beta, r, method)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start
@@ -187,11 +189,12 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
                   code, pivots, k, ok, residual, recoveries, stage)
 
 
-def _after_front(M, q, warm_start, beta, r):
-    """solve_lcp after its native front (``_FRONT``, by the tableau, default options) handed
-    back first_run's answer ``r`` and buffer: the driver goes on from there."""
+def _after_front(M, q, warm_start, beta, r, method="tableau"):
+    """solve_lcp after its native front (``_FRONT``, default options) handed back the
+    core's answer ``r`` and buffer (the tableau: first_run's; the unrevised method:
+    solve_one's, never stage < 0): the driver goes on from there."""
     n = len(q)
-    return _go_on(M, q, _NO_D, "tableau", _DEFAULT, warm_start, beta,
+    return _go_on(M, q, _NO_D, method, _DEFAULT, warm_start, beta,
                   0 if beta is None else len(beta), 100 * (n + 1), _PIVOT_TOL, _TIE_TOL, _TOL,
                   r[7], _LEN_N * n + _LEN_1, n, *r[:7])
 

@@ -33,8 +33,25 @@ double dot(const double* x, const double* y, idx k);
 // always inlined (a copy of its own would be compiled for the baseline instruction set,
 // where a vector of 8 doubles is four registers, and called once per row through the
 // clones' dispatch, which costs as much as a short row).
+//
+// Below 8 terms (here and in dot_lanes, dot_lanes4, dot_lanes8, dot_and_size_lanes2) only
+// lane 0 takes terms: the other lanes stay +0, and lane 0, a sum that starts at +0, is never
+// -0 (nor is a sum of |terms|), so the pairwise sums leave it as it is and the answer is
+// lane 0's plain running sum: the same bits, without the lanes' set-up and pairwise sums
+// (the unrevised method's short rows at small n).
 LEMKE_ALWAYS_INLINE void dot_and_size_lanes(const double* row, const double* y, idx k,
                                             double& dot_out, double& size_out) {
+    if (k < 8) {
+        double a = 0.0, s = 0.0;
+        for (idx j = 0; j < k; ++j) {
+            double t = row[j] * y[j];
+            a += t;
+            s += std::fabs(t);
+        }
+        dot_out = a;
+        size_out = s;
+        return;
+    }
     double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     double s[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
@@ -74,6 +91,11 @@ LEMKE_ALWAYS_INLINE void dot_and_size_lanes(const double* row, const double* y, 
 // pairwise sums taken by shuffles at once (simd::hsum4) rather than lane by lane per row.
 LEMKE_ALWAYS_INLINE void dot_and_size_lanes2(const double* r0, const double* r1, const double* y,
                                              idx k, double* out) {
+    if (k < 8) {  // (lane 0 alone: see dot_and_size_lanes)
+        dot_and_size_lanes(r0, y, k, out[0], out[2]);
+        dot_and_size_lanes(r1, y, k, out[1], out[3]);
+        return;
+    }
 #ifdef LEMKE_SIMD
     simd::v8d a0 = simd::splat8(0.0), a1 = a0, s0 = a0, s1 = a0;
     idx j = 0;
@@ -109,6 +131,11 @@ LEMKE_ALWAYS_INLINE void dot_and_size_lanes2(const double* r0, const double* r1,
 // dot's body, inlined by loops compiled per instruction set that take many short dot
 // products (a call per row through the clones' dispatch costs as much as a short row).
 inline double dot_lanes(const double* x, const double* y, idx k) {
+    if (k < 8) {  // (lane 0 alone: see dot_and_size_lanes)
+        double s = 0.0;
+        for (idx j = 0; j < k; ++j) s += x[j] * y[j];
+        return s;
+    }
     double a[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     idx j = 0;
     // (plain lanes: GCC vectorizes them; written on vector types, this loop made the QP
@@ -135,20 +162,25 @@ LEMKE_ALWAYS_INLINE void dot_lanes4(const double* const* x, const double* y, idx
         s2 += simd::load8(x2 + j) * v;
         s3 += simd::load8(x3 + j) * v;
     }
-    if (j < k) {
-        double a0 = s0[0], a1 = s1[0], a2 = s2[0], a3 = s3[0];
-        for (; j < k; ++j) {
-            double v = y[j];
-            a0 += x0[j] * v;
-            a1 += x1[j] * v;
-            a2 += x2[j] * v;
-            a3 += x3[j] * v;
-        }
-        s0[0] = a0;
-        s1[0] = a1;
-        s2[0] = a2;
-        s3[0] = a3;
+    double a0 = s0[0], a1 = s1[0], a2 = s2[0], a3 = s3[0];
+    for (; j < k; ++j) {
+        double v = y[j];
+        a0 += x0[j] * v;
+        a1 += x1[j] * v;
+        a2 += x2[j] * v;
+        a3 += x3[j] * v;
     }
+    if (k < 8) {  // (lane 0 alone: see dot_and_size_lanes)
+        out[0] = a0;
+        out[1] = a1;
+        out[2] = a2;
+        out[3] = a3;
+        return;
+    }
+    s0[0] = a0;
+    s1[0] = a1;
+    s2[0] = a2;
+    s3[0] = a3;
     simd::hsum4(s0, s1, s2, s3, out);
 #else
     double a[4][8];
@@ -180,6 +212,11 @@ LEMKE_ALWAYS_INLINE void dot_lanes4(const double* const* x, const double* y, idx
 // dot's order (the same bits), y's loads shared and the eight rows' pairwise sums taken by
 // one hsum8 (for short rows, the sums cost as much as the products).
 LEMKE_ALWAYS_INLINE void dot_lanes8(const double* const* x, const double* y, idx k, double* out) {
+    if (k < 8) {  // (lane 0 alone: see dot_and_size_lanes; four rows at a time)
+        dot_lanes4(x, y, k, out);
+        dot_lanes4(x + 4, y, k, out + 4);
+        return;
+    }
 #ifdef LEMKE_SIMD
     simd::v8d s[8];
     for (int t = 0; t < 8; ++t) s[t] = simd::splat8(0.0);
