@@ -51,33 +51,31 @@ inline bool far_both(const double* lo, const double* hi, idx i) {
     return lo[i] <= -FAR && hi[i] >= FAR;
 }
 
-// Where each z starts (boxed.start_point), into z; at_hi updated.
-void start_point(const double* lo, const double* hi, std::uint8_t* at_hi, const double* q,
-                 bool guess, idx n, double* z) {
-    for (idx i = 0; i < n; ++i) {
-        if (far_both(lo, hi, i) && (guess || (lo[i] == -INF && hi[i] == INF))) {
-            z[i] = 0.0;
+// Where z_i starts (boxed.start_point, row i), into z[i]; at_hi[i] updated.
+inline void start_point(const double* lo, const double* hi, std::uint8_t* at_hi, const double* q,
+                        bool guess, idx i, double* z) {
+    if (far_both(lo, hi, i) && (guess || (lo[i] == -INF && hi[i] == INF))) {
+        z[i] = 0.0;
+        at_hi[i] = 0;
+        return;
+    }
+    if (guess && lo[i] > -INF && hi[i] < INF) {
+        if (lo[i] <= -FAR) {
+            at_hi[i] = 1;
+        } else if (hi[i] >= FAR) {
             at_hi[i] = 0;
-            continue;
-        }
-        if (guess && lo[i] > -INF && hi[i] < INF) {
-            if (lo[i] <= -FAR) {
-                at_hi[i] = 1;
-            } else if (hi[i] >= FAR) {
-                at_hi[i] = 0;
-            } else {
-                at_hi[i] = q[i] < 0.0;
-            }
-        }
-        if (at_hi[i] && hi[i] < INF) {
-            z[i] = hi[i];
-        } else if (lo[i] > -INF) {
-            z[i] = lo[i];
-        } else if (hi[i] < INF) {
-            z[i] = hi[i];
         } else {
-            z[i] = 0.0;
+            at_hi[i] = q[i] < 0.0;
         }
+    }
+    if (at_hi[i] && hi[i] < INF) {
+        z[i] = hi[i];
+    } else if (lo[i] > -INF) {
+        z[i] = lo[i];
+    } else if (hi[i] < INF) {
+        z[i] = hi[i];
+    } else {
+        z[i] = 0.0;
     }
 }
 
@@ -318,7 +316,6 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     idx art_lab = 2 * n;
     idx* start_basis = w.start_basis();
     idx* cand = w.cand();
-    for (idx i = 0; i < n; ++i) start_basis[i] = basis[i];
     double *keys = w.keys(), *gaps = w.gaps(), *cc = w.cc(), *rlo = w.rlo(), *rhi = w.rhi();
     std::uint8_t* low = w.low();
     // pivots kept pending from n = 32 (block_size), as tableau_lemke keeps them: each pivot
@@ -327,33 +324,33 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     // The run returns with up to seven pending (solve reads no T after it; the next run
     // lays T out afresh)
     Pending P{w.U(), w.V(), w.block, w.ld, 0, n};
-    for (idx i = 0; i < n; ++i) bounds_of(basis[i], n, lo, hi, at_hi, rlo[i], rhi[i]);
     // keys 0..2n the labels, 2n + 1 + i z_i at hi (pivoting.label_key)
     std::uint64_t h = 0;
-    for (idx i = 0; i < n; ++i) h ^= label_key(basis[i]);
-    for (idx i = 0; i < n; ++i)
-        if (at_hi[i] && !is_basic[n + i]) h ^= label_key(2 * n + 1 + i);
     Detector detector;
-    for (idx i = 0; i < 2 * n + 1; ++i) ray[i] = 0.0;
-    pivots_out = 0;
+    pivots_out = 0;  // (ray: zeroed by solve)
     // the ratios in one vector pass from 16 rows (blocking_rows_vector, as the tableau's;
     // n = 48: 2 % of a cold solve); keys (n + 1) hold them, free until ratio_ties writes them
     double* ratios = n >= 16 ? keys : nullptr;
-    // First pivot: z0 rises until every basic variable is within its bounds.
+    // First pivot: z0 rises until every basic variable is within its bounds. One pass over
+    // the rows: the start basis, each row's bounds, the fingerprint (an exclusive or, in any
+    // order), z0's column and what each row needs of it.
     idx s = pos[art_lab];
-    for (idx i = 0; i < n; ++i) col[i] = T(i, s);
     double* need = gaps;
     double* sc = cc;
     for (idx i = 0; i < n; ++i) {
         idx b = basis[i];
-        double lb, ub;
-        bounds_of(b, n, lo, hi, at_hi, lb, ub);
-        if (col[i] > 0.0) {
-            need[i] = x[b] - lb;
-            sc[i] = col[i];
-        } else if (col[i] < 0.0) {
-            need[i] = ub - x[b];
-            sc[i] = -col[i];
+        start_basis[i] = b;
+        bounds_of(b, n, lo, hi, at_hi, rlo[i], rhi[i]);
+        h ^= label_key(b);
+        if (at_hi[i] && !is_basic[n + i]) h ^= label_key(2 * n + 1 + i);
+        double c = T(i, s);
+        col[i] = c;
+        if (c > 0.0) {
+            need[i] = x[b] - rlo[i];
+            sc[i] = c;
+        } else if (c < 0.0) {
+            need[i] = rhi[i] - x[b];
+            sc[i] = -c;
         } else {
             need[i] = 0.0;
             sc[i] = 0.0;
@@ -362,12 +359,13 @@ Status lemke_run(BoxedWork& w, Run& R, const double* lo, const double* hi, std::
     idx r = first_row(need, sc, n, tie_tol);
     if (r < 0) return NUMERICAL_FAILURE;
     double t = -need[r] / sc[r];
-    step_values(x, basis, col, n, art_lab, t);
     // the basic variables' values by row from here (xb[i] is x[basis[i]]; x keeps the
-    // non-basic ones), so that the ratio test and the steps run over contiguous rows; the
-    // same operations on the same numbers, written back to x when the run ends
+    // non-basic ones, and the basic ones only once the run ends), so that the ratio test and
+    // the steps run over contiguous rows; the same operations on the same numbers: this
+    // first step is step_values's
     double* xb = w.xb();
-    for (idx i = 0; i < n; ++i) xb[i] = x[basis[i]];
+    for (idx i = 0; i < n; ++i) xb[i] = x[basis[i]] + col[i] * t;
+    x[art_lab] += t;
     bool low_r = col[r] > 0.0;
     idx pivots = 0;
     double sigma = 1.0;
@@ -537,12 +535,12 @@ bool box_check_in(Mat<const double> M, const double* q, const double* lo, const 
     double* floors = work3 + n;
     double* p = work3 + 2 * n;
     bool p_zero = true;
+    double q_top = 0.0;
     for (idx i = 0; i < n; ++i) {
         p[i] = pmin(pmax(0.0, lo[i]), hi[i]);
         p_zero = p_zero && p[i] == 0.0;
+        q_top = pmax(q_top, R[i] * std::fabs(q[i]));
     }
-    double q_top = 0.0;
-    for (idx i = 0; i < n; ++i) q_top = pmax(q_top, R[i] * std::fabs(q[i]));
     double big = 0.0, data = 1.0;
     bool z_zero = !nonzero(z, n);
     double mz[2] = {0.0, 0.0}, size[2] = {0.0, 0.0}, pd[2], psize[2] = {0.0, 0.0};
@@ -617,7 +615,13 @@ LEMKE_CLONES
 int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi) {
     idx n = M.rows;
     bool finite = all_finite(q, n);  // (M's largest entry is not needed here: not computed)
-    for (idx i = 0; i < n && finite; ++i) finite = all_finite(M.row(i), n);
+    if (M.ld == n && n < 32) {
+        // its rows end to end in one pass (below 32 rows: all_finite's eight sums are one
+        // chain of n^2 / 8 additions, which row by row calls overlap)
+        finite = finite && all_finite(M.p, n * n);
+    } else {
+        for (idx i = 0; i < n && finite; ++i) finite = all_finite(M.row(i), n);
+    }
     if (!finite) return NOT_FINITE;
     for (idx i = 0; i < n; ++i) {
         if (!(lo[i] <= hi[i])) return (lo[i] != lo[i] || hi[i] != hi[i]) ? NOT_FINITE : BAD_BOUNDS;
@@ -924,15 +928,23 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     double *qs = W.qs(), *los = W.los(), *his = W.his(), *s0 = W.s0(), *z0s = W.z0s();
     double *x = W.x(), *ray_lab = W.ray_lab();
     Mat<double> T = W.T();
-    for (idx i = 0; i < n; ++i) z_hi[i] = warm_hi[i];
     bool cold = true;
-    for (idx i = 0; i < n; ++i) cold = cold && !(warm_hi[i] || warm_basic[i]);
-    start_point(lo, hi, z_hi, q, cold, n, z0s);
-    for (idx i = 0; i < n; ++i)
+    for (idx i = 0; i < n; ++i) {
+        z_hi[i] = warm_hi[i];
+        cold = cold && !(warm_hi[i] || warm_basic[i]);
+    }
+    // the set-up's loops over the rows, each row's steps in one pass where no row reads
+    // another's (the same operations; at n = 12 the set-up's many short loops were a sixth
+    // of a solve)
+    bool shift = false;  // (nonzero(z0s, n))
+    for (idx i = 0; i < n; ++i) {
+        start_point(lo, hi, z_hi, q, cold, i, z0s);
         z_hi[i] = ((z_hi[i] && hi[i] < INF) || (lo[i] == -INF && hi[i] < INF)) &&
                   !(cold && far_both(lo, hi, i));
-    for (idx i = 0; i < n; ++i) qs[i] = q[i];
-    if (nonzero(z0s, n)) shifted_q(M, q, z0s, qs);
+        qs[i] = q[i];
+        shift = shift || z0s[i] != 0.0;
+    }
+    if (shift) shifted_q(M, q, z0s, qs);
     if (cold && trivial_start(lo, hi, z_hi, qs, n)) {
         for (idx i = 0; i < n; ++i) {  // every w has its sign already: the start solves it
             z[i] = z0s[i];
@@ -956,9 +968,12 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         return out;
     }
     equilibrate(M, qs, Rs, Cs, W.eq_work());
-    // The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C.
-    for (idx i = 0; i < 2 * n + 1; ++i) x[i] = 0.0;
+    // The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C; the
+    // complementary basis of the w's; the z's wanted basic; rmax; d and ray_lab zeroed.
     scaled_rows(M, Rs, Cs, T);
+    idx *basis = W.basis(), *nonbasic = W.nonbasic(), *pos = W.pos();
+    bool any_want = false;
+    double rmax = 0.0;
     for (idx i = 0; i < n; ++i) {
         double r = Rs[i];
         x[i] = qs[i] * r;
@@ -972,31 +987,35 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
             los[i] = lo[i] / c;
             his[i] = hi[i] / c;
         }
-    }
-    idx *basis = W.basis(), *nonbasic = W.nonbasic(), *pos = W.pos();
-    for (idx i = 0; i < n; ++i) {
         basis[i] = i;
         nonbasic[i] = n + i;
         pos[i] = i;
         pos[n + i] = i;
         is_basic[i] = 1;
+        std::uint8_t wi = warm_basic[i];
+        if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {
+            wi = 1;
+        } else if (lo[i] == hi[i]) {
+            wi = 0;
+        }
+        want[i] = wi;
+        any_want = any_want || wi;
+        rmax = pmax(rmax, r);
+        d[i] = 0.0;
+        ray_lab[i] = 0.0;
+        ray_lab[n + i] = 0.0;
     }
+    x[2 * n] = 0.0;
+    ray_lab[2 * n] = 0.0;
     nonbasic[n] = 2 * n;
     pos[2 * n] = n;
-    for (idx i = 0; i < n; ++i) want[i] = warm_basic[i];
-    for (idx i = 0; i < n; ++i) {
-        if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {
-            want[i] = 1;
-        } else if (lo[i] == hi[i]) {
-            want[i] = 0;
-        }
-    }
     Run run(W);
-    idx pivots = exchange(run, want);
+    // (with no z wanted basic, exchange and the check below find nothing to do)
+    idx pivots = any_want ? exchange(run, want) : 0;
     bool singular = false;
     bool partial = (cov_mode & PARTIAL) != 0;
     int mode = cov_mode & ~PARTIAL;
-    for (idx i = 0; i < n; ++i) {
+    for (idx i = 0; i < n && any_want; ++i) {
         if (want[i] && !is_basic[n + i]) {
             if (far_both(lo, hi, i) && (cold || (lo[i] == -INF && hi[i] == INF))) {
                 z_hi[i] = 0;  // a free z left non-basic: it rests at 0 as if at a lower bound
@@ -1021,10 +1040,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         out.m = 0;
         return out;
     }
-    // The covering column, set in the current basis.
-    double rmax = 0.0;
-    for (idx i = 0; i < n; ++i) rmax = pmax(rmax, Rs[i]);
-    for (idx i = 0; i < n; ++i) s0[i] = 1.0;
+    // The covering column, set in the current basis (each row's s0 and d too).
     bool infeasible = false;
     for (idx i = 0; i < n; ++i) {
         idx b = basis[i];
@@ -1051,13 +1067,10 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         if (v < lb || v > ub) infeasible = true;
         T(i, n) = sgn * mag;
         s0[i] = sgn < 0.0 ? -1.0 : 1.0;
+        if (b < n) d[b] = div_exact(T(i, n), Rs[b]);
     }
-    for (idx i = 0; i < n; ++i) d[i] = 0.0;
-    for (idx i = 0; i < n; ++i)
-        if (basis[i] < n) d[basis[i]] = div_exact(T(i, n), Rs[basis[i]]);
     code = SOLVED;
     double z0 = 0.0;
-    for (idx i = 0; i < 2 * n + 1; ++i) ray_lab[i] = 0.0;
     if (infeasible) {
         idx p = 0;
         code = lemke_run(W, run, los, his, z_hi, s0, max_pivots - pivots, pivot_tol, tie_tol,
@@ -1065,23 +1078,23 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         pivots += p;
         z0 = x[2 * n];
     }
-    // Back to the caller's units.
+    // Back to the caller's units; the final basis: the basic z's, then the non-basic z's at hi.
+    idx k = 0;
     for (idx i = 0; i < n; ++i) {
         z[i] = pmin(pmax(x[n + i] * Cs[i], lo[i]), hi[i]);
         ray[i] = ray_lab[n + i] * Cs[i];
         z_basic[i] = is_basic[n + i];
+        if (z_basic[i]) {
+            z_hi[i] = 0;
+            final[k++] = i;
+        }
     }
     ray[n] = ray_lab[2 * n];
-    for (idx i = 0; i < n; ++i)
-        if (z_basic[i]) z_hi[i] = 0;
     if (code != SOLVED)
         for (idx i = 0; i < n; ++i) z[i] = x[n + i] * Cs[i];  // where it stopped, unclamped
     double residual;
     bool ok = box_check(M, q, lo, hi, z, tol, w, Rs, 0, residual);
     if (ok) code = SOLVED;
-    idx k = 0;  // the final basis: the basic z's, then the non-basic z's at hi
-    for (idx i = 0; i < n; ++i)
-        if (z_basic[i]) final[k++] = i;
     idx m = k;
     for (idx i = 0; i < n; ++i)
         if (z_hi[i]) final[m++] = i;
