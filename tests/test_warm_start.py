@@ -345,3 +345,45 @@ print("ok")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split() == ["ok"]
+
+
+@pytest.mark.parametrize("n", [1, 3, 6, 12, 24, 40])
+def test_a_repeated_box_matrix_gives_the_same_bits(n):
+    """The box LCP's 0-pivot warm path (no friction index) takes its check's scales and its
+    basis block through the kept matrices too (boxed.check_scales_kept, basis_point with
+    solve_gathered_kept): re-solves on the same M with other q's, one after another, give the
+    bits of the same re-solve in a new thread (all computed afresh); on a basis that fits,
+    one that no longer does (a run), a badly scaled M and a singular block. Every solved
+    answer is checked (independently: box complementarity on the caller's data)."""
+    from test_blcp import assert_box_solution
+    rng = np.random.default_rng(2000 + n)
+    A = rng.standard_normal((n, n))
+    M = A @ A.T + 0.1 * np.eye(n)
+    q = rng.standard_normal(n)
+    lo = np.where(np.arange(n) % 2 == 0, 0.0, -0.5)
+    hi = np.where(np.arange(n) % 2 == 0, np.inf, 0.5)
+    S = rng.standard_normal((n, max(1, n // 2)))
+    M_sing = S @ S.T
+    D = 10.0 ** rng.uniform(-3, 3, n)
+    M_bad = D[:, None] * M * D
+    starts = [lemke.solve_blcp(data, q, lo, hi).warm_start for data in (M, M_bad)]
+    qs = (q + 1e-9, q + 1e-3 * rng.standard_normal(n), -np.abs(q),
+          q * 10.0 ** rng.uniform(-8, 8, n))
+    zero_pivots = 0
+    for data, start in ((M, starts[0]), (M_bad, starts[1]),
+                        (M_sing, lemke.BoxWarmStart(n, tuple(range(n)), ()))):
+        for qb in qs:
+            fresh = _in_a_new_thread(lambda: lemke.solve_blcp(data, qb, lo, hi, warm_start=start))
+            if fresh.success:
+                assert_box_solution(data, qb, lo, hi, fresh.z, rtol=1e-7)
+                zero_pivots += fresh.pivots == 0
+            for qa in qs:
+                lemke.solve_blcp(data, qa, lo, hi, warm_start=start)
+                again = lemke.solve_blcp(data, qb, lo, hi, warm_start=start)
+                assert (again.status, again.pivots) == (fresh.status, fresh.pivots)
+                for name in ("z", "w", "row_scale", "col_scale", "covering", "ray"):
+                    a, b = getattr(again, name), getattr(fresh, name)
+                    assert (a is None and b is None) or a.tobytes() == b.tobytes()
+                assert again.residual == fresh.residual or (again.residual != again.residual
+                                                            and fresh.residual != fresh.residual)
+    assert zero_pivots > 0  # the kept path was taken

@@ -592,9 +592,10 @@ void shifted_q(Mat<const double> M, const double* q, const double* z, double* qs
     }
 }
 
-// check_scales with its 4n doubles of work given.
+// check_scales with its 4n doubles of work given; `kept` (not null): through
+// equilibrate_finite_kept (the same scales: M is finite here, prologue), M's entry in *kept.
 void check_scales_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                     double* R, double* C, double* work4) {
+                     double* R, double* C, double* work4, KeptMatrix** kept = nullptr) {
     idx n = M.rows;
     double* qs = work4;
     double* p = work4 + n;
@@ -604,7 +605,9 @@ void check_scales_in(Mat<const double> M, const double* q, const double* lo, con
         p_zero = p_zero && p[i] == 0.0;
     }
     for (idx i = 0; i < n; ++i) qs[i] = p_zero ? q[i] : q[i] + dot(M.row(i), p, n);
-    equilibrate(M, qs, R, C, work4 + 2 * n);
+    // (qs not finite: equilibrate_finite_kept refuses before any sweep; equilibrate's scales)
+    if (!(kept && equilibrate_finite_kept(M, qs, R, C, work4 + 2 * n, *kept)))
+        equilibrate(M, qs, R, C, work4 + 2 * n);
 }
 
 }  // namespace
@@ -643,8 +646,15 @@ void check_scales(Mat<const double> M, const double* q, const double* lo, const 
     check_scales_in(M, q, lo, hi, R, C, work4);
 }
 
+void check_scales_kept(Mat<const double> M, const double* q, const double* lo,
+                       const double* hi, double* R, double* C, KeptMatrix*& kept) {
+    double* work4 = work().check_area(4 * M.rows);
+    check_scales_in(M, q, lo, hi, R, C, work4, &kept);
+}
+
 bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                 const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z) {
+                 const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z,
+                 KeptMatrix* kept) {
     idx n = M.rows;
     BoxedWork& W = work();
     double* rhs = W.check_area(n * n + 3 * n);
@@ -683,7 +693,7 @@ bool basis_point(Mat<const double> M, const double* q, const double* lo, const d
         double* y = A + nb * nb;
         double* xs = y + nb;
         for (idx c = 0; c < nb; ++c) y[c] = rhs[c];
-        if (!solve_gathered(M, index, A, y, xs, nb)) return false;
+        if (!solve_gathered_kept(M, index, A, y, xs, nb, kept)) return false;
         for (idx c = 0; c < nb; ++c) z[index[c]] = xs[c];
     }
     if (!all_finite(z, n)) return false;
@@ -1227,14 +1237,24 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             la = work_in + FL.work_lo();
             ha = work_in + FL.work_hi();
         }
-        if (!has_warm || !basis_point(A, qa, la, ha, warm, warm + N, true, z)) {
+        BoxLayout L = FL.run();
+        double *w = buf + L.w(), *d = buf + L.covering(), *R = buf + L.row_scale();
+        double* C = buf + L.col_scale();
+        // No friction, warm: the check's scales first (into `scales`: R and C are written
+        // only when the point is made, as before), through the kept matrices (M's sweeps'
+        // records when M repeats bit for bit), and the basis's block by solve_gathered_kept
+        // (the last block of M factored, when its rows repeat): the same scales and point.
+        KeptMatrix* kept = nullptr;
+        thread_local std::vector<double> scales;
+        if (nf == 0 && has_warm) {
+            scales.resize(static_cast<std::size_t>(2 * n));
+            check_scales_kept(A, qa, la, ha, scales.data(), scales.data() + n, kept);
+        }
+        if (!has_warm || !basis_point(A, qa, la, ha, warm, warm + N, true, z, kept)) {
             if (part) extend(M, q, lo, hi, findex, nf, work_in, F);
             residual = INF;
             return NEED_RUN;
         }
-        BoxLayout L = FL.run();
-        double *w = buf + L.w(), *d = buf + L.covering(), *R = buf + L.row_scale();
-        double* C = buf + L.col_scale();
         if (nf > 0) {
             // The check that decides 'solved' (on the caller's rows, the coupled bounds at
             // this point) first: when it passes and the point's normals lie in their boxes
@@ -1261,7 +1281,8 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             }
             return SOLVED;
         }
-        check_scales(A, qa, la, ha, R, C);
+        std::copy(scales.begin(), scales.begin() + n, R);
+        std::copy(scales.begin() + n, scales.begin() + 2 * n, C);
         bool ok = box_check(A, qa, la, ha, z, tol, w, R, 0, residual);
         if (!ok) {
             residual = INF;

@@ -193,11 +193,18 @@ bool box_check(Mat<const double> M, const double* q, const double* lo, const dou
 // The scales box_check judges with when no run made them (boxed.check_scales).
 void check_scales(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   double* R, double* C);
+// check_scales, the same scales, through linalg.equilibrate_finite_kept (a warm start's
+// 0-pivot re-solve on the same M: the sweeps' records of M); `kept`: M's entry, or nullptr.
+void check_scales_kept(Mat<const double> M, const double* q, const double* lo,
+                       const double* hi, double* R, double* C, KeptMatrix*& kept);
 
 // The point of a basis (zb basic, zh at hi) into z (boxed.basis_point); false when the
 // block is singular or the point not finite.
+// `kept`: M's entry in the kept matrices (linalg.equilibrate_finite_kept), the block
+// solved by solve_gathered_kept (the same bits); nullptr: solve_gathered.
 bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                 const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z);
+                 const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z,
+                 KeptMatrix* kept = nullptr);
 
 // The point of an extended problem's basis (zb basic, zh at hi: N = n + 2 nf flags, extend's
 // variables) solved on the caller's n rows (boxed.friction_point): each row one equation read
