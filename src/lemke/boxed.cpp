@@ -692,6 +692,14 @@ bool basis_point(Mat<const double> M, const double* q, const double* lo, const d
     return true;
 }
 
+namespace {
+// c ? a : b by bit masks (no branch: bit for bit a or b)
+inline double pick(bool c, double a, double b) {
+    std::int64_t m = -static_cast<std::int64_t>(c);
+    return bits_float((float_bits(a) & m) | (float_bits(b) & ~m));
+}
+}  // namespace
+
 bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
                     const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
                     double* z) {
@@ -708,12 +716,15 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
     std::uint8_t* kind = W.check_flags(n);
     constexpr std::uint8_t FIXED = 0, EQUATION = 1, SLIDING = 2;
     for (idx i = 0; i < n; ++i) {  // an ordinary row: basis_point's warm rule
-        bool eq = zb[i] || (lo[i] == -INF && hi[i] == INF);
-        double v = hi[i] < INF ? hi[i] : 0.0;
-        v = lo[i] > -INF ? lo[i] : v;
-        v = zh[i] && hi[i] < INF ? hi[i] : v;
-        z[i] = eq ? 0.0 : v;
-        kind[i] = eq ? EQUATION : FIXED;
+        // (bit masks, not branches: the compiler branched on zb and zh here, mispredicted
+        // from row to row)
+        bool hf = hi[i] < INF, lf = lo[i] > -INF;
+        bool eq = (zb[i] != 0) | (!lf & (hi[i] == INF));
+        double v = pick(hf, hi[i], 0.0);
+        v = pick(lf, lo[i], v);
+        v = pick((zh[i] != 0) & hf, hi[i], v);
+        z[i] = pick(eq, 0.0, v);
+        kind[i] = static_cast<std::uint8_t>(eq);  // (EQUATION 1, FIXED 0)
     }
     for (idx c = 0; c < nf; ++c) {  // a friction row: β+ (the row itself), β- (n + c), λ (n + nf + c)
         idx i = F[c];
@@ -725,9 +736,9 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
     }
     idx nb = 0;
     for (idx i = 0; i < n; ++i) {
-        bool eq = kind[i] == EQUATION;
+        idx eq = kind[i] == EQUATION;
         index[nb] = i;
-        pos[i] = eq ? nb : -1;
+        pos[i] = eq * (nb + 1) - 1;  // (nb, or -1)
         nb += eq;
     }
     idx ns = 0;
