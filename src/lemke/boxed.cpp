@@ -714,7 +714,7 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
     idx* index = coupled + n;               // the block; the rows of the block (w_i = 0);
     idx* pos = index + n;                   // a row's place among them (-1)
     std::uint8_t* kind = W.check_flags(n);
-    constexpr std::uint8_t FIXED = 0, EQUATION = 1, SLIDING = 2;
+    constexpr std::uint8_t EQUATION = 1, SLIDING = 2;  // (FIXED 0)
     for (idx i = 0; i < n; ++i) {  // an ordinary row: basis_point's warm rule
         // (bit masks, not branches: the compiler branched on zb and zh here, mispredicted
         // from row to row)
@@ -730,8 +730,9 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
         idx i = F[c];
         bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
         if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
-        slope[i] = bp ? hi[i] : -hi[i];
-        kind[i] = lam && bp != bm ? SLIDING : (bp || bm ? EQUATION : FIXED);
+        slope[i] = pick(bp, hi[i], -hi[i]);
+        bool sliding = lam & (bp != bm);
+        kind[i] = sliding ? SLIDING : static_cast<std::uint8_t>(bp | bm);  // (EQUATION or FIXED)
         z[i] = 0.0;
     }
     idx nb = 0;
@@ -745,9 +746,9 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
     for (idx c = 0; c < nf; ++c) {
         idx i = F[c], f = F[nf + c];
         bool sliding = kind[i] == SLIDING, in_block = kind[f] == EQUATION;
-        z[i] = sliding && !in_block ? slope[i] * z[f] : z[i];
+        z[i] = pick(sliding & !in_block, slope[i] * z[f], z[i]);
         coupled[ns] = c;
-        ns += sliding && in_block;
+        ns += sliding & in_block;
     }
     if (nb > 0) {
         for (idx t = 0; t < nb; ++t) {
