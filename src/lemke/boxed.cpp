@@ -702,6 +702,14 @@ bool basis_point(Mat<const double> M, const double* q, const double* lo, const d
     return true;
 }
 
+namespace {
+// c ? a : b by bit masks (no branch: bit for bit a or b)
+inline double pick(bool c, double a, double b) {
+    std::int64_t m = -static_cast<std::int64_t>(c);
+    return bits_float((float_bits(a) & m) | (float_bits(b) & ~m));
+}
+}  // namespace
+
 bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
                     const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
                     double* z) {
@@ -716,37 +724,41 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
     idx* index = coupled + n;               // the block; the rows of the block (w_i = 0);
     idx* pos = index + n;                   // a row's place among them (-1)
     std::uint8_t* kind = W.check_flags(n);
-    constexpr std::uint8_t FIXED = 0, EQUATION = 1, SLIDING = 2;
+    constexpr std::uint8_t EQUATION = 1, SLIDING = 2;  // (FIXED 0)
     for (idx i = 0; i < n; ++i) {  // an ordinary row: basis_point's warm rule
-        bool eq = zb[i] || (lo[i] == -INF && hi[i] == INF);
-        double v = hi[i] < INF ? hi[i] : 0.0;
-        v = lo[i] > -INF ? lo[i] : v;
-        v = zh[i] && hi[i] < INF ? hi[i] : v;
-        z[i] = eq ? 0.0 : v;
-        kind[i] = eq ? EQUATION : FIXED;
+        // (bit masks, not branches: the compiler branched on zb and zh here, mispredicted
+        // from row to row)
+        bool hf = hi[i] < INF, lf = lo[i] > -INF;
+        bool eq = (zb[i] != 0) | (!lf & (hi[i] == INF));
+        double v = pick(hf, hi[i], 0.0);
+        v = pick(lf, lo[i], v);
+        v = pick((zh[i] != 0) & hf, hi[i], v);
+        z[i] = pick(eq, 0.0, v);
+        kind[i] = static_cast<std::uint8_t>(eq);  // (EQUATION 1, FIXED 0)
     }
     for (idx c = 0; c < nf; ++c) {  // a friction row: β+ (the row itself), β- (n + c), λ (n + nf + c)
         idx i = F[c];
         bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
         if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
-        slope[i] = bp ? hi[i] : -hi[i];
-        kind[i] = lam && bp != bm ? SLIDING : (bp || bm ? EQUATION : FIXED);
+        slope[i] = pick(bp, hi[i], -hi[i]);
+        bool sliding = lam & (bp != bm);
+        kind[i] = sliding ? SLIDING : static_cast<std::uint8_t>(bp | bm);  // (EQUATION or FIXED)
         z[i] = 0.0;
     }
     idx nb = 0;
     for (idx i = 0; i < n; ++i) {
-        bool eq = kind[i] == EQUATION;
+        idx eq = kind[i] == EQUATION;
         index[nb] = i;
-        pos[i] = eq ? nb : -1;
+        pos[i] = eq * (nb + 1) - 1;  // (nb, or -1)
         nb += eq;
     }
     idx ns = 0;
     for (idx c = 0; c < nf; ++c) {
         idx i = F[c], f = F[nf + c];
         bool sliding = kind[i] == SLIDING, in_block = kind[f] == EQUATION;
-        z[i] = sliding && !in_block ? slope[i] * z[f] : z[i];
+        z[i] = pick(sliding & !in_block, slope[i] * z[f], z[i]);
         coupled[ns] = c;
-        ns += sliding && in_block;
+        ns += sliding & in_block;
     }
     if (nb > 0) {
         for (idx t = 0; t < nb; ++t) {

@@ -29,12 +29,13 @@ T* sized(std::vector<T>& v, idx len) {
 // The extended variable of each role of friction row of rank r (extend's layout): beta+ is
 // the row itself, beta- n + r, lambda n + nf + r.
 // Row states -> the kernel's 2N flags (basic, then non-basic at hi).
+// (Every one of the N variables is set once, both of its flags, without branches: the
+// states follow the data, and branching on them mispredicted from row to row.)
 void flags_of(const std::int8_t* c, idx n, idx nf, std::uint8_t* f) {
     idx N = n + 2 * nf;
-    std::fill(f, f + 2 * N, std::uint8_t(0));
     auto set = [&](idx j, int s) {
-        if (s == 2) f[j] = 1;
-        else if (s == 1) f[N + j] = 1;
+        f[j] = static_cast<std::uint8_t>(s == 2);
+        f[N + j] = static_cast<std::uint8_t>(s == 1);
     };
     idx r = 0;
     for (idx i = 0; i < n; ++i) {
