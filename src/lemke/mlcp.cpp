@@ -131,6 +131,18 @@ void slack_column_max(Mat<double> T, const idx* slack, idx ns, double* colmax) {
     }
 }
 
+// max_t |ti[cols[t]]| (0 for k = 0), eight running maxima as linalg's absmax (a max of
+// terms that are not NaN is exact in any order; a NaN is passed over by every pmax alike).
+LEMKE_CLONES
+double gathered_absmax(const double* ti, const idx* cols, idx k) {
+    double m[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx t = 0;
+    for (; t + 8 <= k; t += 8)
+        for (int l = 0; l < 8; ++l) m[l] = pmax(m[l], std::fabs(ti[cols[t + l]]));
+    for (; t < k; ++t) m[0] = pmax(m[0], std::fabs(ti[cols[t]]));
+    return pmax(pmax(pmax(m[0], m[1]), pmax(m[2], m[3])), pmax(pmax(m[4], m[5]), pmax(m[6], m[7])));
+}
+
 }  // namespace
 
 namespace {
@@ -305,8 +317,7 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
             double vmax = colmax[jT];
             if (!(vmax > rank_tol)) continue;
             const double* ti = T.row(i);
-            double rmax = 0.0;
-            for (idx t = 0; t < nf; ++t) rmax = pmax(rmax, std::fabs(ti[fcols[t]]));
+            double rmax = gathered_absmax(ti, fcols, nf);
             if (rmax <= rank_tol) continue;
             if (!(vmax * rmax > best)) continue;
             for (idx t = 0; t < ns; ++t) {
