@@ -20,10 +20,11 @@ struct MlcpWork {
     idx N = -1;
     void layout(idx size) {
         N = size;
-        f.resize(static_cast<std::size_t>(N + 1));
+        f.resize(static_cast<std::size_t>(2 * (N + 1)));
         i.resize(static_cast<std::size_t>((N + 1) + N + N + 2 * N));
     }
     double* prow() { return f.data(); }
+    double* colmax() { return f.data() + N + 1; }
     idx* nz() { return i.data(); }
     idx* fcols() { return nz() + N + 1; }
     idx* srows() { return fcols() + N; }
@@ -116,6 +117,30 @@ void enter_free(Mat<double> T, idx c, double rank_tol, idx* row_label, idx* col_
         exchange(T, slack[t_best], c, row_label, col_label, prow, nz);
         drop_slack(slack, ns, t_best);
     }
+}
+
+// colmax[c]: the largest |T(r, c)| over the slack rows r (every column, the constant's
+// included); a max, so its order does not matter.
+LEMKE_CLONES
+void slack_column_max(Mat<double> T, const idx* slack, idx ns, double* colmax) {
+    idx cols = T.cols;
+    for (idx c = 0; c < cols; ++c) colmax[c] = 0.0;
+    for (idx t = 0; t < ns; ++t) {
+        const double* tr = T.row(slack[t]);
+        for (idx c = 0; c < cols; ++c) colmax[c] = pmax(colmax[c], std::fabs(tr[c]));
+    }
+}
+
+// max_t |ti[cols[t]]| (0 for k = 0), eight running maxima as linalg's absmax (a max of
+// terms that are not NaN is exact in any order; a NaN is passed over by every pmax alike).
+LEMKE_CLONES
+double gathered_absmax(const double* ti, const idx* cols, idx k) {
+    double m[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    idx t = 0;
+    for (; t + 8 <= k; t += 8)
+        for (int l = 0; l < 8; ++l) m[l] = pmax(m[l], std::fabs(ti[cols[t + l]]));
+    for (; t < k; ++t) m[0] = pmax(m[0], std::fabs(ti[cols[t]]));
+    return pmax(pmax(pmax(m[0], m[1]), pmax(m[2], m[3])), pmax(pmax(m[4], m[5]), pmax(m[6], m[7])));
 }
 
 }  // namespace
@@ -275,18 +300,26 @@ ReduceResult mlcp_reduce(Mat<double> T, idx n, double rank_tol, double e_size, i
             if (is_free(lc)) fcols[nf++] = c;
         }
         // Rows of pair variables: for each, its largest entry over the free columns.
+        // A row is passed over at once where the scan of its partner's column (below)
+        // would not move best: no slack row's entry there exceeds rank_tol, or the largest
+        // times rmax does not exceed best (v <= vmax gives v rmax <= vmax rmax, rounded
+        // too): the same choice, without reading that column row by row for every row.
+        double* colmax = w.colmax();
+        slack_column_max(T, srows, ns, colmax);
         double best = 0.0;
         idx r_best = -1, k_col = -1, k_row = -1;
         for (idx i = 0; i < N; ++i) {
             idx li = row_label[i];
             if (li < n || is_free(li)) continue;  // a slack or a free variable
-            const double* ti = T.row(i);
-            double rmax = 0.0;
-            for (idx t = 0; t < nf; ++t) rmax = pmax(rmax, std::fabs(ti[fcols[t]]));
-            if (rmax <= rank_tol) continue;
             // This row's pair partner is non-basic in some column j.
             idx j = col_of[li >= N ? li - N : li + N];
             idx jT = col(j);
+            double vmax = colmax[jT];
+            if (!(vmax > rank_tol)) continue;
+            const double* ti = T.row(i);
+            double rmax = gathered_absmax(ti, fcols, nf);
+            if (rmax <= rank_tol) continue;
+            if (!(vmax * rmax > best)) continue;
             for (idx t = 0; t < ns; ++t) {
                 idx r = srows[t];
                 double v = std::fabs(T(r, jT));
