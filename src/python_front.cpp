@@ -209,17 +209,15 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
     idx* basic = reinterpret_cast<idx*>(out + at);
     const double* Md = reinterpret_cast<const double*>(M->data);
     const double* qd = reinterpret_cast<const double*>(q->data);
-    // the tableau's first run (solve_one goes on from a stage -1 or -2 in _after_front), or
-    // the unrevised method's whole solve (solve_one: stage 0, 1 or 2), as the Python fast
-    // path calls them
+    // the whole solve, as the Python fast path and _go_on make it in two calls: the
+    // tableau's first run and, from its stage -1 (a cycle, a ray to check, a failed check)
+    // or -2 (a warm restart), solve_one from where it stopped (lemke::solve, the batch's
+    // path: the same calls, so the same bits); the unrevised method's solve_one. A run
+    // whose answer is not settled (stage 1 or 2, not ok) goes on in _after_front's _outcome.
     auto run = [&] {
-        lemke::Mat<const double> Mm(Md, n, n);
-        idx mp = 100 * (n + 1);
-        if (method == lemke::UNREVISED)
-            return lemke::solve_one(lemke::UNREVISED, Mm, qd, nullptr, beta, k, mp,
-                                    front.pivot_tol, front.tie_tol, front.tol, out, basic);
-        return lemke::first_run(Mm, qd, nullptr, beta, k, mp, front.pivot_tol, front.tie_tol,
-                                front.tol, out, basic);
+        return lemke::solve(static_cast<lemke::Method>(method), lemke::Mat<const double>(Md, n, n),
+                            qd, nullptr, beta, k, 100 * (n + 1), front.pivot_tol, front.tie_tol,
+                            front.tol, out, basic);
     };
     lemke::RunResult r;
     {
