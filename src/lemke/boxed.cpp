@@ -826,17 +826,6 @@ bool is_ray(Mat<const double> M, const double* q, const double* lo, const double
     return true;
 }
 
-idx friction_rows(const idx* findex, idx n) {
-    idx nf = 0;
-    for (idx i = 0; i < n; ++i) {
-        idx f = findex[i];
-        if (f == -1) continue;
-        if (f < 0 || f >= n || f == i || findex[f] != -1) return BAD_FINDEX;
-        ++nf;
-    }
-    return nf;
-}
-
 namespace {
 
 // extend's F (the friction rows, then their normal rows) and its right-hand side and
@@ -1150,9 +1139,11 @@ bool coupled_check(Mat<const double> M, const double* q, const double* lo, const
         lo_in[i] = -mu * z[F[nf + c]];
         hi_in[i] = mu * z[F[nf + c]];
     }
-    check_scales(M, q, lo, hi, R, C);
+    // (check_scales then box_check, their work area looked up once: the same area)
+    double* work4 = work().check_area(4 * n);
+    check_scales_in(M, q, lo, hi, R, C, work4);
     for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], pmin(lo_in[i], hi_in[i])), hi_in[i]);
-    return box_check(M, q, lo_in, hi_in, z, tol, w, R, N, residual);
+    return box_check_in(M, q, lo_in, hi_in, z, tol, w, R, N, residual, work4);
 }
 
 // The friction index's answer from the extended one zx, judged on the caller's data
@@ -1191,12 +1182,15 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
     if (phase == PREPARE) {
         int code = prologue(M, q, lo, hi);
         if (code < 0) return code;
-        nf = friction_rows(findex, findex_len);
-        if (nf < 0) return BAD_FINDEX;
+        // The friction index (boxed.friction_rows' rules) and the friction rows' bounds, and
+        // the count of friction rows, in one pass
         for (idx i = 0; i < findex_len; ++i) {
             idx f = findex[i];
-            if (f >= 0 && !(hi[i] >= 0.0 && hi[i] < INF && lo[i] == -hi[i] && lo[f] >= 0.0))
+            if (f == -1) continue;
+            if (f < 0 || f >= findex_len || f == i || findex[f] != -1) return BAD_FINDEX;
+            if (!(hi[i] >= 0.0 && hi[i] < INF && lo[i] == -hi[i] && lo[f] >= 0.0))
                 return BAD_FINDEX;
+            ++nf;
         }
     } else {
         for (idx i = 0; i < findex_len; ++i) nf += findex[i] >= 0;
