@@ -1182,8 +1182,8 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
     if (phase == PREPARE) {
         int code = prologue(M, q, lo, hi);
         if (code < 0) return code;
-        // The friction index (boxed.friction_rows' rules) and the friction rows' bounds, and
-        // the count of friction rows, in one pass
+        // In one pass: the friction index (-1, or the row of a normal whose own entry is
+        // -1), the friction rows' bounds (-mu, mu; the normal's lo >= 0), their count
         for (idx i = 0; i < findex_len; ++i) {
             idx f = findex[i];
             if (f == -1) continue;
