@@ -710,12 +710,14 @@ inline double pick(bool c, double a, double b) {
 }
 }  // namespace
 
-bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                    const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
-                    double* z) {
+namespace {
+// friction_point with the thread's work given (front looks it up once for this and the
+// check after it)
+bool friction_point_in(Mat<const double> M, const double* q, const double* lo,
+                       const double* hi, const idx* F, idx nf, const std::uint8_t* zb,
+                       const std::uint8_t* zh, double* z, BoxedWork& W) {
     // (Selects rather than branches where the row states decide: they follow the data.)
     idx n = M.rows;
-    BoxedWork& W = work();
     double* A = W.check_area(n * n + 3 * n);  // the block (nb x nb), y, x, slope
     double* y = A + n * n;
     double* x = y + n;
@@ -781,6 +783,13 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
     }
     return all_finite(z, n);
 }
+}  // namespace
+
+bool friction_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                    const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
+                    double* z) {
+    return friction_point_in(M, q, lo, hi, F, nf, zb, zh, z, work());
+}
 
 bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const double* d, const double* z, double z0, const double* ray, double tol) {
@@ -824,17 +833,6 @@ bool is_ray(Mat<const double> M, const double* q, const double* lo, const double
         }
     }
     return true;
-}
-
-idx friction_rows(const idx* findex, idx n) {
-    idx nf = 0;
-    for (idx i = 0; i < n; ++i) {
-        idx f = findex[i];
-        if (f == -1) continue;
-        if (f < 0 || f >= n || f == i || findex[f] != -1) return BAD_FINDEX;
-        ++nf;
-    }
-    return nf;
 }
 
 namespace {
@@ -1135,7 +1133,8 @@ namespace {
 // The caller's z (buf's, FrontLayout) judged with the coupled bounds at it: friction_check's
 // verdict, once z is mapped back.
 bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual) {
+                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual,
+                   BoxedWork& W) {
     idx n = M.rows;
     FrontLayout L{n, nf, true};
     double *z = buf + L.z(), *w = buf + L.w(), *lo_in = buf + L.lo(), *hi_in = buf + L.hi();
@@ -1150,9 +1149,11 @@ bool coupled_check(Mat<const double> M, const double* q, const double* lo, const
         lo_in[i] = -mu * z[F[nf + c]];
         hi_in[i] = mu * z[F[nf + c]];
     }
-    check_scales(M, q, lo, hi, R, C);
+    // (check_scales then box_check, their work area looked up once: the same area)
+    double* work4 = W.check_area(4 * n);
+    check_scales_in(M, q, lo, hi, R, C, work4);
     for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], pmin(lo_in[i], hi_in[i])), hi_in[i]);
-    return box_check(M, q, lo_in, hi_in, z, tol, w, R, N, residual);
+    return box_check_in(M, q, lo_in, hi_in, z, tol, w, R, N, residual, work4);
 }
 
 // The friction index's answer from the extended one zx, judged on the caller's data
@@ -1164,7 +1165,7 @@ bool friction_check(Mat<const double> M, const double* q, const double* lo, cons
     double* z = buf + FrontLayout{n, nf, true}.z();
     for (idx i = 0; i < n; ++i) z[i] = zx[i];
     for (idx c = 0; c < nf; ++c) z[F[c]] = zx[F[c]] - zx[n + c];
-    return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual);
+    return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual, work());
 }
 
 // Whether every friction row's normal impulse z_f lies in its box (so that the friction
@@ -1191,12 +1192,15 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
     if (phase == PREPARE) {
         int code = prologue(M, q, lo, hi);
         if (code < 0) return code;
-        nf = friction_rows(findex, findex_len);
-        if (nf < 0) return BAD_FINDEX;
+        // In one pass: the friction index (-1, or the row of a normal whose own entry is
+        // -1), the friction rows' bounds (-mu, mu; the normal's lo >= 0), their count
         for (idx i = 0; i < findex_len; ++i) {
             idx f = findex[i];
-            if (f >= 0 && !(hi[i] >= 0.0 && hi[i] < INF && lo[i] == -hi[i] && lo[f] >= 0.0))
+            if (f == -1) continue;
+            if (f < 0 || f >= findex_len || f == i || findex[f] != -1) return BAD_FINDEX;
+            if (!(hi[i] >= 0.0 && hi[i] < INF && lo[i] == -hi[i] && lo[f] >= 0.0))
                 return BAD_FINDEX;
+            ++nf;
         }
     } else {
         for (idx i = 0; i < findex_len; ++i) nf += findex[i] >= 0;
@@ -1227,9 +1231,10 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             // normals in their boxes, that is the answer (0 pivots). Otherwise the extended
             // problem's point decides as before (below).
             friction_order(findex, n, nf, F);
-            if (friction_point(M, q, lo, hi, F, nf, warm, warm + N, buf + FL.z()) &&
+            BoxedWork& W = work();
+            if (friction_point_in(M, q, lo, hi, F, nf, warm, warm + N, buf + FL.z(), W) &&
                 normals_inside(buf + FL.z(), lo, hi, F, nf) &&
-                coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual)) {
+                coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual, W)) {
                 double* d = buf + FL.run().covering();
                 for (idx i = 0; i < N; ++i) d[i] = 0.0;
                 return SOLVED;

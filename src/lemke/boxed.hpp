@@ -224,9 +224,6 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
 bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const double* d, const double* z, double z0, const double* ray, double tol);
 
-// The number of friction rows, or BAD_FINDEX (boxed.friction_rows).
-idx friction_rows(const idx* findex, idx n);
-
 // The extended box LCP of a friction index into work (FrontLayout's work: Mx, qx, lox, hix),
 // F (2 nf) the friction rows then their normal rows (boxed.extend).
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,

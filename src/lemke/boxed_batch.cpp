@@ -83,14 +83,13 @@ struct Outcome {
 Outcome one_call(Mat<const double> M, const double* q, const double* lo, const double* hi,
                  const idx* fi, idx fl, const std::uint8_t* warm, bool has_warm, idx nf,
                  idx limit, double pt, double tt, double tol, double* buf, idx buf_len,
-                 idx* ints, idx ints_len) {
+                 idx* ints, idx ints_len, Scratch& S) {
     Outcome o;
     idx n = M.rows;
     bool friction = fl > 0;
     FrontLayout FL{n, nf, friction};
     BoxLayout L = FL.run();
     idx N = FL.N();
-    Scratch& S = scratch();
     idx work_len = FL.work_length();
     double* work = sized(S.work, work_len);
     double residual;
@@ -247,7 +246,7 @@ void batch(const double* Ms, const idx* mstart, const double* qs, const double* 
             idx fl = has_f && n > 0 ? n : 0;
             r = one_call(M, q, l, h, fl ? fi : findex, fl, warm, has_w, nf, max_pivots[b],
                          pivot_tol, tie_tol, tol, buf, buff[b + 1] - buff[b], in,
-                         ioff[b + 1] - ioff[b]);
+                         ioff[b + 1] - ioff[b], S);
         }
         std::int8_t* so = state_out + o;
         if (r.stage == 0) {
