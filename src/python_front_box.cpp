@@ -19,6 +19,7 @@
 #include <nanobind/nanobind.h>
 
 #include <cstdint>
+#include <cstring>
 #include <unordered_map>
 #include <vector>
 
@@ -74,11 +75,13 @@ void init(nb::handle result_cls, nb::handle ws_cls, nb::handle solved, nb::handl
         ok = ok && *keys[i] != nullptr;
     }
     if (!ok) throw nb::python_error();
+    PyObject* pivots0 = PyLong_FromSsize_t(0);  // (the cached 0: lazy writes no 0 pivots)
+    if (pivots0 == nullptr) throw nb::python_error();
     for (int v = 0; v < 8; ++v) {
         PyObject* t = PyDict_New();
         bf.templates[v] = t;
         ok = t != nullptr && PyDict_SetItem(t, bf.k_status, bf.solved) == 0 &&
-             PyDict_SetItem(t, bf.k_pivots, Py_None) == 0 &&
+             PyDict_SetItem(t, bf.k_pivots, pivots0) == 0 &&
              PyDict_SetItem(t, bf.k_residual, Py_None) == 0 &&
              PyDict_SetItem(t, bf.k_ray, Py_None) == 0 &&
              PyDict_SetItem(t, bf.k_z0, bf.zero) == 0 &&
@@ -113,7 +116,8 @@ nb::object spans_of(idx n, idx N, bool friction) {
     return s;
 }
 
-// The BLCPResult of a solved and checked answer, as _blcp._lazy builds it.
+// The BLCPResult of a solved and checked answer, as _blcp._lazy builds it (`ints` None: the
+// warm start's own point, whose final basis is the warm start the result keeps, never read).
 nb::object lazy(const nb::object& buf, const nb::object& ints, idx N, idx k, idx m, idx n,
                 nb::handle lo, nb::handle hi, bool friction, idx pivots, double residual,
                 idx rec, nb::handle ws) {
@@ -125,7 +129,7 @@ nb::object lazy(const nb::object& buf, const nb::object& ints, idx N, idx k, idx
     if (!dict.is_valid()) throw nb::python_error();
     PyObject* d = dict.ptr();
     nb::object spans = spans_of(n, N, friction);
-    bool ok = put(d, bf.k_pivots, PyLong_FromSsize_t(pivots)) &&
+    bool ok = (pivots == 0 || put(d, bf.k_pivots, PyLong_FromSsize_t(pivots))) &&
               put(d, bf.k_residual, PyFloat_FromDouble(residual)) &&
               (friction || (PyDict_SetItem(d, bf.k_lo, lo.ptr()) == 0 &&
                             PyDict_SetItem(d, bf.k_hi, hi.ptr()) == 0)) &&
@@ -233,14 +237,18 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
     }
     lemke::boxed::FrontLayout FL{n, nf, friction};
     idx buf_len = FL.length(), ints_len = FL.ints_length();
+    // The final basis goes to a scratch of this thread, copied into an array only when the
+    // result reads it (stage 1): the warm start's own point (stage 0) keeps the warm start.
     nb::object buf = new_array(buf_len, false);
-    nb::object ints = new_array(ints_len, true);
+    thread_local std::vector<idx> ints_scratch;
+    if (ints_scratch.size() < static_cast<std::size_t>(ints_len))
+        ints_scratch.resize(static_cast<std::size_t>(ints_len));
     const double *Md = reinterpret_cast<const double*>(M->data),
                  *qd = reinterpret_cast<const double*>(q->data),
                  *ld = reinterpret_cast<const double*>(lo->data),
                  *hd = reinterpret_cast<const double*>(hi->data);
     double* out = data_of<double>(buf);
-    idx* in = data_of<idx>(ints);
+    idx* in = ints_scratch.data();
     const idx mstart[1] = {0}, qoff[2] = {0, n}, buff[2] = {0, buf_len}, ioff[2] = {0, ints_len};
     const idx max_pivots[1] = {100 * (N + 1)};  // Options.pivot_limit(N), the default
     const std::uint8_t fflag[1] = {std::uint8_t(friction)}, wflag[1] = {std::uint8_t(st != nullptr)};
@@ -256,10 +264,13 @@ nb::object one_call(const ArrayFields* M, const ArrayFields* q, const ArrayField
     }
     idx stage = out_i[5];
     if (stage == 0)  // the warm start's own point: 0 pivots, the result keeps it
-        return lazy(buf, ints, N, 0, 0, n, lo_h, hi_h, friction, 0, out_f[0], 0, ws);
-    if (stage == 1)
+        return lazy(buf, nb::none(), N, 0, 0, n, lo_h, hi_h, friction, 0, out_f[0], 0, ws);
+    if (stage == 1) {
+        nb::object ints = new_array(ints_len, true);
+        std::memcpy(data_of<idx>(ints), in, static_cast<std::size_t>(ints_len) * sizeof(idx));
         return lazy(buf, ints, N, out_i[2], out_i[3], n, lo_h, hi_h, friction, out_i[1],
                     out_f[0], out_i[4], nb::none());
+    }
     if (stage == -1) return nb::bool_(false);
     return nb::none();
 }

@@ -404,8 +404,9 @@ class _BoxField(LazyField):
     """A field of a solved box result built by ``solve_blcp``'s one-call paths: a view of
     the kernel's buffer, or its warm start (``_result.LazyField``; a small solve that reads
     only ``z`` pays for no other view).  ``_src`` is ``(buf, final, N, k, m, spans)``: the
-    buffer, the final basis (``final[:k]`` basic, ``final[k:m]`` at hi) of a problem of
-    size N, and where each field sits in the buffer (:func:`_spans`)."""
+    buffer, the final basis (``final[:k]`` basic, ``final[k:m]`` at hi; None from
+    ``_core.blcp_front`` where the result keeps its warm start, which is then never made
+    here) of a problem of size N, and where each field sits in the buffer (:func:`_spans`)."""
 
     __slots__ = ()
 
