@@ -798,8 +798,9 @@ nb::object many_field(nb::handle bufs_h, nb::handle buff_h, nb::handle qoff_h, s
     return out;
 }
 
-// Every problem's final basic z's end to end (basics from qoff[b], k = out_i[b, 2] of them)
-// and their offsets (int64 B + 1): LCPManyResult.warm_start's arrays.
+// Every problem's final basic z's end to end (basics from qoff[b], k = out_i[b, 2] of them),
+// their offsets (int64 B + 1) and the problems' sizes (int64 B, qoff's differences):
+// LCPManyResult.warm_start's arrays.
 nb::object many_bases(nb::handle basics_h, nb::handle qoff_h, nb::handle out_i_h) {
     const ArrayFields* basics = plain_i64(basics_h.ptr(), front.ndarray, front.int64_num);
     const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
@@ -813,21 +814,23 @@ nb::object many_bases(nb::handle basics_h, nb::handle qoff_h, nb::handle out_i_h
     const auto* qo = reinterpret_cast<const std::int64_t*>(qoff->data);
     const auto* code = reinterpret_cast<const std::int64_t*>(oi->data);
     const auto* src = reinterpret_cast<const std::int64_t*>(basics->data);
-    nb::object off = new_array(B + 1, true);
+    nb::object off = new_array(B + 1, true), sizes = new_array(B, true);
     auto* o = data_of<std::int64_t>(off);
+    auto* n_b = data_of<std::int64_t>(sizes);
     o[0] = 0;
     for (Py_ssize_t b = 0; b < B; ++b) {
         std::int64_t k = code[5 * b + 2];
         if (k < 0 || qo[b] < 0 || k > qo[b + 1] - qo[b] || qo[b + 1] > basics->dimensions[0])
             throw nb::value_error("many_bases: the offsets do not fit the arrays");
         o[b + 1] = o[b] + k;
+        n_b[b] = qo[b + 1] - qo[b];
     }
     nb::object out = new_array(o[B], true);
     auto* dst = data_of<std::int64_t>(out);
     for (Py_ssize_t b = 0; b < B; ++b)
         if (o[b + 1] > o[b])
             std::memcpy(dst + o[b], src + qo[b], static_cast<std::size_t>(o[b + 1] - o[b]) * sizeof(std::int64_t));
-    return nb::make_tuple(out, off);
+    return nb::make_tuple(out, off, sizes);
 }
 
 }  // namespace

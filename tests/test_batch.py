@@ -476,7 +476,8 @@ def test_many_setup_is_the_python_steps():
         got = _core.many_field(bufs, bo, qo, a, c)
         assert got.tolist() == np.concatenate([bufs[bo[b] + a * n + c : bo[b] + a * n + c + n]
                                                for b, n in enumerate(np.diff(qo))]).tolist()
-    z_basic, boff = _core.many_bases(rs._basics, qo, out_i)
+    z_basic, boff, n = _core.many_bases(rs._basics, qo, out_i)
+    assert n.dtype == np.int64 and n.tolist() == np.diff(qo).tolist()
     assert boff.tolist() == [0] + np.cumsum(out_i[:, 2]).tolist()
     assert z_basic.tolist() == [i for b, k in enumerate(out_i[:, 2]) for i in rs._basics[qo[b] : qo[b] + k]]
     with pytest.raises(ValueError):

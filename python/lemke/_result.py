@@ -731,8 +731,8 @@ class LCPManyResult(ManyItems):
             off = np.zeros(len(bases) + 1, dtype=np.int64)
             np.cumsum([len(b) for b in bases], out=off[1:])
             return WarmStartBatch._trusted(np.diff(self.offsets), np.concatenate(bases), off)
-        z_basic, off = _core.many_bases(self._basics, self._off[0], self._out_i)
-        return WarmStartBatch._trusted(np.diff(self._off[0]), z_basic, off)
+        z_basic, off, n = _core.many_bases(self._basics, self._off[0], self._out_i)
+        return WarmStartBatch._trusted(n, z_basic, off)
 
 
 def _final_basis(res) -> np.ndarray:
