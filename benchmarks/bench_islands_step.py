@@ -17,14 +17,16 @@ bits.
 from __future__ import annotations
 
 import argparse
-import gc
 import os
-import time
+import sys
 
 import numpy as np
 
-import lemke
-from lemke import problems
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_small import _interleaved, _ok  # noqa: E402
+
+import lemke  # noqa: E402
+from lemke import problems  # noqa: E402
 
 
 def islands(count, variants, seed=15):
@@ -42,12 +44,6 @@ def islands(count, variants, seed=15):
     for k in range(1, variants):
         moved[k] = [q + 1e-3 * r.standard_normal(len(q)) for q in qs]
     return Ms, qs, moved
-
-
-def _ok(M, q, z, tol=1e-8):
-    w = M @ z + q
-    s = tol * max(1.0, np.abs(M).max(initial=0) * np.abs(z).max(initial=0), np.abs(q).max(initial=0))
-    return bool(np.all(z >= -s) and np.all(w >= -s) and np.all(np.abs(np.minimum(z, w)) <= s))
 
 
 def main(argv=None):
@@ -88,19 +84,7 @@ def main(argv=None):
         assert sum(_ok(M, q, z) for M, q, z, s in zip(Ms, moved[k], zs, a.success) if s) == solved
         pivots.append(int(a.pivots.sum()))
     load0 = os.getloadavg()[0]
-    times = {key: [] for key in calls}
-    names = list(calls)
-    rng = np.random.default_rng(0)
-    gc.disable()
-    try:
-        for _ in range(args.rounds):
-            rng.shuffle(names)
-            for key in names:
-                t = time.perf_counter()
-                calls[key]()
-                times[key].append(time.perf_counter() - t)
-    finally:
-        gc.enable()
+    times = _interleaved(calls, args.rounds, np.random.default_rng(0))
     print(f"{args.islands} islands, {args.rounds} rounds, lemke {lemke.__version__}, "
           f"1-minute load {load0:.2f} -> {os.getloadavg()[0]:.2f}; pivots per call "
           f"{pivots[0]} (same q), {min(pivots)}-{max(pivots)} (new q)")
