@@ -746,7 +746,10 @@ nb::object many_setup(nb::handle sizes_h, nb::handle M_h, nb::handle q_h, std::i
 // The problems b of a batch (solve_lcp_many) whose answers the Python front must build:
 // (those whose code is NOT_FINITE, those not settled: not ok, or a code other than SOLVED,
 // TRIVIAL and RAY_TERMINATION), two lists (out_i (B, 5) and out_f (B, 2), the kernels').
+// This and the two below return None where lcp_front_init found another NumPy layout (the
+// front off): the Python steps then do it with numpy.
 nb::object many_unsettled(nb::handle out_i_h, nb::handle out_f_h) {
+    if (!front.on) return nb::none();
     auto* oi = reinterpret_cast<const ArrayFields*>(out_i_h.ptr());
     auto* of = reinterpret_cast<const ArrayFields*>(out_f_h.ptr());
     if (Py_TYPE(out_i_h.ptr()) != front.ndarray || Py_TYPE(out_f_h.ptr()) != front.ndarray ||
@@ -776,7 +779,8 @@ nb::object many_field(nb::handle bufs_h, nb::handle buff_h, nb::handle qoff_h, s
     const ArrayFields* bufs = plain_f64(bufs_h.ptr(), 1, front.ndarray);
     const ArrayFields* buff = plain_i64(buff_h.ptr(), front.ndarray, front.int64_num);
     const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
-    if (!front.on || bufs == nullptr || buff == nullptr || qoff == nullptr ||
+    if (!front.on) return nb::none();
+    if (bufs == nullptr || buff == nullptr || qoff == nullptr ||
         buff->dimensions[0] != qoff->dimensions[0] || qoff->dimensions[0] < 1)
         throw nb::type_error("many_field: bufs float64, buff and qoff int64 of B + 1");
     Py_ssize_t B = qoff->dimensions[0] - 1;
@@ -805,7 +809,8 @@ nb::object many_bases(nb::handle basics_h, nb::handle qoff_h, nb::handle out_i_h
     const ArrayFields* basics = plain_i64(basics_h.ptr(), front.ndarray, front.int64_num);
     const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
     auto* oi = reinterpret_cast<const ArrayFields*>(out_i_h.ptr());
-    if (!front.on || basics == nullptr || qoff == nullptr || Py_TYPE(out_i_h.ptr()) != front.ndarray ||
+    if (!front.on) return nb::none();
+    if (basics == nullptr || qoff == nullptr || Py_TYPE(out_i_h.ptr()) != front.ndarray ||
         oi->nd != 2 || oi->dimensions[1] != 5 || (oi->flags & C_CONTIGUOUS) == 0 ||
         reinterpret_cast<const DescrFields*>(oi->descr)->type_num != front.int64_num ||
         oi->dimensions[0] + 1 != qoff->dimensions[0])

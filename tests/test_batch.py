@@ -484,6 +484,42 @@ def test_many_setup_is_the_python_steps():
         _core.many_field(bufs, bo, qo, 7, 0)  # past the buffers' spans
 
 
+def test_many_without_the_native_fronts():
+    """Where lcp_front_init finds another NumPy layout the native fronts stay off: many_setup,
+    many_unsettled, many_field and many_bases return None and the Python steps (numpy) make
+    the same result, bit for bit."""
+    from lemke import _core, _result
+    Ms, qs, qs2 = _islands(12, count=30)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    qs2[5] = qs[5]
+    Mp, qp, sizes = _pack(Ms, qs)
+    on = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
+    nxt = lemke.solve_lcp_many(Ms, qs2, warm_start=on.warm_start)
+    flat = [(r.z, r.w, r.offsets, r.status, r.warm_start) for r in (on, nxt)]
+    probe = np.zeros((2, 3))
+    ro = np.zeros(3)
+    ro.setflags(write=False)
+    try:  # a wrong data address: the layout check fails, every native front off
+        _core.lcp_front_init(np.ndarray, lemke.LCPResult, lemke.Status.SOLVED,
+                             lemke.Status.RAY_TERMINATION, np.empty, 1e-11, 1e-11, 1e-9, probe,
+                             probe.__array_interface__["data"][0] + 8, ro,
+                             np.zeros(3, dtype=np.int64), np.zeros(3, dtype=">f8"), None)
+        assert not _core.lcp_front_on()
+        assert _core.many_setup(sizes, Mp, qp, -1) is None
+        assert _core.many_unsettled(on._out_i, on._out_f) is None
+        assert _core.many_field(on._bufs, on._off[2], on._off[0], 0, 0) is None
+        assert _core.many_bases(on._basics, on._off[0], on._out_i) is None
+        off = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
+        nxt_off = lemke.solve_lcp_many(Ms, qs2, warm_start=off.warm_start)
+        got = [(r.z, r.w, r.offsets, r.status, r.warm_start) for r in (off, nxt_off)]
+    finally:
+        _result.native_fronts_init()
+    assert _core.lcp_front_on()
+    assert off == on and nxt_off == nxt
+    for a, b in zip(got, flat):
+        assert all(x.tobytes() == y.tobytes() for x, y in zip(a[:4], b[:4])) and a[4] == b[4]
+
+
 def test_packed_problems_bad_input():
     Mp, qp, sizes = _pack([np.eye(2), 2.0 * np.eye(3)], [-np.ones(2), -np.ones(3)])
     for bad, exc, match in (([[2, 3]], TypeError, "1-D array of integers"),

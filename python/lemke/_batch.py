@@ -473,7 +473,12 @@ def _many(method, opts, workers, progress, warm_start, Mflat, qflat, B, sizes, o
     _run(_BATCH, (_layout.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
          progress, "solve_lcp_many", work=work)
-    not_finite, unsettled = _core.many_unsettled(out_i, out_f)
+    picked = _core.many_unsettled(out_i, out_f)  # (None: the native fronts are off)
+    if picked is None:
+        code = out_i[:, 0]
+        picked = (np.flatnonzero(code == _layout.NOT_FINITE).tolist(), np.flatnonzero(
+            (out_f[:, 0] == 0.0) | ((code != 0) & (code != _layout.TRIVIAL) & (code != _RAY))).tolist())
+    not_finite, unsettled = picked
     for b in not_finite:
         n, m, o = sizes[b], int(mstart[b]), int(qoff[b])
         _checked(b, Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n])  # raises, naming the entry
