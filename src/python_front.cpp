@@ -714,9 +714,10 @@ nb::object many_setup(nb::handle sizes_h, nb::handle M_h, nb::handle q_h, std::i
     double work = 0.0;
     for (Py_ssize_t b = 0; b < B; ++b) {
         idx n = n_b[b];
-        if (n < 0 || n > (idx{1} << 20)) return nb::none();  // (sizes no sum can overflow)
+        if (n < 0 || n > (idx{1} << 20)) return nb::none();  // (n * n cannot overflow)
         q_len += n;
         m_len += n * n;
+        if (m_len > M->dimensions[0]) return nb::none();  // (no sum can overflow)
         double nf = static_cast<double>(n);
         work += nf * nf * nf;
     }
@@ -790,7 +791,7 @@ nb::object many_field(nb::handle bufs_h, nb::handle buff_h, nb::handle qoff_h, s
     Py_ssize_t len = bufs->dimensions[0];
     for (Py_ssize_t b = 0; b < B; ++b) {
         std::int64_t n = qo[b + 1] - qo[b], at = bo[b] + a * n + c;
-        if (n < 0 || qo[b] < 0 || at < bo[b] || at + n > bo[b + 1] || bo[b + 1] > len)
+        if (n < 0 || qo[b] < 0 || bo[b] < 0 || at < bo[b] || at + n > bo[b + 1] || bo[b + 1] > len)
             throw nb::value_error("many_field: the offsets do not fit the buffers");
     }
     nb::object out = new_array(qo[B] - qo[0]);
