@@ -666,6 +666,179 @@ nb::object lcp_pack(nb::handle M_h, nb::handle q_h) {
     return nb::make_tuple(Mf, qf, sizes);
 }
 
+
+// A new C array of rows x cols float64 (int64 with ints), uninitialized, as numpy.empty((rows,
+// cols)) makes it (new_array's 2-D form).
+nb::object new_array2(Py_ssize_t rows, Py_ssize_t cols, bool ints) {
+    PyObject* a;
+    PyObject* descr = ints ? front.i64 : front.f64;
+    if (front.new_from_descr != nullptr) {
+        Py_ssize_t dims[2] = {rows, cols};
+        Py_INCREF(descr);  // (stolen by NumPy)
+        a = front.new_from_descr(front.ndarray, descr, 2, dims, nullptr, nullptr, 0, nullptr);
+    } else {
+        nb::object shape = nb::make_tuple(rows, cols);
+        PyObject* args[] = {shape.ptr(), descr};
+        a = PyObject_Vectorcall(front.empty, args, 2, nullptr);
+    }
+    if (a == nullptr) throw nb::python_error();
+    return nb::steal(a);
+}
+
+template <class T>
+T* data_of(const nb::object& a) {
+    return reinterpret_cast<T*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
+}
+
+// solve_lcp_many's set-up for B >= 1 problems of sizes n_b (`sizes`: a 1-D int64 array, each
+// >= 0) with M and q packed (1-D float64 C arrays, writable, of sum n_b^2 and sum n_b
+// numbers: what _batch._packed and lcp_pack give): the offsets (int64 (3, B + 1), from 0:
+// of q and the basic z's, of M, of the output buffers, as _batch._offsets gives them
+// summed), the pivot caps (100 (n_b + 1) as Options.pivot_limit, or max_pivots when it is
+// >= 0), the batch's work (the sum of n_b^3, as _batch._cubes), the sizes as a list, and the
+// kernels' outputs uninitialized (bufs, basics, out_i (B, 5), out_f (B, 2)). None when the
+// arguments are not of that kind: the Python steps then check them and say what is wrong.
+nb::object many_setup(nb::handle sizes_h, nb::handle M_h, nb::handle q_h, std::int64_t max_pivots) {
+    using lemke::idx;
+    if (!front.on) return nb::none();
+    const ArrayFields* s = plain_i64(sizes_h.ptr(), front.ndarray, front.int64_num);
+    const ArrayFields* M = plain_f64(M_h.ptr(), 1, front.ndarray);
+    const ArrayFields* q = plain_f64(q_h.ptr(), 1, front.ndarray);
+    if (s == nullptr || M == nullptr || q == nullptr || (M->flags & WRITEABLE) == 0 ||
+        (q->flags & WRITEABLE) == 0)
+        return nb::none();
+    Py_ssize_t B = s->dimensions[0];
+    if (B < 1) return nb::none();
+    const auto* n_b = reinterpret_cast<const std::int64_t*>(s->data);
+    idx m_len = 0, q_len = 0;
+    double work = 0.0;
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        idx n = n_b[b];
+        if (n < 0 || n > (idx{1} << 20)) return nb::none();  // (n * n cannot overflow)
+        q_len += n;
+        m_len += n * n;
+        if (m_len > M->dimensions[0]) return nb::none();  // (no sum can overflow)
+        double nf = static_cast<double>(n);
+        work += nf * nf * nf;
+    }
+    if (m_len != M->dimensions[0] || q_len != q->dimensions[0]) return nb::none();
+    nb::object off = new_array2(3, B + 1, true), limits = new_array(B, true);
+    nb::object list = nb::steal(PyList_New(B));
+    if (!list.is_valid()) throw nb::python_error();
+    auto* o = data_of<std::int64_t>(off);
+    auto* lim = data_of<std::int64_t>(limits);
+    std::int64_t *qo = o, *mo = o + (B + 1), *bo = o + 2 * (B + 1);
+    qo[0] = mo[0] = bo[0] = 0;
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        idx n = n_b[b];
+        qo[b + 1] = qo[b] + n;
+        mo[b + 1] = mo[b] + n * n;
+        bo[b + 1] = bo[b] + lemke::BufferLayout{n}.length();
+        lim[b] = max_pivots >= 0 ? max_pivots : 100 * (n + 1);
+        PyObject* v = PyLong_FromLongLong(n);
+        if (v == nullptr) throw nb::python_error();
+        PyList_SET_ITEM(list.ptr(), b, v);
+    }
+    nb::object bufs = new_array(bo[B]), basics = new_array(qo[B], true);
+    nb::object out_i = new_array2(B, 5, true), out_f = new_array2(B, 2, false);
+    return nb::make_tuple(off, limits, work, list, bufs, basics, out_i, out_f);
+}
+
+// The problems b of a batch (solve_lcp_many) whose answers the Python front must build:
+// (those whose code is NOT_FINITE, those not settled: not ok, or a code other than SOLVED,
+// TRIVIAL and RAY_TERMINATION), two lists (out_i (B, 5) and out_f (B, 2), the kernels').
+// This and the two below return None where lcp_front_init found another NumPy layout (the
+// front off): the Python steps then do it with numpy.
+nb::object many_unsettled(nb::handle out_i_h, nb::handle out_f_h) {
+    if (!front.on) return nb::none();
+    auto* oi = reinterpret_cast<const ArrayFields*>(out_i_h.ptr());
+    auto* of = reinterpret_cast<const ArrayFields*>(out_f_h.ptr());
+    if (Py_TYPE(out_i_h.ptr()) != front.ndarray || Py_TYPE(out_f_h.ptr()) != front.ndarray ||
+        oi->nd != 2 || of->nd != 2 || oi->dimensions[1] != 5 || of->dimensions[1] != 2 ||
+        oi->dimensions[0] != of->dimensions[0] || (oi->flags & C_CONTIGUOUS) == 0 ||
+        (of->flags & C_CONTIGUOUS) == 0 ||
+        reinterpret_cast<const DescrFields*>(oi->descr)->type_num != front.int64_num ||
+        reinterpret_cast<const DescrFields*>(of->descr)->type_num != NPY_DOUBLE)
+        throw nb::type_error("many_unsettled: out_i must be int64 (B, 5), out_f float64 (B, 2)");
+    const auto* code = reinterpret_cast<const std::int64_t*>(oi->data);
+    const auto* ok = reinterpret_cast<const double*>(of->data);
+    nb::list not_finite, special;
+    for (Py_ssize_t b = 0; b < oi->dimensions[0]; ++b) {
+        std::int64_t c = code[5 * b];
+        if (c == lemke::NOT_FINITE) not_finite.append(b);
+        if (ok[2 * b] == 0.0 || (c != lemke::SOLVED && c != lemke::TRIVIAL && c != lemke::RAY_TERMINATION))
+            special.append(b);
+    }
+    return nb::make_tuple(not_finite, special);
+}
+
+// Every problem's span [a n + c, a n + c + n) of its output buffer (bufs from buff[b]; n
+// from qoff) end to end, a new float64 array (LCPManyResult's z and w: a = 0, c = 0 and a =
+// 2, c = 2, _layout.BUFFER).
+nb::object many_field(nb::handle bufs_h, nb::handle buff_h, nb::handle qoff_h, std::int64_t a,
+                      std::int64_t c) {
+    const ArrayFields* bufs = plain_f64(bufs_h.ptr(), 1, front.ndarray);
+    const ArrayFields* buff = plain_i64(buff_h.ptr(), front.ndarray, front.int64_num);
+    const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
+    if (!front.on) return nb::none();
+    if (bufs == nullptr || buff == nullptr || qoff == nullptr ||
+        buff->dimensions[0] != qoff->dimensions[0] || qoff->dimensions[0] < 1)
+        throw nb::type_error("many_field: bufs float64, buff and qoff int64 of B + 1");
+    Py_ssize_t B = qoff->dimensions[0] - 1;
+    const auto* qo = reinterpret_cast<const std::int64_t*>(qoff->data);
+    const auto* bo = reinterpret_cast<const std::int64_t*>(buff->data);
+    const auto* src = reinterpret_cast<const double*>(bufs->data);
+    Py_ssize_t len = bufs->dimensions[0];
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        std::int64_t n = qo[b + 1] - qo[b], at = bo[b] + a * n + c;
+        if (n < 0 || qo[b] < 0 || bo[b] < 0 || at < bo[b] || at + n > bo[b + 1] || bo[b + 1] > len)
+            throw nb::value_error("many_field: the offsets do not fit the buffers");
+    }
+    nb::object out = new_array(qo[B] - qo[0]);
+    double* dst = data_of<double>(out);
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        std::int64_t n = qo[b + 1] - qo[b];
+        if (n) std::memcpy(dst + (qo[b] - qo[0]), src + bo[b] + a * n + c, static_cast<std::size_t>(n) * sizeof(double));
+    }
+    return out;
+}
+
+// Every problem's final basic z's end to end (basics from qoff[b], k = out_i[b, 2] of them),
+// their offsets (int64 B + 1) and the problems' sizes (int64 B, qoff's differences):
+// LCPManyResult.warm_start's arrays.
+nb::object many_bases(nb::handle basics_h, nb::handle qoff_h, nb::handle out_i_h) {
+    const ArrayFields* basics = plain_i64(basics_h.ptr(), front.ndarray, front.int64_num);
+    const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
+    auto* oi = reinterpret_cast<const ArrayFields*>(out_i_h.ptr());
+    if (!front.on) return nb::none();
+    if (basics == nullptr || qoff == nullptr || Py_TYPE(out_i_h.ptr()) != front.ndarray ||
+        oi->nd != 2 || oi->dimensions[1] != 5 || (oi->flags & C_CONTIGUOUS) == 0 ||
+        reinterpret_cast<const DescrFields*>(oi->descr)->type_num != front.int64_num ||
+        oi->dimensions[0] + 1 != qoff->dimensions[0])
+        throw nb::type_error("many_bases: basics, qoff (B + 1) and out_i (B, 5) int64");
+    Py_ssize_t B = oi->dimensions[0];
+    const auto* qo = reinterpret_cast<const std::int64_t*>(qoff->data);
+    const auto* code = reinterpret_cast<const std::int64_t*>(oi->data);
+    const auto* src = reinterpret_cast<const std::int64_t*>(basics->data);
+    nb::object off = new_array(B + 1, true), sizes = new_array(B, true);
+    auto* o = data_of<std::int64_t>(off);
+    auto* n_b = data_of<std::int64_t>(sizes);
+    o[0] = 0;
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        std::int64_t k = code[5 * b + 2];
+        if (k < 0 || qo[b] < 0 || k > qo[b + 1] - qo[b] || qo[b + 1] > basics->dimensions[0])
+            throw nb::value_error("many_bases: the offsets do not fit the arrays");
+        o[b + 1] = o[b] + k;
+        n_b[b] = qo[b + 1] - qo[b];
+    }
+    nb::object out = new_array(o[B], true);
+    auto* dst = data_of<std::int64_t>(out);
+    for (Py_ssize_t b = 0; b < B; ++b)
+        if (o[b + 1] > o[b])
+            std::memcpy(dst + o[b], src + qo[b], static_cast<std::size_t>(o[b + 1] - o[b]) * sizeof(std::int64_t));
+    return nb::make_tuple(out, off, sizes);
+}
+
 }  // namespace
 
 NumpyLayout numpy_layout() {
@@ -701,6 +874,10 @@ void bind_front(nb::module_& m) {
           "method"_a = static_cast<int>(lemke::TABLEAU));
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
+    m.def("many_setup", &many_setup, "sizes"_a, "M"_a, "q"_a, "max_pivots"_a);
+    m.def("many_unsettled", &many_unsettled, "out_i"_a, "out_f"_a);
+    m.def("many_field", &many_field, "bufs"_a, "buff"_a, "qoff"_a, "a"_a, "c"_a);
+    m.def("many_bases", &many_bases, "basics"_a, "qoff"_a, "out_i"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
     m.def("blcp_entry", &blcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a);

@@ -428,6 +428,98 @@ def test_packed_problems_are_the_lists_bit_for_bit(method):
     assert lemke.solve_lcp_many(np.zeros(0), np.zeros(0), sizes=[]) == []
 
 
+def test_many_setup_is_the_python_steps():
+    """_core.many_setup (ready packed arrays: int64 sizes, writable float64 M and q of the
+    right lengths) gives the arrays the Python steps make (_batch._packed, _offsets summed,
+    the pivot caps, the work), and declines (None) anything else, which the Python steps
+    then check; either way the results are the same bit for bit."""
+    from lemke import _batch, _core
+    Ms, qs, qs2 = _islands(11, count=40)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    Mp, qp, sizes = _pack(Ms, qs)
+    for cap, opts in ((-1, lemke.Options()), (3, lemke.Options(max_pivots=3))):
+        off, limits, work, listed, bufs, basics, out_i, out_f = _core.many_setup(sizes, Mp, qp, cap)
+        Mf, qf, want = _batch._packed(Mp, qp, sizes)
+        assert Mf is Mp and qf is qp
+        n_b = want[0, 1:].copy()
+        assert work == _batch._cubes(n_b)
+        np.cumsum(want, axis=1, out=want)
+        assert off.dtype == np.int64 and off.tolist() == want.tolist()
+        assert limits.dtype == np.int64 and limits.tolist() == [opts.pivot_limit(int(n)) for n in n_b]
+        assert listed == n_b.tolist() and all(type(n) is int for n in listed)
+        assert bufs.shape == (want[2, -1],) and bufs.dtype == np.float64
+        assert basics.shape == (want[0, -1],) and basics.dtype == np.int64
+        assert out_i.shape == (40, 5) and out_i.dtype == np.int64 and out_i.flags.c_contiguous
+        assert out_f.shape == (40, 2) and out_f.dtype == np.float64 and out_f.flags.c_contiguous
+        flat = lemke.solve_lcp_many(Mp, qp, sizes=sizes, options=opts)
+        assert flat == lemke.solve_lcp_many(Mp, qp, sizes=sizes.astype(np.int32), options=opts)
+        assert flat == [lemke.solve_lcp(M, q, options=opts) for M, q in zip(Ms, qs)]
+    ro = Mp.copy()
+    ro.setflags(write=False)
+    bad = sizes.copy()
+    bad[0] = -1
+    for args in ((sizes.astype(np.int32), Mp, qp), (sizes.tolist(), Mp, qp), (sizes, ro, qp),
+                 (sizes, Mp, qp.astype(np.float32)), (sizes, Mp[:-1], qp), (sizes, Mp, qp[1:]),
+                 (bad, Mp, qp), (sizes[:, None], Mp, qp), (sizes[:0], Mp[:0], qp[:0]),
+                 (sizes, Mp.reshape(1, -1), qp)):
+        assert _core.many_setup(*args, -1) is None
+    # the kernels' outputs read back natively: what numpy's gathers give
+    rs = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
+    off, out_i, out_f, bufs = rs._off, rs._out_i, rs._out_f, rs._bufs
+    code = out_i[:, 0]
+    not_finite, unsettled = _core.many_unsettled(out_i, out_f)
+    assert not_finite == np.flatnonzero(code == -1).tolist()
+    assert unsettled == np.flatnonzero((out_f[:, 0] == 0.0) | ((code != 0) & (code != -2) & (code != 2))).tolist()
+    assert unsettled == sorted(rs._special)
+    qo, bo = off[0], off[2]
+    for a, c in ((0, 0), (2, 2)):
+        got = _core.many_field(bufs, bo, qo, a, c)
+        assert got.tolist() == np.concatenate([bufs[bo[b] + a * n + c : bo[b] + a * n + c + n]
+                                               for b, n in enumerate(np.diff(qo))]).tolist()
+    z_basic, boff, n = _core.many_bases(rs._basics, qo, out_i)
+    assert n.dtype == np.int64 and n.tolist() == np.diff(qo).tolist()
+    assert boff.tolist() == [0] + np.cumsum(out_i[:, 2]).tolist()
+    assert z_basic.tolist() == [i for b, k in enumerate(out_i[:, 2]) for i in rs._basics[qo[b] : qo[b] + k]]
+    with pytest.raises(ValueError):
+        _core.many_field(bufs, bo, qo, 7, 0)  # past the buffers' spans
+
+
+def test_many_without_the_native_fronts():
+    """Where lcp_front_init finds another NumPy layout the native fronts stay off: many_setup,
+    many_unsettled, many_field and many_bases return None and the Python steps (numpy) make
+    the same result, bit for bit."""
+    from lemke import _core, _result
+    Ms, qs, qs2 = _islands(12, count=30)
+    Ms, qs = _rays_and_trivial(Ms, qs)
+    qs2[5] = qs[5]
+    Mp, qp, sizes = _pack(Ms, qs)
+    on = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
+    nxt = lemke.solve_lcp_many(Ms, qs2, warm_start=on.warm_start)
+    flat = [(r.z, r.w, r.offsets, r.status, r.warm_start) for r in (on, nxt)]
+    probe = np.zeros((2, 3))
+    ro = np.zeros(3)
+    ro.setflags(write=False)
+    try:  # a wrong data address: the layout check fails, every native front off
+        _core.lcp_front_init(np.ndarray, lemke.LCPResult, lemke.Status.SOLVED,
+                             lemke.Status.RAY_TERMINATION, np.empty, 1e-11, 1e-11, 1e-9, probe,
+                             probe.__array_interface__["data"][0] + 8, ro,
+                             np.zeros(3, dtype=np.int64), np.zeros(3, dtype=">f8"), None)
+        assert not _core.lcp_front_on()
+        assert _core.many_setup(sizes, Mp, qp, -1) is None
+        assert _core.many_unsettled(on._out_i, on._out_f) is None
+        assert _core.many_field(on._bufs, on._off[2], on._off[0], 0, 0) is None
+        assert _core.many_bases(on._basics, on._off[0], on._out_i) is None
+        off = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
+        nxt_off = lemke.solve_lcp_many(Ms, qs2, warm_start=off.warm_start)
+        got = [(r.z, r.w, r.offsets, r.status, r.warm_start) for r in (off, nxt_off)]
+    finally:
+        _result.native_fronts_init()
+    assert _core.lcp_front_on()
+    assert off == on and nxt_off == nxt
+    for a, b in zip(got, flat):
+        assert all(x.tobytes() == y.tobytes() for x, y in zip(a[:4], b[:4])) and a[4] == b[4]
+
+
 def test_packed_problems_bad_input():
     Mp, qp, sizes = _pack([np.eye(2), 2.0 * np.eye(3)], [-np.ones(2), -np.ones(3)])
     for bad, exc, match in (([[2, 3]], TypeError, "1-D array of integers"),
@@ -437,6 +529,8 @@ def test_packed_problems_bad_input():
                             ([1, 4], ValueError, "packed M")):
         with pytest.raises(exc, match=match):
             lemke.solve_lcp_many(Mp, qp, sizes=bad)
+        with pytest.raises(exc, match=match):  # an array: the native set-up declines it
+            lemke.solve_lcp_many(Mp, qp, sizes=np.array(bad))
     with pytest.raises(ValueError, match="packed q"):
         lemke.solve_lcp_many(Mp, qp[:-1], sizes=sizes)
     with pytest.raises(ValueError, match="packed M"):

@@ -412,8 +412,21 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         progress = _progress.check(progress)
     # offsets: of q and the basic z's, of M, of the output buffers (_layout.buffer_length)
     packed = _core.lcp_pack(M, q) if sizes is None else None  # lists ready as they are
+    cap = -1 if opts.max_pivots is None else opts.max_pivots
+    # ready packed arrays (or the lists packed): every array the kernels take in one call
+    setup = None
     if packed is not None:
         Mflat, qflat, n_b = packed
+        setup = _core.many_setup(n_b, Mflat, qflat, cap)
+    elif type(sizes) is _ND:
+        Mflat, qflat = M, q
+        setup = _core.many_setup(sizes, M, q, cap)
+    if setup is not None:
+        off, limits, work, sizes, bufs, basics, out_i, out_f = setup
+        B = len(sizes)
+        return _many(method, opts, workers, progress, warm_start, Mflat, qflat, B, sizes, off, limits,
+                     work, bufs, basics, out_i, out_f)
+    if packed is not None:
         off = _offsets(n_b)
         sizes = n_b.tolist()
         B = len(sizes)
@@ -437,22 +450,36 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         Mflat, qflat, off = _packed(M, q, sizes)
         sizes = off[0, 1:].tolist()
         B = len(sizes)
-    beta, boff, ws = _bases(warm_start, B, sizes)
     n_b = off[0, 1:]
     limits = np.empty(B, dtype=np.int64)
     limits[:] = opts.pivot_limit(n_b)
     work = _cubes(n_b)  # (before the sums below: n_b is a view of off)
     np.cumsum(off, axis=1, out=off)
-    qoff, mstart, buff = off[0], off[1, :-1], off[2]
-    bufs = np.empty(int(buff[-1]))
-    basics = np.empty(int(qoff[-1]), dtype=np.int64)
+    bufs = np.empty(int(off[2, -1]))
+    basics = np.empty(int(off[0, -1]), dtype=np.int64)
     out_i = np.empty((B, 5), dtype=np.int64)
     out_f = np.empty((B, 2))
+    return _many(method, opts, workers, progress, warm_start, Mflat, qflat, B, sizes, off, limits, work,
+                 bufs, basics, out_i, out_f)
+
+
+def _many(method, opts, workers, progress, warm_start, Mflat, qflat, B, sizes, off, limits, work,
+          bufs, basics, out_i, out_f):
+    """solve_lcp_many's batch from its arrays (those of ``_core.many_setup``: the offsets
+    summed, the pivot caps, the work, the sizes as a list, the kernels' outputs), the warm
+    starts as given."""
+    beta, boff, ws = _bases(warm_start, B, sizes)
+    qoff, mstart, buff = off[0], off[1, :-1], off[2]
     _run(_BATCH, (_layout.METHODS[method], Mflat, mstart, qflat, qoff, beta, boff),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, basics, out_i, out_f), B, workers,
          progress, "solve_lcp_many", work=work)
-    code = out_i[:, 0]
-    for b in np.flatnonzero(code == _layout.NOT_FINITE).tolist():
+    picked = _core.many_unsettled(out_i, out_f)  # (None: the native fronts are off)
+    if picked is None:
+        code = out_i[:, 0]
+        picked = (np.flatnonzero(code == _layout.NOT_FINITE).tolist(), np.flatnonzero(
+            (out_f[:, 0] == 0.0) | ((code != 0) & (code != _layout.TRIVIAL) & (code != _RAY))).tolist())
+    not_finite, unsettled = picked
+    for b in not_finite:
         n, m, o = sizes[b], int(mstart[b]), int(qoff[b])
         _checked(b, Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n])  # raises, naming the entry
     # Everything but a checked solution (and q >= 0), or a checked ray, goes through
@@ -460,7 +487,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     # from problem b's own copy of (M, q) in the flat arrays; the result builds the others
     # (lazily, from the shared buffers) only when its items are read.
     special = {}
-    for b in np.flatnonzero((out_f[:, 0] == 0.0) | ((code != 0) & (code != _layout.TRIVIAL) & (code != _RAY))).tolist():
+    for b in unsettled:
         c, pivots, k, recoveries, _ = out_i[b].tolist()
         n, m, o, bo = sizes[b], int(mstart[b]), int(qoff[b]), int(buff[b])
         special[b] = _outcome(Mflat[m : m + n * n].reshape(n, n), qflat[o : o + n], opts, c, pivots,

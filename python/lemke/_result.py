@@ -687,10 +687,12 @@ class LCPManyResult(ManyItems):
             return v
         a, c, _, _ = _SPANS[name]
         qo, bo = self._off[0], self._off[2]
-        n = np.diff(qo)
-        idx = np.arange(qo[-1], dtype=np.int64)
-        idx += np.repeat(bo[:-1] + a * n + c - qo[:-1], n)
-        v = self._bufs.take(idx)
+        v = _core.many_field(self._bufs, bo, qo, a, c)  # (a copy; None: the native fronts are off)
+        if v is None:
+            n = np.diff(qo)
+            idx = np.arange(qo[-1], dtype=np.int64)
+            idx += np.repeat(bo[:-1] + a * n + c - qo[:-1], n)
+            v = self._bufs.take(idx)
         for b, res in self._special.items():
             v[qo[b] : qo[b + 1]] = getattr(res, name)
         v.setflags(write=False)
@@ -734,12 +736,16 @@ class LCPManyResult(ManyItems):
             off = np.zeros(len(bases) + 1, dtype=np.int64)
             np.cumsum([len(b) for b in bases], out=off[1:])
             return WarmStartBatch._trusted(np.diff(self.offsets), np.concatenate(bases), off)
-        k = self._out_i[:, 2]
-        off = np.zeros(len(k) + 1, dtype=np.int64)
-        np.cumsum(k, out=off[1:])
-        idx = np.arange(off[-1], dtype=np.int64)
-        idx += np.repeat(self._off[0, :-1] - off[:-1], k)
-        return WarmStartBatch._trusted(np.diff(self._off[0]), self._basics.take(idx), off)
+        got = _core.many_bases(self._basics, self._off[0], self._out_i)
+        if got is None:  # (the native fronts are off)
+            k = self._out_i[:, 2]
+            off = np.zeros(len(k) + 1, dtype=np.int64)
+            np.cumsum(k, out=off[1:])
+            idx = np.arange(off[-1], dtype=np.int64)
+            idx += np.repeat(self._off[0, :-1] - off[:-1], k)
+            got = self._basics.take(idx), off, np.diff(self._off[0])
+        z_basic, off, n = got
+        return WarmStartBatch._trusted(n, z_basic, off)
 
 
 def _final_basis(res) -> np.ndarray:
