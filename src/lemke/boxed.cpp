@@ -992,7 +992,9 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     const std::uint8_t* warm_basic = warm;
     const std::uint8_t* warm_hi = warm + n;
     SolveResult out;
-    int code = prologue(M, q, lo, hi);
+    // (extend's problem is made of data front's prologue passed: M's entries, their
+    // negations, +-1 and the finite mu; q's negated; bounds 0, INF or the caller's)
+    int code = ext ? 0 : prologue(M, q, lo, hi);
     if (code < 0) {
         out.code = code;
         return out;

@@ -238,8 +238,9 @@ struct Extended {
 
 // One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n;
 // cov_mode 0, 1 or 2, plus PARTIAL to keep a singular warm basis in part. `ext` (not
-// null): M, q, lo, hi are extend's problem of ext's; the same run, its equilibration made
-// on the rows and columns that are not another's copy (equilibrate_extended: the same scales).
+// null): M, q, lo, hi are extend's problem of ext's, made from data that front's prologue
+// passed (not checked again); the same run, its equilibration made on the rows and
+// columns that are not another's copy (equilibrate_extended: the same scales).
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
                   double tie_tol, double tol, double* buf, idx* final,
