@@ -931,60 +931,9 @@ void extend(Mat<const double> M, const double* q, const double* lo, const double
     extend_rows(M, q, lo, hi, findex, nf, work_out, F, nullptr);
 }
 
-namespace {
-
-// equilibrate(M, qs, R, C, work) of extend's problem (M N x N, ext's n, nf, F), made on its
-// m = n + nf rows and columns that are not a copy of another: the caller's and the λ's.
-// β-'s row n + c is, entry by entry in absolute value, the friction row F_c's (M's row
-// negated, the friction columns' entries as they were, 1 at λ_c in both), and its column
-// the column F_c's (the same, and -1 in λ_c's row in both), and |qs[n + c]| = |qs[F_c]|
-// (extend's q negated, and the start point's shift by rows negated, exactly: the λ's and
-// β's start at 0). equilibrate's sweeps take maxima of |R_i M_ij C_j| (exact, in any
-// order) over rows and columns from R = C = 1, so a copy keeps its original's R and C at
-// every sweep and changes none of the maxima, the balance tests or the sweeps' count:
-// the scales of the m x m matrix, copied to the copies, are equilibrate's of the N x N
-// bit for bit. Below 64 rows only (from 64 the sweeps look at the deadline, by size).
-bool equilibrate_extended(Mat<const double> M, const double* qs, double* R, double* C,
-                          const Extended& ext) {
-    idx n = ext.n, nf = ext.nf, N = M.rows, m = n + nf;
-    if (N >= 64 || N != n + 2 * nf) return false;
-    thread_local std::vector<double> scratch;
-    idx len = m * m + 5 * m;
-    if (static_cast<idx>(scratch.size()) < len) scratch.resize(static_cast<std::size_t>(len));
-    double* A = scratch.data();
-    double* qr = A + m * m;
-    double* Rr = qr + m;
-    double* Cr = Rr + m;
-    double* work = Cr + m;  // (2m)
-    // the rows 0..n-1 and n + nf + c (λ_c) of M, at the columns 0..n-1 and n + nf + d
-    for (idx i = 0; i < m; ++i) {
-        idx r = i < n ? i : i + nf;
-        const double* row = M.row(r);
-        double* out = A + i * m;
-        for (idx j = 0; j < n; ++j) out[j] = row[j];
-        for (idx d = 0; d < nf; ++d) out[n + d] = row[n + nf + d];
-        qr[i] = qs[r];
-    }
-    equilibrate(Mat<const double>(A, m, m), qr, Rr, Cr, work);
-    for (idx j = 0; j < n; ++j) {
-        R[j] = Rr[j];
-        C[j] = Cr[j];
-    }
-    for (idx c = 0; c < nf; ++c) {
-        idx f = ext.F[c];
-        R[n + c] = Rr[f];
-        C[n + c] = Cr[f];
-        R[n + nf + c] = Rr[n + c];
-        C[n + nf + c] = Cr[n + c];
-    }
-    return true;
-}
-
-}  // namespace
-
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
-                  double tie_tol, double tol, double* buf, idx* final, const Extended* ext) {
+                  double tie_tol, double tol, double* buf, idx* final, bool checked) {
     idx n = M.rows;
     BoxLayout L{n};
     double *z = buf + L.z(), *w = buf + L.w(), *d = buf + L.covering();
@@ -992,9 +941,9 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     const std::uint8_t* warm_basic = warm;
     const std::uint8_t* warm_hi = warm + n;
     SolveResult out;
-    // (extend's problem is made of data front's prologue passed: M's entries, their
-    // negations, +-1 and the finite mu; q's negated; bounds 0, INF or the caller's)
-    int code = ext ? 0 : prologue(M, q, lo, hi);
+    // (`checked`: extend's problem, made of data front's prologue passed: M's entries,
+    // their negations, +-1 and the finite mu; q's negated; bounds 0, INF or the caller's)
+    int code = checked ? 0 : prologue(M, q, lo, hi);
     if (code < 0) {
         out.code = code;
         return out;
@@ -1031,8 +980,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
             z_basic[i] = 0;
         }
         for (idx i = 0; i < n + 1; ++i) ray[i] = 0.0;
-        if (!(ext && equilibrate_extended(M, qs, Rs, Cs, *ext)))
-            equilibrate(M, qs, Rs, Cs, W.eq_work());
+        equilibrate(M, qs, Rs, Cs, W.eq_work());
         double residual;
         bool ok = box_check(M, q, lo, hi, z, tol, w, Rs, 0, residual);
         idx k = 0;
@@ -1047,8 +995,7 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
         out.m = k;
         return out;
     }
-    if (!(ext && equilibrate_extended(M, qs, Rs, Cs, *ext)))
-        equilibrate(M, qs, Rs, Cs, W.eq_work());
+    equilibrate(M, qs, Rs, Cs, W.eq_work());
     // The tableau [R M C | cov] and the values (scaled): w = R (M z + q), z' = z / C; the
     // complementary basis of the w's; the z's wanted basic; rmax; d and ray_lab zeroed.
     scaled_rows(M, Rs, Cs, T);

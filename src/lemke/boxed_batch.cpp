@@ -116,9 +116,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     }
     double* ext = buf;  // the run's BoxLayout(N)
     idx* final = ints + FL.final();
-    // (extend's problem: solve's equilibration on its rows that are not copies, the same scales)
-    Extended ex{n, nf, ints + FL.friction_rows()};
-    const Extended* xp = nf > 0 ? &ex : nullptr;
+    bool xp = nf > 0;  // (extend's problem: its data passed front's prologue)
     idx pivots = 0, rec = 0;
     // A run that ended solved and checked: with a friction index, the check on the
     // caller's data decides (front's SOLVED_RUN phase; failed: the general path).
