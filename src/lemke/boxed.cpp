@@ -17,11 +17,17 @@ void BoxedWork::layout(idx size) {
     ld = (n + lanes) / lanes * lanes;
     block = block_size(n);
     off = 0;
-    f.resize(static_cast<std::size_t>(f_length() + 7));
+    // grown, never shrunk: a resize down then up again (islands of varying sizes on one
+    // thread) zero-filled the regrown part on every call, which no field reads (solve
+    // writes each field before reading it; the flags are zeroed there)
+    auto grow = [](auto& v, idx len) {
+        if (static_cast<idx>(v.size()) < len) v.resize(static_cast<std::size_t>(len));
+    };
+    grow(f, f_length() + 7);
     auto at = reinterpret_cast<std::uintptr_t>(f.data());
     off = static_cast<idx>((64 - at % 64) % 64 / sizeof(double));
-    i.resize(static_cast<std::size_t>(i_length()));
-    flags.resize(static_cast<std::size_t>(flags_length()));
+    grow(i, i_length());
+    grow(flags, flags_length());
 }
 
 double* BoxedWork::check_area(idx len) {
@@ -927,7 +933,7 @@ void extend(Mat<const double> M, const double* q, const double* lo, const double
 
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
-                  double tie_tol, double tol, double* buf, idx* final) {
+                  double tie_tol, double tol, double* buf, idx* final, bool checked) {
     idx n = M.rows;
     BoxLayout L{n};
     double *z = buf + L.z(), *w = buf + L.w(), *d = buf + L.covering();
@@ -935,14 +941,16 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
     const std::uint8_t* warm_basic = warm;
     const std::uint8_t* warm_hi = warm + n;
     SolveResult out;
-    int code = prologue(M, q, lo, hi);
+    // (`checked`: extend's problem, made of data front's prologue passed: M's entries,
+    // their negations, +-1 and the finite mu; q's negated; bounds 0, INF or the caller's)
+    int code = checked ? 0 : prologue(M, q, lo, hi);
     if (code < 0) {
         out.code = code;
         return out;
     }
     BoxedWork& W = work();
     W.layout(n);
-    std::fill(W.flags.begin(), W.flags.end(), std::uint8_t(0));
+    std::fill(W.flags.begin(), W.flags.begin() + W.flags_length(), std::uint8_t(0));
     std::uint8_t *z_basic = W.z_basic(), *z_hi = W.z_hi(), *is_basic = W.is_basic();
     std::uint8_t* want = W.want();
     double *qs = W.qs(), *los = W.los(), *his = W.his(), *s0 = W.s0(), *z0s = W.z0s();

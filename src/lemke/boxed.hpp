@@ -230,10 +230,12 @@ void extend(Mat<const double> M, const double* q, const double* lo, const double
             const idx* findex, idx nf, double* work, idx* F);
 
 // One run, checked (boxed.solve): warm 2n flags, buf BoxLayout(n).length(), final n;
-// cov_mode 0, 1 or 2, plus PARTIAL to keep a singular warm basis in part.
+// cov_mode 0, 1 or 2, plus PARTIAL to keep a singular warm basis in part. `checked`: M, q,
+// lo, hi are extend's problem, made from data that front's prologue passed (not checked
+// again).
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
                   const std::uint8_t* warm, int cov_mode, idx max_pivots, double pivot_tol,
-                  double tie_tol, double tol, double* buf, idx* final);
+                  double tie_tol, double tol, double* buf, idx* final, bool checked = false);
 
 // The kernel part of solve_blcp with a friction index and/or a warm start (boxed.front):
 // returns the code, residual in `residual`. findex_len is 0 or n (the binding checks);

@@ -116,6 +116,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     }
     double* ext = buf;  // the run's BoxLayout(N)
     idx* final = ints + FL.final();
+    bool xp = nf > 0;  // (extend's problem: its data passed front's prologue)
     idx pivots = 0, rec = 0;
     // A run that ended solved and checked: with a friction index, the check on the
     // caller's data decides (front's SOLVED_RUN phase; failed: the general path).
@@ -134,7 +135,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     };
     SolveResult r;
     if (has_warm) {
-        r = solve(A, qa, la, ha, warm, 1 | PARTIAL, limit, pt, tt, tol, ext, final);
+        r = solve(A, qa, la, ha, warm, 1 | PARTIAL, limit, pt, tt, tol, ext, final, xp);
         pivots = std::max<idx>(r.pivots, 0);
         bool ok = r.code == 0 && r.ok;
         residual = r.residual;
@@ -168,7 +169,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
                 for (idx v : vars) warm2[v] = warm2[N + v] = 0;
             }
             r = solve(A, qa, la, ha, warm2, 1 | PARTIAL, std::max<idx>(0, limit - pivots), pt, tt,
-                      tol, ext, final);
+                      tol, ext, final, xp);
             pivots += std::max<idx>(r.pivots, 0);
             if (r.code == 0 && r.ok) return solved(r, pivots, 1, r.residual, true);
             rec = 2;
@@ -176,7 +177,8 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     }
     std::uint8_t* cold = sized(S.cold, 2 * N);
     std::fill(cold, cold + 2 * N, std::uint8_t(0));
-    r = solve(A, qa, la, ha, cold, 0, std::max<idx>(0, limit - pivots), pt, tt, tol, ext, final);
+    r = solve(A, qa, la, ha, cold, 0, std::max<idx>(0, limit - pivots), pt, tt, tol, ext, final,
+              xp);
     pivots += std::max<idx>(r.pivots, 0);
     if (!(r.code == 0 && r.ok)) {
         if (r.code == RAY_TERMINATION &&
@@ -187,7 +189,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
         for (int t = 0; t < 2; ++t) {
             idx left = limit - pivots;
             if (left <= 0) break;
-            r = solve(A, qa, la, ha, cold, modes[t], left, pt, ties[t], tol, ext, final);
+            r = solve(A, qa, la, ha, cold, modes[t], left, pt, ties[t], tol, ext, final, xp);
             pivots += std::max<idx>(r.pivots, 0);
             ++rec;
             if (r.code == 0 && r.ok) break;
