@@ -1643,10 +1643,12 @@ struct Group {
         if (finite && lstart_j > s) return s + ((lstart_j - s) & ~static_cast<idx>(7));
         return s;
     }
-    LEMKE_ALWAYS_INLINE void finish(idx j, const double* d, double inv) {
+    // (track: whether the flag can matter, some row of L starting right of s; it cannot
+    // for a dense L, which then skips the tests)
+    LEMKE_ALWAYS_INLINE void finish(idx j, const double* d, double inv, bool track) {
         for (int q = 0; q < 4; ++q) r[q][j] = (r[q][j] - d[q]) * inv;
-        if (!(std::isfinite(r[0][j]) && std::isfinite(r[1][j]) && std::isfinite(r[2][j]) &&
-              std::isfinite(r[3][j])))
+        if (track && !(std::isfinite(r[0][j]) && std::isfinite(r[1][j]) &&
+                       std::isfinite(r[2][j]) && std::isfinite(r[3][j])))
             finite = false;
     }
 };
@@ -1655,10 +1657,13 @@ LEMKE_CLONES
 void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
     idx n = L.rows, k = R.rows;
     idx i = 0;
+    idx last = 0;  // the rightmost start of L's rows
+    for (idx j = 0; j < n; ++j) last = std::max(last, lstart[j]);
     for (; i + 8 <= k; i += 8) {
         Group a, b;
         a.begin(R, i, n);
         b.begin(R, i + 4, n);
+        bool ta = last > a.s, tb = last > b.s;
         for (idx j = std::min(a.s, b.s); j < n; ++j) {
             const double* Lj = L.row(j);
             double inv = 1.0 / Lj[j];
@@ -1673,8 +1678,8 @@ void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
                 if (on_a) dot4_lanes(Lj + ba, a.r[0] + ba, a.r[1] + ba, a.r[2] + ba, a.r[3] + ba, j - ba, d);
                 if (on_b) dot4_lanes(Lj + bb, b.r[0] + bb, b.r[1] + bb, b.r[2] + bb, b.r[3] + bb, j - bb, d + 4);
             }
-            if (on_a) a.finish(j, d, inv);
-            if (on_b) b.finish(j, d + 4, inv);
+            if (on_a) a.finish(j, d, inv, ta);
+            if (on_b) b.finish(j, d + 4, inv, tb);
         }
     }
     for (; i + 4 <= k; i += 4) {
@@ -1685,7 +1690,7 @@ void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
             idx ba = a.from(j, lstart[j]);
             double d[4];
             dot4_lanes(Lj + ba, a.r[0] + ba, a.r[1] + ba, a.r[2] + ba, a.r[3] + ba, j - ba, d);
-            a.finish(j, d, 1.0 / Lj[j]);
+            a.finish(j, d, 1.0 / Lj[j], last > a.s);
         }
     }
     for (; i < k; ++i) forward(L, R.row(i), lstart);
@@ -1727,6 +1732,33 @@ double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     return p ? worst : INF;
 }
 
+// all_finite(x, k) and absmax(x, k) (into top) in one pass over x: the same verdict and the
+// same maximum (a sum of 0 x_j is 0 or NaN, a maximum exact, in any order; top meaningless
+// when x is not finite, as absmax's).  screen read P twice before symmetrize's pass:
+// 5 us of a first solve at n = 100, P coming from the outer caches.
+LEMKE_ALWAYS_INLINE bool finite_top(const double* x, idx k, double& top) {
+    idx j = 0;
+    double a = 0.0, m = 0.0;
+#ifdef LEMKE_SIMD
+    simd::v8d va = simd::splat8(0.0), vm = va;
+    for (; j + 8 <= k; j += 8) {
+        simd::v8d v = simd::load8(x + j);
+        va += simd::splat8(0.0) * v;
+        vm = simd::max8(vm, simd::abs8(v));
+    }
+    for (int l = 0; l < 8; ++l) {
+        a += va[l];
+        m = pmax(m, vm[l]);
+    }
+#endif
+    for (; j < k; ++j) {
+        a += 0.0 * x[j];
+        m = pmax(m, std::fabs(x[j]));
+    }
+    top = m;
+    return a == 0.0;
+}
+
 // (cloned: absmax's and all_finite's eight-lane vectors, lowered to SSE2 by the default
 // build, went through the stack: 30 us of a 200 us solve at n = 100)
 LEMKE_CLONES
@@ -1734,8 +1766,8 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     idx n = dt.n();
     Mat<double> Ps(Ps_, n, n);
     bool finite = all_finite(dt.q, n);
-    finite &= all_finite(dt.P.p, n * n);
-    double top = absmax(dt.P.p, n * n);
+    double top = 0.0;
+    finite &= finite_top(dt.P.p, n * n, top);
     double asym = symmetrize(dt.P, Ps);
     idx m0 = dt.m0();
     finite &= all_finite(dt.G.p, m0 * n);
@@ -1775,8 +1807,18 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
     thread_local std::vector<idx> start_v;
     panel.resize(static_cast<std::size_t>(4 * n));
     start_v.resize(static_cast<std::size_t>(n + 1));
-    idx* start = start_v.data();  // (each panel's rows' starts found as it begins)
-    bool finite = true;  // every entry of L computed so far (skipping allowed)
+    idx* start = start_v.data();
+    bool track = false;  // whether some row starts with zeros (else the flag below cannot matter)
+    for (idx i = 0; i < n; ++i) {
+        const double* Pi = P.row(i);
+        idx s = 0;
+        while (s < i && Pi[s] == 0.0) ++s;
+        start[i] = s;
+        if (s > 0) track = true;
+    }
+    // every entry of L computed so far (skipping allowed); with no leading zeros anywhere
+    // neither the skips nor the copies below ever apply, and the tests are left out
+    bool finite = true;
     // the first lane block a dot of length len may start at, both rows' leading zeros
     // (from a and b) skipped: a multiple of 8, at most len
     auto from = [&](idx a, idx b, idx len) -> idx {
@@ -1790,12 +1832,6 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
         // (the thread's deadline, every 32 rows: false then, and the callers ask
         // deadline_passed() before they read false as "not definite")
         if ((i0 & 31) == 28 && deadline_passed() >= 0) return false;
-        for (idx i = i0; i < i0 + c; ++i) {
-            const double* Pi = P.row(i);
-            idx s = 0;
-            while (s < i && Pi[s] == 0.0) ++s;
-            start[i] = s;
-        }
         if (c == 4) {
             const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
                          *P3 = P.row(i0 + 3);
@@ -1816,8 +1852,8 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
                 R[1][j] = (P1[j] - d[1]) / ljj;
                 R[2][j] = (P2[j] - d[2]) / ljj;
                 R[3][j] = (P3[j] - d[3]) / ljj;
-                if (!(std::isfinite(R[0][j]) && std::isfinite(R[1][j]) && std::isfinite(R[2][j]) &&
-                      std::isfinite(R[3][j])))
+                if (track && !(std::isfinite(R[0][j]) && std::isfinite(R[1][j]) &&
+                               std::isfinite(R[2][j]) && std::isfinite(R[3][j])))
                     finite = false;
             }
         } else {
@@ -1831,7 +1867,7 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
                     }
                     idx b = from(start[i], start[j], j);
                     R[q][j] = (P(i, j) - dot_lanes(R[q] + b, Lj + b, j - b)) / Lj[j];
-                    if (!std::isfinite(R[q][j])) finite = false;
+                    if (track && !std::isfinite(R[q][j])) finite = false;
                 }
             }
         }
@@ -1845,7 +1881,7 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
                 }
                 idx b = from(start[i], start[j], j);
                 Ri[j] = (P(i, j) - dot_lanes(Ri + b, R[j - i0] + b, j - b)) / R[j - i0][j];
-                if (!std::isfinite(Ri[j])) finite = false;
+                if (track && !std::isfinite(Ri[j])) finite = false;
             }
             idx b = from(start[i], 0, i);
             double d = diag(i) - dot_lanes(Ri + b, Ri + b, i - b);
@@ -1853,7 +1889,7 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
             for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
             if (!(d > floor)) return false;
             Li[i] = Ri[i] = std::sqrt(d);
-            if (!std::isfinite(Li[i])) finite = false;
+            if (track && !std::isfinite(Li[i])) finite = false;
             for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
         }
     }
