@@ -502,6 +502,36 @@ void dot2_rows(Mat<const double> M, const double* x, const double* rhs, bool eve
             size[q] = std::fabs(c);
             norm[q] = 0.0;
         }
+#ifdef LEMKE_SIMD
+        // (the four rows' lanes of one vector: each lane's operations are acc2's and dot2's,
+        // the fused multiply-add std::fma's, rounded once, lane by lane)
+        using simd::v4d;
+        auto abs4 = [](v4d v) {
+            const std::int64_t m = 0x7FFFFFFFFFFFFFFFLL;
+            return reinterpret_cast<v4d>(reinterpret_cast<simd::v4l>(v) & simd::v4l{m, m, m, m});
+        };
+        v4d vs = {s[0], s[1], s[2], s[3]}, ve = {0.0, 0.0, 0.0, 0.0};
+        v4d vz = {size[0], size[1], size[2], size[3]}, vn = ve;
+        for (idx j = 0; j < n; ++j) {
+            v4d a = {r[0][j], r[1][j], r[2][j], r[3][j]};
+            v4d b = simd::splat4(x[j]);
+            v4d p = a * b, e;
+            for (int q = 0; q < 4; ++q) e[q] = std::fma(a[q], b[q], -p[q]);
+            v4d t = vs + p;
+            v4d z = t - vs;
+            v4d f = (vs - (t - z)) + (p - z);
+            vs = t;
+            ve = ve + (e + f);
+            vz += abs4(p);
+            vn += abs4(a);
+        }
+        for (int q = 0; q < 4; ++q) {
+            s[q] = vs[q];
+            err[q] = ve[q];
+            size[q] = vz[q];
+            norm[q] = vn[q];
+        }
+#else
         for (idx j = 0; j < n; ++j) {
             double xj = x[j];
             for (int q = 0; q < 4; ++q) {
@@ -510,6 +540,7 @@ void dot2_rows(Mat<const double> M, const double* x, const double* rhs, bool eve
                 norm[q] += std::fabs(r[q][j]);
             }
         }
+#endif
         for (int q = 0; q < 4; ++q) out[rows[static_cast<std::size_t>(i + q)]] = {s[q] + err[q], size[q], norm[q]};
     }
     for (; i < k; ++i) {
