@@ -196,6 +196,13 @@ NB_MODULE(_core, m) {
           "basic"_a.none());
     m.def("unrevised_solve", &unrevised_solve, "M"_a, "q"_a, "d"_a, "R"_a, "C"_a, "z_start"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "x_out"_a, "ray_out"_a, "z_basic_out"_a);
+    // the thread's rule for a ray in the recovery runs (lemke::stop_at_ray); returns the rule
+    // it replaces
+    m.def("stop_at_ray", [](bool on) {
+        bool old = lemke::stop_at_ray();
+        lemke::stop_at_ray() = on;
+        return old;
+    }, "on"_a);
     m.def("solve_one", &solve_one, "method"_a, "M"_a, "q"_a, "d"_a.none(), "beta"_a.none(),
           "k"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a,
           "basic"_a.none());

@@ -312,3 +312,15 @@ def test_flat_directions_counted_by_the_factor(gram_calls):
     res = lemke.solve_qp(*two)
     assert gram_calls == [QP_OK]
     check_solved(two, res)
+
+@pytest.mark.parametrize("name, at_most", [("QSCORPIO", 600), ("QBEACONF", 250)])
+def test_ladder_step_ends_at_a_recovery_ray(name, at_most):
+    """The KKT-MLCP's first ladder step ends its recovery runs at their first ray
+    (_core.stop_at_ray, set for a step with another after it): on these two that ray fails on
+    the caller's data and M_clean's step solves, as it did after three more recovery runs
+    (1065 and 388 pivots in all before); the rule is the thread's own again afterwards."""
+    problem, _ = load(DATA / f"{name}.mat")
+    res = lemke.solve_qp(*problem)
+    check_solved(problem, res)
+    assert res.pivots <= at_most
+    assert _core.stop_at_ray(False) is False

@@ -165,8 +165,15 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
         lcp_ws = WarmStart._trusted(m, tuple(nz(red.to_reduced(vb)).tolist()))
     pivots = 0
     outcomes = []
-    for _, M, o in _ladder(red, opts):
-        res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws, opts.tol)
+    steps = list(_ladder(red, opts))
+    for i, (_, M, o) in enumerate(steps):
+        # (a step with another after it ends its recovery runs at their first ray, which
+        # _evaluate checks on the caller's data: _core.stop_at_ray; the last step tries them all)
+        old = _core.stop_at_ray(i + 1 < len(steps))
+        try:
+            res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws, opts.tol)
+        finally:
+            _core.stop_at_ray(old)
         pivots += p
         outcomes.append((M, o, res, out))
         if out[2] or res.status == Status.MAX_PIVOTS or res.status in STOPPED:

@@ -248,32 +248,11 @@ void householder_apply(Mat<const double> V, const double* beta, idx k, double* x
 inline __attribute__((always_inline)) void dot4_lanes(const double* a, const double* r0, const double* r1, const double* r2,
           const double* r3, idx len, double* out) {
 #ifdef LEMKE_SIMD
-    // (on eight-lane vectors, four independent sums; written on scalar lanes GCC vectorized
-    // the loop across the four rows, with shuffles, 10-20x slower at n = 300)
-    using simd::load8;
-    simd::v8d v0 = simd::splat8(0.0), v1 = v0, v2 = v0, v3 = v0;
-    idx j = 0;
-    for (; j + 8 <= len; j += 8) {
-        simd::v8d x = load8(a + j);
-        v0 += x * load8(r0 + j);
-        v1 += x * load8(r1 + j);
-        v2 += x * load8(r2 + j);
-        v3 += x * load8(r3 + j);
-    }
-    double s[4][8];
-    simd::store8(s[0], v0);
-    simd::store8(s[1], v1);
-    simd::store8(s[2], v2);
-    simd::store8(s[3], v3);
-    for (; j < len; ++j) {
-        s[0][0] += a[j] * r0[j];
-        s[1][0] += a[j] * r1[j];
-        s[2][0] += a[j] * r2[j];
-        s[3][0] += a[j] * r3[j];
-    }
-    for (int q = 0; q < 4; ++q)
-        out[q] = ((s[q][0] + s[q][1]) + (s[q][2] + s[q][3])) +
-                 ((s[q][4] + s[q][5]) + (s[q][6] + s[q][7]));
+    // (dot_lanes4 with a as its y: a product's bits do not depend on its operands' order, and
+    // its pairwise sums are dot's, taken by shuffles (simd::hsum4); the four rows' sums taken
+    // lane by lane from the stack were a third of forward_rows' time at n = 100)
+    const double* r[4] = {r0, r1, r2, r3};
+    dot_lanes4(r, a, len, out);
 #else
     out[0] = dot_lanes(a, r0, len);
     out[1] = dot_lanes(a, r1, len);
@@ -282,30 +261,112 @@ inline __attribute__((always_inline)) void dot4_lanes(const double* a, const dou
 #endif
 }
 
-// The reflectors 0..p-1 (householder_apply's, in that order) applied to every row of X:
-// four rows at a time, each reflector's four sums in one pass (dot4_lanes), the rows in
-// cache through all p reflectors. Each row gets householder_apply's operations exactly.
-LEMKE_CLONES
-void householder_rows(Mat<const double> V, const double* beta, idx p, Mat<double> X) {
+#ifdef LEMKE_SIMD
+// dot_lanes4 or dot_lanes8 of Q rows with one y.
+template <int Q>
+LEMKE_ALWAYS_INLINE void dot_lanes_q(const double* const* x, const double* y, idx k, double* out) {
+    if constexpr (Q == 8) dot_lanes8(x, y, k, out);
+    else dot_lanes4(x, y, k, out);
+}
+
+// The reflectors k0..k1-1 applied to Q rows r[q] (each row householder_apply's operations
+// exactly, reflector by reflector), one pass over the rows per reflector: the update of
+// reflector k (r_t -= s v_t, elementwise) and the sums of reflector k + 1 (dot's lanes from
+// column k + 1, the tail into lane 0, dot's pairwise sums) in the same loop, so each row is
+// loaded and stored once a reflector, not loaded again for the next one's sums.  Where a
+// row's s is 0 (householder_apply leaves it as it is then: not even r - 0 v) the update and
+// the sums go one after the other, as before.
+template <int Q>
+LEMKE_ALWAYS_INLINE void reflect_rows(Mat<const double> V, const double* beta, idx k0, idx k1,
+                                      double* const* r) {
     idx n = V.cols;
-    idx i = 0;
-    for (; i + 4 <= X.rows; i += 4) {
-        double* r[4] = {X.row(i), X.row(i + 1), X.row(i + 2), X.row(i + 3)};
-        for (idx k = 0; k < p; ++k) {
-            const double* v = V.row(k) + k;
-            double d[4];
-            dot4_lanes(v, r[0] + k, r[1] + k, r[2] + k, r[3] + k, n - k, d);
-            for (int q = 0; q < 4; ++q) {
-                double s = beta[k] * d[q];
+    if (k0 >= k1) return;
+    double d[Q];
+    const double* x[Q];
+    for (int q = 0; q < Q; ++q) x[q] = r[q] + k0;
+    dot_lanes_q<Q>(x, V.row(k0) + k0, n - k0, d);
+    for (idx k = k0; k < k1; ++k) {
+        const double* v = V.row(k) + k;
+        double s[Q];
+        bool fused = k + 1 < k1;
+        for (int q = 0; q < Q; ++q) {
+            s[q] = beta[k] * d[q];
+            if (s[q] == 0.0) fused = false;
+        }
+        if (!fused) {
+            for (int q = 0; q < Q; ++q) {
                 double* rq = r[q] + k;
-                if (s != 0.0)
-                    for (idx t = 0; t < n - k; ++t) rq[t] -= s * v[t];
+                if (s[q] != 0.0)
+                    for (idx t = 0; t < n - k; ++t) rq[t] -= s[q] * v[t];
+            }
+            if (k + 1 < k1) {
+                for (int q = 0; q < Q; ++q) x[q] = r[q] + k + 1;
+                dot_lanes_q<Q>(x, V.row(k + 1) + k + 1, n - k - 1, d);
+            }
+            continue;
+        }
+        for (int q = 0; q < Q; ++q) r[q][k] -= s[q] * v[0];
+        const double* vk = v + 1;                  // reflector k from column k + 1
+        const double* w = V.row(k + 1) + k + 1;    // reflector k + 1
+        idx len = n - k - 1;
+        simd::v8d acc[Q], sv[Q];
+        for (int q = 0; q < Q; ++q) {
+            acc[q] = simd::splat8(0.0);
+            sv[q] = simd::splat8(s[q]);
+        }
+        idx j = 0;
+        for (; j + 8 <= len; j += 8) {
+            simd::v8d a = simd::load8(vk + j), b = simd::load8(w + j);
+            for (int q = 0; q < Q; ++q) {
+                double* p = r[q] + k + 1 + j;
+                simd::v8d y = simd::load8(p) - sv[q] * a;
+                simd::store8(p, y);
+                acc[q] += y * b;
             }
         }
+        double a0[Q];
+        for (int q = 0; q < Q; ++q) a0[q] = acc[q][0];
+        for (; j < len; ++j) {
+            for (int q = 0; q < Q; ++q) {
+                double* p = r[q] + k + 1 + j;
+                double y = *p - s[q] * vk[j];
+                *p = y;
+                a0[q] += y * w[j];
+            }
+        }
+        if (len < 8) {  // (lane 0 alone: see dot_and_size_lanes)
+            for (int q = 0; q < Q; ++q) d[q] = a0[q];
+            continue;
+        }
+        for (int q = 0; q < Q; ++q) acc[q][0] = a0[q];
+        if constexpr (Q == 8) simd::hsum8(acc[0], acc[1], acc[2], acc[3], acc[4], acc[5], acc[6], acc[7], d);
+        else simd::hsum4(acc[0], acc[1], acc[2], acc[3], d);
     }
+}
+#endif
+
+// The reflectors k0..k1-1 (householder_apply's, in that order) applied to every row of X:
+// eight rows at a time, then four (reflect_rows: each reflector's sums in one pass, the rows
+// in cache through all the reflectors), the rest one by one. Each row gets householder_apply's
+// operations exactly.
+LEMKE_CLONES
+void householder_range(Mat<const double> V, const double* beta, idx k0, idx k1, Mat<double> X) {
+    idx n = V.cols;
+    idx i = 0;
+#ifdef LEMKE_SIMD
+    for (; i + 8 <= X.rows; i += 8) {
+        double* r[8];
+        for (int q = 0; q < 8; ++q) r[q] = X.row(i + q);
+        reflect_rows<8>(V, beta, k0, k1, r);
+    }
+    for (; i + 4 <= X.rows; i += 4) {
+        double* r[4] = {X.row(i), X.row(i + 1), X.row(i + 2), X.row(i + 3)};
+        reflect_rows<4>(V, beta, k0, k1, r);
+    }
+#endif
     for (; i < X.rows; ++i) {
         double* x = X.row(i);
-        for (idx k = 0; k < p; ++k) {
+        for (idx k = k0; k < k1; ++k) {
             const double* v = V.row(k) + k;
             double* rr = x + k;
             double s = beta[k] * dot_lanes(v, rr, n - k);
@@ -313,6 +374,11 @@ void householder_rows(Mat<const double> V, const double* beta, idx p, Mat<double
                 for (idx t = 0; t < n - k; ++t) rr[t] -= s * v[t];
         }
     }
+}
+
+// The reflectors 0..p-1 applied to every row of X (householder_range).
+void householder_rows(Mat<const double> V, const double* beta, idx p, Mat<double> X) {
+    householder_range(V, beta, 0, p, X);
 }
 
 // The multiplier matrix M = F2 F2' (F2 = C[:, p:]): M[i, j] = M[j, i] = dot(F2i, F2j) for
@@ -411,6 +477,81 @@ Dot2 dot2(const double* x, const double* y, idx n, double c) {
         norm += std::fabs(x[j]);
     }
     return {s + err, size, norm};
+}
+
+// dot2 of every row of M with x, c_i = -rhs[i] (with every_row false only the rows where
+// rhs[i] < INF; the others are left as they are), into out: four rows at a time, each row's chains of dependent double-double
+// steps in dot2's order (the same bits), the four interleaved (one row's chain is latency-bound:
+// the check's rows of A and G were a tenth of a first solve at n = 100).
+LEMKE_CLONES
+void dot2_rows(Mat<const double> M, const double* x, const double* rhs, bool every_row, Dot2* out) {
+    idx n = M.cols, i = 0;
+    thread_local std::vector<idx> rows;
+    rows.clear();
+    for (idx t = 0; t < M.rows; ++t)
+        if (every_row || rhs[t] < INF) rows.push_back(t);
+    idx k = static_cast<idx>(rows.size());
+    // the rows after the last four first, by dot2: a call after the vector loop left the
+    // vector registers' upper halves dirty on return (GCC takes the call to have cleaned
+    // them, dot2 does not), and every SSE instruction of the caller's next library then
+    // paid for it (daqp 2.5x slower in the same process)
+    for (idx t = k - k % 4; t < k; ++t) {
+        idx row = rows[static_cast<std::size_t>(t)];
+        out[row] = dot2(M.row(row), x, n, -rhs[row]);
+    }
+    k -= k % 4;
+    for (; i + 4 <= k; i += 4) {
+        const double* r[4];
+        double s[4], err[4], size[4], norm[4];
+        for (int q = 0; q < 4; ++q) {
+            r[q] = M.row(rows[static_cast<std::size_t>(i + q)]);
+            double c = -rhs[rows[static_cast<std::size_t>(i + q)]];
+            s[q] = c;
+            err[q] = 0.0;
+            size[q] = std::fabs(c);
+            norm[q] = 0.0;
+        }
+#ifdef LEMKE_SIMD
+        // (the four rows' lanes of one vector: each lane's operations are acc2's and dot2's,
+        // the fused multiply-add std::fma's, rounded once, lane by lane)
+        using simd::v4d;
+        auto abs4 = [](v4d v) {
+            const std::int64_t m = 0x7FFFFFFFFFFFFFFFLL;
+            return reinterpret_cast<v4d>(reinterpret_cast<simd::v4l>(v) & simd::v4l{m, m, m, m});
+        };
+        v4d vs = {s[0], s[1], s[2], s[3]}, ve = {0.0, 0.0, 0.0, 0.0};
+        v4d vz = {size[0], size[1], size[2], size[3]}, vn = ve;
+        for (idx j = 0; j < n; ++j) {
+            v4d a = {r[0][j], r[1][j], r[2][j], r[3][j]};
+            v4d b = simd::splat4(x[j]);
+            v4d p = a * b, e;
+            for (int q = 0; q < 4; ++q) e[q] = std::fma(a[q], b[q], -p[q]);
+            v4d t = vs + p;
+            v4d z = t - vs;
+            v4d f = (vs - (t - z)) + (p - z);
+            vs = t;
+            ve = ve + (e + f);
+            vz += abs4(p);
+            vn += abs4(a);
+        }
+        for (int q = 0; q < 4; ++q) {
+            s[q] = vs[q];
+            err[q] = ve[q];
+            size[q] = vz[q];
+            norm[q] = vn[q];
+        }
+#else
+        for (idx j = 0; j < n; ++j) {
+            double xj = x[j];
+            for (int q = 0; q < 4; ++q) {
+                acc2(s[q], err[q], r[q][j], xj);
+                size[q] += std::fabs(r[q][j] * xj);
+                norm[q] += std::fabs(r[q][j]);
+            }
+        }
+#endif
+        for (int q = 0; q < 4; ++q) out[rows[static_cast<std::size_t>(i + q)]] = {s[q] + err[q], size[q], norm[q]};
+    }
 }
 
 // One term a x of axpy2 into (s, err, size).
@@ -1210,18 +1351,23 @@ bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y
     }
     double floor = f * x_top;
     double primal = 0.0;
+    // (the dense rows' dot2 four at a time first: the same sums, the same bits)
+    thread_local std::vector<Dot2> rd;
+    rd.resize(static_cast<std::size_t>(std::max(dt.p0(), dt.m0())));
+    if (sA == nullptr) dot2_rows(dt.A, x, dt.b, true, rd.data());
     for (idx i = 0; i < dt.p0(); ++i) {
-        Dot2 d = row_dot2(dt.A, sA, i, x, -dt.b[i]);
+        Dot2 d = sA == nullptr ? rd[static_cast<std::size_t>(i)] : row_dot2(dt.A, sA, i, x, -dt.b[i]);
         primal = pmax(primal, std::fabs(d.sum));
         acc2(gap_hi, gap_lo, dt.b[i], y[i]);
         if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
     }
+    if (sG == nullptr) dot2_rows(dt.G, x, dt.h, false, rd.data());
     for (idx i = 0; i < dt.m0(); ++i) {
         if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
             if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
             continue;
         }
-        Dot2 d = row_dot2(dt.G, sG, i, x, -dt.h[i]);
+        Dot2 d = sG == nullptr ? rd[static_cast<std::size_t>(i)] : row_dot2(dt.G, sG, i, x, -dt.h[i]);
         double r = d.sum;
         double sz = t * d.size + floor * d.norm;
         primal = pmax(primal, r);
@@ -1511,31 +1657,77 @@ void dot4(const double* a, const double* r0, const double* r1, const double* r2,
 // the whole blocks of eight (counted from s) left of it while the rows' entries are
 // finite: each term skipped is +-0, added to a lane still at +0, so the sums keep their
 // bits (a diagonal L: O(n) per row instead of O(n^2)).
+//
+// Two such groups of four go through the columns together (Group: each its own s, lane
+// offset and finite flag, so each row gets the operations it got alone): a group's column j
+// waits on its column j - 1 (the dot's last term, the pairwise sums, the division), a
+// chain of latencies that a second, independent group fills (forward_rows was a fifth of a
+// first solve at n = 100).  Where both groups' dots start at the same lane block, one
+// dot_lanes8 takes them (L's row loaded once; the same sums, the same bits).
+struct Group {
+    double* r[4];
+    idx s;
+    bool finite;  // the entries written so far (the only ones a skip passes over)
+    void begin(Mat<double> R, idx i, idx n) {
+        for (int q = 0; q < 4; ++q) r[q] = R.row(i + q);
+        s = 0;
+        while (s < n && r[0][s] == 0.0 && r[1][s] == 0.0 && r[2][s] == 0.0 && r[3][s] == 0.0) ++s;
+        finite = true;
+    }
+    // the lane block column j's dot starts at (row j of L starting at lstart_j)
+    idx from(idx j, idx lstart_j) const {
+        if (finite && lstart_j > s) return s + ((lstart_j - s) & ~static_cast<idx>(7));
+        return s;
+    }
+    // (track: whether the flag can matter, some row of L starting right of s; it cannot
+    // for a dense L, which then skips the tests)
+    LEMKE_ALWAYS_INLINE void finish(idx j, const double* d, double inv, bool track) {
+        for (int q = 0; q < 4; ++q) r[q][j] = (r[q][j] - d[q]) * inv;
+        if (track && !(std::isfinite(r[0][j]) && std::isfinite(r[1][j]) &&
+                       std::isfinite(r[2][j]) && std::isfinite(r[3][j])))
+            finite = false;
+    }
+};
+
 LEMKE_CLONES
 void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
     idx n = L.rows, k = R.rows;
     idx i = 0;
-    while (i + 4 <= k) {
-        double *r0 = R.row(i), *r1 = R.row(i + 1), *r2 = R.row(i + 2), *r3 = R.row(i + 3);
-        idx s = 0;
-        while (s < n && r0[s] == 0.0 && r1[s] == 0.0 && r2[s] == 0.0 && r3[s] == 0.0) ++s;
-        bool finite = true;  // the entries written so far (the only ones a skip passes over)
-        for (idx j = s; j < n; ++j) {
+    idx last = 0;  // the rightmost start of L's rows
+    for (idx j = 0; j < n; ++j) last = std::max(last, lstart[j]);
+    for (; i + 8 <= k; i += 8) {
+        Group a, b;
+        a.begin(R, i, n);
+        b.begin(R, i + 4, n);
+        bool ta = last > a.s, tb = last > b.s;
+        for (idx j = std::min(a.s, b.s); j < n; ++j) {
             const double* Lj = L.row(j);
-            idx b = s;
-            if (finite && lstart[j] > s) b = s + ((lstart[j] - s) & ~static_cast<idx>(7));
-            double d[4];
-            dot4_lanes(Lj + b, r0 + b, r1 + b, r2 + b, r3 + b, j - b, d);
             double inv = 1.0 / Lj[j];
-            r0[j] = (r0[j] - d[0]) * inv;
-            r1[j] = (r1[j] - d[1]) * inv;
-            r2[j] = (r2[j] - d[2]) * inv;
-            r3[j] = (r3[j] - d[3]) * inv;
-            if (!(std::isfinite(r0[j]) && std::isfinite(r1[j]) && std::isfinite(r2[j]) &&
-                  std::isfinite(r3[j])))
-                finite = false;
+            bool on_a = j >= a.s, on_b = j >= b.s;
+            idx ba = a.from(j, lstart[j]), bb = b.from(j, lstart[j]);
+            double d[8];
+            if (on_a && on_b && ba == bb) {
+                const double* x[8] = {a.r[0] + ba, a.r[1] + ba, a.r[2] + ba, a.r[3] + ba,
+                                      b.r[0] + ba, b.r[1] + ba, b.r[2] + ba, b.r[3] + ba};
+                dot_lanes8(x, Lj + ba, j - ba, d);
+            } else {
+                if (on_a) dot4_lanes(Lj + ba, a.r[0] + ba, a.r[1] + ba, a.r[2] + ba, a.r[3] + ba, j - ba, d);
+                if (on_b) dot4_lanes(Lj + bb, b.r[0] + bb, b.r[1] + bb, b.r[2] + bb, b.r[3] + bb, j - bb, d + 4);
+            }
+            if (on_a) a.finish(j, d, inv, ta);
+            if (on_b) b.finish(j, d + 4, inv, tb);
         }
-        i += 4;
+    }
+    for (; i + 4 <= k; i += 4) {
+        Group a;
+        a.begin(R, i, n);
+        for (idx j = a.s; j < n; ++j) {
+            const double* Lj = L.row(j);
+            idx ba = a.from(j, lstart[j]);
+            double d[4];
+            dot4_lanes(Lj + ba, a.r[0] + ba, a.r[1] + ba, a.r[2] + ba, a.r[3] + ba, j - ba, d);
+            a.finish(j, d, 1.0 / Lj[j], last > a.s);
+        }
     }
     for (; i < k; ++i) forward(L, R.row(i), lstart);
 }
@@ -1553,9 +1745,11 @@ double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
     double top = 0.0;
     for (idx k = 0; k < p; ++k) top = pmax(top, std::sqrt(dot(WE.row(k), WE.row(k), n)));
     double worst = INF;
+    // (right-looking: reflector k goes to the rows below as soon as it is made, several rows
+    // at a time (householder_range), where row k took reflectors 0..k-1 one after the other,
+    // each waiting on the last; each row gets them in the same order, the same bits)
     for (idx k = 0; k < p; ++k) {
         double* x = WE.row(k);
-        for (idx i = 0; i < k; ++i) householder_apply(V, beta, i, x);
         double sigma = dot(x + k, x + k, n - k);
         double norm = std::sqrt(sigma);
         double* v = V.row(k);
@@ -1568,8 +1762,37 @@ double qr_rows(Mat<double> WE, Mat<double> V, double* beta) {
         x[k] = alpha;
         for (idx t = k + 1; t < n; ++t) x[t] = 0.0;
         worst = pmin(worst, top > 0.0 ? norm / top : 0.0);
+        if (k + 1 < p)
+            householder_range(V, beta, k, k + 1, Mat<double>(WE.row(k + 1), p - k - 1, n, WE.ld));
     }
     return p ? worst : INF;
+}
+
+// all_finite(x, k) and absmax(x, k) (into top) in one pass over x: the same verdict and the
+// same maximum (a sum of 0 x_j is 0 or NaN, a maximum exact, in any order; top meaningless
+// when x is not finite, as absmax's).  screen read P twice before symmetrize's pass:
+// 5 us of a first solve at n = 100, P coming from the outer caches.
+LEMKE_ALWAYS_INLINE bool finite_top(const double* x, idx k, double& top) {
+    idx j = 0;
+    double a = 0.0, m = 0.0;
+#ifdef LEMKE_SIMD
+    simd::v8d va = simd::splat8(0.0), vm = va;
+    for (; j + 8 <= k; j += 8) {
+        simd::v8d v = simd::load8(x + j);
+        va += simd::splat8(0.0) * v;
+        vm = simd::max8(vm, simd::abs8(v));
+    }
+    for (int l = 0; l < 8; ++l) {
+        a += va[l];
+        m = pmax(m, vm[l]);
+    }
+#endif
+    for (; j < k; ++j) {
+        a += 0.0 * x[j];
+        m = pmax(m, std::fabs(x[j]));
+    }
+    top = m;
+    return a == 0.0;
 }
 
 // (cloned: absmax's and all_finite's eight-lane vectors, lowered to SSE2 by the default
@@ -1579,8 +1802,8 @@ bool screen(const Data& dt, double* Ps_, double* lo, double* up) {
     idx n = dt.n();
     Mat<double> Ps(Ps_, n, n);
     bool finite = all_finite(dt.q, n);
-    finite &= all_finite(dt.P.p, n * n);
-    double top = absmax(dt.P.p, n * n);
+    double top = 0.0;
+    finite &= finite_top(dt.P.p, n * n, top);
     double asym = symmetrize(dt.P, Ps);
     idx m0 = dt.m0();
     finite &= all_finite(dt.G.p, m0 * n);
@@ -1620,8 +1843,18 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
     thread_local std::vector<idx> start_v;
     panel.resize(static_cast<std::size_t>(4 * n));
     start_v.resize(static_cast<std::size_t>(n + 1));
-    idx* start = start_v.data();  // (each panel's rows' starts found as it begins)
-    bool finite = true;  // every entry of L computed so far (skipping allowed)
+    idx* start = start_v.data();
+    bool track = false;  // whether some row starts with zeros (else the flag below cannot matter)
+    for (idx i = 0; i < n; ++i) {
+        const double* Pi = P.row(i);
+        idx s = 0;
+        while (s < i && Pi[s] == 0.0) ++s;
+        start[i] = s;
+        if (s > 0) track = true;
+    }
+    // every entry of L computed so far (skipping allowed); with no leading zeros anywhere
+    // neither the skips nor the copies below ever apply, and the tests are left out
+    bool finite = true;
     // the first lane block a dot of length len may start at, both rows' leading zeros
     // (from a and b) skipped: a multiple of 8, at most len
     auto from = [&](idx a, idx b, idx len) -> idx {
@@ -1635,12 +1868,6 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
         // (the thread's deadline, every 32 rows: false then, and the callers ask
         // deadline_passed() before they read false as "not definite")
         if ((i0 & 31) == 28 && deadline_passed() >= 0) return false;
-        for (idx i = i0; i < i0 + c; ++i) {
-            const double* Pi = P.row(i);
-            idx s = 0;
-            while (s < i && Pi[s] == 0.0) ++s;
-            start[i] = s;
-        }
         if (c == 4) {
             const double *P0 = P.row(i0), *P1 = P.row(i0 + 1), *P2 = P.row(i0 + 2),
                          *P3 = P.row(i0 + 3);
@@ -1661,8 +1888,8 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
                 R[1][j] = (P1[j] - d[1]) / ljj;
                 R[2][j] = (P2[j] - d[2]) / ljj;
                 R[3][j] = (P3[j] - d[3]) / ljj;
-                if (!(std::isfinite(R[0][j]) && std::isfinite(R[1][j]) && std::isfinite(R[2][j]) &&
-                      std::isfinite(R[3][j])))
+                if (track && !(std::isfinite(R[0][j]) && std::isfinite(R[1][j]) &&
+                               std::isfinite(R[2][j]) && std::isfinite(R[3][j])))
                     finite = false;
             }
         } else {
@@ -1676,7 +1903,7 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
                     }
                     idx b = from(start[i], start[j], j);
                     R[q][j] = (P(i, j) - dot_lanes(R[q] + b, Lj + b, j - b)) / Lj[j];
-                    if (!std::isfinite(R[q][j])) finite = false;
+                    if (track && !std::isfinite(R[q][j])) finite = false;
                 }
             }
         }
@@ -1690,7 +1917,7 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
                 }
                 idx b = from(start[i], start[j], j);
                 Ri[j] = (P(i, j) - dot_lanes(Ri + b, R[j - i0] + b, j - b)) / R[j - i0][j];
-                if (!std::isfinite(Ri[j])) finite = false;
+                if (track && !std::isfinite(Ri[j])) finite = false;
             }
             idx b = from(start[i], 0, i);
             double d = diag(i) - dot_lanes(Ri + b, Ri + b, i - b);
@@ -1698,7 +1925,7 @@ LEMKE_ALWAYS_INLINE bool cholesky_body(Mat<const double> P, Mat<double> L, bool 
             for (idx j = 0; j < i; ++j) Li[j] = Ri[j];
             if (!(d > floor)) return false;
             Li[i] = Ri[i] = std::sqrt(d);
-            if (!std::isfinite(Li[i])) finite = false;
+            if (track && !std::isfinite(Li[i])) finite = false;
             for (idx j = i + 1; j < n; ++j) Li[j] = 0.0;
         }
     }
