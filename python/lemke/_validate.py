@@ -45,6 +45,106 @@ def float64_array(x, name: str) -> np.ndarray:
     return a if a.dtype == np.float64 else a.astype(np.float64)
 
 
+# ------------------------------------------------ array-likes for the native fronts
+
+_ND = np.ndarray
+_F64, _I64 = np.dtype(np.float64), np.dtype(np.int64)
+_asarray, _contiguous = np.asarray, np.ascontiguousarray
+
+
+def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
+    """``x`` as the native fronts read it (a C-contiguous ndarray of ``dtype``, float64 by
+    default, with ``nd`` dimensions), converted once as :func:`float64_array` and the
+    kinds' shape checks convert it (``np.asarray``, then the cast and C order: the same
+    values), when ``x`` is a list, tuple or ndarray (exactly) whose dtype's kind is in
+    ``kinds``; else None, and the validation then does it all and names what is wrong
+    (ragged rows, other dimensions, a sparse matrix, object, complex or str entries...).
+    An array that needs no conversion is returned as it is."""
+    t = type(x)
+    if t is _ND:
+        a = x
+    elif t is list or t is tuple:
+        try:
+            a = _asarray(x)
+        except Exception:  # (ragged rows and the like: the validation says so)
+            return None
+    else:
+        return None
+    if a.ndim != nd or a.dtype.kind not in kinds:
+        return None
+    return _contiguous(a, dtype=dtype)
+
+
+def _scalar_bound(x, n: int, side: int):
+    """A Python number bound as :func:`blcp` expands it (``np.full(n, float(x))``), or None:
+    not a float or an int64-sized int, or NaN, or an infinity the side refuses (the
+    validation's message then)."""
+    t = type(x)
+    if t is float or (t is int and -2**63 <= x < 2**63):
+        v = float(x)
+        if v == v and v != -side * np.inf:
+            return np.full(n, v)
+    return None
+
+
+def plain_lcp(M, q):
+    """``(M, q)`` for ``lcp_front`` when either is an array-like that :func:`plain` converts
+    (``[]`` for M is the empty matrix, as :func:`square_matrix` has it) and M is n x n for q
+    of length n; None when nothing needed converting or anything is of another kind."""
+    m = plain(M, 2)
+    if m is None:
+        if (type(M) is not list and type(M) is not tuple) or len(M):
+            return None
+        m = np.zeros((0, 0))
+    v = plain(q, 1)
+    if v is None or (m is M and v is q):
+        return None
+    n = len(v)
+    if m.shape[0] != n or m.shape[1] != n:
+        return None
+    return m, v
+
+
+def plain_blcp(M, q, lo, hi, findex):
+    """``(M, q, lo, hi, findex)`` for ``blcp_front`` as :func:`plain_lcp` makes its
+    arguments (bounds also Python numbers, spread over the n rows; ``findex`` None or of an
+    integer kind, made int64 as :func:`blcp` makes it); None when nothing needed converting
+    or anything is of another kind."""
+    m, v = plain(M, 2), plain(q, 1)
+    if m is None or v is None or m.shape != (len(v), len(v)):
+        return None
+    n = len(v)
+    a = plain(lo, 1)
+    if a is None:
+        a = _scalar_bound(lo, n, -1)
+    b = plain(hi, 1)
+    if b is None:
+        b = _scalar_bound(hi, n, 1)
+    f = None if findex is None else plain(findex, 1, _I64, "iu")
+    if a is None or b is None or (findex is not None and f is None) or (
+            m is M and v is q and a is lo and b is hi and f is findex):
+        return None
+    return m, v, a, b, f
+
+
+def plain_all(args, nds):
+    """``args`` (a tuple, None for an argument not given) with each given one made as
+    :func:`plain` makes it with its number of dimensions in ``nds``; None when nothing
+    needed converting or anything is of another kind."""
+    out = []
+    same = True
+    for x, nd in zip(args, nds):
+        if x is None:
+            out.append(None)
+            continue
+        a = plain(x, nd)
+        if a is None:
+            return None
+        same = same and a is x
+        out.append(a)
+    return None if same else out
+
+
 class DensifyWarning(UserWarning):
     """A large ``scipy.sparse`` input was made dense (lemke has no sparse engine yet):
     the warning names the argument, its shape and the dense size."""
