@@ -406,6 +406,10 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         res = _few(M, q, method, warm_start)
         if res is not None:
             return res
+        if (c := _validate.plain_many(M, q)) is not None:
+            # array-likes converted once, as _checked below would convert them: then _few
+            return solve_lcp_many(c[0], c[1], method=method, workers=workers,
+                                  warm_start=warm_start)
     opts = as_options(options)
     workers = _workers(workers)
     if progress is not None:
@@ -428,8 +432,11 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
                 if type(Mb) is _ND and type(qb) is _ND
                 and (Mb.dtype is _F64 or Mb.dtype == _F64) and (qb.dtype is _F64 or qb.dtype == _F64)
                 and qb.ndim == 1 and Mb.shape == qb.shape * 2]) != B:
-            Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
-                           for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
+            # (array-likes converted at once as _checked converts them, finiteness left to
+            # the kernels; if any is of another kind, each is checked in turn)
+            Ms, qs = _validate.plain_many(Ms, qs) or (
+                zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
+                      for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ()))
         sizes = list(map(len, qs))
         off = _offsets(sizes)
         Mflat, qflat = _flat(Ms), _flat(qs)

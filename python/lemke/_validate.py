@@ -91,13 +91,37 @@ def plain_lcp(M, q):
     """``(M, q)`` for ``lcp_front`` when either is an array-like that :func:`plain` converts
     (``[]`` for M is the empty matrix, as :func:`square_matrix` has it) and M is n x n for q
     of length n; None when nothing needed converting or anything is of another kind."""
+    got = _lcp_pair(M, q)
+    return None if got is None or (got[0] is M and got[1] is q) else got
+
+
+def plain_many(Ms, qs):
+    """Lists of the problems ``(M_b, q_b)`` (sequences of the same length) each made as
+    :func:`plain_lcp` makes it; None when nothing needed converting or any problem is of
+    another kind (the validation then checks them in order and names the first fault)."""
+    if len(Ms) != len(qs):
+        return None
+    out_M, out_q = [], []
+    same = True
+    for M, q in zip(Ms, qs):
+        got = _lcp_pair(M, q)
+        if got is None:
+            return None
+        same = same and got[0] is M and got[1] is q
+        out_M.append(got[0])
+        out_q.append(got[1])
+    return None if same else (out_M, out_q)
+
+
+def _lcp_pair(M, q):
+    """``(M, q)`` made by :func:`plain` (as they are when they need nothing), or None."""
     m = plain(M, 2)
     if m is None:
         if (type(M) is not list and type(M) is not tuple) or len(M):
             return None
         m = np.zeros((0, 0))
     v = plain(q, 1)
-    if v is None or (m is M and v is q):
+    if v is None:
         return None
     n = len(v)
     if m.shape[0] != n or m.shape[1] != n:
