@@ -345,6 +345,80 @@ PyObject* error_set() {
     return Py_None;
 }
 
+// One entry of a list given for a float64 array, as np.asarray(x).astype(float64) has it:
+// a Python float (or a subclass: its value), a bool (1.0 or 0.0) or an int that fits in
+// int64 (rounded to the nearest double, as NumPy casts its int64 array; a bigger one makes
+// NumPy's array another dtype: declined). False (no error set) for anything else.
+bool list_entry(PyObject* v, double& out) {
+    if (PyFloat_Check(v)) {
+        out = PyFloat_AS_DOUBLE(v);
+        return true;
+    }
+    if (PyBool_Check(v)) {
+        out = v == Py_True ? 1.0 : 0.0;
+        return true;
+    }
+    if (!PyLong_CheckExact(v)) return false;
+    int overflow = 0;
+    long long i = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow != 0 || (i == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return false;
+    }
+    out = static_cast<double>(i);
+    return true;
+}
+
+// x made a float64 C array when it is a list or tuple of nd levels (1 or 2; rows, lists or
+// tuples, of one length; no dimension 0) of list_entry's numbers: the values that the
+// Python fronts' conversion (_validate.plain: np.asarray, then float64) gives. Else x
+// itself when it is an ndarray (the front judges it), or an invalid object (declined: the
+// Python function converts or refuses it).
+nb::object from_list(PyObject* x, int nd) {
+    if (Py_TYPE(x) == front.ndarray) return nb::borrow(x);
+    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
+    if (!seq(x) || front.new_from_descr == nullptr) return nb::object();
+    Py_ssize_t rows = PySequence_Fast_GET_SIZE(x), cols = 1;
+    PyObject** row = PySequence_Fast_ITEMS(x);
+    if (rows == 0) return nb::object();
+    if (nd == 2) {
+        if (!seq(row[0]) || (cols = PySequence_Fast_GET_SIZE(row[0])) == 0) return nb::object();
+        for (Py_ssize_t i = 1; i < rows; ++i)
+            if (!seq(row[i]) || PySequence_Fast_GET_SIZE(row[i]) != cols) return nb::object();
+    }
+    Py_ssize_t dims[2] = {rows, cols};
+    Py_INCREF(front.f64);  // (stolen by NumPy)
+    nb::object a = nb::steal(front.new_from_descr(front.ndarray, front.f64, nd, dims, nullptr,
+                                                  nullptr, 0, nullptr));
+    if (!a.is_valid()) throw nb::python_error();
+    double* out = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
+    for (Py_ssize_t i = 0; i < rows; ++i) {
+        if (nd == 1) {
+            if (!list_entry(row[i], out[i])) return nb::object();
+            continue;
+        }
+        PyObject** v = PySequence_Fast_ITEMS(row[i]);
+        for (Py_ssize_t j = 0; j < cols; ++j)
+            if (!list_entry(v[j], out[i * cols + j])) return nb::object();
+    }
+    return a;
+}
+
+// The entries' arguments args[0..k) given as lists made arrays by from_list (ranks nd): true
+// when one was a list and every one is now an ndarray (kept in `keep`, their pointers in
+// `out`), else false (the front's decline stands).
+bool lists_made_arrays(PyObject* const* args, const int* nd, int k, nb::object* keep,
+                       PyObject** out) {
+    bool some = false;
+    for (int i = 0; i < k; ++i) {
+        keep[i] = from_list(args[i], nd[i]);
+        if (!keep[i].is_valid()) return false;
+        some = some || keep[i].ptr() != args[i];
+        out[i] = keep[i].ptr();
+    }
+    return some;
+}
+
 PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta,
                       int method) {
     try {
@@ -380,18 +454,31 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         }
         PyObject* now = plain ? PyDict_GetItemWithError(e->globals, e->k_front) : nullptr;
         if (now == e->front) {
-            PyObject* res = nullptr;
-            nb::object beta;
-            if (ws == Py_None) {
-                res = entry_front(e, args[0], args[1], Py_None, Py_None, method);
-            } else if (Py_TYPE(args[1]) == front.ndarray &&
-                       reinterpret_cast<const ArrayFields*>(args[1])->nd == 1 &&
-                       warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(args[1])->dimensions[0],
-                                 beta)) {
-                res = entry_front(e, args[0], args[1], ws, beta.ptr(), method);
+            // M and q as given, then (when the front declines and either is a list) as
+            // from_list makes them
+            PyObject* Mq[2] = {args[0], args[1]};
+            nb::object keep[2];
+            static const int ranks[2] = {2, 1};
+            for (int pass = 0; pass < 2; ++pass) {
+                PyObject* res = nullptr;
+                nb::object beta;
+                if (ws == Py_None) {
+                    res = entry_front(e, Mq[0], Mq[1], Py_None, Py_None, method);
+                } else if (Py_TYPE(Mq[1]) == front.ndarray &&
+                           reinterpret_cast<const ArrayFields*>(Mq[1])->nd == 1 &&
+                           warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(Mq[1])->dimensions[0],
+                                     beta)) {
+                    res = entry_front(e, Mq[0], Mq[1], ws, beta.ptr(), method);
+                }
+                if (res == Py_None) return nullptr;  // an error, set
+                if (res != nullptr) return res;
+                try {
+                    if (pass == 1 || !lists_made_arrays(args, ranks, 2, keep, Mq)) break;
+                } catch (...) {
+                    error_set();
+                    return nullptr;
+                }
             }
-            if (res == Py_None) return nullptr;  // an error, set
-            if (res != nullptr) return res;
         } else if (now == nullptr && PyErr_Occurred()) {
             return nullptr;
         }
@@ -474,11 +561,19 @@ PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == e->front) {
             PyObject* k = kwnames == nullptr ? front.zero : args[2];
             try {
-                nb::object r = games_front(args[0], args[1], k);
-                if (!r.is_none() && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
-                if (!r.is_none()) {
-                    PyObject* after[] = {args[0], args[1], k, r.ptr()};
-                    return PyObject_Vectorcall(e->after, after, 4, nullptr);
+                // A and B as given, then (when the front declines and either is a list) as
+                // from_list makes them
+                PyObject* AB[2] = {args[0], args[1]};
+                nb::object keep[2];
+                static const int ranks[2] = {2, 2};
+                for (int pass = 0; pass < 2; ++pass) {
+                    nb::object r = games_front(AB[0], AB[1], k);
+                    if (!r.is_none() && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                    if (!r.is_none()) {
+                        PyObject* after[] = {AB[0], AB[1], k, r.ptr()};
+                        return PyObject_Vectorcall(e->after, after, 4, nullptr);
+                    }
+                    if (pass == 1 || !lists_made_arrays(args, ranks, 2, keep, AB)) break;
                 }
             } catch (...) {
                 error_set();
@@ -515,11 +610,19 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == nullptr && PyErr_Occurred()) return nullptr;
         if (now == e->front) {
             try {
-                nb::object r = blcp_front(args[0], args[1], args[2], args[3], fi, ws);
-                if (!r.is_none()) {
-                    if (r.ptr() != Py_False && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
-                    PyObject* after[] = {args[0], args[1], args[2], args[3], fi, ws, r.ptr()};
-                    return PyObject_Vectorcall(e->after, after, 7, nullptr);
+                // M, q, lo, hi as given, then (when the front declines and any is a list) as
+                // from_list makes them
+                PyObject* a[4] = {args[0], args[1], args[2], args[3]};
+                nb::object keep[4];
+                static const int ranks[4] = {2, 1, 1, 1};
+                for (int pass = 0; pass < 2; ++pass) {
+                    nb::object r = blcp_front(a[0], a[1], a[2], a[3], fi, ws);
+                    if (!r.is_none()) {
+                        if (r.ptr() != Py_False && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                        PyObject* after[] = {a[0], a[1], a[2], a[3], fi, ws, r.ptr()};
+                        return PyObject_Vectorcall(e->after, after, 7, nullptr);
+                    }
+                    if (pass == 1 || !lists_made_arrays(args, ranks, 4, keep, a)) break;
                 }
             } catch (...) {
                 error_set();
