@@ -17,9 +17,10 @@ import json
 import statistics
 import subprocess
 import sys
-import time
 
 import numpy as np
+
+from bench_blcp_front import per_call  # (seconds a call: the median of 5 timed loops)
 
 FORMS = ("float64", "list", "int list", "float32", "fortran")
 
@@ -84,24 +85,6 @@ def digest(r):
     return h.hexdigest()[:16]
 
 
-def per_call(f, budget=2e-3):
-    reps = 1
-    while True:
-        t = time.perf_counter()
-        for _ in range(reps):
-            f()
-        if time.perf_counter() - t > budget:
-            break
-        reps *= 4
-    best = []
-    for _ in range(5):
-        t = time.perf_counter()
-        for _ in range(reps):
-            f()
-        best.append((time.perf_counter() - t) / reps)
-    return min(best) * 1e6
-
-
 def worker():
     import lemke
     out = {}
@@ -112,7 +95,7 @@ def worker():
             d = digest(call())
             want = want or d
             assert d == want, (name, f)  # every form: the float64 call's answer
-            out[f"{name}|{f}"] = (per_call(call), d)
+            out[f"{name}|{f}"] = (per_call(call) * 1e6, d)
     print(json.dumps(out))
 
 

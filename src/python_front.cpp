@@ -804,6 +804,33 @@ void bind_front(nb::module_& m) {
           "method"_a = static_cast<int>(lemke::TABLEAU));
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
+    // from_list for the Python fronts' conversion (_validate.plain): the float64 C array of
+    // a list or tuple of nd levels of floats, bools and int64-sized ints, or None
+    m.def("list_f64", [](nb::handle x, int nd) -> nb::object {
+        if (!front.on || (nd != 1 && nd != 2) || Py_TYPE(x.ptr()) == front.ndarray) return nb::none();
+        nb::object a = from_list(x.ptr(), nd);
+        return a.is_valid() ? a : nb::none();
+    }, "x"_a, "nd"_a);
+    // _validate.plain_all's common case in one call: args (a tuple; None for an argument
+    // not given) with every list made an array by from_list (its rank in ranks) and every
+    // other given one a plain float64 array kept; None when none was a list or any is of
+    // another kind (plain_all's Python steps then)
+    m.def("lists_f64", [](nb::tuple args, nb::tuple ranks) -> nb::object {
+        Py_ssize_t k = args.size();
+        if (!front.on || ranks.size() != k) return nb::none();
+        nb::list out;
+        bool some = false;
+        for (Py_ssize_t i = 0; i < k; ++i) {
+            PyObject* x = PyTuple_GET_ITEM(args.ptr(), i);
+            int nd = nb::cast<int>(ranks[i]);
+            nb::object a = x == Py_None ? nb::none() : from_list(x, nd);
+            if (!a.is_valid() || (a.ptr() == x && x != Py_None && plain(x, nd) == nullptr))
+                return nb::none();
+            some = some || a.ptr() != x;
+            out.append(a);
+        }
+        return some ? nb::object(out) : nb::none();
+    }, "args"_a, "ranks"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
     m.def("blcp_entry", &blcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a);

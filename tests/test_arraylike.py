@@ -76,7 +76,7 @@ def no_validation(monkeypatch):
 
 def _old(monkeypatch):
     """The path of today's array-likes: no conversion (the validation does it all)."""
-    for name in ("plain_lcp", "plain_blcp", "plain_all", "plain_many"):
+    for name in ("plain_lcp", "plain_blcp", "plain_all", "plain_many", "plain_islands"):
         monkeypatch.setattr(_validate, name, lambda *a: None)
 
 
@@ -196,17 +196,20 @@ def test_lcp_many_errors_as_before(B, monkeypatch):
         q2 = list(qs)
         q2[1] = bad
         cases.append((Ms, q2))
+    cases.append((Ms, [[np.nan, -1.0]] + qs[1:]))
     M2 = list(Ms)
     M2[0] = [[1.0, 0.0], [0.0]]
     q2 = list(qs)
     q2[1] = [np.inf, 0.0]
     cases += [(M2, qs), (Ms, q2), (Ms[:1], qs)]
+    bad_ws = [None] * (B - 1) + [lemke.WarmStart(3, ())]
     for M, q in cases:
-        got = _error(lambda: lemke.solve_lcp_many(M, q, workers=1))
-        assert got is not None
-        with monkeypatch.context() as m:
-            _old(m)
-            assert got == _error(lambda: lemke.solve_lcp_many(M, q, workers=1))
+        for kw in ({"workers": 1}, {}, {"warm_start": bad_ws}):
+            got = _error(lambda: lemke.solve_lcp_many(M, q, **kw))
+            assert got is not None
+            with monkeypatch.context() as m:
+                _old(m)
+                assert got == _error(lambda: lemke.solve_lcp_many(M, q, **kw))
 
 
 BLCP_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
@@ -273,6 +276,54 @@ def test_blcp_errors_as_before(M, q, lo, hi, findex, monkeypatch):
         want = _error(lambda: lemke.solve_blcp(M, q, lo, hi, findex=findex))
     assert got == want
     assert got is not None or findex is None
+
+
+@pytest.mark.parametrize("B", [2, 4, 7])
+def test_blcp_many_forms_bit_for_bit(B, monkeypatch):
+    from test_blcp import contacts
+    isl = [contacts(b, 1 + b % 2)[:5] for b in range(B)]
+    Ms, qs, los, his = ([np.asarray(i[k], dtype=float) for i in isl] for k in range(4))
+    fis = [np.asarray(i[4]).astype(np.int64) for i in isl]
+    ws = lemke.solve_blcp_many(Ms, qs, los, his, findex=fis, workers=1).warm_start
+    forms = []
+    for i in range(len(_forms(Ms[0]))):
+        args = [[_forms(x, False)[i][1] for x in xs] for xs in (Ms, qs, los, his)]
+        ref = [[_f64(x) for x in xs] for xs in args]  # (float32: its values in float64)
+        forms.append((args, ref, lemke.solve_blcp_many(*ref, findex=fis, workers=1),
+                      lemke.solve_blcp_many(*ref, findex=fis, warm_start=ws),
+                      lemke.solve_blcp_many(ref[0], ref[1], -1.0, 2.0)))
+    fl = [f.tolist() for f in fis]
+    with monkeypatch.context() as m:
+        if B <= 4:  # (more islands: the batch, which validates lists as before)
+            m.setattr(_validate, "blcp", lambda *a: (_ for _ in ()).throw(AssertionError("validated")))
+        for args, ref, want, warm, cold in forms:
+            got = _untouched(args[0] + args[1] + fl, lambda: lemke.solve_blcp_many(*args, findex=fl))
+            assert len(got) == B
+            for a, b in zip(got, want):
+                _same(a, b)
+            for a, b in zip(lemke.solve_blcp_many(*args, findex=fl, warm_start=ws), warm):
+                _same(a, b)
+            for a, b in zip(lemke.solve_blcp_many(args[0], args[1], -1.0, 2.0), cold):
+                _same(a, b)
+
+
+def test_blcp_many_errors_as_before(monkeypatch):
+    M = [np.eye(2).tolist(), np.eye(2).tolist()]
+    q = [[-1.0, -1.0], [-1.0, -1.0]]
+    cases = [dict(M=M, q=[q[0], [np.nan, 1.0]], lo=0.0, hi=1.0),
+             dict(M=M, q=q, lo=[[0.0, 0.0], [2.0, 0.0]], hi=[[1.0, 1.0], [1.0, 1.0]]),
+             dict(M=M, q=[q[0], [1.0]], lo=0.0, hi=1.0),
+             dict(M=M, q=q, lo=0.0, hi=1.0, findex=[[-1, -1], [1, 1]]),
+             dict(M=M, q=q, lo=0.0, hi=1.0, warm_start=[None, lemke.BoxWarmStart(3, (), ())]),
+             dict(M=M, q=[q[0], [np.nan, 1.0]], lo=0.0, hi=1.0,
+                  warm_start=[None, lemke.BoxWarmStart(3, (), ())]),
+             dict(M=M, q=q, lo=np.nan, hi=1.0), dict(M=M, q=q[:1], lo=0.0, hi=1.0)]
+    for kw in cases:
+        got = _error(lambda: lemke.solve_blcp_many(**kw))
+        assert got is not None
+        with monkeypatch.context() as m:
+            _old(m)
+            assert got == _error(lambda: lemke.solve_blcp_many(**kw))
 
 
 def test_bimatrix_forms_bit_for_bit(no_validation):
@@ -390,3 +441,22 @@ def test_conversion_is_the_validations():
     for x in ([[1, 2], [3]], [["1", "2"]], [[1j, 0]], [[None, 1.0]], sp.eye(2), np.ma.array(np.eye(2)),
               [1.0, 2.0], 1.0, [[2 ** 64, 0]], np.zeros((2, 2), dtype=object)):
         assert _validate.plain(x, 2) is None, x
+
+
+def test_native_list_conversion_is_numpys():
+    """The entries' own conversion of lists (src/python_front.cpp, from_list) holds the
+    values np.asarray(x).astype(float64) holds, or declines (None)."""
+    from lemke import _core
+    big = 2 ** 63 - 1
+    for x, nd in (([[2 ** 62 + 1, -3], [big, -2 ** 63]], 2), ([[1, 2.5], [True, False]], 2),
+                  ([True, False, True], 1), ([np.float64(0.1), -0.0, 1e308, 5e-324], 1),
+                  (((1, 2), [3, 4]), 2), ([2 ** 53 + 1, 0.5], 1), ([np.nan, np.inf, -np.inf], 1),
+                  ([[1.0, 2.0, 3.0]], 2), ([7], 1)):
+        a = _core.list_f64(x, nd)
+        want = np.asarray(x).astype(np.float64)
+        assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable
+        assert a.shape == want.shape and a.tobytes() == want.tobytes(), x
+    for x, nd in (([2 ** 63], 1), ([np.float32(1.0)], 1), ([np.int64(1)], 1), (["1"], 1),
+                  ([None], 1), ([[1.0], [1.0, 2.0]], 2), ([], 1), ([[]], 2), ([[1.0]], 1),
+                  ([1.0], 2), ([1 + 0j], 1), (np.zeros(2), 1)):
+        assert _core.list_f64(x, nd) is None, x

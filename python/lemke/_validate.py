@@ -14,6 +14,7 @@ import warnings
 
 import numpy as np
 
+from . import _core
 from ._npc import absmax, count, every, nz, some, sub
 
 
@@ -50,6 +51,7 @@ def float64_array(x, name: str) -> np.ndarray:
 _ND = np.ndarray
 _F64, _I64 = np.dtype(np.float64), np.dtype(np.int64)
 _asarray, _contiguous = np.asarray, np.ascontiguousarray
+_list_f64, _lists_f64 = _core.list_f64, _core.lists_f64  # (src/python_front.cpp: from_list)
 
 
 def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
@@ -64,6 +66,8 @@ def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
     if t is _ND:
         a = x
     elif t is list or t is tuple:
+        if dtype is _F64 and (a := _list_f64(x, nd)) is not None:
+            return a  # (floats, bools and int64-sized ints: converted natively, the same values)
         try:
             a = _asarray(x)
         except Exception:  # (ragged rows and the like: the validation says so)
@@ -134,6 +138,43 @@ def plain_blcp(M, q, lo, hi, findex):
     arguments (bounds also Python numbers, spread over the n rows; ``findex`` None or of an
     integer kind, made int64 as :func:`blcp` makes it); None when nothing needed converting
     or anything is of another kind."""
+    got = _blcp_args(M, q, lo, hi, findex)
+    return None if got is None or (got[0] is M and got[1] is q and got[2] is lo
+                                   and got[3] is hi and got[4] is findex) else got
+
+
+def plain_islands(M, q, lo, hi, findex):
+    """Lists of the islands' ``(M_b, q_b, lo_b, hi_b, findex_b)`` of ``solve_blcp_many``
+    each made as :func:`plain_blcp` makes its arguments (``lo``, ``hi``: sequences of the
+    islands' bounds or one Python number for all; ``findex`` None or a sequence); None when
+    nothing needed converting or any island is of another kind."""
+    B = len(M)
+    los, his = _each(lo, B), _each(hi, B)
+    fis = (None,) * B if findex is None else _each(findex, B, False)
+    if type(q) not in (list, tuple) or len(q) != B or los is None or his is None or fis is None:
+        return None
+    out = ([], [], [], [], [])
+    same = True
+    for got in map(_blcp_args, M, q, los, his, fis):
+        if got is None:
+            return None
+        for col, x in zip(out, got):
+            col.append(x)
+    for col, given in zip(out, (M, q, los, his, fis)):
+        same = same and all(a is b for a, b in zip(col, given))
+    return None if same else out
+
+
+def _each(v, B, scalar=True):
+    """A sequence of B islands' ``v``, or one Python number for all (with ``scalar``), as
+    a sequence; else None."""
+    if type(v) is list or type(v) is tuple:
+        return v if len(v) == B else None
+    return (v,) * B if scalar and (type(v) is float or type(v) is int) else None
+
+
+def _blcp_args(M, q, lo, hi, findex):
+    """:func:`plain_blcp`'s arguments, made (as they are when they need nothing), or None."""
     m, v = plain(M, 2), plain(q, 1)
     if m is None or v is None or m.shape != (len(v), len(v)):
         return None
@@ -145,8 +186,7 @@ def plain_blcp(M, q, lo, hi, findex):
     if b is None:
         b = _scalar_bound(hi, n, 1)
     f = None if findex is None else plain(findex, 1, _I64, "iu")
-    if a is None or b is None or (findex is not None and f is None) or (
-            m is M and v is q and a is lo and b is hi and f is findex):
+    if a is None or b is None or (findex is not None and f is None):
         return None
     return m, v, a, b, f
 
@@ -155,6 +195,9 @@ def plain_all(args, nds):
     """``args`` (a tuple, None for an argument not given) with each given one made as
     :func:`plain` makes it with its number of dimensions in ``nds``; None when nothing
     needed converting or anything is of another kind."""
+    got = _lists_f64(args, nds)  # (lists and plain arrays only: src/python_front.cpp)
+    if got is not None:
+        return got
     out = []
     same = True
     for x, nd in zip(args, nds):
