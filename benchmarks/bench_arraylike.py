@@ -4,8 +4,8 @@
 
 runs this file as a worker under two interpreters (lemke before and after a change) in
 alternating processes, each round timing every case in one process, and prints a Markdown
-table of the medians over rounds of each case's per-call time (us) and the ratio
-after / before.  Forms: float64 C arrays, lists of floats, lists of ints, float32 arrays,
+table of the minima and medians over rounds of each case's per-call time (us) and their
+ratios after / before.  Forms: float64 C arrays, lists of floats, lists of ints, float32 arrays,
 Fortran-ordered float64 matrices (vectors plain).  Cases: ``solve_lcp`` (n = 2 and 10, cold
 by the tableau and the unrevised method, warm from its own basis), ``solve_blcp`` (n = 4,
 cold; also scalar bounds), ``solve_bimatrix`` (3 x 2), ``solve_qp`` (3 variables, G, h, A,
@@ -111,13 +111,15 @@ def main():
     keys = list(got[before][0])
     for k in keys:
         assert got[before][0][k][1] == got[after][0][k][1], k  # the same answers
-    print("| case | form | before us | after us | after / before |")
+    print("| case | form | before us (min / median) | after us (min / median) | after / before (min, median) |")
     print("| --- | --- | ---: | ---: | ---: |")
     for k in keys:
-        b = statistics.median(r[k][0] for r in got[before])
-        a = statistics.median(r[k][0] for r in got[after])
+        b = [r[k][0] for r in got[before]]
+        a = [r[k][0] for r in got[after]]
+        bm, am = statistics.median(b), statistics.median(a)
         name, f = k.split("|")
-        print(f"| {name} | {f} | {b:.2f} | {a:.2f} | {a / b:.2f} |")
+        print(f"| {name} | {f} | {min(b):.2f} / {bm:.2f} | {min(a):.2f} / {am:.2f} | "
+              f"{min(a) / min(b):.2f}, {am / bm:.2f} |")
 
 
 if __name__ == "__main__":

@@ -813,23 +813,24 @@ void bind_front(nb::module_& m) {
     }, "x"_a, "nd"_a);
     // _validate.plain_all's common case in one call: args (a tuple; None for an argument
     // not given) with every list made an array by from_list (its rank in ranks) and every
-    // other given one a plain float64 array kept; None when none was a list or any is of
-    // another kind (plain_all's Python steps then)
+    // other given one a plain float64 array kept; False when every given one is a plain
+    // array already (nothing to convert), None when any is of another kind (plain_all's
+    // Python steps then)
     m.def("lists_f64", [](nb::tuple args, nb::tuple ranks) -> nb::object {
         Py_ssize_t k = args.size();
         if (!front.on || ranks.size() != k) return nb::none();
         nb::list out;
-        bool some = false;
+        bool some = false, other = false;
         for (Py_ssize_t i = 0; i < k; ++i) {
             PyObject* x = PyTuple_GET_ITEM(args.ptr(), i);
             int nd = nb::cast<int>(ranks[i]);
             nb::object a = x == Py_None ? nb::none() : from_list(x, nd);
-            if (!a.is_valid() || (a.ptr() == x && x != Py_None && plain(x, nd) == nullptr))
-                return nb::none();
+            other = other || !a.is_valid() || (a.ptr() == x && x != Py_None && plain(x, nd) == nullptr);
+            if (other) continue;  // (an ndarray of another kind, or a list from_list declines)
             some = some || a.ptr() != x;
             out.append(a);
         }
-        return some ? nb::object(out) : nb::none();
+        return other ? nb::none() : some ? nb::object(out) : nb::bool_(false);
     }, "args"_a, "ranks"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);

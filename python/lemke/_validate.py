@@ -197,7 +197,7 @@ def plain_all(args, nds):
     needed converting or anything is of another kind."""
     got = _lists_f64(args, nds)  # (lists and plain arrays only: src/python_front.cpp)
     if got is not None:
-        return got
+        return got or None  # (False: plain arrays all, nothing to convert)
     out = []
     same = True
     for x, nd in zip(args, nds):
