@@ -23,6 +23,7 @@
 #include <cstring>
 #include <exception>
 #include <new>
+#include <type_traits>
 
 #include "lemke/lcp.hpp"
 #include "lemke/pivoting.hpp"
@@ -369,15 +370,86 @@ bool list_entry(PyObject* v, double& out) {
     return true;
 }
 
+// NumPy's type numbers of the array dtypes made_f64 casts (NumPy's own, 1.x and 2.x).
+enum : int { T_BOOL = 0, T_BYTE, T_UBYTE, T_SHORT, T_USHORT, T_INT, T_UINT, T_LONG, T_ULONG,
+             T_LONGLONG, T_ULONGLONG, T_FLOAT, T_DOUBLE };
+
+// The entries of an nd-dimensional array (rows x cols, strides s0, s1 in bytes, any
+// alignment) of the C type T, as float64 in C order: NumPy's cast (astype), the C
+// conversion of each value (exact but for 64-bit ints, rounded to nearest as NumPy's).
+// (Bool: NumPy's bool, one byte, any non-zero value true as NumPy's cast reads it.)
+struct Bool {
+    unsigned char v;
+};
+template <class T>
+void cast_rows(const char* data, Py_ssize_t rows, Py_ssize_t cols, Py_ssize_t s0, Py_ssize_t s1,
+               double* out) {
+    for (Py_ssize_t i = 0; i < rows; ++i)
+        for (Py_ssize_t j = 0; j < cols; ++j) {
+            T v;
+            std::memcpy(&v, data + i * s0 + j * s1, sizeof(T));
+            if constexpr (std::is_same_v<T, Bool>)
+                out[i * cols + j] = v.v != 0 ? 1.0 : 0.0;
+            else
+                out[i * cols + j] = static_cast<double>(v);
+        }
+}
+
+// The new float64 C array made_f64 fills (rows x cols; 1-D when nd is 1).
+nb::object new_rows(int nd, Py_ssize_t rows, Py_ssize_t cols) {
+    Py_ssize_t dims[2] = {rows, cols};
+    Py_INCREF(front.f64);  // (stolen by NumPy)
+    nb::object a = nb::steal(front.new_from_descr(front.ndarray, front.f64, nd, dims, nullptr,
+                                                  nullptr, 0, nullptr));
+    if (!a.is_valid()) throw nb::python_error();
+    return a;
+}
+
+// An ndarray x of nd dimensions (none 0) that is not plain float64 made a float64 C array
+// as NumPy's astype makes it, when its dtype is bool, a signed int, an unsigned int up to 32
+// bits, float32 or float64 in the machine's byte order (any strides: Fortran order, a
+// slice, unaligned); else x itself (the front declines it, the Python function converts or
+// refuses it: float16, long double, uint64, complex, another byte order, object...).
+nb::object cast_array(PyObject* x, int nd) {
+    auto* a = reinterpret_cast<const ArrayFields*>(x);
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    if (a->nd != nd || plain(x, nd) != nullptr || (t->byteorder != '=' && t->byteorder != '|'))
+        return nb::borrow(x);
+    Py_ssize_t rows = a->dimensions[0], cols = nd == 2 ? a->dimensions[1] : 1;
+    Py_ssize_t s0 = a->strides[0], s1 = nd == 2 ? a->strides[1] : 0;
+    if (rows == 0 || cols == 0) return nb::borrow(x);
+    auto make = [&](auto tag) {
+        nb::object out = new_rows(nd, rows, cols);
+        cast_rows<decltype(tag)>(a->data, rows, cols, s0, s1,
+                                 reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(out.ptr())->data));
+        return out;
+    };
+    switch (t->type_num) {
+        case T_BOOL: return make(Bool{});
+        case T_BYTE: return make(static_cast<signed char>(0));
+        case T_UBYTE: return make(static_cast<unsigned char>(0));
+        case T_SHORT: return make(short{});
+        case T_USHORT: return make(static_cast<unsigned short>(0));
+        case T_INT: return make(int{});
+        case T_UINT: return make(0u);
+        case T_LONG: return make(0L);
+        case T_LONGLONG: return make(0LL);
+        case T_FLOAT: return make(0.0f);
+        case T_DOUBLE: return make(0.0);
+        default: return nb::borrow(x);
+    }
+}
+
 // x made a float64 C array when it is a list or tuple of nd levels (1 or 2; rows, lists or
-// tuples, of one length; no dimension 0) of list_entry's numbers: the values that the
-// Python fronts' conversion (_validate.plain: np.asarray, then float64) gives. Else x
-// itself when it is an ndarray (the front judges it), or an invalid object (declined: the
-// Python function converts or refuses it).
-nb::object from_list(PyObject* x, int nd) {
-    if (Py_TYPE(x) == front.ndarray) return nb::borrow(x);
+// tuples, of one length; no dimension 0) of list_entry's numbers, or an ndarray cast_array
+// casts: the values that the Python fronts' conversion (_validate.plain: np.asarray, then
+// float64 and C order) gives. Else x itself when it is an ndarray (the front judges it), or
+// an invalid object (declined: the Python function converts or refuses it).
+nb::object made_f64(PyObject* x, int nd) {
+    if (front.new_from_descr == nullptr) return Py_TYPE(x) == front.ndarray ? nb::borrow(x) : nb::object();
+    if (Py_TYPE(x) == front.ndarray) return cast_array(x, nd);
     auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
-    if (!seq(x) || front.new_from_descr == nullptr) return nb::object();
+    if (!seq(x)) return nb::object();
     Py_ssize_t rows = PySequence_Fast_GET_SIZE(x), cols = 1;
     PyObject** row = PySequence_Fast_ITEMS(x);
     if (rows == 0) return nb::object();
@@ -386,11 +458,7 @@ nb::object from_list(PyObject* x, int nd) {
         for (Py_ssize_t i = 1; i < rows; ++i)
             if (!seq(row[i]) || PySequence_Fast_GET_SIZE(row[i]) != cols) return nb::object();
     }
-    Py_ssize_t dims[2] = {rows, cols};
-    Py_INCREF(front.f64);  // (stolen by NumPy)
-    nb::object a = nb::steal(front.new_from_descr(front.ndarray, front.f64, nd, dims, nullptr,
-                                                  nullptr, 0, nullptr));
-    if (!a.is_valid()) throw nb::python_error();
+    nb::object a = new_rows(nd, rows, cols);
     double* out = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
     for (Py_ssize_t i = 0; i < rows; ++i) {
         if (nd == 1) {
@@ -404,14 +472,13 @@ nb::object from_list(PyObject* x, int nd) {
     return a;
 }
 
-// The entries' arguments args[0..k) given as lists made arrays by from_list (ranks nd): true
-// when one was a list and every one is now an ndarray (kept in `keep`, their pointers in
+// The entries' arguments args[0..k) made float64 C arrays by made_f64 (ranks nd): true
+// when one was made and every one is now an ndarray (kept in `keep`, their pointers in
 // `out`), else false (the front's decline stands).
-bool lists_made_arrays(PyObject* const* args, const int* nd, int k, nb::object* keep,
-                       PyObject** out) {
+bool made_arrays(PyObject* const* args, const int* nd, int k, nb::object* keep, PyObject** out) {
     bool some = false;
     for (int i = 0; i < k; ++i) {
-        keep[i] = from_list(args[i], nd[i]);
+        keep[i] = made_f64(args[i], nd[i]);
         if (!keep[i].is_valid()) return false;
         some = some || keep[i].ptr() != args[i];
         out[i] = keep[i].ptr();
@@ -454,8 +521,8 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         }
         PyObject* now = plain ? PyDict_GetItemWithError(e->globals, e->k_front) : nullptr;
         if (now == e->front) {
-            // M and q as given, then (when the front declines and either is a list) as
-            // from_list makes them
+            // M and q as given, then (when the front declines and either needs converting)
+            // as made_f64 makes them
             PyObject* Mq[2] = {args[0], args[1]};
             nb::object keep[2];
             static const int ranks[2] = {2, 1};
@@ -473,7 +540,7 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
                 if (res == Py_None) return nullptr;  // an error, set
                 if (res != nullptr) return res;
                 try {
-                    if (pass == 1 || !lists_made_arrays(args, ranks, 2, keep, Mq)) break;
+                    if (pass == 1 || !made_arrays(args, ranks, 2, keep, Mq)) break;
                 } catch (...) {
                     error_set();
                     return nullptr;
@@ -561,8 +628,8 @@ PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == e->front) {
             PyObject* k = kwnames == nullptr ? front.zero : args[2];
             try {
-                // A and B as given, then (when the front declines and either is a list) as
-                // from_list makes them
+                // A and B as given, then (when the front declines and either needs
+                // converting) as made_f64 makes them
                 PyObject* AB[2] = {args[0], args[1]};
                 nb::object keep[2];
                 static const int ranks[2] = {2, 2};
@@ -573,7 +640,7 @@ PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
                         PyObject* after[] = {AB[0], AB[1], k, r.ptr()};
                         return PyObject_Vectorcall(e->after, after, 4, nullptr);
                     }
-                    if (pass == 1 || !lists_made_arrays(args, ranks, 2, keep, AB)) break;
+                    if (pass == 1 || !made_arrays(args, ranks, 2, keep, AB)) break;
                 }
             } catch (...) {
                 error_set();
@@ -610,8 +677,8 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == nullptr && PyErr_Occurred()) return nullptr;
         if (now == e->front) {
             try {
-                // M, q, lo, hi as given, then (when the front declines and any is a list) as
-                // from_list makes them
+                // M, q, lo, hi as given, then (when the front declines and any needs
+                // converting) as made_f64 makes them
                 PyObject* a[4] = {args[0], args[1], args[2], args[3]};
                 nb::object keep[4];
                 static const int ranks[4] = {2, 1, 1, 1};
@@ -622,7 +689,7 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
                         PyObject* after[] = {a[0], a[1], a[2], a[3], fi, ws, r.ptr()};
                         return PyObject_Vectorcall(e->after, after, 7, nullptr);
                     }
-                    if (pass == 1 || !lists_made_arrays(args, ranks, 4, keep, a)) break;
+                    if (pass == 1 || !made_arrays(args, ranks, 4, keep, a)) break;
                 }
             } catch (...) {
                 error_set();
@@ -804,33 +871,33 @@ void bind_front(nb::module_& m) {
           "method"_a = static_cast<int>(lemke::TABLEAU));
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
-    // from_list for the Python fronts' conversion (_validate.plain): the float64 C array of
-    // a list or tuple of nd levels of floats, bools and int64-sized ints, or None
-    m.def("list_f64", [](nb::handle x, int nd) -> nb::object {
-        if (!front.on || (nd != 1 && nd != 2) || Py_TYPE(x.ptr()) == front.ndarray) return nb::none();
-        nb::object a = from_list(x.ptr(), nd);
-        return a.is_valid() ? a : nb::none();
+    // made_f64 for the Python fronts' conversion (_validate.plain): the float64 C array it
+    // makes of x, or None (x is plain already, or of another kind)
+    m.def("as_f64", [](nb::handle x, int nd) -> nb::object {
+        if (!front.on || (nd != 1 && nd != 2)) return nb::none();
+        nb::object a = made_f64(x.ptr(), nd);
+        return a.is_valid() && a.ptr() != x.ptr() ? a : nb::none();
     }, "x"_a, "nd"_a);
     // _validate.plain_all's common case in one call: args (a tuple; None for an argument
-    // not given) with every list made an array by from_list (its rank in ranks) and every
-    // other given one a plain float64 array kept; False when every given one is a plain
-    // array already (nothing to convert), None when any is of another kind (plain_all's
-    // Python steps then)
-    m.def("lists_f64", [](nb::tuple args, nb::tuple ranks) -> nb::object {
+    // not given) with every one made_f64 makes made a float64 C array (its rank in ranks)
+    // and every other given one a plain float64 array kept; False when every given one is
+    // a plain array already (nothing to convert), None when any is of another kind
+    // (plain_all's Python steps then)
+    m.def("all_f64", [](nb::tuple args, nb::tuple ranks) -> nb::object {
         Py_ssize_t k = args.size();
         if (!front.on || ranks.size() != k) return nb::none();
         nb::list out;
-        bool some = false, other = false;
+        bool some = false;
         for (Py_ssize_t i = 0; i < k; ++i) {
             PyObject* x = PyTuple_GET_ITEM(args.ptr(), i);
             int nd = nb::cast<int>(ranks[i]);
-            nb::object a = x == Py_None ? nb::none() : from_list(x, nd);
-            other = other || !a.is_valid() || (a.ptr() == x && x != Py_None && plain(x, nd) == nullptr);
-            if (other) continue;  // (an ndarray of another kind, or a list from_list declines)
+            nb::object a = x == Py_None ? nb::none() : made_f64(x, nd);
+            if (!a.is_valid() || (a.ptr() == x && x != Py_None && plain(x, nd) == nullptr))
+                return nb::none();  // (an ndarray or a list made_f64 declines)
             some = some || a.ptr() != x;
             out.append(a);
         }
-        return other ? nb::none() : some ? nb::object(out) : nb::bool_(false);
+        return some ? nb::object(out) : nb::bool_(false);
     }, "args"_a, "ranks"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);

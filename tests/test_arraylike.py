@@ -444,7 +444,7 @@ def test_conversion_is_the_validations():
 
 
 def test_native_list_conversion_is_numpys():
-    """The entries' own conversion of lists (src/python_front.cpp, from_list) holds the
+    """The entries' own conversion of lists (src/python_front.cpp, made_f64) holds the
     values np.asarray(x).astype(float64) holds, or declines (None)."""
     from lemke import _core
     big = 2 ** 63 - 1
@@ -452,11 +452,45 @@ def test_native_list_conversion_is_numpys():
                   ([True, False, True], 1), ([np.float64(0.1), -0.0, 1e308, 5e-324], 1),
                   (((1, 2), [3, 4]), 2), ([2 ** 53 + 1, 0.5], 1), ([np.nan, np.inf, -np.inf], 1),
                   ([[1.0, 2.0, 3.0]], 2), ([7], 1)):
-        a = _core.list_f64(x, nd)
+        a = _core.as_f64(x, nd)
         want = np.asarray(x).astype(np.float64)
         assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable
         assert a.shape == want.shape and a.tobytes() == want.tobytes(), x
     for x, nd in (([2 ** 63], 1), ([np.float32(1.0)], 1), ([np.int64(1)], 1), (["1"], 1),
                   ([None], 1), ([[1.0], [1.0, 2.0]], 2), ([], 1), ([[]], 2), ([[1.0]], 1),
                   ([1.0], 2), ([1 + 0j], 1), (np.zeros(2), 1)):
-        assert _core.list_f64(x, nd) is None, x
+        assert _core.as_f64(x, nd) is None, x
+
+
+def test_native_array_cast_is_numpys():
+    """made_f64's cast of ndarrays that are not plain float64 is NumPy's astype (every
+    dtype it takes, any strides), and it declines the others (None: NumPy converts them)."""
+    from lemke import _core
+    rng = np.random.default_rng(5)
+    base = rng.integers(-2 ** 62, 2 ** 62, (4, 6))
+    unaligned = np.frombuffer(b"\0" + rng.standard_normal(6).tobytes(), dtype=np.float64,
+                              offset=1).reshape(2, 3)
+    odd_bool = np.array([[0, 1], [2, 255]], dtype=np.uint8).view(np.bool_)
+    arrays = [base, base.astype(np.int32), base.astype(np.int16), base.astype(np.int8),
+              np.abs(base).astype(np.uint8), np.abs(base).astype(np.uint16),
+              np.abs(base).astype(np.uint32), base > 0, odd_bool,
+              rng.standard_normal((4, 6)).astype(np.float32), np.array([[1e-45, -0.0, np.nan]], np.float32),
+              np.asfortranarray(rng.standard_normal((4, 6))), rng.standard_normal((6, 8))[::2, 1::3],
+              rng.standard_normal((4, 6))[::-1, ::-2], unaligned, np.asfortranarray(base)]
+    assert not unaligned.flags.aligned
+    for a in arrays:
+        for x, nd in ((a, 2), (a[0], 1), (a[:, 0], 1)):
+            got = _core.as_f64(x, nd)
+            if x.dtype == np.float64 and x.flags.c_contiguous and x.flags.aligned:
+                assert got is None  # (plain already: nothing to convert)
+                continue
+            want = np.ascontiguousarray(x.astype(np.float64))
+            assert got is not None and got.dtype == np.float64 and got.flags.c_contiguous, (x.dtype, x.strides)
+            assert got.shape == want.shape and got.tobytes() == want.tobytes(), (x.dtype, x.strides)
+    for x, nd in ((np.ones((2, 2), np.uint64), 2), (np.ones((2, 2), np.float16), 2),
+                  (np.ones((2, 2), np.longdouble), 2), (np.ones((2, 2), np.complex128), 2),
+                  (np.ones((2, 2), ">f8"), 2), (np.ones((2, 2), ">i4"), 2), (np.ones((2, 2), object), 2),
+                  (np.zeros((0, 2)), 2), (np.zeros(0, np.float32), 1), (np.ones((2, 2)), 1),
+                  (np.ones(3, np.float32), 2), (np.ma.array(np.ones(2, np.float32)), 1),
+                  (np.eye(2), 2), (np.array(1.0, np.float32), 1)):
+        assert _core.as_f64(x, nd) is None, (x.dtype, nd)

@@ -51,7 +51,7 @@ def float64_array(x, name: str) -> np.ndarray:
 _ND = np.ndarray
 _F64, _I64 = np.dtype(np.float64), np.dtype(np.int64)
 _asarray, _contiguous = np.asarray, np.ascontiguousarray
-_list_f64, _lists_f64 = _core.list_f64, _core.lists_f64  # (src/python_front.cpp: from_list)
+_as_f64, _all_f64 = _core.as_f64, _core.all_f64  # (src/python_front.cpp: made_f64)
 
 
 def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
@@ -63,11 +63,11 @@ def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
     (ragged rows, other dimensions, a sparse matrix, object, complex or str entries...).
     An array that needs no conversion is returned as it is."""
     t = type(x)
+    if dtype is _F64 and (t is _ND or t is list or t is tuple) and (a := _as_f64(x, nd)) is not None:
+        return a  # (converted natively, the same values: src/python_front.cpp, made_f64)
     if t is _ND:
         a = x
     elif t is list or t is tuple:
-        if dtype is _F64 and (a := _list_f64(x, nd)) is not None:
-            return a  # (floats, bools and int64-sized ints: converted natively, the same values)
         try:
             a = _asarray(x)
         except Exception:  # (ragged rows and the like: the validation says so)
@@ -195,7 +195,7 @@ def plain_all(args, nds):
     """``args`` (a tuple, None for an argument not given) with each given one made as
     :func:`plain` makes it with its number of dimensions in ``nds``; None when nothing
     needed converting or anything is of another kind."""
-    got = _lists_f64(args, nds)  # (lists and plain arrays only: src/python_front.cpp)
+    got = _all_f64(args, nds)  # (what made_f64 converts, and plain arrays: src/python_front.cpp)
     if got is not None:
         return got or None  # (False: plain arrays all, nothing to convert)
     out = []
