@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <new>
 #include <type_traits>
 
@@ -472,6 +473,25 @@ nb::object made_f64(PyObject* x, int nd) {
     return a;
 }
 
+// solve_blcp's bound lo (side -1) or hi (side 1) as _validate.plain_blcp makes it: made_f64's
+// array, or a Python float or int64-sized int spread over q's n rows (np.full(n, float(x))),
+// q an ndarray; NaN and an infinity of the wrong side declined (invalid: the validation's
+// message then).
+nb::object made_bound(PyObject* x, PyObject* q, int side) {
+    if (!PyFloat_CheckExact(x) && !PyLong_CheckExact(x)) return made_f64(x, 1);
+    auto* qa = reinterpret_cast<const ArrayFields*>(q);
+    double v;
+    if (Py_TYPE(q) != front.ndarray || qa->nd != 1 || qa->dimensions[0] == 0 ||
+        front.new_from_descr == nullptr || !list_entry(x, v) || v != v ||
+        v == -side * std::numeric_limits<double>::infinity())
+        return nb::object();
+    Py_ssize_t n = qa->dimensions[0];
+    nb::object out = new_rows(1, n, 1);
+    double* d = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(out.ptr())->data);
+    for (Py_ssize_t i = 0; i < n; ++i) d[i] = v;
+    return out;
+}
+
 // The entries' arguments args[0..k) made float64 C arrays by made_f64 (ranks nd): true
 // when one was made and every one is now an ndarray (kept in `keep`, their pointers in
 // `out`), else false (the front's decline stands).
@@ -678,10 +698,19 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == e->front) {
             try {
                 // M, q, lo, hi as given, then (when the front declines and any needs
-                // converting) as made_f64 makes them
+                // converting) as made_f64 and made_bound make them
                 PyObject* a[4] = {args[0], args[1], args[2], args[3]};
                 nb::object keep[4];
-                static const int ranks[4] = {2, 1, 1, 1};
+                auto made = [&] {
+                    bool some = false;
+                    for (int i = 0; i < 4; ++i) {
+                        keep[i] = i < 2 ? made_f64(args[i], 2 - i) : made_bound(args[i], a[1], 2 * i - 5);
+                        if (!keep[i].is_valid()) return false;
+                        some = some || keep[i].ptr() != args[i];
+                        a[i] = keep[i].ptr();
+                    }
+                    return some;
+                };
                 for (int pass = 0; pass < 2; ++pass) {
                     nb::object r = blcp_front(a[0], a[1], a[2], a[3], fi, ws);
                     if (!r.is_none()) {
@@ -689,7 +718,7 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
                         PyObject* after[] = {a[0], a[1], a[2], a[3], fi, ws, r.ptr()};
                         return PyObject_Vectorcall(e->after, after, 7, nullptr);
                     }
-                    if (pass == 1 || !made_arrays(args, ranks, 4, keep, a)) break;
+                    if (pass == 1 || !made()) break;
                 }
             } catch (...) {
                 error_set();
