@@ -574,7 +574,8 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
 }
 
 // solve_lcp_many(Ms, qs) and solve_lcp_many(Ms, qs, warm_start=ws) of 1..FEW problems, lists
-// or tuples of plain arrays (n >= 1) and of None or WarmStart: each problem's lcp_front, as
+// or tuples of plain arrays (n >= 1; or array-likes made_f64 converts) and of None or
+// WarmStart: each problem's lcp_front, as
 // _batch._few calls solve_lcp, and the LCPManyResult that LCPManyResult._of makes of them.
 // nullptr: declined (the Python function does it all: any problem that lcp_front declines
 // or does not settle, a WarmStartBatch, ...); Py_None: an error, set.
@@ -598,13 +599,19 @@ PyObject* many_front(Entry* e, PyObject* M, PyObject* q, PyObject* wss) {
         nb::object items = nb::steal(PyList_New(B));
         if (!items.is_valid()) return Py_None;
         for (Py_ssize_t b = 0; b < B; ++b) {
-            auto* qb = reinterpret_cast<const ArrayFields*>(qs[b]);
-            if (Py_TYPE(qs[b]) != front.ndarray || qb->nd != 1 || qb->dimensions[0] < 1)
+            // the problem as given, or made float64 C arrays by made_f64 (as _batch._few's
+            // caller converts it); else declined
+            PyObject *Mo = Ms[b], *qo = qs[b];
+            nb::object Mk, qk;
+            if (plain(Mo, 2) == nullptr && (Mk = made_f64(Mo, 2)).is_valid()) Mo = Mk.ptr();
+            if (plain(qo, 1) == nullptr && (qk = made_f64(qo, 1)).is_valid()) qo = qk.ptr();
+            auto* qb = reinterpret_cast<const ArrayFields*>(qo);
+            if (Py_TYPE(qo) != front.ndarray || qb->nd != 1 || qb->dimensions[0] < 1)
                 return nullptr;
             PyObject* w = ws == nullptr ? Py_None : ws[b];
             nb::object beta = nb::none();
             if (w != Py_None && !warm_beta(e, w, qb->dimensions[0], beta)) return nullptr;
-            nb::object r = lcp_front(Ms[b], qs[b], w, beta);
+            nb::object r = lcp_front(Mo, qo, w, beta);
             if (r.is_none() || PyTuple_CheckExact(r.ptr())) return nullptr;
             PyList_SET_ITEM(items.ptr(), b, r.release().ptr());
         }

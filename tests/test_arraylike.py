@@ -181,6 +181,10 @@ def test_lcp_many_forms_bit_for_bit(B, method, monkeypatch):
             _same(a, b, LCP_FIELDS)
         for name in ("z", "w", "status", "pivots", "residual"):
             assert np.asarray(getattr(got, name)).tobytes() == np.asarray(getattr(want, name)).tobytes()
+        ref = ([_f64(M) for M in Mx], [_f64(q) for q in qx])
+        for kw in ({}, {"warm_start": ws}):  # (no other keyword: the entry's own path)
+            for a, b in zip(lemke.solve_lcp_many(Mx, qx, **kw), lemke.solve_lcp_many(*ref, **kw)):
+                _same(a, b, LCP_FIELDS)
         again = lemke.solve_lcp_many(Mx, [q - 1.0 for q in qs], method=method, warm_start=ws)
         for a, b in zip(again, lemke.solve_lcp_many(Ms, [q - 1.0 for q in qs], method=method,
                                                     warm_start=ws)):
