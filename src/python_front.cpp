@@ -22,7 +22,9 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <new>
+#include <type_traits>
 
 #include "lemke/lcp.hpp"
 #include "lemke/pivoting.hpp"
@@ -345,6 +347,165 @@ PyObject* error_set() {
     return Py_None;
 }
 
+// One entry of a list given for a float64 array, as np.asarray(x).astype(float64) has it:
+// a Python float (or a subclass: its value), a bool (1.0 or 0.0) or an int that fits in
+// int64 (rounded to the nearest double, as NumPy casts its int64 array; a bigger one makes
+// NumPy's array another dtype: declined). False (no error set) for anything else.
+bool list_entry(PyObject* v, double& out) {
+    if (PyFloat_Check(v)) {
+        out = PyFloat_AS_DOUBLE(v);
+        return true;
+    }
+    if (PyBool_Check(v)) {
+        out = v == Py_True ? 1.0 : 0.0;
+        return true;
+    }
+    if (!PyLong_CheckExact(v)) return false;
+    int overflow = 0;
+    long long i = PyLong_AsLongLongAndOverflow(v, &overflow);
+    if (overflow != 0 || (i == -1 && PyErr_Occurred())) {
+        PyErr_Clear();
+        return false;
+    }
+    out = static_cast<double>(i);
+    return true;
+}
+
+// NumPy's type numbers of the array dtypes made_f64 casts (NumPy's own, 1.x and 2.x).
+enum : int { T_BOOL = 0, T_BYTE, T_UBYTE, T_SHORT, T_USHORT, T_INT, T_UINT, T_LONG, T_ULONG,
+             T_LONGLONG, T_ULONGLONG, T_FLOAT, T_DOUBLE };
+
+// The entries of an nd-dimensional array (rows x cols, strides s0, s1 in bytes, any
+// alignment) of the C type T, as float64 in C order: NumPy's cast (astype), the C
+// conversion of each value (exact but for 64-bit ints, rounded to nearest as NumPy's).
+// (Bool: NumPy's bool, one byte, any non-zero value true as NumPy's cast reads it.)
+struct Bool {
+    unsigned char v;
+};
+template <class T>
+void cast_rows(const char* data, Py_ssize_t rows, Py_ssize_t cols, Py_ssize_t s0, Py_ssize_t s1,
+               double* out) {
+    for (Py_ssize_t i = 0; i < rows; ++i)
+        for (Py_ssize_t j = 0; j < cols; ++j) {
+            T v;
+            std::memcpy(&v, data + i * s0 + j * s1, sizeof(T));
+            if constexpr (std::is_same_v<T, Bool>)
+                out[i * cols + j] = v.v != 0 ? 1.0 : 0.0;
+            else
+                out[i * cols + j] = static_cast<double>(v);
+        }
+}
+
+// The new float64 C array made_f64 fills (rows x cols; 1-D when nd is 1).
+nb::object new_rows(int nd, Py_ssize_t rows, Py_ssize_t cols) {
+    Py_ssize_t dims[2] = {rows, cols};
+    Py_INCREF(front.f64);  // (stolen by NumPy)
+    nb::object a = nb::steal(front.new_from_descr(front.ndarray, front.f64, nd, dims, nullptr,
+                                                  nullptr, 0, nullptr));
+    if (!a.is_valid()) throw nb::python_error();
+    return a;
+}
+
+// An ndarray x of nd dimensions (none 0) that is not plain float64 made a float64 C array
+// as NumPy's astype makes it, when its dtype is bool, a signed int, an unsigned int up to 32
+// bits, float32 or float64 in the machine's byte order (any strides: Fortran order, a
+// slice, unaligned); else x itself (the front declines it, the Python function converts or
+// refuses it: float16, long double, uint64, complex, another byte order, object...).
+nb::object cast_array(PyObject* x, int nd) {
+    auto* a = reinterpret_cast<const ArrayFields*>(x);
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    if (a->nd != nd || plain(x, nd) != nullptr || (t->byteorder != '=' && t->byteorder != '|'))
+        return nb::borrow(x);
+    Py_ssize_t rows = a->dimensions[0], cols = nd == 2 ? a->dimensions[1] : 1;
+    Py_ssize_t s0 = a->strides[0], s1 = nd == 2 ? a->strides[1] : 0;
+    if (rows == 0 || cols == 0) return nb::borrow(x);
+    auto make = [&](auto tag) {
+        nb::object out = new_rows(nd, rows, cols);
+        cast_rows<decltype(tag)>(a->data, rows, cols, s0, s1,
+                                 reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(out.ptr())->data));
+        return out;
+    };
+    switch (t->type_num) {
+        case T_BOOL: return make(Bool{});
+        case T_BYTE: return make(static_cast<signed char>(0));
+        case T_UBYTE: return make(static_cast<unsigned char>(0));
+        case T_SHORT: return make(short{});
+        case T_USHORT: return make(static_cast<unsigned short>(0));
+        case T_INT: return make(int{});
+        case T_UINT: return make(0u);
+        case T_LONG: return make(0L);
+        case T_LONGLONG: return make(0LL);
+        case T_FLOAT: return make(0.0f);
+        case T_DOUBLE: return make(0.0);
+        default: return nb::borrow(x);
+    }
+}
+
+// x made a float64 C array when it is a list or tuple of nd levels (1 or 2; rows, lists or
+// tuples, of one length; no dimension 0) of list_entry's numbers, or an ndarray cast_array
+// casts: the values that the Python fronts' conversion (_validate.plain: np.asarray, then
+// float64 and C order) gives. Else x itself when it is an ndarray (the front judges it), or
+// an invalid object (declined: the Python function converts or refuses it).
+nb::object made_f64(PyObject* x, int nd) {
+    if (front.new_from_descr == nullptr) return Py_TYPE(x) == front.ndarray ? nb::borrow(x) : nb::object();
+    if (Py_TYPE(x) == front.ndarray) return cast_array(x, nd);
+    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
+    if (!seq(x)) return nb::object();
+    Py_ssize_t rows = PySequence_Fast_GET_SIZE(x), cols = 1;
+    PyObject** row = PySequence_Fast_ITEMS(x);
+    if (rows == 0) return nb::object();
+    if (nd == 2) {
+        if (!seq(row[0]) || (cols = PySequence_Fast_GET_SIZE(row[0])) == 0) return nb::object();
+        for (Py_ssize_t i = 1; i < rows; ++i)
+            if (!seq(row[i]) || PySequence_Fast_GET_SIZE(row[i]) != cols) return nb::object();
+    }
+    nb::object a = new_rows(nd, rows, cols);
+    double* out = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
+    for (Py_ssize_t i = 0; i < rows; ++i) {
+        if (nd == 1) {
+            if (!list_entry(row[i], out[i])) return nb::object();
+            continue;
+        }
+        PyObject** v = PySequence_Fast_ITEMS(row[i]);
+        for (Py_ssize_t j = 0; j < cols; ++j)
+            if (!list_entry(v[j], out[i * cols + j])) return nb::object();
+    }
+    return a;
+}
+
+// solve_blcp's bound lo (side -1) or hi (side 1) as _validate.plain_blcp makes it: made_f64's
+// array, or a Python float or int64-sized int spread over q's n rows (np.full(n, float(x))),
+// q an ndarray; NaN and an infinity of the wrong side declined (invalid: the validation's
+// message then).
+nb::object made_bound(PyObject* x, PyObject* q, int side) {
+    if (!PyFloat_CheckExact(x) && !PyLong_CheckExact(x)) return made_f64(x, 1);
+    auto* qa = reinterpret_cast<const ArrayFields*>(q);
+    double v;
+    if (Py_TYPE(q) != front.ndarray || qa->nd != 1 || qa->dimensions[0] == 0 ||
+        front.new_from_descr == nullptr || !list_entry(x, v) || v != v ||
+        v == -side * std::numeric_limits<double>::infinity())
+        return nb::object();
+    Py_ssize_t n = qa->dimensions[0];
+    nb::object out = new_rows(1, n, 1);
+    double* d = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(out.ptr())->data);
+    for (Py_ssize_t i = 0; i < n; ++i) d[i] = v;
+    return out;
+}
+
+// The entries' arguments args[0..k) made float64 C arrays by made_f64 (ranks nd): true
+// when one was made and every one is now an ndarray (kept in `keep`, their pointers in
+// `out`), else false (the front's decline stands).
+bool made_arrays(PyObject* const* args, const int* nd, int k, nb::object* keep, PyObject** out) {
+    bool some = false;
+    for (int i = 0; i < k; ++i) {
+        keep[i] = made_f64(args[i], nd[i]);
+        if (!keep[i].is_valid()) return false;
+        some = some || keep[i].ptr() != args[i];
+        out[i] = keep[i].ptr();
+    }
+    return some;
+}
+
 PyObject* entry_front(Entry* e, PyObject* M, PyObject* q, PyObject* ws, PyObject* beta,
                       int method) {
     try {
@@ -380,18 +541,31 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         }
         PyObject* now = plain ? PyDict_GetItemWithError(e->globals, e->k_front) : nullptr;
         if (now == e->front) {
-            PyObject* res = nullptr;
-            nb::object beta;
-            if (ws == Py_None) {
-                res = entry_front(e, args[0], args[1], Py_None, Py_None, method);
-            } else if (Py_TYPE(args[1]) == front.ndarray &&
-                       reinterpret_cast<const ArrayFields*>(args[1])->nd == 1 &&
-                       warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(args[1])->dimensions[0],
-                                 beta)) {
-                res = entry_front(e, args[0], args[1], ws, beta.ptr(), method);
+            // M and q as given, then (when the front declines and either needs converting)
+            // as made_f64 makes them
+            PyObject* Mq[2] = {args[0], args[1]};
+            nb::object keep[2];
+            static const int ranks[2] = {2, 1};
+            for (int pass = 0; pass < 2; ++pass) {
+                PyObject* res = nullptr;
+                nb::object beta;
+                if (ws == Py_None) {
+                    res = entry_front(e, Mq[0], Mq[1], Py_None, Py_None, method);
+                } else if (Py_TYPE(Mq[1]) == front.ndarray &&
+                           reinterpret_cast<const ArrayFields*>(Mq[1])->nd == 1 &&
+                           warm_beta(e, ws, reinterpret_cast<const ArrayFields*>(Mq[1])->dimensions[0],
+                                     beta)) {
+                    res = entry_front(e, Mq[0], Mq[1], ws, beta.ptr(), method);
+                }
+                if (res == Py_None) return nullptr;  // an error, set
+                if (res != nullptr) return res;
+                try {
+                    if (pass == 1 || !made_arrays(args, ranks, 2, keep, Mq)) break;
+                } catch (...) {
+                    error_set();
+                    return nullptr;
+                }
             }
-            if (res == Py_None) return nullptr;  // an error, set
-            if (res != nullptr) return res;
         } else if (now == nullptr && PyErr_Occurred()) {
             return nullptr;
         }
@@ -400,7 +574,8 @@ PyObject* entry_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
 }
 
 // solve_lcp_many(Ms, qs) and solve_lcp_many(Ms, qs, warm_start=ws) of 1..FEW problems, lists
-// or tuples of plain arrays (n >= 1) and of None or WarmStart: each problem's lcp_front, as
+// or tuples of plain arrays (n >= 1; or array-likes made_f64 converts) and of None or
+// WarmStart: each problem's lcp_front, as
 // _batch._few calls solve_lcp, and the LCPManyResult that LCPManyResult._of makes of them.
 // nullptr: declined (the Python function does it all: any problem that lcp_front declines
 // or does not settle, a WarmStartBatch, ...); Py_None: an error, set.
@@ -424,13 +599,19 @@ PyObject* many_front(Entry* e, PyObject* M, PyObject* q, PyObject* wss) {
         nb::object items = nb::steal(PyList_New(B));
         if (!items.is_valid()) return Py_None;
         for (Py_ssize_t b = 0; b < B; ++b) {
-            auto* qb = reinterpret_cast<const ArrayFields*>(qs[b]);
-            if (Py_TYPE(qs[b]) != front.ndarray || qb->nd != 1 || qb->dimensions[0] < 1)
+            // the problem as given, or made float64 C arrays by made_f64 (as _batch._few's
+            // caller converts it); else declined
+            PyObject *Mo = Ms[b], *qo = qs[b];
+            nb::object Mk, qk;
+            if (plain(Mo, 2) == nullptr && (Mk = made_f64(Mo, 2)).is_valid()) Mo = Mk.ptr();
+            if (plain(qo, 1) == nullptr && (qk = made_f64(qo, 1)).is_valid()) qo = qk.ptr();
+            auto* qb = reinterpret_cast<const ArrayFields*>(qo);
+            if (Py_TYPE(qo) != front.ndarray || qb->nd != 1 || qb->dimensions[0] < 1)
                 return nullptr;
             PyObject* w = ws == nullptr ? Py_None : ws[b];
             nb::object beta = nb::none();
             if (w != Py_None && !warm_beta(e, w, qb->dimensions[0], beta)) return nullptr;
-            nb::object r = lcp_front(Ms[b], qs[b], w, beta);
+            nb::object r = lcp_front(Mo, qo, w, beta);
             if (r.is_none() || PyTuple_CheckExact(r.ptr())) return nullptr;
             PyList_SET_ITEM(items.ptr(), b, r.release().ptr());
         }
@@ -474,11 +655,19 @@ PyObject* games_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == e->front) {
             PyObject* k = kwnames == nullptr ? front.zero : args[2];
             try {
-                nb::object r = games_front(args[0], args[1], k);
-                if (!r.is_none() && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
-                if (!r.is_none()) {
-                    PyObject* after[] = {args[0], args[1], k, r.ptr()};
-                    return PyObject_Vectorcall(e->after, after, 4, nullptr);
+                // A and B as given, then (when the front declines and either needs
+                // converting) as made_f64 makes them
+                PyObject* AB[2] = {args[0], args[1]};
+                nb::object keep[2];
+                static const int ranks[2] = {2, 2};
+                for (int pass = 0; pass < 2; ++pass) {
+                    nb::object r = games_front(AB[0], AB[1], k);
+                    if (!r.is_none() && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                    if (!r.is_none()) {
+                        PyObject* after[] = {AB[0], AB[1], k, r.ptr()};
+                        return PyObject_Vectorcall(e->after, after, 4, nullptr);
+                    }
+                    if (pass == 1 || !made_arrays(args, ranks, 2, keep, AB)) break;
                 }
             } catch (...) {
                 error_set();
@@ -515,11 +704,28 @@ PyObject* blcp_call(PyObject* self, PyObject* const* args, std::size_t nargsf,
         if (now == nullptr && PyErr_Occurred()) return nullptr;
         if (now == e->front) {
             try {
-                nb::object r = blcp_front(args[0], args[1], args[2], args[3], fi, ws);
-                if (!r.is_none()) {
-                    if (r.ptr() != Py_False && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
-                    PyObject* after[] = {args[0], args[1], args[2], args[3], fi, ws, r.ptr()};
-                    return PyObject_Vectorcall(e->after, after, 7, nullptr);
+                // M, q, lo, hi as given, then (when the front declines and any needs
+                // converting) as made_f64 and made_bound make them
+                PyObject* a[4] = {args[0], args[1], args[2], args[3]};
+                nb::object keep[4];
+                auto made = [&] {
+                    bool some = false;
+                    for (int i = 0; i < 4; ++i) {
+                        keep[i] = i < 2 ? made_f64(args[i], 2 - i) : made_bound(args[i], a[1], 2 * i - 5);
+                        if (!keep[i].is_valid()) return false;
+                        some = some || keep[i].ptr() != args[i];
+                        a[i] = keep[i].ptr();
+                    }
+                    return some;
+                };
+                for (int pass = 0; pass < 2; ++pass) {
+                    nb::object r = blcp_front(a[0], a[1], a[2], a[3], fi, ws);
+                    if (!r.is_none()) {
+                        if (r.ptr() != Py_False && !PyTuple_CheckExact(r.ptr())) return r.release().ptr();
+                        PyObject* after[] = {a[0], a[1], a[2], a[3], fi, ws, r.ptr()};
+                        return PyObject_Vectorcall(e->after, after, 7, nullptr);
+                    }
+                    if (pass == 1 || !made()) break;
                 }
             } catch (...) {
                 error_set();
@@ -878,6 +1084,34 @@ void bind_front(nb::module_& m) {
     m.def("many_unsettled", &many_unsettled, "out_i"_a, "out_f"_a);
     m.def("many_field", &many_field, "bufs"_a, "buff"_a, "qoff"_a, "a"_a, "c"_a);
     m.def("many_bases", &many_bases, "basics"_a, "qoff"_a, "out_i"_a);
+    // made_f64 for the Python fronts' conversion (_validate.plain): the float64 C array it
+    // makes of x, or None (x is plain already, or of another kind)
+    m.def("as_f64", [](nb::handle x, int nd) -> nb::object {
+        if (!front.on || (nd != 1 && nd != 2)) return nb::none();
+        nb::object a = made_f64(x.ptr(), nd);
+        return a.is_valid() && a.ptr() != x.ptr() ? a : nb::none();
+    }, "x"_a, "nd"_a);
+    // _validate.plain_all's common case in one call: args (a tuple; None for an argument
+    // not given) with every one made_f64 makes made a float64 C array (its rank in ranks)
+    // and every other given one a plain float64 array kept; False when every given one is
+    // a plain array already (nothing to convert), None when any is of another kind
+    // (plain_all's Python steps then)
+    m.def("all_f64", [](nb::tuple args, nb::tuple ranks) -> nb::object {
+        Py_ssize_t k = args.size();
+        if (!front.on || ranks.size() != k) return nb::none();
+        nb::list out;
+        bool some = false;
+        for (Py_ssize_t i = 0; i < k; ++i) {
+            PyObject* x = PyTuple_GET_ITEM(args.ptr(), i);
+            int nd = nb::cast<int>(ranks[i]);
+            nb::object a = x == Py_None ? nb::none() : made_f64(x, nd);
+            if (!a.is_valid() || (a.ptr() == x && x != Py_None && plain(x, nd) == nullptr))
+                return nb::none();  // (an ndarray or a list made_f64 declines)
+            some = some || a.ptr() != x;
+            out.append(a);
+        }
+        return some ? nb::object(out) : nb::bool_(false);
+    }, "args"_a, "ranks"_a);
     m.def("lcp_entry", &lcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a, "ws_cls"_a);
     m.def("games_entry", &games_entry, "py"_a, "after"_a, "globals"_a, "front"_a);
     m.def("blcp_entry", &blcp_entry, "py"_a, "after"_a, "globals"_a, "front"_a);

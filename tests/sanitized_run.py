@@ -16,7 +16,9 @@ behaviour in the C++ core then stops the child with a report on stderr.  It solv
 * games: test_games.py's known games from every label (float and exact), tracing,
   warm starts from a basis, lemke_paths on small games, random games of its families;
 * warm starts and relabels: LCP restarts, take, relabel by labels and by integer ids
-  (duplicates included), batches and solve_lcp_many with their warm starts.
+  (duplicates included), batches and solve_lcp_many with their warm starts;
+* array-likes: lists, tuples, int / bool / float32 arrays, Fortran-ordered, reversed,
+  strided and unaligned arrays, scalar box bounds, through every entry point.
 
 The statuses are not checked here (the other tests do); every solve runs, each exception is
 reported with the problem that raised it, and each answer is reduced to a fingerprint
@@ -357,6 +359,48 @@ def games(run):
         run.attempt(f"constant game {np.shape(A)} lemke_paths", lambda: lemke.lemke_paths(A, B))
 
 
+def array_likes(run):
+    """Inputs that are not float64 C arrays, which the native entries convert themselves
+    (src/python_front.cpp, made_f64 and made_bound): lists of floats, ints and bools,
+    tuples, int / uint / bool / float32 arrays, Fortran-ordered, reversed, strided and
+    unaligned float64 arrays, scalar box bounds; each entry point and the few-problem
+    calls."""
+    from lemke import problems
+
+    rng = np.random.default_rng(11)
+    for n in (1, 2, 5, 9):
+        M, q = problems.random_psd(n, rng)
+        Mi = rng.integers(-3, 4, (n, n))
+        Mi = Mi @ Mi.T + np.eye(n, dtype=np.int64)
+        raw = np.frombuffer(b"\0" + np.ascontiguousarray(M).tobytes(), dtype=np.float64, offset=1)
+        forms = {"lists": (M.tolist(), q.tolist()), "tuples": (tuple(map(tuple, M)), tuple(q)),
+                 "int lists": (Mi.tolist(), [-1] * n), "int32": (Mi.astype(np.int32), q.astype(np.float32)),
+                 "uint8 bool": (np.eye(n, dtype=np.uint8), np.arange(n) % 2 == 0),
+                 "fortran": (np.asfortranarray(M), q[::-1].copy()[::-1]),
+                 "reversed": (M[::-1, ::-1], np.repeat(q, 3)[::3]), "unaligned": (raw.reshape(n, n), q)}
+        for name, (Mx, qx) in forms.items():
+            for method in lemke.METHODS:
+                run.attempt(f"array-like {name} n={n} [{method}]",
+                            lambda Mx=Mx, qx=qx, m=method: lemke.solve_lcp(Mx, qx, method=m))
+            ws = lemke.solve_lcp(M, q).warm_start
+            run.attempt(f"array-like {name} n={n} warm", lambda Mx=Mx, qx=qx, ws=ws: lemke.solve_lcp(
+                Mx, qx, warm_start=ws))
+            run.attempt(f"array-like {name} n={n} box", lambda Mx=Mx, qx=qx: lemke.solve_blcp(
+                Mx, qx, -1.0, 2))
+            run.attempt(f"array-like {name} n={n} box lists", lambda Mx=Mx, qx=qx: lemke.solve_blcp(
+                Mx, qx, [-1.0] * n, np.full(n, np.inf).tolist()))
+            run.attempt(f"array-like {name} n={n} game", lambda Mx=Mx: lemke.solve_bimatrix(Mx, Mx))
+            run.attempt(f"array-like {name} n={n} many", lambda Mx=Mx, qx=qx: list(lemke.solve_lcp_many(
+                [Mx, Mx], [qx, qx])))
+            run.attempt(f"array-like {name} n={n} box many", lambda Mx=Mx, qx=qx: list(lemke.solve_blcp_many(
+                [Mx, Mx], [qx, qx], -1.0, 1.0)))
+        P, qq, G, h, A, b, lb, ub = problems.random_convex_qp(n, rng)
+        run.attempt(f"array-like qp lists n={n}", lambda a=(P, qq, G, h, A, b, lb, ub): lemke.solve_qp(
+            *[x.tolist() for x in a]))
+        run.attempt(f"array-like qp fortran n={n}", lambda a=(P, qq, G, h, A, b, lb, ub): lemke.solve_qp(
+            *[np.asfortranarray(x) if x.ndim == 2 else x for x in a]))
+
+
 def run_all() -> Runner:
     """Every solve but the goldens' (the test compares those with the golden record)."""
     run = Runner()
@@ -364,6 +408,7 @@ def run_all() -> Runner:
     sizes(run)
     box_lcps(run)
     games(run)
+    array_likes(run)
     return run
 
 

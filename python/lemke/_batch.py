@@ -17,6 +17,7 @@ from ._options import as_options, time_limited, timed
 from ._result import LCPBatchResult, LCPManyResult, WarmStart, WarmStartBatch
 from ._status import Status
 from ._validate import real_array
+from ._npc import every as _every
 from . import _layout
 
 #: The batch kernel: the C++ core's (src/lemke/lcp.cpp, ``lemke::batch``), the port of
@@ -404,6 +405,10 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         if workers is not None:
             _validate.positive_int_or_none(workers, "workers")
         res = _few(M, q, method, warm_start)
+        if res is None and (c := _validate.plain_many(M, q)) is not None:
+            # array-likes converted once, as _checked below would convert them (when _few
+            # declines them too, all below from the caller's objects, as before)
+            res = _few(c[0], c[1], method, warm_start)
         if res is not None:
             return res
     opts = as_options(options)
@@ -435,17 +440,26 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
         B = len(Ms)
         if B != len(qs):
             raise ValueError(f"M and q must hold the same number of problems, got {B} and {len(qs)}")
+        given = None
         # Every problem ready for the kernels (float64 ndarrays, M square of q's size) is the
         # common case, checked in one pass; else each problem is checked and converted.
         if len([None for Mb, qb in zip(Ms, qs)
                 if type(Mb) is _ND and type(qb) is _ND
                 and (Mb.dtype is _F64 or Mb.dtype == _F64) and (qb.dtype is _F64 or qb.dtype == _F64)
                 and qb.ndim == 1 and Mb.shape == qb.shape * 2]) != B:
-            Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
-                           for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
+            # (array-likes converted at once as _checked converts them, their finiteness
+            # checked below; if any is of another kind, each is checked in turn)
+            if (c := _validate.plain_many(Ms, qs)) is not None:
+                given, (Ms, qs) = (Ms, qs), c
+            else:
+                Ms, qs = zip(*[(Mb, qb) if _ready(Mb, qb) else _checked(b, Mb, qb)
+                               for b, (Mb, qb) in enumerate(zip(Ms, qs))]) if B else ((), ())
         sizes = list(map(len, qs))
         off = _offsets(sizes)
         Mflat, qflat = _flat(Ms), _flat(qs)
+        if given is not None and not (_every(_isfinite(Mflat)) and _every(_isfinite(qflat))):
+            for b, (Mb, qb) in enumerate(zip(*given)):
+                _checked(b, Mb, qb)  # raises at the first fault, as the checks above would
     else:
         Mflat, qflat, off = _packed(M, q, sizes)
         sizes = off[0, 1:].tolist()
@@ -507,6 +521,7 @@ solve_lcp_many = functools.update_wrapper(
                          LCPManyResult), _solve_lcp_many)
 
 _RAY = int(Status.RAY_TERMINATION)
+_isfinite = np.isfinite
 #: The most problems that solve_lcp_many solves one by one with solve_lcp (its native front:
 #: a microsecond or so each), when each is ready for the kernels, with the default options
 #: and no progress report: the batch's own set-up (its arrays and offsets, some tens of

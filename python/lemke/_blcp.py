@@ -560,6 +560,10 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
             if r is False or type(r) is tuple:
                 return _after_front(M, q, lo, hi, findex, warm_start, r)
             return r
+        if (c := _validate.plain_blcp(M, q, lo, hi, findex)) is not None:
+            # array-likes (and scalar bounds) converted once, as as_blcp below would
+            # convert them: then the front, through the entry
+            return solve_blcp(c[0], c[1], c[2], c[3], findex=c[4], warm_start=warm_start)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_blcp, M, q, lo, hi, findex=findex, method=method,
                      warm_start=warm_start)

@@ -398,6 +398,10 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
             and (len(M) <= FEW or _small(q))
             and (workers is None or (type(workers) is int and workers > 0))):
         res = _few(M, q, lo, hi, findex, warm_start)
+        if res is None and (c := _validate.plain_islands(M, q, lo, hi, findex)) is not None:
+            # array-likes converted once, as as_blcp would convert them (when _few declines
+            # them too, all below from the caller's objects, as before)
+            res = _few(c[0], c[1], c[2], c[3], c[4] if findex is not None else None, warm_start)
         if res is not None:
             return res
     opts = as_options(options)

@@ -39,6 +39,7 @@ SOLVED = int(Status.SOLVED)  # the core's code of a solved run
 METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
 _F64 = np.dtype(np.float64)
+_MATRICES = (2, 2)
 _STATUSES = {int(s): s for s in Status}
 #: The games kernels of the C++ core (src/lemke/games.cpp: kernels/games.py's lemke_howson,
 #: trace and check, with the same arguments, results and bits); module attributes, so that
@@ -293,6 +294,10 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
         got = _FRONT(A, B, init_label)  # None: arguments of another kind, done below
         if got is not None:
             return got if type(got) is not tuple else _after_front(A, B, init_label, got)
+        if (c := _validate.plain_all((A, B), _MATRICES)) is not None:
+            # array-likes converted once, as the validation below would convert them: then
+            # the front, through the entry
+            return solve_bimatrix(c[0], c[1], init_label=init_label)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_bimatrix, A, B, init_label=init_label, method=method,
                      prior=prior, warm_start=warm_start, exact=exact)

@@ -120,6 +120,10 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
             r = None
         if r is not None:
             return r if type(r) is not tuple else _after_front(M, q, warm_start, beta, r, method)
+        if (c := _validate.plain_lcp(M, q)) is not None:
+            # array-likes (lists, int or float32 arrays, another order...) converted once,
+            # as the validation below would convert them: then the front, through the entry
+            return solve_lcp(c[0], c[1], method=method, warm_start=warm_start)
     if options is not None and (timing := time_limited(options)):
         return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
     ws = warm_start

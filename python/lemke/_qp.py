@@ -230,6 +230,11 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
                              and (lb is not None or ub is not None))
             else:
                 warm_tried = True
+        elif (c := _validate.plain_all((P, q, G, h, A, b, lb, ub, initvals), _RANKS)) is not None:
+            # array-likes converted once, as the validation below would convert them: then
+            # the front
+            return solve_qp(c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], method=method,
+                            warm_start=warm_start, initvals=c[8])
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None
             and not warm_tried and cold is None
             and type(P) is _ND and type(q) is _ND
@@ -915,6 +920,8 @@ _CHECK_FAILED = _core.QP_CHECK_FAILED
 #: (tests/test_core_support.py switches the front off and this off).
 _RELAXED = True
 _BAD_WARM = _core.QP_BAD_WARM
+#: The ranks of solve_qp's arrays (P, q, G, h, A, b, lb, ub, initvals) as its front reads them
+_RANKS = (2, 1, 2, 1, 2, 1, 1, 1, 1)
 _QP_FRONT = _core.qp_front  # solve_qp's warm call, native (src/python_front_qp.cpp)
 
 

@@ -14,6 +14,7 @@ import warnings
 
 import numpy as np
 
+from . import _core
 from ._npc import absmax, count, every, nz, some, sub
 
 
@@ -43,6 +44,172 @@ def float64_array(x, name: str) -> np.ndarray:
     if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
         raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
     return a if a.dtype == np.float64 else a.astype(np.float64)
+
+
+# ------------------------------------------------ array-likes for the native fronts
+
+_ND = np.ndarray
+_F64, _I64 = np.dtype(np.float64), np.dtype(np.int64)
+_asarray, _contiguous = np.asarray, np.ascontiguousarray
+_as_f64, _all_f64 = _core.as_f64, _core.all_f64  # (src/python_front.cpp: made_f64)
+
+
+def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
+    """``x`` as the native fronts read it (a C-contiguous ndarray of ``dtype``, float64 by
+    default, with ``nd`` dimensions), converted once as :func:`float64_array` and the
+    kinds' shape checks convert it (``np.asarray``, then the cast and C order: the same
+    values), when ``x`` is a list, tuple or ndarray (exactly) whose dtype's kind is in
+    ``kinds``; else None, and the validation then does it all and names what is wrong
+    (ragged rows, other dimensions, a sparse matrix, object, complex or str entries...).
+    An array that needs no conversion is returned as it is."""
+    t = type(x)
+    if dtype is _F64 and (t is _ND or t is list or t is tuple) and (a := _as_f64(x, nd)) is not None:
+        return a  # (converted natively, the same values: src/python_front.cpp, made_f64)
+    if t is _ND:
+        a = x
+    elif t is list or t is tuple:
+        try:
+            a = _asarray(x)
+        except Exception:  # (ragged rows and the like: the validation says so)
+            return None
+    else:
+        return None
+    if a.ndim != nd or a.dtype.kind not in kinds:
+        return None
+    return _contiguous(a, dtype=dtype)
+
+
+def _scalar_bound(x, n: int, side: int):
+    """A Python number bound as :func:`blcp` expands it (``np.full(n, float(x))``), or None:
+    not a float or an int64-sized int, or NaN, or an infinity the side refuses (the
+    validation's message then)."""
+    t = type(x)
+    if t is float or (t is int and -2**63 <= x < 2**63):
+        v = float(x)
+        if v == v and v != -side * np.inf:
+            return np.full(n, v)
+    return None
+
+
+def plain_lcp(M, q):
+    """``(M, q)`` for ``lcp_front`` when either is an array-like that :func:`plain` converts
+    (``[]`` for M is the empty matrix, as :func:`square_matrix` has it) and M is n x n for q
+    of length n; None when nothing needed converting or anything is of another kind."""
+    got = _lcp_pair(M, q)
+    return None if got is None or (got[0] is M and got[1] is q) else got
+
+
+def plain_many(Ms, qs):
+    """Lists of the problems ``(M_b, q_b)`` (sequences of the same length) each made as
+    :func:`plain_lcp` makes it; None when nothing needed converting or any problem is of
+    another kind (the validation then checks them in order and names the first fault)."""
+    if len(Ms) != len(qs):
+        return None
+    out_M, out_q = [], []
+    same = True
+    for M, q in zip(Ms, qs):
+        got = _lcp_pair(M, q)
+        if got is None:
+            return None
+        same = same and got[0] is M and got[1] is q
+        out_M.append(got[0])
+        out_q.append(got[1])
+    return None if same else (out_M, out_q)
+
+
+def _lcp_pair(M, q):
+    """``(M, q)`` made by :func:`plain` (as they are when they need nothing), or None."""
+    m = plain(M, 2)
+    if m is None:
+        if (type(M) is not list and type(M) is not tuple) or len(M):
+            return None
+        m = np.zeros((0, 0))
+    v = plain(q, 1)
+    if v is None:
+        return None
+    n = len(v)
+    if m.shape[0] != n or m.shape[1] != n:
+        return None
+    return m, v
+
+
+def plain_blcp(M, q, lo, hi, findex):
+    """``(M, q, lo, hi, findex)`` for ``blcp_front`` as :func:`plain_lcp` makes its
+    arguments (bounds also Python numbers, spread over the n rows; ``findex`` None or of an
+    integer kind, made int64 as :func:`blcp` makes it); None when nothing needed converting
+    or anything is of another kind."""
+    got = _blcp_args(M, q, lo, hi, findex)
+    return None if got is None or (got[0] is M and got[1] is q and got[2] is lo
+                                   and got[3] is hi and got[4] is findex) else got
+
+
+def plain_islands(M, q, lo, hi, findex):
+    """Lists of the islands' ``(M_b, q_b, lo_b, hi_b, findex_b)`` of ``solve_blcp_many``
+    each made as :func:`plain_blcp` makes its arguments (``lo``, ``hi``: sequences of the
+    islands' bounds or one Python number for all; ``findex`` None or a sequence); None when
+    nothing needed converting or any island is of another kind."""
+    B = len(M)
+    los, his = _each(lo, B), _each(hi, B)
+    fis = (None,) * B if findex is None else _each(findex, B, False)
+    if type(q) not in (list, tuple) or len(q) != B or los is None or his is None or fis is None:
+        return None
+    out = ([], [], [], [], [])
+    same = True
+    for got in map(_blcp_args, M, q, los, his, fis):
+        if got is None:
+            return None
+        for col, x in zip(out, got):
+            col.append(x)
+    for col, given in zip(out, (M, q, los, his, fis)):
+        same = same and all(a is b for a, b in zip(col, given))
+    return None if same else out
+
+
+def _each(v, B, scalar=True):
+    """A sequence of B islands' ``v``, or one Python number for all (with ``scalar``), as
+    a sequence; else None."""
+    if type(v) is list or type(v) is tuple:
+        return v if len(v) == B else None
+    return (v,) * B if scalar and (type(v) is float or type(v) is int) else None
+
+
+def _blcp_args(M, q, lo, hi, findex):
+    """:func:`plain_blcp`'s arguments, made (as they are when they need nothing), or None."""
+    m, v = plain(M, 2), plain(q, 1)
+    if m is None or v is None or m.shape != (len(v), len(v)):
+        return None
+    n = len(v)
+    a = plain(lo, 1)
+    if a is None:
+        a = _scalar_bound(lo, n, -1)
+    b = plain(hi, 1)
+    if b is None:
+        b = _scalar_bound(hi, n, 1)
+    f = None if findex is None else plain(findex, 1, _I64, "iu")
+    if a is None or b is None or (findex is not None and f is None):
+        return None
+    return m, v, a, b, f
+
+
+def plain_all(args, nds):
+    """``args`` (a tuple, None for an argument not given) with each given one made as
+    :func:`plain` makes it with its number of dimensions in ``nds``; None when nothing
+    needed converting or anything is of another kind."""
+    got = _all_f64(args, nds)  # (what made_f64 converts, and plain arrays: src/python_front.cpp)
+    if got is not None:
+        return got or None  # (False: plain arrays all, nothing to convert)
+    out = []
+    same = True
+    for x, nd in zip(args, nds):
+        if x is None:
+            out.append(None)
+            continue
+        a = plain(x, nd)
+        if a is None:
+            return None
+        same = same and a is x
+        out.append(a)
+    return None if same else out
 
 
 class DensifyWarning(UserWarning):

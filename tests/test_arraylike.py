@@ -1,0 +1,500 @@
+"""Array-likes on the native fronts: an argument that is not a float64 C array (lists,
+tuples, int / bool / float32 arrays, Fortran-ordered, strided, read-only or byte-swapped
+float64 arrays, scalar box bounds) is converted once, as the validation converts it, and
+the call then takes the native front: every public entry answers exactly (bit for bit) what
+it answers for the float64 C arrays of the same values, never writes to the caller's
+objects, and every input it refuses (NaN, infinities, shapes, ragged rows, str, complex,
+object, sparse...) raises exactly the error the validation raised before, the conversion
+off."""
+import copy
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import lemke
+from lemke import _validate
+
+
+def _f64(x):
+    """The float64 C array the validation makes of x."""
+    return np.ascontiguousarray(np.asarray(x).astype(np.float64))
+
+
+def _forms(a, integral=False):
+    """a in every form that converts cleanly: (name, form), the same names for every a."""
+    out = [("list", a.tolist()), ("tuple", tuple(map(tuple, a)) if a.ndim == 2 else tuple(a.tolist())),
+           ("float32", a.astype(np.float32)), ("swapped", a.astype(a.dtype.newbyteorder())),
+           ("strided", np.repeat(a, 2, axis=-1)[..., ::2])]
+    ro = np.asfortranarray(a).copy(order="F")  # (a 1-D one: a plain array, read-only)
+    ro.setflags(write=False)
+    out += [("fortran", np.asfortranarray(a)), ("read-only fortran", ro)]
+    if integral:
+        out += [("int list", a.astype(np.int64).tolist()), ("int32", a.astype(np.int32)),
+                ("uint8" if (a >= 0).all() else "int8", a.astype(np.uint8 if (a >= 0).all() else np.int8))]
+    return out
+
+
+def _same(a, b, fields=None):
+    """Every field bit for bit (fields None: the result's own bitwise key, all its fields)."""
+    assert type(a) is type(b)
+    if fields is None:
+        assert a._keys() == b._keys()
+        return
+    for name in fields:
+        x, y = getattr(a, name), getattr(b, name)
+        assert type(x) is type(y), name
+        if isinstance(x, np.ndarray):
+            assert x.dtype == y.dtype and x.shape == y.shape and x.tobytes() == y.tobytes(), name
+        elif isinstance(x, float):
+            assert x == y or (x != x and y != y), name
+        else:
+            assert x == y, name
+
+
+def _untouched(objs, call):
+    """call(), the objects compared before and after (values, dtypes, flags)."""
+    before = [copy.deepcopy(o) for o in objs]
+    flags = [o.flags.writeable if isinstance(o, np.ndarray) else None for o in objs]
+    out = call()
+    for o, b, f in zip(objs, before, flags):
+        if isinstance(o, np.ndarray):
+            assert o.dtype == b.dtype and o.tobytes() == b.tobytes() and o.flags.writeable == f
+        else:
+            assert o == b
+    return out
+
+
+@pytest.fixture
+def no_validation(monkeypatch):
+    """Make the validation path fail the test: a converted call must end in the front."""
+    def refuse(*a, **k):
+        raise AssertionError("the validation path was taken")
+    for name in ("lcp", "blcp", "bimatrix", "qp"):
+        monkeypatch.setattr(_validate, name, refuse)
+
+
+def _old(monkeypatch):
+    """The path of today's array-likes: no conversion (the validation does it all)."""
+    for name in ("plain_lcp", "plain_blcp", "plain_all", "plain_many", "plain_islands"):
+        monkeypatch.setattr(_validate, name, lambda *a: None)
+
+
+LCP_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
+              "row_scale", "col_scale", "recoveries")
+
+
+def _lcp_data(n=5, seed=1):
+    rng = np.random.default_rng(seed)
+    A = rng.integers(-3, 4, (n, n))
+    return (A @ A.T + np.eye(n, dtype=np.int64)).astype(np.float64), rng.integers(-9, 9, n).astype(np.float64)
+
+
+@pytest.mark.parametrize("method", ["tableau", "unrevised"])
+def test_lcp_forms_bit_for_bit(method, no_validation):
+    M, q = _lcp_data()
+    want = lemke.solve_lcp(M, q, method=method)
+    assert want.success and want.pivots > 0
+    ws = want.warm_start
+    for (nm, Mx), (nq, qx) in zip(_forms(M, True), _forms(q, True)):
+        for Mi, qi in ((Mx, qx), (Mx, q), (M, qx)):
+            got = _untouched([Mi, qi], lambda: lemke.solve_lcp(Mi, qi, method=method))
+            _same(got, lemke.solve_lcp(_f64(Mi), _f64(qi), method=method), LCP_FIELDS)
+            # warm (from its own basis: 0 pivots; from another q: a restart)
+            for qw in (qi, _f64(qi) - 3.0):
+                got = lemke.solve_lcp(Mi, qw, method=method, warm_start=ws)
+                _same(got, lemke.solve_lcp(_f64(Mi), _f64(qw), method=method, warm_start=ws),
+                      LCP_FIELDS)
+
+
+def test_lcp_bool_empty_and_rays(no_validation):
+    Mb = np.array([[True, False], [False, True]])
+    _same(lemke.solve_lcp(Mb, [-1, -2]), lemke.solve_lcp(np.eye(2), np.array([-1.0, -2.0])), LCP_FIELDS)
+    _same(lemke.solve_lcp([], []), lemke.solve_lcp(np.zeros((0, 0)), np.zeros(0)), LCP_FIELDS)
+    _same(lemke.solve_lcp((), np.zeros(0)), lemke.solve_lcp(np.zeros((0, 0)), np.zeros(0)), LCP_FIELDS)
+    ray = lemke.solve_lcp([[-1, -2, 0], [1, 3, 1], [0, 1, 2]], [-1, 2, -3])
+    assert ray.status == lemke.Status.RAY_TERMINATION
+    _same(ray, lemke.solve_lcp(np.array([[-1.0, -2, 0], [1, 3, 1], [0, 1, 2]]), np.array([-1.0, 2, -3])),
+          LCP_FIELDS)
+
+
+BAD_LCP = [
+    ([[1.0, np.nan], [0.0, 1.0]], [-1.0, -1.0]),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, np.inf]),
+    ([[1, 0], [0, 1]], [-1, -1, -1]),
+    ([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [-1.0, -1.0]),
+    ([[1.0, 0.0], [0.0]], [-1.0, -1.0]),
+    ([["1", "0"], ["0", "1"]], [-1.0, -1.0]),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0 + 1j, -1.0]),
+    ([[1.0, None], [0.0, 1.0]], [-1.0, -1.0]),
+    ([[1.0, 0.0], [0.0, 1.0]], [[-1.0, -1.0]]),
+    ([], [-1.0]),
+    (np.eye(2, dtype=np.float32), np.array([np.nan, 1.0], dtype=np.float32)),
+    (np.asfortranarray([[1.0, 2.0], [np.inf, 1.0]]), [-1.0, -1.0]),
+    ([[2 ** 64, 0], [0, 1]], [-1, -1]),
+    (sp.csr_matrix(np.eye(2)), [-1.0, np.nan]),
+]
+
+
+def _error(call):
+    try:
+        call()
+    except Exception as e:  # noqa: BLE001 (compared)
+        return type(e), str(e)
+    return None
+
+
+@pytest.mark.parametrize("M, q", BAD_LCP)
+def test_lcp_errors_as_before(M, q, monkeypatch):
+    for kw in ({}, {"method": "unrevised"}, {"warm_start": lemke.WarmStart(2, ())}):
+        got = _error(lambda: lemke.solve_lcp(M, q, **kw))
+        assert got is not None
+        with monkeypatch.context() as m:
+            _old(m)
+            assert got == _error(lambda: lemke.solve_lcp(M, q, **kw))
+
+
+def test_lcp_warm_start_errors_as_before(monkeypatch):
+    M, q = _lcp_data(3)
+    for ws in (lemke.WarmStart(2, ()), (0, 1), lemke.BoxWarmStart(3, (), ())):
+        got = _error(lambda: lemke.solve_lcp(M.tolist(), q.tolist(), warm_start=ws))
+        assert got is not None
+        with monkeypatch.context() as m:
+            _old(m)
+            assert got == _error(lambda: lemke.solve_lcp(M.tolist(), q.tolist(), warm_start=ws))
+
+
+@pytest.mark.parametrize("B", [2, 9])
+@pytest.mark.parametrize("method", ["tableau", "unrevised"])
+def test_lcp_many_forms_bit_for_bit(B, method, monkeypatch):
+    probs = [_lcp_data(1 + b % 4, seed=b) for b in range(B)]
+    Ms, qs = [p[0] for p in probs], [p[1] for p in probs]
+    want = lemke.solve_lcp_many(Ms, qs, method=method, workers=1)
+    ws = want.warm_start
+    monkeypatch.setattr(_validate, "lcp", lambda *a: (_ for _ in ()).throw(AssertionError("validated")))
+    for i in range(len(_forms(Ms[0], True))):
+        Mx = [_forms(M, True)[i][1] for M in Ms]
+        qx = [_forms(q, True)[i][1] for q in qs]
+        got = _untouched(Mx + qx, lambda: lemke.solve_lcp_many(Mx, qx, method=method, workers=1))
+        assert len(got) == B
+        for a, b in zip(got, want):
+            _same(a, b, LCP_FIELDS)
+        for name in ("z", "w", "status", "pivots", "residual"):
+            assert np.asarray(getattr(got, name)).tobytes() == np.asarray(getattr(want, name)).tobytes()
+        ref = ([_f64(M) for M in Mx], [_f64(q) for q in qx])
+        for kw in ({}, {"warm_start": ws}):  # (no other keyword: the entry's own path)
+            for a, b in zip(lemke.solve_lcp_many(Mx, qx, **kw), lemke.solve_lcp_many(*ref, **kw)):
+                _same(a, b, LCP_FIELDS)
+        again = lemke.solve_lcp_many(Mx, [q - 1.0 for q in qs], method=method, warm_start=ws)
+        for a, b in zip(again, lemke.solve_lcp_many(Ms, [q - 1.0 for q in qs], method=method,
+                                                    warm_start=ws)):
+            _same(a, b, LCP_FIELDS)
+
+
+@pytest.mark.parametrize("B", [2, 9])
+def test_lcp_many_errors_as_before(B, monkeypatch):
+    Ms = [np.eye(2).tolist() for _ in range(B)]
+    qs = [[-1.0, -1.0] for _ in range(B)]
+    cases = []
+    for bad in ([np.nan, -1.0], [-1.0], [[-1.0, -1.0]], ["a", "b"], [1j, 0.0]):
+        q2 = list(qs)
+        q2[1] = bad
+        cases.append((Ms, q2))
+    cases.append((Ms, [[np.nan, -1.0]] + qs[1:]))
+    M2 = list(Ms)
+    M2[0] = [[1.0, 0.0], [0.0]]
+    q2 = list(qs)
+    q2[1] = [np.inf, 0.0]
+    cases += [(M2, qs), (Ms, q2), (Ms[:1], qs)]
+    bad_ws = [None] * (B - 1) + [lemke.WarmStart(3, ())]
+    for M, q in cases:
+        for kw in ({"workers": 1}, {}, {"warm_start": bad_ws}):
+            got = _error(lambda: lemke.solve_lcp_many(M, q, **kw))
+            assert got is not None
+            with monkeypatch.context() as m:
+                _old(m)
+                assert got == _error(lambda: lemke.solve_lcp_many(M, q, **kw))
+
+
+BLCP_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
+               "lo", "hi", "row_scale", "col_scale", "recoveries")
+
+
+def test_blcp_forms_bit_for_bit(no_validation):
+    M, q = _lcp_data(4, seed=3)
+    lo, hi = -np.ones(4), np.full(4, 2.0)
+    want = lemke.solve_blcp(M, q, lo, hi)
+    assert want.success
+    ws = want.warm_start
+    for (_, Mx), (_, qx), (_, lx), (_, hx) in zip(_forms(M, True), _forms(q, True),
+                                                 _forms(lo, True), _forms(hi, True)):
+        args = (Mx, qx, lx, hx)
+        got = _untouched(list(args), lambda: lemke.solve_blcp(*args))
+        ref = tuple(map(_f64, args))
+        _same(got, lemke.solve_blcp(*ref), BLCP_FIELDS)
+        _same(lemke.solve_blcp(*args, warm_start=ws), lemke.solve_blcp(*ref, warm_start=ws),
+              BLCP_FIELDS)
+    for lo_s, hi_s in ((-1.0, 2.0), (-1, 2), (-np.inf, 2.0), (0.0, np.inf)):
+        got = lemke.solve_blcp(M.tolist(), q, lo_s, hi_s)
+        _same(got, lemke.solve_blcp(M, q, np.full(4, float(lo_s)), np.full(4, float(hi_s))),
+              BLCP_FIELDS)
+
+
+def test_blcp_friction_index_forms(no_validation):
+    from test_blcp import contacts
+    M, q, lo, hi, findex, mu = contacts(2, 3)
+    f64 = np.asarray(findex).astype(np.int64)
+    want = lemke.solve_blcp(M, q, lo, hi, findex=f64)
+    ws = want.warm_start
+    for f in (f64.tolist(), f64.astype(np.int32), tuple(f64.tolist())):
+        for args in ((M.tolist(), q.tolist(), lo.tolist(), hi.tolist()), (M, q, lo, hi)):
+            got = _untouched([f, *args], lambda: lemke.solve_blcp(*args, findex=f))
+            _same(got, want, BLCP_FIELDS)
+            _same(lemke.solve_blcp(*args, findex=f, warm_start=ws),
+                  lemke.solve_blcp(M, q, lo, hi, findex=f64, warm_start=ws), BLCP_FIELDS)
+
+
+BAD_BLCP = [
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], [np.nan, 0.0], [1.0, 1.0], None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], np.nan, 1.0, None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], np.inf, 1.0, None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], 0.0, -np.inf, None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], [2.0, 0.0], [1.0, 1.0], None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, np.nan], 0.0, 1.0, None),
+    ([[1, 0], [0, 1]], [-1, -1, -1], 0, 1, None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], [0.0, 0.0, 0.0], 1.0, None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], -1.0, 1.0, [1, 1]),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], -1.0, 1.0, [-1, 5]),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], [0.0, -1.0], [1.0, 1.0], [-1, 0.5]),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], [0.0, -1.0], [1.0, 1.0], [-1, 0, 0]),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], "0", 1.0, None),
+    ([[1.0, 0.0], [0.0, 1.0]], [-1.0, -1.0], 2 ** 70, 2 ** 71, None),
+]
+
+
+@pytest.mark.parametrize("M, q, lo, hi, findex", BAD_BLCP)
+def test_blcp_errors_as_before(M, q, lo, hi, findex, monkeypatch):
+    got = _error(lambda: lemke.solve_blcp(M, q, lo, hi, findex=findex))
+    with monkeypatch.context() as m:
+        _old(m)
+        want = _error(lambda: lemke.solve_blcp(M, q, lo, hi, findex=findex))
+    assert got == want
+    assert got is not None or findex is None
+
+
+@pytest.mark.parametrize("B", [2, 4, 7])
+def test_blcp_many_forms_bit_for_bit(B, monkeypatch):
+    from test_blcp import contacts
+    isl = [contacts(b, 1 + b % 2)[:5] for b in range(B)]
+    Ms, qs, los, his = ([np.asarray(i[k], dtype=float) for i in isl] for k in range(4))
+    fis = [np.asarray(i[4]).astype(np.int64) for i in isl]
+    ws = lemke.solve_blcp_many(Ms, qs, los, his, findex=fis, workers=1).warm_start
+    forms = []
+    for i in range(len(_forms(Ms[0]))):
+        args = [[_forms(x, False)[i][1] for x in xs] for xs in (Ms, qs, los, his)]
+        ref = [[_f64(x) for x in xs] for xs in args]  # (float32: its values in float64)
+        forms.append((args, ref, lemke.solve_blcp_many(*ref, findex=fis, workers=1),
+                      lemke.solve_blcp_many(*ref, findex=fis, warm_start=ws),
+                      lemke.solve_blcp_many(ref[0], ref[1], -1.0, 2.0)))
+    fl = [f.tolist() for f in fis]
+    with monkeypatch.context() as m:
+        if B <= 4:  # (more islands: the batch, which validates lists as before)
+            m.setattr(_validate, "blcp", lambda *a: (_ for _ in ()).throw(AssertionError("validated")))
+        for args, ref, want, warm, cold in forms:
+            got = _untouched(args[0] + args[1] + fl, lambda: lemke.solve_blcp_many(*args, findex=fl))
+            assert len(got) == B
+            for a, b in zip(got, want):
+                _same(a, b)
+            for a, b in zip(lemke.solve_blcp_many(*args, findex=fl, warm_start=ws), warm):
+                _same(a, b)
+            for a, b in zip(lemke.solve_blcp_many(args[0], args[1], -1.0, 2.0), cold):
+                _same(a, b)
+
+
+def test_blcp_many_errors_as_before(monkeypatch):
+    M = [np.eye(2).tolist(), np.eye(2).tolist()]
+    q = [[-1.0, -1.0], [-1.0, -1.0]]
+    cases = [dict(M=M, q=[q[0], [np.nan, 1.0]], lo=0.0, hi=1.0),
+             dict(M=M, q=q, lo=[[0.0, 0.0], [2.0, 0.0]], hi=[[1.0, 1.0], [1.0, 1.0]]),
+             dict(M=M, q=[q[0], [1.0]], lo=0.0, hi=1.0),
+             dict(M=M, q=q, lo=0.0, hi=1.0, findex=[[-1, -1], [1, 1]]),
+             dict(M=M, q=q, lo=0.0, hi=1.0, warm_start=[None, lemke.BoxWarmStart(3, (), ())]),
+             dict(M=M, q=[q[0], [np.nan, 1.0]], lo=0.0, hi=1.0,
+                  warm_start=[None, lemke.BoxWarmStart(3, (), ())]),
+             dict(M=M, q=q, lo=np.nan, hi=1.0), dict(M=M, q=q[:1], lo=0.0, hi=1.0)]
+    for kw in cases:
+        got = _error(lambda: lemke.solve_blcp_many(**kw))
+        assert got is not None
+        with monkeypatch.context() as m:
+            _old(m)
+            assert got == _error(lambda: lemke.solve_blcp_many(**kw))
+
+
+def test_bimatrix_forms_bit_for_bit(no_validation):
+    A = np.array([[3, 3], [2, 5], [0, 6]])
+    B = np.array([[3, 2], [2, 6], [3, 1]])
+    fields = None
+    for k in (0, 2, 4):
+        want = lemke.solve_bimatrix(A.astype(np.float64), B.astype(np.float64), init_label=k)
+        for (_, Ax), (_, Bx) in zip(_forms(A.astype(np.float64), True), _forms(B.astype(np.float64), True)):
+            got = _untouched([Ax, Bx], lambda: lemke.solve_bimatrix(Ax, Bx, init_label=k))
+            _same(got, want, fields)
+        _same(lemke.solve_bimatrix(A, B, init_label=k), want, fields)
+
+
+BAD_GAMES = [
+    ([[1.0, np.nan]], [[1.0, 0.0]]),
+    ([[1.0, 0.0]], [[1.0, 0.0], [0.0, 1.0]]),
+    ([[]], [[]]),
+    ([1.0, 0.0], [1.0, 0.0]),
+    ([[1.0, 0.0], [1.0]], [[1.0, 0.0], [0.0, 1.0]]),
+    ([["1", "0"]], [[1.0, 0.0]]),
+    ([[1 + 1j, 0.0]], [[1.0, 0.0]]),
+    (np.array([[1.0, np.inf]], dtype=np.float32), [[1.0, 0.0]]),
+]
+
+
+@pytest.mark.parametrize("A, B", BAD_GAMES)
+def test_bimatrix_errors_as_before(A, B, monkeypatch):
+    got = _error(lambda: lemke.solve_bimatrix(A, B))
+    with monkeypatch.context() as m:
+        _old(m)
+        want = _error(lambda: lemke.solve_bimatrix(A, B))
+    if got is None:  # (str entries that NumPy reads as numbers: solved both ways)
+        assert want is None
+    else:
+        assert got == want
+
+
+QP_FIELDS = None
+
+
+def _qp_data():
+    P = np.array([[4.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 3.0]])
+    q = np.array([1.0, 1.0, -2.0])
+    G = np.array([[1.0, 1.0, 1.0], [-1.0, 0.0, 2.0]])
+    h = np.array([1.0, 2.0])
+    A = np.array([[1.0, -1.0, 0.0]])
+    b = np.array([0.0])
+    lb, ub = np.full(3, -2.0), np.full(3, 2.0)
+    return P, q, G, h, A, b, lb, ub
+
+
+def test_qp_forms_bit_for_bit(no_validation):
+    data = _qp_data()
+    want = lemke.solve_qp(*data)
+    assert want.success
+    ws = want.warm_start
+    forms = [_forms(a, True) for a in data]
+    for i in range(len(forms[0])):
+        args = tuple(f[i][1] for f in forms)
+        got = _untouched(list(args), lambda: lemke.solve_qp(*args))
+        _same(got, want, QP_FIELDS)
+        _same(lemke.solve_qp(*args, warm_start=ws), lemke.solve_qp(*data, warm_start=ws), QP_FIELDS)
+        x0 = [0.1, 0.1, 0.0]
+        _same(lemke.solve_qp(*args, initvals=x0), lemke.solve_qp(*data, initvals=np.array(x0)),
+              QP_FIELDS)
+    # subsets: no A, b; bounds only; no rows at all
+    P, q, G, h, A, b, lb, ub = data
+    for kw in ({"G": G, "h": h}, {"lb": lb, "ub": ub}, {}):
+        lists = {k: v.tolist() for k, v in kw.items()}
+        _same(lemke.solve_qp(P.tolist(), q.tolist(), **lists), lemke.solve_qp(P, q, **kw), QP_FIELDS)
+
+
+BAD_QP = [
+    dict(P=[[1.0, np.nan], [0.0, 1.0]], q=[1.0, 1.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0, 1.0]),
+    dict(P=[[1.0, 2.0], [0.0, 1.0]], q=[1.0, 1.0]),
+    dict(P=[[1.0, 0.0], [0.0, -1.0]], q=[1.0, 1.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], G=[[1.0, 1.0]], h=[np.nan]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], G=[[1.0, 1.0]], h=[1.0, 2.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], G=[[1.0, 1.0]]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=[2.0, 0.0], ub=[1.0, 1.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=[np.inf, 0.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], initvals=[np.nan, 0.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], initvals=[0.0, 0.0, 0.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], A=[[1.0, 1.0]], b=[1.0], G=[[1.0, 1.0]], h=[0.0],
+         lb=[1.0, 1.0]),
+]
+
+
+@pytest.mark.parametrize("kw", BAD_QP)
+def test_qp_errors_as_before(kw, monkeypatch):
+    got = _error(lambda: lemke.solve_qp(**kw))
+    with monkeypatch.context() as m:
+        _old(m)
+        want = _error(lambda: lemke.solve_qp(**kw))
+    assert got == want
+    if got is None:  # solved or refused by status both ways: the same answer
+        with monkeypatch.context() as m:
+            _old(m)
+            old = lemke.solve_qp(**kw)
+        new = lemke.solve_qp(**kw)
+        assert new.status == old.status
+
+
+def test_conversion_is_the_validations():
+    """_validate.plain makes what float64_array + the kinds' checks make, or declines."""
+    for x in ([[1, 2], [3, 4]], [[True, False], [False, True]], np.arange(4.0).reshape(2, 2).T,
+              np.arange(4, dtype=np.float32).reshape(2, 2), [[2 ** 62 + 1, 0], [0, 1]]):
+        a = _validate.plain(x, 2)
+        want = _validate.square_matrix(x)
+        assert a.dtype == np.float64 and a.flags.c_contiguous and a.tobytes() == want.tobytes()
+    a = np.eye(2)
+    assert _validate.plain(a, 2) is a
+    for x in ([[1, 2], [3]], [["1", "2"]], [[1j, 0]], [[None, 1.0]], sp.eye(2), np.ma.array(np.eye(2)),
+              [1.0, 2.0], 1.0, [[2 ** 64, 0]], np.zeros((2, 2), dtype=object)):
+        assert _validate.plain(x, 2) is None, x
+
+
+def test_native_list_conversion_is_numpys():
+    """The entries' own conversion of lists (src/python_front.cpp, made_f64) holds the
+    values np.asarray(x).astype(float64) holds, or declines (None)."""
+    from lemke import _core
+    big = 2 ** 63 - 1
+    for x, nd in (([[2 ** 62 + 1, -3], [big, -2 ** 63]], 2), ([[1, 2.5], [True, False]], 2),
+                  ([True, False, True], 1), ([np.float64(0.1), -0.0, 1e308, 5e-324], 1),
+                  (((1, 2), [3, 4]), 2), ([2 ** 53 + 1, 0.5], 1), ([np.nan, np.inf, -np.inf], 1),
+                  ([[1.0, 2.0, 3.0]], 2), ([7], 1)):
+        a = _core.as_f64(x, nd)
+        want = np.asarray(x).astype(np.float64)
+        assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable
+        assert a.shape == want.shape and a.tobytes() == want.tobytes(), x
+    for x, nd in (([2 ** 63], 1), ([np.float32(1.0)], 1), ([np.int64(1)], 1), (["1"], 1),
+                  ([None], 1), ([[1.0], [1.0, 2.0]], 2), ([], 1), ([[]], 2), ([[1.0]], 1),
+                  ([1.0], 2), ([1 + 0j], 1), (np.zeros(2), 1)):
+        assert _core.as_f64(x, nd) is None, x
+
+
+def test_native_array_cast_is_numpys():
+    """made_f64's cast of ndarrays that are not plain float64 is NumPy's astype (every
+    dtype it takes, any strides), and it declines the others (None: NumPy converts them)."""
+    from lemke import _core
+    rng = np.random.default_rng(5)
+    base = rng.integers(-2 ** 62, 2 ** 62, (4, 6))
+    unaligned = np.frombuffer(b"\0" + rng.standard_normal(6).tobytes(), dtype=np.float64,
+                              offset=1).reshape(2, 3)
+    odd_bool = np.array([[0, 1], [2, 255]], dtype=np.uint8).view(np.bool_)
+    arrays = [base, base.astype(np.int32), base.astype(np.int16), base.astype(np.int8),
+              np.abs(base).astype(np.uint8), np.abs(base).astype(np.uint16),
+              np.abs(base).astype(np.uint32), base > 0, odd_bool,
+              rng.standard_normal((4, 6)).astype(np.float32), np.array([[1e-45, -0.0, np.nan]], np.float32),
+              np.asfortranarray(rng.standard_normal((4, 6))), rng.standard_normal((6, 8))[::2, 1::3],
+              rng.standard_normal((4, 6))[::-1, ::-2], unaligned, np.asfortranarray(base)]
+    assert not unaligned.flags.aligned
+    for a in arrays:
+        for x, nd in ((a, 2), (a[0], 1), (a[:, 0], 1)):
+            got = _core.as_f64(x, nd)
+            if x.dtype == np.float64 and x.flags.c_contiguous and x.flags.aligned:
+                assert got is None  # (plain already: nothing to convert)
+                continue
+            want = np.ascontiguousarray(x.astype(np.float64))
+            assert got is not None and got.dtype == np.float64 and got.flags.c_contiguous, (x.dtype, x.strides)
+            assert got.shape == want.shape and got.tobytes() == want.tobytes(), (x.dtype, x.strides)
+    for x, nd in ((np.ones((2, 2), np.uint64), 2), (np.ones((2, 2), np.float16), 2),
+                  (np.ones((2, 2), np.longdouble), 2), (np.ones((2, 2), np.complex128), 2),
+                  (np.ones((2, 2), ">f8"), 2), (np.ones((2, 2), ">i4"), 2), (np.ones((2, 2), object), 2),
+                  (np.zeros((0, 2)), 2), (np.zeros(0, np.float32), 1), (np.ones((2, 2)), 1),
+                  (np.ones(3, np.float32), 2), (np.ma.array(np.ones(2, np.float32)), 1),
+                  (np.eye(2), 2), (np.array(1.0, np.float32), 1)):
+        assert _core.as_f64(x, nd) is None, (x.dtype, nd)
