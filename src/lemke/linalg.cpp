@@ -598,7 +598,9 @@ idx nonzero_columns(const double* x, const double* u, idx lo, idx k, idx* list) 
 }
 
 // x = U^-1 y with U the upper triangle of A (linalg._back_substitute); whether x is finite.
-bool back_substitute(Mat<const double> A, const double* y, double* x, idx k) {
+// (Inlined: a cloned caller, eliminate, tail-called the baseline copy with its vector
+// registers' upper halves dirty, which GCC 12 did not clear with a vzeroupper.)
+LEMKE_ALWAYS_INLINE bool back_substitute(Mat<const double> A, const double* y, double* x, idx k) {
     for (idx r = k - 1; r >= 0; --r) {
         const double* ar = A.row(r);
         double acc = y[r];
