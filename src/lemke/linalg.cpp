@@ -346,7 +346,8 @@ namespace {
 
 // The table's slots: 2^KEPT_SLOT_BITS for matrices of up to KEPT_HASHED_MAX rows, chosen by
 // a hash of their bits, and one for the larger ones (a slot grows to what its largest
-// matrix needed: about 33 kB at KEPT_HASHED_MAX rows, 1 MB at SWEEP_MEMO_MAX).
+// matrix needed: about 33 kB at KEPT_HASHED_MAX rows; at SWEEP_MEMO_MAX 2 MB for M's copy,
+// up to 2 MB for a block's factors and 16 kB a sweep's record).
 constexpr int KEPT_SLOT_BITS = 6;
 constexpr idx KEPT_HASHED_MAX = 32;
 constexpr std::size_t KEPT_SLOTS = std::size_t{1} << KEPT_SLOT_BITS;
