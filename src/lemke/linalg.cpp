@@ -340,6 +340,7 @@ struct KeptMatrix {
     std::vector<double> factors;
     std::vector<idx> piv, index;
     idx k = -1;
+    std::uint64_t seen = 0;  // the large slot: the hash of the last matrix not copied in
 };
 
 namespace {
@@ -352,12 +353,9 @@ constexpr int KEPT_SLOT_BITS = 6;
 constexpr idx KEPT_HASHED_MAX = 32;
 constexpr std::size_t KEPT_SLOTS = std::size_t{1} << KEPT_SLOT_BITS;
 
-// The slot of this thread's table for M.
-KeptMatrix& kept_slot(Mat<const double> M) {
-    thread_local std::vector<KeptMatrix> table;
-    if (table.empty()) table.resize(KEPT_SLOTS + 1);
+// A hash of M's bits (n x n).
+std::uint64_t matrix_hash(Mat<const double> M) {
     idx n = M.rows;
-    if (n > KEPT_HASHED_MAX) return table[KEPT_SLOTS];
     std::uint64_t sum = 0, all = 0;
     for (idx i = 0; i < n; ++i) {
         const double* r = M.row(i);
@@ -368,33 +366,50 @@ KeptMatrix& kept_slot(Mat<const double> M) {
             all ^= b;
         }
     }
-    std::uint64_t h = (sum ^ ((all << 17) | (all >> 47)) ^ static_cast<std::uint64_t>(n)) *
-                      0x9E3779B97F4A7C15ULL;
-    return table[static_cast<std::size_t>(h >> (64 - KEPT_SLOT_BITS))];
+    return (sum ^ ((all << 17) | (all >> 47)) ^ static_cast<std::uint64_t>(n)) *
+           0x9E3779B97F4A7C15ULL;
 }
 
-// Whether `kept` holds M (n x n); when it does not, M is copied in, and its records and
-// block are dropped.
+// The slot of this thread's table for M.
+KeptMatrix& kept_slot(Mat<const double> M) {
+    thread_local std::vector<KeptMatrix> table;
+    if (table.empty()) table.resize(KEPT_SLOTS + 1);
+    if (M.rows > KEPT_HASHED_MAX) return table[KEPT_SLOTS];
+    return table[static_cast<std::size_t>(matrix_hash(M) >> (64 - KEPT_SLOT_BITS))];
+}
+
+// Whether `kept` holds M (n x n) after this call. When it held another matrix, its records
+// and block are dropped and M is copied in; in the slot of the larger matrices only when M
+// has the hash of the last matrix left out (M seen twice in a row: a warm start's M that
+// stays), else M is left out too (nothing kept: a matrix that moves every call pays a read
+// of M for the hash, not a copy of it; a hash that matches by chance costs only a copy).
 bool memo_matches(KeptMatrix& kept, Mat<const double> M) {
     SweepMemo& memo = kept.memo;
     idx n = M.rows;
     std::size_t row_bytes = static_cast<std::size_t>(n) * sizeof(double);
-    bool same = memo.n == n;
-    if (!same) {
+    idx i = 0;
+    if (memo.n == n)
+        while (i < n && std::memcmp(memo.M.data() + i * n, M.row(i), row_bytes) == 0) ++i;
+    if (memo.n == n && i == n) return true;
+    memo.count = 0;
+    kept.k = -1;
+    if (n > KEPT_HASHED_MAX) {
+        std::uint64_t h = matrix_hash(M);
+        bool again = memo.n == -1 && kept.seen == h;
+        kept.seen = h;
+        if (!again) {
+            memo.n = -1;
+            return false;
+        }
+        i = 0;
+    }
+    if (memo.n != n) {
         memo.M.resize(static_cast<std::size_t>(n * n));
         memo.n = n;
+        i = 0;
     }
-    for (idx i = 0; i < n; ++i) {
-        double* m = memo.M.data() + i * n;
-        if (same && std::memcmp(m, M.row(i), row_bytes) == 0) continue;
-        same = false;
-        std::memcpy(m, M.row(i), row_bytes);
-    }
-    if (!same) {
-        memo.count = 0;
-        kept.k = -1;
-    }
-    return same;
+    for (; i < n; ++i) std::memcpy(memo.M.data() + i * n, M.row(i), row_bytes);
+    return true;
 }
 
 // One full sweep (sweep's outputs), the t-th of this call: from `memo` when it holds the
@@ -501,8 +516,11 @@ bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, do
     if (M.rows > SWEEP_MEMO_MAX) return equilibrate_finite(M, q, R, C, work);
     if (!all_finite(q, M.rows)) return false;
     KeptMatrix& slot = kept_slot(M);
-    memo_matches(slot, M);
     bool finite = true;
+    if (!memo_matches(slot, M)) {  // (M left out of the kept table: the plain sweeps)
+        sweeps(M, q, R, C, work, &finite);
+        return finite;
+    }
     sweeps(M, q, R, C, work, &finite, &slot.memo);
     if (finite) kept = &slot;
     return finite;
