@@ -351,6 +351,10 @@ namespace {
 // up to 2 MB for a block's factors and 16 kB a sweep's record).
 constexpr int KEPT_SLOT_BITS = 6;
 constexpr idx KEPT_HASHED_MAX = 32;
+// Above this many rows the large slot copies a matrix in only on its second call in a row
+// (memo_matches); up to it at once (a simulation step that solves one M a few times, as
+// bench_small's pile does, gains from the second call on).
+constexpr idx KEPT_COPY_AT_ONCE_MAX = 256;
 constexpr std::size_t KEPT_SLOTS = std::size_t{1} << KEPT_SLOT_BITS;
 
 // A hash of M's bits (n x n).
@@ -379,7 +383,7 @@ KeptMatrix& kept_slot(Mat<const double> M) {
 }
 
 // Whether `kept` holds M (n x n) after this call. When it held another matrix, its records
-// and block are dropped and M is copied in; in the slot of the larger matrices only when M
+// and block are dropped and M is copied in; above KEPT_COPY_AT_ONCE_MAX rows only when M
 // has the hash of the last matrix left out (M seen twice in a row: a warm start's M that
 // stays), else M is left out too (nothing kept: a matrix that moves every call pays a read
 // of M for the hash, not a copy of it; a hash that matches by chance costs only a copy).
@@ -393,7 +397,7 @@ bool memo_matches(KeptMatrix& kept, Mat<const double> M) {
     if (memo.n == n && i == n) return true;
     memo.count = 0;
     kept.k = -1;
-    if (n > KEPT_HASHED_MAX) {
+    if (n > KEPT_COPY_AT_ONCE_MAX) {
         std::uint64_t h = matrix_hash(M);
         bool again = memo.n == -1 && kept.seen == h;
         kept.seen = h;

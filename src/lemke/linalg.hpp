@@ -294,9 +294,9 @@ struct KeptMatrix;
 // hash of M's bits for up to 32 rows, one slot for larger ones): a later call on the same
 // M (bit for bit) takes a sweep that starts from the same R and C from there and computes
 // only q's terms. A warm start's old basis (one M, q moved; or islands, each its own M)
-// pays a hash and a comparison of M instead of the sweeps over it. The slot of the larger
-// matrices takes a matrix in only on its second call in a row (one that moves every call
-// is not copied). `kept`: M's entry when the result is true and M is kept (for
+// pays a hash and a comparison of M instead of the sweeps over it. Above 256 rows the
+// slot takes a matrix in only on its second call in a row (one that moves every call is
+// not copied). `kept`: M's entry when the result is true and M is kept (for
 // solve_gathered_kept), else nullptr.
 constexpr idx SWEEP_MEMO_MAX = 512;
 bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
