@@ -138,7 +138,7 @@ def _in_a_new_thread(f):
     return out[0]
 
 
-@pytest.mark.parametrize("n", [1, 2, 3, 5, 12, 17, 24, 40])
+@pytest.mark.parametrize("n", [1, 2, 3, 5, 12, 17, 24, 40, 300])  # 300: the large slot, above 256 rows
 def test_a_repeated_matrix_gives_the_same_bits(n, method):
     """A warm start's first stage keeps, per thread, what the equilibration's sweeps found
     of M and the last basis block's factors (equilibrate_finite_kept, solve_gathered_kept)
@@ -347,7 +347,7 @@ print("ok")
     assert out.stdout.split() == ["ok"]
 
 
-@pytest.mark.parametrize("n", [1, 3, 6, 12, 24, 40])
+@pytest.mark.parametrize("n", [1, 3, 6, 12, 24, 40, 300])
 def test_a_repeated_box_matrix_gives_the_same_bits(n):
     """The box LCP's 0-pivot warm path (no friction index) takes its check's scales and its
     basis block through the kept matrices too (boxed.check_scales_kept, basis_point with

@@ -340,23 +340,26 @@ struct KeptMatrix {
     std::vector<double> factors;
     std::vector<idx> piv, index;
     idx k = -1;
+    std::uint64_t seen = 0;  // the large slot: the hash of the last matrix not copied in
 };
 
 namespace {
 
 // The table's slots: 2^KEPT_SLOT_BITS for matrices of up to KEPT_HASHED_MAX rows, chosen by
 // a hash of their bits, and one for the larger ones (a slot grows to what its largest
-// matrix needed: about 33 kB at KEPT_HASHED_MAX rows, 1 MB at SWEEP_MEMO_MAX).
+// matrix needed: about 33 kB at KEPT_HASHED_MAX rows; at SWEEP_MEMO_MAX 2 MB for M's copy,
+// up to 2 MB for a block's factors and 16 kB a sweep's record).
 constexpr int KEPT_SLOT_BITS = 6;
 constexpr idx KEPT_HASHED_MAX = 32;
+// Above this many rows the large slot copies a matrix in only on its second call in a row
+// (memo_matches); up to it at once (a simulation step that solves one M a few times, as
+// bench_small's pile does, gains from the second call on).
+constexpr idx KEPT_COPY_AT_ONCE_MAX = 256;
 constexpr std::size_t KEPT_SLOTS = std::size_t{1} << KEPT_SLOT_BITS;
 
-// The slot of this thread's table for M.
-KeptMatrix& kept_slot(Mat<const double> M) {
-    thread_local std::vector<KeptMatrix> table;
-    if (table.empty()) table.resize(KEPT_SLOTS + 1);
+// A hash of M's bits (n x n).
+std::uint64_t matrix_hash(Mat<const double> M) {
     idx n = M.rows;
-    if (n > KEPT_HASHED_MAX) return table[KEPT_SLOTS];
     std::uint64_t sum = 0, all = 0;
     for (idx i = 0; i < n; ++i) {
         const double* r = M.row(i);
@@ -367,33 +370,50 @@ KeptMatrix& kept_slot(Mat<const double> M) {
             all ^= b;
         }
     }
-    std::uint64_t h = (sum ^ ((all << 17) | (all >> 47)) ^ static_cast<std::uint64_t>(n)) *
-                      0x9E3779B97F4A7C15ULL;
-    return table[static_cast<std::size_t>(h >> (64 - KEPT_SLOT_BITS))];
+    return (sum ^ ((all << 17) | (all >> 47)) ^ static_cast<std::uint64_t>(n)) *
+           0x9E3779B97F4A7C15ULL;
 }
 
-// Whether `kept` holds M (n x n); when it does not, M is copied in, and its records and
-// block are dropped.
+// The slot of this thread's table for M.
+KeptMatrix& kept_slot(Mat<const double> M) {
+    thread_local std::vector<KeptMatrix> table;
+    if (table.empty()) table.resize(KEPT_SLOTS + 1);
+    if (M.rows > KEPT_HASHED_MAX) return table[KEPT_SLOTS];
+    return table[static_cast<std::size_t>(matrix_hash(M) >> (64 - KEPT_SLOT_BITS))];
+}
+
+// Whether `kept` holds M (n x n) after this call. When it held another matrix, its records
+// and block are dropped and M is copied in; above KEPT_COPY_AT_ONCE_MAX rows only when M
+// has the hash of the last matrix left out (M seen twice in a row: a warm start's M that
+// stays), else M is left out too (nothing kept: a matrix that moves every call pays a read
+// of M for the hash, not a copy of it; a hash that matches by chance costs only a copy).
 bool memo_matches(KeptMatrix& kept, Mat<const double> M) {
     SweepMemo& memo = kept.memo;
     idx n = M.rows;
     std::size_t row_bytes = static_cast<std::size_t>(n) * sizeof(double);
-    bool same = memo.n == n;
-    if (!same) {
+    idx i = 0;
+    if (memo.n == n)
+        while (i < n && std::memcmp(memo.M.data() + i * n, M.row(i), row_bytes) == 0) ++i;
+    if (memo.n == n && i == n) return true;
+    memo.count = 0;
+    kept.k = -1;
+    if (n > KEPT_COPY_AT_ONCE_MAX) {
+        std::uint64_t h = matrix_hash(M);
+        bool again = memo.n == -1 && kept.seen == h;
+        kept.seen = h;
+        if (!again) {
+            memo.n = -1;
+            return false;
+        }
+        i = 0;
+    }
+    if (memo.n != n) {
         memo.M.resize(static_cast<std::size_t>(n * n));
         memo.n = n;
+        i = 0;
     }
-    for (idx i = 0; i < n; ++i) {
-        double* m = memo.M.data() + i * n;
-        if (same && std::memcmp(m, M.row(i), row_bytes) == 0) continue;
-        same = false;
-        std::memcpy(m, M.row(i), row_bytes);
-    }
-    if (!same) {
-        memo.count = 0;
-        kept.k = -1;
-    }
-    return same;
+    for (; i < n; ++i) std::memcpy(memo.M.data() + i * n, M.row(i), row_bytes);
+    return true;
 }
 
 // One full sweep (sweep's outputs), the t-th of this call: from `memo` when it holds the
@@ -500,8 +520,11 @@ bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, do
     if (M.rows > SWEEP_MEMO_MAX) return equilibrate_finite(M, q, R, C, work);
     if (!all_finite(q, M.rows)) return false;
     KeptMatrix& slot = kept_slot(M);
-    memo_matches(slot, M);
     bool finite = true;
+    if (!memo_matches(slot, M)) {  // (M left out of the kept table: the plain sweeps)
+        sweeps(M, q, R, C, work, &finite);
+        return finite;
+    }
     sweeps(M, q, R, C, work, &finite, &slot.memo);
     if (finite) kept = &slot;
     return finite;

@@ -294,9 +294,11 @@ struct KeptMatrix;
 // hash of M's bits for up to 32 rows, one slot for larger ones): a later call on the same
 // M (bit for bit) takes a sweep that starts from the same R and C from there and computes
 // only q's terms. A warm start's old basis (one M, q moved; or islands, each its own M)
-// pays a hash and a comparison of M instead of the sweeps over it. `kept`: M's entry when
-// the result is true and M is kept (for solve_gathered_kept), else nullptr.
-constexpr idx SWEEP_MEMO_MAX = 256;
+// pays a hash and a comparison of M instead of the sweeps over it. Above 256 rows the
+// slot takes a matrix in only on its second call in a row (one that moves every call is
+// not copied). `kept`: M's entry when the result is true and M is kept (for
+// solve_gathered_kept), else nullptr.
+constexpr idx SWEEP_MEMO_MAX = 512;
 bool equilibrate_finite_kept(Mat<const double> M, const double* q, double* R, double* C,
                              double* work, KeptMatrix*& kept);
 
@@ -317,7 +319,7 @@ bool solve_in_place(Mat<double> A, double* y, double* x, idx k);
 // and pivots), and a block of the same rows (a warm start re-solving its basis with a new
 // q) is solved with them (lu_solve: the operations eliminate makes on y), neither gathered
 // nor factored again; blocks of up to KEPT_BLOCK_MAX rows.
-constexpr idx KEPT_BLOCK_MAX = 256;
+constexpr idx KEPT_BLOCK_MAX = 512;
 bool solve_gathered_kept(Mat<const double> M, const idx* index, double* A, double* y, double* x,
                          idx k, KeptMatrix* kept);
 
