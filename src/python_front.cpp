@@ -352,16 +352,21 @@ PyObject* error_set() {
 // a Python float (or a subclass: its value), a bool (1.0 or 0.0) or an int that fits in
 // int64 (rounded to the nearest double, as NumPy casts its int64 array; a bigger one makes
 // NumPy's array another dtype: declined). False (no error set) for anything else.
+// (The exact types first: a subclass check walks the type's bases.)
 bool list_entry(PyObject* v, double& out) {
-    if (PyFloat_Check(v)) {
+    if (PyFloat_CheckExact(v)) {
         out = PyFloat_AS_DOUBLE(v);
         return true;
     }
-    if (PyBool_Check(v)) {
-        out = v == Py_True ? 1.0 : 0.0;
+    if (!PyLong_CheckExact(v)) {
+        if (PyBool_Check(v)) {
+            out = v == Py_True ? 1.0 : 0.0;
+            return true;
+        }
+        if (!PyFloat_Check(v)) return false;
+        out = PyFloat_AS_DOUBLE(v);
         return true;
     }
-    if (!PyLong_CheckExact(v)) return false;
     int overflow = 0;
     long long i = PyLong_AsLongLongAndOverflow(v, &overflow);
     if (overflow != 0 || (i == -1 && PyErr_Occurred())) {
@@ -929,7 +934,13 @@ nb::object lcp_pack(nb::handle M_h, nb::handle q_h) {
     auto* qo = reinterpret_cast<double*>(data(qf));
     for (Py_ssize_t b = 0; b < B; ++b) {
         idx n = no[b];
-        if (!pack_into(Ms[b], 2, n, n, mo) || !pack_into(qs[b], 1, n, 1, qo)) return nb::none();
+        if (!converted) {  // (all plain: the copies alone)
+            auto src = [](PyObject* a) { return reinterpret_cast<const ArrayFields*>(a)->data; };
+            if (n) std::memcpy(mo, src(Ms[b]), static_cast<std::size_t>(n * n) * sizeof(double));
+            if (n) std::memcpy(qo, src(qs[b]), static_cast<std::size_t>(n) * sizeof(double));
+        } else if (!pack_into(Ms[b], 2, n, n, mo) || !pack_into(qs[b], 1, n, 1, qo)) {
+            return nb::none();
+        }
         mo += n * n;
         qo += n;
     }
