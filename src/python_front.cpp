@@ -367,6 +367,20 @@ bool list_entry(PyObject* v, double& out) {
         out = PyFloat_AS_DOUBLE(v);
         return true;
     }
+    // an int of one digit read as it lies (CPython's layout of the version built for)
+#if PY_VERSION_HEX >= 0x030C0000
+    if (PyUnstable_Long_IsCompact(reinterpret_cast<PyLongObject*>(v))) {
+        out = static_cast<double>(PyUnstable_Long_CompactValue(reinterpret_cast<PyLongObject*>(v)));
+        return true;
+    }
+#elif PY_VERSION_HEX >= 0x030B0000
+    Py_ssize_t size = Py_SIZE(v);
+    if (size >= -1 && size <= 1) {  // (ob_digit[0] undefined for 0)
+        auto d = static_cast<long long>(reinterpret_cast<PyLongObject*>(v)->ob_digit[0]);
+        out = static_cast<double>(size == 0 ? 0 : size * d);
+        return true;
+    }
+#endif
     int overflow = 0;
     long long i = PyLong_AsLongLongAndOverflow(v, &overflow);
     if (overflow != 0 || (i == -1 && PyErr_Occurred())) {

@@ -231,6 +231,8 @@ def test_lcp_pack_converts_as_made_f64(monkeypatch):
     Mx = [forms(M)[b % k] for b, M in enumerate(Ms)]  # (every form, mixed)
     qx = [forms(q)[(b + 3) % k] for b, q in enumerate(qs)]
     Mx[4], qx[5] = Ms[4], qs[5]  # (plain arrays among them)
+    Ms[6], qs[6] = np.full((2, 2), 2.0 ** 40) + np.eye(2), np.array([-(2.0 ** 31), 2.0 ** 30 - 1])
+    Mx[6], qx[6] = Ms[6].astype(np.int64).tolist(), [-2 ** 31, 2 ** 30 - 1]  # (ints of 1 and 2 digits)
     for M, q in ((Mx, qx), (tuple(Mx), tuple(qx))):
         got = _untouched(list(M) + list(q), lambda: _core.lcp_pack(M, q))
         want = np.concatenate([_f64(m).ravel() for m in M]), np.concatenate([_f64(v) for v in q])
@@ -530,7 +532,9 @@ def test_native_list_conversion_is_numpys():
     for x, nd in (([[2 ** 62 + 1, -3], [big, -2 ** 63]], 2), ([[1, 2.5], [True, False]], 2),
                   ([True, False, True], 1), ([np.float64(0.1), -0.0, 1e308, 5e-324], 1),
                   (((1, 2), [3, 4]), 2), ([2 ** 53 + 1, 0.5], 1), ([np.nan, np.inf, -np.inf], 1),
-                  ([[1.0, 2.0, 3.0]], 2), ([7], 1)):
+                  ([[1.0, 2.0, 3.0]], 2), ([7], 1),
+                  ([0, -1, 1, 2 ** 30 - 1, 1 - 2 ** 30, 2 ** 30, -2 ** 30, 2 ** 31, -2 ** 60 - 1, -0], 1),
+                  ([[-7, 0], [300, -300]], 2), ([[0]], 2)):
         a = _core.as_f64(x, nd)
         want = np.asarray(x).astype(np.float64)
         assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable
