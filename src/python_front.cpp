@@ -18,6 +18,7 @@
 // reports; if anything disagrees the fast front stays off (every call returns None).
 #include <nanobind/nanobind.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -351,16 +352,35 @@ PyObject* error_set() {
 // a Python float (or a subclass: its value), a bool (1.0 or 0.0) or an int that fits in
 // int64 (rounded to the nearest double, as NumPy casts its int64 array; a bigger one makes
 // NumPy's array another dtype: declined). False (no error set) for anything else.
+// (The exact types first: a subclass check walks the type's bases.)
 bool list_entry(PyObject* v, double& out) {
-    if (PyFloat_Check(v)) {
+    if (PyFloat_CheckExact(v)) {
         out = PyFloat_AS_DOUBLE(v);
         return true;
     }
-    if (PyBool_Check(v)) {
-        out = v == Py_True ? 1.0 : 0.0;
+    if (!PyLong_CheckExact(v)) {
+        if (PyBool_Check(v)) {
+            out = v == Py_True ? 1.0 : 0.0;
+            return true;
+        }
+        if (!PyFloat_Check(v)) return false;
+        out = PyFloat_AS_DOUBLE(v);
         return true;
     }
-    if (!PyLong_CheckExact(v)) return false;
+    // an int of one digit read as it lies (CPython's layout of the version built for)
+#if PY_VERSION_HEX >= 0x030C0000
+    if (PyUnstable_Long_IsCompact(reinterpret_cast<PyLongObject*>(v))) {
+        out = static_cast<double>(PyUnstable_Long_CompactValue(reinterpret_cast<PyLongObject*>(v)));
+        return true;
+    }
+#elif PY_VERSION_HEX >= 0x030B0000
+    Py_ssize_t size = Py_SIZE(v);
+    if (size >= -1 && size <= 1) {  // (ob_digit[0] undefined for 0)
+        auto d = static_cast<long long>(reinterpret_cast<PyLongObject*>(v)->ob_digit[0]);
+        out = static_cast<double>(size == 0 ? 0 : size * d);
+        return true;
+    }
+#endif
     int overflow = 0;
     long long i = PyLong_AsLongLongAndOverflow(v, &overflow);
     if (overflow != 0 || (i == -1 && PyErr_Occurred())) {
@@ -406,26 +426,18 @@ nb::object new_rows(int nd, Py_ssize_t rows, Py_ssize_t cols) {
     return a;
 }
 
-// An ndarray x of nd dimensions (none 0) that is not plain float64 made a float64 C array
-// as NumPy's astype makes it, when its dtype is bool, a signed int, an unsigned int up to 32
-// bits, float32 or float64 in the machine's byte order (any strides: Fortran order, a
-// slice, unaligned); else x itself (the front declines it, the Python function converts or
-// refuses it: float16, long double, uint64, complex, another byte order, object...).
-nb::object cast_array(PyObject* x, int nd) {
-    auto* a = reinterpret_cast<const ArrayFields*>(x);
-    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
-    if (a->nd != nd || plain(x, nd) != nullptr || (t->byteorder != '=' && t->byteorder != '|'))
-        return nb::borrow(x);
+// The entries of the ndarray a (nd dimensions) as float64 in C order into out, NumPy's
+// astype (cast_rows), when its dtype is bool, a signed int, an unsigned int up to 32 bits,
+// float32 or float64; false for another dtype (float16, long double, uint64, complex,
+// object...). out nullptr: the dtype judged only.
+bool cast_into(const ArrayFields* a, int nd, double* out) {
     Py_ssize_t rows = a->dimensions[0], cols = nd == 2 ? a->dimensions[1] : 1;
     Py_ssize_t s0 = a->strides[0], s1 = nd == 2 ? a->strides[1] : 0;
-    if (rows == 0 || cols == 0) return nb::borrow(x);
     auto make = [&](auto tag) {
-        nb::object out = new_rows(nd, rows, cols);
-        cast_rows<decltype(tag)>(a->data, rows, cols, s0, s1,
-                                 reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(out.ptr())->data));
-        return out;
+        if (out != nullptr) cast_rows<decltype(tag)>(a->data, rows, cols, s0, s1, out);
+        return true;
     };
-    switch (t->type_num) {
+    switch (reinterpret_cast<const DescrFields*>(a->descr)->type_num) {
         case T_BOOL: return make(Bool{});
         case T_BYTE: return make(static_cast<signed char>(0));
         case T_UBYTE: return make(static_cast<unsigned char>(0));
@@ -437,39 +449,84 @@ nb::object cast_array(PyObject* x, int nd) {
         case T_LONGLONG: return make(0LL);
         case T_FLOAT: return make(0.0f);
         case T_DOUBLE: return make(0.0);
-        default: return nb::borrow(x);
+        default: return false;
     }
 }
 
-// x made a float64 C array when it is a list or tuple of nd levels (1 or 2; rows, lists or
-// tuples, of one length; no dimension 0) of list_entry's numbers, or an ndarray cast_array
-// casts: the values that the Python fronts' conversion (_validate.plain: np.asarray, then
-// float64 and C order) gives. Else x itself when it is an ndarray (the front judges it), or
-// an invalid object (declined: the Python function converts or refuses it).
-nb::object made_f64(PyObject* x, int nd) {
-    if (front.new_from_descr == nullptr) return Py_TYPE(x) == front.ndarray ? nb::borrow(x) : nb::object();
-    if (Py_TYPE(x) == front.ndarray) return cast_array(x, nd);
-    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
-    if (!seq(x)) return nb::object();
-    Py_ssize_t rows = PySequence_Fast_GET_SIZE(x), cols = 1;
-    PyObject** row = PySequence_Fast_ITEMS(x);
-    if (rows == 0) return nb::object();
+// Whether the ndarray x of nd dimensions (none 0) is one cast_array casts: not plain
+// float64, a dtype cast_into knows in the machine's byte order (any strides: Fortran
+// order, a slice, unaligned); its rows and cols (1 for nd 1).
+bool castable(PyObject* x, int nd, Py_ssize_t& rows, Py_ssize_t& cols) {
+    auto* a = reinterpret_cast<const ArrayFields*>(x);
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    if (a->nd != nd || plain(x, nd) != nullptr || (t->byteorder != '=' && t->byteorder != '|'))
+        return false;
+    rows = a->dimensions[0];
+    cols = nd == 2 ? a->dimensions[1] : 1;
+    return rows != 0 && cols != 0 && cast_into(a, nd, nullptr);
+}
+
+// An ndarray x of nd dimensions that is not plain float64 made a float64 C array as
+// NumPy's astype makes it, when castable; else x itself (the front declines it, the
+// Python function converts or refuses it).
+nb::object cast_array(PyObject* x, int nd) {
+    Py_ssize_t rows, cols;
+    if (!castable(x, nd, rows, cols)) return nb::borrow(x);
+    nb::object out = new_rows(nd, rows, cols);
+    cast_into(reinterpret_cast<const ArrayFields*>(x), nd,
+              reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(out.ptr())->data));
+    return out;
+}
+
+bool exact_seq(PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); }
+
+// Whether x is a list or tuple of nd levels (1 or 2; rows, lists or tuples, of one length;
+// no dimension 0) as made_f64 converts them; its rows and cols (1 for nd 1). Its entries
+// are list_into's to judge.
+bool list_shape(PyObject* x, int nd, Py_ssize_t& rows, Py_ssize_t& cols) {
+    if (!exact_seq(x)) return false;
+    rows = PySequence_Fast_GET_SIZE(x);
+    cols = 1;
+    if (rows == 0) return false;
     if (nd == 2) {
-        if (!seq(row[0]) || (cols = PySequence_Fast_GET_SIZE(row[0])) == 0) return nb::object();
+        PyObject** row = PySequence_Fast_ITEMS(x);
+        if (!exact_seq(row[0]) || (cols = PySequence_Fast_GET_SIZE(row[0])) == 0) return false;
         for (Py_ssize_t i = 1; i < rows; ++i)
-            if (!seq(row[i]) || PySequence_Fast_GET_SIZE(row[i]) != cols) return nb::object();
+            if (!exact_seq(row[i]) || PySequence_Fast_GET_SIZE(row[i]) != cols) return false;
     }
-    nb::object a = new_rows(nd, rows, cols);
-    double* out = reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
+    return true;
+}
+
+// The entries of x (list_shape's, rows x cols) by list_entry into out in C order; false at
+// the first one list_entry declines (out then partly written).
+bool list_into(PyObject* x, int nd, Py_ssize_t rows, Py_ssize_t cols, double* out) {
+    PyObject** row = PySequence_Fast_ITEMS(x);
     for (Py_ssize_t i = 0; i < rows; ++i) {
         if (nd == 1) {
-            if (!list_entry(row[i], out[i])) return nb::object();
+            if (!list_entry(row[i], out[i])) return false;
             continue;
         }
         PyObject** v = PySequence_Fast_ITEMS(row[i]);
         for (Py_ssize_t j = 0; j < cols; ++j)
-            if (!list_entry(v[j], out[i * cols + j])) return nb::object();
+            if (!list_entry(v[j], out[i * cols + j])) return false;
     }
+    return true;
+}
+
+// x made a float64 C array when it is a list or tuple of list_shape's of list_entry's
+// numbers, or an ndarray cast_array casts: the values that the Python fronts' conversion
+// (_validate.plain: np.asarray, then float64 and C order) gives. Else x itself when it is an
+// ndarray (the front judges it), or an invalid object (declined: the Python function
+// converts or refuses it).
+nb::object made_f64(PyObject* x, int nd) {
+    if (front.new_from_descr == nullptr) return Py_TYPE(x) == front.ndarray ? nb::borrow(x) : nb::object();
+    if (Py_TYPE(x) == front.ndarray) return cast_array(x, nd);
+    Py_ssize_t rows, cols;
+    if (!list_shape(x, nd, rows, cols)) return nb::object();
+    nb::object a = new_rows(nd, rows, cols);
+    if (!list_into(x, nd, rows, cols,
+                   reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data)))
+        return nb::object();
     return a;
 }
 
@@ -826,48 +883,88 @@ nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn
     return make_entry(py, nb::none(), globals, front_fn, ws_cls, many_globals, many_cls);
 }
 
+// How lcp_pack takes x (M, nd 2, or q, nd 1; its rows and cols): 0 a plain array, copied; 1
+// an array-like made_f64 converts (a castable ndarray, or a list or tuple of list_shape's),
+// its values written in place as made_f64 makes them; -1 anything else (declined).
+int pack_form(PyObject* x, int nd, Py_ssize_t& rows, Py_ssize_t& cols) {
+    if (const ArrayFields* a = plain(x, nd)) {
+        rows = a->dimensions[0];
+        cols = nd == 2 ? a->dimensions[1] : 1;
+        return 0;
+    }
+    if (front.new_from_descr == nullptr) return -1;
+    if (Py_TYPE(x) == front.ndarray) return castable(x, nd, rows, cols) ? 1 : -1;
+    return list_shape(x, nd, rows, cols) ? 1 : -1;
+}
+
+// x (pack_form's 0 or 1) written to out, rows x cols in C order: false where a list entry
+// is declined (list_entry).
+bool pack_into(PyObject* x, int nd, Py_ssize_t rows, Py_ssize_t cols, double* out) {
+    if (const ArrayFields* a = plain(x, nd)) {
+        std::size_t bytes = static_cast<std::size_t>(rows * cols) * sizeof(double);
+        if (bytes) std::memcpy(out, a->data, bytes);
+        return true;
+    }
+    if (Py_TYPE(x) == front.ndarray) return cast_into(reinterpret_cast<const ArrayFields*>(x), nd, out);
+    return list_into(x, nd, rows, cols, out);
+}
+
 // solve_lcp_many's problems given as lists: (Mflat, qflat, n_b) with every M's rows and
 // every q end to end in two new float64 arrays and the sizes in an int64 array, when M and
-// q are lists (or tuples) of the same length B >= 1 whose items are all ready for the
-// kernels as they are (plain(): float64 ndarrays in the machine's byte order, C arrays; M
-// square of q's size), else None: the Python path then checks and converts them and
-// names what is wrong. One pass of checks, then the copies (a few nanoseconds per island,
-// where Python's checks and joins took about half a microsecond); finiteness is the
-// kernels'.
+// q are lists (or tuples) of the same length B >= 1 whose items are ready for the kernels
+// as they are (plain(): float64 ndarrays in the machine's byte order, C arrays) or
+// array-likes that made_f64 converts (lists or tuples of numbers, other dtypes, other
+// strides: converted here into the packed arrays, the same values), M square of q's size;
+// else None: the Python path then checks and converts them and names what is wrong. One
+// pass of checks, then the copies and conversions (a few nanoseconds per island, where
+// Python's checks and joins took about half a microsecond). Finiteness is the kernels'
+// when every item was plain; when any was converted, a NaN or an infinity anywhere
+// declines the lot (None), so that the Python path checks every problem in order and raises
+// at the first fault, as it does for such input.
 nb::object lcp_pack(nb::handle M_h, nb::handle q_h) {
     using lemke::idx;
     PyObject *M = M_h.ptr(), *q = q_h.ptr();
-    auto seq = [](PyObject* o) { return PyList_CheckExact(o) || PyTuple_CheckExact(o); };
-    if (!front.on || !seq(M) || !seq(q)) return nb::none();
+    if (!front.on || !exact_seq(M) || !exact_seq(q)) return nb::none();
     Py_ssize_t B = PySequence_Fast_GET_SIZE(M);
     if (B < 1 || PySequence_Fast_GET_SIZE(q) != B) return nb::none();
     PyObject** Ms = PySequence_Fast_ITEMS(M);
     PyObject** qs = PySequence_Fast_ITEMS(q);
+    nb::object sizes = new_array(B, true);
+    auto data = [](const nb::object& a) { return reinterpret_cast<const ArrayFields*>(a.ptr())->data; };
+    auto* no = reinterpret_cast<std::int64_t*>(data(sizes));
     idx m_len = 0, q_len = 0;
+    bool converted = false;
     for (Py_ssize_t b = 0; b < B; ++b) {
-        const ArrayFields* Mb = plain(Ms[b], 2);
-        const ArrayFields* qb = plain(qs[b], 1);
-        if (Mb == nullptr || qb == nullptr) return nb::none();
-        idx n = qb->dimensions[0];
-        if (Mb->dimensions[0] != n || Mb->dimensions[1] != n) return nb::none();
+        Py_ssize_t mr, mc, n, one;
+        int mf = pack_form(Ms[b], 2, mr, mc), qf = pack_form(qs[b], 1, n, one);
+        if (mf < 0 || qf < 0 || mr != n || mc != n) return nb::none();
+        converted = converted || mf != 0 || qf != 0;
+        no[b] = n;
         q_len += n;
         m_len += n * n;
     }
-    nb::object Mf = new_array(m_len), qf = new_array(q_len), sizes = new_array(B, true);
-    auto data = [](const nb::object& a) { return reinterpret_cast<const ArrayFields*>(a.ptr())->data; };
-    char *mo = data(Mf), *qo = data(qf);
-    auto* no = reinterpret_cast<std::int64_t*>(data(sizes));
+    nb::object Mf = new_array(m_len), qf = new_array(q_len);
+    auto* mo = reinterpret_cast<double*>(data(Mf));
+    auto* qo = reinterpret_cast<double*>(data(qf));
     for (Py_ssize_t b = 0; b < B; ++b) {
-        auto* Mb = reinterpret_cast<const ArrayFields*>(Ms[b]);
-        auto* qb = reinterpret_cast<const ArrayFields*>(qs[b]);
-        idx n = qb->dimensions[0];
-        std::size_t mbytes = static_cast<std::size_t>(n * n) * sizeof(double);
-        std::size_t qbytes = static_cast<std::size_t>(n) * sizeof(double);
-        if (mbytes) std::memcpy(mo, Mb->data, mbytes);
-        if (qbytes) std::memcpy(qo, qb->data, qbytes);
-        mo += mbytes;
-        qo += qbytes;
-        no[b] = n;
+        idx n = no[b];
+        if (!converted) {  // (all plain: the copies alone)
+            auto src = [](PyObject* a) { return reinterpret_cast<const ArrayFields*>(a)->data; };
+            if (n) std::memcpy(mo, src(Ms[b]), static_cast<std::size_t>(n * n) * sizeof(double));
+            if (n) std::memcpy(qo, src(qs[b]), static_cast<std::size_t>(n) * sizeof(double));
+        } else if (!pack_into(Ms[b], 2, n, n, mo) || !pack_into(qs[b], 1, n, 1, qo)) {
+            return nb::none();
+        }
+        mo += n * n;
+        qo += n;
+    }
+    if (converted) {
+        const double* m0 = reinterpret_cast<const double*>(data(Mf));
+        const double* q0 = reinterpret_cast<const double*>(data(qf));
+        for (idx i = 0; i < m_len; ++i)
+            if (!std::isfinite(m0[i])) return nb::none();
+        for (idx i = 0; i < q_len; ++i)
+            if (!std::isfinite(q0[i])) return nb::none();
     }
     return nb::make_tuple(Mf, qf, sizes);
 }

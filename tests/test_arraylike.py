@@ -216,6 +216,83 @@ def test_lcp_many_errors_as_before(B, monkeypatch):
                 assert got == _error(lambda: lemke.solve_lcp_many(M, q, **kw))
 
 
+def test_lcp_pack_converts_as_made_f64(monkeypatch):
+    """solve_lcp_many's packing (_core.lcp_pack) takes every form made_f64 converts, mixed
+    in one batch, and packs the values of the float64 arrays (NumPy's conversion); it
+    declines (None) what made_f64 declines, and a NaN or an infinity anywhere once any
+    problem needed converting (the Python path then raises at the first fault in order),
+    while plain arrays alone are packed as they are (their finiteness the kernels')."""
+    from lemke import _core
+    probs = [_lcp_data(1 + b % 5, seed=b) for b in range(23)]
+    Ms, qs = [p[0] for p in probs], [p[1] for p in probs]
+    def forms(a):  # (a byte-swapped array is NumPy's to convert: made_f64 declines it)
+        return [x for name, x in _forms(a, True) if name != "swapped"]
+    k = len(forms(Ms[0]))
+    Mx = [forms(M)[b % k] for b, M in enumerate(Ms)]  # (every form, mixed)
+    qx = [forms(q)[(b + 3) % k] for b, q in enumerate(qs)]
+    Mx[4], qx[5] = Ms[4], qs[5]  # (plain arrays among them)
+    Ms[6], qs[6] = np.full((2, 2), 2.0 ** 40) + np.eye(2), np.array([-(2.0 ** 31), 2.0 ** 30 - 1])
+    Mx[6], qx[6] = Ms[6].astype(np.int64).tolist(), [-2 ** 31, 2 ** 30 - 1]  # (ints of 1 and 2 digits)
+    for M, q in ((Mx, qx), (tuple(Mx), tuple(qx))):
+        got = _untouched(list(M) + list(q), lambda: _core.lcp_pack(M, q))
+        want = np.concatenate([_f64(m).ravel() for m in M]), np.concatenate([_f64(v) for v in q])
+        assert got is not None
+        assert got[0].dtype == got[1].dtype == np.float64
+        assert got[0].tobytes() == want[0].tobytes() and got[1].tobytes() == want[1].tobytes()
+        assert got[2].dtype == np.int64 and got[2].tolist() == [len(v) for v in qs]
+    declined = [[[1.0, 2.0], [3.0]], [["1", "2"], ["3", "4"]], [[np.int64(1), 0], [0, 1]],
+                np.ones((2, 2), np.float16), np.ones((2, 2), np.uint64), [[2 ** 64, 0], [0, 1]],
+                np.ones(4).tolist(), np.ones((2, 3)).tolist(), sp.eye(2), [[None, 1.0], [1.0, 1.0]]]
+    for bad in declined:
+        M2 = list(Mx[:3]) + [bad]
+        q2 = list(qx[:3]) + [[-1.0, -1.0]]
+        assert _core.lcp_pack(M2, q2) is None, bad
+    swapped = np.eye(2).astype(">f8")
+    assert _core.lcp_pack(Mx[:3] + [swapped], qx[:3] + [[-1.0, -1.0]]) is None
+    for bad in ([np.nan, -1.0], [-1.0, np.inf], np.array([-np.inf, 1.0], np.float32)):
+        assert _core.lcp_pack(Mx[:3] + [np.eye(2)], qx[:3] + [bad]) is None
+    nan_plain = np.array([np.nan, -1.0])
+    assert _core.lcp_pack(Mx[:3] + [np.eye(2)], qx[:3] + [nan_plain]) is None  # (converted ones)
+    plain = _core.lcp_pack(Ms[:3] + [np.eye(2)], qs[:3] + [nan_plain])
+    assert plain is not None and np.isnan(plain[1][-2])
+    # the same answers bit for bit as the float64 arrays, through the packed path
+    monkeypatch.setattr(_validate, "plain_many", lambda *a: (_ for _ in ()).throw(AssertionError("python path")))
+    want = lemke.solve_lcp_many(Ms, qs, workers=1)
+    got = lemke.solve_lcp_many(Mx, qx, workers=1)
+    for a, b in zip(got, want):
+        _same(a, b, LCP_FIELDS)
+    for name in ("z", "w", "status", "pivots", "residual"):
+        assert np.asarray(getattr(got, name)).tobytes() == np.asarray(getattr(want, name)).tobytes()
+
+
+def test_lcp_many_nonfinite_order_as_before(monkeypatch):
+    """A NaN or an infinity among converted problems raises what the Python path raised
+    (the first fault in order, problem and entry named), wherever it sits among lists and
+    plain arrays; among plain arrays alone the kernels find it (NOT_FINITE), as before."""
+    B = 12
+    Ms = [np.eye(2) for _ in range(B)]
+    qs = [np.array([-1.0, -2.0]) for _ in range(B)]
+    cases = []
+    for at_M, at_q, lists in ((7, 3, "q"), (2, 9, "M"), (5, 5, "both"), (None, 6, "M"), (8, None, "q")):
+        M2 = [m.tolist() if lists in ("M", "both") else m for m in Ms]
+        q2 = [v.tolist() if lists in ("q", "both") else v for v in qs]
+        if at_M is not None:
+            M2[at_M] = np.array([[1.0, np.nan], [0.0, 1.0]]) if lists == "q" else [[1.0, np.inf], [0.0, 1.0]]
+        if at_q is not None:
+            q2[at_q] = np.array([np.inf, 0.0]) if lists == "M" else [np.nan, 0.0]
+        cases.append((M2, q2))
+    for M, q in cases:
+        got = _error(lambda: lemke.solve_lcp_many(M, q, workers=1))
+        assert got is not None and "problem" in got[1]
+        with monkeypatch.context() as m:
+            _old(m)
+            assert got == _error(lambda: lemke.solve_lcp_many(M, q, workers=1))
+    q2 = list(qs)
+    q2[4] = np.array([np.nan, 0.0])
+    got = _error(lambda: lemke.solve_lcp_many(Ms, q2, workers=1))  # (the kernels' NOT_FINITE)
+    assert got == (ValueError, "problem 4: q has a NaN or infinite entry at index (0,)")
+
+
 BLCP_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
                "lo", "hi", "row_scale", "col_scale", "recoveries")
 
@@ -455,7 +532,9 @@ def test_native_list_conversion_is_numpys():
     for x, nd in (([[2 ** 62 + 1, -3], [big, -2 ** 63]], 2), ([[1, 2.5], [True, False]], 2),
                   ([True, False, True], 1), ([np.float64(0.1), -0.0, 1e308, 5e-324], 1),
                   (((1, 2), [3, 4]), 2), ([2 ** 53 + 1, 0.5], 1), ([np.nan, np.inf, -np.inf], 1),
-                  ([[1.0, 2.0, 3.0]], 2), ([7], 1)):
+                  ([[1.0, 2.0, 3.0]], 2), ([7], 1),
+                  ([0, -1, 1, 2 ** 30 - 1, 1 - 2 ** 30, 2 ** 30, -2 ** 30, 2 ** 31, -2 ** 60 - 1, -0], 1),
+                  ([[-7, 0], [300, -300]], 2), ([[0]], 2)):
         a = _core.as_f64(x, nd)
         want = np.asarray(x).astype(np.float64)
         assert a.dtype == np.float64 and a.flags.c_contiguous and a.flags.writeable

@@ -365,7 +365,7 @@ def _pack(Ms, qs):
 
 def test_lists_packed_natively_or_by_python_are_the_same():
     """_core.lcp_pack packs lists of ready arrays (float64 C arrays, writable or not: what
-    _pack does by hand) and declines anything else (None: the Python path); both paths give the same results bit for bit."""
+    _pack does by hand) or of array-likes made_f64 converts, and declines anything else (None: the Python path); both paths give the same results bit for bit."""
     from lemke import _core
     Ms, qs, qs2 = _islands(9, count=30)
     Ms, qs = _rays_and_trivial(Ms, qs)
@@ -381,10 +381,15 @@ def test_lists_packed_natively_or_by_python_are_the_same():
     ro.setflags(write=False)
     taken = (Ms[:3] + [ro] + Ms[4:], qs)  # a read-only M: packed natively (only read)
     assert _core.lcp_pack(*taken)[0].tobytes() == Mp.tobytes()
-    declined = [  # each makes the native packing decline (the Python path then runs)
+    converted = [  # array-likes made_f64 converts: packed natively, the same values
         (Ms[:3] + [np.asfortranarray(Ms[3]) if len(qs[3]) > 1 else Ms[3].tolist()] + Ms[4:], qs),
-        (Ms, qs[:3] + [qs[3].astype(">f8" if np.little_endian else "<f8")] + qs[4:]),  # byte order
         (Ms, qs[:3] + [qs[3].tolist()] + qs[4:]),  # a list
+    ]
+    for M, q in converted:
+        got = _core.lcp_pack(M, q)
+        assert got[0].tobytes() == Mp.tobytes() and got[1].tobytes() == qp.tobytes()
+    declined = [  # each makes the native packing decline (the Python path then runs)
+        (Ms, qs[:3] + [qs[3].astype(">f8" if np.little_endian else "<f8")] + qs[4:]),  # byte order
         (Ms, qs[:-1]),  # lengths differ
         (iter(Ms), qs),  # not a list or tuple
         ([], []),
@@ -393,7 +398,7 @@ def test_lists_packed_natively_or_by_python_are_the_same():
         assert _core.lcp_pack(M, q) is None
     native = lemke.solve_lcp_many(Ms, qs)
     warm = lemke.solve_lcp_many(Ms, qs2, warm_start=native.warm_start)
-    for M, q in [taken] + declined[:3]:
+    for M, q in [taken] + converted + declined[:1]:
         assert lemke.solve_lcp_many(M, q) == native
     assert warm == lemke.solve_lcp_many(taken[0], qs2, warm_start=native.warm_start)
     assert warm == [lemke.solve_lcp(M, q, warm_start=r.warm_start) for M, q, r in zip(Ms, qs2, native)]

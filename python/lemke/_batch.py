@@ -416,7 +416,7 @@ def solve_lcp_many(M, q, *, method="tableau", options=None, workers=None,
     if progress is not None:
         progress = _progress.check(progress)
     # offsets: of q and the basic z's, of M, of the output buffers (_layout.buffer_length)
-    packed = _core.lcp_pack(M, q) if sizes is None else None  # lists ready as they are
+    packed = _core.lcp_pack(M, q) if sizes is None else None  # lists ready or converted (made_f64)
     cap = -1 if opts.max_pivots is None else opts.max_pivots
     # ready packed arrays (or the lists packed): every array the kernels take in one call
     setup = None
