@@ -519,6 +519,7 @@ bool list_into(PyObject* x, int nd, Py_ssize_t rows, Py_ssize_t cols, double* ou
 // ndarray (the front judges it), or an invalid object (declined: the Python function
 // converts or refuses it).
 nb::object made_f64(PyObject* x, int nd) {
+    if (nd != 1 && nd != 2) return nb::object();  // (new_rows makes 1-D and 2-D arrays only)
     if (front.new_from_descr == nullptr) return Py_TYPE(x) == front.ndarray ? nb::borrow(x) : nb::object();
     if (Py_TYPE(x) == front.ndarray) return cast_array(x, nd);
     Py_ssize_t rows, cols;
@@ -1047,6 +1048,17 @@ nb::object many_setup(nb::handle sizes_h, nb::handle M_h, nb::handle q_h, std::i
     return nb::make_tuple(off, limits, work, list, bufs, basics, out_i, out_f);
 }
 
+// Whether o is a 2-D (B, cols) ndarray of NumPy's type type_num in the machine's byte order,
+// C-contiguous and aligned (the kernels' out_i and out_f; read through typed pointers).
+bool native_rows(PyObject* o, Py_ssize_t cols, int type_num) {
+    constexpr int need = C_CONTIGUOUS | ALIGNED;
+    if (Py_TYPE(o) != front.ndarray) return false;
+    auto* a = reinterpret_cast<const ArrayFields*>(o);
+    auto* t = reinterpret_cast<const DescrFields*>(a->descr);
+    return a->nd == 2 && a->dimensions[1] == cols && (a->flags & need) == need &&
+           t->type_num == type_num && t->byteorder == '=';
+}
+
 // The problems b of a batch (solve_lcp_many) whose answers the Python front must build:
 // (those whose code is NOT_FINITE, those not settled: not ok, or a code other than SOLVED,
 // TRIVIAL and RAY_TERMINATION), two lists (out_i (B, 5) and out_f (B, 2), the kernels').
@@ -1056,12 +1068,8 @@ nb::object many_unsettled(nb::handle out_i_h, nb::handle out_f_h) {
     if (!front.on) return nb::none();
     auto* oi = reinterpret_cast<const ArrayFields*>(out_i_h.ptr());
     auto* of = reinterpret_cast<const ArrayFields*>(out_f_h.ptr());
-    if (Py_TYPE(out_i_h.ptr()) != front.ndarray || Py_TYPE(out_f_h.ptr()) != front.ndarray ||
-        oi->nd != 2 || of->nd != 2 || oi->dimensions[1] != 5 || of->dimensions[1] != 2 ||
-        oi->dimensions[0] != of->dimensions[0] || (oi->flags & C_CONTIGUOUS) == 0 ||
-        (of->flags & C_CONTIGUOUS) == 0 ||
-        reinterpret_cast<const DescrFields*>(oi->descr)->type_num != front.int64_num ||
-        reinterpret_cast<const DescrFields*>(of->descr)->type_num != NPY_DOUBLE)
+    if (!native_rows(out_i_h.ptr(), 5, front.int64_num) || !native_rows(out_f_h.ptr(), 2, NPY_DOUBLE) ||
+        oi->dimensions[0] != of->dimensions[0])
         throw nb::type_error("many_unsettled: out_i must be int64 (B, 5), out_f float64 (B, 2)");
     const auto* code = reinterpret_cast<const std::int64_t*>(oi->data);
     const auto* ok = reinterpret_cast<const double*>(of->data);
@@ -1092,9 +1100,14 @@ nb::object many_field(nb::handle bufs_h, nb::handle buff_h, nb::handle qoff_h, s
     const auto* bo = reinterpret_cast<const std::int64_t*>(buff->data);
     const auto* src = reinterpret_cast<const double*>(bufs->data);
     Py_ssize_t len = bufs->dimensions[0];
+    // Each span [bo[b] + a n + c, + n) inside [bo[b], bo[b + 1]) inside bufs; every bound
+    // checked before the next is computed from it, so that no sum or product overflows.
     for (Py_ssize_t b = 0; b < B; ++b) {
-        std::int64_t n = qo[b + 1] - qo[b], at = bo[b] + a * n + c;
-        if (n < 0 || qo[b] < 0 || bo[b] < 0 || at < bo[b] || at + n > bo[b + 1] || bo[b + 1] > len)
+        if (a < 0 || c < 0 || qo[b] < 0 || qo[b + 1] < qo[b] || bo[b] < 0 || bo[b + 1] < bo[b] ||
+            bo[b + 1] > len)
+            throw nb::value_error("many_field: the offsets do not fit the buffers");
+        std::int64_t n = qo[b + 1] - qo[b], room = bo[b + 1] - bo[b];
+        if (n > room || c > room - n || (n > 0 && a > (room - n - c) / n))
             throw nb::value_error("many_field: the offsets do not fit the buffers");
     }
     nb::object out = new_array(qo[B] - qo[0]);
@@ -1114,9 +1127,7 @@ nb::object many_bases(nb::handle basics_h, nb::handle qoff_h, nb::handle out_i_h
     const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
     auto* oi = reinterpret_cast<const ArrayFields*>(out_i_h.ptr());
     if (!front.on) return nb::none();
-    if (basics == nullptr || qoff == nullptr || Py_TYPE(out_i_h.ptr()) != front.ndarray ||
-        oi->nd != 2 || oi->dimensions[1] != 5 || (oi->flags & C_CONTIGUOUS) == 0 ||
-        reinterpret_cast<const DescrFields*>(oi->descr)->type_num != front.int64_num ||
+    if (basics == nullptr || qoff == nullptr || !native_rows(out_i_h.ptr(), 5, front.int64_num) ||
         oi->dimensions[0] + 1 != qoff->dimensions[0])
         throw nb::type_error("many_bases: basics, qoff (B + 1) and out_i (B, 5) int64");
     Py_ssize_t B = oi->dimensions[0];
@@ -1129,7 +1140,9 @@ nb::object many_bases(nb::handle basics_h, nb::handle qoff_h, nb::handle out_i_h
     o[0] = 0;
     for (Py_ssize_t b = 0; b < B; ++b) {
         std::int64_t k = code[5 * b + 2];
-        if (k < 0 || qo[b] < 0 || k > qo[b + 1] - qo[b] || qo[b + 1] > basics->dimensions[0])
+        // (qo[b] >= 0 and qo[b + 1] >= qo[b] first: the difference cannot overflow)
+        if (k < 0 || qo[b] < 0 || qo[b + 1] < qo[b] || k > qo[b + 1] - qo[b] ||
+            qo[b + 1] > basics->dimensions[0])
             throw nb::value_error("many_bases: the offsets do not fit the arrays");
         o[b + 1] = o[b] + k;
         n_b[b] = qo[b + 1] - qo[b];

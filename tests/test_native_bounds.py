@@ -1,0 +1,78 @@
+"""The private native helpers that read Python-supplied arrays (src/python_front.cpp) refuse
+inconsistent or malformed arguments instead of reading or writing outside them: offsets whose
+differences overflow int64, spans that wrap, unaligned or byte-swapped outputs, ranks other
+than 1 and 2.  (tests/sanitized_run.py drives the same calls under ASan and UBSan.)"""
+import numpy as np
+import pytest
+
+import lemke
+from lemke import problems
+from lemke import _core
+
+I64_MIN, I64_MAX = np.iinfo(np.int64).min, np.iinfo(np.int64).max
+
+pytestmark = pytest.mark.skipif(not _core.lcp_front_on(), reason="native fronts off")
+
+
+def _unaligned(a):
+    """A copy of a C array whose data starts one byte past an aligned address."""
+    raw = np.frombuffer(b"\0" + np.ascontiguousarray(a).tobytes(), dtype=a.dtype, offset=1)
+    out = raw.reshape(a.shape)
+    assert not out.flags.aligned
+    return out
+
+
+def test_all_f64_refuses_ranks_other_than_1_and_2():
+    # a list given rank 0 or 3 made a 0-d (or 3-d from a 2-long shape) array and filled it
+    # as if it were 1-D: a write past a one-double array
+    for nd in (0, 3, -1, 7):
+        assert _core.all_f64(([1.0] * 64,), (nd,)) is None
+        assert _core.all_f64((np.arange(5, dtype=np.int32),), (nd,)) is None
+        assert _core.as_f64([1.0] * 64, nd) is None
+    got = _core.all_f64(([1.0, 2.0], None), (1, 0))
+    assert got[0].tolist() == [1.0, 2.0] and got[1] is None
+
+
+def test_many_bases_refuses_offsets_whose_difference_overflows():
+    basics = np.arange(2, dtype=np.int64)
+    out_i = np.zeros((1, 5), dtype=np.int64)
+    out_i[0, 2] = 1000  # k: read from basics[qoff[0]:] (2 numbers there)
+    with pytest.raises(ValueError):
+        _core.many_bases(basics, np.array([1, I64_MIN], dtype=np.int64), out_i)
+    with pytest.raises(ValueError):
+        _core.many_bases(basics, np.array([0, 3], dtype=np.int64), out_i)
+
+
+def test_many_field_refuses_spans_that_wrap():
+    bufs = np.arange(16.0)
+    bo = np.array([0, 16], dtype=np.int64)
+    qo = np.array([0, 4], dtype=np.int64)
+    assert _core.many_field(bufs, bo, qo, 2, 2).tolist() == [10.0, 11.0, 12.0, 13.0]
+    # a * n wraps to 0 (2^62 * 4), a * n + c past the span, a negative a or c
+    for a, c in ((1 << 62, 0), (1 << 61, 1), (I64_MAX, 0), (0, I64_MAX), (-1, 4), (0, -1), (4, 0)):
+        with pytest.raises(ValueError):
+            _core.many_field(bufs, bo, qo, a, c)
+    for qo2, bo2 in (([1, I64_MIN], [0, 16]), ([0, I64_MAX], [0, 16]), ([0, 4], [I64_MAX, 16]),
+                     ([0, 4], [-8, 16]), ([0, 4], [0, 17]), ([I64_MIN, 0], [0, 16])):
+        with pytest.raises(ValueError):
+            _core.many_field(bufs, np.array(bo2, dtype=np.int64), np.array(qo2, dtype=np.int64), 0, 0)
+
+
+def test_many_outputs_must_be_aligned_native_arrays():
+    rng = np.random.default_rng(3)
+    Ms = [problems.random_psd(n, rng)[0] for n in (2, 3)]
+    qs = [-np.ones(n) for n in (2, 3)]
+    sizes = np.array([2, 3], dtype=np.int64)
+    rs = lemke.solve_lcp_many(np.concatenate([M.ravel() for M in Ms]), np.concatenate(qs), sizes=sizes)
+    out_i, out_f = rs._out_i, rs._out_f
+    assert _core.many_unsettled(out_i, out_f) is not None
+    for bad_i, bad_f in ((_unaligned(out_i), out_f), (out_i, _unaligned(out_f)),
+                         (out_i.astype(out_i.dtype.newbyteorder()), out_f),
+                         (out_i, out_f.astype(out_f.dtype.newbyteorder()))):
+        with pytest.raises(TypeError):
+            _core.many_unsettled(bad_i, bad_f)
+    for bad_i in (_unaligned(out_i), out_i.astype(out_i.dtype.newbyteorder())):
+        with pytest.raises(TypeError):
+            _core.many_bases(rs._basics, rs._off[0], bad_i)
+    z, off, n = _core.many_bases(rs._basics, rs._off[0], out_i)
+    assert n.tolist() == [2, 3] and off[-1] == len(z)
