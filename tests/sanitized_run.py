@@ -18,7 +18,11 @@ behaviour in the C++ core then stops the child with a report on stderr.  It solv
 * warm starts and relabels: LCP restarts, take, relabel by labels and by integer ids
   (duplicates included), batches and solve_lcp_many with their warm starts;
 * array-likes: lists, tuples, int / bool / float32 arrays, Fortran-ordered, reversed,
-  strided and unaligned arrays, scalar box bounds, through every entry point.
+  strided and unaligned arrays, scalar box bounds, through every entry point;
+* sanitized_fuzz.py's seeded adversarial inputs: malformed lists and arrays through the
+  entries' conversions, the batch helpers called directly with inconsistent offsets, the
+  kept-matrix table's large slot (250-300 rows, forced hash collisions) and box islands of
+  varying sizes, each of the last two compared with a fresh thread's solve.
 
 The statuses are not checked here (the other tests do); every solve runs, each exception is
 reported with the problem that raised it, and each answer is reduced to a fingerprint
@@ -50,6 +54,7 @@ sys.meta_path[:] = [f for f in sys.meta_path if "ScikitBuild" not in type(f).__n
                     and "skbc" not in type(f).__module__]
 
 import lemke  # noqa: E402
+import sanitized_fuzz  # noqa: E402
 
 FIELDS = ("status", "pivots", "z", "w", "u", "v", "x", "y", "z0", "ray", "lo", "hi", "payoffs", "restarts",
           "warm_start", "basis")
@@ -409,6 +414,7 @@ def run_all() -> Runner:
     box_lcps(run)
     games(run)
     array_likes(run)
+    sanitized_fuzz.fuzz(run)
     return run
 
 
