@@ -76,3 +76,43 @@ def test_many_outputs_must_be_aligned_native_arrays():
             _core.many_bases(rs._basics, rs._off[0], bad_i)
     z, off, n = _core.many_bases(rs._basics, rs._off[0], out_i)
     assert n.tolist() == [2, 3] and off[-1] == len(z)
+
+
+def test_native_paths_keep_no_reference_to_their_inputs():
+    """The entries' conversions and the batch helpers, answering or refusing, leave every
+    input's reference count as it was (a reference leaked per call would show here)."""
+    import sys
+
+    rng = np.random.default_rng(5)
+    M, q = problems.random_psd(4, rng)
+    Ml, ql, Mi = M.tolist(), q.tolist(), M.astype(np.int32)
+    ws = lemke.solve_lcp(M, q).warm_start
+    sizes = np.array([3, 1, 2], dtype=np.int64)
+    Mp = np.concatenate([problems.random_psd(int(n), rng)[0].ravel() for n in sizes])
+    qp = -np.ones(int(sizes.sum()))
+    rs = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
+    wrap = np.array([1, I64_MIN], dtype=np.int64)
+    calls = [lambda: lemke.solve_lcp(Ml, ql), lambda: lemke.solve_lcp(Mi, q, warm_start=ws),
+             lambda: lemke.solve_lcp([[1.0], [1.0, 2.0]], ql[:2]), lambda: lemke.solve_blcp(Ml, ql, -1.0, 2),
+             lambda: lemke.solve_blcp(Ml, ql, float("nan"), 2), lambda: lemke.solve_bimatrix(Ml, Mi),
+             lambda: lemke.solve_lcp_many([Ml, Mi], [ql, q]), lambda: _core.as_f64(Ml, 2),
+             lambda: _core.all_f64((Ml, ql, None), (2, 1, 0)), lambda: _core.all_f64((Ml, "x"), (2, 1)),
+             lambda: _core.many_setup(sizes, Mp, qp, -1), lambda: _core.many_unsettled(rs._out_i, rs._out_f),
+             lambda: _core.many_field(rs._bufs, rs._off[2], rs._off[0], 2, 2),
+             lambda: _core.many_bases(rs._basics, rs._off[0], rs._out_i),
+             lambda: _core.many_bases(rs._basics, wrap, rs._out_i[:1]),
+             lambda: _core.many_field(rs._bufs, rs._off[2], rs._off[0], 1 << 62, 0)]
+    objs = [M, q, Mi, ws, Mp, qp, sizes, rs._bufs, rs._basics, rs._out_i, rs._out_f, rs._off, Ml, ql, wrap, *Ml]
+    for f in calls:
+        try:
+            f()
+        except (TypeError, ValueError):
+            pass
+    before = [sys.getrefcount(o) for o in objs]
+    for _ in range(50):
+        for f in calls:
+            try:
+                f()
+            except (TypeError, ValueError):
+                pass
+    assert [sys.getrefcount(o) for o in objs] == before
