@@ -122,7 +122,7 @@ class _Deferred(LazyField):
     """A field of :class:`QPResult` not (yet) in the result's ``__dict__``: a deferred
     result's fields made by its ``_resolve`` when one is first read (``result.warm_start``
     in an MPC loop each step) without ``__getattr__``'s fallback, which first raises an
-    AttributeError (a microsecond of a warm step's ~4 us there)."""
+    AttributeError (about half a microsecond of the ~4 us read)."""
 
     __slots__ = ()
 
