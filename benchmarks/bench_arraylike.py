@@ -9,7 +9,8 @@ ratios after / before.  Forms: float64 C arrays, lists of floats, lists of ints,
 Fortran-ordered float64 matrices (vectors plain).  Cases: ``solve_lcp`` (n = 2 and 10, cold
 by the tableau and the unrevised method, warm from its own basis), ``solve_blcp`` (n = 4,
 cold; also scalar bounds), ``solve_bimatrix`` (3 x 2), ``solve_qp`` (3 variables, G, h, A,
-b, bounds), ``solve_lcp_many`` (2 problems, and 400 of 1-6 rows, one worker).  Every form
+b, bounds), ``solve_lcp_many`` (2 problems, and 400 of 1-6 rows, one worker),
+``solve_blcp_many`` (400 box islands of 1-6 rows, bounds per island or scalar, one worker).  Every form
 must give the float64 call's answer bit for bit, and both interpreters the same (checked).
 """
 import hashlib
@@ -74,6 +75,12 @@ def cases(lemke):
         out.append((f"solve_lcp_many B={B_}", lambda f, probs=probs: (
             lambda Ms=[form(p[0], f) for p in probs], qs=[form(p[1], f) for p in probs]:
             lemke.solve_lcp_many(Ms, qs, workers=1))))
+    probs = [_lcp(1 + b % 6, b) for b in range(400)]
+    isl = [(M, q, -np.ones(len(q)), np.full(len(q), 2.0)) for M, q in probs]
+    out.append(("solve_blcp_many B=400", lambda f: (
+        lambda a=[[form(i[k], f) for i in isl] for k in range(4)]: lemke.solve_blcp_many(*a, workers=1))))
+    out.append(("solve_blcp_many B=400 scalar bounds", lambda f: (
+        lambda a=[[form(i[k], f) for i in isl] for k in range(2)]: lemke.solve_blcp_many(*a, -1.0, 2.0, workers=1))))
     return out
 
 

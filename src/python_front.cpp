@@ -994,6 +994,151 @@ T* data_of(const nb::object& a) {
     return reinterpret_cast<T*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
 }
 
+// A bound of solve_blcp_many's island b (side -1: lo, 1: hi) as blcp_pack takes it: 0 a
+// plain array of n numbers, 1 one Python float or int64-sized int for every row (spread as
+// _validate._scalar_bound spreads it; *v its value), 2 an array-like made_f64 converts (as
+// pack_form's 1), -1 anything else (declined).
+int bound_form(PyObject* x, Py_ssize_t n, double* v) {
+    if (PyFloat_CheckExact(x) || PyLong_CheckExact(x)) return list_entry(x, *v) ? 1 : -1;
+    Py_ssize_t rows, cols;
+    int f = pack_form(x, 1, rows, cols);
+    return f < 0 || rows != n ? -1 : f == 0 ? 0 : 2;
+}
+
+// An island's findex as blcp_pack takes it: 0 a plain int64 array of n entries, 1 a list
+// or tuple of n exact Python ints within int64 (what np.asarray makes int64), -1 else.
+int findex_form(PyObject* x, Py_ssize_t n) {
+    if (const ArrayFields* a = plain_i64(x, front.ndarray, front.int64_num))
+        return a->dimensions[0] == n ? 0 : -1;
+    if (!exact_seq(x) || PySequence_Fast_GET_SIZE(x) != n || n == 0) return -1;
+    PyObject** v = PySequence_Fast_ITEMS(x);
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (!PyLong_CheckExact(v[i])) return -1;
+    return 1;
+}
+
+// Whether island data that _validate.blcp would convert passes its checks as it stands
+// (M, q finite; lo not NaN nor +inf, hi not NaN nor -inf, lo <= hi; each friction row as
+// _validate._findex wants it): else blcp_pack declines, and the Python path raises its error.
+bool blcp_valid(const double* M, const double* q, const double* lo, const double* hi,
+                const std::int64_t* f, Py_ssize_t n) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    for (Py_ssize_t i = 0; i < n * n; ++i)
+        if (!std::isfinite(M[i])) return false;
+    for (Py_ssize_t i = 0; i < n; ++i)
+        if (!std::isfinite(q[i]) || lo[i] != lo[i] || hi[i] != hi[i] || lo[i] == inf ||
+            hi[i] == -inf || lo[i] > hi[i])
+            return false;
+    if (f == nullptr) return true;
+    for (Py_ssize_t i = 0; i < n; ++i) {
+        std::int64_t fi = f[i];
+        if (fi == -1) continue;
+        if (fi < 0 || fi >= n || fi == i || f[fi] != -1 || hi[i] < 0 || !std::isfinite(hi[i]) ||
+            lo[i] != -hi[i] || lo[fi] < 0)
+            return false;
+    }
+    return true;
+}
+
+// solve_blcp_many's islands given as sequences (M, q, lo, hi: lists or tuples of B >= 1,
+// lo and hi also one Python number for all; findex None or a list or tuple of None or
+// int64 arrays or lists of ints): (Mflat, qflat, loflat, hiflat, fiflat or None, fflag
+// (int64), n_b), every island's laid end to end as _blcp_many._islands and _flat lay them
+// (a scalar bound spread over its rows, an island without findex -1 on its rows; fiflat
+// None when no island has one), when each is plain (float64 C arrays; int64 findex) or an
+// array-like made_f64 converts (pack_form, pack_into: the same values); else None, and the
+// Python path checks them and names what is wrong. As for lcp_pack, data that is all plain
+// is the kernels' to judge; when any was converted, anything _validate.blcp would refuse
+// declines the lot (None), so that the Python path raises at the first fault as before.
+nb::object blcp_pack(nb::handle M_h, nb::handle q_h, nb::handle lo_h, nb::handle hi_h,
+                     nb::handle f_h) {
+    PyObject *M = M_h.ptr(), *q = q_h.ptr(), *lo = lo_h.ptr(), *hi = hi_h.ptr(), *fi = f_h.ptr();
+    if (!front.on || front.new_from_descr == nullptr || !exact_seq(M) || !exact_seq(q))
+        return nb::none();
+    Py_ssize_t B = PySequence_Fast_GET_SIZE(M);
+    auto each = [B](PyObject* v) -> PyObject** {  // (nullptr: not a sequence of B)
+        return exact_seq(v) && PySequence_Fast_GET_SIZE(v) == B ? PySequence_Fast_ITEMS(v) : nullptr;
+    };
+    bool lo_one = PyFloat_CheckExact(lo) || PyLong_CheckExact(lo);
+    bool hi_one = PyFloat_CheckExact(hi) || PyLong_CheckExact(hi);
+    PyObject** los = lo_one ? nullptr : each(lo);
+    PyObject** his = hi_one ? nullptr : each(hi);
+    PyObject** fis = fi == Py_None ? nullptr : each(fi);
+    if (B < 1 || PySequence_Fast_GET_SIZE(q) != B || (!lo_one && los == nullptr) ||
+        (!hi_one && his == nullptr) || (fi != Py_None && fis == nullptr))
+        return nb::none();
+    PyObject** Ms = PySequence_Fast_ITEMS(M);
+    PyObject** qs = PySequence_Fast_ITEMS(q);
+    nb::object sizes = new_array(B, true), flags = new_array(B, true);
+    auto* no = data_of<std::int64_t>(sizes);
+    auto* fl = data_of<std::int64_t>(flags);
+    Py_ssize_t m_len = 0, q_len = 0;
+    bool converted = false, friction = false;
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        Py_ssize_t mr, mc, n, one;
+        double v;
+        int mf = pack_form(Ms[b], 2, mr, mc), qf = pack_form(qs[b], 1, n, one);
+        if (mf < 0 || qf < 0 || mr != n || mc != n) return nb::none();
+        int lf = bound_form(lo_one ? lo : los[b], n, &v), hf = bound_form(hi_one ? hi : his[b], n, &v);
+        PyObject* f = fis == nullptr ? Py_None : fis[b];
+        int ff = f == Py_None ? 0 : findex_form(f, n);
+        if (lf < 0 || hf < 0 || ff < 0) return nb::none();
+        converted = converted || mf != 0 || qf != 0 || lf != 0 || hf != 0 || ff != 0;
+        fl[b] = f != Py_None;
+        friction = friction || fl[b] != 0;
+        no[b] = n;
+        q_len += n;
+        m_len += n * n;
+    }
+    nb::object Mf = new_array(m_len), qf = new_array(q_len), lf = new_array(q_len),
+               hf = new_array(q_len), ff = friction ? new_array(q_len, true) : nb::none();
+    double *mo = data_of<double>(Mf), *qo = data_of<double>(qf), *lo_o = data_of<double>(lf),
+           *hi_o = data_of<double>(hf);
+    std::int64_t* fo = friction ? data_of<std::int64_t>(ff) : nullptr;
+    auto bound_into = [](PyObject* x, Py_ssize_t n, double* out) {
+        double v;
+        if (PyFloat_CheckExact(x) || PyLong_CheckExact(x)) {
+            if (!list_entry(x, v)) return false;
+            for (Py_ssize_t i = 0; i < n; ++i) out[i] = v;
+            return true;
+        }
+        return pack_into(x, 1, n, 1, out);
+    };
+    for (Py_ssize_t b = 0; b < B; ++b) {
+        Py_ssize_t n = no[b];
+        PyObject* f = fis == nullptr ? Py_None : fis[b];
+        if (!pack_into(Ms[b], 2, n, n, mo) || !pack_into(qs[b], 1, n, 1, qo) ||
+            !bound_into(lo_one ? lo : los[b], n, lo_o) || !bound_into(hi_one ? hi : his[b], n, hi_o))
+            return nb::none();
+        if (fo != nullptr) {
+            if (f == Py_None) {
+                for (Py_ssize_t i = 0; i < n; ++i) fo[i] = -1;
+            } else if (const ArrayFields* a = plain_i64(f, front.ndarray, front.int64_num)) {
+                if (n) std::memcpy(fo, a->data, static_cast<std::size_t>(n) * sizeof(std::int64_t));
+            } else {
+                PyObject** v = PySequence_Fast_ITEMS(f);
+                for (Py_ssize_t i = 0; i < n; ++i) {
+                    int overflow = 0;
+                    long long x = PyLong_AsLongLongAndOverflow(v[i], &overflow);
+                    if (overflow != 0 || (x == -1 && PyErr_Occurred())) {
+                        PyErr_Clear();
+                        return nb::none();
+                    }
+                    fo[i] = x;
+                }
+            }
+        }
+        if (converted && !blcp_valid(mo, qo, lo_o, hi_o, fo != nullptr && f != Py_None ? fo : nullptr, n))
+            return nb::none();
+        mo += n * n;
+        qo += n;
+        lo_o += n;
+        hi_o += n;
+        if (fo != nullptr) fo += n;
+    }
+    return nb::make_tuple(Mf, qf, lf, hf, ff, flags, sizes);
+}
+
 // solve_lcp_many's set-up for B >= 1 problems of sizes n_b (`sizes`: a 1-D int64 array, each
 // >= 0) with M and q packed (1-D float64 C arrays, writable, of sum n_b^2 and sum n_b
 // numbers: what _batch._packed and lcp_pack give): the offsets (int64 (3, B + 1), from 0:
@@ -1190,6 +1335,7 @@ void bind_front(nb::module_& m) {
           "method"_a = static_cast<int>(lemke::TABLEAU));
     m.def("lcp_front_on", [] { return front.on; });
     m.def("lcp_pack", &lcp_pack, "M"_a, "q"_a);
+    m.def("blcp_pack", &blcp_pack, "M"_a, "q"_a, "lo"_a.none(), "hi"_a.none(), "findex"_a.none());
     m.def("many_setup", &many_setup, "sizes"_a, "M"_a, "q"_a, "max_pivots"_a);
     m.def("many_unsettled", &many_unsettled, "out_i"_a, "out_f"_a);
     m.def("many_field", &many_field, "bufs"_a, "buff"_a, "qoff"_a, "a"_a, "c"_a);

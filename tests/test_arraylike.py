@@ -13,7 +13,7 @@ import pytest
 import scipy.sparse as sp
 
 import lemke
-from lemke import _validate
+from lemke import _blcp_many, _validate
 
 
 def _f64(x):
@@ -78,6 +78,7 @@ def _old(monkeypatch):
     """The path of today's array-likes: no conversion (the validation does it all)."""
     for name in ("plain_lcp", "plain_blcp", "plain_all", "plain_many", "plain_islands"):
         monkeypatch.setattr(_validate, name, lambda *a: None)
+    monkeypatch.setattr(_blcp_many, "_PACK", lambda *a: None)  # (solve_blcp_many's packing)
 
 
 LCP_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
@@ -375,8 +376,7 @@ def test_blcp_many_forms_bit_for_bit(B, monkeypatch):
                       lemke.solve_blcp_many(ref[0], ref[1], -1.0, 2.0)))
     fl = [f.tolist() for f in fis]
     with monkeypatch.context() as m:
-        if B <= 4:  # (more islands: the batch, which validates lists as before)
-            m.setattr(_validate, "blcp", lambda *a: (_ for _ in ()).throw(AssertionError("validated")))
+        m.setattr(_validate, "blcp", lambda *a: (_ for _ in ()).throw(AssertionError("validated")))
         for args, ref, want, warm, cold in forms:
             got = _untouched(args[0] + args[1] + fl, lambda: lemke.solve_blcp_many(*args, findex=fl))
             assert len(got) == B
@@ -405,6 +405,135 @@ def test_blcp_many_errors_as_before(monkeypatch):
         with monkeypatch.context() as m:
             _old(m)
             assert got == _error(lambda: lemke.solve_blcp_many(**kw))
+
+
+def _scene(B=23):
+    """B contact islands (float64 arrays, int64 findex), a few without friction rows."""
+    from test_blcp import contacts
+    isl = [contacts(b, 1 + b % 3)[:5] for b in range(B)]
+    Ms, qs, los, his = ([np.asarray(i[k], dtype=float) for i in isl] for k in range(4))
+    fis = [np.asarray(i[4]).astype(np.int64) if b % 5 else None for b, i in enumerate(isl)]
+    return Ms, qs, los, his, fis
+
+
+def test_blcp_pack_converts_as_made_f64():
+    """solve_blcp_many's packing (_core.blcp_pack) takes every form made_f64 converts (and
+    Python numbers for bounds, int lists for findex), mixed in one batch, and packs the
+    values the validation makes; it declines what made_f64 declines, and anything the
+    validation refuses once any island needed converting; plain arrays alone are packed as
+    they are (their data the kernels' to judge)."""
+    from lemke import _core
+    Ms, qs, los, his, fis = _scene()
+    def forms(a):  # (a byte-swapped array is NumPy's to convert: made_f64 declines it)
+        return [x for name, x in _forms(a, False) if name != "swapped"]
+    k = len(forms(Ms[0]))
+    Mx = [forms(M)[b % k] for b, M in enumerate(Ms)]
+    qx = [forms(q)[(b + 2) % k] for b, q in enumerate(qs)]
+    lx = [forms(v)[(b + 4) % k] for b, v in enumerate(los)]
+    hx = [forms(v)[(b + 4) % k] for b, v in enumerate(his)]  # (lo's form: lo = -hi in float32 too)
+    fx = [f if f is None or b % 2 else f.tolist() for b, f in enumerate(fis)]
+    Mx[4], qx[5], lx[10] = Ms[4], qs[5], 0.0  # (plain arrays and a scalar bound among them)
+    for M, q, lo, hi, f in ((Mx, qx, lx, hx, fx), (tuple(Mx), tuple(qx), lx, 2, None)):
+        got = _untouched(list(M) + list(q) + [x for x in fx if x is not None],
+                         lambda: _core.blcp_pack(M, q, lo, hi, f))
+        assert got is not None
+        def spread(xs):  # (a Python number: np.full(n_b, float(x)), as the validation spreads it)
+            xs = [xs] * len(qs) if isinstance(xs, (int, float)) else xs
+            return [np.full(len(v), float(x)) if isinstance(x, (int, float)) else _f64(x) for x, v in zip(xs, qs)]
+        want = [np.concatenate([_f64(x).ravel() for x in xs]) for xs in (M, q, spread(lo), spread(hi))]
+        for a, b in zip(got[:4], want):
+            assert a.dtype == np.float64 and a.tobytes() == b.tobytes()
+        if f is None:
+            assert got[4] is None and got[5].tolist() == [0] * len(qs)
+        else:
+            wf = np.concatenate([np.full(len(v), -1) if x is None else np.asarray(x) for x, v in zip(f, qs)])
+            assert got[4].dtype == np.int64 and got[4].tolist() == wf.tolist()
+            assert got[5].tolist() == [int(x is not None) for x in f]
+        assert got[6].dtype == np.int64 and got[6].tolist() == [len(v) for v in qs]
+    def swap(b, **kw):
+        args = dict(M=list(Mx), q=list(qx), lo=list(lx), hi=list(hx), findex=list(fx))
+        for name, v in kw.items():
+            args[name][b] = v
+        return _core.blcp_pack(args["M"], args["q"], args["lo"], args["hi"], args["findex"])
+    n = len(qs[3])
+    declined = [dict(M=np.ones((n, n), np.float16)), dict(M=[[1.0] * n] * (n - 1) + [[1.0]]),
+                dict(q=[np.int64(1)] * n), dict(q=np.ones(n).astype(">f8")), dict(lo=np.zeros(n + 1)),
+                dict(lo=np.float64(0.0)), dict(hi=True), dict(hi=2 ** 64), dict(findex=[-1.0] * n),
+                dict(findex=[True] * n), dict(findex=np.full(n, -1, np.int32)), dict(findex=[-1] * (n + 1)),
+                dict(findex=[2 ** 63] + [-1] * (n - 1)),
+                # what the validation refuses: NaN, infinities, lo > hi, friction rows
+                dict(q=[np.nan] * n), dict(M=np.full((n, n), np.inf)), dict(lo=np.inf), dict(hi=-np.inf),
+                dict(lo=np.nan), dict(lo=1.0, hi=0.0), dict(findex=[n] + [-1] * (n - 1)),
+                dict(findex=[0] + [-1] * (n - 1)), dict(findex=[1, 0] + [-1] * (n - 2)),
+                dict(findex=[1] + [-1] * (n - 1), lo=[-1.0] + [0.0] * (n - 1), hi=np.inf),
+                dict(findex=[-1, 0] + [-1] * (n - 2), lo=[0.0, -1.0] + [0.0] * (n - 2), hi=[1.0, 2.0] + [1.0] * (n - 2)),
+                dict(findex=[-1, 0] + [-1] * (n - 2), lo=[0.0, -np.inf] + [0.0] * (n - 2), hi=np.inf),
+                dict(findex=[-1, 0] + [-1] * (n - 2), lo=[-1.0, -1.0] + [0.0] * (n - 2), hi=1.0)]
+    for kw in declined:
+        assert swap(3, **kw) is None, kw
+    assert swap(3, findex=[-1, 0] + [-1] * (n - 2), lo=[0.0, -1.0] + [0.0] * (n - 2), hi=1.0) is not None
+    nan_plain = np.full(len(qs[0]), np.nan)
+    plain = _core.blcp_pack(Ms, [nan_plain] + qs[1:], los, his, fis)  # (plain: the kernels')
+    assert plain is not None and np.isnan(plain[1][0])
+    assert _core.blcp_pack(Ms, qs, los, his, fis[:-1]) is None
+    assert _core.blcp_pack(Ms, qs, los, np.float64(1.0), None) is None
+
+
+def test_blcp_many_lists_bit_for_bit(monkeypatch):
+    """A scene of islands given as lists (and scalar bounds, int-list friction indices) is
+    packed natively, never validated in Python, and answers bit for bit what the float64
+    arrays answer: cold, warm and with one bound for all."""
+    Ms, qs, los, his, fis = _scene(41)
+    want = lemke.solve_blcp_many(Ms, qs, los, his, findex=fis, workers=1)
+    warm = lemke.solve_blcp_many(Ms, qs, los, his, findex=fis, warm_start=want.warm_start)
+    cold = lemke.solve_blcp_many(Ms, qs, -1.0, 2.0, workers=2)
+    L = [[x.tolist() for x in xs] for xs in (Ms, qs, los, his)]
+    fl = [None if f is None else f.tolist() for f in fis]
+    refuse = lambda *a: (_ for _ in ()).throw(AssertionError("validated"))  # noqa: E731
+    monkeypatch.setattr(_validate, "blcp", refuse)
+    monkeypatch.setattr(_blcp_many, "_islands", refuse)
+    for got, ref in ((lemke.solve_blcp_many(*L, findex=fl, workers=1), want),
+                     (lemke.solve_blcp_many(*L, findex=fl, warm_start=want.warm_start), warm),
+                     (lemke.solve_blcp_many(L[0], L[1], -1, 2.0, workers=2), cold)):
+        assert len(got) == len(ref)
+        for a, b in zip(got, ref):
+            _same(a, b)
+        for name in ("z", "w", "lo", "hi", "status", "pivots", "residual", "recoveries"):
+            assert getattr(got, name).tobytes() == getattr(ref, name).tobytes(), name
+        assert got.warm_start.state.tobytes() == ref.warm_start.state.tobytes()
+    assert all(want.success)
+
+
+def test_blcp_many_batch_errors_as_before(monkeypatch):
+    """Faults among many islands given as lists (the batch's packing) raise what the Python
+    path raised, the packing off: the first faulty island, the argument, NaN vs shape."""
+    Ms, qs, los, his, fis = _scene(20)
+    L = [[x.tolist() for x in xs] for xs in (Ms, qs, los, his)]
+    fl = [None if f is None else f.tolist() for f in fis]
+    def case(**kw):
+        args = dict(M=list(L[0]), q=list(L[1]), lo=list(L[2]), hi=list(L[3]), findex=list(fl))
+        for key, v in kw.items():
+            name, b = key.rsplit("_", 1)
+            args[name][int(b)] = v
+        return args
+    n7, n3 = len(qs[7]), len(qs[3])
+    cases = [case(q_7=[np.nan] * n7), case(q_7=[np.nan] * n7, M_3=np.ones((n3 + 1, n3 + 1)).tolist()),
+             case(M_7=np.full((n7, n7), np.inf).tolist(), q_3=[1.0] * (n3 + 1)),
+             case(lo_7=[1.0] * n7, hi_7=[0.0] * n7), case(lo_3=np.nan, q_7=[np.nan] * n7),
+             case(findex_6=[5] * len(qs[6])), case(findex_6=[-1.5] * len(qs[6])),
+             case(lo_9=np.inf), case(hi_9=-np.inf), case(q_2=["a"] * len(qs[2])),
+             dict(M=L[0], q=L[1], lo=L[2], hi=L[3], findex=fl, warm_start=[None] * 19 + [lemke.BoxWarmStart(9, (), ())]),
+             dict(M=L[0], q=[[np.nan] * len(qs[0])] + L[1][1:], lo=L[2], hi=L[3], findex=fl,
+                  warm_start=[None] * 19 + [lemke.BoxWarmStart(9, (), ())]),
+             dict(M=L[0], q=L[1][:-1], lo=L[2], hi=L[3], findex=fl),
+             dict(M=L[0], q=L[1], lo=L[2], hi=L[3], findex=fl[:-1]),
+             dict(M=Ms, q=qs[:7] + [np.full(len(qs[7]), np.nan)] + qs[8:], lo=los, hi=his, findex=fis)]
+    for kw in cases:
+        got = _error(lambda: lemke.solve_blcp_many(**kw, workers=1))
+        assert got is not None and ("problem" in got[1] or "warm_start" in got[1] or "M and" in got[1]), got
+        with monkeypatch.context() as m:
+            _old(m)
+            assert got == _error(lambda: lemke.solve_blcp_many(**kw, workers=1))
 
 
 def test_bimatrix_forms_bit_for_bit(no_validation):

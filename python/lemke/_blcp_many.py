@@ -406,7 +406,18 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
             return res
     opts = as_options(options)
     workers = _workers(workers)
-    if sizes is None:
+    packed = _PACK(M, q, lo, hi, findex) if sizes is None else None  # (lists: made_f64's forms)
+    if packed is not None:
+        Mflat, qflat, loflat, hiflat, fiflat, fflag, n_b = packed
+        fflag = fflag.astype(np.uint8)
+        if fiflat is None:
+            fiflat = _NO_FINDEX
+        sizes = n_b.tolist()
+        B = len(sizes)
+        mlen = np.zeros(B + 1, dtype=np.int64)
+        np.multiply(n_b, n_b, out=mlen[1:])
+        fis = None
+    elif sizes is None:
         Ms, qs, los, his, fis = _islands(M, q, lo, hi, findex)
         n_b = [len(x) for x in qs]
         B = len(n_b)
@@ -567,6 +578,7 @@ def _one_size(n, _kept={}):
 
 
 _NATIVE_FRONT, _FRONT_MANY = _core.blcp_front, _core.blcp_front_many
+_PACK = _core.blcp_pack  # (src/python_front.cpp: the islands packed, or None)
 _NO_FINDEX = np.zeros(0, dtype=np.int64)
 _BAD_DATA = -2  # boxed.batch's stage for data the kernels refuse
 
