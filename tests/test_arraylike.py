@@ -145,24 +145,29 @@ def _error(call):
     return None
 
 
+def _errors(monkeypatch, call):
+    """The error ``call`` raises (``_error``'s pair, or None) with the conversions on, and
+    the one it raises with them off (``_old``): the two to compare."""
+    got = _error(call)
+    with monkeypatch.context() as m:
+        _old(m)
+        return got, _error(call)
+
+
 @pytest.mark.parametrize("M, q", BAD_LCP)
 def test_lcp_errors_as_before(M, q, monkeypatch):
     for kw in ({}, {"method": "unrevised"}, {"warm_start": lemke.WarmStart(2, ())}):
-        got = _error(lambda: lemke.solve_lcp(M, q, **kw))
+        got, want = _errors(monkeypatch, lambda: lemke.solve_lcp(M, q, **kw))
         assert got is not None
-        with monkeypatch.context() as m:
-            _old(m)
-            assert got == _error(lambda: lemke.solve_lcp(M, q, **kw))
+        assert got == want
 
 
 def test_lcp_warm_start_errors_as_before(monkeypatch):
     M, q = _lcp_data(3)
     for ws in (lemke.WarmStart(2, ()), (0, 1), lemke.BoxWarmStart(3, (), ())):
-        got = _error(lambda: lemke.solve_lcp(M.tolist(), q.tolist(), warm_start=ws))
+        got, want = _errors(monkeypatch, lambda: lemke.solve_lcp(M.tolist(), q.tolist(), warm_start=ws))
         assert got is not None
-        with monkeypatch.context() as m:
-            _old(m)
-            assert got == _error(lambda: lemke.solve_lcp(M.tolist(), q.tolist(), warm_start=ws))
+        assert got == want
 
 
 @pytest.mark.parametrize("B", [2, 9])
@@ -210,11 +215,9 @@ def test_lcp_many_errors_as_before(B, monkeypatch):
     bad_ws = [None] * (B - 1) + [lemke.WarmStart(3, ())]
     for M, q in cases:
         for kw in ({"workers": 1}, {}, {"warm_start": bad_ws}):
-            got = _error(lambda: lemke.solve_lcp_many(M, q, **kw))
+            got, want = _errors(monkeypatch, lambda: lemke.solve_lcp_many(M, q, **kw))
             assert got is not None
-            with monkeypatch.context() as m:
-                _old(m)
-                assert got == _error(lambda: lemke.solve_lcp_many(M, q, **kw))
+            assert got == want
 
 
 def test_lcp_pack_converts_as_made_f64(monkeypatch):
@@ -283,11 +286,9 @@ def test_lcp_many_nonfinite_order_as_before(monkeypatch):
             q2[at_q] = np.array([np.inf, 0.0]) if lists == "M" else [np.nan, 0.0]
         cases.append((M2, q2))
     for M, q in cases:
-        got = _error(lambda: lemke.solve_lcp_many(M, q, workers=1))
+        got, want = _errors(monkeypatch, lambda: lemke.solve_lcp_many(M, q, workers=1))
         assert got is not None and "problem" in got[1]
-        with monkeypatch.context() as m:
-            _old(m)
-            assert got == _error(lambda: lemke.solve_lcp_many(M, q, workers=1))
+        assert got == want
     q2 = list(qs)
     q2[4] = np.array([np.nan, 0.0])
     got = _error(lambda: lemke.solve_lcp_many(Ms, q2, workers=1))  # (the kernels' NOT_FINITE)
@@ -352,10 +353,7 @@ BAD_BLCP = [
 
 @pytest.mark.parametrize("M, q, lo, hi, findex", BAD_BLCP)
 def test_blcp_errors_as_before(M, q, lo, hi, findex, monkeypatch):
-    got = _error(lambda: lemke.solve_blcp(M, q, lo, hi, findex=findex))
-    with monkeypatch.context() as m:
-        _old(m)
-        want = _error(lambda: lemke.solve_blcp(M, q, lo, hi, findex=findex))
+    got, want = _errors(monkeypatch, lambda: lemke.solve_blcp(M, q, lo, hi, findex=findex))
     assert got == want
     assert got is not None or findex is None
 
@@ -400,11 +398,9 @@ def test_blcp_many_errors_as_before(monkeypatch):
                   warm_start=[None, lemke.BoxWarmStart(3, (), ())]),
              dict(M=M, q=q, lo=np.nan, hi=1.0), dict(M=M, q=q[:1], lo=0.0, hi=1.0)]
     for kw in cases:
-        got = _error(lambda: lemke.solve_blcp_many(**kw))
+        got, want = _errors(monkeypatch, lambda: lemke.solve_blcp_many(**kw))
         assert got is not None
-        with monkeypatch.context() as m:
-            _old(m)
-            assert got == _error(lambda: lemke.solve_blcp_many(**kw))
+        assert got == want
 
 
 def _scene(B=23):
@@ -529,11 +525,9 @@ def test_blcp_many_batch_errors_as_before(monkeypatch):
              dict(M=L[0], q=L[1], lo=L[2], hi=L[3], findex=fl[:-1]),
              dict(M=Ms, q=qs[:7] + [np.full(len(qs[7]), np.nan)] + qs[8:], lo=los, hi=his, findex=fis)]
     for kw in cases:
-        got = _error(lambda: lemke.solve_blcp_many(**kw, workers=1))
+        got, want = _errors(monkeypatch, lambda: lemke.solve_blcp_many(**kw, workers=1))
         assert got is not None and ("problem" in got[1] or "warm_start" in got[1] or "M and" in got[1]), got
-        with monkeypatch.context() as m:
-            _old(m)
-            assert got == _error(lambda: lemke.solve_blcp_many(**kw, workers=1))
+        assert got == want
 
 
 def test_bimatrix_forms_bit_for_bit(no_validation):
@@ -562,10 +556,7 @@ BAD_GAMES = [
 
 @pytest.mark.parametrize("A, B", BAD_GAMES)
 def test_bimatrix_errors_as_before(A, B, monkeypatch):
-    got = _error(lambda: lemke.solve_bimatrix(A, B))
-    with monkeypatch.context() as m:
-        _old(m)
-        want = _error(lambda: lemke.solve_bimatrix(A, B))
+    got, want = _errors(monkeypatch, lambda: lemke.solve_bimatrix(A, B))
     if got is None:  # (str entries that NumPy reads as numbers: solved both ways)
         assert want is None
     else:
@@ -626,10 +617,7 @@ BAD_QP = [
 
 @pytest.mark.parametrize("kw", BAD_QP)
 def test_qp_errors_as_before(kw, monkeypatch):
-    got = _error(lambda: lemke.solve_qp(**kw))
-    with monkeypatch.context() as m:
-        _old(m)
-        want = _error(lambda: lemke.solve_qp(**kw))
+    got, want = _errors(monkeypatch, lambda: lemke.solve_qp(**kw))
     assert got == want
     if got is None:  # solved or refused by status both ways: the same answer
         with monkeypatch.context() as m:
