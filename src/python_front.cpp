@@ -884,6 +884,20 @@ nb::object lcp_many_entry(nb::handle py, nb::handle globals, nb::handle front_fn
     return make_entry(py, nb::none(), globals, front_fn, ws_cls, many_globals, many_cls);
 }
 
+// An island of n rows added to a pack's running lengths (m_len += n * n, q_len += n): false,
+// the lengths as they were, where a length's bytes as float64 would pass the largest
+// Py_ssize_t (array views of a huge shape, as np.lib.stride_tricks.as_strided makes with
+// strides 0: islands whose sum of n * n wraps around would allocate too little): the pack
+// declines.
+template <class T>
+bool add_island(T n, T& m_len, T& q_len) {
+    constexpr T top = std::numeric_limits<T>::max() / static_cast<T>(sizeof(double));
+    if (n > 0 && (n > top / n || n * n > top - m_len || n > top - q_len)) return false;
+    m_len += n * n;
+    q_len += n;
+    return true;
+}
+
 // How lcp_pack takes x (M, nd 2, or q, nd 1; its rows and cols): 0 a plain array, copied; 1
 // an array-like made_f64 converts (a castable ndarray, or a list or tuple of list_shape's),
 // its values written in place as made_f64 makes them; -1 anything else (declined).
@@ -939,10 +953,9 @@ nb::object lcp_pack(nb::handle M_h, nb::handle q_h) {
         Py_ssize_t mr, mc, n, one;
         int mf = pack_form(Ms[b], 2, mr, mc), qf = pack_form(qs[b], 1, n, one);
         if (mf < 0 || qf < 0 || mr != n || mc != n) return nb::none();
+        if (!add_island<idx>(n, m_len, q_len)) return nb::none();
         converted = converted || mf != 0 || qf != 0;
         no[b] = n;
-        q_len += n;
-        m_len += n * n;
     }
     nb::object Mf = new_array(m_len), qf = new_array(q_len);
     auto* mo = reinterpret_cast<double*>(data(Mf));
@@ -1082,13 +1095,11 @@ nb::object blcp_pack(nb::handle M_h, nb::handle q_h, nb::handle lo_h, nb::handle
         int lf = bound_form(lo_one ? lo : los[b], n, &v), hf = bound_form(hi_one ? hi : his[b], n, &v);
         PyObject* f = fis == nullptr ? Py_None : fis[b];
         int ff = f == Py_None ? 0 : findex_form(f, n);
-        if (lf < 0 || hf < 0 || ff < 0) return nb::none();
+        if (lf < 0 || hf < 0 || ff < 0 || !add_island(n, m_len, q_len)) return nb::none();
         converted = converted || mf != 0 || qf != 0 || lf != 0 || hf != 0 || ff != 0;
         fl[b] = f != Py_None;
         friction = friction || fl[b] != 0;
         no[b] = n;
-        q_len += n;
-        m_len += n * n;
     }
     nb::object Mf = new_array(m_len), qf = new_array(q_len), lf = new_array(q_len),
                hf = new_array(q_len), ff = friction ? new_array(q_len, true) : nb::none();

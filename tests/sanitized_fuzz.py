@@ -17,6 +17,13 @@ and again in the test's own process, fingerprint against fingerprint).
 * the box batch's grow-only workspace (src/lemke/boxed.cpp BoxedWork::layout): islands of
   varying sizes in one call, each compared bit for bit with its solve alone in a fresh
   thread.
+* blcp_pack (solve_blcp_many's islands packed natively from made_f64's forms), directly and
+  through solve_blcp_many: islands of 0-45 rows given as lists, tuples, int lists, Fortran-
+  ordered, strided, unaligned and byte-swapped arrays (answers and packed bytes bit for bit the
+  float64 arrays'), and malformed ones (ragged and nested lists, M, q, lo, hi, findex of
+  mismatched sizes or counts, findex out of range, negative, pointing at its own row, huge
+  ints, scalar bounds of every Python type, NaN and infinities in every argument, lo > hi):
+  each call answers, gives None or raises ValueError / TypeError.
 
 A mismatch with the fresh thread raises (a finding, reported as an exception by the Runner).
 """
@@ -61,11 +68,11 @@ def fresh_thread(fn):
     return out["r"]
 
 
-def same_bits(a, b, what):
+def same_bits(a, b, what, than="a fresh thread's solve"):
     for name in ("z", "w"):
         x, y = np.asarray(getattr(a, name)), np.asarray(getattr(b, name))
         if x.shape != y.shape or x.tobytes() != y.tobytes() or a.status != b.status or a.pivots != b.pivots:
-            raise AssertionError(f"{what}: {name} differs from a fresh thread's solve")
+            raise AssertionError(f"{what}: {name} differs from {than}")
 
 
 def conversions(run, rng):
@@ -214,6 +221,185 @@ def box_islands(run, rng):
                 r, fresh_thread(lambda: lemke.solve_blcp(*isl[i])), f"island {i}"))
 
 
+BOX_REFUSED = (ValueError, TypeError)
+
+
+def box_call(fn):
+    """fn's answer (a list when it is a generator of results), or the name of its ValueError /
+    TypeError (anything else raises: a finding)."""
+    def call():
+        try:
+            out = fn()
+            return list(out) if out is not None and not isinstance(out, tuple) else out
+        except BOX_REFUSED as e:
+            return f"refused {type(e).__name__}"
+    return call
+
+
+def same_pack(a, b, what):
+    if a is None or b is None or len(a) != len(b):
+        raise AssertionError(f"{what}: packed {a is None}, float64 arrays packed {b is None}")
+    for x, y in zip(a, b):
+        if (x is None) != (y is None) or (x is not None and (x.dtype != y.dtype or x.tobytes() != y.tobytes())):
+            raise AssertionError(f"{what}: packed bytes differ from the float64 arrays'")
+
+
+def _pack_vs(args, ref_pack, what):
+    """blcp_pack of the islands args (float64 arrays in other forms): None (declined) or the
+    float64 arrays' packed bytes; whether it packed them."""
+    packed = _core.blcp_pack(*args)
+    if packed is not None:
+        same_pack(packed, ref_pack, what)
+    return packed is not None
+
+
+def _solve_vs(args, ref, what):
+    """solve_blcp_many of args, each island's answer bit for bit ref's (the float64 arrays');
+    the statuses."""
+    res = list(lemke.solve_blcp_many(*args[:4], findex=args[4], workers=1))
+    if len(res) != len(ref):
+        raise AssertionError(f"{what}: {len(res)} answers, {len(ref)} for the float64 arrays")
+    for i, (r, r0) in enumerate(zip(res, ref)):
+        same_bits(r, r0, f"{what} island {i}", "the float64 arrays' solve")
+    return [r.status.name for r in res]
+
+
+def _int_island(n, rng, friction):
+    """An island of n rows with integer entries (M = A^T A + I, symmetric positive definite):
+    every form below (int lists, int32 arrays) carries the same values. With friction, rows
+    1, 3, ... are friction rows of rows 0, 2, ... (lo = -hi, the normal row's lo >= 0)."""
+    A = rng.integers(-2, 3, size=(n, n))
+    M = (A.T @ A + np.eye(n, dtype=np.int64)).astype(np.float64)
+    q = rng.integers(-4, 4, size=n).astype(np.float64)
+    lo, hi = 0.0 - rng.integers(0, 3, size=n).astype(np.float64), rng.integers(1, 4, size=n).astype(np.float64)
+    f = np.full(n, -1, dtype=np.int64)
+    if friction:
+        for i in range(1, n, 2):
+            f[i], lo[i - 1], lo[i] = i - 1, 0.0, -hi[i]
+    return M, q, lo, hi, f
+
+
+def _forms(x):
+    """x (a float64 array) in forms that made_f64 converts, or that blcp_pack declines and the
+    Python path converts, all of x's values."""
+    if x.size == 0:
+        return {"list": x.tolist()}
+    big = np.zeros((2,) + x.shape, dtype=x.dtype)
+    big[0] = x
+    raw = np.frombuffer(b"\0" + x.tobytes(), dtype=x.dtype, offset=1).reshape(x.shape)
+    out = {"list": x.tolist(), "tuple": tuple(map(tuple, x)) if x.ndim == 2 else tuple(x.tolist()),
+           "int list": x.astype(np.int64).tolist(), "int32": x.astype(np.int32),
+           "strided": np.moveaxis(big, 0, -1)[..., 0], "unaligned": raw,
+           "swapped": x.astype(x.dtype.newbyteorder())}
+    if x.ndim == 2:
+        out["fortran"] = np.asfortranarray(x)
+        out["int rows"] = [np.asarray(r, dtype=np.int16) for r in x]  # (a list of arrays: declined)
+    return out
+
+
+def box_packs(run, rng):
+    """blcp_pack directly and through solve_blcp_many (see the module's docstring)."""
+    sizes = (1, 2, 0, 7, 45, 3)
+    isl = [_int_island(n, rng, friction=n in (2, 7)) for n in sizes]
+    ref_args = [[x[j] for x in isl] for j in range(4)]
+    ref_f = [x[4] if n in (2, 7) else None for x, n in zip(isl, sizes)]
+    ref_pack = _core.blcp_pack(*ref_args, ref_f)
+    ref = run.attempt("fuzz box pack float64", lambda: list(lemke.solve_blcp_many(*ref_args, findex=ref_f, workers=1)))
+    for j, name in enumerate(("M", "q", "lo", "hi", "findex")):
+        for form in ("list", "tuple", "int list", "int32", "strided", "unaligned", "swapped", "fortran", "int rows"):
+            args = [list(a) for a in ref_args] + [list(ref_f)]
+            changed = False
+            for b, x in enumerate(isl):
+                if j == 4 and args[4][b] is None:
+                    continue
+                fx = _forms(x[j]) if j < 4 else {"list": x[4].tolist(), "tuple": tuple(x[4].tolist()),
+                                                 "int32": x[4].astype(np.int32)}
+                if form in fx:  # (else the float64 array: the 0-row island's, findex's)
+                    args[j][b], changed = fx[form], True
+            if changed:
+                what = f"fuzz box pack {name} {form}"
+                run.attempt(what, lambda: _pack_vs(args, ref_pack, what))
+                run.attempt(what + " solve", lambda: _solve_vs(args, ref, what))
+    # malformed and extreme islands (1-3 rows, lists): each call answers, declines or refuses
+    M, q, lo, hi, f = _int_island(2, rng, friction=True)
+    Ml, ql, lol, hil, fl = M.tolist(), q.tolist(), lo.tolist(), hi.tolist(), f.tolist()
+    nan, inf = float("nan"), float("inf")
+    cases = {
+        "ragged M": ([[[1.0, 0.0], [0.0]]], [ql], lol, hil, None),
+        "nested M": ([[[[1.0]]]], [[-1.0]], -1.0, 1.0, None),
+        "M short": ([[[1.0]]], [ql], lol, hil, None),
+        "M long": ([M.tolist() + [[0.0, 0.0]]], [ql], lol, hil, None),
+        "M not square": ([[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]], [ql], -1.0, 1.0, None),
+        "q short": ([Ml], [ql[:1]], -1.0, 1.0, None),
+        "q long": ([Ml], [ql + [0.0]], -1.0, 1.0, None),
+        "lo short": ([Ml], [ql], [lol[:1]], hil, None),
+        "hi long": ([Ml], [ql], lol, [hil + [1.0]], None),
+        "lo empty": ([Ml], [ql], [[]], 1.0, None),
+        "findex short": ([Ml], [ql], [lol], [hil], [fl[:1]]),
+        "findex long": ([Ml], [ql], [lol], [hil], [fl + [-1]]),
+        "findex empty": ([Ml], [ql], [lol], [hil], [[]]),
+        "findex row n": ([Ml], [ql], [lol], [hil], [[-1, 2]]),
+        "findex -2": ([Ml], [ql], [lol], [hil], [[-1, -2]]),
+        "findex int64 min": ([Ml], [ql], [lol], [hil], [[-1, int(I64.min)]]),
+        "findex huge": ([Ml], [ql], [lol], [hil], [[-1, 2 ** 70]]),
+        "findex self": ([Ml], [ql], [lol], [hil], [[-1, 1]]),
+        "findex self array": ([M], [q], [lo], [hi], [np.array([-1, 1], dtype=np.int64)]),
+        "findex out array": ([M], [q], [lo], [hi], [np.array([-1, I64.max], dtype=np.int64)]),
+        "findex chain": ([Ml], [ql], [lol], [hil], [[1, 0]]),
+        "findex floats": ([Ml], [ql], [lol], [hil], [[-1.0, 0.0]]),
+        "findex bools": ([Ml], [ql], [lol], [hil], [[False, True]]),
+        "findex not a list": ([Ml], [ql], [lol], [hil], fl),
+        "findex count": ([Ml, Ml], [ql, ql], lol[0], 2, [fl]),
+        "lo count": ([Ml, Ml], [ql, ql], [lol], 2, None),
+        "q count": ([Ml, Ml], [ql], -1, 2, None),
+        "no islands": ([], [], -1.0, 1.0, None),
+        "lo > hi": ([Ml], [ql], [[2.0, 0.0]], [[1.0, 1.0]], None),
+        "lo > hi scalar": ([Ml], [ql], 3, 2.5, None),
+        "lo +inf": ([Ml], [ql], inf, inf, None),
+        "hi -inf": ([Ml], [ql], -inf, -inf, None),
+        "infinite bounds": ([Ml], [ql], -inf, inf, None),
+        "huge int M": ([[[2 ** 70, 0], [0, 1]]], [ql], -1.0, 1.0, None),
+        "int64 edge M": ([[[int(I64.max), int(I64.min)], [0, 1]]], [ql], -1.0, 1.0, None),
+        "huge int q": ([Ml], [[2 ** 64, -1]], -1.0, 1.0, None),
+        "huge int lo": ([Ml], [ql], -(2 ** 63) - 1, 1.0, None),
+        "huge int hi list": ([Ml], [ql], -1.0, [[2 ** 65, 1]], None),
+        "bools": ([[[True, False], [False, True]]], [[False, True]], [[False, False]], True, None),
+        "zero rows lists": ([[]], [[]], -1.0, 1.0, None),
+        "zero rows arrays": ([np.zeros((0, 0))], [np.zeros(0)], [np.zeros(0)], [np.zeros(0)],
+                             [np.zeros(0, dtype=np.int64)]),
+        "zero rows mixed": ([np.zeros((0, 0)), Ml], [np.zeros(0), ql], -1, 1.5, None),
+        "strings": ([Ml], [ql], "-1", "1", None),
+        "None bounds": ([Ml], [ql], None, None, None),
+        "generator": ((m for m in [Ml]), [ql], -1.0, 1.0, None),
+        "object array": ([np.array(Ml, dtype=object)], [ql], -1.0, 1.0, None),
+    }
+    for where in range(5):  # a NaN and the infinities in every argument
+        for bad in (nan, inf, -inf):
+            args = [[[list(r) for r in Ml]], [list(ql)], [list(lol)], [list(hil)], [list(fl)]]
+            if where == 0:
+                args[0][0][1][0] = bad
+            elif where == 4:
+                args[4][0][1] = bad
+            else:
+                args[where][0][1] = bad
+            cases[f"{bad} in {('M', 'q', 'lo', 'hi', 'findex')[where]}"] = tuple(args)
+    scalars = [0, 1, -1, True, False, 2.5, -2.5, 2 ** 63, -(2 ** 63), 2 ** 70, nan, inf, -inf, 0.0, -0.0,
+               np.float64(1.5), np.float32(1.5), np.int32(2), np.int64(-1), np.bool_(True), 1 + 0j,
+               __import__("fractions").Fraction(3, 2), __import__("decimal").Decimal("1.5"),
+               type("F", (float,), {})(1.5), type("I", (int,), {})(2), [1.0], b"1", object()]
+    for k, v in enumerate(scalars):
+        cases[f"scalar lo {k} {type(v).__name__}"] = ([Ml], [ql], v, 3.0, None)
+        cases[f"scalar hi {k} {type(v).__name__}"] = ([Ml], [ql], -3.0, v, None)
+    for n, k in ((3037000499, 2), (1 << 31, 4)):  # lengths that overflow (bool views, strides 0)
+        Mh = np.lib.stride_tricks.as_strided(np.zeros(1, np.bool_), shape=(n, n), strides=(0, 0))
+        qh = np.lib.stride_tricks.as_strided(np.zeros(1, np.bool_), shape=(n,), strides=(0,))
+        run.attempt(f"fuzz box pack huge views {n} x {k}", lambda: _core.blcp_pack([Mh] * k, [qh] * k, -1, 1, None))
+    for name, args in cases.items():
+        run.attempt(f"fuzz box pack {name}", box_call(lambda: _core.blcp_pack(*args)))
+        run.attempt(f"fuzz box pack {name} solve", box_call(lambda: lemke.solve_blcp_many(
+            *args[:4], findex=args[4], workers=1)))
+
+
 def fuzz(run):
     rng = np.random.default_rng(2026)
     with warnings.catch_warnings():
@@ -222,3 +408,4 @@ def fuzz(run):
         batch_helpers(run, rng)
         kept_matrices(run, rng)
         box_islands(run, rng)
+        box_packs(run, rng)

@@ -22,7 +22,8 @@ behaviour in the C++ core then stops the child with a report on stderr.  It solv
 * sanitized_fuzz.py's seeded adversarial inputs: malformed lists and arrays through the
   entries' conversions, the batch helpers called directly with inconsistent offsets, the
   kept-matrix table's large slot (250-300 rows, forced hash collisions) and box islands of
-  varying sizes, each of the last two compared with a fresh thread's solve.
+  varying sizes, each of the last two compared with a fresh thread's solve, and blcp_pack's
+  box islands in every form (bit for bit the float64 arrays') and malformed.
 
 The statuses are not checked here (the other tests do); every solve runs, each exception is
 reported with the problem that raised it, and each answer is reduced to a fingerprint

@@ -78,11 +78,27 @@ def test_many_outputs_must_be_aligned_native_arrays():
     assert n.tolist() == [2, 3] and off[-1] == len(z)
 
 
+def _refcounts_unchanged(calls, objs, rounds=50):
+    """Each call made once, then rounds times over: objs' reference counts as after the first
+    (answering or refusing with TypeError / ValueError)."""
+    import sys
+
+    def each():
+        for f in calls:
+            try:
+                f()
+            except (TypeError, ValueError):
+                pass
+    each()
+    before = [sys.getrefcount(o) for o in objs]
+    for _ in range(rounds):
+        each()
+    assert [sys.getrefcount(o) for o in objs] == before
+
+
 def test_native_paths_keep_no_reference_to_their_inputs():
     """The entries' conversions and the batch helpers, answering or refusing, leave every
     input's reference count as it was (a reference leaked per call would show here)."""
-    import sys
-
     rng = np.random.default_rng(5)
     M, q = problems.random_psd(4, rng)
     Ml, ql, Mi = M.tolist(), q.tolist(), M.astype(np.int32)
@@ -103,16 +119,47 @@ def test_native_paths_keep_no_reference_to_their_inputs():
              lambda: _core.many_bases(rs._basics, wrap, rs._out_i[:1]),
              lambda: _core.many_field(rs._bufs, rs._off[2], rs._off[0], 1 << 62, 0)]
     objs = [M, q, Mi, ws, Mp, qp, sizes, rs._bufs, rs._basics, rs._out_i, rs._out_f, rs._off, Ml, ql, wrap, *Ml]
-    for f in calls:
-        try:
-            f()
-        except (TypeError, ValueError):
-            pass
-    before = [sys.getrefcount(o) for o in objs]
-    for _ in range(50):
-        for f in calls:
-            try:
-                f()
-            except (TypeError, ValueError):
-                pass
-    assert [sys.getrefcount(o) for o in objs] == before
+    _refcounts_unchanged(calls, objs)
+
+
+def _huge(n, nd):
+    """A bool view of n rows (n x n for nd 2) over one byte (strides 0): castable, no memory."""
+    from numpy.lib.stride_tricks import as_strided
+    return as_strided(np.zeros(1, np.bool_), shape=(n,) * nd, strides=(0,) * nd)
+
+
+def test_packs_decline_islands_whose_lengths_overflow():
+    # the sum of n * n over the islands wrapped around: two islands of 3037000499 rows gave a
+    # negative length (NumPy's "negative dimensions"), four of 2^31 a length 0 for M's
+    # 2^64 numbers (a 64 GiB q allocated, then M written past an empty array where memory
+    # allows); now the packs decline (None) before allocating
+    for n, k in ((3037000499, 2), (1 << 31, 4), (1 << 31, 1)):
+        M, q = _huge(n, 2), _huge(n, 1)
+        assert _core.lcp_pack([M] * k, [q] * k) is None
+        assert _core.blcp_pack([M] * k, [q] * k, -1.0, 1.0, None) is None
+        assert _core.blcp_pack([M] * k, [q] * k, [q] * k, 1, [None] * k) is None
+
+
+def test_blcp_pack_keeps_no_reference_to_its_inputs():
+    """blcp_pack, packing or declining (any argument's form, a findex list or array, a huge
+    int, a NaN, a ragged list), leaves every input's reference count as it was."""
+    rng = np.random.default_rng(6)
+    M, q = problems.random_psd(3, rng)
+    Ml, ql, Mi = M.tolist(), q.tolist(), M.astype(np.int32)
+    lo, hi = -np.ones(3), np.ones(3)
+    lol, fl, fa = lo.tolist(), [-1, 0, -1], np.array([-1, 0, -1], dtype=np.int64)
+    big, nan, one = 2 ** 70, float("nan"), 1.5
+    flo = [0.0, -one, -1.0]  # (row 1 a friction row of row 0)
+    Ms, qs, los, his = [M, Ml, Mi], [q, ql, q], [lo, lol, -1], [hi, 1.0, 2]
+    calls = [lambda: _core.blcp_pack(Ms, qs, los, his, None),
+             lambda: _core.blcp_pack(Ms, qs, [flo] * 3, one, [fl, fa, None]),
+             lambda: _core.blcp_pack([M, M], [q, q], lo, hi, None),
+             lambda: _core.blcp_pack(Ms, qs, big, one, None),
+             lambda: _core.blcp_pack(Ms, qs, nan, one, None),
+             lambda: _core.blcp_pack(Ms, qs, -one, one, [[big, 0, -1], fa, None]),
+             lambda: _core.blcp_pack([Ml[:2] + [[1.0]]], [ql], lol, hi, None),
+             lambda: _core.blcp_pack(Ms, qs, los, his[:2], None),
+             lambda: _core.blcp_pack(Ms, qs, "x", hi, None)]
+    objs = [M, q, Ml, ql, Mi, lo, hi, lol, fl, fa, big, nan, one, flo, Ms, qs, los, his, *Ml]
+    _refcounts_unchanged(calls, objs)
+    assert calls[0]() is not None and calls[1]() is not None and calls[4]() is None

@@ -32,7 +32,7 @@ The child's solves (see sanitized_run.py) cover the goldens' problems, the stres
 and a contact scene, every size from 1 to 9 and some larger, box LCPs with and without a
 friction index, games, warm starts and relabels, and sanitized_fuzz.py's adversarial inputs
 (malformed lists and arrays, the private batch helpers with inconsistent offsets, the kept
-matrices' large slot, box islands of varying sizes).  The test asserts exit code 0, no
+matrices' large slot, box islands of varying sizes, blcp_pack's islands in every form).  The test asserts exit code 0, no
 sanitizer report on stderr, no exception, and that the answers are the normal build's bit
 for bit: the goldens' against this process's ``golden.solve_all()`` (and against
 tests/data/golden.json's record when it is of this platform), every other solve by its
