@@ -451,7 +451,8 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     out_f = np.empty(B)
     _run(boxed.batch, (Mflat, mstart, qflat, loflat, hiflat, qoff, fiflat, fflag, state, wflag),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, ints, ioff, state_out,
-          out_i, out_f), B, workers, work=8 * _cubes(n_b) if fiflat.size else _cubes(n_b))
+          out_i, out_f), B, workers,
+         work=None if workers == 1 else 8 * _cubes(n_b) if fiflat.size else _cubes(n_b))  # (1: unread)
     special = {}
     given = _Given(warm_start, given)
     stage = out_i[:, 5]
