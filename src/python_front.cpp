@@ -1204,6 +1204,19 @@ nb::object many_setup(nb::handle sizes_h, nb::handle M_h, nb::handle q_h, std::i
     return nb::make_tuple(off, limits, work, list, bufs, basics, out_i, out_f);
 }
 
+// o when it is a 1-D uint8 ndarray, C-contiguous and aligned (BLCPManyResult's friction
+// flags), else nullptr.
+const ArrayFields* plain_u8(PyObject* o) {
+    constexpr int need = C_CONTIGUOUS | ALIGNED;
+    constexpr int NPY_UBYTE = 2;
+    if (Py_TYPE(o) != front.ndarray) return nullptr;
+    auto* a = reinterpret_cast<const ArrayFields*>(o);
+    return a->nd == 1 && (a->flags & need) == need &&
+                   reinterpret_cast<const DescrFields*>(a->descr)->type_num == NPY_UBYTE
+               ? a
+               : nullptr;
+}
+
 // Whether o is a 2-D (B, cols) ndarray of NumPy's type type_num in the machine's byte order,
 // C-contiguous and aligned (the kernels' out_i and out_f; read through typed pointers).
 bool native_rows(PyObject* o, Py_ssize_t cols, int type_num) {
@@ -1239,38 +1252,66 @@ nb::object many_unsettled(nb::handle out_i_h, nb::handle out_f_h) {
     return nb::make_tuple(not_finite, special);
 }
 
-// Every problem's span [a n + c, a n + c + n) of its output buffer (bufs from buff[b]; n
+// Every problem's span [a n + c_b, a n + c_b + n) of its output buffer (bufs from buff[b]; n
 // from qoff) end to end, a new float64 array (LCPManyResult's z and w: a = 0, c = 0 and a =
-// 2, c = 2, _layout.BUFFER).
+// 2, c = 2, _layout.BUFFER). c_b is c, plus answer[b] where `answer` (int64, B) is given
+// (BLCPManyResult: where island b's answer sits in its buffer, boxed.islands). Where `flag`
+// (uint8, B) is given, a problem whose flag is 0 takes its span [qoff[b], qoff[b + 1]) of
+// `flat` (float64) instead (BLCPManyResult's lo and hi: the buffer's with a friction index,
+// else the caller's flat bounds).
 nb::object many_field(nb::handle bufs_h, nb::handle buff_h, nb::handle qoff_h, std::int64_t a,
-                      std::int64_t c) {
+                      std::int64_t c, nb::handle answer_h, nb::handle flag_h, nb::handle flat_h) {
     const ArrayFields* bufs = plain_f64(bufs_h.ptr(), 1, front.ndarray);
     const ArrayFields* buff = plain_i64(buff_h.ptr(), front.ndarray, front.int64_num);
     const ArrayFields* qoff = plain_i64(qoff_h.ptr(), front.ndarray, front.int64_num);
+    const ArrayFields* answer = answer_h.is_none() ? nullptr
+                                                   : plain_i64(answer_h.ptr(), front.ndarray, front.int64_num);
+    const ArrayFields* flag = flag_h.is_none() ? nullptr : plain_u8(flag_h.ptr());
+    const ArrayFields* flat = flag_h.is_none() ? nullptr : plain_f64(flat_h.ptr(), 1, front.ndarray);
     if (!front.on) return nb::none();
     if (bufs == nullptr || buff == nullptr || qoff == nullptr ||
-        buff->dimensions[0] != qoff->dimensions[0] || qoff->dimensions[0] < 1)
-        throw nb::type_error("many_field: bufs float64, buff and qoff int64 of B + 1");
+        buff->dimensions[0] != qoff->dimensions[0] || qoff->dimensions[0] < 1 ||
+        (!answer_h.is_none() && (answer == nullptr || answer->dimensions[0] + 1 != qoff->dimensions[0])) ||
+        (!flag_h.is_none() && (flag == nullptr || flat == nullptr || flag->dimensions[0] + 1 != qoff->dimensions[0])))
+        throw nb::type_error("many_field: bufs float64, buff and qoff int64 of B + 1, answer int64 of B or None, "
+                             "flag uint8 of B and flat float64, or None");
     Py_ssize_t B = qoff->dimensions[0] - 1;
     const auto* qo = reinterpret_cast<const std::int64_t*>(qoff->data);
     const auto* bo = reinterpret_cast<const std::int64_t*>(buff->data);
     const auto* src = reinterpret_cast<const double*>(bufs->data);
+    const auto* ans = answer == nullptr ? nullptr : reinterpret_cast<const std::int64_t*>(answer->data);
+    const auto* fl = flag == nullptr ? nullptr : reinterpret_cast<const std::uint8_t*>(flag->data);
     Py_ssize_t len = bufs->dimensions[0];
-    // Each span [bo[b] + a n + c, + n) inside [bo[b], bo[b + 1]) inside bufs; every bound
-    // checked before the next is computed from it, so that no sum or product overflows.
+    // Each span [bo[b] + a n + c_b, + n) inside [bo[b], bo[b + 1]) inside bufs (or, flag 0,
+    // [qo[b], qo[b + 1]) inside flat); every bound checked before the next is computed from
+    // it, so that no sum or product overflows (an empty span reads nothing: its answer[b] is
+    // not read).
     for (Py_ssize_t b = 0; b < B; ++b) {
         if (a < 0 || c < 0 || qo[b] < 0 || qo[b + 1] < qo[b] || bo[b] < 0 || bo[b + 1] < bo[b] ||
             bo[b + 1] > len)
             throw nb::value_error("many_field: the offsets do not fit the buffers");
         std::int64_t n = qo[b + 1] - qo[b], room = bo[b + 1] - bo[b];
-        if (n > room || c > room - n || (n > 0 && a > (room - n - c) / n))
+        if (fl != nullptr && fl[b] == 0) {
+            if (qo[b + 1] > flat->dimensions[0])
+                throw nb::value_error("many_field: the offsets do not fit the buffers");
+            continue;
+        }
+        if (n > room || c > room - n || (ans != nullptr && n > 0 && (ans[b] < 0 || ans[b] > room - n - c)))
+            throw nb::value_error("many_field: the offsets do not fit the buffers");
+        std::int64_t cb = c + (ans == nullptr || n == 0 ? 0 : ans[b]);  // (<= room - n)
+        if (n > 0 && a > (room - n - cb) / n)
             throw nb::value_error("many_field: the offsets do not fit the buffers");
     }
     nb::object out = new_array(qo[B] - qo[0]);
     double* dst = data_of<double>(out);
+    const double* other = flat == nullptr ? nullptr : reinterpret_cast<const double*>(flat->data);
     for (Py_ssize_t b = 0; b < B; ++b) {
         std::int64_t n = qo[b + 1] - qo[b];
-        if (n) std::memcpy(dst + (qo[b] - qo[0]), src + bo[b] + a * n + c, static_cast<std::size_t>(n) * sizeof(double));
+        if (n == 0) continue;
+        const double* from = fl != nullptr && fl[b] == 0
+                                 ? other + qo[b]
+                                 : src + bo[b] + a * n + c + (ans == nullptr ? 0 : ans[b]);
+        std::memcpy(dst + (qo[b] - qo[0]), from, static_cast<std::size_t>(n) * sizeof(double));
     }
     return out;
 }
@@ -1349,7 +1390,8 @@ void bind_front(nb::module_& m) {
     m.def("blcp_pack", &blcp_pack, "M"_a, "q"_a, "lo"_a.none(), "hi"_a.none(), "findex"_a.none());
     m.def("many_setup", &many_setup, "sizes"_a, "M"_a, "q"_a, "max_pivots"_a);
     m.def("many_unsettled", &many_unsettled, "out_i"_a, "out_f"_a);
-    m.def("many_field", &many_field, "bufs"_a, "buff"_a, "qoff"_a, "a"_a, "c"_a);
+    m.def("many_field", &many_field, "bufs"_a, "buff"_a, "qoff"_a, "a"_a, "c"_a,
+          "answer"_a.none() = nb::none(), "flag"_a.none() = nb::none(), "flat"_a.none() = nb::none());
     m.def("many_bases", &many_bases, "basics"_a, "qoff"_a, "out_i"_a);
     // made_f64 for the Python fronts' conversion (_validate.plain): the float64 C array it
     // makes of x, or None (x is plain already, or of another kind)

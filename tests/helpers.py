@@ -1,4 +1,5 @@
 """Independent checks used by the tests (deliberately not lemke's own certify code)."""
+import contextlib
 import itertools
 
 import numpy as np
@@ -255,3 +256,25 @@ def interrupt_child(code, *args, wait=1.0):
             child.wait()
         child.stdout.close()
     return line, rc, sent, exited
+
+
+@contextlib.contextmanager
+def native_fronts_off():
+    """The native fronts switched off for the block (lcp_front_init given a wrong data
+    address: its layout check fails, as where NumPy lays arrays out otherwise), then on
+    again (``_result.native_fronts_init``)."""
+    import lemke
+    from lemke import _core, _result
+    probe = np.zeros((2, 3))
+    ro = np.zeros(3)
+    ro.setflags(write=False)
+    try:
+        _core.lcp_front_init(np.ndarray, lemke.LCPResult, lemke.Status.SOLVED,
+                             lemke.Status.RAY_TERMINATION, np.empty, 1e-11, 1e-11, 1e-9, probe,
+                             probe.__array_interface__["data"][0] + 8, ro,
+                             np.zeros(3, dtype=np.int64), np.zeros(3, dtype=">f8"), None)
+        assert not _core.lcp_front_on()
+        yield
+    finally:
+        _result.native_fronts_init()
+    assert _core.lcp_front_on()

@@ -409,3 +409,47 @@ def fuzz(run):
         kept_matrices(run, rng)
         box_islands(run, rng)
         box_packs(run, rng)
+        box_gathers(run, np.random.default_rng(2032))
+
+
+# --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
+# the flat bounds of islands flagged 0 (BLCPManyResult._gather), called directly with random
+# and extreme offsets, answers, flags and dtypes: None, a ValueError / TypeError, or the
+# spans; never a read outside the arrays.
+
+def box_gathers(run, rng):
+    sizes = np.array([3, 0, 4, 2, 6], dtype=np.int64)
+    isl = [problems.random_psd(int(n), rng) for n in sizes]
+    Mp = np.concatenate([M.ravel() for M, _ in isl])
+    qp = np.concatenate([q for _, q in isl])
+    lo, hi = np.full(qp.size, -1.0), np.full(qp.size, 2.0)
+    fi = np.full(qp.size, -1, dtype=np.int64)
+    fi[[4, 5]] = 0  # island 2 (rows 3-6): its rows 1, 2 friction rows of its row 0
+    lo[[3, 4, 5]] = 0.0, -2.0, -2.0
+    rb = lemke.solve_blcp_many(Mp, qp, lo, hi, findex=fi, sizes=sizes, workers=1)
+    bufs, bo, qo, ans, flag = rb._bufs, rb._buff, rb._qoff, rb._answer, rb._fflag
+    run.attempt("fuzz box gathers ok", refused_or(lambda: [_core.many_field(bufs, bo, qo, s, 0, ans,
+                                                                            flag if s > 1 else None, lo)
+                                                           for s in range(4)]))
+    extremes = np.array([0, 1, -1, 7, I64.max, I64.min, I64.max // 2, 1 << 62, len(bufs)], dtype=np.int64)
+    for t in range(120):
+        a2, q2, b2 = ans.copy(), qo.copy(), bo.copy()
+        for arr in (a2, q2, b2)[: int(rng.integers(1, 4))]:
+            i = int(rng.integers(len(arr)))
+            arr[i] = extremes[int(rng.integers(len(extremes)))] if rng.random() < 0.5 else (
+                int(arr[i]) + int(rng.integers(-2, 3)) if I64.min + 2 <= arr[i] <= I64.max - 2 else arr[i])
+        a, c = (int(x) for x in rng.choice(extremes[:8], 2))
+        f2 = rng.integers(0, 2, size=flag.size).astype(np.uint8)
+        short = lo[: int(rng.integers(0, lo.size + 1))]
+        run.attempt(f"fuzz box gathers {t}", refused_or(lambda: _core.many_field(bufs, b2, q2, a, c, a2)))
+        run.attempt(f"fuzz box gathers {t} flat", refused_or(lambda: _core.many_field(bufs, b2, q2, a, c, a2, f2, short)))
+        run.attempt(f"fuzz box gathers {t} ok offsets", refused_or(lambda: _core.many_field(bufs, bo, qo, a, c, a2, f2, lo)))
+    unaligned = lambda a: np.frombuffer(b"\0" + a.tobytes(), dtype=a.dtype, offset=1).reshape(a.shape)
+    odd = {"unaligned": unaligned, "swapped": lambda a: a.astype(a.dtype.newbyteorder()),
+           "strided": lambda a: np.repeat(a, 2)[::2], "int32": lambda a: a.astype(np.int32),
+           "2-D": lambda a: a.reshape(1, -1), "short": lambda a: a[:-1], "empty": lambda a: a[:0]}
+    for name, f in odd.items():
+        run.attempt(f"fuzz box gathers {name} answer", refused_or(lambda: _core.many_field(bufs, bo, qo, 1, 0, f(ans))))
+        run.attempt(f"fuzz box gathers {name} flag", refused_or(lambda: _core.many_field(bufs, bo, qo, 2, 0, ans, f(flag), lo)))
+        run.attempt(f"fuzz box gathers {name} flat", refused_or(lambda: _core.many_field(bufs, bo, qo, 2, 0, ans, flag, f(lo))))
+

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from helpers import assert_lcp_solution, assert_ray
+from helpers import assert_lcp_solution, assert_ray, native_fronts_off
 from siconos_dat import read_lcp
 
 import lemke
@@ -493,7 +493,7 @@ def test_many_without_the_native_fronts():
     """Where lcp_front_init finds another NumPy layout the native fronts stay off: many_setup,
     many_unsettled, many_field and many_bases return None and the Python steps (numpy) make
     the same result, bit for bit."""
-    from lemke import _core, _result
+    from lemke import _core
     Ms, qs, qs2 = _islands(12, count=30)
     Ms, qs = _rays_and_trivial(Ms, qs)
     qs2[5] = qs[5]
@@ -501,15 +501,7 @@ def test_many_without_the_native_fronts():
     on = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
     nxt = lemke.solve_lcp_many(Ms, qs2, warm_start=on.warm_start)
     flat = [(r.z, r.w, r.offsets, r.status, r.warm_start) for r in (on, nxt)]
-    probe = np.zeros((2, 3))
-    ro = np.zeros(3)
-    ro.setflags(write=False)
-    try:  # a wrong data address: the layout check fails, every native front off
-        _core.lcp_front_init(np.ndarray, lemke.LCPResult, lemke.Status.SOLVED,
-                             lemke.Status.RAY_TERMINATION, np.empty, 1e-11, 1e-11, 1e-9, probe,
-                             probe.__array_interface__["data"][0] + 8, ro,
-                             np.zeros(3, dtype=np.int64), np.zeros(3, dtype=">f8"), None)
-        assert not _core.lcp_front_on()
+    with native_fronts_off():
         assert _core.many_setup(sizes, Mp, qp, -1) is None
         assert _core.many_unsettled(on._out_i, on._out_f) is None
         assert _core.many_field(on._bufs, on._off[2], on._off[0], 0, 0) is None
@@ -517,9 +509,6 @@ def test_many_without_the_native_fronts():
         off = lemke.solve_lcp_many(Mp, qp, sizes=sizes)
         nxt_off = lemke.solve_lcp_many(Ms, qs2, warm_start=off.warm_start)
         got = [(r.z, r.w, r.offsets, r.status, r.warm_start) for r in (off, nxt_off)]
-    finally:
-        _result.native_fronts_init()
-    assert _core.lcp_front_on()
     assert off == on and nxt_off == nxt
     for a, b in zip(got, flat):
         assert all(x.tobytes() == y.tobytes() for x, y in zip(a[:4], b[:4])) and a[4] == b[4]

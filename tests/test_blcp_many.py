@@ -9,6 +9,7 @@ import pytest
 
 import lemke
 from lemke import BoxWarmStart, BoxWarmStartBatch
+from helpers import native_fronts_off
 from test_blcp import assert_box_solution, assert_friction_solution, contacts
 
 
@@ -514,3 +515,35 @@ def test_from_codes_small_is_the_numpy_rule():
         assert a.row_states().tobytes() == c.tobytes()
         b = lemke.BoxWarmStart(a.n, a.z_basic, a.at_upper, a.friction)
         assert a == b and hash(a) == hash(b) and repr(a) == repr(b)
+
+
+def test_many_without_the_native_fronts():
+    """Where lcp_front_init finds another NumPy layout the native fronts stay off: the box
+    batch's flat z, w, lo, hi then come from numpy's gathers (BLCPManyResult._gather's
+    fallback), bit for bit what many_field's native gathers (a per-island answer offset, the
+    flat bounds of islands without a friction index) give; and every item and warm start
+    the same."""
+    from lemke import _core
+    Ms, qs, los, his, fis, qs2 = _islands(11, B=30)
+    Ms.append(-np.eye(2))  # a ray: an island of the general path (special)
+    qs.append(np.array([-1.0, -1.0]))
+    qs2.append(np.array([-1.0, -1.0]))
+    los.append(np.zeros(2))
+    his.append(np.full(2, np.inf))
+    fis.append(None)
+
+    def run():
+        cold = lemke.solve_blcp_many(Ms, qs, los, his, findex=fis, workers=1)
+        warm = lemke.solve_blcp_many(Ms, qs2, los, his, findex=fis, warm_start=cold.warm_start,
+                                     workers=2)
+        return [_fields(r) for r in (cold, warm)]
+
+    on = run()
+    assert on[0][0] != on[1][0]  # (z moved with q)
+    with native_fronts_off():
+        bufs = np.zeros(4)
+        two = np.array([0, 4], dtype=np.int64)
+        assert _core.many_field(bufs, two, two, 0, 0, np.zeros(1, np.int64)) is None
+        off = run()
+    assert off == on
+    _same_as_one_by_one(lemke.solve_blcp_many(Ms, qs, los, his, findex=fis), Ms, qs, los, his, fis)

@@ -33,6 +33,37 @@ def test_all_f64_refuses_ranks_other_than_1_and_2():
     assert got[0].tolist() == [1.0, 2.0] and got[1] is None
 
 
+def test_many_field_answer_and_flat_spans_checked():
+    """The box batch's gathers (BLCPManyResult): a per-island answer offset added to c, the
+    flat bounds for islands flagged 0; offsets that wrap or leave the arrays refused."""
+    bufs = np.arange(32.0)
+    bo = np.array([0, 16, 32], dtype=np.int64)
+    qo = np.array([0, 4, 6], dtype=np.int64)
+    ans = np.array([3, 1], dtype=np.int64)
+    flat = -np.arange(6.0)
+    assert _core.many_field(bufs, bo, qo, 2, 1, ans).tolist() == [12.0, 13.0, 14.0, 15.0, 22.0, 23.0]
+    flag = np.array([0, 1], dtype=np.uint8)
+    got = _core.many_field(bufs, bo, qo, 2, 1, ans, flag, flat)
+    assert got.tolist() == [0.0, -1.0, -2.0, -3.0, 22.0, 23.0]
+    flag = np.array([1, 0], dtype=np.uint8)
+    assert _core.many_field(bufs, bo, qo, 0, 0, None, flag, flat).tolist() == [0.0, 1.0, 2.0, 3.0, -4.0, -5.0]
+    # the answer past its span, negative, wrapping with c or a * n; flat too short
+    for a, c, an in ((2, 1, [4, 1]), (0, 0, [-1, 0]), (0, 0, [I64_MAX, 0]), (0, 1, [0, I64_MAX]),
+                     (0, 13, [0, 1 << 62]), (1 << 62, 0, [1, 0]), (3, 0, [1, 0])):
+        with pytest.raises(ValueError):
+            _core.many_field(bufs, bo, qo, a, c, np.array(an, dtype=np.int64))
+    with pytest.raises(ValueError):
+        _core.many_field(bufs, bo, qo, 0, 0, None, np.array([1, 0], dtype=np.uint8), flat[:5])
+    # an empty island reads nothing: its answer is not read
+    qe = np.array([0, 4, 4], dtype=np.int64)
+    assert _core.many_field(bufs, bo, qe, 0, 0, np.array([0, I64_MAX], dtype=np.int64)).tolist() == [0.0, 1.0, 2.0, 3.0]
+    # wrong kinds and lengths: TypeError
+    for args in ((np.array([3], dtype=np.int64),), (ans.astype(np.int32),), (None, flag.astype(bool), flat),
+                 (None, flag, flat.astype(np.float32)), (None, flag[:1], flat), (None, flag, None)):
+        with pytest.raises(TypeError):
+            _core.many_field(bufs, bo, qo, 0, 0, *args)
+
+
 def test_many_bases_refuses_offsets_whose_difference_overflows():
     basics = np.arange(2, dtype=np.int64)
     out_i = np.zeros((1, 5), dtype=np.int64)

@@ -184,19 +184,20 @@ class BLCPManyResult(ManyItems):
         step, or to carry over to new islands with its ``take`` / ``relabel``.
     """
 
-    def __init__(self, sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state, fflag,
+    def __init__(self, n_b, qoff, out_i, out_f, bufs, buff, ints, ioff, state, fflag,
                  los, his, given, special, answer):
-        """The kernels' arrays (``boxed.batch``), the problems' flat bounds, the warm starts
-        given (a BoxWarmStartBatch, a list, or None), ``special``: ``{b: BLCPResult}``,
-        the islands the general path solved, and ``answer``: where each island's z sits in
-        its buffer (``boxed.islands``)."""
-        for a in (qoff, out_i, out_f, buff, ioff, state, fflag):
+        """The kernels' arrays (``boxed.batch``), the islands' sizes (int64, B: ``qoff``'s
+        differences), the problems' flat bounds, the warm starts given (a
+        BoxWarmStartBatch, a list, or None), ``special``: ``{b: BLCPResult}``, the islands
+        the general path solved, and ``answer``: where each island's z sits in its buffer
+        (``boxed.islands``)."""
+        for a in (n_b, qoff, out_i, out_f, buff, ioff, state, fflag, answer):
             a.setflags(write=False)
-        self._sizes, self._qoff, self._out_i, self._out_f = sizes, qoff, out_i, out_f
+        self._n_rows, self._qoff, self._out_i, self._out_f = n_b, qoff, out_i, out_f
         self._bufs, self._buff, self._ints, self._ioff = bufs, buff, ints, ioff
         self._state, self._fflag, self._los, self._his = state, fflag, los, his
         self._given, self._special, self._answer = given, special, answer
-        self._items = [None] * len(sizes)
+        self._items = [None] * len(n_b)
         for b, res in special.items():
             self._items[b] = res
 
@@ -244,34 +245,23 @@ class BLCPManyResult(ManyItems):
             return off
         return self._qoff
 
-    @cached
-    def _where(self):
-        """Per row of the scene: where its z sits in the buffers."""
-        qo = self._qoff
-        at = np.arange(qo[-1], dtype=np.int64)
-        at += np.repeat(self._buff[:-1] + self._answer - qo[:-1], self._n_rows)
-        return at
-
-    @cached
-    def _n_rows(self):
-        return np.diff(self._qoff)
-
     def _gather(self, name, shift, flat=None):
         if self._qoff is None:  # (_of: every item built)
             v = np.concatenate([getattr(r, name) for r in self._items])
             v.setflags(write=False)
             return v
         # the field ``shift`` n-blocks after the answer's z (FrontLayout: the caller's z, w,
-        # lo, hi with a friction index, the run's z, w without; tests/test_structure.py)
-        at = self._where
-        if shift:
-            n = self._n_rows
-            at = at + shift * np.repeat(n, n)
-        v = self._bufs.take(at)
-        if flat is not None:  # (lo, hi: the buffer's with a friction index, else the flat ones)
-            n = self._n_rows
-            v = np.where(np.repeat((self._fflag != 0) & (n > 0), n), v, flat)
-        qo = self._qoff
+        # lo, hi with a friction index, the run's z, w without; tests/test_structure.py);
+        # lo, hi (``flat`` given): the buffer's with a friction index, else the flat ones
+        qo, n = self._qoff, self._n_rows
+        v = _core.many_field(self._bufs, self._buff, qo, shift, 0, self._answer,
+                             None if flat is None else self._fflag, flat)
+        if v is None:  # (the native fronts are off: numpy's gathers, the same values)
+            at = np.arange(qo[-1], dtype=np.int64)
+            at += np.repeat(self._buff[:-1] + self._answer + shift * n - qo[:-1], n)
+            v = self._bufs.take(at)
+            if flat is not None:
+                v = np.where(np.repeat((self._fflag != 0) & (n > 0), n), v, flat)
         for b, res in self._special.items():
             v[qo[b]:qo[b + 1]] = getattr(res, name)
         v.setflags(write=False)
@@ -334,7 +324,7 @@ class BLCPManyResult(ManyItems):
             ws.__dict__["_kept"] = tuple([w if w is not None and "z_basic" not in w.__dict__ else None
                                           for w in kept])
             return ws
-        return BoxWarmStartBatch._trusted(np.diff(self._qoff), self._state)
+        return BoxWarmStartBatch._trusted(self._n_rows, self._state, read_only=True)
 
 
 def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, options=None,
@@ -412,8 +402,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
         fflag = fflag.astype(np.uint8)
         if fiflat is None:
             fiflat = _NO_FINDEX
-        sizes = n_b.tolist()
-        B = len(sizes)
+        B = n_b.size
         mlen = np.zeros(B + 1, dtype=np.int64)
         np.multiply(n_b, n_b, out=mlen[1:])
         fis = None
@@ -427,11 +416,11 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
         fflag = np.array([f is not None for f in fis], dtype=np.uint8)
         fiflat = (np.concatenate([np.full(k, -1, np.int64) if f is None else f
                                   for f, k in zip(fis, n_b)]) if fflag.any() else _NO_FINDEX)
-        sizes = n_b
+        n_b = np.array(n_b, dtype=np.int64)
     else:
         Mflat, qflat, off = _packed(M, q, sizes, buffers=False)
-        sizes = off[0, 1:].tolist()
-        B = len(sizes)
+        n_b = off[0, 1:]
+        B = n_b.size
         mlen = off[1]
         total = len(qflat)
         loflat, hiflat = (_packed_bound(x, total, name) for x, name in ((lo, "lo"), (hi, "hi")))
@@ -441,7 +430,6 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
             fiflat = _validate.kernel_array(_packed_findex(findex, total))
             fflag = np.ones(B, dtype=np.uint8)
         fis = None
-    n_b = np.array(sizes, dtype=np.int64)
     qoff = np.zeros(B + 1, dtype=np.int64)
     np.cumsum(n_b, out=qoff[1:])
     mstart = np.cumsum(mlen)[:-1]
@@ -463,7 +451,8 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     out_f = np.empty(B)
     _run(boxed.batch, (Mflat, mstart, qflat, loflat, hiflat, qoff, fiflat, fflag, state, wflag),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, ints, ioff, state_out,
-          out_i, out_f), B, workers, work=8 * _cubes(n_b) if fiflat.size else _cubes(n_b))
+          out_i, out_f), B, workers,
+         work=None if workers == 1 else 8 * _cubes(n_b) if fiflat.size else _cubes(n_b))  # (1: unread)
     special = {}
     given = _Given(warm_start, given)
     stage = out_i[:, 5]
@@ -482,7 +471,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
         special[b] = res
         state_out[o0:o1] = (res.warm_start.row_states() if res.warm_start is not None
                             else np.zeros(n, np.int8))
-    return BLCPManyResult(sizes, qoff, out_i, out_f, bufs, buff, ints, ioff, state_out, fflag,
+    return BLCPManyResult(n_b, qoff, out_i, out_f, bufs, buff, ints, ioff, state_out, fflag,
                           loflat, hiflat, given, special, answer)
 
 
