@@ -17,9 +17,10 @@ dirtied it. A finding is a place to look (GCC may know better: read its
 ``-fdump-rtl-vzeroupper``), not a verdict; calls made while dirty are not listed. Not part of
 the tests: it needs an x86-64 build, CMake and binutils.
 
-At 2026-11-29 it lists ``tableau_lemke``'s avx2 clone (a broadcast mask left in ymm4 by a
-vectorized max |.| loop reaches a ``ret``; GCC emitted no vzeroupper on that path) and, with
-the looser whole-state model, its avx512f clone: not measurable on the AMD host.
+At 2026-11-29 it listed ``tableau_lemke``'s avx2 clone: a broadcast mask left in ymm4 by a
+vectorized max |.| loop reached a call to a baseline helper (``careful_sizes``, then
+``lex_ties``: GCC put no vzeroupper before either) and the ``ret`` after it. Both helpers
+have one caller and are now inlined into its clones; since then it finds nothing.
 """
 import argparse
 import re

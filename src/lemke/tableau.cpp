@@ -365,9 +365,14 @@ void pivot_delayed(Mat<double> T, double* rhs, double* magb, idx r, idx s,
 namespace {
 
 // mags = the size |B^-1| |q| of the rows under the running bound that may be rounding.
-void careful_sizes(Mat<double> T, const Pending& P, const double* col, const double* rhs, const idx* pos,
-                   const std::uint8_t* is_basic, const idx* start_basis, const double* q0,
-                   const double* magb, double* mags) {
+// careful_sizes and lex_ties are inlined into tableau_lemke's clones (their one caller): GCC 12
+// called them as baseline functions from the avx2 clone with a ymm register's upper half dirty
+// and no vzeroupper, so the clone returned dirty after a careful run or a tie
+// (benchmarks/scan_vzeroupper.py).
+LEMKE_ALWAYS_INLINE void careful_sizes(Mat<double> T, const Pending& P, const double* col,
+                                       const double* rhs, const idx* pos,
+                                       const std::uint8_t* is_basic, const idx* start_basis,
+                                       const double* q0, const double* magb, double* mags) {
     idx n = T.rows;
     for (idx i = 0; i < n; ++i) {
         double v = rhs[i];
@@ -384,9 +389,10 @@ void careful_sizes(Mat<double> T, const Pending& P, const double* col, const dou
     }
 }
 
-idx lex_ties(Mat<double> T, const Pending& P, const double* col, const idx* basis, const idx* pos,
-             const std::uint8_t* is_basic, const idx* start_basis, idx artificial,
-             double pivot_tol, double tie_tol, idx* cand, double* keys, idx nc) {
+LEMKE_ALWAYS_INLINE idx lex_ties(Mat<double> T, const Pending& P, const double* col, const idx* basis,
+                                 const idx* pos, const std::uint8_t* is_basic, const idx* start_basis,
+                                 idx artificial, double pivot_tol, double tie_tol, idx* cand,
+                                 double* keys, idx nc) {
     idx n = T.rows;
     for (idx c = 0; c < nc; ++c)
         if (basis[cand[c]] == artificial) return cand[c];
