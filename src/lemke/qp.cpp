@@ -245,8 +245,8 @@ void householder_apply(Mat<const double> V, const double* beta, idx k, double* x
 }
 
 // qp::dot4's body, inlined by the cloned loops that call it (below).
-inline __attribute__((always_inline)) void dot4_lanes(const double* a, const double* r0, const double* r1, const double* r2,
-          const double* r3, idx len, double* out) {
+LEMKE_ALWAYS_INLINE void dot4_lanes(const double* a, const double* r0, const double* r1, const double* r2,
+                                    const double* r3, idx len, double* out) {
 #ifdef LEMKE_SIMD
     // (dot_lanes4 with a as its y: a product's bits do not depend on its operands' order, and
     // its pairwise sums are dot's, taken by shuffles (simd::hsum4); the four rows' sums taken
