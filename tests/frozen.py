@@ -20,8 +20,8 @@ recorded one, as ``tests/test_golden.py`` compares its bits; on another platform
 comparison is not made (a warning says so) and each test's own checks (complementarity,
 KKT and equilibrium conditions, codes) still run.  A change that is *meant* to change these
 bits rewrites them from the core's outputs with ``LEMKE_FREEZE=update pytest
-tests/test_core_*.py tests/test_qp_kkt_check.py`` and says why in its commit, as for
-``tests/golden.py``.
+tests/test_core_*.py tests/test_qp_kkt_check.py`` and says why in its commit and in
+``tests/GOLDEN-CHANGES.md``, as for ``tests/golden.py``.
 """
 from __future__ import annotations
 

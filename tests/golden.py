@@ -11,7 +11,8 @@ may round differently in another version, and a CPU with wider vectors splits a
 vectorized sum differently), and otherwise agreement to 1e-8 with the newest record, with
 the same status (and the same pivots for the LCPs).
 
-Regenerate only for a change that is *meant* to change answers, and say so in the commit.
+Regenerate only for a change that is *meant* to change answers, and say so in the commit
+and in ``tests/GOLDEN-CHANGES.md`` (which records, what changed, why).
 """
 from __future__ import annotations
 

@@ -3,7 +3,7 @@ r"""solve_blcp: box-constrained LCPs (lo <= z <= hi), with an optional friction 
 The box LCP: find z with lo <= z <= hi and w = M z + q such that w_i >= 0 where z_i = lo_i,
 w_i <= 0 where z_i = hi_i, and w_i = 0 where lo_i < z_i < hi_i; equivalently the natural
 map z - mid(lo, hi, z - w) is zero.  It is solved by Lemke's method with bounded variables
-(``lemke.kernels.boxed``, run by its C++ port ``lemke._core.boxed``, the same bits): n
+(the C++ core's box engine, ``src/lemke/boxed.*``, bound as ``lemke._core.boxed``): n
 pairs, each z_i at a bound or basic.
 
 **Friction index** (``findex``, the convention of ODE and Bullet).  Row i with
@@ -44,7 +44,7 @@ from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _progress, _validate
 from ._result import LazyField, Outcome, lazy_state, native_fronts_init
 from ._status import STOPPED, Status
-from ._core import boxed  # the C++ port of kernels.boxed (src/lemke/boxed.*)
+from ._core import boxed  # the C++ core's box engine (src/lemke/boxed.*)
 from ._core import refined_solve
 from . import _core
 
@@ -52,7 +52,7 @@ METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
 _SOLVED = Status.SOLVED
 _new = object.__new__
-_COLD = (0, 1, 2)  # covering vectors of the cold runs (kernels.boxed.solve's cov_mode)
+_COLD = (0, 1, 2)  # covering vectors of the cold runs (boxed::solve's cov_mode)
 # A warm run: covering vector 1, and a warm basis that is singular kept in part (PARTIAL: the
 # z's the exchange pivots cannot make basic stay at their bounds), not given up for a cold run.
 _WARM = 1 | boxed.PARTIAL
@@ -177,7 +177,7 @@ class BoxWarmStart:
                 "friction": self.friction}
 
     def _kernel_flags(self):
-        """Its basis as ``kernels.boxed.solve`` and ``front`` take it: 2n flags, the basic
+        """Its basis as ``boxed::solve`` and ``front`` take it: 2n flags, the basic
         z's then the non-basic z's at hi; made once and kept with the (immutable) warm
         start, as ``WarmStart``'s index array in ``_lcp``."""
         d = self.__dict__
@@ -486,7 +486,7 @@ class _Run:
         self.k = self.m = 0
 
     def go(self, M, q, lo, hi, warm, mode, opts, max_pivots, tie_tol):
-        """Run ``kernels.boxed.solve``; ``warm`` (2n flags): the basic z's, then the
+        """Run ``boxed::solve``; ``warm`` (2n flags): the basic z's, then the
         non-basic z's at hi."""
         (self.code, self.pivots, self.z0, self.ok, self.residual, self.k, self.m) = boxed.solve(
             M, q, lo, hi, warm, mode, max_pivots, opts.pivot_tol, tie_tol, opts.tol,
@@ -526,7 +526,7 @@ def solve_blcp(M, q, lo, hi, *, findex=None, method="bounded", warm_start=None,
         ``-mu_i z_f <= z_i <= mu_i z_f`` at the answer (see the module docstring for how
         they are solved exactly).  f must not be i nor a friction row, and lo_f >= 0.
     method : {"bounded"}
-        Lemke's method with bounded variables (``lemke.kernels.boxed``).
+        Lemke's method with bounded variables (``src/lemke/boxed.cpp``).
     warm_start : BoxWarmStart, optional
         The ``warm_start`` of an earlier result of the same size (and friction structure):
         if its basis still solves this problem the answer comes with 0 pivots; otherwise
@@ -687,9 +687,9 @@ def _no_warm(N):
 
 
 def _one_call(M, q, lo, hi, findex, ws, opts, validated):
-    """``kernels.boxed.front`` (validation, the extended problem of a friction index, a warm
+    """``boxed::front`` (validation, the extended problem of a friction index, a warm
     start's own point, the check on the caller's data) around the runs of
-    ``kernels.boxed.solve`` that ``_solve`` and ``_finish`` would make (from the warm start,
+    ``boxed::solve`` that ``_solve`` and ``_finish`` would make (from the warm start,
     cold, the ladder): the result, built lazily, when they end solved and checked; None
     when the general path must decide (a checked ray, a failed ladder, a friction answer
     that fails the check), or when a warm start of another size comes with data not
@@ -968,7 +968,7 @@ def _solved(run, n, lo, hi, rec, pivots=None):
 
 def _basis_point(M, q, lo, hi, zb, zh):
     """The point of the basis (z basic where ``zb``, the others at lo, or hi where ``zh``)
-    from the caller's data by one dense solve (``kernels.boxed.basis_point``: no LAPACK),
+    from the caller's data by one dense solve (``boxed::basis_point``: no LAPACK),
     clamped into the box; None if singular."""
     z = np.empty(q.size)
     return z if boxed.basis_point(M, q, lo, hi, zb, zh, False, z) else None
@@ -998,7 +998,7 @@ def _checked_point(M, q, lo, hi, zb, zh, tol, R):
 def is_box_ray(M, q, lo, hi, d, z, z0, ray, tol=1e-9) -> bool:
     """Whether ``(z, z0) + t ray`` (t >= 0) stays a solution of the augmented box problem
     (w + d z0 in place of w) for every t, judged row by row on the caller's data
-    (``kernels.boxed.is_ray``, which says how)."""
+    (``boxed::is_ray``, which says how)."""
     a = [_validate.kernel_array(np.asarray(x, dtype=float)) for x in (M, q, lo, hi, d, z, ray)]
     return bool(boxed.is_ray(*a[:6], float(z0), a[6], float(tol)))
 
@@ -1010,8 +1010,8 @@ def friction_lcp(M, q, lo, hi, findex):
     """The box LCP that solves the friction index exactly (module docstring): returns
     ``(Mx, qx, lox, hix, F, normal)``, where F lists the friction rows and ``normal`` their
     normal rows.  Variables: the caller's z with beta+ in place of each friction z_i, then
-    beta- and lambda per friction row.  (Built by ``kernels.boxed.extend``, as
-    ``kernels.boxed.front`` builds it.)"""
+    beta- and lambda per friction row.  (Built by ``boxed::extend``, as
+    ``boxed::front`` builds it.)"""
     M, q, lo, hi = _kernel_arrays(M, q, lo, hi)
     findex = _validate.kernel_array(np.asarray(findex, dtype=np.int64))
     n = q.size
@@ -1038,7 +1038,7 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     solution meets; the caller's system has no such column and its refined solution meets
     the check in every row (issue 32's scene, islands of 75-120 rows).  A warm start's own
     point is this system first too, unrefined and with each sliding row substituted into
-    its normal's column (``boxed.friction_point``, in ``kernels.boxed.front``), where the
+    its normal's column (``boxed.friction_point``, in ``boxed::front``), where the
     patterns that make the extended block singular are left to the extended point."""
     n = q.size
     k = F.size
@@ -1083,7 +1083,7 @@ def _coupled(z, lo, hi, F, normal):
 
 
 def _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, ws, opts):
-    """A warm start's own point with a friction index (``kernels.boxed.front``'s PREPARE
+    """A warm start's own point with a friction index (``boxed::front``'s PREPARE
     phase): the point of its basis solved on the caller's rows (``boxed.friction_point``: a
     sliding row's z_i = +-mu z_f substituted, no extended matrix), else on the extended
     data, judged by the check that decides 'solved', on the caller's rows with the coupled

@@ -1,12 +1,15 @@
-"""Acceptance, in one place: is a point a solution, is a direction a ray, is a certificate
-a proof -- for every kind, on the caller's data.
+"""Acceptance: is a point a solution, is a direction a ray, is a certificate a proof -- on
+the caller's data (LCPs, MLCPs, QP certificates; the other kinds' checks: below).
 
 The same functions serve the solvers (to accept or downgrade a result), the tests and the
 benchmarks, so every part of the project judges answers the same way.  The kernels keep a
 fused copy of the LCP test for speed (the C++ core's ``src/lemke/certify.cpp``,
 which *is* the LCP rule below: ``check_lcp`` calls it, and
 ``tests/test_certify.py`` checks that the fused check inside a solve gives the verdict of
-``is_lcp_solution``).
+``is_lcp_solution``).  The box LCP's, the fused QP path's and the games' checks are the
+core's own, beside their engines (``boxed::box_check`` and ``friction_check``,
+``qp::kkt_check``, ``games::check``); what ``tol`` means in each is stated in
+:mod:`lemke._options`' docstring.
 
 **The recipe.**  Every test compares a quantity that is zero (or non-negative) in exact
 arithmetic with ``tol`` (``Options.tol``, default 1e-9) times the size of the terms it is

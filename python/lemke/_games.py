@@ -10,8 +10,8 @@ actions and ``m..m+n-1`` the column player's (as ``init_pivot`` in quantecon and
 own actions first, so this game is ``NormalFormGame((Player(A), Player(B.T)))``; in nashpy it
 is ``nash.Game(A, B)``.
 
-The kernels are the C++ core's games engine (``lemke._core``: src/lemke/games.cpp, the port
-of :mod:`lemke.kernels.games` with the same arguments, results and bits), the exact
+The kernels are the C++ core's games engine (``lemke._core``: src/lemke/games.cpp, ported
+from the former numba kernels with the same arguments, results and bits), the exact
 arithmetic in :mod:`lemke._games_exact`.
 """
 from __future__ import annotations
@@ -41,10 +41,10 @@ DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's defaul
 _F64 = np.dtype(np.float64)
 _MATRICES = (2, 2)
 _STATUSES = {int(s): s for s in Status}
-#: The games kernels of the C++ core (src/lemke/games.cpp: kernels/games.py's lemke_howson,
-#: trace and check, with the same arguments, results and bits); module attributes, so that
-#: a test can stand a lying kernel in (with ``_FRONT`` set to return None, since the
-#: native front calls the engine itself).
+#: The games kernels of the C++ core (src/lemke/games.cpp: lemke_howson, trace and check,
+#: ported from the former numba kernels with the same arguments, results and bits); module
+#: attributes, so that a test can stand a lying kernel in (with ``_FRONT`` set to return
+#: None, since the native front calls the engine itself).
 _LEMKE_HOWSON = _core.lemke_howson
 _TRACE = _core.games_trace
 _CHECK = _core.games_check

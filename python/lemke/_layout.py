@@ -40,7 +40,7 @@ def buffer_length(n):
 
 #: The smallest n at which a warm start whose basis fails is restarted from that basis
 #: (``lemke::RESTART_FROM``); below it the problem goes cold.  Measured in
-#: kernels/cold.py's history: the restart pays from about n = 100 on (contact problems
-#: lose below, and restarts end in bases with more z's basic at zero, which every later
-#: 0-pivot step pays in its LU).
+#: the history of the former numba driver (kernels/cold.py, ported and removed): the restart
+#: pays from about n = 100 on (contact problems lose below, and restarts end in bases with
+#: more z's basic at zero, which every later 0-pivot step pays in its LU).
 RESTART_FROM = 100

@@ -39,6 +39,16 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     (normwise, not entry by entry), so a row whose terms are all at the rounding level
     (an exact 0 that comes out as 1e-15) is judged against what that rounding can move it
     by, not against 1e-12 of its own tiny terms.
+    The other kinds use ``tol`` as follows.  An MLCP's point: the LCP rule above on the
+    stacked system ``E x + e`` (``_certify.check_mlcp``, whose docstring has the details).
+    A box LCP's point (``box_check`` in ``src/lemke/boxed.cpp``): the same t, r_i, f_i and
+    certifiability bound, applied to the natural map: z within its bounds (a fixed z_i
+    exactly at it), and a w_i beyond ``t r_i + f_i`` in either sign needs z_i at the bound
+    it pushes against (its distance from it small enough to count as zero, as for a z_i
+    above); with a friction index the caller's z is judged so on the caller's rows, with the
+    bounds in force ``-+mu_i z_f`` (z clamped into them first) and the rounding of the
+    extended problem's size.  A game's point: each player's regret at most ``tol`` times
+    the range of that player's payoffs, plus rounding (``games::check``).
 ``time_limit`` (default None: none)
     Seconds of wall-clock time for the whole call (a batch: for all its problems).  Every
     engine looks at the clock every few tens of microseconds of work, so the limit is kept to

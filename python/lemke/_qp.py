@@ -169,7 +169,7 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
     method : {"tableau", "unrevised"}
         The Lemke method (see :func:`lemke.solve_lcp`).  A cold QP with at least 4n
         inequalities (bounds counted) first tries the unrevised method on its multiplier
-        LCP in factored form, whatever the method (see ``kernels.qp``, step 7); so does
+        LCP in factored form, whatever the method (see src/lemke/qp.cpp, step 7); so does
         one whose P is only semidefinite where its flat directions are few (as many as the
         equalities, one more with more rows of G than bound rows, any up to 32 variables;
         step 8), and one whose fused point failed its KKT check.
@@ -522,7 +522,7 @@ def _plain_args(P, q, G, h, A, b, lb, ub):
     """The arguments as float64 C-contiguous arrays of exactly the shapes the fused kernel
     takes (column vectors flattened and absent constraints empty, as in
     :func:`qpsolvers_form`), or None when any is in another form: the full validation then
-    converts it or raises.  Values are not looked at (``kernels.qp.screen`` does that)."""
+    converts it or raises.  Values are not looked at (``qp::screen`` does that)."""
     try:
         q = _kernel_vector(q)
         if q.ndim != 1 or not q.shape[0]:
@@ -608,9 +608,9 @@ def _solve_box(P, q, lb, ub, opts):
 def _solve_box_small(args, opts):
     """A box-only QP with plain data (as :func:`solve_qp`'s first lines take it) of fewer
     than BOX_FIRST variables in one kernel call, ``_core.qp_solve_box`` (the port of
-    ``kernels.qp.solve_box``, src/lemke/qp.cpp): the screen and P
+    ``qp::solve_box``, src/lemke/qp.cpp): the screen and P
     definite as the fused path's, one run of the box kernel (as :func:`_solve_box`'s first
-    run), its natural-map check, then the fused path's KKT check (``kernels.qp.kkt_check``
+    run), its natural-map check, then the fused path's KKT check (``qp::kkt_check``
     at ``min(tol, STRICT_TOL)``: what the fused path answered these QPs with before).  The box LCP has n
     pairs where the fused path's LCP has a row per bound (2n for a boxed variable): at
     n = 10, 2 to 5 us of kernel against 13.  None unless solved and checked: the fused path
@@ -643,7 +643,7 @@ def _solve_box_small(args, opts):
 def _box_small_fields(out, n, k, pairs):
     """The deferred fields of a result of :func:`_solve_box_small` (the basis numbered as
     :func:`_box_basis` numbers it, by the kernel: ``qp::box_basis``, the port of
-    ``kernels.qp.box_basis``; in the buffer's tail after boxed's own final basis)."""
+    ``qp::box_basis``; in the buffer's tail after boxed's own final basis)."""
     _, zb, stats, final, _ = _box_layout(n)
     primal, dual, gap, obj = out[stats:final].tolist()
     basic = out[final:].view(_I64)[n:n + k]
@@ -659,9 +659,9 @@ _NO_WARM = [np.zeros(2 * n, dtype=np.bool_) for n in range(BOX_FIRST)]  # no war
 
 def _box_screened(P, q, lb, ub):
     """``(Ps, q, lo, up)`` of a box-only QP whose data the fused path's screen passes
-    (``kernels.qp.screen``: finite, symmetric to the front's tolerance, lb <= ub, bounds
+    (``qp::screen``: finite, symmetric to the front's tolerance, lb <= ub, bounds
     beyond 1e20 infinite) and whose symmetric part has a Cholesky factor
-    (``kernels.qp.cholesky``: definite, so the front's positive-semidefinite check passes);
+    (``qp::cholesky``: definite, so the front's positive-semidefinite check passes);
     None otherwise (the full validation then decides).  ``Ps = (P + P')/2`` elementwise,
     the bits of ``_validate.symmetric_psd``."""
     plain = _plain_args(P, q, None, None, None, None, lb, ub)
@@ -761,7 +761,7 @@ def _guess_vector(initvals, n):
 
 def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
     """The warm start of a primal guess (qpsolvers' ``initvals``): the KKT-MLCP's basis
-    (``_reductions.qp_mlcp``'s numbering, as ``kernels.qp.mlcp_basis`` writes it) whose
+    (``_reductions.qp_mlcp``'s numbering, as ``qp::mlcp_basis`` writes it) whose
     active set is the rows of G and the bounds tight or violated at x0 (``ACTIVE_TOL``,
     relative to the sizes of the terms).  The data is read after qpsolvers' conventions
     and the validation (rows with h = +inf dropped, bounds beyond 1e20 infinite)."""
@@ -810,16 +810,16 @@ def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
 
 
 def _solve_definite(args, method, opts):
-    """The fused cold path for a positive definite P (``kernels.qp``): one kernel call that
-    screens the data, factors P, solves the LCP of the inequality multipliers and checks
-    the KKT point on the data; with m >= 4n inequalities, first its LCP in factored form
-    (``_core.qp_solve_gram``, the kernel's step 7, whatever ``method``; also for a P that is
-    semidefinite to rounding; and, step 8, for a P that is not definite whose flat
-    directions are few enough, or where the fused kernel's point failed its check).  None
-    when it does not apply (data that needs the full validation, P only semidefinite,
-    dependent equalities) or did not end solved and
-    checked: the caller then takes the KKT-MLCP path, which also finds the certificates of
-    infeasible and unbounded QPs."""
+    """The fused cold path for a positive definite P (``qp::solve``, src/lemke/qp.cpp): one
+    kernel call that screens the data, factors P, solves the LCP of the inequality
+    multipliers and checks the KKT point on the data; with m >= 4n inequalities, first its
+    LCP in factored form (``_core.qp_solve_gram``, the kernel's step 7, whatever ``method``;
+    also for a P that is semidefinite to rounding; and, step 8, for a P that is not definite
+    whose flat directions are few enough, or where the fused kernel's point failed its
+    check).  None when it does not apply (data that needs the full validation, P only
+    semidefinite, dependent equalities) or did not end solved and checked: the caller then
+    takes the KKT-MLCP path, which also finds the certificates of infeasible and unbounded
+    QPs."""
     P, q, G, h, A, b, lb, ub = args
     n, p, m = q.shape[0], A.shape[0], G.shape[0]
     out = np.empty(_layout(n, p, m)[-1])
@@ -862,7 +862,7 @@ def _solve_semidefinite(args, opts):
     allowed = _core.qp_flat_allowed(h, p, lb, ub) if _RELAXED else p + count(lb == ub)
     if count(P.diagonal() == 0.0) > allowed:
         # more zero diagonal entries (flat directions) than that: the kernel would decline at
-        # once (kernels.qp.zero_diagonal); a linear program, say, does not call it
+        # once (qp::zero_diagonal); a linear program, say, does not call it
         return None
     out = np.empty(_layout(n, p, m)[-1])
     max_pivots = -1 if opts.max_pivots is None else opts.max_pivots
@@ -985,7 +985,7 @@ def _solve(qp, method, opts, warm_start, certify):
 def kkt(data, x, y, z, z_box, tol):
     """``(ok, primal, dual, gap, obj)`` on the validated data ``(P, q, G, h, A, b, lb, ub)``
     (absent rows empty, absent bounds infinite): whether the point passes the fused path's
-    row-wise KKT check (``kernels.qp.kkt_check``) at ``tol``, and qpsolvers' residuals and
+    row-wise KKT check (``qp::kkt_check``) at ``tol``, and qpsolvers' residuals and
     the objective, each summed there in double-double (their values at the point as given,
     not the rounding of evaluating them)."""
     stats = np.empty(4)
@@ -1022,7 +1022,7 @@ def _polished(qp, point, basis, tol):
 
     is solved for the variables not held at a bound (F) and the multipliers of A and G_S,
     with ``x_B`` given: the rows of F, A and G_S, factored once
-    (``kernels.linalg.refined_solve``: LU on one thread, of the size of F plus the active
+    (``refined_solve`` of src/lemke/linalg.cpp: LU on one thread, of the size of F plus the active
     rows, not of all n variables and the bounds) and refined with residuals summed in
     double-double over every column, x_B's included, and the solution carried in
     double-double.  The bound multipliers zb_B then follow from the rows of B at that exact

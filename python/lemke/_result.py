@@ -107,7 +107,7 @@ class WarmStart:
 
     def _relabel_ids(self, old, new):
         """:meth:`relabel` for labels given as 1-D integer arrays: one call of the C++ core
-        (``relabel_ids``, the port of ``kernels.carry``), no Python object per row; None for
+        (``relabel_ids``, src/lemke/carry.cpp), no Python object per row; None for
         other arrays (the general path takes them)."""
         if old.ndim != 1 or new.ndim != 1 or old.dtype.kind not in "iu" or new.dtype.kind not in "iu":
             return None
@@ -247,7 +247,7 @@ class LCPResult(Outcome):
     row_scale, col_scale : ndarray
         The equilibration the kernels pivoted on: powers of two R and C such that every
         row and column of ``diag(R) M diag(C)`` has its largest entry near 1 (see
-        ``lemke.kernels.linalg.equilibrate``).  In exact arithmetic they change nothing.
+        ``equilibrate`` in ``src/lemke/linalg.cpp``).  In exact arithmetic they change nothing.
     recoveries : int
         How many times the solve was restarted after the method revisited a basis (see
         ``lemke._layout``); 0 on almost every problem.
