@@ -9,7 +9,7 @@ ratios after / before.  Forms: float64 C arrays, lists of floats, lists of ints,
 Fortran-ordered float64 matrices (vectors plain).  Cases: ``solve_lcp`` (n = 2 and 10, cold
 by the tableau and the unrevised method, warm from its own basis), ``solve_blcp`` (n = 4,
 cold; also scalar bounds), ``solve_bimatrix`` (3 x 2), ``solve_qp`` (3 variables, G, h, A,
-b, bounds), ``solve_lcp_many`` (2 problems, and 400 of 1-6 rows, one worker),
+b, bounds; also scalar bounds), ``solve_lcp_many`` (2 problems, and 400 of 1-6 rows, one worker),
 ``solve_blcp_many`` (400 box islands of 1-6 rows, bounds per island or scalar, one worker).  Every form
 must give the float64 call's answer bit for bit, and both interpreters the same (checked).
 """
@@ -70,6 +70,8 @@ def cases(lemke):
           np.array([[1.0, -1.0, 0.0]]), np.array([0.0]), np.full(3, -2.0), np.full(3, 2.0))
     out.append(("solve_qp n=3", lambda f: (
         lambda a=[form(x, f) for x in qp]: lemke.solve_qp(*a))))
+    out.append(("solve_qp n=3 scalar bounds", lambda f: (
+        lambda a=[form(x, f) for x in qp[:6]]: lemke.solve_qp(*a, -2.0, 2.0))))
     for B_ in (2, 400):
         probs = [_lcp(1 + b % 6, b) for b in range(B_)]
         out.append((f"solve_lcp_many B={B_}", lambda f, probs=probs: (

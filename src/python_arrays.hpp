@@ -6,6 +6,8 @@
 #pragma once
 #include <nanobind/nanobind.h>
 
+#include <limits>
+
 // NumPy's array object, as far as read here.
 struct ArrayFields {
     PyObject_HEAD
@@ -105,6 +107,21 @@ nanobind::object new_array(Py_ssize_t len, bool ints = false);
 // NumPy's C API; an invalid object (nothing made, no error) when lcp_front_init did not find
 // that API making such views (the caller slices). Raises when NumPy does.
 nanobind::object new_view(nanobind::handle base, Py_ssize_t offset, Py_ssize_t len);
+
+// The native fronts' conversion of array-likes (src/python_front.cpp, branch arraylike): x
+// (of nd dimensions, 1 or 2) made a float64 C array with the values the Python fronts'
+// conversion (_validate.plain: np.asarray, then float64 and C order) gives, when x is a list
+// or tuple (rows of one length, no dimension 0) of Python floats, bools and int64-sized ints,
+// or an ndarray of bool, int, uint up to 32 bits, float32 or float64 in the machine's byte
+// order that is not plain float64; x itself when it is any other ndarray (the front judges
+// it); else an invalid object (declined: the Python function converts or refuses it).
+nanobind::object made_f64(PyObject* x, int nd);
+
+// A bound lo (side -1) or hi (side 1): made_f64's array, or a Python float or int64-sized
+// int spread over the n rows of the ndarray q; NaN, and a value of the wrong side with
+// -side x >= wrong, declined (invalid). wrong: an infinity for solve_blcp, 1e20 for solve_qp.
+nanobind::object made_bound(PyObject* x, PyObject* q, int side,
+                            double wrong = std::numeric_limits<double>::infinity());
 
 // _core.games_front (src/python_games.cpp): solve_bimatrix(A, B, init_label=k)'s common
 // call, the BimatrixResult, the kernel's (code, pivots, restarts, buf) to go on from, or

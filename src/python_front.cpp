@@ -513,6 +513,9 @@ bool list_into(PyObject* x, int nd, Py_ssize_t rows, Py_ssize_t cols, double* ou
     return true;
 }
 
+}  // namespace
+
+// (made_f64 and made_bound are declared in python_arrays.hpp: qp_front converts with them too.)
 // x made a float64 C array when it is a list or tuple of list_shape's of list_entry's
 // numbers, or an ndarray cast_array casts: the values that the Python fronts' conversion
 // (_validate.plain: np.asarray, then float64 and C order) gives. Else x itself when it is an
@@ -533,15 +536,15 @@ nb::object made_f64(PyObject* x, int nd) {
 
 // solve_blcp's bound lo (side -1) or hi (side 1) as _validate.plain_blcp makes it: made_f64's
 // array, or a Python float or int64-sized int spread over q's n rows (np.full(n, float(x))),
-// q an ndarray; NaN and an infinity of the wrong side declined (invalid: the validation's
-// message then).
-nb::object made_bound(PyObject* x, PyObject* q, int side) {
+// q an ndarray; NaN and a value of the wrong side at or beyond `wrong` declined (invalid: the
+// validation's message then): -side x >= wrong, an infinity for solve_blcp (the default),
+// 1e20 for solve_qp (qp::INFINITY_BOUND: its validation makes such a bound an infinity).
+nb::object made_bound(PyObject* x, PyObject* q, int side, double wrong) {
     if (!PyFloat_CheckExact(x) && !PyLong_CheckExact(x)) return made_f64(x, 1);
     auto* qa = reinterpret_cast<const ArrayFields*>(q);
     double v;
     if (Py_TYPE(q) != front.ndarray || qa->nd != 1 || qa->dimensions[0] == 0 ||
-        front.new_from_descr == nullptr || !list_entry(x, v) || v != v ||
-        v == -side * std::numeric_limits<double>::infinity())
+        front.new_from_descr == nullptr || !list_entry(x, v) || v != v || -side * v >= wrong)
         return nb::object();
     Py_ssize_t n = qa->dimensions[0];
     nb::object out = new_rows(1, n, 1);
@@ -549,6 +552,8 @@ nb::object made_bound(PyObject* x, PyObject* q, int side) {
     for (Py_ssize_t i = 0; i < n; ++i) d[i] = v;
     return out;
 }
+
+namespace {
 
 // The entries' arguments args[0..k) made float64 C arrays by made_f64 (ranks nd): true
 // when one was made and every one is now an ndarray (kept in `keep`, their pointers in

@@ -182,11 +182,10 @@ nb::object cold(const qp::Data& data, idx p, idx m, bool many) {
     return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
 }
 
-nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
-                    nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
-                    std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
-    ran.clear();
-    if (!qf.on) return nb::none();
+// qp_front on the arguments as given (plain data, or None).
+nb::object front_plain(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
+                       nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
+                       std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
     NumpyLayout lay = numpy_layout();
     auto plain = [&](nb::handle o, int nd) { return plain_f64(o.ptr(), nd, lay.ndarray); };
     const ArrayFields* P = plain(P_h, 2);
@@ -282,6 +281,43 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
     ran.emplace_back(0, r.code);
     if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
     return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
+}
+
+nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
+                    nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
+                    std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
+    ran.clear();
+    if (!qf.on) return nb::none();
+    nb::object r = front_plain(P_h, q_h, G_h, h_h, A_h, b_h, lb_h, ub_h, pairs, beta_h, x0_h);
+    if (!r.is_none()) return r;
+    // Array-likes (branch qpfront): P, q, G, h, A, b, lb, ub and x0 as made_f64 makes them
+    // (python_arrays.hpp; Python-number bounds spread over the rows by made_bound, the
+    // values at or beyond 1e20 on the wrong side declined, as _validate.qp refuses them),
+    // then the plain front once more; declined when any is of another kind or none needed
+    // converting (the Python conversion, _validate.plain_all, and the validation then).
+    nb::handle given[9] = {P_h, q_h, G_h, h_h, A_h, b_h, lb_h, ub_h, x0_h};
+    static const int ranks[9] = {2, 1, 2, 1, 2, 1, 1, 1, 1};  // (_qp._RANKS)
+    nb::object made[9];
+    bool some = false;
+    for (int i = 0; i < 9; ++i) {
+        PyObject* x = given[i].ptr();
+        if (x == Py_None) {
+            made[i] = nb::none();
+            continue;
+        }
+        made[i] = i == 6 || i == 7 ? made_bound(x, made[1].ptr(), i == 6 ? -1 : 1, qp::INFINITY_BOUND)
+                                   : made_f64(x, ranks[i]);
+        if (!made[i].is_valid()) return nb::none();
+        some = some || made[i].ptr() != x;
+    }
+    if (!some) return nb::none();
+    r = front_plain(made[0], made[1], made[2], made[3], made[4], made[5], made[6], made[7], pairs,
+                    beta_h, made[8]);
+    if (!PyTuple_CheckExact(r.ptr())) return r;  // the QPResult, or None
+    // the kernel's code with the arguments as converted, which the Python steps go on with
+    return nb::make_tuple(r[0], r[1], r[2], r[3],
+                          nb::make_tuple(made[0], made[1], made[2], made[3], made[4], made[5],
+                                         made[6], made[7], made[8]));
 }
 
 }  // namespace
