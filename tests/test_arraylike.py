@@ -639,6 +639,47 @@ def test_qp_converted_go_on_as_before(kw, monkeypatch):
         _same(got, lemke.solve_qp(**kw), QP_FIELDS)
 
 
+def test_qp_front_conversion_is_numpys():
+    """qp_front's own conversion (pack_form / pack_into into its scratch vector; the arguments
+    as converted come back with the kernels' code when they do not settle the call, here an
+    infeasible QP) holds NumPy's values, np.asarray(x).astype(float64), for every dtype and
+    stride it takes, lists of ints beyond 2**53 and Python-number bounds included."""
+    rng = np.random.default_rng(8)
+    base = rng.integers(-2 ** 62, 2 ** 62, (3, 6))
+    unaligned = np.frombuffer(b"\0" + rng.standard_normal(9).tobytes(), dtype=np.float64,
+                              offset=1).reshape(3, 3)
+    odd_bool = np.array([[0, 1, 2], [255, 0, 7], [1, 1, 0]], dtype=np.uint8).view(np.bool_)
+    mats = [base[:, :3], base[:, :3].astype(np.int32), base[:, :3].astype(np.int16),
+            base[:, :3].astype(np.int8), np.abs(base[:, :3]).astype(np.uint8),
+            np.abs(base[:, :3]).astype(np.uint16), np.abs(base[:, :3]).astype(np.uint32), odd_bool,
+            np.array([[1e-45, -0.0, 3.4e38], [1.0, 2.0, 3.0], [0.5, -1.0, 7.0]], np.float32),
+            np.asfortranarray(rng.standard_normal((3, 3))), rng.standard_normal((6, 9))[::2, 1::3],
+            rng.standard_normal((3, 6))[::-1, ::-2], unaligned, np.asfortranarray(base[:, :3]),
+            [[2 ** 62 + 1, -3, 0], [2 ** 63 - 1, 1, True], [0.1, -2 ** 63, 5]]]
+    G, h = np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]), np.array([-1.0, -1.0])  # x0 <= -1, >= 1
+    P, q = np.eye(3), np.ones(3)
+    for x in mats:
+        vec = x[1] if isinstance(x, list) else x[:, 1]
+        for args in ([x, q, G, h, None, None, None, None], [P, vec, G, h, None, None, vec, None],
+                     [P, q, G, h, x, vec, -1e19, 2 ** 62 + 1], [P, q, G, h, x[:1], vec[:1], None, 3]):
+            r = _core.qp_front(*args, 0, None, None)
+            assert type(r) is tuple and r[0] != _core.QP_OK
+            if all(a is None or (type(a) is np.ndarray and a.dtype == np.float64 and a.dtype.isnative
+                                 and a.flags.c_contiguous and a.flags.aligned) for a in args):
+                # (a Fortran matrix's column is plain: nothing to convert)
+                assert len(r) == 4
+                continue
+            assert len(r) == 5
+            for given, got in zip(args, r[4]):
+                if given is None:
+                    assert got is None
+                    continue
+                want = (np.full(3, float(given)) if np.ndim(given) == 0
+                        else np.ascontiguousarray(np.asarray(given).astype(np.float64)))
+                assert got.dtype == np.float64 and got.flags.c_contiguous and got.flags.writeable
+                assert got.shape == want.shape and got.tobytes() == want.tobytes(), type(given)
+
+
 BAD_QP = [
     dict(P=[[1.0, np.nan], [0.0, 1.0]], q=[1.0, 1.0]),
     dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0, 1.0]),
