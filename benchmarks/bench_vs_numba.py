@@ -5,17 +5,22 @@ through the public API only, in alternated fresh processes.
 Usage::
 
     # one process: every row below, measured with the lemke this Python imports; JSON on stdout
-    python benchmarks/bench_vs_numba.py [--budget 0.4] [--mpc-data FILE]
+    python benchmarks/bench_vs_numba.py [--budget 0.3] [--mpc-data FILE]
+        [--groups lcp islands qp games blcp mpc]
     # the driver: OLD and NEW are two environments' Pythons (the numba package's, today's);
     # steady-state processes alternated old, new, old, new, ... (--pairs), then the first calls
     python benchmarks/bench_vs_numba.py --compare OLD_PYTHON NEW_PYTHON [--pairs 3]
-        [--parts steady first] [--runs 3] [--out /tmp/RESULTS-vs-numba.md] [--json FILE]
+        [--parts steady first] [--groups ...] [--runs 3] [--no-empty]
+        [--out /tmp/RESULTS-vs-numba.md] [--json FILE]
+    # the report again from the numbers --json kept; of several runs, a summary over them
+    python benchmarks/bench_vs_numba.py --from-json FILE [FILE ...] [--out FILE]
 
 The same script runs unchanged on both packages: it calls only what ``lemke`` exported at
 c63f157 (``solve_lcp``, ``solve_lcp_many`` with ``sizes=`` and ``WarmStartBatch``,
 ``solve_qp`` with ``warm_start=``, ``solve_blcp``, ``solve_bimatrix``, ``solve_mlcp``, the
-``lemke solve`` command), and the problem generators of the other benchmark scripts, imported
-from them.  Rows of one process (medians after two untimed warm-up calls of every callable,
+``lemke solve`` command; ``solve_blcp_many`` and ``solve_qp``'s ``initvals=`` came later and
+are not measured), and the problem generators of the other benchmark scripts, imported from
+them.  Rows of one process (medians after two untimed warm-up calls of every callable,
 so numba's compile and cache load are left out; ``bench_core.time_calls``: interleaved
 rounds in a random order, each round a batch of calls of ~2 ms, within ``--budget``
 seconds):
@@ -326,23 +331,26 @@ def mpc_rows(data, passes=2):
                              pivots=float(np.mean(piv["warm"])))}
 
 
+GROUPS = {"lcp": lcp_rows, "islands": island_rows, "qp": qp_rows, "games": game_rows,
+          "blcp": blcp_rows, "mpc": mpc_rows}
+
+
 def measure(args):
     import lemke
     from bench_lcp import machine_info
     info = machine_info()
     t0 = time.perf_counter()
     rows = {}
-    rows.update(lcp_rows(args.budget))
-    rows.update(island_rows(args.budget))
-    rows.update(qp_rows(args.budget / 2))
-    rows.update(game_rows(args.budget))
-    rows.update(blcp_rows(args.budget))
-    if args.mpc_data:
-        with np.load(args.mpc_data) as f:
-            data = dict(f)
-    else:
-        data = mpc_data()
-    rows.update(mpc_rows(data))
+    for group in args.groups:
+        if group == "mpc":
+            if args.mpc_data:
+                with np.load(args.mpc_data) as f:
+                    data = dict(f)
+            else:
+                data = mpc_data()
+            rows.update(mpc_rows(data))
+        else:
+            rows.update(GROUPS[group](args.budget / 2 if group == "qp" else args.budget))
     try:
         import numba
         numba_version = numba.__version__
@@ -371,7 +379,8 @@ def _env(numba_cache=NUMBA_CACHE, bytecode=False):
 
 
 def _steady(python, args, mpc_file):
-    cmd = [python, os.path.abspath(__file__), "--budget", str(args.budget), "--mpc-data", mpc_file]
+    cmd = [python, os.path.abspath(__file__), "--budget", str(args.budget), "--mpc-data", mpc_file,
+           "--groups", *args.groups]
     out = subprocess.run(cmd, capture_output=True, text=True, env=_env(), cwd=tempfile.gettempdir())
     if out.returncode:
         raise RuntimeError(f"{python}: {out.stderr[-3000:]}")
@@ -475,12 +484,13 @@ def report(data, args):
                  f"{min(loads):.1f}-{max(loads):.1f}.")
         L += ["", "Times: the median over processes of each process's median, the range over processes "
               "in brackets, microseconds.  today/old: per pair (one old process and the next new one), "
-              "median and range.  Target ratio: the target's own measure per process (lemke over the "
+              "median and range; *minima*: today's fastest process over the old package's fastest.  "
+              "Target ratio: the target's own measure per process (lemke over the "
               "peer in the same rounds, warm over its own cold, box over the LCP, ...), median and "
               "range.  Peer: its median over all processes (both packages' runs).", "",
-              "| row | target | old numba package (us) | today (us) | today/old | target ratio, old | "
-              "target ratio, today | peer (us) | pivots old / today |",
-              "|---|---|---:|---:|---:|---:|---:|---:|---|"]
+              "| row | target | old numba package (us) | today (us) | today/old | today/old, minima | "
+              "target ratio, old | target ratio, today | peer (us) | pivots old / today |",
+              "|---|---|---:|---:|---:|---:|---:|---:|---:|---|"]
         for key in news[0]["rows"]:
             what, how = next((t, h) for p, t, h in TARGETS if key.startswith(p))
             to = [r["rows"][key]["t"] for r in olds]
@@ -490,7 +500,8 @@ def report(data, args):
             rn = [_target_ratio(r["rows"][key], how) for r in news] if how else []
             peers = [r["rows"][key]["peer"] for r in olds + news if "peer" in r["rows"][key]]
             pv = (olds[0]["rows"][key].get("pivots"), news[0]["rows"][key].get("pivots"))
-            cells = [key, what, _us(to), _us(tn), f"{statistics.median(pair):.2f} ({_span(pair)})"]
+            cells = [key, what, _us(to), _us(tn), f"{statistics.median(pair):.2f} ({_span(pair)})",
+                     f"{min(tn) / min(to):.2f}"]
             cells += [f"{statistics.median(r):.2f} ({_span(r)})" if r else "" for r in (ro, rn)]
             cells.append(_num(statistics.median(peers) * 1e6) if peers else "")
             cells.append("" if pv[0] is None else f"{pv[0]:g} / {pv[1]:g}")
@@ -517,13 +528,41 @@ def report(data, args):
     return "\n".join(L) + "\n"
 
 
+def summary(runs):
+    """One line per row over several compares: each run's median per-pair today/old, the range
+    over all their pairs, each run's ratio of minima, and the target ratio of either package
+    (median over all its processes, and range)."""
+    L = ["| row | today/old, each run's median | range over all pairs | minima, each run | "
+         "target ratio old, median (range) | target ratio today, median (range) |",
+         "|---|---|---:|---|---:|---:|"]
+    keys = [k for k in runs[0]["new"][0]["rows"] if all(k in r["new"][0]["rows"] for r in runs)]
+    for key in keys:
+        how = next(h for p, _, h in TARGETS if key.startswith(p))
+        meds, pairs, minima, target, target_old = [], [], [], [], []
+        for r in runs:
+            to = [x["rows"][key]["t"] for x in r["old"]]
+            tn = [x["rows"][key]["t"] for x in r["new"]]
+            pair = [b / a for a, b in zip(to, tn)]
+            meds.append(statistics.median(pair))
+            pairs += pair
+            minima.append(min(tn) / min(to))
+            target += [_target_ratio(x["rows"][key], how) for x in r["new"]] if how else []
+            target_old += [_target_ratio(x["rows"][key], how) for x in r["old"]] if how else []
+        cells = [key, " / ".join(f"{m:.2f}" for m in meds), f"{min(pairs):.2f}-{max(pairs):.2f}",
+                 " / ".join(f"{m:.2f}" for m in minima)]
+        cells += [f"{statistics.median(v):.2f} ({min(v):.2f}-{max(v):.2f})" if v else ""
+                  for v in (target_old, target)]
+        L.append("| " + " | ".join(cells) + " |")
+    return "\n".join(L) + "\n"
+
+
 def compare(args):
     log = lambda s: print(s, file=sys.stderr, flush=True)  # noqa: E731
     from bench_lcp import machine_info
     info = machine_info()
     t0 = time.perf_counter()
     old, new = args.compare
-    data = dict(date=info["date"], cpu=info["cpu"], usable=info["usable_cores"],
+    data = dict(date=info["date"], cpu=info["cpu"], usable=info["usable_cores"], compare=[old, new],
                 load=[os.getloadavg()[0]], old=[], new=[])
     if "steady" in args.parts:
         mpc_file = os.path.join(tempfile.gettempdir(), f"bench_vs_numba_mpc_{os.getpid()}.npz")
@@ -551,8 +590,10 @@ def compare(args):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--budget", type=float, default=0.4, help="seconds per group of interleaved calls")
+    ap.add_argument("--budget", type=float, default=0.3, help="seconds per group of interleaved calls")
     ap.add_argument("--mpc-data", help="the MPC steps (an .npz the driver writes)")
+    ap.add_argument("--groups", nargs="+", choices=tuple(GROUPS), default=list(GROUPS),
+                    help="the rows to measure (all by default)")
     ap.add_argument("--compare", nargs=2, metavar=("OLD_PYTHON", "NEW_PYTHON"))
     ap.add_argument("--pairs", type=int, default=3)
     ap.add_argument("--runs", type=int, default=3, help="fresh processes per first call and side")
@@ -560,8 +601,18 @@ def main(argv=None):
     ap.add_argument("--no-empty", action="store_true", help="skip the numba package's empty-cache runs")
     ap.add_argument("--out", default=os.path.join(tempfile.gettempdir(), "RESULTS-vs-numba.md"))
     ap.add_argument("--json", help="keep the raw numbers")
+    ap.add_argument("--from-json", nargs="+", help="measure nothing: the report of the numbers "
+                    "--json kept; of several such files, a summary table over them")
     args = ap.parse_args(argv)
-    if args.compare:
+    if args.from_json:
+        runs = []
+        for path in args.from_json:
+            with open(path) as f:
+                runs.append(json.load(f))
+        args.compare, args.pairs = runs[0].get("compare", ["OLD", "NEW"]), len(runs[0]["old"])
+        with open(args.out, "w") as f:
+            f.write(report(runs[0], args) if len(runs) == 1 else summary(runs))
+    elif args.compare:
         compare(args)
     else:
         print(json.dumps(measure(args)))

@@ -26,8 +26,9 @@ def test_report_pairs_the_processes_and_names_the_rows_today_is_slower_on():
     rows = {line.split(" | ")[0][2:]: line.split(" | ") for line in text.splitlines() if line.startswith("| ")}
     assert rows["cold n=3"][4] == "1.20 (0.909-1.5)"  # today/old: the median of the pairs' ratios
     assert rows["cold n=3"][2] == "2.10 (2.00-2.20)"  # old: median (range) in microseconds
-    assert rows["cold n=3"][7] == "4.00"  # the peer over all four processes
-    assert rows["cold n=3"][6] == "0.62 (0.5-0.75)"  # today over the peer, per process
+    assert rows["cold n=3"][5] == "1.00"  # today's fastest process over the old package's
+    assert rows["cold n=3"][8] == "4.00"  # the peer over all four processes
+    assert rows["cold n=3"][7] == "0.62 (0.5-0.75)"  # today over the peer, per process
     assert rows["warm n=3"][4] == "0.50 (0.5)"
     assert "(median per-pair ratio above 1): cold n=3." in text
     assert rows["solve_lcp"][1:5] == ["3.000", "30.00", "0.300", "0.10"]
