@@ -59,6 +59,10 @@ seconds):
   warm <= 0.5x cold, warm <= 1.0x daqp).  ``--mpc-data`` loads the steps the driver
   computed once, so that both packages solve the same right-hand sides.
 
+Beside each median, the least thread CPU time (``time.thread_time``) of single calls of the
+row's lemke call (``cpu``; for islands per island, for QPs, games and boxes the median over
+the problems): the time other processes take on a loaded machine is not in it.
+
 Every answer is checked here once before timing (LCPs: ``bench_core.checked``; QPs: x against
 daqp's within 1e-6 relative; games: ``bench_games.ok``; box LCPs: the natural residual
 <= 1e-8; MPC: SOLVED and x against daqp's).  Pivots are recorded beside the times.
@@ -104,18 +108,37 @@ EMPTY_CACHE = ("solve_lcp", "solve_lcp_many", "solve_mlcp", "solve_qp (fused)", 
 
 # ----------------------------------------------------------------------------- one process
 
-def _warm_then_time(calls, budget):
-    """bench_core.time_calls after two untimed calls of each (numba's compile left out)."""
+def _cpu_min(f, budget, prepare=None):
+    """The least thread CPU time (``time.thread_time``) of single calls of f, at least 3 and
+    within ``budget`` seconds: on a loaded machine the time other processes take is not in it
+    (at load 10 on 2 cores a 3 ms call's wall time was 4-10x its CPU time)."""
+    best, k, end = float("inf"), 0, time.perf_counter() + budget
+    while k < 3 or (k < 200 and time.perf_counter() < end):
+        if prepare:
+            prepare()
+        t = time.thread_time()
+        f()
+        best = min(best, time.thread_time() - t)
+        k += 1
+    return best
+
+
+def _warm_then_time(calls, budget, cpu=()):
+    """bench_core.time_calls after two untimed calls of each (numba's compile left out); and
+    ``"cpu " + name``: _cpu_min of the calls named in ``cpu``."""
     from bench_core import time_calls
     for f in calls.values():
         f()
         f()
-    return time_calls(calls, budget)
+    t = time_calls(calls, budget)
+    t.update({"cpu " + k: _cpu_min(calls[k], budget / 4) for k in cpu})
+    return t
 
 
-def _rounds(calls, budget, least=7, prepare=None):
+def _rounds(calls, budget, least=7, prepare=None, cpu=()):
     """{name: median seconds} of single calls in a random order each round (for calls of tens
-    of microseconds and more); ``prepare[name]()`` runs untimed before its call."""
+    of microseconds and more); ``prepare[name]()`` runs untimed before its call; ``cpu`` as
+    for _warm_then_time."""
     rng = np.random.default_rng(0)
     names, times = list(calls), {k: [] for k in calls}
     for f in calls.values():
@@ -129,7 +152,9 @@ def _rounds(calls, budget, least=7, prepare=None):
             t = time.perf_counter()
             calls[k]()
             times[k].append(time.perf_counter() - t)
-    return {k: statistics.median(v) for k, v in times.items()}
+    out = {k: statistics.median(v) for k, v in times.items()}
+    out.update({"cpu " + k: _cpu_min(calls[k], budget / 4, (prepare or {}).get(k)) for k in cpu})
+    return out
 
 
 def lcp_rows(budget):
@@ -157,22 +182,22 @@ def lcp_rows(budget):
             assert ru.success
             checked(M, q, ru.z)
             calls["unrevised"] = lambda: lemke.solve_lcp(M, q, method="unrevised")
-        t = _warm_then_time(calls, budget)
+        t = _warm_then_time(calls, budget, cpu=[k for k in calls if k != "quantecon"])
         if n in COLD_SIZES:
-            rows[f"cold n={n}"] = dict(t=t["lemke"], peer=t["quantecon"], pivots=r.pivots)
+            rows[f"cold n={n}"] = dict(t=t["lemke"], peer=t["quantecon"], pivots=r.pivots, cpu=t["cpu lemke"])
         if n in WARM_SIZES:
-            rows[f"warm n={n}"] = dict(t=t["warm"], ratio=t["warm"] / t["lemke"], pivots=0)
+            rows[f"warm n={n}"] = dict(t=t["warm"], ratio=t["warm"] / t["lemke"], pivots=0, cpu=t["cpu warm"])
         if n in (100, 300):
             rows[f"unrevised n={n}"] = dict(t=t["unrevised"], ratio=t["unrevised"] / t["lemke"],
-                                            pivots=ru.pivots)
+                                            pivots=ru.pivots, cpu=t["cpu unrevised"])
     M1, qpos, qneg = np.array([[2.0]]), np.array([1.0]), np.array([-1.0])
     M1s, q1s = [M1], [qneg]
     assert lemke.solve_lcp_many(M1s, q1s).z[0] == 0.5
     t = _warm_then_time({"pos": lambda: lemke.solve_lcp(M1, qpos),
                          "one": lambda: lemke.solve_lcp(M1, qneg),
-                         "many": lambda: lemke.solve_lcp_many(M1s, q1s)}, budget)
-    rows["fixed n=1 q>=0"] = dict(t=t["pos"])
-    rows["batch of one"] = dict(t=t["many"], ratio=t["many"] / t["one"])
+                         "many": lambda: lemke.solve_lcp_many(M1s, q1s)}, budget, cpu=("pos", "many"))
+    rows["fixed n=1 q>=0"] = dict(t=t["pos"], cpu=t["cpu pos"])
+    rows["batch of one"] = dict(t=t["many"], ratio=t["many"] / t["one"], cpu=t["cpu many"])
     return rows
 
 
@@ -195,9 +220,9 @@ def island_rows(budget, count=400, lo=1, hi=12):
     for k in ("packed", "lists"):  # bench_small's check; it counts, as here, the islands it solves
         res = calls[k]()
         right[k] = sum(_ok(M, q, z) for M, q, z in zip(Ms, qs2, np.split(res.z, res.offsets[1:-1])))
-    t = _warm_then_time(calls, budget)
-    return {f"islands {k}": dict(t=t[k] / count, peer=t["quantecon"] / count, solved=right[k])
-            for k in ("packed", "lists")}
+    t = _warm_then_time(calls, budget, cpu=("packed", "lists"))
+    return {f"islands {k}": dict(t=t[k] / count, peer=t["quantecon"] / count, solved=right[k],
+                                 cpu=t["cpu " + k] / count) for k in ("packed", "lists")}
 
 
 def qp_rows(budget, sizes=(10, 100, 300), families=("mixed", "ineq"), problems_each=2):
@@ -208,7 +233,7 @@ def qp_rows(budget, sizes=(10, 100, 300), families=("mixed", "ineq"), problems_e
     tiny = (np.eye(2), np.array([1.0, -1.0]))
     rows = {}
     for n in sizes:
-        per = {"cached": [], "fresh": [], "daqp": []}
+        per = {"cached": [], "fresh": [], "daqp": [], "cpu cached": [], "cpu fresh": []}
         pivots = []
         for fam in families:
             for _ in range(problems_each):
@@ -221,12 +246,13 @@ def qp_rows(budget, sizes=(10, 100, 300), families=("mixed", "ineq"), problems_e
                 pivots.append(r.pivots)
                 t = _rounds({"cached": lambda: lemke.solve_qp(*prob), "fresh": lambda: lemke.solve_qp(*prob),
                              "daqp": lambda: daqp.solve(*da)}, budget,
-                            prepare={"fresh": lambda: lemke.solve_qp(*tiny)})
+                            prepare={"fresh": lambda: lemke.solve_qp(*tiny)}, cpu=("cached", "fresh"))
                 for k in per:
                     per[k].append(t[k])
         med = {k: statistics.median(v) for k, v in per.items()}
         for k in ("cached", "fresh"):
-            rows[f"qp {k} n={n}"] = dict(t=med[k], peer=med["daqp"], pivots=statistics.median(pivots))
+            rows[f"qp {k} n={n}"] = dict(t=med[k], peer=med["daqp"], pivots=statistics.median(pivots),
+                                         cpu=med["cpu " + k])
     return rows
 
 
@@ -236,7 +262,7 @@ def game_rows(budget, sizes=(20, 50, 100), families=("unif", "int100"), seeds=(0
     from quantecon.game_theory import NormalFormGame, Player, lemke_howson
     rows = {}
     for n in sizes:
-        tl, tq, ratio, pivots = [], [], [], []
+        tl, tq, ratio, pivots, cpu = [], [], [], [], []
         for fam in families:
             for seed in seeds:
                 A, B = game(fam, n, seed)
@@ -247,12 +273,14 @@ def game_rows(budget, sizes=(20, 50, 100), families=("unif", "int100"), seeds=(0
                 assert res.converged and ok(A, B, NE[0], NE[1])
                 pivots.append(r.pivots)
                 t = _warm_then_time({"lemke": lambda: lemke.solve_bimatrix(A, B),
-                                     "qe": lambda: lemke_howson(g)}, budget / 3)
+                                     "qe": lambda: lemke_howson(g)}, budget / 3, cpu=("lemke",))
                 tl.append(t["lemke"])
+                cpu.append(t["cpu lemke"])
                 tq.append(t["qe"])
                 ratio.append(t["lemke"] / t["qe"])
         rows[f"games n={n}"] = dict(t=statistics.median(tl), peer=statistics.median(tq),
-                                    peer_ratio=statistics.median(ratio), pivots=statistics.median(pivots))
+                                    peer_ratio=statistics.median(ratio), pivots=statistics.median(pivots),
+                                    cpu=statistics.median(cpu))
     return rows
 
 
@@ -263,7 +291,7 @@ def blcp_rows(budget, counts=((12, 12), (48, 8), (200, 3))):
     rows = {}
     for kind in ("relay", "contact"):
         for n, count in counts:
-            tb, ratio, pivots = [], [], []
+            tb, ratio, pivots, cpu = [], [], [], []
             for k in range(count):
                 M, q = make_problem(n, k)
                 lo, hi = boxes(n, kind)
@@ -271,11 +299,12 @@ def blcp_rows(budget, counts=((12, 12), (48, 8), (200, 3))):
                 assert rb.success and natural_residual(M, q, lo, hi, rb.z) <= 1e-8
                 pivots.append(rb.pivots)
                 t = _warm_then_time({"box": lambda: lemke.solve_blcp(M, q, lo, hi),
-                                     "lcp": lambda: lemke.solve_lcp(M, q)}, budget / 3)
+                                     "lcp": lambda: lemke.solve_lcp(M, q)}, budget / 3, cpu=("box",))
                 tb.append(t["box"])
+                cpu.append(t["cpu box"])
                 ratio.append(t["box"] / t["lcp"])
             rows[f"box {kind} n={n}"] = dict(t=statistics.median(tb), ratio=statistics.median(ratio),
-                                             pivots=statistics.median(pivots))
+                                             pivots=statistics.median(pivots), cpu=statistics.median(cpu))
     return rows
 
 
@@ -461,6 +490,14 @@ TARGETS = [
 ]
 
 
+def _cpu_ratio(olds, news, key):
+    """Today's least thread CPU time of the row's call over the old package's, over all
+    processes ("" where the row has none)."""
+    if "cpu" not in news[0]["rows"][key] or "cpu" not in olds[0]["rows"][key]:
+        return ""
+    return f"{min(r['rows'][key]['cpu'] for r in news) / min(r['rows'][key]['cpu'] for r in olds):.2f}"
+
+
 def _target_ratio(row, how):
     if how == "peer":
         return row["t"] / row["peer"]
@@ -484,13 +521,14 @@ def report(data, args):
                  f"{min(loads):.1f}-{max(loads):.1f}.")
         L += ["", "Times: the median over processes of each process's median, the range over processes "
               "in brackets, microseconds.  today/old: per pair (one old process and the next new one), "
-              "median and range; *minima*: today's fastest process over the old package's fastest.  "
+              "median and range; *minima*: today's fastest process over the old package's fastest; *CPU*: "
+              "the same of the least thread CPU time of a call (time other processes took left out).  "
               "Target ratio: the target's own measure per process (lemke over the "
               "peer in the same rounds, warm over its own cold, box over the LCP, ...), median and "
               "range.  Peer: its median over all processes (both packages' runs).", "",
               "| row | target | old numba package (us) | today (us) | today/old | today/old, minima | "
-              "target ratio, old | target ratio, today | peer (us) | pivots old / today |",
-              "|---|---|---:|---:|---:|---:|---:|---:|---:|---|"]
+              "today/old, CPU | target ratio, old | target ratio, today | peer (us) | pivots old / today |",
+              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"]
         for key in news[0]["rows"]:
             what, how = next((t, h) for p, t, h in TARGETS if key.startswith(p))
             to = [r["rows"][key]["t"] for r in olds]
@@ -501,7 +539,7 @@ def report(data, args):
             peers = [r["rows"][key]["peer"] for r in olds + news if "peer" in r["rows"][key]]
             pv = (olds[0]["rows"][key].get("pivots"), news[0]["rows"][key].get("pivots"))
             cells = [key, what, _us(to), _us(tn), f"{statistics.median(pair):.2f} ({_span(pair)})",
-                     f"{min(tn) / min(to):.2f}"]
+                     f"{min(tn) / min(to):.2f}", _cpu_ratio(olds, news, key)]
             cells += [f"{statistics.median(r):.2f} ({_span(r)})" if r else "" for r in (ro, rn)]
             cells.append(_num(statistics.median(peers) * 1e6) if peers else "")
             cells.append("" if pv[0] is None else f"{pv[0]:g} / {pv[1]:g}")
@@ -530,11 +568,12 @@ def report(data, args):
 
 def summary(runs):
     """One line per row over several compares: each run's median per-pair today/old, the range
-    over all their pairs, each run's ratio of minima, and the target ratio of either package
+    over all their pairs, each run's ratio of minima (wall, and thread CPU time where the run
+    has it), and the target ratio of either package
     (median over all its processes, and range)."""
-    L = ["| row | today/old, each run's median | range over all pairs | minima, each run | "
+    L = ["| row | today/old, each run's median | range over all pairs | minima, each run | CPU, each run | "
          "target ratio old, median (range) | target ratio today, median (range) |",
-         "|---|---|---:|---|---:|---:|"]
+         "|---|---|---:|---|---|---:|---:|"]
     keys = [k for k in runs[0]["new"][0]["rows"] if all(k in r["new"][0]["rows"] for r in runs)]
     for key in keys:
         how = next(h for p, _, h in TARGETS if key.startswith(p))
@@ -549,7 +588,8 @@ def summary(runs):
             target += [_target_ratio(x["rows"][key], how) for x in r["new"]] if how else []
             target_old += [_target_ratio(x["rows"][key], how) for x in r["old"]] if how else []
         cells = [key, " / ".join(f"{m:.2f}" for m in meds), f"{min(pairs):.2f}-{max(pairs):.2f}",
-                 " / ".join(f"{m:.2f}" for m in minima)]
+                 " / ".join(f"{m:.2f}" for m in minima),
+                 " / ".join(_cpu_ratio(r["old"], r["new"], key) for r in runs).strip(" /")]
         cells += [f"{statistics.median(v):.2f} ({min(v):.2f}-{max(v):.2f})" if v else ""
                   for v in (target_old, target)]
         L.append("| " + " | ".join(cells) + " |")
