@@ -76,6 +76,25 @@ struct SparseRows {
     }
 };
 
+// The bits of an array (the factor cache's P, A and G), kept compact for same_matrices'
+// test, which runs on every call: the runs of entries that are not all +0 (literal runs; a
+// gap of fewer than GAP +0 entries between two of them is kept in the run) with their bits
+// in order, the rest +0 by construction. same() reads each entry of the caller's array once
+// and only the literal runs' bits besides: on the MPC loop's P, A and G (2-17 % nonzero)
+// 58 KB of the caller's and 4 KB of the key's, where a full copy read as much again (the
+// hit test was ~115 KB a call, mostly out of cache after the caller's other work). Exact:
+// an entry's bits against the bits it had (a zero that changes sign or value, a NaN's
+// payload, all miss), as a memcmp against a full copy.
+struct BitKey {
+    static constexpr idx GAP = 8;
+    std::vector<idx> run;  // literal runs [run[2k], run[2k + 1]), in order
+    std::vector<std::uint64_t> bits;  // their entries' bits, in order
+    idx len = -1;  // (-1: empty)
+
+    void build(const double* a, idx n);
+    bool same(const double* a, idx n) const;
+};
+
 struct QPWork {
     std::vector<double, Unset<double>> f;
     std::vector<idx> i;
@@ -90,9 +109,10 @@ struct QPWork {
     // the kinds, up_row and M were computed from. Any layout() call drops it.
     bool cached = false;
     idx key_p0 = 0, key_m0 = 0, m_g = 0;
-    std::vector<double> keyP, keyA, keyG, keyPs;  // the caller's P, A, G; screen's Ps of P
+    BitKey keyP, keyA, keyG;  // the caller's P, A, G (compact: BitKey)
+    std::vector<double> keyPs;  // screen's Ps of P
     std::vector<std::uint8_t> keyPat;
-    // With the cache (remember): the nonzeros of keyPs, keyA, keyG by rows, and whether C is
+    // With the cache (sparse_ready): the nonzeros of keyPs, A and G by rows, and whether C is
     // finite (point's sums then skip the rows with zz = 0: see point).
     SparseRows spP, spA, spG;
     bool c_finite = false, sparse_built = false;  // (sparse_ready's)
@@ -224,13 +244,23 @@ bool same_arrays(const Data& a, const Data& b) {
            a.h == b.h && a.b == b.b && a.lb == b.lb && a.ub == b.ub;
 }
 
-void backward_transposed(Mat<const double> L, double* r) {
+// r := L^-T r; with L's profile (lstart), row j's update starts at its first nonzero while
+// the x_j so far are finite and r held no -0 at the start. Each update skipped subtracts
+// x_j 0 = +-0, which changes no entry but a -0 one (-0 - -0 = +0), and there is none: an
+// entry becomes -0 only from -0 (+0 - +-0 = +0, an exact cancellation gives +0). So the
+// same bits as the whole rows (point's solve: L is diagonal on the MPC loop, 14 KB read
+// for 60 entries).
+void backward_transposed(Mat<const double> L, double* r, const idx* lstart = nullptr) {
     idx n = L.rows;
+    bool skip = lstart != nullptr;
+    for (idx k = 0; k < n && skip; ++k)
+        if (r[k] == 0.0 && std::signbit(r[k])) skip = false;
     for (idx j = n - 1; j >= 0; --j) {
         double xj = r[j] / L(j, j);
         r[j] = xj;
+        if (skip && !std::isfinite(xj)) skip = false;
         const double* Lj = L.row(j);
-        for (idx k = 0; k < j; ++k) r[k] -= xj * Lj[k];
+        for (idx k = skip ? lstart[j] : 0; k < j; ++k) r[k] -= xj * Lj[k];
     }
 }
 
@@ -824,7 +854,7 @@ void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c,
     }
     for (idx k = 0; k < p; ++k) yy[k] = -yy[k];
     for (idx k = p - 1; k >= 0; --k) householder_apply(w.V, w.beta, k, v);
-    backward_transposed(L, v);
+    backward_transposed(L, v, w.lstart.data());
     for (idx t = 0; t < n; ++t) x[t] = v[t];
 }
 
@@ -840,9 +870,48 @@ void structure(const Data& dt, const double* lo, const double* up, std::vector<s
         pat[m0 + j] = lo[j] == up[j] ? 4 : static_cast<std::uint8_t>((up[j] < INF ? 1 : 0) | (lo[j] > -INF ? 2 : 0));
 }
 
-bool same_bits(const std::vector<double>& key, const double* a, idx len) {
-    return static_cast<idx>(key.size()) == len &&
-           (len == 0 || std::memcmp(key.data(), a, static_cast<std::size_t>(len) * sizeof(double)) == 0);
+LEMKE_ALWAYS_INLINE std::uint64_t bits_of(const double* a, idx t) {
+    std::uint64_t u;
+    std::memcpy(&u, a + t, sizeof u);
+    return u;
+}
+
+void BitKey::build(const double* a, idx n) {
+    len = n;
+    run.clear();
+    bits.clear();
+    idx t = 0;
+    while (t < n) {
+        while (t < n && bits_of(a, t) == 0) ++t;
+        if (t == n) break;
+        idx s = t, e = t + 1;  // e: past the run's last entry that is not +0
+        for (t = e; t < n && t - e < GAP; ++t)
+            if (bits_of(a, t) != 0) e = t + 1;
+        run.push_back(s);
+        run.push_back(e);
+        for (idx j = s; j < e; ++j) bits.push_back(bits_of(a, j));
+        t = e;
+    }
+}
+
+// BitKey::same's loops: the OR of the gaps' bits and of the runs' differences, which is 0
+// exactly when every entry has its key's bits (cloned: the ORs vectorized).
+LEMKE_CLONES
+bool key_same(const idx* run, idx runs, const std::uint64_t* bits, const double* a, idx n) {
+    std::uint64_t acc = 0;
+    idx t = 0;
+    for (idx k = 0; k < runs; ++k) {
+        idx s = run[2 * k], e = run[2 * k + 1];
+        for (; t < s; ++t) acc |= bits_of(a, t);
+        for (; t < e; ++t) acc |= bits_of(a, t) ^ *bits++;
+        if (acc != 0) return false;
+    }
+    for (; t < n; ++t) acc |= bits_of(a, t);
+    return acc == 0;
+}
+
+bool BitKey::same(const double* a, idx n) const {
+    return len == n && key_same(run.data(), static_cast<idx>(run.size() / 2), bits.data(), a, n);
 }
 
 // Whether w holds the factors of this QP's matrices: solve's dense layout at these sizes,
@@ -852,8 +921,8 @@ bool same_bits(const std::vector<double>& key, const double* a, idx len) {
 bool same_matrices(const Data& dt, const QPWork& w) {
     idx n = dt.n();
     return w.cached && w.n == n && w.key_p0 == dt.p0() && w.key_m0 == dt.m0() &&
-           same_bits(w.keyP, dt.P.p, n * n) && same_bits(w.keyA, dt.A.p, dt.p0() * n) &&
-           same_bits(w.keyG, dt.G.p, dt.m0() * n);
+           w.keyP.same(dt.P.p, n * n) && w.keyA.same(dt.A.p, dt.p0() * n) &&
+           w.keyG.same(dt.G.p, dt.m0() * n);
 }
 
 bool same_structure(const Data& dt, const double* lo, const double* up, const QPWork& w, idx p,
@@ -889,13 +958,13 @@ bool screen_vectors(const Data& dt, double* lo, double* up) {
 void remember(const Data& dt, const Data& ds, const double* lo, const double* up, QPWork& w,
               idx m_g, std::vector<double>& scr) {
     idx n = dt.n();
-    w.keyP.assign(dt.P.p, dt.P.p + n * n);
+    w.keyP.build(dt.P.p, n * n);
     if (ds.P.p == scr.data())
         std::swap(w.keyPs, scr);
     else
         w.keyPs.assign(ds.P.p, ds.P.p + n * n);
-    w.keyA.assign(dt.A.p, dt.A.p + dt.p0() * n);
-    w.keyG.assign(dt.G.p, dt.G.p + dt.m0() * n);
+    w.keyA.build(dt.A.p, dt.p0() * n);
+    w.keyG.build(dt.G.p, dt.m0() * n);
     structure(dt, lo, up, w.keyPat);
     w.key_p0 = dt.p0();
     w.key_m0 = dt.m0();
@@ -914,8 +983,8 @@ void sparse_ready(const Data& dt, QPWork& w) {
     if (w.sparse_built) return;
     idx n = dt.n();
     w.spP.build(w.keyPs.data(), n, n);
-    w.spA.build(w.keyA.data(), dt.p0(), n);
-    w.spG.build(w.keyG.data(), dt.m0(), n);
+    w.spA.build(dt.A.p, dt.p0(), n);
+    w.spG.build(dt.G.p, dt.m0(), n);
     w.c_finite = all_finite(w.C.p, w.m * w.n);
     w.sparse_built = true;
 }
@@ -940,7 +1009,7 @@ Rows right_hand_sides(const Data& dt, const double* lb, const double* ub, QPWork
     idx p = R.p;
     double* c = w.c;
     for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
-    forward(w.L, c);
+    forward(w.L, c, w.lstart.data());  // (factors' L profile: its sums, its bits)
     for (idx kk = 0; kk < p; ++kk) householder_apply(w.V, w.beta, kk, c);
     lcp_rhs(R, w, n);
     return R;
@@ -2058,6 +2127,11 @@ WarmEnds& warm_ends() {
     return ends;
 }
 
+idx& cache_hits() {
+    thread_local idx hits = 0;
+    return hits;
+}
+
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs,
              const double* x0) {
@@ -2075,6 +2149,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     Data ds;
     bool hit = same_matrices(dt, w);
     if (hit) {  // P passed screen before: its Ps is kept, the vectors are checked here
+        ++cache_hits();
         scr.resize(static_cast<std::size_t>(2 * n + 1));
         if (!screen_vectors(dt, scr.data(), scr.data() + n)) {
             res.code = BAD_INPUT;
