@@ -50,24 +50,33 @@ struct Unset : std::allocator<T> {
     void construct(U* p, A&&... a) { ::new (static_cast<void*>(p)) U(std::forward<A>(a)...); }
 };
 
-// The nonzeros of a matrix by rows, in row order (the factor cache's Ps, A and G, for
-// kkt_check's sums, which skip their exact zeros with the same bits): on when at most a
-// quarter of the entries are nonzero (else the dense, vectorized loops are as quick).
+// The nonzeros of a matrix by rows, in row order, their columns and values (the factor
+// cache's Ps, A and G, for kkt_check's sums, which skip their exact zeros with the same
+// bits, and read the values here: those of the matrix they were built from, whose bits the
+// cache's hit test found the caller's again, packed instead of scattered over its rows): on
+// when at most a quarter of the entries are nonzero (else the dense, vectorized loops are
+// as quick).
 struct SparseRows {
     std::vector<idx> start, col;
+    std::vector<double> val;
     bool on = false;
     void build(const double* M, idx rows, idx cols, bool always = false) {
         start.resize(static_cast<std::size_t>(rows + 1));
         col.clear();
+        val.clear();
         on = false;
         idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
         for (idx i = 0; i < rows; ++i) {
             start[i] = static_cast<idx>(col.size());
             const double* Mi = M + i * cols;
             for (idx j = 0; j < cols; ++j)
-                if (Mi[j] != 0.0) col.push_back(j);
+                if (Mi[j] != 0.0) {
+                    col.push_back(j);
+                    val.push_back(Mi[j]);
+                }
             if (static_cast<idx>(col.size()) > most) {
                 col.clear();
+                val.clear();
                 return;
             }
         }
@@ -272,6 +281,23 @@ void householder_apply(Mat<const double> V, const double* beta, idx k, double* x
     double s = beta[k] * dot(v, r, n - k);
     if (s != 0.0)
         for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+}
+
+// householder_apply for k = 0, ..., p - 1 (or p - 1, ..., 0 when down), with its operations
+// (dot_lanes is dot's body; the update is elementwise): cloned, so that the updates run on
+// the widest vectors (they were SSE2 in solve's callers: the right-hand sides and point
+// take p of them a call).
+LEMKE_CLONES
+void householder_seq(Mat<const double> V, const double* beta, idx p, bool down, double* x) {
+    idx n = V.cols;
+    for (idx i = 0; i < p; ++i) {
+        idx k = down ? p - 1 - i : i;
+        const double* v = V.row(k) + k;
+        double* r = x + k;
+        double s = beta[k] * dot_lanes(v, r, n - k);
+        if (s != 0.0)
+            for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+    }
 }
 
 // qp::dot4's body, inlined by the cloned loops that call it (below).
@@ -811,7 +837,7 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     }
     forward(L, c, lstart);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
-    for (idx k = 0; k < p; ++k) householder_apply(w.V, w.beta, k, c);
+    householder_seq(w.V, w.beta, p, false, c);
     // (C's rows in blocks of 32, the thread's deadline looked at between them)
     for (idx i0 = 0; i0 < m && p > 0; i0 += 32) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
@@ -853,7 +879,7 @@ void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c,
         yy[k] = acc / R.E(k, k);
     }
     for (idx k = 0; k < p; ++k) yy[k] = -yy[k];
-    for (idx k = p - 1; k >= 0; --k) householder_apply(w.V, w.beta, k, v);
+    householder_seq(w.V, w.beta, p, true, v);
     backward_transposed(L, v, w.lstart.data());
     for (idx t = 0; t < n; ++t) x[t] = v[t];
 }
@@ -884,12 +910,18 @@ void BitKey::build(const double* a, idx n) {
     while (t < n) {
         while (t < n && bits_of(a, t) == 0) ++t;
         if (t == n) break;
-        idx s = t, e = t + 1;  // e: past the run's last entry that is not +0
-        for (t = e; t < n && t - e < GAP; ++t)
-            if (bits_of(a, t) != 0) e = t + 1;
+        idx s = t, e;  // e: past the run's last entry that is not +0
+        for (;;) {
+            while (t < n && bits_of(a, t) != 0) ++t;
+            e = t;
+            while (t < n && t - e < GAP && bits_of(a, t) == 0) ++t;
+            if (t == n || t - e == GAP) break;
+        }
         run.push_back(s);
         run.push_back(e);
-        for (idx j = s; j < e; ++j) bits.push_back(bits_of(a, j));
+        std::size_t at = bits.size();
+        bits.resize(at + static_cast<std::size_t>(e - s));
+        std::memcpy(bits.data() + at, a + s, static_cast<std::size_t>(e - s) * sizeof(double));
         t = e;
     }
 }
@@ -1010,7 +1042,7 @@ Rows right_hand_sides(const Data& dt, const double* lb, const double* ub, QPWork
     double* c = w.c;
     for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
     forward(w.L, c, w.lstart.data());  // (factors' L profile: its sums, its bits)
-    for (idx kk = 0; kk < p; ++kk) householder_apply(w.V, w.beta, kk, c);
+    householder_seq(w.V, w.beta, p, false, c);
     lcp_rhs(R, w, n);
     return R;
 }
@@ -1149,11 +1181,11 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
     double* cc = w.cc;
     for (idx t = 0; t < n; ++t) cc[t] = rd[t];
     forward(L, cc, w.lstart.data());
-    for (idx j = 0; j < p; ++j) householder_apply(w.V, w.beta, j, cc);
+    householder_seq(w.V, w.beta, p, false, cc);
     double* v = w.va;
     for (idx j = 0; j < p; ++j) v[j] = (rpE[j] - dot(R.E.row(j), v, j)) / R.E(j, j);
     double* c2 = cc + p;
-    for (idx j = 0; j < k; ++j) householder_apply(V2, beta2, j, c2);
+    householder_seq(V2, beta2, k, false, c2);
     double* wv = v + p;
     idx wl = n - p;
     for (idx j = 0; j < k; ++j)
@@ -1165,7 +1197,7 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
         zS[j] = acc / K2(j, j);
     }
     for (idx t = k; t < wl; ++t) wv[t] = -c2[t];
-    for (idx j = k - 1; j >= 0; --j) householder_apply(V2, beta2, j, wv);
+    householder_seq(V2, beta2, k, true, wv);
     for (idx i = 0; i < R.m; ++i) zz[i] = 0.0;
     for (idx j = 0; j < k; ++j) zz[S[j]] = zS[j];
     point(L, R, w, cc, v, zz, x, yy);
@@ -1291,10 +1323,9 @@ void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<
     for (idx i = 0; i < M.rows; ++i) {
         double a = coef[i];
         if (a == 0.0) continue;
-        const double* Mi = M.row(i);
         for (idx t = sp.start[i]; t < sp.start[i + 1]; ++t) {
             idx j = sp.col[t];
-            axpy2_term(s[j], err[j], size[j], a, Mi[j]);
+            axpy2_term(s[j], err[j], size[j], a, sp.val[t]);
         }
     }
 }
@@ -1330,10 +1361,8 @@ void add_abs(double* acc, idx n, double a, Mat<const double> M, const SparseRows
         return;
     }
     if (!(a > 0.0)) return;
-    for (idx i = 0; i < M.rows; ++i) {
-        const double* Mi = M.row(i);
-        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(Mi[sp->col[t]]);
-    }
+    for (idx i = 0; i < M.rows; ++i)
+        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(sp->val[t]);
 }
 
 // dot2(M_i, x, n, c), over M_i's nonzeros only when sp is given (the same size and norm; the
@@ -1346,9 +1375,10 @@ Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x,
     double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
     for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) {
         idx j = sp->col[t];
-        acc2(s, err, Mi[j], x[j]);
-        size += std::fabs(Mi[j] * x[j]);
-        norm += std::fabs(Mi[j]);
+        double a = sp->val[t];
+        acc2(s, err, a, x[j]);
+        size += std::fabs(a * x[j]);
+        norm += std::fabs(a);
     }
     return {s + err, size, norm};
 }
