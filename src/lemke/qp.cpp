@@ -273,20 +273,10 @@ void backward_transposed(Mat<const double> L, double* r, const idx* lstart = nul
     }
 }
 
-// x := H_k x (x of V.cols entries).
-void householder_apply(Mat<const double> V, const double* beta, idx k, double* x) {
-    idx n = V.cols;
-    const double* v = V.row(k) + k;
-    double* r = x + k;
-    double s = beta[k] * dot(v, r, n - k);
-    if (s != 0.0)
-        for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
-}
-
-// householder_apply for k = 0, ..., p - 1 (or p - 1, ..., 0 when down), with its operations
-// (dot_lanes is dot's body; the update is elementwise): cloned, so that the updates run on
-// the widest vectors (they were SSE2 in solve's callers: the right-hand sides and point
-// take p of them a call).
+// x := H_k x (x of V.cols entries) for k = 0, ..., p - 1 (or p - 1, ..., 0 when down):
+// s = beta_k dot(v_k, x[k:]) (dot_lanes, dot's body), then x[k:] -= s v_k unless s is 0.
+// Cloned, so that the updates run on the widest vectors (elementwise: the same bits on
+// every instruction set); the right-hand sides and point take p reflectors a call.
 LEMKE_CLONES
 void householder_seq(Mat<const double> V, const double* beta, idx p, bool down, double* x) {
     idx n = V.cols;
@@ -325,12 +315,12 @@ LEMKE_ALWAYS_INLINE void dot_lanes_q(const double* const* x, const double* y, id
     else dot_lanes4(x, y, k, out);
 }
 
-// The reflectors k0..k1-1 applied to Q rows r[q] (each row householder_apply's operations
+// The reflectors k0..k1-1 applied to Q rows r[q] (each row householder_seq's operations
 // exactly, reflector by reflector), one pass over the rows per reflector: the update of
 // reflector k (r_t -= s v_t, elementwise) and the sums of reflector k + 1 (dot's lanes from
 // column k + 1, the tail into lane 0, dot's pairwise sums) in the same loop, so each row is
 // loaded and stored once a reflector, not loaded again for the next one's sums.  Where a
-// row's s is 0 (householder_apply leaves it as it is then: not even r - 0 v) the update and
+// row's s is 0 (householder_seq leaves it as it is then: not even r - 0 v) the update and
 // the sums go one after the other, as before.
 template <int Q>
 LEMKE_ALWAYS_INLINE void reflect_rows(Mat<const double> V, const double* beta, idx k0, idx k1,
@@ -401,9 +391,9 @@ LEMKE_ALWAYS_INLINE void reflect_rows(Mat<const double> V, const double* beta, i
 }
 #endif
 
-// The reflectors k0..k1-1 (householder_apply's, in that order) applied to every row of X:
+// The reflectors k0..k1-1 (householder_seq's, in that order) applied to every row of X:
 // eight rows at a time, then four (reflect_rows: each reflector's sums in one pass, the rows
-// in cache through all the reflectors), the rest one by one. Each row gets householder_apply's
+// in cache through all the reflectors), the rest one by one. Each row gets householder_seq's
 // operations exactly.
 LEMKE_CLONES
 void householder_range(Mat<const double> V, const double* beta, idx k0, idx k1, Mat<double> X) {
