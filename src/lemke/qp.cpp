@@ -114,6 +114,7 @@ struct QPWork {
     idx *ekind, *ckind, *up_row, *S, *lcp_basic;
     std::uint8_t *bflags, *gflags;
     std::vector<idx> lstart;  // L's profile (factors': profile), for forward and forward_rows
+    std::vector<idx> elast;  // (factors') the last nonzero row of E's columns k < p below k
     // The factor cache (solve's, see same_factors): what the dense layout's L, E, V, beta, C,
     // the kinds, up_row and M were computed from. Any layout() call drops it.
     bool cached = false;
@@ -827,6 +828,13 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     }
     forward(L, c, lstart);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
+    w.elast.resize(static_cast<std::size_t>(p));
+    for (idx k = 0; k < p; ++k) {  // (point's: E's last nonzero below the diagonal)
+        idx e = k;
+        for (idx j = k + 1; j < p; ++j)
+            if (R.E(j, k) != 0.0) e = j;
+        w.elast[k] = e;
+    }
     householder_seq(w.V, w.beta, p, false, c);
     // (C's rows in blocks of 32, the thread's deadline looked at between them)
     for (idx i0 = 0; i0 < m && p > 0; i0 += 32) {
@@ -863,10 +871,21 @@ void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c,
         }
         yy[k] = acc;
     }
+    // (column k's terms below its last nonzero, w.elast[k], are +-0 while the yy's are
+    // finite: they change no sum but a zero one, which is summed again whole; on the MPC
+    // loop E is banded, 200 of its 780 terms nonzero, and this chain of subtractions is
+    // serial)
+    bool finite = true;  // yy[j] for j > k
     for (idx k = p - 1; k >= 0; --k) {
         double acc = yy[k];
-        for (idx j = k + 1; j < p; ++j) acc -= R.E(j, k) * yy[j];
+        idx end = finite ? w.elast[k] + 1 : p;
+        for (idx j = k + 1; j < end; ++j) acc -= R.E(j, k) * yy[j];
+        if (end < p && acc == 0.0) {
+            acc = yy[k];
+            for (idx j = k + 1; j < p; ++j) acc -= R.E(j, k) * yy[j];
+        }
         yy[k] = acc / R.E(k, k);
+        finite = finite && std::isfinite(yy[k]);
     }
     for (idx k = 0; k < p; ++k) yy[k] = -yy[k];
     householder_seq(w.V, w.beta, p, true, v);
