@@ -66,6 +66,14 @@ struct SparseRows {
         val.clear();
         on = false;
         idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
+        idx count = 0;  // (counted first: a dense matrix is given up without a push)
+        for (idx i = 0; i < rows && count <= most; ++i) {
+            const double* Mi = M + i * cols;
+            for (idx j = 0; j < cols; ++j) count += Mi[j] != 0.0 ? 1 : 0;
+        }
+        if (count > most) return;
+        col.reserve(static_cast<std::size_t>(count));
+        val.reserve(static_cast<std::size_t>(count));
         for (idx i = 0; i < rows; ++i) {
             start[i] = static_cast<idx>(col.size());
             const double* Mi = M + i * cols;
@@ -74,11 +82,6 @@ struct SparseRows {
                     col.push_back(j);
                     val.push_back(Mi[j]);
                 }
-            if (static_cast<idx>(col.size()) > most) {
-                col.clear();
-                val.clear();
-                return;
-            }
         }
         start[rows] = static_cast<idx>(col.size());
         on = rows > 0;
@@ -97,7 +100,7 @@ struct SparseRows {
 struct BitKey {
     static constexpr idx GAP = 8;
     std::vector<idx> run;  // literal runs [run[2k], run[2k + 1]), in order
-    std::vector<std::uint64_t> bits;  // their entries' bits, in order
+    std::vector<std::uint64_t, Unset<std::uint64_t>> bits;  // their entries' bits, in order
     idx len = -1;  // (-1: empty)
 
     void build(const double* a, idx n);
@@ -911,16 +914,48 @@ LEMKE_ALWAYS_INLINE std::uint64_t bits_of(const double* a, idx t) {
     return u;
 }
 
+// x's bits copied into dst, and how many of them are +0 (BitKey::build's test for a matrix
+// without one: a single run, copied in the same pass). Cloned: the copy and count vectorized.
+LEMKE_CLONES
+idx copy_bits(const double* x, idx n, std::uint64_t* dst) {
+    idx z = 0;
+    for (idx t = 0; t < n; ++t) {
+        std::uint64_t u = bits_of(x, t);
+        dst[t] = u;
+        z += u == 0 ? 1 : 0;
+    }
+    return z;
+}
+
 void BitKey::build(const double* a, idx n) {
     len = n;
     run.clear();
+    bits.resize(static_cast<std::size_t>(n));
+    if (n > 0 && copy_bits(a, n, bits.data()) == 0) {  // (dense: one run)
+        run.push_back(0);
+        run.push_back(n);
+        return;
+    }
     bits.clear();
+    // (whole blocks of eight +0's, or of eight entries that are not, skipped at once)
+    auto zeros8 = [a](idx t) {
+        std::uint64_t o = 0;
+        for (idx j = 0; j < 8; ++j) o |= bits_of(a, t + j);
+        return o == 0;
+    };
+    auto full8 = [a](idx t) {
+        bool all = true;
+        for (idx j = 0; j < 8; ++j) all &= bits_of(a, t + j) != 0;
+        return all;
+    };
     idx t = 0;
     while (t < n) {
+        while (t + 8 <= n && zeros8(t)) t += 8;
         while (t < n && bits_of(a, t) == 0) ++t;
         if (t == n) break;
         idx s = t, e;  // e: past the run's last entry that is not +0
         for (;;) {
+            while (t + 8 <= n && full8(t)) t += 8;
             while (t < n && bits_of(a, t) != 0) ++t;
             e = t;
             while (t < n && t - e < GAP && bits_of(a, t) == 0) ++t;
