@@ -1435,6 +1435,9 @@ Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x,
 // comparisons and pmax from +0, and the gap's double-double sum starts at +0, to which
 // x_j s_j = +-0 adds +0. The same bits as the dense loops (tests/test_qp_kkt_sparse.py
 // compares them).
+// (cloned: its double-double sums' std::fma is an instruction in the AVX-512 clone, a libm
+// call in the others, ~250 a call; the same exact product error either way)
+LEMKE_CLONES
 bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
               const double* z, const double* zb, double tol, double* stats) {
     idx n = dt.n();
