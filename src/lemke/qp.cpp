@@ -118,6 +118,7 @@ struct QPWork {
     std::uint8_t *bflags, *gflags;
     std::vector<idx> lstart;  // L's profile (factors': profile), for forward and forward_rows
     std::vector<idx> elast;  // (factors') the last nonzero row of E's columns k < p below k
+    std::vector<idx> estart;  // (factors') the first nonzero of E's rows left of the diagonal
     // The factor cache (solve's, see same_factors): what the dense layout's L, E, V, beta, C,
     // the kinds, up_row and M were computed from. Any layout() call drops it.
     bool cached = false;
@@ -779,7 +780,14 @@ void rows_dot(Mat<const double> C, idx col0, idx len, const double* x, double* o
 void lcp_rhs(const Rows& R, QPWork& w, idx n) {
     idx p = R.p, m = R.m;
     double* v = w.v;
-    for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
+    // (row k's whole blocks of eight left of its first nonzero, w.estart[k], skipped while
+    // the v's are finite: their terms are +-0, forward's rule, the same bits)
+    bool finite = true;
+    for (idx k = 0; k < p; ++k) {
+        idx b = finite ? w.estart[k] & ~static_cast<idx>(7) : 0;
+        v[k] = (R.f[k] - dot(R.E.row(k) + b, v + b, k - b)) / R.E(k, k);
+        finite = finite && std::isfinite(v[k]);
+    }
     idx r = n - p;
     const double* c2 = w.c + p;
     // g_i = d_i - dot(F_i, v1, p) + dot(F_i[p:], c2, r), the two dots by rows_dot
@@ -831,6 +839,13 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     }
     forward(L, c, lstart);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
+    w.estart.resize(static_cast<std::size_t>(p));
+    for (idx k = 0; k < p; ++k) {  // (lcp_rhs's: row k's first nonzero left of the diagonal)
+        const double* Ek = R.E.row(k);
+        idx e = 0;
+        while (e < k && Ek[e] == 0.0) ++e;
+        w.estart[k] = e;
+    }
     w.elast.resize(static_cast<std::size_t>(p));
     for (idx k = 0; k < p; ++k) {  // (point's: E's last nonzero below the diagonal)
         idx e = k;
