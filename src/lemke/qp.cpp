@@ -130,6 +130,8 @@ struct QPWork {
     // finite (point's sums then skip the rows with zz = 0: see point).
     SparseRows spP, spA, spG;
     bool c_finite = false, sparse_built = false;  // (sparse_ready's)
+    // (sparse_ready's, from keyPat: right_hand_sides' sources of f and d past b, in order)
+    std::vector<idx> fixed_j, h_i, up_j, lo_j;
 
     void layout(idx n_, idx p_, idx m_, bool dense) {
         cached = false;
@@ -1066,7 +1068,8 @@ void remember(const Data& dt, const Data& ds, const double* lo, const double* up
     w.cached = true;
 }
 
-// The cache's SparseRows and c_finite, made at the first solve that reuses its factors (dt:
+// The cache's SparseRows, c_finite and right_hand_sides' row sources (from keyPat), made at
+// the first solve that reuses its factors (dt:
 // that solve's data, whose P, A, G are the cache's: same_matrices), not by remember: a first
 // solve of new matrices would pay a scan of Ps, A, G and C for sums that only the solves
 // reusing them save (the sums have the same bits either way).
@@ -1077,6 +1080,20 @@ void sparse_ready(const Data& dt, QPWork& w) {
     w.spA.build(dt.A.p, dt.p0(), n);
     w.spG.build(dt.G.p, dt.m0(), n);
     w.c_finite = all_finite(w.C.p, w.m * w.n);
+    idx m0 = dt.m0();
+    const std::uint8_t* pat = w.keyPat.data();
+    w.fixed_j.clear();
+    w.h_i.clear();
+    w.up_j.clear();
+    w.lo_j.clear();
+    for (idx i = 0; i < m0; ++i)
+        if (pat[i] == 1) w.h_i.push_back(i);
+    for (idx j = 0; j < n; ++j) {
+        std::uint8_t kind = pat[m0 + j];
+        if (kind == 4) w.fixed_j.push_back(j);
+        if (kind != 4 && (kind & 1)) w.up_j.push_back(j);
+        if (kind != 4 && (kind & 2)) w.lo_j.push_back(j);
+    }
     w.sparse_built = true;
 }
 
@@ -1086,17 +1103,15 @@ Rows right_hand_sides(const Data& dt, const double* lb, const double* ub, QPWork
     idx n = dt.n();
     Rows R{w.E, w.C, w.fv, w.d, w.ekind, w.ckind, w.p, w.m, w.m_g};
     idx p0 = dt.p0();
+    // (rows_of's values in rows_of's order, from the cache's structure: the same kinds, so
+    // the same rows, without a branch on each bound)
     for (idx i = 0; i < p0; ++i) R.f[i] = dt.b[i];
     idx k = p0;
-    for (idx j = 0; j < n; ++j)
-        if (lb[j] == ub[j]) R.f[k++] = lb[j];
+    for (idx j : w.fixed_j) R.f[k++] = lb[j];
     k = 0;
-    for (idx i = 0; i < dt.m0(); ++i)
-        if (dt.h[i] < INF) R.d[k++] = dt.h[i];
-    for (idx j = 0; j < n; ++j)
-        if (lb[j] != ub[j] && ub[j] < INF) R.d[k++] = ub[j];
-    for (idx j = 0; j < n; ++j)
-        if (lb[j] != ub[j] && lb[j] > -INF) R.d[k++] = -lb[j];
+    for (idx i : w.h_i) R.d[k++] = dt.h[i];
+    for (idx j : w.up_j) R.d[k++] = ub[j];
+    for (idx j : w.lo_j) R.d[k++] = -lb[j];
     idx p = R.p;
     double* c = w.c;
     for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
