@@ -947,13 +947,19 @@ idx copy_bits(const double* x, idx n, std::uint64_t* dst) {
 void BitKey::build(const double* a, idx n) {
     len = n;
     run.clear();
-    bits.resize(static_cast<std::size_t>(n));
-    if (n > 0 && copy_bits(a, n, bits.data()) == 0) {  // (dense: one run)
-        run.push_back(0);
-        run.push_back(n);
-        return;
-    }
     bits.clear();
+    // (tried when the first 64 entries hold no +0, which a sparse matrix's rarely do)
+    bool dense = n > 0;
+    for (idx t = 0; t < std::min<idx>(n, 64) && dense; ++t) dense = bits_of(a, t) != 0;
+    if (dense) {
+        bits.resize(static_cast<std::size_t>(n));
+        if (copy_bits(a, n, bits.data()) == 0) {  // (dense: one run)
+            run.push_back(0);
+            run.push_back(n);
+            return;
+        }
+        bits.clear();
+    }
     // (whole blocks of eight +0's, or of eight entries that are not, skipped at once)
     auto zeros8 = [a](idx t) {
         std::uint64_t o = 0;
