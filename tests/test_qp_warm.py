@@ -309,3 +309,71 @@ def test_wrong_guesses_on_random_qps_pass_kkt(seed, method):
             check(P, q, G, h, A, b, lb, ub, r)
             np.testing.assert_allclose(r.x, cold.x, rtol=0, atol=1e-8)
     assert (_ends() - before)[1] > 0
+
+
+def test_factor_cache_hit_test_is_exact_on_every_entry():
+    """The cache's hit test (qp::same_matrices on its compact BitKey: the runs of entries that
+    are not +0 and their bits) compares every entry of P, A and G bit for bit: a zero made
+    -0.0 or nonzero, inside a run of nonzeros or in a long gap of zeros, misses (counted
+    by _core.qp_cache_hits) and is solved afresh, with the bits of a solve from no cache; a
+    NaN put in a zero's place misses too, and the kernel's screen refuses it.  (The MPC
+    problem's A holds -0.0's, from -Bd and -Ad: a -0.0 made +0.0 must miss as well.)"""
+    from lemke import _core, _qp
+
+    (P, G, h, A, lb, ub), steps = mpc_problem.sequence(steps=2, seed=3)
+    q, b = steps[1]
+    n, p, m = P.shape[0], A.shape[0], G.shape[0]
+    out = np.empty(_qp._layout(n, p, m)[-1])
+    other = random_convex_qp(12, np.random.default_rng(5), 4, 2)
+
+    def kernel(P, G, A):
+        code = _core.qp_solve(P, q, G, h, A, b, lb, ub, 0, -1, 1e-11, 1e-11, 1e-9, out)[0]
+        return code, out.copy()
+
+    def fresh(P, G, A):
+        lemke.solve_qp(*other)  # (the cache now holds another QP's factors)
+        return kernel(P.copy(), G.copy(), A.copy())
+
+    base = kernel(P, G, A)
+    hits = _core.qp_cache_hits()
+    assert base[0] == 0
+    again = kernel(P, G, A)
+    assert _core.qp_cache_hits() == hits + 1  # the same bits: a hit
+    assert again[0] == 0 and again[1].tobytes() == base[1].tobytes()
+    rng = np.random.default_rng(0)
+    picked = 0
+    for name in ("P", "A", "G"):
+        M = {"P": P, "A": A, "G": G}[name]
+        zeros = np.argwhere(M == 0.0)
+        nonzero = M != 0.0
+        # zeros next to a nonzero in their row (inside a run) and far from any (a long gap)
+        near = [z for z in zeros if nonzero[z[0], max(z[1] - 1, 0):z[1] + 2].any()]
+        far = [z for z in zeros if not nonzero[z[0], max(z[1] - 9, 0):z[1] + 10].any()]
+        assert near and far, name
+        for i, j in [near[k] for k in rng.choice(len(near), 4, replace=False)] + \
+                    [far[k] for k in rng.choice(len(far), 4, replace=False)]:
+            was, was_t = M[i, j], M[j, i] if name == "P" else None
+            for value in (-was, 1e-3, np.nan):  # (-was: the zero's sign flipped; A has -0.0's)
+                kernel(P, G, A)  # the cache holds the data as it is
+                hits = _core.qp_cache_hits()
+                M[i, j] = value
+                if name == "P" and value == value:  # (P stays symmetric)
+                    M[j, i] = value
+                got = kernel(P, G, A)
+                assert _core.qp_cache_hits() == hits, (name, i, j, value)  # a miss
+                if value != value:
+                    assert got[0] == 5  # BAD_INPUT: the screen's verdict, not stale factors
+                else:
+                    want = fresh(P, G, A)
+                    assert got[0] == want[0] and got[1].tobytes() == want[1].tobytes()
+                    r = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
+                    check(P, q, G, h, A, b, lb, ub, r)
+                M[i, j] = was
+                if name == "P":
+                    M[j, i] = was_t
+                picked += 1
+    assert picked == 3 * 8 * 3
+    kernel(P, G, A)
+    hits = _core.qp_cache_hits()
+    kernel(P, G, A)  # restored: a hit again
+    assert _core.qp_cache_hits() == hits + 1

@@ -50,30 +50,61 @@ struct Unset : std::allocator<T> {
     void construct(U* p, A&&... a) { ::new (static_cast<void*>(p)) U(std::forward<A>(a)...); }
 };
 
-// The nonzeros of a matrix by rows, in row order (the factor cache's Ps, A and G, for
-// kkt_check's sums, which skip their exact zeros with the same bits): on when at most a
-// quarter of the entries are nonzero (else the dense, vectorized loops are as quick).
+// The nonzeros of a matrix by rows, in row order, their columns and values (the factor
+// cache's Ps, A and G, for kkt_check's sums, which skip their exact zeros with the same
+// bits, and read the values here: those of the matrix they were built from, whose bits the
+// cache's hit test found the caller's again, packed instead of scattered over its rows): on
+// when at most a quarter of the entries are nonzero (else the dense, vectorized loops are
+// as quick).
 struct SparseRows {
     std::vector<idx> start, col;
+    std::vector<double> val;
     bool on = false;
     void build(const double* M, idx rows, idx cols, bool always = false) {
         start.resize(static_cast<std::size_t>(rows + 1));
         col.clear();
+        val.clear();
         on = false;
         idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
+        idx count = 0;  // (counted first: a dense matrix is given up without a push)
+        for (idx i = 0; i < rows && count <= most; ++i) {
+            const double* Mi = M + i * cols;
+            for (idx j = 0; j < cols; ++j) count += Mi[j] != 0.0 ? 1 : 0;
+        }
+        if (count > most) return;
+        col.reserve(static_cast<std::size_t>(count));
+        val.reserve(static_cast<std::size_t>(count));
         for (idx i = 0; i < rows; ++i) {
             start[i] = static_cast<idx>(col.size());
             const double* Mi = M + i * cols;
             for (idx j = 0; j < cols; ++j)
-                if (Mi[j] != 0.0) col.push_back(j);
-            if (static_cast<idx>(col.size()) > most) {
-                col.clear();
-                return;
-            }
+                if (Mi[j] != 0.0) {
+                    col.push_back(j);
+                    val.push_back(Mi[j]);
+                }
         }
         start[rows] = static_cast<idx>(col.size());
         on = rows > 0;
     }
+};
+
+// The bits of an array (the factor cache's P, A and G), kept compact for same_matrices'
+// test, which runs on every call: the runs of entries that are not all +0 (literal runs; a
+// gap of fewer than GAP +0 entries between two of them is kept in the run) with their bits
+// in order, the rest +0 by construction. same() reads each entry of the caller's array once
+// and only the literal runs' bits besides: on the MPC loop's P, A and G (2-17 % nonzero)
+// 58 KB of the caller's and 4 KB of the key's, where a full copy read as much again (the
+// hit test was ~115 KB a call, mostly out of cache after the caller's other work). Exact:
+// an entry's bits against the bits it had (a zero that changes sign or value, a NaN's
+// payload, all miss), as a memcmp against a full copy.
+struct BitKey {
+    static constexpr idx GAP = 8;
+    std::vector<idx> run;  // literal runs [run[2k], run[2k + 1]), in order
+    std::vector<std::uint64_t, Unset<std::uint64_t>> bits;  // their entries' bits, in order
+    idx len = -1;  // (-1: empty)
+
+    void build(const double* a, idx n);
+    bool same(const double* a, idx n) const;
 };
 
 struct QPWork {
@@ -86,16 +117,21 @@ struct QPWork {
     idx *ekind, *ckind, *up_row, *S, *lcp_basic;
     std::uint8_t *bflags, *gflags;
     std::vector<idx> lstart;  // L's profile (factors': profile), for forward and forward_rows
+    std::vector<idx> elast;  // (factors') the last nonzero row of E's columns k < p below k
+    std::vector<idx> estart;  // (factors') the first nonzero of E's rows left of the diagonal
     // The factor cache (solve's, see same_factors): what the dense layout's L, E, V, beta, C,
     // the kinds, up_row and M were computed from. Any layout() call drops it.
     bool cached = false;
     idx key_p0 = 0, key_m0 = 0, m_g = 0;
-    std::vector<double> keyP, keyA, keyG, keyPs;  // the caller's P, A, G; screen's Ps of P
+    BitKey keyP, keyA, keyG;  // the caller's P, A, G (compact: BitKey)
+    std::vector<double> keyPs;  // screen's Ps of P
     std::vector<std::uint8_t> keyPat;
-    // With the cache (remember): the nonzeros of keyPs, keyA, keyG by rows, and whether C is
+    // With the cache (sparse_ready): the nonzeros of keyPs, A and G by rows, and whether C is
     // finite (point's sums then skip the rows with zz = 0: see point).
     SparseRows spP, spA, spG;
     bool c_finite = false, sparse_built = false;  // (sparse_ready's)
+    // (sparse_ready's, from keyPat: right_hand_sides' sources of f and d past b, in order)
+    std::vector<idx> fixed_j, h_i, up_j, lo_j;
 
     void layout(idx n_, idx p_, idx m_, bool dense) {
         cached = false;
@@ -224,24 +260,41 @@ bool same_arrays(const Data& a, const Data& b) {
            a.h == b.h && a.b == b.b && a.lb == b.lb && a.ub == b.ub;
 }
 
-void backward_transposed(Mat<const double> L, double* r) {
+// r := L^-T r; with L's profile (lstart), row j's update starts at its first nonzero while
+// the x_j so far are finite and r held no -0 at the start. Each update skipped subtracts
+// x_j 0 = +-0, which changes no entry but a -0 one (-0 - -0 = +0), and there is none: an
+// entry becomes -0 only from -0 (+0 - +-0 = +0, an exact cancellation gives +0). So the
+// same bits as the whole rows (point's solve: L is diagonal on the MPC loop, 14 KB read
+// for 60 entries).
+void backward_transposed(Mat<const double> L, double* r, const idx* lstart = nullptr) {
     idx n = L.rows;
+    bool skip = lstart != nullptr;
+    for (idx k = 0; k < n && skip; ++k)
+        if (r[k] == 0.0 && std::signbit(r[k])) skip = false;
     for (idx j = n - 1; j >= 0; --j) {
         double xj = r[j] / L(j, j);
         r[j] = xj;
+        if (skip && !std::isfinite(xj)) skip = false;
         const double* Lj = L.row(j);
-        for (idx k = 0; k < j; ++k) r[k] -= xj * Lj[k];
+        for (idx k = skip ? lstart[j] : 0; k < j; ++k) r[k] -= xj * Lj[k];
     }
 }
 
-// x := H_k x (x of V.cols entries).
-void householder_apply(Mat<const double> V, const double* beta, idx k, double* x) {
+// x := H_k x (x of V.cols entries) for k = 0, ..., p - 1 (or p - 1, ..., 0 when down):
+// s = beta_k dot(v_k, x[k:]) (dot_lanes, dot's body), then x[k:] -= s v_k unless s is 0.
+// Cloned, so that the updates run on the widest vectors (elementwise: the same bits on
+// every instruction set); the right-hand sides and point take p reflectors a call.
+LEMKE_CLONES
+void householder_seq(Mat<const double> V, const double* beta, idx p, bool down, double* x) {
     idx n = V.cols;
-    const double* v = V.row(k) + k;
-    double* r = x + k;
-    double s = beta[k] * dot(v, r, n - k);
-    if (s != 0.0)
-        for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+    for (idx i = 0; i < p; ++i) {
+        idx k = down ? p - 1 - i : i;
+        const double* v = V.row(k) + k;
+        double* r = x + k;
+        double s = beta[k] * dot_lanes(v, r, n - k);
+        if (s != 0.0)
+            for (idx t = 0; t < n - k; ++t) r[t] -= s * v[t];
+    }
 }
 
 // qp::dot4's body, inlined by the cloned loops that call it (below).
@@ -269,12 +322,12 @@ LEMKE_ALWAYS_INLINE void dot_lanes_q(const double* const* x, const double* y, id
     else dot_lanes4(x, y, k, out);
 }
 
-// The reflectors k0..k1-1 applied to Q rows r[q] (each row householder_apply's operations
+// The reflectors k0..k1-1 applied to Q rows r[q] (each row householder_seq's operations
 // exactly, reflector by reflector), one pass over the rows per reflector: the update of
 // reflector k (r_t -= s v_t, elementwise) and the sums of reflector k + 1 (dot's lanes from
 // column k + 1, the tail into lane 0, dot's pairwise sums) in the same loop, so each row is
 // loaded and stored once a reflector, not loaded again for the next one's sums.  Where a
-// row's s is 0 (householder_apply leaves it as it is then: not even r - 0 v) the update and
+// row's s is 0 (householder_seq leaves it as it is then: not even r - 0 v) the update and
 // the sums go one after the other, as before.
 template <int Q>
 LEMKE_ALWAYS_INLINE void reflect_rows(Mat<const double> V, const double* beta, idx k0, idx k1,
@@ -345,9 +398,9 @@ LEMKE_ALWAYS_INLINE void reflect_rows(Mat<const double> V, const double* beta, i
 }
 #endif
 
-// The reflectors k0..k1-1 (householder_apply's, in that order) applied to every row of X:
+// The reflectors k0..k1-1 (householder_seq's, in that order) applied to every row of X:
 // eight rows at a time, then four (reflect_rows: each reflector's sums in one pass, the rows
-// in cache through all the reflectors), the rest one by one. Each row gets householder_apply's
+// in cache through all the reflectors), the rest one by one. Each row gets householder_seq's
 // operations exactly.
 LEMKE_CLONES
 void householder_range(Mat<const double> V, const double* beta, idx k0, idx k1, Mat<double> X) {
@@ -729,7 +782,14 @@ void rows_dot(Mat<const double> C, idx col0, idx len, const double* x, double* o
 void lcp_rhs(const Rows& R, QPWork& w, idx n) {
     idx p = R.p, m = R.m;
     double* v = w.v;
-    for (idx k = 0; k < p; ++k) v[k] = (R.f[k] - dot(R.E.row(k), v, k)) / R.E(k, k);
+    // (row k's whole blocks of eight left of its first nonzero, w.estart[k], skipped while
+    // the v's are finite: their terms are +-0, forward's rule, the same bits)
+    bool finite = true;
+    for (idx k = 0; k < p; ++k) {
+        idx b = finite ? w.estart[k] & ~static_cast<idx>(7) : 0;
+        v[k] = (R.f[k] - dot(R.E.row(k) + b, v + b, k - b)) / R.E(k, k);
+        finite = finite && std::isfinite(v[k]);
+    }
     idx r = n - p;
     const double* c2 = w.c + p;
     // g_i = d_i - dot(F_i, v1, p) + dot(F_i[p:], c2, r), the two dots by rows_dot
@@ -781,7 +841,21 @@ int factors(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     }
     forward(L, c, lstart);
     if (qr_rows(R.E, w.V, w.beta) <= RANK_TOL) return DEPENDENT_EQUALITIES;
-    for (idx k = 0; k < p; ++k) householder_apply(w.V, w.beta, k, c);
+    w.estart.resize(static_cast<std::size_t>(p));
+    for (idx k = 0; k < p; ++k) {  // (lcp_rhs's: row k's first nonzero left of the diagonal)
+        const double* Ek = R.E.row(k);
+        idx e = 0;
+        while (e < k && Ek[e] == 0.0) ++e;
+        w.estart[k] = e;
+    }
+    w.elast.resize(static_cast<std::size_t>(p));
+    for (idx k = 0; k < p; ++k) {  // (point's: E's last nonzero below the diagonal)
+        idx e = k;
+        for (idx j = k + 1; j < p; ++j)
+            if (R.E(j, k) != 0.0) e = j;
+        w.elast[k] = e;
+    }
+    householder_seq(w.V, w.beta, p, false, c);
     // (C's rows in blocks of 32, the thread's deadline looked at between them)
     for (idx i0 = 0; i0 < m && p > 0; i0 += 32) {
         if (deadline_passed() >= 0) return TIME_LIMIT;
@@ -817,14 +891,25 @@ void point(Mat<const double> L, const Rows& R, const QPWork& w, const double* c,
         }
         yy[k] = acc;
     }
+    // (column k's terms below its last nonzero, w.elast[k], are +-0 while the yy's are
+    // finite: they change no sum but a zero one, which is summed again whole; on the MPC
+    // loop E is banded, 200 of its 780 terms nonzero, and this chain of subtractions is
+    // serial)
+    bool finite = true;  // yy[j] for j > k
     for (idx k = p - 1; k >= 0; --k) {
         double acc = yy[k];
-        for (idx j = k + 1; j < p; ++j) acc -= R.E(j, k) * yy[j];
+        idx end = finite ? w.elast[k] + 1 : p;
+        for (idx j = k + 1; j < end; ++j) acc -= R.E(j, k) * yy[j];
+        if (end < p && acc == 0.0) {
+            acc = yy[k];
+            for (idx j = k + 1; j < p; ++j) acc -= R.E(j, k) * yy[j];
+        }
         yy[k] = acc / R.E(k, k);
+        finite = finite && std::isfinite(yy[k]);
     }
     for (idx k = 0; k < p; ++k) yy[k] = -yy[k];
-    for (idx k = p - 1; k >= 0; --k) householder_apply(w.V, w.beta, k, v);
-    backward_transposed(L, v);
+    householder_seq(w.V, w.beta, p, true, v);
+    backward_transposed(L, v, w.lstart.data());
     for (idx t = 0; t < n; ++t) x[t] = v[t];
 }
 
@@ -840,9 +925,92 @@ void structure(const Data& dt, const double* lo, const double* up, std::vector<s
         pat[m0 + j] = lo[j] == up[j] ? 4 : static_cast<std::uint8_t>((up[j] < INF ? 1 : 0) | (lo[j] > -INF ? 2 : 0));
 }
 
-bool same_bits(const std::vector<double>& key, const double* a, idx len) {
-    return static_cast<idx>(key.size()) == len &&
-           (len == 0 || std::memcmp(key.data(), a, static_cast<std::size_t>(len) * sizeof(double)) == 0);
+LEMKE_ALWAYS_INLINE std::uint64_t bits_of(const double* a, idx t) {
+    std::uint64_t u;
+    std::memcpy(&u, a + t, sizeof u);
+    return u;
+}
+
+// x's bits copied into dst, and how many of them are +0 (BitKey::build's test for a matrix
+// without one: a single run, copied in the same pass). Cloned: the copy and count vectorized.
+LEMKE_CLONES
+idx copy_bits(const double* x, idx n, std::uint64_t* dst) {
+    idx z = 0;
+    for (idx t = 0; t < n; ++t) {
+        std::uint64_t u = bits_of(x, t);
+        dst[t] = u;
+        z += u == 0 ? 1 : 0;
+    }
+    return z;
+}
+
+void BitKey::build(const double* a, idx n) {
+    len = n;
+    run.clear();
+    bits.clear();
+    // (tried when the first 64 entries hold no +0, which a sparse matrix's rarely do)
+    bool dense = n > 0;
+    for (idx t = 0; t < std::min<idx>(n, 64) && dense; ++t) dense = bits_of(a, t) != 0;
+    if (dense) {
+        bits.resize(static_cast<std::size_t>(n));
+        if (copy_bits(a, n, bits.data()) == 0) {  // (dense: one run)
+            run.push_back(0);
+            run.push_back(n);
+            return;
+        }
+        bits.clear();
+    }
+    // (whole blocks of eight +0's, or of eight entries that are not, skipped at once)
+    auto zeros8 = [a](idx t) {
+        std::uint64_t o = 0;
+        for (idx j = 0; j < 8; ++j) o |= bits_of(a, t + j);
+        return o == 0;
+    };
+    auto full8 = [a](idx t) {
+        bool all = true;
+        for (idx j = 0; j < 8; ++j) all &= bits_of(a, t + j) != 0;
+        return all;
+    };
+    idx t = 0;
+    while (t < n) {
+        while (t + 8 <= n && zeros8(t)) t += 8;
+        while (t < n && bits_of(a, t) == 0) ++t;
+        if (t == n) break;
+        idx s = t, e;  // e: past the run's last entry that is not +0
+        for (;;) {
+            while (t + 8 <= n && full8(t)) t += 8;
+            while (t < n && bits_of(a, t) != 0) ++t;
+            e = t;
+            while (t < n && t - e < GAP && bits_of(a, t) == 0) ++t;
+            if (t == n || t - e == GAP) break;
+        }
+        run.push_back(s);
+        run.push_back(e);
+        std::size_t at = bits.size();
+        bits.resize(at + static_cast<std::size_t>(e - s));
+        std::memcpy(bits.data() + at, a + s, static_cast<std::size_t>(e - s) * sizeof(double));
+        t = e;
+    }
+}
+
+// BitKey::same's loops: the OR of the gaps' bits and of the runs' differences, which is 0
+// exactly when every entry has its key's bits (cloned: the ORs vectorized).
+LEMKE_CLONES
+bool key_same(const idx* run, idx runs, const std::uint64_t* bits, const double* a, idx n) {
+    std::uint64_t acc = 0;
+    idx t = 0;
+    for (idx k = 0; k < runs; ++k) {
+        idx s = run[2 * k], e = run[2 * k + 1];
+        for (; t < s; ++t) acc |= bits_of(a, t);
+        for (; t < e; ++t) acc |= bits_of(a, t) ^ *bits++;
+        if (acc != 0) return false;
+    }
+    for (; t < n; ++t) acc |= bits_of(a, t);
+    return acc == 0;
+}
+
+bool BitKey::same(const double* a, idx n) const {
+    return len == n && key_same(run.data(), static_cast<idx>(run.size() / 2), bits.data(), a, n);
 }
 
 // Whether w holds the factors of this QP's matrices: solve's dense layout at these sizes,
@@ -852,8 +1020,8 @@ bool same_bits(const std::vector<double>& key, const double* a, idx len) {
 bool same_matrices(const Data& dt, const QPWork& w) {
     idx n = dt.n();
     return w.cached && w.n == n && w.key_p0 == dt.p0() && w.key_m0 == dt.m0() &&
-           same_bits(w.keyP, dt.P.p, n * n) && same_bits(w.keyA, dt.A.p, dt.p0() * n) &&
-           same_bits(w.keyG, dt.G.p, dt.m0() * n);
+           w.keyP.same(dt.P.p, n * n) && w.keyA.same(dt.A.p, dt.p0() * n) &&
+           w.keyG.same(dt.G.p, dt.m0() * n);
 }
 
 bool same_structure(const Data& dt, const double* lo, const double* up, const QPWork& w, idx p,
@@ -889,13 +1057,13 @@ bool screen_vectors(const Data& dt, double* lo, double* up) {
 void remember(const Data& dt, const Data& ds, const double* lo, const double* up, QPWork& w,
               idx m_g, std::vector<double>& scr) {
     idx n = dt.n();
-    w.keyP.assign(dt.P.p, dt.P.p + n * n);
+    w.keyP.build(dt.P.p, n * n);
     if (ds.P.p == scr.data())
         std::swap(w.keyPs, scr);
     else
         w.keyPs.assign(ds.P.p, ds.P.p + n * n);
-    w.keyA.assign(dt.A.p, dt.A.p + dt.p0() * n);
-    w.keyG.assign(dt.G.p, dt.G.p + dt.m0() * n);
+    w.keyA.build(dt.A.p, dt.p0() * n);
+    w.keyG.build(dt.G.p, dt.m0() * n);
     structure(dt, lo, up, w.keyPat);
     w.key_p0 = dt.p0();
     w.key_m0 = dt.m0();
@@ -906,7 +1074,8 @@ void remember(const Data& dt, const Data& ds, const double* lo, const double* up
     w.cached = true;
 }
 
-// The cache's SparseRows and c_finite, made at the first solve that reuses its factors (dt:
+// The cache's SparseRows, c_finite and right_hand_sides' row sources (from keyPat), made at
+// the first solve that reuses its factors (dt:
 // that solve's data, whose P, A, G are the cache's: same_matrices), not by remember: a first
 // solve of new matrices would pay a scan of Ps, A, G and C for sums that only the solves
 // reusing them save (the sums have the same bits either way).
@@ -914,9 +1083,23 @@ void sparse_ready(const Data& dt, QPWork& w) {
     if (w.sparse_built) return;
     idx n = dt.n();
     w.spP.build(w.keyPs.data(), n, n);
-    w.spA.build(w.keyA.data(), dt.p0(), n);
-    w.spG.build(w.keyG.data(), dt.m0(), n);
+    w.spA.build(dt.A.p, dt.p0(), n);
+    w.spG.build(dt.G.p, dt.m0(), n);
     w.c_finite = all_finite(w.C.p, w.m * w.n);
+    idx m0 = dt.m0();
+    const std::uint8_t* pat = w.keyPat.data();
+    w.fixed_j.clear();
+    w.h_i.clear();
+    w.up_j.clear();
+    w.lo_j.clear();
+    for (idx i = 0; i < m0; ++i)
+        if (pat[i] == 1) w.h_i.push_back(i);
+    for (idx j = 0; j < n; ++j) {
+        std::uint8_t kind = pat[m0 + j];
+        if (kind == 4) w.fixed_j.push_back(j);
+        if (kind != 4 && (kind & 1)) w.up_j.push_back(j);
+        if (kind != 4 && (kind & 2)) w.lo_j.push_back(j);
+    }
     w.sparse_built = true;
 }
 
@@ -926,22 +1109,20 @@ Rows right_hand_sides(const Data& dt, const double* lb, const double* ub, QPWork
     idx n = dt.n();
     Rows R{w.E, w.C, w.fv, w.d, w.ekind, w.ckind, w.p, w.m, w.m_g};
     idx p0 = dt.p0();
+    // (rows_of's values in rows_of's order, from the cache's structure: the same kinds, so
+    // the same rows, without a branch on each bound)
     for (idx i = 0; i < p0; ++i) R.f[i] = dt.b[i];
     idx k = p0;
-    for (idx j = 0; j < n; ++j)
-        if (lb[j] == ub[j]) R.f[k++] = lb[j];
+    for (idx j : w.fixed_j) R.f[k++] = lb[j];
     k = 0;
-    for (idx i = 0; i < dt.m0(); ++i)
-        if (dt.h[i] < INF) R.d[k++] = dt.h[i];
-    for (idx j = 0; j < n; ++j)
-        if (lb[j] != ub[j] && ub[j] < INF) R.d[k++] = ub[j];
-    for (idx j = 0; j < n; ++j)
-        if (lb[j] != ub[j] && lb[j] > -INF) R.d[k++] = -lb[j];
+    for (idx i : w.h_i) R.d[k++] = dt.h[i];
+    for (idx j : w.up_j) R.d[k++] = ub[j];
+    for (idx j : w.lo_j) R.d[k++] = -lb[j];
     idx p = R.p;
     double* c = w.c;
     for (idx t = 0; t < n; ++t) c[t] = dt.q[t];
-    forward(w.L, c);
-    for (idx kk = 0; kk < p; ++kk) householder_apply(w.V, w.beta, kk, c);
+    forward(w.L, c, w.lstart.data());  // (factors' L profile: its sums, its bits)
+    householder_seq(w.V, w.beta, p, false, c);
     lcp_rhs(R, w, n);
     return R;
 }
@@ -1080,11 +1261,11 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
     double* cc = w.cc;
     for (idx t = 0; t < n; ++t) cc[t] = rd[t];
     forward(L, cc, w.lstart.data());
-    for (idx j = 0; j < p; ++j) householder_apply(w.V, w.beta, j, cc);
+    householder_seq(w.V, w.beta, p, false, cc);
     double* v = w.va;
     for (idx j = 0; j < p; ++j) v[j] = (rpE[j] - dot(R.E.row(j), v, j)) / R.E(j, j);
     double* c2 = cc + p;
-    for (idx j = 0; j < k; ++j) householder_apply(V2, beta2, j, c2);
+    householder_seq(V2, beta2, k, false, c2);
     double* wv = v + p;
     idx wl = n - p;
     for (idx j = 0; j < k; ++j)
@@ -1096,7 +1277,7 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
         zS[j] = acc / K2(j, j);
     }
     for (idx t = k; t < wl; ++t) wv[t] = -c2[t];
-    for (idx j = k - 1; j >= 0; --j) householder_apply(V2, beta2, j, wv);
+    householder_seq(V2, beta2, k, true, wv);
     for (idx i = 0; i < R.m; ++i) zz[i] = 0.0;
     for (idx j = 0; j < k; ++j) zz[S[j]] = zS[j];
     point(L, R, w, cc, v, zz, x, yy);
@@ -1222,10 +1403,9 @@ void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<
     for (idx i = 0; i < M.rows; ++i) {
         double a = coef[i];
         if (a == 0.0) continue;
-        const double* Mi = M.row(i);
         for (idx t = sp.start[i]; t < sp.start[i + 1]; ++t) {
             idx j = sp.col[t];
-            axpy2_term(s[j], err[j], size[j], a, Mi[j]);
+            axpy2_term(s[j], err[j], size[j], a, sp.val[t]);
         }
     }
 }
@@ -1261,10 +1441,8 @@ void add_abs(double* acc, idx n, double a, Mat<const double> M, const SparseRows
         return;
     }
     if (!(a > 0.0)) return;
-    for (idx i = 0; i < M.rows; ++i) {
-        const double* Mi = M.row(i);
-        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(Mi[sp->col[t]]);
-    }
+    for (idx i = 0; i < M.rows; ++i)
+        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(sp->val[t]);
 }
 
 // dot2(M_i, x, n, c), over M_i's nonzeros only when sp is given (the same size and norm; the
@@ -1277,9 +1455,10 @@ Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x,
     double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
     for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) {
         idx j = sp->col[t];
-        acc2(s, err, Mi[j], x[j]);
-        size += std::fabs(Mi[j] * x[j]);
-        norm += std::fabs(Mi[j]);
+        double a = sp->val[t];
+        acc2(s, err, a, x[j]);
+        size += std::fabs(a * x[j]);
+        norm += std::fabs(a);
     }
     return {s + err, size, norm};
 }
@@ -1292,6 +1471,9 @@ Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x,
 // comparisons and pmax from +0, and the gap's double-double sum starts at +0, to which
 // x_j s_j = +-0 adds +0. The same bits as the dense loops (tests/test_qp_kkt_sparse.py
 // compares them).
+// (cloned: its double-double sums' std::fma is an instruction in the AVX-512 clone, a libm
+// call in the others, ~250 a call; the same exact product error either way)
+LEMKE_CLONES
 bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
               const double* z, const double* zb, double tol, double* stats) {
     idx n = dt.n();
@@ -2058,6 +2240,11 @@ WarmEnds& warm_ends() {
     return ends;
 }
 
+idx& cache_hits() {
+    thread_local idx hits = 0;
+    return hits;
+}
+
 Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, double tie_tol,
              double tol, double* out, idx* basic, const idx* warm, idx k_warm, idx warm_pairs,
              const double* x0) {
@@ -2075,6 +2262,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     Data ds;
     bool hit = same_matrices(dt, w);
     if (hit) {  // P passed screen before: its Ps is kept, the vectors are checked here
+        ++cache_hits();
         scr.resize(static_cast<std::size_t>(2 * n + 1));
         if (!screen_vectors(dt, scr.data(), scr.data() + n)) {
             res.code = BAD_INPUT;

@@ -137,6 +137,10 @@ struct WarmEnds {
     idx kept = 0, restarted = 0, cold = 0;
 };
 WarmEnds& warm_ends();
+// How many of this thread's solve calls found the factors of their P, A, G in its cache
+// (every entry's bits those the factors were computed from). For tests/test_qp_warm.py
+// (lemke._core.qp_cache_hits); nothing reads it in the solve.
+idx& cache_hits();
 
 // qp.solve_gram on data of matching shapes: out (2n + p0 + m0 + 4 + out_tail doubles) is
 // zeroed first whole, then written as solve's; basic (room for m0 + 2n) may lie in out's
