@@ -1,0 +1,67 @@
+// The one status vocabulary of the core: the public statuses (lemke.Status in Python, the C
+// API's LEMKE_* codes, the same numbers) and the kernels' own codes, declared here together
+// so that no kernel code takes a public status's number where the two can meet.
+//
+// Rules: a kernel's own code is negative (a public status is 0..8); codes that can come back
+// in the same variable are distinct; one meaning, one number (NOT_FINITE). Each front maps
+// its kernel's codes to a Status in one place (ARCHITECTURE.md, "The seam", its "status
+// codes" row, says where, and which kernels' codes are not here yet).
+#pragma once
+
+#include "budget.hpp"
+
+namespace lemke {
+
+// The public statuses (the codes of lemke.Status and of lemke.h's enum lemke_status).
+enum Status : int {
+    SOLVED = 0,
+    MAX_PIVOTS = 1,
+    RAY_TERMINATION = 2,
+    NUMERICAL_FAILURE = 3,
+    CYCLING = 6,
+    TIME_LIMIT = 7,    // the thread's deadline passed (budget.hpp)
+    INTERRUPTED = 8,   // lemke_interrupt() or SIGINT (budget.hpp)
+};
+
+// A run stopped by its budget: drivers try nothing more.
+static_assert(TIME_LIMIT == STOP_TIME_LIMIT && INTERRUPTED == STOP_INTERRUPTED, "budget.hpp");
+inline bool is_stop(int code) { return code == TIME_LIMIT || code == INTERRUPTED; }
+
+// --- the kernels' own codes: negative ------------------------------------------------------
+
+// Every kernel: a NaN or an infinity in the data (or sizes that do not match): nothing done.
+// The C API's LEMKE_NOT_FINITE has this number (capi.cpp passes it through).
+constexpr int NOT_FINITE = -1;
+
+// The LCP driver (lcp.hpp: RunResult.code, beside the Status codes). Mapped to SOLVED by
+// _lcp.py, python_front.cpp and capi.cpp.
+constexpr int TRIVIAL = -2;  // q >= 0: z = 0
+
+// The box LCP engine (boxed.hpp: SolveResult.code and front's code, beside the Status codes).
+// _blcp.py maps every negative code to NUMERICAL_FAILURE or an error; capi.cpp maps them to
+// LEMKE_NOT_FINITE or LEMKE_INVALID_ARGUMENT (whose -3 and -4 are BAD_BOUNDS's and
+// SINGULAR's numbers: they never pass through).
+namespace boxed {
+constexpr int NOT_FINITE = lemke::NOT_FINITE;  // M or q has a NaN or an infinity, or lo/hi a NaN
+constexpr int BAD_BOUNDS = -3;   // some lo_i > hi_i, or lo_i = +inf, or hi_i = -inf
+constexpr int SINGULAR = -4;     // a warm start's basis cannot be made basic
+constexpr int BAD_FINDEX = -5;   // a friction index the front refuses
+constexpr int UNDECIDED = -6;    // front: the friction check failed
+constexpr int NEED_RUN = -7;     // front: a run must decide
+}  // namespace boxed
+
+// The games engine (games.hpp: LHResult.status and TraceResult.status, beside the Status
+// codes). Mapped to a Status by _games.py's _status alone.
+namespace games {
+constexpr int NOT_FINITE = lemke::NOT_FINITE;  // a payoff is NaN or infinite: nothing done
+constexpr int UNCHECKED = -8;  // every label present, at a point that fails the check
+}  // namespace games
+
+// Distinct where they meet: each kernel's codes among themselves and with TRIVIAL (the
+// LCP's), and none a Status.
+static_assert(TRIVIAL < NOT_FINITE && boxed::BAD_BOUNDS < TRIVIAL && boxed::NEED_RUN < boxed::UNDECIDED &&
+                  boxed::UNDECIDED < boxed::BAD_FINDEX && boxed::BAD_FINDEX < boxed::SINGULAR &&
+                  boxed::SINGULAR < boxed::BAD_BOUNDS && games::UNCHECKED < boxed::NEED_RUN,
+              "the kernels' own codes: negative and distinct");
+
+}  // namespace lemke
