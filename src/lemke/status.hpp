@@ -57,11 +57,19 @@ constexpr int NOT_FINITE = lemke::NOT_FINITE;  // a payoff is NaN or infinite: n
 constexpr int UNCHECKED = -8;  // every label present, at a point that fails the check
 }  // namespace games
 
+// The MLCP reduction (mlcp.hpp: ReduceResult.code, its own variable): MLCP_OK is SOLVED's 0,
+// the failures negative (the oracle's were 1 and 2, MAX_PIVOTS's and RAY_TERMINATION's
+// numbers). Mapped by _mlcp.py (INCONSISTENT: PRIMAL_INFEASIBLE; SINGULAR: NUMERICAL_FAILURE).
+constexpr int MLCP_OK = SOLVED;
+constexpr int MLCP_INCONSISTENT = -9;  // an equation reads 0 = c with c != 0
+constexpr int MLCP_SINGULAR = -10;     // no exchange makes the free block nonsingular
+
 // Distinct where they meet: each kernel's codes among themselves and with TRIVIAL (the
 // LCP's), and none a Status.
 static_assert(TRIVIAL < NOT_FINITE && boxed::BAD_BOUNDS < TRIVIAL && boxed::NEED_RUN < boxed::UNDECIDED &&
                   boxed::UNDECIDED < boxed::BAD_FINDEX && boxed::BAD_FINDEX < boxed::SINGULAR &&
-                  boxed::SINGULAR < boxed::BAD_BOUNDS && games::UNCHECKED < boxed::NEED_RUN,
+                  boxed::SINGULAR < boxed::BAD_BOUNDS && games::UNCHECKED < boxed::NEED_RUN &&
+                  MLCP_INCONSISTENT < games::UNCHECKED && MLCP_SINGULAR < MLCP_INCONSISTENT,
               "the kernels' own codes: negative and distinct");
 
 }  // namespace lemke
