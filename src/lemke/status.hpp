@@ -2,10 +2,11 @@
 // API's LEMKE_* codes, the same numbers) and the kernels' own codes, declared here together
 // so that no kernel code takes a public status's number where the two can meet.
 //
-// Rules: a kernel's own code is negative (a public status is 0..8); codes that can come back
-// in the same variable are distinct; one meaning, one number (NOT_FINITE). Each front maps
-// its kernel's codes to a Status in one place (ARCHITECTURE.md, "The seam", its "status
-// codes" row, says where, and which kernels' codes are not here yet).
+// Rules: a kernel's own code is negative (a public status is 0..8; a success is SOLVED's 0),
+// but for the QP kernels' (below: none a number of the statuses they meet); codes that can
+// come back in the same variable are distinct; one meaning, one number (NOT_FINITE). Each
+// front maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam", its "status
+// codes" row, says where, and what is left).
 #pragma once
 
 #include "budget.hpp"
@@ -63,6 +64,27 @@ constexpr int UNCHECKED = -8;  // every label present, at a point that fails the
 constexpr int MLCP_OK = SOLVED;
 constexpr int MLCP_INCONSISTENT = -9;  // an equation reads 0 = c with c != 0
 constexpr int MLCP_SINGULAR = -10;     // no exchange makes the free block nonsingular
+
+// The QP kernels (qp.hpp: Result.code): their own numbers, kept (the QP front, its tests and
+// the frozen references use them), none a stop's: a kernel's code is one of these or
+// TIME_LIMIT / INTERRUPTED (the LCP or a set-up phase stopped by its budget), which _qp.py
+// and python_front_qp.cpp test for by number (Status(code) only on a stop). 1-6 are public numbers
+// (MAX_PIVOTS .. CYCLING) that never meet them there: not yet negative (ARCHITECTURE.md).
+namespace qp {
+constexpr int OK = SOLVED;
+constexpr int NOT_DEFINITE = 1;
+constexpr int DEPENDENT_EQUALITIES = 2;
+constexpr int NOT_SOLVED = 3;
+constexpr int CHECK_FAILED = 4;
+constexpr int BAD_INPUT = 5;
+constexpr int NOT_APPLICABLE = 6;
+constexpr int BAD_WARM = 9;  // a warm start with another number of pairs (Result.pairs: this QP's)
+static_assert(OK < NOT_DEFINITE && NOT_DEFINITE < DEPENDENT_EQUALITIES &&
+                  DEPENDENT_EQUALITIES < NOT_SOLVED && NOT_SOLVED < CHECK_FAILED &&
+                  CHECK_FAILED < BAD_INPUT && BAD_INPUT < NOT_APPLICABLE &&
+                  NOT_APPLICABLE < TIME_LIMIT && INTERRUPTED < BAD_WARM,
+              "the QP kernels' codes: distinct, none a stop's (7, 8)");
+}  // namespace qp
 
 // Distinct where they meet: each kernel's codes among themselves and with TRIVIAL (the
 // LCP's), and none a Status.
