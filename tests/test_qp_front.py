@@ -259,7 +259,7 @@ def test_cold_declined_and_bad_inputs_say_the_same(no_front):
         assert _bits(fr) == _bits(py)
     Pn = P.copy()
     Pn[1, 2] = np.nan
-    assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == 5  # qp.hpp BAD_INPUT: the kernel's screen refuses a NaN
+    assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == _core.QP_BAD_INPUT  # the kernel's screen refuses a NaN
     off, on = no_front
     for bad in ((Pn, q, G, h, A, b, lb, ub), (P, q, G[:, :-1], h, A, b, lb, ub),
                 (P, q, G, None, A, b, lb, ub), (P[:, :-1], q, G, h, A, b, lb, ub)):

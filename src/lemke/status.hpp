@@ -2,11 +2,10 @@
 // API's LEMKE_* codes, the same numbers) and the kernels' own codes, declared here together
 // so that no kernel code takes a public status's number where the two can meet.
 //
-// Rules: a kernel's own code is negative (a public status is 0..8; a success is SOLVED's 0),
-// but for the QP kernels' (below: none a number of the statuses they meet); codes that can
-// come back in the same variable are distinct; one meaning, one number (NOT_FINITE). Each
-// front maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam", its "status
-// codes" row, says where, and what is left).
+// Rules: a kernel's own code is negative (a public status is 0..8; a success is SOLVED's 0)
+// and distinct from every other kernel's; one meaning, one number (NOT_FINITE). Each front
+// maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam", its "status codes" row,
+// says where).
 #pragma once
 
 #include "budget.hpp"
@@ -65,33 +64,31 @@ constexpr int MLCP_OK = SOLVED;
 constexpr int MLCP_INCONSISTENT = -9;  // an equation reads 0 = c with c != 0
 constexpr int MLCP_SINGULAR = -10;     // no exchange makes the free block nonsingular
 
-// The QP kernels (qp.hpp: Result.code): their own numbers, kept (the QP front, its tests and
-// the frozen references use them), none a stop's: a kernel's code is one of these or
-// TIME_LIMIT / INTERRUPTED (the LCP or a set-up phase stopped by its budget), which _qp.py
-// and python_front_qp.cpp test for by number (Status(code) only on a stop). 1-6 are public numbers
-// (MAX_PIVOTS .. CYCLING) that never meet them there: not yet negative (ARCHITECTURE.md).
+// The QP kernels (qp.hpp: Result.code, beside TIME_LIMIT and INTERRUPTED, the LCP or a
+// set-up phase stopped by its budget): OK is SOLVED's 0, the rest negative (the oracle's
+// were 1-6 and 9, MAX_PIVOTS .. CYCLING's numbers among them). _qp.py and
+// python_front_qp.cpp go on by name, Status(code) only on a stop.
 namespace qp {
 constexpr int OK = SOLVED;
-constexpr int NOT_DEFINITE = 1;
-constexpr int DEPENDENT_EQUALITIES = 2;
-constexpr int NOT_SOLVED = 3;
-constexpr int CHECK_FAILED = 4;
-constexpr int BAD_INPUT = 5;
-constexpr int NOT_APPLICABLE = 6;
-constexpr int BAD_WARM = 9;  // a warm start with another number of pairs (Result.pairs: this QP's)
-static_assert(OK < NOT_DEFINITE && NOT_DEFINITE < DEPENDENT_EQUALITIES &&
-                  DEPENDENT_EQUALITIES < NOT_SOLVED && NOT_SOLVED < CHECK_FAILED &&
-                  CHECK_FAILED < BAD_INPUT && BAD_INPUT < NOT_APPLICABLE &&
-                  NOT_APPLICABLE < TIME_LIMIT && INTERRUPTED < BAD_WARM,
-              "the QP kernels' codes: distinct, none a stop's (7, 8)");
+constexpr int NOT_DEFINITE = -11;
+constexpr int DEPENDENT_EQUALITIES = -12;
+constexpr int NOT_SOLVED = -13;
+constexpr int CHECK_FAILED = -14;
+constexpr int BAD_INPUT = -15;
+constexpr int NOT_APPLICABLE = -16;
+constexpr int BAD_WARM = -17;  // a warm start with another number of pairs (Result.pairs: this QP's)
 }  // namespace qp
 
-// Distinct where they meet: each kernel's codes among themselves and with TRIVIAL (the
-// LCP's), and none a Status.
+// One descending chain from NOT_FINITE: every kernel's own code negative (none a Status)
+// and distinct from every other kernel's.
 static_assert(TRIVIAL < NOT_FINITE && boxed::BAD_BOUNDS < TRIVIAL && boxed::NEED_RUN < boxed::UNDECIDED &&
                   boxed::UNDECIDED < boxed::BAD_FINDEX && boxed::BAD_FINDEX < boxed::SINGULAR &&
                   boxed::SINGULAR < boxed::BAD_BOUNDS && games::UNCHECKED < boxed::NEED_RUN &&
-                  MLCP_INCONSISTENT < games::UNCHECKED && MLCP_SINGULAR < MLCP_INCONSISTENT,
+                  MLCP_INCONSISTENT < games::UNCHECKED && MLCP_SINGULAR < MLCP_INCONSISTENT &&
+                  qp::NOT_DEFINITE < MLCP_SINGULAR && qp::DEPENDENT_EQUALITIES < qp::NOT_DEFINITE &&
+                  qp::NOT_SOLVED < qp::DEPENDENT_EQUALITIES && qp::CHECK_FAILED < qp::NOT_SOLVED &&
+                  qp::BAD_INPUT < qp::CHECK_FAILED && qp::NOT_APPLICABLE < qp::BAD_INPUT &&
+                  qp::BAD_WARM < qp::NOT_APPLICABLE,
               "the kernels' own codes: negative and distinct");
 
 }  // namespace lemke
