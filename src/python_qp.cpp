@@ -349,5 +349,8 @@ void bind_qp(nb::module_& m) {
     m.attr("QP_NOT_APPLICABLE") = qp::NOT_APPLICABLE;
     m.attr("QP_CHECK_FAILED") = qp::CHECK_FAILED;
     m.attr("QP_BAD_WARM") = qp::BAD_WARM;
+    m.attr("QP_DEPENDENT_EQUALITIES") = qp::DEPENDENT_EQUALITIES;
+    m.attr("QP_NOT_SOLVED") = qp::NOT_SOLVED;
+    m.attr("QP_BAD_INPUT") = qp::BAD_INPUT;
     m.attr("QP_GRAM_RATIO") = qp::GRAM_RATIO;
 }

@@ -5,6 +5,7 @@ fractions), never by lemke's own check.  Convention: A is the row player's payof
 column player's, both m x n.
 """
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -638,3 +639,45 @@ def test_the_games_layout_is_the_cores(m, n):
     ints = buf.view(np.int64)
     assert sorted(ints[at["labels"] : at["labels"] + m + n]) == list(range(m + n))
     assert ints[at["state"] + 2] == pivots
+
+
+# --- a path that ends at a point failing the check -------------------------------------------
+
+UNCHECKED_GAME = Path(__file__).parent / "data" / "games" / "unchecked_36x39.npz"
+
+
+def test_a_path_ending_unchecked_goes_on_to_the_re_solve_and_the_exact_fallback():
+    """The 36 x 39 game of tests/data/games/ (payoffs 0..2), dropping label 0: the float
+    Lemke-Howson path ends with every label present at a point that fails the check (the
+    kernel's UNCHECKED).  That code was once Status.TIME_LIMIT's number, and the front took
+    it for a stop: TIME_LIMIT with no time limit, and no re-solve or exact fallback even with
+    exact=True.  Now the answer is an equilibrium by this module's own checks (numpy
+    regrets; exact fractions), or an honest failure; never a stop without a budget."""
+    d = np.load(UNCHECKED_GAME)
+    A, B, k = d["A"].astype(float), d["B"].astype(float), int(d["k"])
+    m, n = A.shape
+    buf = np.empty(_games._layout(m, n)["length"])
+    code = _core.lemke_howson(A, B, k, _games._slack_start(m, n), _games._DEFAULT_PARAMS, buf)[0]
+    assert code == _core.GAMES_UNCHECKED  # the case this test is for
+    assert code not in {int(s) for s in lemke.Status}
+    assert _games._status(code) == lemke.Status.NUMERICAL_FAILURE
+    res = lemke.solve_bimatrix(A, B, init_label=k)
+    assert res.status not in (lemke.Status.TIME_LIMIT, lemke.Status.INTERRUPTED), res
+    assert res.status in (lemke.Status.SOLVED, lemke.Status.NUMERICAL_FAILURE), res
+    if res.status == lemke.Status.SOLVED:
+        assert_equilibrium(A, B, res)
+    ex = lemke.solve_bimatrix(A, B, init_label=k, exact=True)
+    assert_exact_equilibrium(d["A"].tolist(), d["B"].tolist(), ex)
+    # the float path's own fallback (the exact method when the re-solve fails) gives the
+    # same kind of answer through the options' path too
+    assert lemke.solve_bimatrix(A, B, init_label=k, options=lemke.Options()).status == res.status
+
+
+@pytest.mark.parametrize("m, n, article", [(2, 2, "a"), (8, 3, "an"), (11, 2, "an"), (18, 1, "an"),
+                                            (1, 8, "a"), (80, 2, "an"), (100, 2, "a")])
+def test_warm_start_size_message_reads_right(m, n, article):
+    """'a GameBasis of a 2 x 2 game', 'of an 8 x 3 game': the article the number takes."""
+    basis = lemke.GameBasis(1, 1, (1,), (0,))
+    with pytest.raises(ValueError) as err:
+        lemke.solve_bimatrix(np.ones((m, n)), np.ones((m, n)), warm_start=basis)
+    assert f"must be a GameBasis of {article} {m} x {n} game" in str(err.value)

@@ -416,7 +416,7 @@ def test_fused_path_gives_up_after_one_failed_run():
     opts = as_options(None)
     code, pivots, _, _ = _core.qp_solve(*args, _core.TABLEAU, -1, opts.pivot_tol,
                                         opts.tie_tol, opts.tol, np.empty(4 * n + p + 2 * m + 4))
-    assert code == 3 and pivots <= 10  # NOT_SOLVED (src/lemke/qp.hpp)
+    assert code == _core.QP_NOT_SOLVED and pivots <= 10
     res = lemke.solve_qp(*problem)
     assert res.status == Status.SOLVED, res
     assert_qp_kkt(*problem, res, rtol=1e-8)

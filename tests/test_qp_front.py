@@ -273,7 +273,7 @@ def test_cold_declined_and_bad_inputs_say_the_same(no_front):
         assert _bits(fr) == _bits(py)
     Pn = P.copy()
     Pn[1, 2] = np.nan
-    assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == 5  # qp.hpp BAD_INPUT: the kernel's screen refuses a NaN
+    assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == _core.QP_BAD_INPUT  # the kernel's screen refuses a NaN
     off, on = no_front
     got = _core.qp_front(Pn.tolist(), q, G, h, A, b, lb, ub, 0, None, None)
     assert got[0] == 5 and len(got) == 5 and got[4][0].tobytes() == Pn.tobytes()  # (converted)

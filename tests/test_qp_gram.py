@@ -23,7 +23,8 @@ from maros_meszaros import load, references  # noqa: E402
 
 REFS = references(DATA / "README.md")
 # the QP kernels' codes (src/lemke/qp.hpp)
-QP_OK, QP_NOT_DEFINITE, QP_NOT_SOLVED, QP_CHECK_FAILED, QP_NOT_APPLICABLE = 0, 1, 3, 4, 6
+QP_OK, QP_NOT_DEFINITE, QP_NOT_SOLVED, QP_CHECK_FAILED, QP_NOT_APPLICABLE = (
+    _core.QP_OK, _core.QP_NOT_DEFINITE, _core.QP_NOT_SOLVED, _core.QP_CHECK_FAILED, _core.QP_NOT_APPLICABLE)
 
 
 @pytest.fixture

@@ -40,7 +40,6 @@ METHODS = ("lemke-howson", "tracing")
 DEFAULT_MAX_PIVOTS = 10**6  # Lemke-Howson paths can be long (quantecon's default cap too)
 _F64 = np.dtype(np.float64)
 _MATRICES = (2, 2)
-_STATUSES = {int(s): s for s in Status}
 #: The games kernels of the C++ core (src/lemke/games.cpp: lemke_howson, trace and check,
 #: ported from the former numba kernels with the same arguments, results and bits); module
 #: attributes, so that a test can stand a lying kernel in (with ``_FRONT`` set to return
@@ -50,6 +49,16 @@ _TRACE = _core.games_trace
 _CHECK = _core.games_check
 _FRONT = _core.games_front  # solve_bimatrix's commonest call whole (src/python_games.cpp)
 _NOT_FINITE = _core.GAMES_NOT_FINITE  # a payoff is not finite: nothing done
+_UNCHECKED = _core.GAMES_UNCHECKED  # every label present, at a point that fails the check
+#: The games kernels' codes as statuses, the front's one mapping (``_status``): the public
+#: codes as they are, the kernels' own (negative, src/lemke/status.hpp) as NUMERICAL_FAILURE.
+_STATUSES = {int(s): s for s in Status}
+_STATUSES[_UNCHECKED] = Status.NUMERICAL_FAILURE
+
+
+def _status(code) -> Status:
+    """The Status of a games kernel's code (``_STATUSES``; an unknown code a failure)."""
+    return _STATUSES.get(code, Status.NUMERICAL_FAILURE)
 
 
 @functools.lru_cache(maxsize=256)
@@ -352,19 +361,19 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
     exact certificate when asked, the exact method as the last resort of a cold float solve.
     ``ibuf``: the Lemke-Howson kernel's labels and path state (for the exact continuation)."""
     m, n = A.shape
-    stopped = code in STOPPED  # by its time limit or an interrupt: no more work
-    if code != SOLVED and basis is not None and not exact and not stopped:
+    status = _status(code)
+    stopped = status in STOPPED  # by its time limit or an interrupt: no more work
+    if status != Status.SOLVED and basis is not None and not exact and not stopped:
         # The path ended with every label present (or broke down) at a point that fails the
         # check: re-solve the final basis' support system afresh (rounding of a long path).
         fixed = _resolve_float(A, B, basis, opts.tol)
         if fixed is not None:
             fbuf[:m], fbuf[m : m + n], fbuf[m + n : m + n + 3] = fixed  # x, y, out: the layout's floats
-            code = SOLVED
+            status = Status.SOLVED
             restarts += 1
     path = None if ibuf is None else _path_state(ibuf, m, n, k)
     if exact and not stopped:
         return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts), path)
-    status = _STATUSES.get(code, Status.NUMERICAL_FAILURE)
     if status != Status.SOLVED and method == "lemke-howson" and cold and not stopped:
         # Last resort, never needed in the tests: the exact method cannot fail.
         res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts), path)
@@ -441,7 +450,7 @@ def _start(warm_start, m, n):
     if warm_start is None:
         return _slack_start(m, n)
     if not isinstance(warm_start, GameBasis) or (warm_start.m, warm_start.n) != (m, n):
-        raise ValueError(f"warm_start must be a GameBasis of an {m} x {n} game")
+        raise ValueError(f"warm_start must be a GameBasis of {_validate.article(m)} {m} x {n} game")
     xs, ys = list(warm_start.x_basic), list(warm_start.y_basic)
     if (len(xs) != n or len(ys) != m or len(set(xs + ys)) != m + n
             or min(xs + ys) < 0 or max(xs + ys) >= m + n):

@@ -18,6 +18,14 @@ from . import _core
 from ._npc import absmax, count, every, nz, some, sub
 
 
+def article(k: int) -> str:
+    """The article before the number k read aloud in a message: "an" for 8, 11, 18, 80-89,
+    8000, 11000 (eight, eleven, eighteen), "a" for the rest ("a 2 x 2 game", "an 8 x 3 game")."""
+    digits = str(abs(int(k)))
+    lead = digits[: len(digits) % 3 or 3]  # the leading group of thousands, read first
+    return "an" if lead[0] == "8" or lead in ("11", "18") else "a"
+
+
 def real_array(x, name: str, allow_inf: int = 0) -> np.ndarray:
     """float64 view or copy of ``x``; NaN is refused, and so is an infinite entry unless
     ``allow_inf`` is -1 (``-inf`` allowed: lower bounds) or +1 (``+inf``: upper bounds)."""

@@ -14,13 +14,8 @@
 namespace lemke {
 namespace boxed {
 
-// The kernel's own codes (besides the pivoting Status codes).
-constexpr int NOT_FINITE = -1;   // M or q has a NaN or an infinity, or lo/hi a NaN
-constexpr int BAD_BOUNDS = -3;   // some lo_i > hi_i, or lo_i = +inf, or hi_i = -inf
-constexpr int SINGULAR = -4;     // a warm start's basis cannot be made basic
-constexpr int BAD_FINDEX = -5;   // a friction index the front refuses
-constexpr int UNDECIDED = -6;    // front: the friction check failed
-constexpr int NEED_RUN = -7;     // front: a run must decide
+// The kernel's own codes (besides the pivoting Status codes): NOT_FINITE, BAD_BOUNDS,
+// SINGULAR, BAD_FINDEX, UNDECIDED, NEED_RUN, in status.hpp.
 constexpr int PARTIAL = 4;       // solve's cov_mode flag: a warm basis that cannot be made
                                  // basic whole is kept in part (the z's the exchange pivots
                                  // could not make basic stay at their start bounds), not SINGULAR

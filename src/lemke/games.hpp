@@ -15,8 +15,8 @@ namespace lemke {
 
 namespace games {
 
-constexpr int NOT_FINITE = -1;     // a payoff is NaN or infinite: nothing done
-constexpr int UNCHECKED = 7;       // every label present, at a point that fails the check
+// The engine's own codes, NOT_FINITE (a payoff is NaN or infinite: nothing done) and
+// UNCHECKED (every label present, at a point that fails the check): status.hpp.
 constexpr double PERTURBATION = 1e-7;
 constexpr double ROUNDING_SLACK = 64.0;
 constexpr idx HISTORY = 64;        // leaving labels kept of a path's last pivots (power of 2)

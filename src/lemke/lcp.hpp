@@ -5,11 +5,12 @@
 #include <cstdint>
 
 #include "span.hpp"
+#include "status.hpp"
 
 namespace lemke {
 
-constexpr int NOT_FINITE = -1;  // NaN or infinity in M or q, or sizes that do not match
-constexpr int TRIVIAL = -2;     // q >= 0: z = 0
+// The driver's own codes, NOT_FINITE (NaN or infinity in M or q, or sizes that do not
+// match) and TRIVIAL (q >= 0: z = 0): status.hpp.
 constexpr idx RESTART_FROM = 100;
 
 // The one statement of the output buffer's layout (a test checks it against cold.fields).

@@ -2,12 +2,9 @@
 // every free variable basic on the dictionary T = [E | e].
 #pragma once
 #include "span.hpp"
+#include "status.hpp"  // the reduction's codes: MLCP_OK, MLCP_INCONSISTENT, MLCP_SINGULAR
 
 namespace lemke {
-
-constexpr int MLCP_OK = 0;
-constexpr int MLCP_INCONSISTENT = 1;  // an equation reads 0 = c with c != 0
-constexpr int MLCP_SINGULAR = 2;      // no exchange makes the free block nonsingular
 
 // kmlcp.equilibrate: `iterations` Ruiz sweeps on the N x N E (n free rows and columns
 // first) into r and s (all ones on entry), numpy's operations in numpy's order.

@@ -8,23 +8,9 @@
 
 #include "budget.hpp"
 #include "linalg.hpp"
+#include "status.hpp"  // Status, is_stop: the one status vocabulary
 
 namespace lemke {
-
-// The one status vocabulary of the core (the codes of lemke.Status).
-enum Status : int {
-    SOLVED = 0,
-    MAX_PIVOTS = 1,
-    RAY_TERMINATION = 2,
-    NUMERICAL_FAILURE = 3,
-    CYCLING = 6,
-    TIME_LIMIT = 7,    // the thread's deadline passed (budget.hpp)
-    INTERRUPTED = 8,   // lemke_interrupt() or SIGINT (budget.hpp)
-};
-
-// A run stopped by its budget: drivers try nothing more.
-static_assert(TIME_LIMIT == STOP_TIME_LIMIT && INTERRUPTED == STOP_INTERRUPTED, "budget.hpp");
-inline bool is_stop(int code) { return code == TIME_LIMIT || code == INTERRUPTED; }
 
 constexpr double VALUE_ROUNDING = 1e-13;
 constexpr double Z0_ROUNDING = 1e-11;

@@ -9,19 +9,10 @@
 #include <cstdint>
 
 #include "linalg.hpp"
+#include "status.hpp"  // the kernels' codes: OK, NOT_DEFINITE .. NOT_APPLICABLE, BAD_WARM
 
 namespace lemke {
 namespace qp {
-
-constexpr int OK = 0;
-constexpr int NOT_DEFINITE = 1;
-constexpr int DEPENDENT_EQUALITIES = 2;
-constexpr int NOT_SOLVED = 3;
-constexpr int CHECK_FAILED = 4;
-constexpr int BAD_INPUT = 5;
-constexpr int NOT_APPLICABLE = 6;
-// 7 and 8: the LCP stopped by its budget (TIME_LIMIT, INTERRUPTED: pivoting.hpp's codes)
-constexpr int BAD_WARM = 9;  // a warm start with another number of pairs (Result.pairs: this QP's)
 
 constexpr double INFINITY_BOUND = 1e20;  // qp.INFINITY
 constexpr double SYMMETRY_TOL = 1e-10;

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._validate import article
 from .common import MAX_ENTRIES, BadFile, ProblemFormatError, make_problem
 
 __all__ = ["read_nfg"]
@@ -199,7 +200,7 @@ def parse_nfg(text: str) -> tuple[np.ndarray, np.ndarray]:
     else:
         values = [_number(t.next("a payoff"), "a payoff") for _ in range(2 * m * n)]
     if t.peek() is not None:
-        raise BadFile(f"unexpected {_show(t.peek())} after the {2 * m * n} payoffs of a {m} x {n} game")
+        raise BadFile(f"unexpected {_show(t.peek())} after the {2 * m * n} payoffs of {article(m)} {m} x {n} game")
     pay = np.array(values, dtype=np.float64).reshape(n, m, 2)  # profile order: row fastest
     return np.ascontiguousarray(pay[:, :, 0].T), np.ascontiguousarray(pay[:, :, 1].T)
 
