@@ -276,7 +276,7 @@ def test_cold_declined_and_bad_inputs_say_the_same(no_front):
     assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == _core.QP_BAD_INPUT  # the kernel's screen refuses a NaN
     off, on = no_front
     got = _core.qp_front(Pn.tolist(), q, G, h, A, b, lb, ub, 0, None, None)
-    assert got[0] == 5 and len(got) == 5 and got[4][0].tobytes() == Pn.tobytes()  # (converted)
+    assert got[0] == _core.QP_BAD_INPUT and len(got) == 5 and got[4][0].tobytes() == Pn.tobytes()  # (converted)
     for bad in ((Pn, q, G, h, A, b, lb, ub), (P, q, G[:, :-1], h, A, b, lb, ub),
                 (P, q, G, None, A, b, lb, ub), (P[:, :-1], q, G, h, A, b, lb, ub),
                 (Pn.tolist(), q, G, h, A, b, lb, ub), (P, q, G.tolist(), h[:-1].tolist(), A, b, lb, ub)):

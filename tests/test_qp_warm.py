@@ -362,7 +362,7 @@ def test_factor_cache_hit_test_is_exact_on_every_entry():
                 got = kernel(P, G, A)
                 assert _core.qp_cache_hits() == hits, (name, i, j, value)  # a miss
                 if value != value:
-                    assert got[0] == 5  # BAD_INPUT: the screen's verdict, not stale factors
+                    assert got[0] == _core.QP_BAD_INPUT  # the screen's verdict, not stale factors
                 else:
                     want = fresh(P, G, A)
                     assert got[0] == want[0] and got[1].tobytes() == want[1].tobytes()
