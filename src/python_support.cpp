@@ -8,12 +8,16 @@
 // released around the work.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <tuple>
 #include <vector>
 
+#include "lemke/basis.hpp"
 #include "lemke/carry.hpp"
 #include "lemke/certify.hpp"
 #include "lemke/linalg.hpp"
@@ -64,6 +68,62 @@ std::tuple<bool, double> lcp_check(In2 M, In1 q, In1 z, double tol, Out1 w) {
         ok = lemke::lcp_check(mat(M), q.data(), z.data(), tol, w.data(), residual);
     }
     return {ok, residual};
+}
+
+using FlagsIn = nb::ndarray<nb::ro, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using LcpBasisOut = std::tuple<int, nb::object, nb::object, double, nb::object>;
+
+// The seam's LCP basis system (basis.hpp's LcpBasis) on the caller's data: the basis
+// z_basic (n flags, bool or uint8; k of them set), its block M[beta, beta] factored, the
+// point z and w = M z + q checked row by row (check_rows, the scales of equilibrate(M, q),
+// every row), and, when rhs (k entries, in beta's order) is given, x with B x = rhs or, with
+// transpose, B' x = rhs by the same factors. (code, z, w, residual, x): code 0 the point
+// passes the check, 1 it fails, 2 the block is singular or the point not finite (z, w None),
+// -1 M or q not finite (z, w None); x None without rhs, or when that solve is not finite.
+LcpBasisOut lcp_basis(In2 M, In1 q, FlagsIn z_basic, double tol, std::optional<In1> rhs,
+                      bool transpose) {
+    idx n = len(q);
+    if (len(M, 0) != n || len(M, 1) != n || len(z_basic) != n)
+        throw nb::value_error("lcp_basis: M must be n x n, q and z_basic of length n");
+    if (z_basic.dtype() != nb::dtype<bool>() && z_basic.dtype() != nb::dtype<std::uint8_t>())
+        throw nb::type_error("lcp_basis: z_basic must be bool or uint8");
+    const auto* flags = static_cast<const std::uint8_t*>(z_basic.data());
+    std::vector<idx> beta(static_cast<std::size_t>(n));
+    idx k = lemke::basic_indices(flags, n, beta.data());
+    if (rhs && len(*rhs) != k)
+        throw nb::value_error("lcp_basis: rhs must have one entry per basic z");
+    nb::capsule z_owner, w_owner, x_owner;
+    double* z = new_block(n, z_owner);
+    double* w = new_block(n, w_owner);
+    double* x = rhs ? new_block(k, x_owner) : nullptr;
+    int code;
+    bool solved = false;
+    double residual = 0.0;
+    {
+        nb::gil_scoped_release release;
+        std::vector<double> work(static_cast<std::size_t>(
+            std::max(lemke::LcpBasis::work_size(k), 2 * n) + 4 * n));
+        std::vector<idx> piv(static_cast<std::size_t>(2 * k));
+        double* R = work.data() + (work.size() - 4 * static_cast<std::size_t>(n));
+        double* C = R + n;
+        lemke::LcpBasis basis(mat(M), q.data(), beta.data(), k, work.data(), piv.data());
+        if (!lemke::equilibrate_finite(mat(M), q.data(), R, C, C + n)) {
+            code = -1;
+        } else if (!basis.point(z)) {
+            code = 2;
+        } else {
+            if (x != nullptr)
+                solved = transpose ? basis.solve_transpose(rhs->data(), x)
+                                   : basis.solve(rhs->data(), x);
+            code = basis.check(z, tol, R, w, C + n, false, residual) ? 0 : 1;
+        }
+    }
+    auto vec = [](double* data, idx len, nb::capsule& owner) -> nb::object {
+        return nb::cast(NewVector(data, {static_cast<std::size_t>(len)}, owner));
+    };
+    bool point = code == 0 || code == 1;
+    return {code, point ? vec(z, n, z_owner) : nb::none(), point ? vec(w, n, w_owner) : nb::none(),
+            residual, solved ? vec(x, k, x_owner) : nb::none()};
 }
 
 // certify.lcp_ray_check(M, q, d, z, z0, ray, tol): whether the ray is a secondary ray.
@@ -205,6 +265,8 @@ std::int64_t relabel_ids(IdxIn old, IdxIn new_, IdxIn basic, IdxOut out) {
 
 void bind_support(nb::module_& m) {
     m.def("lcp_check", &lcp_check, "M"_a, "q"_a, "z"_a, "tol"_a, nb::arg("w").noconvert());
+    m.def("lcp_basis", &lcp_basis, "M"_a, "q"_a, "z_basic"_a, "tol"_a, "rhs"_a = nb::none(),
+          "transpose"_a = false);
     m.def("lcp_ray_check", &lcp_ray_check, "M"_a, "q"_a, "d"_a, "z"_a, "z0"_a, "ray"_a, "tol"_a);
     m.def("residual2", &residual2, "E"_a, "x"_a, "e"_a, nb::arg("y").noconvert());
     m.def("check_mlcp", &check_mlcp, "E"_a, "e"_a, "n"_a, "x"_a, "tol"_a,
