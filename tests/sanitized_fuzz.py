@@ -17,8 +17,8 @@ and again in the test's own process, fingerprint against fingerprint).
 * the box batch's grow-only workspace (src/lemke/boxed.cpp BoxedWork::layout): islands of
   varying sizes in one call, each compared bit for bit with its solve alone in a fresh
   thread.
-* the seam's _core.lcp_basis (src/lemke/basis.hpp's LcpBasis) on every size 0-40 and some
-  larger, with random, full, empty and singular bases, rhs of the right length and one off,
+* the seam's _core.lcp_basis and _core.box_basis (src/lemke/basis.hpp's LcpBasis, BoxBasis)
+  on every size 0-40 and some larger, with random, full, empty and singular bases, rhs of the right length and one off,
   and malformed flags, M, q and rhs: each answer's arrays of the basis's sizes, or a
   ValueError / TypeError;
 * blcp_pack (solve_blcp_many's islands packed natively from made_f64's forms), directly and
@@ -459,7 +459,7 @@ def box_gathers(run, rng):
         run.attempt(f"fuzz box gathers {name} flat", refused_or(lambda: _core.many_field(bufs, bo, qo, 2, 0, ans, flag, f(lo))))
 
 
-# --- the seam's LCP basis system (branch seam): _core.lcp_basis called directly on every
+# --- the seam's basis systems (branch seam): _core.lcp_basis and _core.box_basis called directly on every
 # size 0-40 and some larger, with random, empty, full and singular bases, rhs of the right
 # length and one off, both solves, and malformed arguments (flags of other dtypes, layouts
 # and lengths, M not square, q short, NaN and infinities): an answer whose arrays have the
@@ -467,7 +467,8 @@ def box_gathers(run, rng):
 # never a read or write outside the arrays.
 
 def _seam_sizes(n, flags, got):
-    """got (lcp_basis's answer) checked for its sizes; the answer."""
+    """got (lcp_basis's or box_basis's answer) checked for its sizes (flags: the block's
+    rows); the answer."""
     code, z, w, residual, x = got
     k = int(np.count_nonzero(flags))
     if code in (0, 1):
@@ -500,6 +501,15 @@ def basis_seam(run, rng):
                         lambda: _seam_sizes(n, flags, _core.lcp_basis(Ms, q, flags, 1e-9, rhs, tr))))
             run.attempt(f"fuzz seam {n} {t} no rhs", refused_or(
                 lambda: _seam_sizes(n, flags, _core.lcp_basis(Ms, q, flags, 1e-9))))
+            lo = np.where(rng.random(n) < 0.7, -rng.random(n), -np.inf)
+            hi = np.where(rng.random(n) < 0.7, rng.random(n), np.inf)
+            zh = (rng.random(n) < 0.5).astype(flags.dtype)
+            rows = flags.astype(bool) | ((t % 2 == 1) & np.isneginf(lo) & np.isposinf(hi))
+            for length in (int(rows.sum()), int(rows.sum()) + 1):
+                rhs = rng.normal(size=length)
+                run.attempt(f"fuzz seam box {n} {t} {length}", refused_or(
+                    lambda: _seam_sizes(n, rows, _core.box_basis(Ms, q, lo, hi, flags, zh, t % 2 == 1,
+                                                                 1e-9, rhs, t > 1))))
     M, q = problems.random_psd(5, rng)
     f = np.array([1, 0, 1, 1, 0], dtype=np.uint8)
     rhs = np.ones(3)
@@ -513,6 +523,8 @@ def basis_seam(run, rng):
         run.attempt(f"fuzz seam {name} q", refused_or(lambda: _core.lcp_basis(M, g(q), f, 1e-9, rhs)))
         run.attempt(f"fuzz seam {name} rhs", refused_or(lambda: _core.lcp_basis(M, q, f, 1e-9, g(rhs), True)))
         run.attempt(f"fuzz seam {name} M", refused_or(lambda: _core.lcp_basis(g(M), q, f, 1e-9, rhs)))
+        run.attempt(f"fuzz seam box {name} zh", refused_or(lambda: _core.box_basis(M, q, -q, q * q, f, g(f), True, 1e-9, rhs)))
+        run.attempt(f"fuzz seam box {name} lo", refused_or(lambda: _core.box_basis(M, q, g(-q), q * q, f, f, False, 1e-9, rhs)))
     for bad in (np.nan, np.inf, -np.inf):
         for where in ("M", "q", "rhs"):
             M2, q2, r2 = M.copy(), q.copy(), rhs.copy()

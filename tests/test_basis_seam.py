@@ -1,9 +1,11 @@
-"""The seam's LCP basis system (src/lemke/basis.hpp's LcpBasis, issue 31 item 2) through its
-private entry ``_core.lcp_basis(M, q, z_basic, tol, rhs=None, transpose=False)``, checked
+"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis and BoxBasis, issue 31 item 2)
+through their private entries ``_core.lcp_basis(M, q, z_basic, tol, rhs=None,
+transpose=False)`` and ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol, rhs=None,
+transpose=False)``, checked
 independently of the core: the solve and the transpose solve against numpy.linalg.solve on
 the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
-z and w against the LCP conditions computed here, and the engines' point of a basis (a warm
-start solved by its old basis, 0 pivots) the seam's own, bit for bit."""
+z and w against the LCP (box LCP) conditions computed here, and the engines' point of a
+basis (a warm start solved by its old basis, 0 pivots) the seam's own, bit for bit."""
 from __future__ import annotations
 
 import numpy as np
@@ -35,6 +37,24 @@ def _close_to_numpy(B, x, rhs):
     ref = np.linalg.solve(B, rhs)
     bound = 64 * B.shape[0] * EPS * np.linalg.cond(B, 1) * (np.abs(ref).max() + 1e-300)
     return bool(np.max(np.abs(x - ref)) <= bound)
+
+
+def _flags(n, indices):
+    f = np.zeros(n, bool)
+    f[list(indices)] = True
+    return f
+
+
+def _warm_hit(rw, got):
+    """1 when the warm solve rw took 0 pivots (its point the old basis's), with the seam's
+    answer got then passing and equal to it bit for bit (z and w); else 0."""
+    if rw.pivots != 0 or rw.status != lemke.Status.SOLVED:
+        return 0
+    code, z, w = got[:3]
+    assert code == 0
+    assert z.tobytes() == np.asarray(rw.z).tobytes()
+    assert w.tobytes() == np.asarray(rw.w).tobytes()
+    return 1
 
 
 SIZES = [1, 2, 3, 5, 8, 9, 16, 17, 31, 40]
@@ -128,8 +148,7 @@ def test_point_against_lcp_conditions():
         n = int(rng.integers(1, 25))
         M, q = _random_problem(n, rng, symmetric=t % 2 == 0)
         if t % 3 == 0:  # a solution's basis (the engine's), usually passing
-            flags = np.zeros(n, bool)
-            flags[list(lemke.solve_lcp(M, q).warm_start.z_basic)] = True
+            flags = _flags(n, lemke.solve_lcp(M, q).warm_start.z_basic)
         else:
             flags = rng.random(n) < 0.5
         code, z, w, residual, x = _core.lcp_basis(M, q, flags, TOL)
@@ -184,17 +203,11 @@ def test_engine_point_is_the_seams_bit_for_bit():
         n = int(rng.integers(2, 60))
         M, q = _random_problem(n, rng, symmetric=True)
         r = lemke.solve_lcp(M, q)
-        flags = np.zeros(n, bool)
-        flags[list(r.warm_start.z_basic)] = True
+        flags = _flags(n, r.warm_start.z_basic)
         for s in range(3):
             q2 = q + 1e-6 * rng.normal(size=n)
             rw = lemke.solve_lcp(M, q2, warm_start=r.warm_start)
-            code, z, w, residual, _ = _core.lcp_basis(M, q2, flags, TOL)
-            if rw.pivots == 0 and rw.status == lemke.Status.SOLVED:
-                hits += 1
-                assert code == 0
-                assert z.tobytes() == np.asarray(rw.z).tobytes()
-                assert w.tobytes() == np.asarray(rw.w).tobytes()
+            hits += _warm_hit(rw, _core.lcp_basis(M, q2, flags, TOL))
     assert hits >= 60
 
 
@@ -215,3 +228,114 @@ def test_bad_arguments_refused_and_not_finite_reported():
     assert _core.lcp_basis(M, np.array([1.0, np.inf, 0.0]), f, TOL)[0] == -1
     code, z, w, _, x = _core.lcp_basis(M, q, f, TOL, np.array([1.0, np.nan, 0.0]))
     assert code == 0 and x is None  # the point stands; that solve is not finite
+
+
+# --- the box kind (BoxBasis, no friction index): _core.box_basis(M, q, lo, hi, zb, zh,
+# warm_rule, tol, rhs=None, transpose=False)
+
+def _box_problem(n, rng):
+    M, q = _random_problem(n, rng)
+    lo = np.where(rng.random(n) < 0.7, -rng.random(n), -np.inf)
+    hi = np.where(rng.random(n) < 0.7, rng.random(n), np.inf)
+    return M, q, lo, hi
+
+
+def _box_rows_and_fixed(lo, hi, zb, zh, warm_rule):
+    """The block's rows and the fixed z's, by the rule stated in boxed.hpp (here in numpy)."""
+    free = warm_rule & np.isneginf(lo) & np.isposinf(hi)
+    if warm_rule:
+        v = np.where(np.isfinite(hi), hi, 0.0)
+        v = np.where(np.isfinite(lo), lo, v)
+        v = np.where(zh & np.isfinite(hi), hi, v)
+    else:
+        v = np.where(zh, hi, lo)
+        v = np.where(np.isfinite(v), v, 0.0)
+    rows = np.flatnonzero(zb | free)
+    v[rows] = 0.0
+    return rows, v
+
+
+@pytest.mark.parametrize("warm_rule", [False, True])
+def test_box_point_solves_and_conditions(warm_rule):
+    rng = np.random.default_rng(21 + warm_rule)
+    seen = {0: 0, 1: 0}
+    for t in range(80):
+        n = int(rng.integers(1, 30))
+        M, q, lo, hi = _box_problem(n, rng)
+        if t % 3 == 0:  # a solution's basis (the engine's), usually passing
+            ws = lemke.solve_blcp(M, q, lo, hi).warm_start
+            zb, zh = _flags(n, ws.z_basic), _flags(n, ws.at_upper)
+        else:
+            zb = rng.random(n) < 0.5
+            zh = ~zb & (rng.random(n) < 0.5)
+        rows, fixed = _box_rows_and_fixed(lo, hi, zb, zh, warm_rule)
+        k = rows.size
+        rhs = rng.normal(size=k)
+        transpose = bool(t % 2)
+        code, z, w, residual, x = _core.box_basis(M, q, lo, hi, zb, zh, warm_rule, TOL, rhs, transpose)
+        assert code in (0, 1)
+        B = M[np.ix_(rows, rows)]
+        Bs = B.T if transpose else B
+        assert x.shape == (k,) and _backward_ok(Bs, x, rhs)
+        if k:
+            assert _close_to_numpy(Bs, x, rhs)
+        zref = fixed.copy()
+        if k:
+            zref[rows] = np.linalg.solve(B, -(q + M @ fixed)[rows])
+        if not warm_rule:
+            zref = np.clip(zref, lo, hi)
+        scale = np.abs(M) @ np.abs(zref) + np.abs(q) + 1.0
+        assert np.all(np.abs(z - zref) <= 1e-8 * scale), t
+        assert np.all(np.abs(w - (M @ z + q)) <= 1e-12 * scale)
+        # the box LCP conditions, here: w >= 0 at lo, w <= 0 at hi, w = 0 strictly inside
+        at_lo, at_hi = z <= lo, z >= hi
+        viol = np.where(at_lo & at_hi, 0.0, np.where(at_lo, np.maximum(-w, 0.0),
+                        np.where(at_hi, np.maximum(w, 0.0), np.abs(w))))
+        viol = np.maximum(viol, np.maximum(lo - z, 0.0) + np.maximum(z - hi, 0.0)) / scale
+        seen[code] += 1
+        if code == 0:
+            assert viol.max() <= 1e-8, (t, viol.max())
+        else:
+            assert viol.max() > 1e-12, (t, viol.max())
+    assert seen[0] >= 5 and seen[1] >= 5
+
+
+def test_box_singular_and_refused():
+    rng = np.random.default_rng(4)
+    M, q, lo, hi = _box_problem(6, rng)
+    zb = np.array([1, 1, 0, 1, 0, 0], bool)
+    zh = np.zeros(6, bool)
+    M[1, :] = M[0, :]
+    code, z, w, _, x = _core.box_basis(M, q, lo, hi, zb, zh, False, TOL, np.ones(3))
+    assert code == 2 and z is None and w is None and x is None
+    with pytest.raises(ValueError):
+        _core.box_basis(M, q, lo, hi, zb, zh, False, TOL, np.ones(2))
+    with pytest.raises(ValueError):
+        _core.box_basis(M, q, lo[:5], hi, zb, zh, False, TOL)
+    with pytest.raises(TypeError):
+        _core.box_basis(M, q, lo, hi, zb.astype(np.int64), zh, False, TOL)
+    lo2 = lo.copy()
+    lo2[0] = np.nan
+    assert _core.box_basis(M, q, lo2, hi, zb, zh, False, TOL)[0] == _core.boxed.NOT_FINITE
+    lo2[0] = hi[0] + 1.0
+    assert _core.box_basis(M, q, lo2, hi, zb, zh, False, TOL)[0] == _core.boxed.BAD_BOUNDS
+
+
+def test_box_engine_point_is_the_seams_bit_for_bit():
+    """A box warm start whose old basis still solves the moved q (0 pivots) answers the
+    point of that basis by boxed::basis_point, now BoxBasis::point: the same bits as the
+    seam's entry with the warm rule."""
+    rng = np.random.default_rng(9)
+    hits = 0
+    for t in range(40):
+        n = int(rng.integers(2, 40))
+        M, q, lo, hi = _box_problem(n, rng)
+        M = M @ M.T + np.eye(n)
+        r = lemke.solve_blcp(M, q, lo, hi)
+        ws = r.warm_start
+        zb, zh = _flags(n, ws.z_basic), _flags(n, ws.at_upper)
+        for s in range(3):
+            q2 = q + 1e-7 * rng.normal(size=n)
+            rw = lemke.solve_blcp(M, q2, lo, hi, warm_start=ws)
+            hits += _warm_hit(rw, _core.box_basis(M, q2, lo, hi, zb, zh, True, TOL))
+    assert hits >= 60
