@@ -222,6 +222,9 @@ def test_bad_arguments_refused_and_not_finite_reported():
         _core.lcp_basis(M, q, f, TOL, np.ones(2))
     with pytest.raises(TypeError):
         _core.lcp_basis(M, q, f.astype(np.int32), TOL)
+    unaligned = np.frombuffer(b"\0" + M.tobytes(), dtype=float, offset=1).reshape(3, 3)
+    with pytest.raises(TypeError):  # (read as doubles, an unaligned array is undefined behaviour)
+        _core.lcp_basis(unaligned, q, f, TOL)
     Mn = M.copy()
     Mn[0, 2] = np.nan
     assert _core.lcp_basis(Mn, q, f, TOL)[0] == -1

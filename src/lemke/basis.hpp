@@ -28,8 +28,9 @@ inline idx basic_indices(const std::uint8_t* z_basic, idx n, idx* basic) {
 // first solve. factor_solve: the bits of solve_gathered (or, with `kept`, of
 // solve_gathered_kept: a block of the same rows of the same kept matrix is not factored
 // again). solve and solve_transpose reuse the factors: those in `a` when `piv` was given
-// (2k entries), those the kept matrix holds with `kept`; without either (the engines' point
-// alone) there are none, and they answer false.
+// (2k entries), those the kept matrix holds with `kept` (looked up when asked for: valid
+// until the thread's next kept solve); without either (the engines' point alone) there are
+// none, and they answer false.
 struct BasisBlock {
     Mat<const double> M;
     const idx* index;
@@ -37,8 +38,8 @@ struct BasisBlock {
     double* a;                 // k * k doubles: the block, then its factors
     idx* piv = nullptr;        // 2k: the pivots, or nullptr
     KeptMatrix* kept = nullptr;
-    const double* factors = nullptr;  // after factor_solve: the factors and pivots, if any
-    const idx* pivots = nullptr;
+    const double* factors = nullptr;  // after factor_solve: the factors and pivots in `a`, if
+    const idx* pivots = nullptr;      // kept there
 
     // a = M[index, index] (row-major, k x k).
     void build() const {
@@ -54,11 +55,7 @@ struct BasisBlock {
     bool factor_solve(double* y, double* x) {
         factors = nullptr;
         pivots = nullptr;
-        if (kept != nullptr) {
-            if (!solve_gathered_kept(M, index, a, y, x, k, kept)) return false;
-            kept_factors(kept, index, k, factors, pivots);
-            return true;
-        }
+        if (kept != nullptr) return solve_gathered_kept(M, index, a, y, x, k, kept);
         build();
         if (!solve_in_place(Mat<double>(a, k, k), y, x, k, piv)) return false;
         if (piv != nullptr) {
@@ -82,10 +79,13 @@ struct BasisBlock {
         if (k == 0) return true;
         double* yb = y();
         for (idx i = 0; i < k; ++i) yb[i] = rhs[i];
-        if (factors == nullptr || !all_finite(yb, k)) return false;
-        Mat<const double> F(factors, k, k);
-        return transpose ? lu_solve_transpose(F, pivots, yb, out, k)
-                         : lu_solve(F, pivots, yb, out, k);
+        const double* f = factors;
+        const idx* p = pivots;
+        // (a kept matrix's factors looked up only here: the point alone needs none)
+        if (f == nullptr && kept != nullptr) kept_factors(kept, index, k, f, p);
+        if (f == nullptr || !all_finite(yb, k)) return false;
+        Mat<const double> F(f, k, k);
+        return transpose ? lu_solve_transpose(F, p, yb, out, k) : lu_solve(F, p, yb, out, k);
     }
 };
 
