@@ -38,8 +38,8 @@ struct BasisBlock {
     double* a;                 // k * k doubles: the block, then its factors
     idx* piv = nullptr;        // 2k: the pivots, or nullptr
     KeptMatrix* kept = nullptr;
-    const double* factors = nullptr;  // after factor_solve: the factors and pivots in `a`, if
-    const idx* pivots = nullptr;      // kept there
+    const double* factors = nullptr;  // after factor_solve with piv: `a` and piv (the factors
+    const idx* pivots = nullptr;      // and pivots); else nullptr
 
     // a = M[index, index] (row-major, k x k).
     void build() const {
@@ -131,7 +131,8 @@ struct LcpBasis {
     }
 
     // w = M z + q and the verdict of the row-wise check (up to the first failed row when
-    // `early`); residual = max |min(z_i, w_i)|. work: 2n doubles.
+    // `early`); residual = max |min(z_i, w_i)|. work: 2n doubles (basis_point_checked gives
+    // the block's own: its factors are then gone, and solve answers garbage).
     bool check(const double* z, double tol, const double* R, double* w, double* work, bool early,
                double& residual) const {
         return check_rows(M, q, z, tol, w, R, work, early, residual);
