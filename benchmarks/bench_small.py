@@ -116,7 +116,8 @@ def part1(sizes, reps, rng):
     return rows
 
 
-def part2(count, rounds, rng, lo=1, hi=12):
+def islands(count, lo=1, hi=12):
+    """Part 2's islands (seed 15): lists of M, q and the next step's q."""
     r = np.random.default_rng(15)
     Ms, qs, qs2 = [], [], []
     for _ in range(count):
@@ -125,6 +126,11 @@ def part2(count, rounds, rng, lo=1, hi=12):
         Ms.append(np.ascontiguousarray(M))
         qs.append(q)
         qs2.append(q + 1e-3 * r.standard_normal(n))
+    return Ms, qs, qs2
+
+
+def part2(count, rounds, rng, lo=1, hi=12):
+    Ms, qs, qs2 = islands(count, lo, hi)
     ws = [lemke.solve_lcp(M, q).warm_start for M, q in zip(Ms, qs)]
     calls = {
         "solve_lcp loop, warm": lambda: [lemke.solve_lcp(M, q, warm_start=w) for M, q, w in zip(Ms, qs2, ws)],

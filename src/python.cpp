@@ -113,7 +113,7 @@ using Tuple7 = std::tuple<int, std::int64_t, std::int64_t, bool, double, std::in
 // beta[:-2 - k] whose point first_run tried.
 static Tuple7 solve_one(int method, Matrix M, Vector q, Vector d, Indices beta, std::int64_t k,
                         std::int64_t max_pivots, double pivot_tol, double tie_tol, double tol,
-                        Buffer buf, IndexOut basic) {
+                        Buffer buf, IndexOut basic, bool stop_at_ray) {
     using lemke::idx;
     idx n = static_cast<idx>(q.shape(0));
     lemke::BufferLayout L{n};
@@ -138,7 +138,7 @@ static Tuple7 solve_one(int method, Matrix M, Vector q, Vector d, Indices beta, 
         r = lemke::solve_one(static_cast<lemke::Method>(method),
                              lemke::Mat<const double>(M.data(), n, n), q.data(),
                              d_len ? d.data() : nullptr, b, k, max_pivots, pivot_tol,
-                             tie_tol, tol, out, basic_out);
+                             tie_tol, tol, out, basic_out, true, stop_at_ray);
     }
     return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
 }
@@ -196,16 +196,10 @@ NB_MODULE(_core, m) {
           "basic"_a.none());
     m.def("unrevised_solve", &unrevised_solve, "M"_a, "q"_a, "d"_a, "R"_a, "C"_a, "z_start"_a,
           "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "x_out"_a, "ray_out"_a, "z_basic_out"_a);
-    // the thread's rule for a ray in the recovery runs (lemke::stop_at_ray); returns the rule
-    // it replaces
-    m.def("stop_at_ray", [](bool on) {
-        bool old = lemke::stop_at_ray();
-        lemke::stop_at_ray() = on;
-        return old;
-    }, "on"_a);
+    // stop_at_ray: the MLCP ladder's rule for a ray in the recovery runs (lemke::solve_one)
     m.def("solve_one", &solve_one, "method"_a, "M"_a, "q"_a, "d"_a.none(), "beta"_a.none(),
           "k"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "buf"_a,
-          "basic"_a.none());
+          "basic"_a.none(), "stop_at_ray"_a = false);
     m.def("batch", &batch, "method"_a, "Ms"_a, "mstart"_a, "qs"_a, "qoff"_a, "beta"_a, "boff"_a,
           "lo"_a, "hi"_a, "max_pivots"_a, "pivot_tol"_a, "tie_tol"_a, "tol"_a, "bufs"_a,
           "buff"_a, "basics"_a, "out_i"_a, "out_f"_a);

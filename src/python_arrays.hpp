@@ -106,6 +106,25 @@ nanobind::object new_array(Py_ssize_t len, bool ints = false);
 // that API making such views (the caller slices). Raises when NumPy does.
 nanobind::object new_view(nanobind::handle base, Py_ssize_t offset, Py_ssize_t len);
 
+// The native fronts' conversion of array-likes (src/python_front.cpp, branch arraylike), for
+// src/python_front_qp.cpp (branch qpfront): the forms made_f64 converts (lists or tuples of
+// Python floats, bools and int64-sized ints, rows of one length, no dimension 0; ndarrays of
+// bool, int, uint up to 32 bits, float32 or float64 in the machine's byte order with other
+// strides), the values np.asarray(x).astype(float64) holds.
+// pack_form: how x (of nd dimensions, 1 or 2) is taken: 0 a plain float64 C array, 1 an
+// array-like made_f64 converts, -1 anything else (declined); its rows and cols (1 for nd 1).
+int pack_form(PyObject* x, int nd, Py_ssize_t& rows, Py_ssize_t& cols);
+// pack_into: x (pack_form's 0 or 1) written to out, rows x cols in C order; false where a
+// list entry is declined.
+bool pack_into(PyObject* x, int nd, Py_ssize_t rows, Py_ssize_t cols, double* out);
+// new_rows: a new float64 C array of rows x cols (1-D of rows when nd is 1), uninitialized.
+nanobind::object new_rows(int nd, Py_ssize_t rows, Py_ssize_t cols);
+// bound_value: a Python float or int64-sized int given for a bound lo (side -1) or hi (side
+// 1) as its value v; false for anything else, NaN, or a value of the wrong side with
+// -side v >= wrong (an infinity for solve_blcp, 1e20 for solve_qp, whose validation makes
+// such a bound an infinity and refuses it).
+bool bound_value(PyObject* x, int side, double wrong, double& v);
+
 // _core.games_front (src/python_games.cpp): solve_bimatrix(A, B, init_label=k)'s common
 // call, the BimatrixResult, the kernel's (code, pivots, restarts, buf) to go on from, or
 // None (arguments of another kind).

@@ -416,6 +416,9 @@ void cast_rows(const char* data, Py_ssize_t rows, Py_ssize_t cols, Py_ssize_t s0
         }
 }
 
+}  // namespace
+
+// (new_rows, bound_value, pack_form and pack_into: declared in python_arrays.hpp, for qp_front.)
 // The new float64 C array made_f64 fills (rows x cols; 1-D when nd is 1).
 nb::object new_rows(int nd, Py_ssize_t rows, Py_ssize_t cols) {
     Py_ssize_t dims[2] = {rows, cols};
@@ -425,6 +428,8 @@ nb::object new_rows(int nd, Py_ssize_t rows, Py_ssize_t cols) {
     if (!a.is_valid()) throw nb::python_error();
     return a;
 }
+
+namespace {
 
 // The entries of the ndarray a (nd dimensions) as float64 in C order into out, NumPy's
 // astype (cast_rows), when its dtype is bool, a signed int, an unsigned int up to 32 bits,
@@ -531,17 +536,25 @@ nb::object made_f64(PyObject* x, int nd) {
     return a;
 }
 
+}  // namespace
+
+bool bound_value(PyObject* x, int side, double wrong, double& v) {
+    return list_entry(x, v) && v == v && -side * v < wrong;
+}
+
+namespace {
+
 // solve_blcp's bound lo (side -1) or hi (side 1) as _validate.plain_blcp makes it: made_f64's
 // array, or a Python float or int64-sized int spread over q's n rows (np.full(n, float(x))),
-// q an ndarray; NaN and an infinity of the wrong side declined (invalid: the validation's
-// message then).
+// q an ndarray; NaN and an infinity of the wrong side declined (bound_value; invalid: the
+// validation's message then).
 nb::object made_bound(PyObject* x, PyObject* q, int side) {
     if (!PyFloat_CheckExact(x) && !PyLong_CheckExact(x)) return made_f64(x, 1);
     auto* qa = reinterpret_cast<const ArrayFields*>(q);
     double v;
     if (Py_TYPE(q) != front.ndarray || qa->nd != 1 || qa->dimensions[0] == 0 ||
-        front.new_from_descr == nullptr || !list_entry(x, v) || v != v ||
-        v == -side * std::numeric_limits<double>::infinity())
+        front.new_from_descr == nullptr ||
+        !bound_value(x, side, std::numeric_limits<double>::infinity(), v))
         return nb::object();
     Py_ssize_t n = qa->dimensions[0];
     nb::object out = new_rows(1, n, 1);
@@ -898,6 +911,8 @@ bool add_island(T n, T& m_len, T& q_len) {
     return true;
 }
 
+}  // namespace
+
 // How lcp_pack takes x (M, nd 2, or q, nd 1; its rows and cols): 0 a plain array, copied; 1
 // an array-like made_f64 converts (a castable ndarray, or a list or tuple of list_shape's),
 // its values written in place as made_f64 makes them; -1 anything else (declined).
@@ -923,6 +938,8 @@ bool pack_into(PyObject* x, int nd, Py_ssize_t rows, Py_ssize_t cols, double* ou
     if (Py_TYPE(x) == front.ndarray) return cast_into(reinterpret_cast<const ArrayFields*>(x), nd, out);
     return list_into(x, nd, rows, cols, out);
 }
+
+namespace {
 
 // solve_lcp_many's problems given as lists: (Mflat, qflat, n_b) with every M's rows and
 // every q end to end in two new float64 arrays and the sizes in an int64 array, when M and

@@ -21,6 +21,7 @@
 // before, and says what is wrong). The same solve, the same bits as the Python path.
 #include <nanobind/nanobind.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -83,12 +84,18 @@ const double* absent_bounds(idx n) {
     return v.data();
 }
 
-qp::Data data_of(const ArrayFields* P, const ArrayFields* q, const double* G, const double* h,
-                 idx m, const double* A, const double* b, idx p, const double* lo,
-                 const double* up) {
-    idx n = q->dimensions[0];
-    return {lemke::Mat<const double>(reinterpret_cast<const double*>(P->data), n, n),
-            reinterpret_cast<const double*>(q->data), lemke::Mat<const double>(G, m, n), h,
+// An argument as the front reads it: a float64 C array's data and shape (cols 1 for a
+// vector), in place or converted; given false for None.
+struct Arg {
+    const double* data = nullptr;
+    idx rows = 0, cols = 1;
+    bool given = false;
+};
+
+qp::Data data_of(const Arg& P, const Arg& q, const double* G, const double* h, idx m,
+                 const double* A, const double* b, idx p, const double* lo, const double* up) {
+    idx n = q.rows;
+    return {lemke::Mat<const double>(P.data, n, n), q.data, lemke::Mat<const double>(G, m, n), h,
             lemke::Mat<const double>(A, p, n), b, lo, up};
 }
 
@@ -182,52 +189,41 @@ nb::object cold(const qp::Data& data, idx p, idx m, bool many) {
     return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
 }
 
-nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
-                    nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
-                    std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
-    ran.clear();
-    if (!qf.on) return nb::none();
-    NumpyLayout lay = numpy_layout();
-    auto plain = [&](nb::handle o, int nd) { return plain_f64(o.ptr(), nd, lay.ndarray); };
-    const ArrayFields* P = plain(P_h, 2);
-    const ArrayFields* q = plain(q_h, 1);
-    if (P == nullptr || q == nullptr) return nb::none();
-    idx n = q->dimensions[0];
-    if (n == 0 || P->dimensions[0] != n || P->dimensions[1] != n) return nb::none();
+// The front on the arguments a (P, q, G, h, A, b, lb, ub, x0: float64 C arrays or None).
+nb::object front_args(const Arg* a, std::int64_t pairs, nb::handle beta_h) {
+    const Arg &P = a[0], &q = a[1], &lb = a[6], &ub = a[7], &x0a = a[8];
+    if (!P.given || !q.given) return nb::none();
+    idx n = q.rows;
+    if (n == 0 || P.rows != n || P.cols != n) return nb::none();
     static const double nothing = 0.0;
     const double *Gd = &nothing, *hd = &nothing, *Ad = &nothing, *bd = &nothing;
     idx m = 0, p = 0;
-    // rows (G and h, or A and b): both plain of matching shapes, or both None
-    auto rows = [&](nb::handle M_h, nb::handle v_h, const double*& M, const double*& v,
-                    idx& k) {
-        if (M_h.is_none() && v_h.is_none()) return true;
-        const ArrayFields* Ma = M_h.is_none() ? nullptr : plain(M_h, 2);
-        const ArrayFields* va = v_h.is_none() ? nullptr : plain(v_h, 1);
-        if (Ma == nullptr || va == nullptr) return false;
-        k = va->dimensions[0];
-        if (Ma->dimensions[0] != k || Ma->dimensions[1] != n) return false;
-        M = reinterpret_cast<const double*>(Ma->data);
-        v = reinterpret_cast<const double*>(va->data);
+    // rows (G and h, or A and b): both of matching shapes, or both None
+    auto rows = [&](const Arg& Ma, const Arg& va, const double*& M, const double*& v, idx& k) {
+        if (!Ma.given && !va.given) return true;
+        if (!Ma.given || !va.given) return false;
+        k = va.rows;
+        if (Ma.rows != k || Ma.cols != n) return false;
+        M = Ma.data;
+        v = va.data;
         return true;
     };
-    if (!rows(G_h, h_h, Gd, hd, m) || !rows(A_h, b_h, Ad, bd, p)) return nb::none();
+    if (!rows(a[2], a[3], Gd, hd, m) || !rows(a[4], a[5], Ad, bd, p)) return nb::none();
     const double* absent = nullptr;
     const double *lo, *up;
-    if (lb_h.is_none()) {
+    if (!lb.given) {
         absent = absent_bounds(n);
         lo = absent;
     } else {
-        const ArrayFields* a = plain(lb_h, 1);
-        if (a == nullptr || a->dimensions[0] != n) return nb::none();
-        lo = reinterpret_cast<const double*>(a->data);
+        if (lb.rows != n) return nb::none();
+        lo = lb.data;
     }
-    if (ub_h.is_none()) {
+    if (!ub.given) {
         if (absent == nullptr) absent = absent_bounds(n);
         up = absent + n;
     } else {
-        const ArrayFields* a = plain(ub_h, 1);
-        if (a == nullptr || a->dimensions[0] != n) return nb::none();
-        up = reinterpret_cast<const double*>(a->data);
+        if (ub.rows != n) return nb::none();
+        up = ub.data;
     }
     // The warm start's pairs (WarmStart._beta: int64, C-contiguous, aligned; rising in
     // [0, pairs), as _core.qp_solve_warm requires), or the guess x0 (n finite entries), or
@@ -236,6 +232,7 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
     idx kw = 0;
     const double* x0 = nullptr;
     if (!beta_h.is_none()) {
+        NumpyLayout lay = numpy_layout();
         auto* w = plain_i64(beta_h.ptr(), lay.ndarray, lay.int64_num);
         if (w == nullptr) return nb::none();
         warm = reinterpret_cast<const std::int64_t*>(w->data);
@@ -244,24 +241,16 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
         for (idx t = 0; t < kw; ++t)
             if (warm[t] < 0 || warm[t] >= pairs || (t > 0 && warm[t] <= warm[t - 1]))
                 return nb::none();
-    } else if (!x0_h.is_none()) {
-        // read only: a result's read-only x may be the guess (C-contiguous and aligned,
-        // float64 in the machine's byte order, as plain_f64 asks, writable or not)
-        if (Py_TYPE(x0_h.ptr()) != lay.ndarray) return nb::none();
-        auto* g = reinterpret_cast<const ArrayFields*>(x0_h.ptr());
-        auto* gt = reinterpret_cast<const DescrFields*>(g->descr);
-        if (g->nd != 1 || (g->flags & (C_CONTIGUOUS | ALIGNED)) != (C_CONTIGUOUS | ALIGNED) ||
-            gt->type_num != NPY_DOUBLE || gt->byteorder != '=' || g->dimensions[0] != n)
-            return nb::none();
-        x0 = reinterpret_cast<const double*>(g->data);
-        if (!lemke::all_finite(x0, n)) return nb::none();
+    } else if (x0a.given) {
+        if (x0a.rows != n || !lemke::all_finite(x0a.data, n)) return nb::none();
+        x0 = x0a.data;
         pairs = 0;
     } else {
         // cold, as solve_qp's inline lines choose: a box-only QP with bounds below
         // BOX_FIRST variables takes the box kernel; from there, the Python steps (None);
         // else _solve_definite's kernels (cold)
-        bool box = G_h.is_none() && h_h.is_none() && A_h.is_none() && b_h.is_none();
-        idx bounds = !lb_h.is_none() + !ub_h.is_none();
+        bool box = !a[2].given && !a[3].given && !a[4].given && !a[5].given;
+        idx bounds = lb.given + ub.given;
         if (box && bounds > 0) {
             if (n >= qf.box_first) return nb::none();
             return box_small(data_of(P, q, Gd, hd, m, Ad, bd, p, lo, up));
@@ -282,6 +271,76 @@ nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h
     ran.emplace_back(0, r.code);
     if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
     return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));
+}
+
+nb::object qp_front(nb::handle P_h, nb::handle q_h, nb::handle G_h, nb::handle h_h,
+                    nb::handle A_h, nb::handle b_h, nb::handle lb_h, nb::handle ub_h,
+                    std::int64_t pairs, nb::handle beta_h, nb::handle x0_h) {
+    ran.clear();
+    if (!qf.on) return nb::none();
+    PyObject* given[9] = {P_h.ptr(), q_h.ptr(), G_h.ptr(), h_h.ptr(), A_h.ptr(),
+                          b_h.ptr(), lb_h.ptr(), ub_h.ptr(), x0_h.ptr()};
+    static const int ranks[9] = {2, 1, 2, 1, 2, 1, 1, 1, 1};  // (_qp._RANKS)
+    // Each argument read in place when it is None or a plain float64 array (read-only or
+    // not: the front only reads); else (branch qpfront) converted as the entries of
+    // solve_lcp and solve_blcp convert array-likes (pack_form / pack_into: made_f64's forms
+    // and values) into one scratch vector, a Python-number bound spread over the rows
+    // (bound_value; NaN and a wrong-side value at or beyond 1e20 declined, as _validate.qp
+    // refuses them); anything else declines the call (None: the Python conversion,
+    // _validate.plain_all, and the validation then).
+    Arg a[9];
+    int form[9];  // 0 in place (or None), 1 converted, 2 a scalar bound
+    double scalar[9];
+    idx need = 0;
+    for (int i = 0; i < 9; ++i) {
+        PyObject* x = given[i];
+        form[i] = 0;
+        if (x == Py_None) continue;
+        a[i].given = true;
+        Py_ssize_t rows = 0, cols = 1;
+        if ((i == 6 || i == 7) && (PyFloat_CheckExact(x) || PyLong_CheckExact(x))) {
+            if (!a[1].given || !bound_value(x, i == 6 ? -1 : 1, qp::INFINITY_BOUND, scalar[i]))
+                return nb::none();
+            form[i] = 2;
+            rows = a[1].rows;
+        } else {
+            form[i] = pack_form(x, ranks[i], rows, cols);
+            if (form[i] < 0) return nb::none();
+            if (form[i] == 0)
+                a[i].data = reinterpret_cast<const double*>(reinterpret_cast<ArrayFields*>(x)->data);
+        }
+        a[i].rows = rows;
+        a[i].cols = cols;
+        if (form[i] != 0) need += rows * cols;
+    }
+    if (need == 0) return front_args(a, pairs, beta_h);
+    std::vector<double> scratch(static_cast<std::size_t>(need));  // (its own: a nested call
+    double* at = scratch.data();                                   // cannot reuse it)
+    for (int i = 0; i < 9; ++i) {
+        if (form[i] == 0) continue;
+        a[i].data = at;
+        if (form[i] == 2)
+            std::fill(at, at + a[i].rows, scalar[i]);
+        else if (!pack_into(given[i], ranks[i], a[i].rows, a[i].cols, at))
+            return nb::none();
+        at += a[i].rows * a[i].cols;
+    }
+    nb::object r = front_args(a, pairs, beta_h);
+    if (!PyTuple_CheckExact(r.ptr())) return r;  // the QPResult, or None
+    // the kernel's code with the arguments as converted (new arrays), which the Python steps
+    // go on with
+    nb::object args = nb::steal(PyTuple_New(9));
+    if (!args.is_valid()) throw nb::python_error();
+    for (int i = 0; i < 9; ++i) {
+        nb::object v = nb::borrow(given[i]);
+        if (form[i] != 0) {
+            v = new_rows(ranks[i], a[i].rows, a[i].cols);
+            std::copy(a[i].data, a[i].data + a[i].rows * a[i].cols,
+                      reinterpret_cast<double*>(reinterpret_cast<ArrayFields*>(v.ptr())->data));
+        }
+        PyTuple_SET_ITEM(args.ptr(), i, v.release().ptr());
+    }
+    return nb::make_tuple(r[0], r[1], r[2], r[3], args);
 }
 
 }  // namespace

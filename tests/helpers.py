@@ -240,6 +240,9 @@ def interrupt_child(code, *args, wait=1.0):
     import sys
     import time
 
+    # SIGINT back to Python's handler first: a shell that starts the tests in the background
+    # (`cmd &`) hands its children SIGINT ignored, and the child would never be interrupted.
+    code = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler)\n" + code
     child = subprocess.Popen([sys.executable, "-c", code, *args], stdout=subprocess.PIPE, text=True)
     try:
         assert child.stdout.readline().strip() == "ready"

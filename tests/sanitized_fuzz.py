@@ -18,9 +18,9 @@ and again in the test's own process, fingerprint against fingerprint).
   varying sizes in one call, each compared bit for bit with its solve alone in a fresh
   thread.
 * the seam's _core.lcp_basis and _core.box_basis (src/lemke/basis.hpp's LcpBasis, BoxBasis)
-  on every size 0-40 and some larger, with random, full, empty and singular bases, rhs of the right length and one off,
-  and malformed flags, M, q and rhs: each answer's arrays of the basis's sizes, or a
-  ValueError / TypeError;
+  on every size 0-40 and some larger, with random, full, empty and singular bases, rhs of
+  the right length and one off, and malformed flags, M, q and rhs: each answer's arrays of
+  the basis's sizes, or a ValueError / TypeError;
 * blcp_pack (solve_blcp_many's islands packed natively from made_f64's forms), directly and
   through solve_blcp_many: islands of 0-45 rows given as lists, tuples, int lists, Fortran-
   ordered, strided, unaligned and byte-swapped arrays (answers and packed bytes bit for bit the
@@ -28,6 +28,10 @@ and again in the test's own process, fingerprint against fingerprint).
   mismatched sizes or counts, findex out of range, negative, pointing at its own row, huge
   ints, scalar bounds of every Python type, NaN and infinities in every argument, lo > hi):
   each call answers, gives None or raises ValueError / TypeError.
+* qp_front's own conversion (solve_qp's array-likes, branch qpfront): every argument in each
+  of those forms, cold, warm and from a guess, bit for bit the float64 arrays' answer;
+  Python-number bounds of every type and value; malformed data, rows and bounds; junk warm
+  starts and guesses with converted data: an answer, None or ValueError / TypeError.
 
 A mismatch with the fresh thread raises (a finding, reported as an exception by the Runner).
 """
@@ -414,6 +418,7 @@ def fuzz(run):
         box_islands(run, rng)
         box_packs(run, rng)
         box_gathers(run, np.random.default_rng(2032))
+        qp_conversions(run, np.random.default_rng(2041))
         basis_seam(run, np.random.default_rng(2033))
 
 
@@ -459,8 +464,99 @@ def box_gathers(run, rng):
         run.attempt(f"fuzz box gathers {name} flat", refused_or(lambda: _core.many_field(bufs, bo, qo, 2, 0, ans, flag, f(lo))))
 
 
-# --- the seam's basis systems (branch seam): _core.lcp_basis and _core.box_basis called directly on every
-# size 0-40 and some larger, with random, empty, full and singular bases, rhs of the right
+# --- solve_qp's native conversion (branch qpfront): qp_front converting its arguments by
+# made_f64 (and Python-number bounds by made_bound) when the plain front declines them, through
+# solve_qp (cold, warm, initvals) and _core.qp_front directly: every form of made_f64's (and
+# the ones it declines: byte-swapped, unaligned...) bit for bit the float64 arrays' answer;
+# malformed ones (ragged and nested lists, mismatched sizes, NaN and infinities in every
+# argument, scalar bounds of every Python type, huge ints, junk warm starts and guesses) an
+# answer, None from the front, or a ValueError / TypeError.
+
+def _qp_same(a, b, what):
+    if type(a) is not type(b) or fingerprint_of(a) != fingerprint_of(b):
+        raise AssertionError(f"{what}: differs from the float64 arrays' answer")
+
+
+def fingerprint_of(r):
+    if not isinstance(r, lemke.QPResult):
+        return repr(r)
+    return (r.status, r.pivots, *(np.asarray(getattr(r, k)).tobytes() for k in ("x", "y", "z", "z_box")))
+
+
+def qp_conversions(run, rng):
+    n = 4
+    P, q, G, h, A, b, lb, ub = problems.random_convex_qp(n, rng, 3, 1)
+    data = [P, q, G, h, A, b, lb, ub]
+    want = lemke.solve_qp(*data)
+    ws = want.warm_start
+    x0 = want.x + 0.01
+    f64 = lambda x: None if x is None else np.ascontiguousarray(np.asarray(x).astype(np.float64))
+    for i, x in enumerate(data):
+        for name, form in _forms(x).items():
+            args = list(data)
+            args[i] = form
+            plain = [f64(a) for a in args] if name not in ("int rows",) else None
+            what = f"fuzz qp conv arg {i} {name}"
+            run.attempt(what, refused_or(lambda: lemke.solve_qp(*args)))
+            run.attempt(what + " warm", refused_or(lambda: lemke.solve_qp(*args, warm_start=ws)))
+            run.attempt(what + " initvals", refused_or(lambda: lemke.solve_qp(*args, initvals=list(x0))))
+            run.attempt(what + " front", refused_or(lambda: _core.qp_front(*args, 0, None, None)))
+            if plain is not None:
+                run.attempt(what + " same", lambda: _qp_same(lemke.solve_qp(*args), lemke.solve_qp(*plain), what))
+    scalars = [0, -1, 1.5, -2.5, True, None, 2 ** 70, -2 ** 70, np.nan, np.inf, -np.inf, 1e20, -1e20,
+               1e300, -1e300, "1", 1 + 0j, np.float32(1.0), np.int64(-1), [], [0.0], (0.0,) * n]
+    for lo in scalars:
+        for up in scalars:
+            run.attempt(f"fuzz qp scalar bounds {lo!r} {up!r}", refused_or(
+                lambda: lemke.solve_qp(P.tolist(), q, G, h, A, b, lo, up)))
+            run.attempt(f"fuzz qp scalar bounds {lo!r} {up!r} front", refused_or(
+                lambda: _core.qp_front(P, q.tolist(), None, None, None, None, lo, up, 0, None, None)))
+    bad = {
+        "ragged P": ([[1.0, 0.0], [0.0]], [1.0, 1.0]),
+        "nested P": ([[[1.0]]], [1.0]),
+        "empty": ([], []),
+        "empty rows": ([[], []], [1.0, 1.0]),
+        "1-D P": ([1.0, 2.0], [1.0, 2.0]),
+        "short q": (P.tolist(), q[:-1].tolist()),
+        "nan P": ([[np.nan, 0.0], [0.0, 1.0]], [1.0, 1.0]),
+        "inf q": ([[1.0, 0.0], [0.0, 1.0]], [np.inf, 1.0]),
+        "huge int": ([[2 ** 70, 0], [0, 1]], [1, 1]),
+        "int64 edge": ([[I64.max, 0], [0, I64.min]], [1, -1]),
+        "str": ([["1", 0], [0, 1]], [1, 1]),
+        "object": (np.eye(2, dtype=object), [1, 1]),
+        "float16": (np.eye(2, dtype=np.float16), np.ones(2, np.float16)),
+    }
+    rows = {"none": (None, None), "G only": ([[1.0, 1.0]], None), "h only": (None, [1.0]),
+            "ok": ([[1.0, 1.0]], [1.0]), "short h": ([[1.0, 1.0]], []), "nan h": ([[1.0, 1.0]], [np.nan]),
+            "wide G": ([[1.0, 1.0, 1.0]], [1.0]), "ragged G": ([[1.0], [1.0, 2.0]], [1.0, 1.0]),
+            "1-D G": ([1.0, 1.0], [1.0]), "scalar h": ([[1.0, 1.0]], 1.0), "int G": ([[1, -1]], [0])}
+    for name, (Px, qx) in bad.items():
+        for rname, (Gx, hx) in rows.items():
+            for lo in (None, 0, [0, 0], -np.inf):
+                what = f"fuzz qp bad {name} {rname} {lo!r}"
+                run.attempt(what, refused_or(lambda: lemke.solve_qp(Px, qx, Gx, hx, lb=lo)))
+                run.attempt(what + " eq", refused_or(lambda: lemke.solve_qp(Px, qx, A=Gx, b=hx, ub=lo)))
+                run.attempt(what + " front", refused_or(
+                    lambda: _core.qp_front(Px, qx, Gx, hx, None, None, lo, None, 0, None, None)))
+    # junk warm starts and guesses with converted data
+    extremes = [0, 1, -1, 3, n, n + 4, I64.max, I64.min]
+    Pl, ql, Gl, hl = P.tolist(), q.tolist(), G.tolist(), h.tolist()
+    for t in range(40):
+        pairs = int(extremes[int(rng.integers(len(extremes)))])
+        beta = np.sort(rng.choice(np.array(extremes, dtype=np.int64), size=int(rng.integers(0, 4)), replace=False))
+        guess = [float(v) for v in rng.standard_normal(int(rng.integers(n - 1, n + 2)))]
+        if rng.random() < 0.3 and guess:
+            guess[0] = [np.nan, np.inf, 2 ** 70, "x", None][int(rng.integers(5))]
+        run.attempt(f"fuzz qp junk warm {t}", refused_or(
+            lambda: _core.qp_front(Pl, ql, Gl, hl, A, b, lb, ub, pairs, beta, None)))
+        run.attempt(f"fuzz qp junk guess {t}", refused_or(
+            lambda: _core.qp_front(Pl, ql, Gl, hl, A, b, lb, ub, 0, None, guess)))
+        run.attempt(f"fuzz qp junk guess {t} solve", refused_or(
+            lambda: lemke.solve_qp(Pl, ql, Gl, hl, A, b, lb, ub, initvals=guess)))
+
+
+# --- the seam's basis systems (branch seam): _core.lcp_basis and _core.box_basis called
+# directly on every size 0-40 and some larger, with random, empty, full and singular bases, rhs of the right
 # length and one off, both solves, and malformed arguments (flags of other dtypes, layouts
 # and lengths, M not square, q short, NaN and infinities): an answer whose arrays have the
 # sizes the basis gives (z and w n entries, x one per basic z), or a ValueError / TypeError;

@@ -13,7 +13,7 @@ import pytest
 import scipy.sparse as sp
 
 import lemke
-from lemke import _blcp_many, _validate
+from lemke import _blcp_many, _core, _qp, _validate
 
 
 def _f64(x):
@@ -79,6 +79,10 @@ def _old(monkeypatch):
     for name in ("plain_lcp", "plain_blcp", "plain_all", "plain_many", "plain_islands"):
         monkeypatch.setattr(_validate, name, lambda *a: None)
     monkeypatch.setattr(_blcp_many, "_PACK", lambda *a: None)  # (solve_blcp_many's packing)
+    # solve_qp's front on plain data only (its own conversion off: it declines the rest)
+    front = _qp._QP_FRONT
+    monkeypatch.setattr(_qp, "_QP_FRONT", lambda *a: front(*a) if _core.all_f64(
+        a[:8] + a[10:], _qp._RANKS) is False else None)
 
 
 LCP_FIELDS = ("z", "w", "status", "pivots", "residual", "ray", "z0", "covering", "warm_start",
@@ -591,11 +595,89 @@ def test_qp_forms_bit_for_bit(no_validation):
         x0 = [0.1, 0.1, 0.0]
         _same(lemke.solve_qp(*args, initvals=x0), lemke.solve_qp(*data, initvals=np.array(x0)),
               QP_FIELDS)
+        # Python-number bounds, spread over the rows (made_bound; with made_f64's forms,
+        # which byte-swapped arrays are not: the validation takes those)
+        for lo, up in () if forms[0][i][0] == "swapped" else ((-2, 2.0), (-2.0, 2), (-2, np.full(3, 2.0))):
+            _same(lemke.solve_qp(*args[:6], lo, up), want, QP_FIELDS)
+            _same(lemke.solve_qp(*args[:6], lo, up, warm_start=ws),
+                  lemke.solve_qp(*data, warm_start=ws), QP_FIELDS)
     # subsets: no A, b; bounds only; no rows at all
     P, q, G, h, A, b, lb, ub = data
     for kw in ({"G": G, "h": h}, {"lb": lb, "ub": ub}, {}):
         lists = {k: v.tolist() for k, v in kw.items()}
         _same(lemke.solve_qp(P.tolist(), q.tolist(), **lists), lemke.solve_qp(P, q, **kw), QP_FIELDS)
+    for lo, up in ((-2, None), (None, 2), (-np.inf, 2.0), (-1e20, 1e20), (-2, np.inf)):
+        kw = {k: np.full(3, float(v)) for k, v in (("lb", lo), ("ub", up)) if v is not None}
+        _same(lemke.solve_qp(P.tolist(), q, lb=lo, ub=up), lemke.solve_qp(P, q, **kw), QP_FIELDS)
+        _same(lemke.solve_qp(P, q, G, h, lb=lo, ub=up), lemke.solve_qp(P, q, G, h, **kw), QP_FIELDS)
+
+
+GO_ON_QP = [  # the front's kernels do not end solved and checked: the Python steps go on
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], G=[[1.0, 0.0], [-1.0, 0.0]], h=[-1, -1]),
+    dict(P=np.zeros((3, 3), np.float32), q=[-1.0, -1.0, 0.0], G=[[1, 1, 0], [1, -1, 1]], h=(1.0, 2.0)),
+    dict(P=[[0.0, 0.0], [0.0, 1.0]], q=[-1.0, 0.0], lb=0),
+    dict(P=[[0.0, 0.0], [0.0, 1.0]], q=[-1.0, 0.0], lb=[0, 0], ub=1e20),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], A=[[1.0, 1.0], [1.0, 1.0]], b=[1.0, 2.0]),
+    dict(P=[[2.0, 1.0], [1.0, 2.0]], q=[-5, -6], G=[[1.0, 1.0]], h=[-10.0], lb=0.0, ub=1),
+]
+
+
+@pytest.mark.parametrize("kw", GO_ON_QP)
+def test_qp_converted_go_on_as_before(kw, monkeypatch):
+    """A call whose arguments the front converted and whose kernels did not settle it goes on
+    from the front's code with the converted arrays (no Python conversion, no second kernel
+    call): the answer of the conversion-off path and of the float64 arrays, bit for bit."""
+    with monkeypatch.context() as m:
+        m.setattr(_validate, "plain_all", lambda *a: pytest.fail("the Python conversion ran"))
+        got = lemke.solve_qp(**kw)
+    assert _core.qp_front_codes() or "G" not in kw  # (the front ran a kernel)
+    n = len(kw["q"])
+    f64 = {k: np.full(n, float(v)) if np.ndim(v) == 0 else _f64(v) for k, v in kw.items()}
+    _same(got, lemke.solve_qp(**f64), QP_FIELDS)
+    with monkeypatch.context() as m:
+        _old(m)
+        _same(got, lemke.solve_qp(**kw), QP_FIELDS)
+
+
+def test_qp_front_conversion_is_numpys():
+    """qp_front's own conversion (pack_form / pack_into into its scratch vector; the arguments
+    as converted come back with the kernels' code when they do not settle the call, here an
+    infeasible QP) holds NumPy's values, np.asarray(x).astype(float64), for every dtype and
+    stride it takes, lists of ints beyond 2**53 and Python-number bounds included."""
+    rng = np.random.default_rng(8)
+    base = rng.integers(-2 ** 62, 2 ** 62, (3, 6))
+    unaligned = np.frombuffer(b"\0" + rng.standard_normal(9).tobytes(), dtype=np.float64,
+                              offset=1).reshape(3, 3)
+    odd_bool = np.array([[0, 1, 2], [255, 0, 7], [1, 1, 0]], dtype=np.uint8).view(np.bool_)
+    mats = [base[:, :3], base[:, :3].astype(np.int32), base[:, :3].astype(np.int16),
+            base[:, :3].astype(np.int8), np.abs(base[:, :3]).astype(np.uint8),
+            np.abs(base[:, :3]).astype(np.uint16), np.abs(base[:, :3]).astype(np.uint32), odd_bool,
+            np.array([[1e-45, -0.0, 3.4e38], [1.0, 2.0, 3.0], [0.5, -1.0, 7.0]], np.float32),
+            np.asfortranarray(rng.standard_normal((3, 3))), rng.standard_normal((6, 9))[::2, 1::3],
+            rng.standard_normal((3, 6))[::-1, ::-2], unaligned, np.asfortranarray(base[:, :3]),
+            [[2 ** 62 + 1, -3, 0], [2 ** 63 - 1, 1, True], [0.1, -2 ** 63, 5]]]
+    G, h = np.array([[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]), np.array([-1.0, -1.0])  # x0 <= -1, >= 1
+    P, q = np.eye(3), np.ones(3)
+    for x in mats:
+        vec = x[1] if isinstance(x, list) else x[:, 1]
+        for args in ([x, q, G, h, None, None, None, None], [P, vec, G, h, None, None, vec, None],
+                     [P, q, G, h, x, vec, -1e19, 2 ** 62 + 1], [P, q, G, h, x[:1], vec[:1], None, 3]):
+            r = _core.qp_front(*args, 0, None, None)
+            assert type(r) is tuple and r[0] != _core.QP_OK
+            if all(a is None or (type(a) is np.ndarray and a.dtype == np.float64 and a.dtype.isnative
+                                 and a.flags.c_contiguous and a.flags.aligned) for a in args):
+                # (a Fortran matrix's column is plain: nothing to convert)
+                assert len(r) == 4
+                continue
+            assert len(r) == 5
+            for given, got in zip(args, r[4]):
+                if given is None:
+                    assert got is None
+                    continue
+                want = (np.full(3, float(given)) if np.ndim(given) == 0
+                        else np.ascontiguousarray(np.asarray(given).astype(np.float64)))
+                assert got.dtype == np.float64 and got.flags.c_contiguous and got.flags.writeable
+                assert got.shape == want.shape and got.tobytes() == want.tobytes(), type(given)
 
 
 BAD_QP = [
@@ -612,6 +694,24 @@ BAD_QP = [
     dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], initvals=[0.0, 0.0, 0.0]),
     dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], A=[[1.0, 1.0]], b=[1.0], G=[[1.0, 1.0]], h=[0.0],
          lb=[1.0, 1.0]),
+    # Python-number bounds: NaN, the wrong side's infinity or 1e20, other types, lb > ub
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=np.nan),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], ub=np.nan),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=np.inf),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], ub=-np.inf),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=1e20),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], ub=-1e20),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=1e300, ub=[1e300, 1e300]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=2 ** 70),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=-2 ** 70, ub=True),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb="0"),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=1.0, ub=0),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=[0.0, 1.0], ub=0.5),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=0.0, ub=[0.5, -1.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], lb=0.0, ub=[0.5, 1.0, 2.0]),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0], lb=0.0),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], G=[1.0, 1.0], h=1.0, lb=0),
+    dict(P=[[1.0, 0.0], [0.0, 1.0]], q=[1.0, 1.0], G=[[1.0, 1.0]], h=[1.0], initvals=(0, 2 ** 70)),
 ]
 
 

@@ -18,6 +18,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(Path(__file__).parent))
 import golden  # noqa: E402
 
+# The CMake build of the C API with the sanitizers takes tens of seconds: not in the fast lane
+# (`pytest -m "not slow"`); the README's test command runs it.
+pytestmark = pytest.mark.slow
+
 
 def _cmake():
     exe = shutil.which("cmake")

@@ -111,12 +111,22 @@ def test_declined_inputs_take_the_python_path(no_front):
     P, q, G, h, A, b, lb, ub = random_convex_qp(12, rng, 8, 2)
     cold = lemke.solve_qp(P, q, G, h, A, b, lb, ub)
     ws = cold.warm_start
-    # not plain: lists, float32, a non-contiguous view, an initvals list: None from the front
-    assert _core.qp_front(P.tolist(), q, G, h, A, b, lb, ub, ws.n, ws._beta, None) is None
-    assert _core.qp_front(P, q.astype(np.float32), G, h, A, b, lb, ub, ws.n, ws._beta, None) is None
+    # not plain but made_f64's forms (lists, float32, a Fortran-ordered array, an initvals
+    # list): the front converts them, the plain data's answer bit for bit
     Gt = np.asfortranarray(G)
-    assert _core.qp_front(P, q, Gt, h, A, b, lb, ub, ws.n, ws._beta, None) is None
-    assert _core.qp_front(P, q, G, h, A, b, lb, ub, 0, None, cold.x.tolist()) is None
+    warm = _core.qp_front(P, q, G, h, A, b, lb, ub, ws.n, ws._beta, None)
+    guess = _core.qp_front(P, q, G, h, A, b, lb, ub, 0, None, cold.x)
+    for r, want in ((_core.qp_front(P.tolist(), q, G, h, A, b, lb, ub, ws.n, ws._beta, None), warm),
+                    (_core.qp_front(P, q.astype(np.float32), G, h, A, b, lb, ub, ws.n, ws._beta, None),
+                     lemke.solve_qp(P, q.astype(np.float32).astype(float), G, h, A, b, lb, ub, warm_start=ws)),
+                    (_core.qp_front(P, q, Gt, h, A, b, lb, ub, ws.n, ws._beta, None), warm),
+                    (_core.qp_front(P, q, G, h, A, b, lb, ub, 0, None, cold.x.tolist()), guess)):
+        assert type(r) is lemke.QPResult and _bits(r) == _bits(want)
+    # other kinds (byte-swapped, complex, a 1-D G, a scalar h, a bool bound): None
+    for args in ((P, q.astype(">f8"), G, h, A, b, lb, ub), (P, q.astype(complex), G, h, A, b, lb, ub),
+                 (P, q, G[0], h[:1], A, b, lb, ub), (P, q, G[:1], 1.0, A, b, lb, ub),
+                 (P, q, G, h, A, b, True, ub)):
+        assert _core.qp_front(*args, ws.n, ws._beta, None) is None
     bad = cold.x.copy()
     bad[3] = np.nan
     assert _core.qp_front(P, q, G, h, A, b, lb, ub, 0, None, bad) is None
@@ -244,14 +254,18 @@ def test_cold_calls_bit_for_bit(no_front, name, args):
 
 
 def test_cold_declined_and_bad_inputs_say_the_same(no_front):
-    """Data the cold front declines (lists, float32, a Fortran G, mismatched shapes) or
-    runs and hands back (a NaN: BAD_INPUT) takes the Python path, whose errors are as
-    before, word for word."""
+    """Data the cold front converts (lists, float32, a Fortran G: the plain data's answer),
+    declines (mismatched shapes) or runs and hands back (a NaN: BAD_INPUT, with the
+    arguments as converted when it converted them) takes the Python path, whose errors are
+    as before, word for word."""
     rng = np.random.default_rng(6)
     P, q, G, h, A, b, lb, ub = random_convex_qp(8, rng, 5, 2)
-    assert _core.qp_front(P.tolist(), q, G, h, A, b, lb, ub, 0, None, None) is None
-    assert _core.qp_front(P, q.astype(np.float32), G, h, A, b, lb, ub, 0, None, None) is None
-    assert _core.qp_front(P, q, np.asfortranarray(G), h, A, b, lb, ub, 0, None, None) is None
+    q32 = q.astype(np.float32)
+    for args, want in (((P.tolist(), q, G, h, A, b, lb, ub), (P, q, G, h, A, b, lb, ub)),
+                       ((P, q32, G, h, A, b, lb, ub), (P, q32.astype(float), G, h, A, b, lb, ub)),
+                       ((P, q, np.asfortranarray(G), h, A, b, lb, ub), (P, q, G, h, A, b, lb, ub))):
+        r = _core.qp_front(*args, 0, None, None)
+        assert type(r) is _qp.QPResult and _bits(r) == _bits(_core.qp_front(*want, 0, None, None))
     assert _core.qp_front(P, q, G[:, :-1], h, A, b, lb, ub, 0, None, None) is None
     assert _core.qp_front(P, q, G, None, A, b, lb, ub, 0, None, None) is None
     for args in ((P.tolist(), q, G, h, A, b, lb, ub), (P, q.astype(np.float32), G, h, A, b, lb, ub)):
@@ -261,8 +275,11 @@ def test_cold_declined_and_bad_inputs_say_the_same(no_front):
     Pn[1, 2] = np.nan
     assert _core.qp_front(Pn, q, G, h, A, b, lb, ub, 0, None, None)[0] == 5  # qp.hpp BAD_INPUT: the kernel's screen refuses a NaN
     off, on = no_front
+    got = _core.qp_front(Pn.tolist(), q, G, h, A, b, lb, ub, 0, None, None)
+    assert got[0] == 5 and len(got) == 5 and got[4][0].tobytes() == Pn.tobytes()  # (converted)
     for bad in ((Pn, q, G, h, A, b, lb, ub), (P, q, G[:, :-1], h, A, b, lb, ub),
-                (P, q, G, None, A, b, lb, ub), (P[:, :-1], q, G, h, A, b, lb, ub)):
+                (P, q, G, None, A, b, lb, ub), (P[:, :-1], q, G, h, A, b, lb, ub),
+                (Pn.tolist(), q, G, h, A, b, lb, ub), (P, q, G.tolist(), h[:-1].tolist(), A, b, lb, ub)):
         msgs = []
         for switch in (on, off):
             switch()

@@ -172,12 +172,17 @@ def test_ctrl_c_stops_a_running_solve(what):
 
 def test_the_listener_restores_python_handler():
     """After a long solve (which arms the SIGINT listener), Python's own handler is in force
-    again: a SIGINT raises KeyboardInterrupt as usual."""
-    r = lemke.solve_lcp(LONG.M, LONG.q, options={**ENDLESS, "time_limit": 0.02})
-    assert r.status == Status.TIME_LIMIT
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
-    with pytest.raises(KeyboardInterrupt):
-        os.kill(os.getpid(), signal.SIGINT)
+    again: a SIGINT raises KeyboardInterrupt as usual.  (Python's handler is put in first: a
+    suite started in the background inherits SIGINT ignored.)"""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        r = lemke.solve_lcp(LONG.M, LONG.q, options={**ENDLESS, "time_limit": 0.02})
+        assert r.status == Status.TIME_LIMIT
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+        with pytest.raises(KeyboardInterrupt):
+            os.kill(os.getpid(), signal.SIGINT)
+    finally:
+        signal.signal(signal.SIGINT, before)
         time.sleep(1.0)
 
 

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import functools
+import inspect
 
 import numpy as np
 
@@ -44,7 +45,7 @@ _ENTRY: dict = {}
 
 
 def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
-              progress=None) -> LCPResult:
+              progress=None, _ray_stop=False) -> LCPResult:
     r"""Solve the linear complementarity problem LCP(M, q) by Lemke's method.
 
     Find z with
@@ -100,9 +101,12 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
     Management Science 11 (1965).  R. W. Cottle, J.-S. Pang, R. E. Stone, *The Linear
     Complementarity Problem*, Academic Press (1992), section 4.4.
     """
+    # (_ray_stop, private: the MLCP ladder's step with another after it, whose recovery runs
+    # end at their first ray: _core.solve_one's stop_at_ray, src/lemke/lcp.hpp)
     if progress is not None and progress is not False:
         return _progress.reported(_progress.check(progress), "solve_lcp", solve_lcp, M, q,
-                                  method=method, d=d, warm_start=warm_start, options=options)
+                                  method=method, d=d, warm_start=warm_start, options=options,
+                                  _ray_stop=_ray_stop)
     if d is None and options is None and (method == "tableau" or method == "unrevised"):
         # The commonest calls, whole in one native call (src/python_front.cpp): plain
         # float64 arrays give the result (or what first_run left to do), others None.
@@ -125,7 +129,8 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
             # as the validation below would convert them: then the front, through the entry
             return solve_lcp(c[0], c[1], method=method, warm_start=warm_start)
     if options is not None and (timing := time_limited(options)):
-        return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start)
+        return timed(timing, solve_lcp, M, q, method=method, d=d, warm_start=warm_start,
+                     _ray_stop=_ray_stop)
     ws = warm_start
     # (``is`` first, for speed; ``==`` for a float64 dtype that is not numpy's own object,
     # such as one made by ``dtype.newbyteorder("=")``.)
@@ -173,8 +178,12 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
     # ``basic`` argument tells the kernel so: _layout.own_basic).
     at = _LEN_N * n + _LEN_1
     buf = _empty(at + n)
-    code, pivots, k, ok, residual, recoveries, stage = run(
-        _CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS)
+    if _ray_stop and run is _SOLVE_ONE:
+        out = run(_CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS,
+                  True)
+    else:
+        out = run(_CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS)
+    code, pivots, k, ok, residual, recoveries, stage = out
     if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
         # Solved and checked (or q >= 0: z = 0), or a checked ray: the common cases, built
         # lazily (LCPResult._lazy, inlined).
@@ -190,7 +199,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
             f["warm_start"] = ws
         return res
     return _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf, at, n,
-                  code, pivots, k, ok, residual, recoveries, stage)
+                  code, pivots, k, ok, residual, recoveries, stage, _ray_stop)
 
 
 def _after_front(M, q, warm_start, beta, r, method="tableau"):
@@ -204,9 +213,9 @@ def _after_front(M, q, warm_start, beta, r, method="tableau"):
 
 
 def _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf, at, n,
-           code, pivots, k, ok, residual, recoveries, stage):
+           code, pivots, k, ok, residual, recoveries, stage, ray_stop=False):
     """solve_lcp after a first call of the core that did not settle the solve: the rest of
-    the driver (stage < 0), then the result."""
+    the driver (stage < 0), then the result (``ray_stop``: solve_lcp's ``_ray_stop``)."""
     if stage < 0:
         # A solve by the tableau that the lean kernel (_layout.first_run) could not finish: a
         # cold run with a cycle, a ray to check or recovery runs to make (stage -1: the full
@@ -214,7 +223,7 @@ def _go_on(M, q, d, method, opts, ws, beta, kb, mp, pivot_tol, tie_tol, tol, buf
         resume = stage == -1
         code, pivots, k, ok, residual, recoveries, stage = _SOLVE_ONE(
             _CODES[method], M, q, d, np.array([code, pivots], dtype=np.int64) if resume else beta,
-            -1 if resume else -2 - kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS)
+            -1 if resume else -2 - kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS, ray_stop)
         if ok and (code == 0 or code == _RAY):
             return LCPResult._lazy(_SOLVED if code != _RAY else Status.RAY_TERMINATION, pivots,
                                    residual, recoveries, (buf, 0, None, at, n, k))
@@ -304,5 +313,8 @@ native_fronts_init()  # (solve_lcp's front and the layout check the native front
 #: ``lcp_entry``): the calls ``solve_lcp(M, q)`` and ``solve_lcp(M, q, warm_start=ws)`` go
 #: to ``_FRONT`` with no Python frame, every other call (and any the front declines) to it.
 _solve_lcp = solve_lcp
+_sig = inspect.signature(_solve_lcp)  # shown without the private _ray_stop
+_solve_lcp.__signature__ = _sig.replace(
+    parameters=[p for p in _sig.parameters.values() if p.name != "_ray_stop"])
 solve_lcp = functools.update_wrapper(
     _core.lcp_entry(_solve_lcp, _after_front, globals(), _FRONT, WarmStart), _solve_lcp)

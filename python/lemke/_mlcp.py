@@ -168,12 +168,9 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
     steps = list(_ladder(red, opts))
     for i, (_, M, o) in enumerate(steps):
         # (a step with another after it ends its recovery runs at their first ray, which
-        # _evaluate checks on the caller's data: _core.stop_at_ray; the last step tries them all)
-        old = _core.stop_at_ray(i + 1 < len(steps))
-        try:
-            res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws, opts.tol)
-        finally:
-            _core.stop_at_ray(old)
+        # _evaluate checks on the caller's data: solve_lcp's private _ray_stop, the core's
+        # stop_at_ray; the last step tries them all)
+        res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws, opts.tol, i + 1 < len(steps))
         pivots += p
         outcomes.append((M, o, res, out))
         if out[2] or res.status == Status.MAX_PIVOTS or res.status in STOPPED:
@@ -234,18 +231,20 @@ def _ladder(red, opts):
         yield name, getattr(red, matrix), opts if pivot_tol is None else replace(opts, pivot_tol=pivot_tol)
 
 
-def _restarted(E, e, n, red, M, o, method, lcp_ws, tol):
+def _restarted(E, e, n, red, M, o, method, lcp_ws, tol, ray_stop=False):
     """One step of the ladder: solve the reduced LCP (M, red.q), then restart Lemke's method
     from the final basis (solve_lcp's warm start: a fresh factorization, a few pivots) up to
-    ``MAX_RESTARTS`` times while the point misses on the caller's data.  Returns
+    ``MAX_RESTARTS`` times while the point misses on the caller's data.  ``ray_stop``: every
+    solve's recovery runs end at their first ray (solve_lcp's ``_ray_stop``).  Returns
     ``(result, evaluation, pivots)``."""
-    res = solve_lcp(M, red.q, method=method, warm_start=lcp_ws, options=o)
+    res = solve_lcp(M, red.q, method=method, warm_start=lcp_ws, options=o, _ray_stop=ray_stop)
     pivots = res.pivots
     out = _evaluate(E, e, n, red, res, tol)
     for _ in range(MAX_RESTARTS):
         if out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
             break
-        res = solve_lcp(M, red.q, method=method, warm_start=res.warm_start, options=o)
+        res = solve_lcp(M, red.q, method=method, warm_start=res.warm_start, options=o,
+                        _ray_stop=ray_stop)
         pivots += res.pivots
         out = _evaluate(E, e, n, red, res, tol)
     return res, out, pivots

@@ -224,9 +224,10 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
             warm_start is None or type(warm_start) is WarmStart and initvals is None):
         # The call whole in one native call (src/python_front_qp.cpp), cold or warm (a
         # WarmStart, or qpsolvers' initvals): plain data (as the inline lines below take it,
-        # and a plain float64 initvals) gives the result, or the kernel's code when it did
-        # not end solved and checked (the steps below then go on without calling it again);
-        # others None (the steps below do everything).
+        # and a plain float64 initvals), or array-likes it converts (made_f64's forms, scalar
+        # bounds), gives the result, or the kernel's code when it did not end solved and
+        # checked (with the converted arguments, if any; the steps below then go on without
+        # calling it again); others None (the steps below do everything).
         if warm_start is not None:
             try:
                 beta = warm_start._beta  # (an attribute read: cheaper than __dict__.get)
@@ -238,7 +239,9 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
         if r is not None:
             if type(r) is not tuple:
                 return r
-            code, pivots, k, pairs = r
+            if len(r) > 4:  # (array-likes the front converted: the steps below take them)
+                P, q, G, h, A, b, lb, ub, initvals = r[4]
+            code, pivots, k, pairs = r[:4]
             if code == _BAD_WARM:
                 raise _bad_warm(warm_start, pairs)
             if code in _STOP_CODES:
@@ -253,8 +256,8 @@ def solve_qp(P, q, G=None, h=None, A=None, b=None, lb=None, ub=None, *, method="
             else:
                 warm_tried = True
         elif (c := _validate.plain_all((P, q, G, h, A, b, lb, ub, initvals), _RANKS)) is not None:
-            # array-likes converted once, as the validation below would convert them: then
-            # the front
+            # array-likes the front declined (NumPy's other forms) converted once, as the
+            # validation below would convert them: then the front
             return solve_qp(c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], method=method,
                             warm_start=warm_start, initvals=c[8])
     if ((warm_start is None or type(warm_start) is WarmStart) and initvals is None

@@ -285,10 +285,12 @@ idx restart(Mat<const double> M, const double* q, const std::uint8_t* z_start, c
 }
 
 // The cold solve with its recoveries. Returns code, pivots, k (basic z's into
-// basic), ok, residual, recoveries in a RunResult (stage 2).
+// basic), ok, residual, recoveries in a RunResult (stage 2). stop_at_ray: solve_one's
+// (lcp.hpp), a first recovery run's ray ends the recoveries.
 RunResult checked(Method method, Mat<const double> M, const double* q, const double* d,
                   idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,
-                  idx* basic, int first_code, idx first_pivots, bool scaled) {
+                  idx* basic, int first_code, idx first_pivots, bool scaled,
+                  bool stop_at_ray) {
     thread_local std::vector<double> work;
     thread_local std::vector<std::uint8_t> z_basic;  // (an allocation a call, ~2 % at n = 2)
     idx n = M.rows;
@@ -427,7 +429,7 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
             ok = r.ok;
             residual = r.residual;
         }
-        if (step == 0 && r.code == RAY_TERMINATION && stop_at_ray()) {
+        if (step == 0 && r.code == RAY_TERMINATION && stop_at_ray) {
             if (!take) {  // (a ray that fails the check here: the answer all the same, unchecked)
                 std::copy(buf2.begin(), buf2.end(), buf);
                 z_basic = z_basic2;
@@ -452,11 +454,6 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
 }
 
 }  // namespace
-
-bool& stop_at_ray() {
-    thread_local bool on = false;
-    return on;
-}
 
 RunResult checked_once(Method method, Mat<const double> M, const double* q, const double* d,
                        idx max_pivots, double pivot_tol, double tie_tol, double tol, double* buf,
@@ -486,7 +483,7 @@ RunResult checked_once(Method method, Mat<const double> M, const double* q, cons
 
 RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
                     const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                    double tol, double* buf, idx* basic, bool keep) {
+                    double tol, double* buf, idx* basic, bool keep, bool stop_at_ray) {
     thread_local std::vector<double> work;
     idx n = M.rows;
     Views v(buf, n);
@@ -536,7 +533,8 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
         scaled = true;
     }
     RunResult out = checked(method, M, q, d, std::max<idx>(0, max_pivots - pivots), pivot_tol,
-                            tie_tol, tol, buf, basic, first_code, first_pivots, scaled);
+                            tie_tol, tol, buf, basic, first_code, first_pivots, scaled,
+                            stop_at_ray);
     out.pivots += pivots;
     out.stage = 2;
     return out;

@@ -55,18 +55,18 @@ RunResult first_run(Mat<const double> M, const double* q, const double* d, const
 // k = -1: go on after first_run's stage -1 (its code beta[0] after beta[1] pivots, its
 // flags in `basic`); k < -1: restart from the warm basis beta[:-2 - k] whose point
 // first_run tried (stage -2).
-// This thread's rule for the recovery runs of a cold solve (checked): with it set, a first
-// recovery run that ends on a ray ends the recoveries, the solve ending on that ray (checked
-// here or not).  The MLCP ladder (lemke/_mlcp.py) sets it for a step that has another after
-// it, which checks the ray on the caller's data and goes on to the next step when it fails
-// there: on QSCORPIO and QBEACONF the later recovery runs (the same M) took 620 and 230
-// pivots more, ending on rays that failed there too, and the next step (M_clean) solved in
-// 243 and 51.  Off by default (solve_lcp, the batches, the C API).
-bool& stop_at_ray();
-
+// stop_at_ray: the rule for the recovery runs of the cold solve (checked): with it set, a
+// first recovery run that ends on a ray ends the recoveries, the solve ending on that ray
+// (checked here or not).  The MLCP ladder (lemke/_mlcp.py) passes it, through solve_lcp's
+// private `_ray_stop` and _core.solve_one, for a step that has another after it, which
+// checks the ray on the caller's data and goes on to the next step when it fails there: on
+// QSCORPIO and QBEACONF the later recovery runs (the same M) took 620 and 230 pivots more,
+// ending on rays that failed there too, and the next step (M_clean) solved in 243 and 51.
+// Off everywhere else (solve_lcp, the batches, the C API).
 RunResult solve_one(Method method, Mat<const double> M, const double* q, const double* d,
                     const idx* beta, idx k, idx max_pivots, double pivot_tol, double tie_tol,
-                    double tol, double* buf, idx* basic, bool keep = true);
+                    double tol, double* buf, idx* basic, bool keep = true,
+                    bool stop_at_ray = false);
 
 // The first run and, when it does not settle the solve, solve_one from where it stopped: the
 // path of solve_lcp for one problem (and of a batch's problem), by either method. A first
