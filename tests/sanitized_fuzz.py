@@ -556,11 +556,11 @@ def qp_conversions(run, rng):
 
 
 # --- the seam's basis systems (branch seam): _core.lcp_basis and _core.box_basis called
-# directly on every size 0-40 and some larger, with random, empty, full and singular bases, rhs of the right
-# length and one off, both solves, and malformed arguments (flags of other dtypes, layouts
-# and lengths, M not square, q short, NaN and infinities): an answer whose arrays have the
-# sizes the basis gives (z and w n entries, x one per basic z), or a ValueError / TypeError;
-# never a read or write outside the arrays.
+# directly on every size 0-40 and some larger, with random, empty, full and singular bases,
+# rhs of the right length and one off, both solves, and malformed arguments (flags of other
+# dtypes, layouts and lengths, M not square, q short, NaN and infinities): an answer whose
+# arrays have the sizes the basis gives (z and w n entries, x one per block row), or a
+# ValueError / TypeError; never a read or write outside the arrays.
 
 def _seam_sizes(n, flags, got):
     """got (lcp_basis's or box_basis's answer) checked for its sizes (flags: the block's
