@@ -8,12 +8,17 @@
 // released around the work.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <tuple>
 #include <vector>
 
+#include "lemke/basis.hpp"
 #include "lemke/carry.hpp"
 #include "lemke/certify.hpp"
 #include "lemke/linalg.hpp"
@@ -64,6 +69,137 @@ std::tuple<bool, double> lcp_check(In2 M, In1 q, In1 z, double tol, Out1 w) {
         ok = lemke::lcp_check(mat(M), q.data(), z.data(), tol, w.data(), residual);
     }
     return {ok, residual};
+}
+
+using FlagsIn = nb::ndarray<nb::ro, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using SeamOut = std::tuple<int, nb::object, nb::object, double, nb::object>;
+
+const std::uint8_t* seam_flags(const FlagsIn& a, idx n, const char* what) {
+    if (len(a) != n)
+        throw nb::value_error((std::string(what) + " must hold n flags").c_str());
+    if (a.dtype() != nb::dtype<bool>() && a.dtype() != nb::dtype<std::uint8_t>())
+        throw nb::type_error((std::string(what) + " must be bool or uint8").c_str());
+    return static_cast<const std::uint8_t*>(a.data());
+}
+
+// A float64 argument of the seam's entries that is not 8-byte aligned (nanobind passes an
+// unaligned C-contiguous array through, and reading it as doubles is undefined): TypeError.
+template <class A>
+void seam_aligned(const A& a, const char* what) {
+    if (reinterpret_cast<std::uintptr_t>(a.data()) % alignof(double) != 0)
+        throw nb::type_error((std::string(what) + " must be aligned").c_str());
+}
+
+// The seam's entries' answer (code, z, w, residual, x): code 0 the point of the basis passes
+// its kind's check, 1 it fails, 2 the block is singular or the point not finite (z, w None),
+// below 0 the kernels' code for data they refuse (not finite, bad bounds; z, w None); x the
+// solve with rhs (B x = rhs, or B' x = rhs with transpose, by the point's factors), None
+// without rhs or when that solve is not finite.
+struct SeamAnswer {
+    idx n, k;
+    nb::capsule z_owner, w_owner, x_owner;
+    double *z, *w, *x;
+    int code = 0;
+    bool solved = false;
+    double residual = 0.0;
+    SeamAnswer(idx n_, idx k_, const std::optional<In1>& rhs, const char* fn) : n(n_), k(k_) {
+        if (rhs && len(*rhs) != k)
+            throw nb::value_error((std::string(fn) + ": rhs must have one entry per block row").c_str());
+        z = new_block(n, z_owner);
+        w = new_block(n, w_owner);
+        x = rhs ? new_block(k, x_owner) : nullptr;
+    }
+    // After the point: the solve asked for.
+    template <class Basis>
+    void solve(const Basis& basis, const std::optional<In1>& rhs, bool transpose) {
+        if (x != nullptr)
+            solved = transpose ? basis.solve_transpose(rhs->data(), x) : basis.solve(rhs->data(), x);
+    }
+    SeamOut out() {
+        auto vec = [](double* data, idx size, nb::capsule& owner) -> nb::object {
+            return nb::cast(NewVector(data, {static_cast<std::size_t>(size)}, owner));
+        };
+        bool point = code == 0 || code == 1;
+        return {code, point ? vec(z, n, z_owner) : nb::none(),
+                point ? vec(w, n, w_owner) : nb::none(), residual,
+                solved ? vec(x, k, x_owner) : nb::none()};
+    }
+};
+
+// The seam's LCP basis system (basis.hpp's LcpBasis) on the caller's data: the basis
+// z_basic (n flags, bool or uint8; k of them set), its block M[beta, beta] factored, the
+// point z and w = M z + q checked on every row (check_rows, the scales of equilibrate(M,
+// q)), rhs (k entries, in beta's order) solved by the same factors. -1: M or q not finite.
+SeamOut lcp_basis(In2 M, In1 q, FlagsIn z_basic, double tol, std::optional<In1> rhs,
+                  bool transpose) {
+    idx n = len(q);
+    if (len(M, 0) != n || len(M, 1) != n)
+        throw nb::value_error("lcp_basis: M must be n x n, q of length n");
+    seam_aligned(M, "lcp_basis: M");
+    seam_aligned(q, "lcp_basis: q");
+    if (rhs) seam_aligned(*rhs, "lcp_basis: rhs");
+    const std::uint8_t* flags = seam_flags(z_basic, n, "lcp_basis: z_basic");
+    std::vector<idx> beta(static_cast<std::size_t>(n));
+    idx k = lemke::basic_indices(flags, n, beta.data());
+    SeamAnswer a(n, k, rhs, "lcp_basis");
+    {
+        nb::gil_scoped_release release;
+        std::vector<double> work(static_cast<std::size_t>(lemke::LcpBasis::work_size(k) + 4 * n));
+        std::vector<idx> piv(static_cast<std::size_t>(2 * k));
+        double* R = work.data() + lemke::LcpBasis::work_size(k);
+        double* C = R + n;
+        lemke::LcpBasis basis(mat(M), q.data(), beta.data(), k, work.data(), piv.data());
+        if (!lemke::equilibrate_finite(mat(M), q.data(), R, C, C + n)) {
+            a.code = -1;
+        } else if (!basis.point(a.z)) {
+            a.code = 2;
+        } else {
+            a.solve(basis, rhs, transpose);
+            a.code = basis.check(a.z, tol, R, a.w, C + n, false, a.residual) ? 0 : 1;
+        }
+    }
+    return a.out();
+}
+
+// The seam's box basis system (basis.hpp's BoxBasis, no friction index) on the caller's
+// data: zb basic, zh at hi (n flags each), the warm rule or not (boxed::basis_point's), the
+// block of the basic rows (k: the basic z's, and with the warm rule the free ones) factored,
+// the point checked by boxed::box_check (the scales of check_scales, n_round 0), rhs (k
+// entries, in the rows' order) solved by the same factors. Below 0: boxed::prologue's code.
+SeamOut box_basis(In2 M, In1 q, In1 lo, In1 hi, FlagsIn zb, FlagsIn zh, bool warm_rule,
+                  double tol, std::optional<In1> rhs, bool transpose) {
+    idx n = len(q);
+    if (len(M, 0) != n || len(M, 1) != n || len(lo) != n || len(hi) != n)
+        throw nb::value_error("box_basis: M must be n x n, q, lo and hi of length n");
+    seam_aligned(M, "box_basis: M");
+    seam_aligned(q, "box_basis: q");
+    seam_aligned(lo, "box_basis: lo");
+    seam_aligned(hi, "box_basis: hi");
+    if (rhs) seam_aligned(*rhs, "box_basis: rhs");
+    const std::uint8_t* b = seam_flags(zb, n, "box_basis: zb");
+    const std::uint8_t* h = seam_flags(zh, n, "box_basis: zh");
+    std::vector<double> work(static_cast<std::size_t>(lemke::BoxBasis::work_size(n) + 3 * n));
+    std::vector<idx> index(static_cast<std::size_t>(n)), piv(static_cast<std::size_t>(2 * n));
+    lemke::BoxBasis basis(mat(M), q.data(), lo.data(), hi.data(), index.data(), work.data(),
+                          piv.data());
+    double* z0 = work.data() + lemke::BoxBasis::work_size(n);
+    basis.apply(b, h, warm_rule, z0);  // (the block's rows, for rhs's length)
+    SeamAnswer a(n, basis.block.k, rhs, "box_basis");
+    {
+        nb::gil_scoped_release release;
+        double* R = z0 + n;
+        int code = lemke::boxed::prologue(mat(M), q.data(), lo.data(), hi.data());
+        if (code != 0) {
+            a.code = code;
+        } else if (!basis.point(b, h, warm_rule, a.z)) {
+            a.code = 2;
+        } else {
+            a.solve(basis, rhs, transpose);
+            lemke::boxed::check_scales(mat(M), q.data(), lo.data(), hi.data(), R, R + n);
+            a.code = basis.check(a.z, tol, R, a.w, 0, a.residual) ? 0 : 1;
+        }
+    }
+    return a.out();
 }
 
 // certify.lcp_ray_check(M, q, d, z, z0, ray, tol): whether the ray is a secondary ray.
@@ -205,6 +341,10 @@ std::int64_t relabel_ids(IdxIn old, IdxIn new_, IdxIn basic, IdxOut out) {
 
 void bind_support(nb::module_& m) {
     m.def("lcp_check", &lcp_check, "M"_a, "q"_a, "z"_a, "tol"_a, nb::arg("w").noconvert());
+    m.def("lcp_basis", &lcp_basis, "M"_a, "q"_a, "z_basic"_a, "tol"_a, "rhs"_a = nb::none(),
+          "transpose"_a = false);
+    m.def("box_basis", &box_basis, "M"_a, "q"_a, "lo"_a, "hi"_a, "zb"_a, "zh"_a, "warm_rule"_a,
+          "tol"_a, "rhs"_a = nb::none(), "transpose"_a = false);
     m.def("lcp_ray_check", &lcp_ray_check, "M"_a, "q"_a, "d"_a, "z"_a, "z0"_a, "ray"_a, "tol"_a);
     m.def("residual2", &residual2, "E"_a, "x"_a, "e"_a, nb::arg("y").noconvert());
     m.def("check_mlcp", &check_mlcp, "E"_a, "e"_a, "n"_a, "x"_a, "tol"_a,

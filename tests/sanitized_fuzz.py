@@ -17,6 +17,10 @@ and again in the test's own process, fingerprint against fingerprint).
 * the box batch's grow-only workspace (src/lemke/boxed.cpp BoxedWork::layout): islands of
   varying sizes in one call, each compared bit for bit with its solve alone in a fresh
   thread.
+* the seam's _core.lcp_basis and _core.box_basis (src/lemke/basis.hpp's LcpBasis, BoxBasis)
+  on every size 0-40 and some larger, with random, full, empty and singular bases, rhs of
+  the right length and one off, and malformed flags, M, q and rhs: each answer's arrays of
+  the basis's sizes, or a ValueError / TypeError;
 * blcp_pack (solve_blcp_many's islands packed natively from made_f64's forms), directly and
   through solve_blcp_many: islands of 0-45 rows given as lists, tuples, int lists, Fortran-
   ordered, strided, unaligned and byte-swapped arrays (answers and packed bytes bit for bit the
@@ -415,6 +419,7 @@ def fuzz(run):
         box_packs(run, rng)
         box_gathers(run, np.random.default_rng(2032))
         qp_conversions(run, np.random.default_rng(2041))
+        basis_seam(run, np.random.default_rng(2033))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -457,7 +462,6 @@ def box_gathers(run, rng):
         run.attempt(f"fuzz box gathers {name} answer", refused_or(lambda: _core.many_field(bufs, bo, qo, 1, 0, f(ans))))
         run.attempt(f"fuzz box gathers {name} flag", refused_or(lambda: _core.many_field(bufs, bo, qo, 2, 0, ans, f(flag), lo)))
         run.attempt(f"fuzz box gathers {name} flat", refused_or(lambda: _core.many_field(bufs, bo, qo, 2, 0, ans, flag, f(lo))))
-
 
 
 # --- solve_qp's native conversion (branch qpfront): qp_front converting its arguments by
@@ -549,3 +553,77 @@ def qp_conversions(run, rng):
             lambda: _core.qp_front(Pl, ql, Gl, hl, A, b, lb, ub, 0, None, guess)))
         run.attempt(f"fuzz qp junk guess {t} solve", refused_or(
             lambda: lemke.solve_qp(Pl, ql, Gl, hl, A, b, lb, ub, initvals=guess)))
+
+
+# --- the seam's basis systems (branch seam): _core.lcp_basis and _core.box_basis called
+# directly on every size 0-40 and some larger, with random, empty, full and singular bases,
+# rhs of the right length and one off, both solves, and malformed arguments (flags of other
+# dtypes, layouts and lengths, M not square, q short, NaN and infinities): an answer whose
+# arrays have the sizes the basis gives (z and w n entries, x one per block row), or a
+# ValueError / TypeError; never a read or write outside the arrays.
+
+def _seam_sizes(n, flags, got):
+    """got (lcp_basis's or box_basis's answer) checked for its sizes (flags: the block's
+    rows); the answer."""
+    code, z, w, residual, x = got
+    k = int(np.count_nonzero(flags))
+    if code in (0, 1):
+        if z.shape != (n,) or w.shape != (n,):
+            raise AssertionError(f"lcp_basis: z, w of shapes {z.shape}, {w.shape} for n = {n}")
+    elif z is not None or w is not None:
+        raise AssertionError(f"lcp_basis: code {code} with a point")
+    if x is not None and x.shape != (k,):
+        raise AssertionError(f"lcp_basis: x of shape {x.shape} for k = {k}")
+    return got
+
+
+def basis_seam(run, rng):
+    for n in list(range(41)) + [63, 64, 65, 130]:
+        A = rng.normal(size=(n, n))
+        M = A + np.sqrt(max(n, 1)) * np.eye(n)
+        q = rng.normal(size=n)
+        for t in range(4):
+            flags = (rng.random(n) < (0.2, 0.6, 1.0, 0.0)[t]).astype(np.uint8 if t % 2 else bool)
+            k = int(np.count_nonzero(flags))
+            Ms = M
+            if t == 1 and k >= 2:  # a singular block: two basic rows equal
+                b = np.flatnonzero(flags)
+                Ms = M.copy()
+                Ms[b[1]] = Ms[b[0]]
+            for length in (k, k + 1, max(k - 1, 0)):
+                rhs = rng.normal(size=length)
+                for tr in (False, True):
+                    run.attempt(f"fuzz seam {n} {t} {length - k} {tr}", refused_or(
+                        lambda: _seam_sizes(n, flags, _core.lcp_basis(Ms, q, flags, 1e-9, rhs, tr))))
+            run.attempt(f"fuzz seam {n} {t} no rhs", refused_or(
+                lambda: _seam_sizes(n, flags, _core.lcp_basis(Ms, q, flags, 1e-9))))
+            lo = np.where(rng.random(n) < 0.7, -rng.random(n), -np.inf)
+            hi = np.where(rng.random(n) < 0.7, rng.random(n), np.inf)
+            zh = (rng.random(n) < 0.5).astype(flags.dtype)
+            rows = flags.astype(bool) | ((t % 2 == 1) & np.isneginf(lo) & np.isposinf(hi))
+            for length in (int(rows.sum()), int(rows.sum()) + 1):
+                rhs = rng.normal(size=length)
+                run.attempt(f"fuzz seam box {n} {t} {length}", refused_or(
+                    lambda: _seam_sizes(n, rows, _core.box_basis(Ms, q, lo, hi, flags, zh, t % 2 == 1,
+                                                                 1e-9, rhs, t > 1))))
+    M, q = problems.random_psd(5, rng)
+    f = np.array([1, 0, 1, 1, 0], dtype=np.uint8)
+    rhs = np.ones(3)
+    unaligned = lambda a: np.frombuffer(b"\0" + a.tobytes(), dtype=a.dtype, offset=1).reshape(a.shape)
+    odd = {"unaligned": unaligned, "swapped": lambda a: a.astype(a.dtype.newbyteorder()),
+           "strided": lambda a: np.repeat(a, 2, axis=0)[::2], "int32": lambda a: a.astype(np.int32),
+           "float": lambda a: a.astype(float), "2-D": lambda a: a.reshape(1, -1), "short": lambda a: a[:-1],
+           "long": lambda a: np.concatenate([a, a[:1]]), "empty": lambda a: a[:0]}
+    for name, g in odd.items():
+        run.attempt(f"fuzz seam {name} flags", refused_or(lambda: _core.lcp_basis(M, q, g(f), 1e-9, rhs)))
+        run.attempt(f"fuzz seam {name} q", refused_or(lambda: _core.lcp_basis(M, g(q), f, 1e-9, rhs)))
+        run.attempt(f"fuzz seam {name} rhs", refused_or(lambda: _core.lcp_basis(M, q, f, 1e-9, g(rhs), True)))
+        run.attempt(f"fuzz seam {name} M", refused_or(lambda: _core.lcp_basis(g(M), q, f, 1e-9, rhs)))
+        run.attempt(f"fuzz seam box {name} zh", refused_or(lambda: _core.box_basis(M, q, -q, q * q, f, g(f), True, 1e-9, rhs)))
+        run.attempt(f"fuzz seam box {name} lo", refused_or(lambda: _core.box_basis(M, q, g(-q), q * q, f, f, False, 1e-9, rhs)))
+    for bad in (np.nan, np.inf, -np.inf):
+        for where in ("M", "q", "rhs"):
+            M2, q2, r2 = M.copy(), q.copy(), rhs.copy()
+            {"M": M2[2], "q": q2, "rhs": r2}[where][1] = bad
+            run.attempt(f"fuzz seam {bad} in {where}", refused_or(
+                lambda: _seam_sizes(5, f, _core.lcp_basis(M2, q2, f, 1e-9, r2, where == "rhs"))))

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "basis.hpp"
 #include "certify.hpp"
 #include "multiversion.hpp"
 #include "tableau.hpp"
@@ -661,51 +662,12 @@ void check_scales_kept(Mat<const double> M, const double* q, const double* lo,
 bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
                  const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z,
                  KeptMatrix* kept) {
+    // (the seam's BoxBasis, basis.hpp; the work as before: n * n + 3 n doubles, n indices)
     idx n = M.rows;
     BoxedWork& W = work();
-    double* rhs = W.check_area(n * n + 3 * n);
+    double* area = W.check_area(n * n + 3 * n);
     idx* index = W.check_indices(n);
-    idx nb = 0;
-    for (idx i = 0; i < n; ++i) {
-        bool free = warm_rule && lo[i] == -INF && hi[i] == INF;
-        double v;
-        if (warm_rule) {
-            if (zh[i] && hi[i] < INF) {
-                v = hi[i];
-            } else if (lo[i] > -INF) {
-                v = lo[i];
-            } else if (hi[i] < INF) {
-                v = hi[i];
-            } else {
-                v = 0.0;
-            }
-        } else {
-            v = zh[i] ? hi[i] : lo[i];
-            if (!(std::fabs(v) < INF)) v = 0.0;
-        }
-        if (zb[i] || free) {
-            index[nb++] = i;
-            v = 0.0;  // no part in the right-hand side
-        }
-        z[i] = v;
-    }
-    if (nb > 0) {
-        for (idx c = 0; c < nb; ++c) {
-            idx r = index[c];
-            rhs[c] = -(q[r] + dot(M.row(r), z, n));
-        }
-        // linalg.solve_principal: A (nb x nb), y (a copy of the right-hand side), x.
-        double* A = rhs + n;
-        double* y = A + nb * nb;
-        double* xs = y + nb;
-        for (idx c = 0; c < nb; ++c) y[c] = rhs[c];
-        if (!solve_gathered_kept(M, index, A, y, xs, nb, kept)) return false;
-        for (idx c = 0; c < nb; ++c) z[index[c]] = xs[c];
-    }
-    if (!all_finite(z, n)) return false;
-    if (!warm_rule)
-        for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], lo[i]), hi[i]);
-    return true;
+    return BoxBasis(M, q, lo, hi, index, area, nullptr, kept).point(zb, zh, warm_rule, z);
 }
 
 namespace {

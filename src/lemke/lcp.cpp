@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "basis.hpp"
 #include "certify.hpp"
 #include "pivoting.hpp"
 #include "tableau.hpp"
@@ -48,23 +49,12 @@ int prologue(Mat<const double> M, const double* q, const double* d, const Views&
 }
 
 // z of the complementary basis with z_i basic for i in beta[:k]: z_beta = -M_bb^-1 q_beta,
-// clipped at 0. work: at least k (k + 2) doubles. `kept`: by solve_gathered_kept (a warm
-// start's old basis: the same bits, the last block's factors reused when it repeats), with
-// M's entry `kept_m`.
+// clipped at 0 (the seam's LcpBasis::point, basis.hpp). work: at least k (k + 2) doubles.
+// `kept`: by solve_gathered_kept (a warm start's old basis: the same bits, the last block's
+// factors reused when it repeats), with M's entry `kept_m`.
 bool basis_point(Mat<const double> M, const double* q, const idx* beta, idx k, double* z,
                  double* work, bool kept = false, KeptMatrix* kept_m = nullptr) {
-    idx n = M.rows;
-    for (idx i = 0; i < n; ++i) z[i] = 0.0;
-    if (k == 0) return true;
-    double* A = work;
-    double* y = work + k * k;
-    double* zb = work + k * (k + 1);
-    for (idx i = 0; i < k; ++i) y[i] = -q[beta[i]];
-    if (!(kept ? solve_gathered_kept(M, beta, A, y, zb, k, kept_m)
-               : solve_gathered(M, beta, A, y, zb, k)))
-        return false;
-    for (idx i = 0; i < k; ++i) z[beta[i]] = pmax(zb[i], 0.0);
-    return true;
+    return LcpBasis(M, q, beta, k, work, nullptr, kept ? kept_m : nullptr).point(z);
 }
 
 // The first stage of a warm start. Returns 0 (the old basis solves it), 1 (its point fails),
@@ -181,13 +171,6 @@ namespace {
 constexpr int RETRIES = 4;
 constexpr double PERTURBATION = 1e-6;
 
-idx basic_indices(const std::uint8_t* z_basic, idx n, idx* basic) {
-    idx k = 0;
-    for (idx i = 0; i < n; ++i)
-        if (z_basic[i]) basic[k++] = i;
-    return k;
-}
-
 // One run of the method from the all-w basis (cold.pivot_once).
 Status pivot_once(Method method, Mat<const double> M, const double* q, double tie_tol,
                   idx max_pivots, double pivot_tol, const Views& v, std::uint8_t* z_basic,
@@ -262,10 +245,11 @@ bool basis_point_checked(Mat<const double> M, const double* q, const std::uint8_
     idx n = M.rows;
     std::vector<idx> beta(static_cast<std::size_t>(n));
     idx k = basic_indices(z_basic, n, beta.data());
-    std::vector<double> work(static_cast<std::size_t>(std::max(k * (k + 2), 2 * n)));
+    std::vector<double> work(static_cast<std::size_t>(std::max(LcpBasis::work_size(k), 2 * n)));
     residual = 0.0;
-    if (!basis_point(M, q, beta.data(), k, z, work.data())) return false;
-    return check_rows(M, q, z, tol, w, R, work.data(), false, residual);
+    LcpBasis basis(M, q, beta.data(), k, work.data());
+    if (!basis.point(z)) return false;
+    return basis.check(z, tol, R, w, work.data(), false, residual);
 }
 
 bool basis_checks(Mat<const double> M, const double* q, const std::uint8_t* z_basic, double tol,

@@ -592,9 +592,9 @@ bool solve_gathered(Mat<const double> M, const idx* index, double* a, double* y,
     return solve_in_place(A, y, x, k);
 }
 
-bool solve_in_place(Mat<double> A, double* y, double* x, idx k) {
+bool solve_in_place(Mat<double> A, double* y, double* x, idx k, idx* piv) {
     for (idx i = 0; i < k; ++i) x[i] = 0.0;
-    return eliminate(A, y, x, k, nullptr);
+    return eliminate(A, y, x, k, piv, false);
 }
 
 void residual2(Mat<const double> E, const double* x, idx k, const double* e, double* y) {
@@ -696,6 +696,20 @@ bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse
     return back_substitute(A, y, x, k);
 }
 
+// The work of solve and refined_solve, one per thread: A (k x k), y, d, and the pivots.
+struct SolveWork {
+    std::vector<double> f;
+    std::vector<idx> piv;
+    void layout(idx k) {
+        f.resize(static_cast<std::size_t>(k * (k + 2)));
+        piv.resize(static_cast<std::size_t>(2 * k));
+    }
+};
+
+thread_local SolveWork solve_work;
+
+}  // namespace
+
 // Solve again with the factors eliminate left in A and piv (linalg._lu_solve): y is
 // overwritten; each row of y gets the operations it got there.
 bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k) {
@@ -713,19 +727,31 @@ bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k) 
     return back_substitute(A, y, x, k);
 }
 
-// The work of solve and refined_solve, one per thread: A (k x k), y, d, and the pivots.
-struct SolveWork {
-    std::vector<double> f;
-    std::vector<idx> piv;
-    void layout(idx k) {
-        f.resize(static_cast<std::size_t>(k * (k + 2)));
-        piv.resize(static_cast<std::size_t>(2 * k));
+// A' x = y with the factors eliminate left in A and piv (P A = L U: L unit lower, its
+// multipliers below A's diagonal, U on and above it, P the row exchanges piv[0..k) in
+// order): U' v = y, L' u = v, x = P' u (the exchanges undone in reverse order). y is
+// overwritten. Each sum by columns of U' and L', i.e. rows of A (axpy updates: no order of
+// terms for a vector unit to change).
+bool lu_solve_transpose(Mat<const double> A, const idx* piv, double* y, double* x, idx k) {
+    for (idx c = 0; c < k; ++c) {  // U' v = y, forward: v_c, then row c of U
+        const double* ac = A.row(c);
+        double v = y[c] / ac[c];
+        y[c] = v;
+        for (idx r = c + 1; r < k; ++r) y[r] -= ac[r] * v;
     }
-};
+    for (idx c = k - 1; c > 0; --c) {  // L' u = v, backward: u_c, then row c of L
+        const double* ac = A.row(c);
+        double u = y[c];
+        for (idx r = 0; r < c; ++r) y[r] -= ac[r] * u;
+    }
+    for (idx j = k - 1; j >= 0; --j) {
+        idx p = piv[j];
+        double t = y[j]; y[j] = y[p]; y[p] = t;
+    }
+    for (idx i = 0; i < k; ++i) x[i] = y[i];
+    return all_finite(x, k);
+}
 
-thread_local SolveWork solve_work;
-
-}  // namespace
 
 bool solve(Mat<const double> H, const double* b, double* x, idx k) {
     for (idx i = 0; i < k; ++i) x[i] = 0.0;
@@ -765,6 +791,16 @@ bool solve_gathered_kept(Mat<const double> M, const idx* index, double* a, doubl
     kept->factors.assign(a, a + k * k);
     kept->index.assign(index, index + k);
     kept->k = k;
+    return true;
+}
+
+bool kept_factors(const KeptMatrix* kept, const idx* index, idx k, const double*& factors,
+                  const idx*& piv) {
+    if (kept == nullptr || kept->k != k ||
+        std::memcmp(kept->index.data(), index, static_cast<std::size_t>(k) * sizeof(idx)) != 0)
+        return false;
+    factors = kept->factors.data();
+    piv = kept->piv.data();
     return true;
 }
 

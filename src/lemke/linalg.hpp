@@ -311,8 +311,17 @@ double scaled_into(Mat<const double> M, const double* q, const double* d, const 
 // overwritten; x gets the solution. Returns whether the block is non-singular and x finite.
 bool solve_gathered(Mat<const double> M, const idx* index, double* A, double* y, double* x, idx k);
 // A x = y (k x k, A.ld = k) by the same elimination, A and y overwritten (solve_gathered's
-// solve, of a block assembled by the caller).
-bool solve_in_place(Mat<double> A, double* y, double* x, idx k);
+// solve, of a block assembled by the caller). piv: nullptr, or 2k entries that get the
+// pivots (the first k; the same operations, every update dense): A then holds the factors
+// for lu_solve and lu_solve_transpose.
+bool solve_in_place(Mat<double> A, double* y, double* x, idx k, idx* piv = nullptr);
+
+// Solve again with the factors the elimination left in A (k x k) and its pivots piv
+// (linalg._lu_solve): A x = y, each entry of y getting the operations it got there (the
+// same bits as a fresh elimination with this y); or, lu_solve_transpose, A' x = y (U' v = y,
+// L' u = v, x = P' u; no fresh elimination to match). y is overwritten; whether x is finite.
+bool lu_solve(Mat<const double> A, const idx* piv, double* y, double* x, idx k);
+bool lu_solve_transpose(Mat<const double> A, const idx* piv, double* y, double* x, idx k);
 
 // solve_gathered, the same bits, for a block of a kept matrix (`kept`: equilibrate_finite_kept's;
 // nullptr: solve_gathered itself): the last block of it factored is kept (its rows, factors
@@ -322,6 +331,11 @@ bool solve_in_place(Mat<double> A, double* y, double* x, idx k);
 constexpr idx KEPT_BLOCK_MAX = 512;
 bool solve_gathered_kept(Mat<const double> M, const idx* index, double* A, double* y, double* x,
                          idx k, KeptMatrix* kept);
+// The factors and pivots `kept` holds for the block of rows index[:k] (what
+// solve_gathered_kept last factored or reused there), for lu_solve and lu_solve_transpose;
+// false when it holds another block (or none). Valid until the thread's next kept solve.
+bool kept_factors(const KeptMatrix* kept, const idx* index, idx k, const double*& factors,
+                  const idx*& piv);
 
 // --- Double-double sums and the refined solve (linalg.two_product, two_sum, acc2,
 // residual2, solve, refined_solve, principal_block). std::fma only here, explicitly: a b + c

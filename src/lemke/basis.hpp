@@ -1,0 +1,231 @@
+// The seam (issue 31, item 2): a basis on the caller's data. Each problem kind supplies one
+// basis system with the same members: its basic block built from (M, q, basis) and factored
+// once by the kernels' LU (linalg's eliminate: partial pivoting, two pivots per pass; no
+// LAPACK), solved with it and with its transpose, the point mapped back to z (and w) and
+// checked row by row by the kind's acceptance code. Built so far: the LCP kind (LcpBasis,
+// used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis) and the box
+// kind without friction (BoxBasis, used by boxed.cpp's basis_point). Gradients and a sparse
+// engine are to plug in here: hence the transpose solve.
+#pragma once
+#include <cstdint>
+
+#include "boxed.hpp"
+#include "certify.hpp"
+#include "linalg.hpp"
+
+namespace lemke {
+
+// The indices i with z_basic[i] set into basic (in order); their count (the caller's basis
+// as the block's rows).
+inline idx basic_indices(const std::uint8_t* z_basic, idx n, idx* basic) {
+    idx k = 0;
+    for (idx i = 0; i < n; ++i)
+        if (z_basic[i]) basic[k++] = i;
+    return k;
+}
+
+// The basic block B = M[index, index] (k x k) of a basis on the caller's M, factored by the
+// first solve. factor_solve: the bits of solve_gathered (or, with `kept`, of
+// solve_gathered_kept: a block of the same rows of the same kept matrix is not factored
+// again). solve and solve_transpose reuse the factors: those in `a` when `piv` was given
+// (2k entries), those the kept matrix holds with `kept` (looked up when asked for: valid
+// until the thread's next kept solve); without either (the engines' point alone) there are
+// none, and they answer false.
+struct BasisBlock {
+    Mat<const double> M;
+    const idx* index;
+    idx k;
+    double* a;                 // k * k doubles: the block, then its factors
+    idx* piv = nullptr;        // 2k: the pivots, or nullptr
+    KeptMatrix* kept = nullptr;
+    const double* factors = nullptr;  // after factor_solve with piv: `a` and piv (the factors
+    const idx* pivots = nullptr;      // and pivots); else nullptr
+
+    // a = M[index, index] (row-major, k x k).
+    void build() const {
+        for (idx r = 0; r < k; ++r) {
+            const double* mrow = M.row(index[r]);
+            double* ar = a + r * k;
+            for (idx c = 0; c < k; ++c) ar[c] = mrow[index[c]];
+        }
+    }
+
+    // B x = y, B factored here; y is overwritten. False when B or y is not finite, B is
+    // singular (a pivot exactly zero) or x is not finite.
+    bool factor_solve(double* y, double* x) {
+        factors = nullptr;
+        pivots = nullptr;
+        if (kept != nullptr) return solve_gathered_kept(M, index, a, y, x, k, kept);
+        build();
+        if (!solve_in_place(Mat<double>(a, k, k), y, x, k, piv)) return false;
+        if (piv != nullptr) {
+            factors = a;
+            pivots = piv;
+        }
+        return true;
+    }
+
+    // The right-hand side's and the solution's places after the block in `a` (k each).
+    double* y() const { return a + k * k; }
+    double* x() const { return a + k * (k + 1); }
+
+    // B x = rhs (solve) or B' x = rhs (solve_transpose) with the factors (rhs copied into
+    // y() first). False when there are none (k > 0), rhs is not finite or x is not.
+    bool solve(const double* rhs, double* out) const { return with(rhs, out, false); }
+    bool solve_transpose(const double* rhs, double* out) const { return with(rhs, out, true); }
+
+  private:
+    bool with(const double* rhs, double* out, bool transpose) const {
+        if (k == 0) return true;
+        double* yb = y();
+        for (idx i = 0; i < k; ++i) yb[i] = rhs[i];
+        const double* f = factors;
+        const idx* p = pivots;
+        // (a kept matrix's factors looked up only here: the point alone needs none)
+        if (f == nullptr && kept != nullptr) kept_factors(kept, index, k, f, p);
+        if (f == nullptr || !all_finite(yb, k)) return false;
+        Mat<const double> F(f, k, k);
+        return transpose ? lu_solve_transpose(F, p, yb, out, k) : lu_solve(F, p, yb, out, k);
+    }
+};
+
+// The LCP kind: w = M z + q, z_i basic for i in beta[:k] and w_i basic for the others, so
+// B = M[beta, beta] and the point is z_beta = -B^-1 q_beta clipped at 0 (recover), z_i = 0
+// elsewhere, w = M z + q (check: certify's check_rows, the kernels' row-wise acceptance,
+// relative to the row scales R of equilibrate(M, q)). No refinement: the engines' point of a
+// basis has none (lcp.cpp's basis_point). work: work_size(k) doubles (the block, y, x);
+// piv: nullptr or 2k entries (needed for solve and solve_transpose after point).
+struct LcpBasis {
+    Mat<const double> M;
+    const double* q;
+    BasisBlock block;
+
+    static idx work_size(idx k) { return k * (k + 2); }
+
+    LcpBasis(Mat<const double> M_, const double* q_, const idx* beta, idx k, double* work,
+             idx* piv = nullptr, KeptMatrix* kept = nullptr)
+        : M(M_), q(q_), block{M_, beta, k, work, piv, kept} {}
+
+    // The point of the basis into z (n entries): factor B, solve B x = -q_beta, recover.
+    // False when B is singular or the point is not finite (z is then 0 off beta).
+    bool point(double* z) {
+        idx n = M.rows, k = block.k;
+        for (idx i = 0; i < n; ++i) z[i] = 0.0;
+        if (k == 0) return true;
+        double *yb = block.y(), *xb = block.x();
+        for (idx i = 0; i < k; ++i) yb[i] = -q[block.index[i]];
+        if (!block.factor_solve(yb, xb)) return false;
+        recover(xb, z);
+        return true;
+    }
+
+    // x_beta mapped back to z: z_beta = max(x, 0) (the other entries left as they are).
+    void recover(const double* xb, double* z) const {
+        for (idx i = 0; i < block.k; ++i) z[block.index[i]] = pmax(xb[i], 0.0);
+    }
+
+    // B x = rhs, B' x = rhs (k entries each, in beta's order) after point, by its factors.
+    bool solve(const double* rhs, double* out) const { return block.solve(rhs, out); }
+    bool solve_transpose(const double* rhs, double* out) const {
+        return block.solve_transpose(rhs, out);
+    }
+
+    // w = M z + q and the verdict of the row-wise check (up to the first failed row when
+    // `early`); residual = max |min(z_i, w_i)|. work: 2n doubles (basis_point_checked gives
+    // the block's own: its factors are then gone, and solve answers garbage).
+    bool check(const double* z, double tol, const double* R, double* w, double* work, bool early,
+               double& residual) const {
+        return check_rows(M, q, z, tol, w, R, work, early, residual);
+    }
+};
+
+// The box kind (no friction index): z_i basic where zb[i] (and, by the warm rule, where z_i
+// is free), the others at a bound (apply), so B = M[index, index] with index the basic rows
+// and the point x = B^-1 (-(q + M z_fixed))[index] put into z (recover; outside the warm rule
+// clipped to [lo, hi]); check: boxed::box_check on the caller's data. No refinement (the
+// engines' box point has none). work: work_size(n) doubles (the block, y, x); index: n.
+struct BoxBasis {
+    Mat<const double> M;
+    const double *q, *lo, *hi;
+    idx* index;  // the block's rows (apply)
+    BasisBlock block;
+
+    static idx work_size(idx n) { return n * (n + 2); }
+
+    BoxBasis(Mat<const double> M_, const double* q_, const double* lo_, const double* hi_,
+             idx* index_, double* work, idx* piv = nullptr, KeptMatrix* kept = nullptr)
+        : M(M_), q(q_), lo(lo_), hi(hi_), index(index_), block{M_, index_, 0, work, piv, kept} {}
+
+    // The rows' states into the block's rows and z: a basic z_i (or, with warm_rule, a free
+    // one) 0 here, the others at a bound: with warm_rule hi when zh[i] and hi finite, else lo
+    // when finite, else hi when finite, else 0; without it zh[i] ? hi : lo, 0 when infinite.
+    void apply(const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z) {
+        idx n = M.rows, nb = 0;
+        for (idx i = 0; i < n; ++i) {
+            bool free = warm_rule && lo[i] == -INF && hi[i] == INF;
+            double v;
+            if (warm_rule) {
+                if (zh[i] && hi[i] < INF) {
+                    v = hi[i];
+                } else if (lo[i] > -INF) {
+                    v = lo[i];
+                } else if (hi[i] < INF) {
+                    v = hi[i];
+                } else {
+                    v = 0.0;
+                }
+            } else {
+                v = zh[i] ? hi[i] : lo[i];
+                if (!(std::fabs(v) < INF)) v = 0.0;
+            }
+            if (zb[i] || free) {
+                index[nb++] = i;
+                v = 0.0;  // no part in the right-hand side
+            }
+            z[i] = v;
+        }
+        block.k = nb;
+    }
+
+    // The point of the basis (zb basic, zh at hi) into z (n entries): apply, factor B, solve
+    // B x = -(q + M z)[index], recover. False when B is singular or z is not finite.
+    bool point(const std::uint8_t* zb, const std::uint8_t* zh, bool warm_rule, double* z) {
+        apply(zb, zh, warm_rule, z);
+        idx n = M.rows, nb = block.k;
+        if (nb > 0) {
+            double *yb = block.y(), *xb = block.x();
+            for (idx c = 0; c < nb; ++c) {
+                idx r = index[c];
+                yb[c] = -(q[r] + dot(M.row(r), z, n));
+            }
+            if (!block.factor_solve(yb, xb)) return false;
+        }
+        return recover(block.x(), warm_rule, z);
+    }
+
+    // x put into z at the block's rows; outside the warm rule z clipped to [lo, hi]. False
+    // when z is not finite.
+    bool recover(const double* xb, bool warm_rule, double* z) const {
+        idx n = M.rows;
+        for (idx c = 0; c < block.k; ++c) z[index[c]] = xb[c];
+        if (!all_finite(z, n)) return false;
+        if (!warm_rule)
+            for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], lo[i]), hi[i]);
+        return true;
+    }
+
+    // B x = rhs, B' x = rhs (one entry per block row) after point, by its factors.
+    bool solve(const double* rhs, double* out) const { return block.solve(rhs, out); }
+    bool solve_transpose(const double* rhs, double* out) const {
+        return block.solve_transpose(rhs, out);
+    }
+
+    // w = M z + q and the verdict of the box check on the caller's data (boxed::box_check;
+    // R: check_scales', n_round as there).
+    bool check(const double* z, double tol, const double* R, double* w, idx n_round,
+               double& residual) const {
+        return boxed::box_check(M, q, lo, hi, z, tol, w, R, n_round, residual);
+    }
+};
+
+}  // namespace lemke

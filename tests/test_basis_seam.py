@@ -1,0 +1,344 @@
+"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis and BoxBasis, issue 31 item 2)
+through their private entries ``_core.lcp_basis(M, q, z_basic, tol, rhs=None,
+transpose=False)`` and ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol, rhs=None,
+transpose=False)``, checked
+independently of the core: the solve and the transpose solve against numpy.linalg.solve on
+the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
+z and w against the LCP (box LCP) conditions computed here, and the engines' point of a
+basis (a warm start solved by its old basis, 0 pivots) the seam's own, bit for bit."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lemke
+from lemke import _core
+
+EPS = np.finfo(float).eps
+TOL = 1e-9  # Options().tol
+
+
+def _random_problem(n, rng, symmetric=False):
+    A = rng.normal(size=(n, n))
+    M = A @ A.T + np.eye(n) if symmetric else A + n ** 0.5 * np.eye(n)
+    return M, rng.normal(size=n)
+
+
+def _backward_ok(B, x, rhs):
+    """|B x - rhs| within a small multiple of eps (|B| |x| + |rhs|), row by row (the
+    backward error any pivoted LU meets on a block this size)."""
+    k = B.shape[0]
+    r = np.abs(B @ x - rhs)
+    size = np.abs(B) @ np.abs(x) + np.abs(rhs)
+    return bool(np.all(r <= 8 * (k + 1) * EPS * size))
+
+
+def _close_to_numpy(B, x, rhs):
+    ref = np.linalg.solve(B, rhs)
+    bound = 64 * B.shape[0] * EPS * np.linalg.cond(B, 1) * (np.abs(ref).max() + 1e-300)
+    return bool(np.max(np.abs(x - ref)) <= bound)
+
+
+def _flags(n, indices):
+    f = np.zeros(n, bool)
+    f[list(indices)] = True
+    return f
+
+
+def _warm_hit(rw, got):
+    """1 when the warm solve rw took 0 pivots (its point the old basis's), with the seam's
+    answer got then passing and equal to it bit for bit (z and w); else 0."""
+    if rw.pivots != 0 or rw.status != lemke.Status.SOLVED:
+        return 0
+    code, z, w = got[:3]
+    assert code == 0
+    assert z.tobytes() == np.asarray(rw.z).tobytes()
+    assert w.tobytes() == np.asarray(rw.w).tobytes()
+    return 1
+
+
+SIZES = [1, 2, 3, 5, 8, 9, 16, 17, 31, 40]
+
+
+@pytest.mark.parametrize("n", SIZES)
+@pytest.mark.parametrize("transpose", [False, True])
+def test_solves_match_numpy_on_random_bases(n, transpose):
+    rng = np.random.default_rng(100 + n + 1000 * transpose)
+    for t in range(6):
+        M, q = _random_problem(n, rng, symmetric=t % 3 == 0)
+        flags = rng.random(n) < (0.3 + 0.1 * t)
+        if t == 5:
+            flags[:] = True  # every z basic: B = M
+        beta = np.flatnonzero(flags)
+        k = beta.size
+        rhs = rng.normal(size=k)
+        code, z, w, residual, x = _core.lcp_basis(M, q, flags, TOL, rhs, transpose)
+        assert code in (0, 1)
+        B = M[np.ix_(beta, beta)]
+        Bs = B.T if transpose else B
+        assert x.shape == (k,)
+        assert _backward_ok(Bs, x, rhs), (n, t)
+        if k:
+            assert _close_to_numpy(Bs, x, rhs), (n, t)
+        # the other solve by the same factors
+        code2, _, _, _, x2 = _core.lcp_basis(M, q, flags, TOL, rhs, not transpose)
+        assert code2 == code
+        assert _backward_ok(B if transpose else B.T, x2, rhs)
+
+
+def test_transpose_differs_from_solve_on_nonsymmetric_blocks():
+    # (a transpose solve that solved B instead would pass the symmetric cases)
+    rng = np.random.default_rng(7)
+    M, q = _random_problem(12, rng)
+    flags = np.ones(12, dtype=np.uint8)
+    rhs = rng.normal(size=12)
+    x = _core.lcp_basis(M, q, flags, TOL, rhs, False)[4]
+    xt = _core.lcp_basis(M, q, flags, TOL, rhs, True)[4]
+    assert np.max(np.abs(x - xt)) > 1e-3
+    np.testing.assert_allclose(M.T @ xt, rhs, rtol=0, atol=1e-10 * np.abs(rhs).max())
+
+
+def test_pivoting_is_needed_and_taken():
+    # zero diagonal: an LU without row exchanges would divide by zero
+    M = np.array([[0.0, 2.0, 1.0], [3.0, 0.0, 1.0], [1.0, 1.0, 0.0]])
+    q = np.array([-1.0, -1.0, -1.0])
+    rhs = np.array([1.0, 2.0, 3.0])
+    for transpose in (False, True):
+        code, z, w, _, x = _core.lcp_basis(M, q, np.ones(3, bool), TOL, rhs, transpose)
+        assert code in (0, 1)
+        Bs = M.T if transpose else M
+        np.testing.assert_allclose(Bs @ x, rhs, rtol=0, atol=1e-14)
+
+
+@pytest.mark.parametrize("kind", ["duplicate", "zero", "rank1"])
+def test_singular_blocks_are_reported(kind):
+    rng = np.random.default_rng(3)
+    n = 7
+    M, q = _random_problem(n, rng)
+    beta = np.array([1, 3, 4, 6])
+    if kind == "duplicate":  # rows 3 and 4 of the block equal
+        M[4, :] = M[3, :]
+    elif kind == "zero":
+        M[np.ix_(beta, beta)] = 0.0
+    else:
+        u, v = rng.normal(size=beta.size), rng.normal(size=beta.size)
+        M[np.ix_(beta, beta)] = np.outer(u, v)
+    flags = np.zeros(n, bool)
+    flags[beta] = True
+    B = M[np.ix_(beta, beta)]
+    if kind != "rank1":
+        assert np.linalg.matrix_rank(B) < beta.size
+    for transpose in (False, True):
+        code, z, w, residual, x = _core.lcp_basis(M, q, flags, TOL, np.ones(beta.size), transpose)
+        if kind == "rank1" and code != 2:
+            # rounding may leave a tiny pivot: then the answers must still be the LU's own
+            # (finite), and the point's check decides
+            assert code in (0, 1) and np.all(np.isfinite(z))
+            continue
+        assert code == 2
+        assert z is None and w is None and x is None
+
+
+def test_point_against_lcp_conditions():
+    """The point of a basis: z_beta = max(-B^-1 q_beta, 0), 0 elsewhere, w = M z + q; its
+    verdict agrees with the LCP conditions checked here."""
+    rng = np.random.default_rng(11)
+    seen = {0: 0, 1: 0}
+    for t in range(60):
+        n = int(rng.integers(1, 25))
+        M, q = _random_problem(n, rng, symmetric=t % 2 == 0)
+        if t % 3 == 0:  # a solution's basis (the engine's), usually passing
+            flags = _flags(n, lemke.solve_lcp(M, q).warm_start.z_basic)
+        else:
+            flags = rng.random(n) < 0.5
+        code, z, w, residual, x = _core.lcp_basis(M, q, flags, TOL)
+        assert x is None
+        beta = np.flatnonzero(flags)
+        zref = np.zeros(n)
+        if beta.size:
+            zref[beta] = np.maximum(-np.linalg.solve(M[np.ix_(beta, beta)], q[beta]), 0.0)
+        scale = np.abs(M) @ np.abs(zref) + np.abs(q) + 1.0
+        assert np.all(z >= 0) and np.all(z[~flags] == 0)
+        assert np.all(np.abs(z - zref) <= 1e-8 * scale)
+        assert np.all(np.abs(w - (M @ z + q)) <= 1e-12 * scale)
+        # the LCP conditions, here: w >= 0 and min(z, w) = 0 up to each row's size
+        viol = np.maximum(-w, np.minimum(np.abs(z), np.abs(w))) / scale
+        seen[code] += 1
+        if code == 0:
+            assert viol.max() <= 1e-8, (t, viol.max())
+            assert residual <= 1e-8 * scale.max()
+        else:
+            assert code == 1 and viol.max() > 1e-12, (t, viol.max())
+    assert seen[0] >= 10 and seen[1] >= 10  # both verdicts met
+
+
+def test_degenerate_bases():
+    # q = 0 on the basic rows: z_beta = 0 (a degenerate vertex), w = q off beta
+    M = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 1.0], [0.0, 1.0, 2.0]])
+    q = np.array([0.0, 0.0, 1.0])
+    code, z, w, residual, x = _core.lcp_basis(M, q, np.array([1, 1, 0], np.uint8), TOL, np.array([1.0, 1.0]))
+    assert code == 0 and np.all(z == 0) and np.array_equal(w, q)
+    np.testing.assert_allclose(M[:2, :2] @ x, [1.0, 1.0], rtol=0, atol=1e-15)
+    # no basic z: z = 0, w = q; an empty rhs gives an empty x
+    for q2, want in ((np.array([1.0, 0.0, 2.0]), 0), (np.array([1.0, -1.0, 2.0]), 1)):
+        code, z, w, residual, x = _core.lcp_basis(M, q2, np.zeros(3, bool), TOL, np.zeros(0), True)
+        assert code == want and np.all(z == 0) and np.array_equal(w, q2)
+        assert x.shape == (0,)
+    # clipped: -B^-1 q_beta negative on a basic row gives z_i = 0 there
+    q3 = np.array([1.0, -1.0, 1.0])
+    code, z, w, _, _ = _core.lcp_basis(M, q3, np.array([1, 1, 0], bool), TOL)
+    assert z[0] == 0.0 and z[1] > 0
+    # the empty problem
+    code, z, w, residual, x = _core.lcp_basis(np.zeros((0, 0)), np.zeros(0), np.zeros(0, bool), TOL, np.zeros(0))
+    assert code == 0 and z.shape == w.shape == x.shape == (0,)
+
+
+def test_engine_point_is_the_seams_bit_for_bit():
+    """A warm start whose old basis solves the new q (0 pivots) answers the point of that
+    basis: lcp.cpp's basis_point, now LcpBasis::point; the seam's entry gives the same bits
+    (z and w), kept matrices or not."""
+    rng = np.random.default_rng(5)
+    hits = 0
+    for t in range(40):
+        n = int(rng.integers(2, 60))
+        M, q = _random_problem(n, rng, symmetric=True)
+        r = lemke.solve_lcp(M, q)
+        flags = _flags(n, r.warm_start.z_basic)
+        for s in range(3):
+            q2 = q + 1e-6 * rng.normal(size=n)
+            rw = lemke.solve_lcp(M, q2, warm_start=r.warm_start)
+            hits += _warm_hit(rw, _core.lcp_basis(M, q2, flags, TOL))
+    assert hits >= 60
+
+
+def test_bad_arguments_refused_and_not_finite_reported():
+    M, q = np.eye(3), -np.ones(3)
+    f = np.ones(3, bool)
+    with pytest.raises(ValueError):
+        _core.lcp_basis(np.eye(4), q, f, TOL)
+    with pytest.raises(ValueError):
+        _core.lcp_basis(M, q, f[:2], TOL)
+    with pytest.raises(ValueError):
+        _core.lcp_basis(M, q, f, TOL, np.ones(2))
+    with pytest.raises(TypeError):
+        _core.lcp_basis(M, q, f.astype(np.int32), TOL)
+    unaligned = np.frombuffer(b"\0" + M.tobytes(), dtype=float, offset=1).reshape(3, 3)
+    with pytest.raises(TypeError):  # (read as doubles, an unaligned array is undefined behaviour)
+        _core.lcp_basis(unaligned, q, f, TOL)
+    Mn = M.copy()
+    Mn[0, 2] = np.nan
+    assert _core.lcp_basis(Mn, q, f, TOL)[0] == -1
+    assert _core.lcp_basis(M, np.array([1.0, np.inf, 0.0]), f, TOL)[0] == -1
+    code, z, w, _, x = _core.lcp_basis(M, q, f, TOL, np.array([1.0, np.nan, 0.0]))
+    assert code == 0 and x is None  # the point stands; that solve is not finite
+
+
+# --- the box kind (BoxBasis, no friction index): _core.box_basis(M, q, lo, hi, zb, zh,
+# warm_rule, tol, rhs=None, transpose=False)
+
+def _box_problem(n, rng):
+    M, q = _random_problem(n, rng)
+    lo = np.where(rng.random(n) < 0.7, -rng.random(n), -np.inf)
+    hi = np.where(rng.random(n) < 0.7, rng.random(n), np.inf)
+    return M, q, lo, hi
+
+
+def _box_rows_and_fixed(lo, hi, zb, zh, warm_rule):
+    """The block's rows and the fixed z's, by the rule stated in boxed.hpp (here in numpy)."""
+    free = warm_rule & np.isneginf(lo) & np.isposinf(hi)
+    if warm_rule:
+        v = np.where(np.isfinite(hi), hi, 0.0)
+        v = np.where(np.isfinite(lo), lo, v)
+        v = np.where(zh & np.isfinite(hi), hi, v)
+    else:
+        v = np.where(zh, hi, lo)
+        v = np.where(np.isfinite(v), v, 0.0)
+    rows = np.flatnonzero(zb | free)
+    v[rows] = 0.0
+    return rows, v
+
+
+@pytest.mark.parametrize("warm_rule", [False, True])
+def test_box_point_solves_and_conditions(warm_rule):
+    rng = np.random.default_rng(21 + warm_rule)
+    seen = {0: 0, 1: 0}
+    for t in range(80):
+        n = int(rng.integers(1, 30))
+        M, q, lo, hi = _box_problem(n, rng)
+        if t % 3 == 0:  # a solution's basis (the engine's), usually passing
+            ws = lemke.solve_blcp(M, q, lo, hi).warm_start
+            zb, zh = _flags(n, ws.z_basic), _flags(n, ws.at_upper)
+        else:
+            zb = rng.random(n) < 0.5
+            zh = ~zb & (rng.random(n) < 0.5)
+        rows, fixed = _box_rows_and_fixed(lo, hi, zb, zh, warm_rule)
+        k = rows.size
+        rhs = rng.normal(size=k)
+        transpose = bool(t % 2)
+        code, z, w, residual, x = _core.box_basis(M, q, lo, hi, zb, zh, warm_rule, TOL, rhs, transpose)
+        assert code in (0, 1)
+        B = M[np.ix_(rows, rows)]
+        Bs = B.T if transpose else B
+        assert x.shape == (k,) and _backward_ok(Bs, x, rhs)
+        if k:
+            assert _close_to_numpy(Bs, x, rhs)
+        zref = fixed.copy()
+        if k:
+            zref[rows] = np.linalg.solve(B, -(q + M @ fixed)[rows])
+        if not warm_rule:
+            zref = np.clip(zref, lo, hi)
+        scale = np.abs(M) @ np.abs(zref) + np.abs(q) + 1.0
+        assert np.all(np.abs(z - zref) <= 1e-8 * scale), t
+        assert np.all(np.abs(w - (M @ z + q)) <= 1e-12 * scale)
+        # the box LCP conditions, here: w >= 0 at lo, w <= 0 at hi, w = 0 strictly inside
+        at_lo, at_hi = z <= lo, z >= hi
+        viol = np.where(at_lo & at_hi, 0.0, np.where(at_lo, np.maximum(-w, 0.0),
+                        np.where(at_hi, np.maximum(w, 0.0), np.abs(w))))
+        viol = np.maximum(viol, np.maximum(lo - z, 0.0) + np.maximum(z - hi, 0.0)) / scale
+        seen[code] += 1
+        if code == 0:
+            assert viol.max() <= 1e-8, (t, viol.max())
+        else:
+            assert viol.max() > 1e-12, (t, viol.max())
+    assert seen[0] >= 5 and seen[1] >= 5
+
+
+def test_box_singular_and_refused():
+    rng = np.random.default_rng(4)
+    M, q, lo, hi = _box_problem(6, rng)
+    zb = np.array([1, 1, 0, 1, 0, 0], bool)
+    zh = np.zeros(6, bool)
+    M[1, :] = M[0, :]
+    code, z, w, _, x = _core.box_basis(M, q, lo, hi, zb, zh, False, TOL, np.ones(3))
+    assert code == 2 and z is None and w is None and x is None
+    with pytest.raises(ValueError):
+        _core.box_basis(M, q, lo, hi, zb, zh, False, TOL, np.ones(2))
+    with pytest.raises(ValueError):
+        _core.box_basis(M, q, lo[:5], hi, zb, zh, False, TOL)
+    with pytest.raises(TypeError):
+        _core.box_basis(M, q, lo, hi, zb.astype(np.int64), zh, False, TOL)
+    lo2 = lo.copy()
+    lo2[0] = np.nan
+    assert _core.box_basis(M, q, lo2, hi, zb, zh, False, TOL)[0] == _core.boxed.NOT_FINITE
+    lo2[0] = hi[0] + 1.0
+    assert _core.box_basis(M, q, lo2, hi, zb, zh, False, TOL)[0] == _core.boxed.BAD_BOUNDS
+
+
+def test_box_engine_point_is_the_seams_bit_for_bit():
+    """A box warm start whose old basis still solves the moved q (0 pivots) answers the
+    point of that basis by boxed::basis_point, now BoxBasis::point: the same bits as the
+    seam's entry with the warm rule."""
+    rng = np.random.default_rng(9)
+    hits = 0
+    for t in range(40):
+        n = int(rng.integers(2, 40))
+        M, q, lo, hi = _box_problem(n, rng)
+        M = M @ M.T + np.eye(n)
+        r = lemke.solve_blcp(M, q, lo, hi)
+        ws = r.warm_start
+        zb, zh = _flags(n, ws.z_basic), _flags(n, ws.at_upper)
+        for s in range(3):
+            q2 = q + 1e-7 * rng.normal(size=n)
+            rw = lemke.solve_blcp(M, q2, lo, hi, warm_start=ws)
+            hits += _warm_hit(rw, _core.box_basis(M, q2, lo, hi, zb, zh, True, TOL))
+    assert hits >= 60
