@@ -224,11 +224,14 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
     const idx rows = std::min({len(qs), len(los), len(his), len(state), len(state_out)});
     const idx m_len = len(Ms), f_len = len(findex), b_len = len(bufs), i_len = len(ints);
     for (idx b = lo; b < hi; ++b) {
-        idx o = qo[b], e = qo[b + 1], n = e - o;
+        idx o = qo[b], e = qo[b + 1];
         bool fr = ff[b] != 0;
-        // (n * n only once n <= m_len / n: no overflow)
-        bool ok = n >= 0 && o >= 0 && e <= rows && ms[b] >= 0 &&
-                  (n == 0 || n <= m_len / n) && ms[b] <= m_len - n * n && (!fr || e <= f_len);
+        // (every difference taken once its operands are ordered, n * n once n <= m_len / n:
+        // no overflow)
+        bool ok = o >= 0 && e >= o && e <= rows;
+        idx n = ok ? e - o : 0;
+        ok = ok && ms[b] >= 0 && (n == 0 || n <= m_len / n) && ms[b] <= m_len - n * n &&
+             (!fr || e <= f_len);
         // its friction rows counted and, warm, its row states judged, in one pass over it
         idx nf = 0;
         bool bad = false;
@@ -250,8 +253,9 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
             }
         }
         lemke::boxed::FrontLayout FL{n, nf, fr && n > 0};
-        ok = ok && bf[b] >= 0 && bf[b + 1] <= b_len && bf[b + 1] - bf[b] == FL.length() &&
-             io[b] >= 0 && io[b + 1] <= i_len && io[b + 1] - io[b] == FL.ints_length();
+        ok = ok && bf[b] >= 0 && bf[b + 1] >= bf[b] && bf[b + 1] <= b_len &&
+             bf[b + 1] - bf[b] == FL.length() && io[b] >= 0 && io[b + 1] >= io[b] &&
+             io[b + 1] <= i_len && io[b + 1] - io[b] == FL.ints_length();
         if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
         if (bad) throw nb::value_error("batch: a warm row state does not fit its row");
     }
@@ -329,11 +333,14 @@ std::int64_t islands(CIndices qoff, CIndices findex, Bytes fflag, States state, 
     bf[0] = io[0] = 0;
     idx bad = -1;
     const idx f_len = len(findex), s_len = len(state);
+    // (no array holds more rows: the offsets summed below stay far from overflow)
+    constexpr idx ROWS_MAX = idx(1) << 40;
     for (idx b = 0; b < B; ++b) {
-        idx o = qo[b], e = qo[b + 1], n = e - o;
+        idx o = qo[b], e = qo[b + 1];
         bool fr = fflag.data()[b] != 0, warm = wflag.data()[b] != 0;
-        if (n < 0 || o < 0 || (fr && e > f_len) || (warm && e > s_len))
+        if (o < 0 || e < o || e > ROWS_MAX || (fr && e > f_len) || (warm && e > s_len))
             throw nb::value_error("islands: an island's rows lie outside its arrays");
+        idx n = e - o;
         // its friction rows counted and, warm (until a row is found), the first row whose
         // state is of the other kind, in one pass over it
         idx nf = 0;

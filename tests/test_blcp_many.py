@@ -606,6 +606,12 @@ def test_batch_binding_refuses_what_it_cannot_read():
                {"qoff": np.array([0, 2 ** 40, n1 + n2], np.int64)},  # n * n past 2^63
                {"findex": findex[:n1 - 1]},
                {"Ms": Ms[:-1]},
-               {"buff": np.array([0, buff[1], buff[2] - 1], np.int64)}):
+               {"buff": np.array([0, buff[1], buff[2] - 1], np.int64)},
+               {"buff": np.array([0, np.iinfo(np.int64).min, buff[2]], np.int64)}):  # (no overflow)
         with pytest.raises(ValueError, match="offsets"):
             run(**kw)
+    for q_off in ([0, 2 ** 41], [0, -1], [np.iinfo(np.int64).min, 0], [5, 2]):  # (no overflow)
+        with pytest.raises(ValueError, match="rows lie outside"):
+            boxed.islands(np.array(q_off, np.int64), np.zeros(0, np.int64), np.zeros(1, np.uint8),
+                          np.zeros(0, np.int8), np.zeros(1, np.uint8), -1,
+                          *(np.empty(k, np.int64) for k in (2, 2, 1, 1)))
