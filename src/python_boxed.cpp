@@ -3,6 +3,8 @@
 // the engine checks a size itself its code comes back (NOT_FINITE, BAD_FINDEX), every other
 // mismatch (one the engine would read past) raises ValueError. Output arrays are
 // never converted (a float32 or non-contiguous buffer raises instead of being copied).
+#include <algorithm>
+
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/tuple.h>
@@ -216,25 +218,46 @@ void batch(Flat Ms, CIndices mstart, Flat qs, Flat los, Flat his, CIndices qoff,
         throw nb::value_error("batch: offsets and outputs do not cover the problems");
     const idx *qo = qoff.data(), *ms = mstart.data(), *bf = buff.data(), *io = ioff.data();
     const idx* fi = findex.data();
+    const std::uint8_t *ff = fflag.data(), *wf = wflag.data();
+    const std::int8_t* st = state.data();
+    // the rows' arrays' common length, M's, the friction index's, the buffers' (read once)
+    const idx rows = std::min({len(qs), len(los), len(his), len(state), len(state_out)});
+    const idx m_len = len(Ms), f_len = len(findex), b_len = len(bufs), i_len = len(ints);
     for (idx b = lo; b < hi; ++b) {
-        idx n = qo[b + 1] - qo[b];
-        bool ok = n >= 0 && qo[b] >= 0 && qo[b + 1] <= len(qs) && qo[b + 1] <= len(los) &&
-                  qo[b + 1] <= len(his) && qo[b + 1] <= len(state) && qo[b + 1] <= len(state_out) &&
-                  ms[b] >= 0 && ms[b] + n * n <= len(Ms) && (fflag.data()[b] == 0 || qo[b + 1] <= len(findex));
+        idx o = qo[b], e = qo[b + 1];
+        bool fr = ff[b] != 0;
+        // (every difference taken once its operands are ordered, n * n once n <= m_len / n:
+        // no overflow)
+        bool ok = o >= 0 && e >= o && e <= rows;
+        idx n = ok ? e - o : 0;
+        ok = ok && ms[b] >= 0 && (n == 0 || n <= m_len / n) && ms[b] <= m_len - n * n &&
+             (!fr || e <= f_len);
+        // its friction rows counted and, warm, its row states judged, in one pass over it
         idx nf = 0;
-        if (ok && fflag.data()[b] != 0)
-            for (idx i = qo[b]; i < qo[b + 1]; ++i) nf += fi[i] >= 0;
-        lemke::boxed::FrontLayout FL{n, nf, fflag.data()[b] != 0 && n > 0};
-        ok = ok && bf[b] >= 0 && bf[b + 1] <= len(bufs) && bf[b + 1] - bf[b] == FL.length() &&
-             io[b] >= 0 && io[b + 1] <= len(ints) && io[b + 1] - io[b] == FL.ints_length();
-        if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
-        if (wflag.data()[b] != 0)
-            for (idx i = qo[b]; i < qo[b + 1]; ++i) {
-                int c = state.data()[i];
-                bool f = fflag.data()[b] != 0 && fi[i] >= 0;
-                if (c < 0 || c > 29 || (c >= lemke::boxed::FRICTION_STATE) != f)
-                    throw nb::value_error("batch: a warm row state does not fit its row");
+        bool bad = false;
+        if (ok && fr) {
+            if (wf[b] != 0) {
+                for (idx i = o; i < e; ++i) {
+                    int c = st[i];
+                    bool f = fi[i] >= 0;
+                    nf += f;
+                    bad |= (c < 0) | (c > 29) | ((c >= lemke::boxed::FRICTION_STATE) != f);
+                }
+            } else {
+                for (idx i = o; i < e; ++i) nf += fi[i] >= 0;
             }
+        } else if (ok && wf[b] != 0) {
+            for (idx i = o; i < e; ++i) {
+                int c = st[i];
+                bad |= (c < 0) | (c >= lemke::boxed::FRICTION_STATE);
+            }
+        }
+        lemke::boxed::FrontLayout FL{n, nf, fr && n > 0};
+        ok = ok && bf[b] >= 0 && bf[b + 1] >= bf[b] && bf[b + 1] <= b_len &&
+             bf[b + 1] - bf[b] == FL.length() && io[b] >= 0 && io[b + 1] >= io[b] &&
+             io[b + 1] <= i_len && io[b + 1] - io[b] == FL.ints_length();
+        if (!ok) throw nb::value_error("batch: a problem's offsets lie outside its arrays");
+        if (bad) throw nb::value_error("batch: a warm row state does not fit its row");
     }
     nb::gil_scoped_release release;
     lemke::boxed::batch(Ms.data(), ms, qs.data(), los.data(), his.data(), qo, fi,
@@ -309,20 +332,33 @@ std::int64_t islands(CIndices qoff, CIndices findex, Bytes fflag, States state, 
     idx *bf = buff.data(), *io = ioff.data(), *an = answer.data(), *lim = limits.data();
     bf[0] = io[0] = 0;
     idx bad = -1;
+    const idx f_len = len(findex), s_len = len(state);
+    // (no array holds more rows: the offsets summed below stay far from overflow)
+    constexpr idx ROWS_MAX = idx(1) << 40;
     for (idx b = 0; b < B; ++b) {
-        idx o = qo[b], n = qo[b + 1] - o;
+        idx o = qo[b], e = qo[b + 1];
         bool fr = fflag.data()[b] != 0, warm = wflag.data()[b] != 0;
-        if (n < 0 || o < 0 || (fr && qo[b + 1] > len(findex)) || (warm && qo[b + 1] > len(state)))
+        if (o < 0 || e < o || e > ROWS_MAX || (fr && e > f_len) || (warm && e > s_len))
             throw nb::value_error("islands: an island's rows lie outside its arrays");
+        idx n = e - o;
+        // its friction rows counted and, warm (until a row is found), the first row whose
+        // state is of the other kind, in one pass over it
         idx nf = 0;
-        if (fr)
-            for (idx i = o; i < o + n; ++i) nf += fi[i] >= 0;
-        if (warm && bad < 0)
-            for (idx i = o; i < o + n; ++i)
-                if ((st[i] >= lemke::boxed::FRICTION_STATE) != (fr && fi[i] >= 0)) {
+        if (fr && warm && bad < 0) {
+            for (idx i = o; i < e; ++i) {
+                bool f = fi[i] >= 0;
+                nf += f;
+                if (bad < 0 && (st[i] >= lemke::boxed::FRICTION_STATE) != f) bad = i;
+            }
+        } else if (fr) {
+            for (idx i = o; i < e; ++i) nf += fi[i] >= 0;
+        } else if (warm && bad < 0) {
+            for (idx i = o; i < e; ++i)
+                if (st[i] >= lemke::boxed::FRICTION_STATE) {
                     bad = i;
                     break;
                 }
+        }
         lemke::boxed::FrontLayout F{n, nf, fr && n > 0};
         bf[b + 1] = bf[b] + F.length();
         io[b + 1] = io[b] + F.ints_length();

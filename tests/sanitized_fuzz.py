@@ -32,6 +32,9 @@ and again in the test's own process, fingerprint against fingerprint).
   of those forms, cold, warm and from a guess, bit for bit the float64 arrays' answer;
   Python-number bounds of every type and value; malformed data, rows and bounds; junk warm
   starts and guesses with converted data: an answer, None or ValueError / TypeError.
+* the box batch's bindings boxed.islands and boxed.batch called directly (each island's rows
+  judged in one pass, branch boxsmall) with random and extreme offsets, friction indices,
+  flags, row states and island ranges: an answer or a ValueError / TypeError.
 
 A mismatch with the fresh thread raises (a finding, reported as an exception by the Runner).
 """
@@ -420,6 +423,7 @@ def fuzz(run):
         box_gathers(run, np.random.default_rng(2032))
         qp_conversions(run, np.random.default_rng(2041))
         basis_seam(run, np.random.default_rng(2033))
+        box_batch_checks(run, np.random.default_rng(2033))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -429,13 +433,7 @@ def fuzz(run):
 
 def box_gathers(run, rng):
     sizes = np.array([3, 0, 4, 2, 6], dtype=np.int64)
-    isl = [problems.random_psd(int(n), rng) for n in sizes]
-    Mp = np.concatenate([M.ravel() for M, _ in isl])
-    qp = np.concatenate([q for _, q in isl])
-    lo, hi = np.full(qp.size, -1.0), np.full(qp.size, 2.0)
-    fi = np.full(qp.size, -1, dtype=np.int64)
-    fi[[4, 5]] = 0  # island 2 (rows 3-6): its rows 1, 2 friction rows of its row 0
-    lo[[3, 4, 5]] = 0.0, -2.0, -2.0
+    Mp, qp, lo, hi, fi = friction_islands(sizes, rng)
     rb = lemke.solve_blcp_many(Mp, qp, lo, hi, findex=fi, sizes=sizes, workers=1)
     bufs, bo, qo, ans, flag = rb._bufs, rb._buff, rb._qoff, rb._answer, rb._fflag
     run.attempt("fuzz box gathers ok", refused_or(lambda: [_core.many_field(bufs, bo, qo, s, 0, ans,
@@ -627,3 +625,81 @@ def basis_seam(run, rng):
             {"M": M2[2], "q": q2, "rhs": r2}[where][1] = bad
             run.attempt(f"fuzz seam {bad} in {where}", refused_or(
                 lambda: _seam_sizes(5, f, _core.lcp_basis(M2, q2, f, 1e-9, r2, where == "rhs"))))
+
+# --- the box batch's bindings (branch boxsmall): boxed.islands and boxed.batch called
+# directly with random and extreme offsets, friction indices, flags, row states and island
+# ranges (each island's rows judged in one pass before any read): an answer, or a ValueError /
+# TypeError; never a read outside the arrays.
+
+def friction_islands(sizes, rng):
+    """Islands of these sizes (the third of at least 3 rows) packed: M, q, lo, hi, findex;
+    the third island's rows 1, 2 friction rows of its row 0."""
+    isl = [problems.random_psd(int(n), rng) for n in sizes]
+    Mp = np.concatenate([M.ravel() for M, _ in isl])
+    qp = np.concatenate([q for _, q in isl])
+    lo, hi = np.full(qp.size, -1.0), np.full(qp.size, 2.0)
+    fi = np.full(qp.size, -1, dtype=np.int64)
+    r = int(sizes[:2].sum())  # (the third island's first row)
+    fi[[r + 1, r + 2]] = 0
+    lo[[r, r + 1, r + 2]] = 0.0, -2.0, -2.0
+    return Mp, qp, lo, hi, fi
+
+
+def box_batch_checks(run, rng):
+    boxed = _core.boxed
+    sizes = np.array([3, 0, 4, 2], dtype=np.int64)
+    Ms, qs, lo, hi, fi = friction_islands(sizes, rng)
+    qoff = np.zeros(sizes.size + 1, dtype=np.int64)
+    np.cumsum(sizes, out=qoff[1:])
+    mstart = np.zeros(sizes.size, dtype=np.int64)
+    np.cumsum(sizes[:-1] ** 2, out=mstart[1:])
+    fflag = np.array([0, 0, 1, 1], dtype=np.uint8)
+    state = np.zeros(qs.size, dtype=np.int8)
+    state[[4, 5]] = 3
+    wflag = np.array([1, 0, 1, 1], dtype=np.uint8)
+    opts = lemke.Options()
+    B = sizes.size
+
+    def islands(qoff, fi, fflag, state, wflag):
+        k = max(qoff.size - 1, 0)
+        out = [np.zeros(m, dtype=np.int64) for m in (k + 1, k + 1, k, k)]
+        bad = boxed.islands(qoff, fi, fflag, state, wflag, -1, *out)
+        return bad, out
+
+    _, (buff, ioff, _, limits) = islands(qoff, fi, fflag, state, wflag)
+
+    def batch(a):
+        bufs, ints = np.zeros(int(buff[-1])), np.zeros(int(ioff[-1]), dtype=np.int64)
+        out_i, out_f, state_out = np.zeros((B, 7), np.int64), np.zeros(B), np.zeros(qs.size, np.int8)
+        boxed.batch(a["Ms"], a["mstart"], qs, lo, hi, a["qoff"], a["fi"], a["fflag"], a["state"],
+                    a["wflag"], a["lo"], a["hi"], limits, opts.pivot_tol, opts.tie_tol, opts.tol,
+                    bufs, a["buff"], ints, a["ioff"], state_out, out_i, out_f)
+        return out_i, out_f, state_out, bufs, ints
+
+    base = {"Ms": Ms, "mstart": mstart, "qoff": qoff, "fi": fi, "fflag": fflag, "state": state,
+            "wflag": wflag, "lo": 0, "hi": B, "buff": buff, "ioff": ioff}
+    run.attempt("fuzz box batch checks ok", refused_or(lambda: batch(base)))
+    extremes = np.array([0, 1, -1, 3, 7, I64.max, I64.min, I64.max // 2, 1 << 31, 1 << 62], dtype=np.int64)
+    for t in range(160):
+        a = dict(base)
+        for name in rng.choice(["mstart", "qoff", "fi", "state", "fflag", "wflag", "buff", "ioff", "range", "short"],
+                               size=int(rng.integers(1, 3)), replace=False):
+            if name == "range":
+                a["lo"], a["hi"] = (int(x) for x in rng.integers(-1, B + 2, size=2))
+            elif name == "short":
+                a["Ms"] = Ms[: int(rng.integers(0, Ms.size))]
+            elif name == "state":
+                st = state.copy()
+                st[int(rng.integers(st.size))] = int(rng.integers(-3, 33))
+                a["state"] = st
+            elif name in ("fflag", "wflag"):
+                a[name] = rng.integers(0, 2, size=B).astype(np.uint8)
+            else:
+                arr = base[name].copy()
+                i = int(rng.integers(arr.size))
+                arr[i] = extremes[int(rng.integers(extremes.size))] if rng.random() < 0.5 else (
+                    int(arr[i]) + int(rng.integers(-2, 3)))
+                a[name] = arr
+        run.attempt(f"fuzz box batch checks {t}", refused_or(lambda: batch(a)))
+        run.attempt(f"fuzz box islands checks {t}",
+                    refused_or(lambda: islands(a["qoff"], a["fi"], a["fflag"], a["state"], a["wflag"])))

@@ -547,3 +547,71 @@ def test_many_without_the_native_fronts():
         off = run()
     assert off == on
     _same_as_one_by_one(lemke.solve_blcp_many(Ms, qs, los, his, findex=fis), Ms, qs, los, his, fis)
+
+
+def test_batch_binding_refuses_what_it_cannot_read():
+    """boxed.batch and boxed.islands called directly (solve_blcp_many's kernel calls): the
+    islands' offsets, friction rows and warm row states are judged before any read, one pass
+    over each island's rows (branch boxsmall), and solved islands match solve_blcp's."""
+    from lemke._core import boxed
+    (M1, q1, lo1, hi1, f1, _), (M2, q2, lo2, hi2, _, _) = contacts(5, 2), contacts(6, 1)
+    Ms = np.concatenate([M1.ravel(), M2.ravel()])
+    qs, los, his = (np.concatenate(p) for p in ((q1, q2), (lo1, lo2), (hi1, hi2)))
+    n1, n2 = q1.size, q2.size
+    qoff = np.array([0, n1, n1 + n2], dtype=np.int64)
+    mstart = np.array([0, n1 * n1], dtype=np.int64)
+    findex = np.concatenate([f1.astype(np.int64), np.full(n2, -1, np.int64)])
+    fflag = np.array([1, 0], dtype=np.uint8)
+    cold = lemke.solve_blcp(M1, q1, lo1, hi1, findex=f1.astype(np.int64))
+    state = np.concatenate([cold.warm_start.row_states(), np.zeros(n2, np.int8)])
+    wflag = np.array([1, 1], dtype=np.uint8)
+    buff, ioff = np.empty(3, np.int64), np.empty(3, np.int64)
+    answer, limits = np.empty(2, np.int64), np.empty(2, np.int64)
+    assert boxed.islands(qoff, findex, fflag, state, wflag, -1, buff, ioff, answer, limits) == -1
+    opts = lemke.Options()
+
+    def run(state=state, findex=findex, mstart=mstart, qoff=qoff, Ms=Ms, buff=buff):
+        bufs, ints = np.empty(int(buff[-1])), np.empty(int(ioff[-1]), np.int64)
+        out_i, out_f, state_out = np.empty((2, 7), np.int64), np.empty(2), np.empty(n1 + n2, np.int8)
+        boxed.batch(Ms, mstart, qs, los, his, qoff, findex, fflag, state, wflag, 0, 2, limits,
+                    opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, ints, ioff, state_out,
+                    out_i, out_f)
+        return bufs, out_i, state_out
+
+    bufs, out_i, state_out = run()
+    assert out_i[0, 5] == 0 and out_i[1, 5] >= 0  # island 0 from its own basis
+    assert state_out[:n1].tolist() == state[:n1].tolist()
+    z0 = bufs[buff[0] + answer[0]:buff[0] + answer[0] + n1]
+    again = lemke.solve_blcp(M1, q1, lo1, hi1, findex=f1.astype(np.int64), warm_start=cold.warm_start)
+    assert again.pivots == 0 and np.array_equal(z0, again.z)
+    assert_friction_solution(M1, q1, lo1, hi1, f1, z0)
+    z1 = bufs[buff[1] + answer[1]:buff[1] + answer[1] + n2]
+    assert_box_solution(M2, q2, lo2, hi2, z1, rtol=1e-7)
+    fr = int(np.flatnonzero(f1 >= 0)[0])  # a friction row of island 0
+    for rows, code in (([n1], -1), ([n1], 30), ([n1], 3), ([fr], 0), ([0], 31)):
+        bad = state.copy()
+        bad[rows] = code
+        with pytest.raises(ValueError, match="a warm row state does not fit its row"):
+            run(state=bad)
+    kinds = state.copy()
+    kinds[n1 + 1] = 3  # a friction code on island 1's ordinary row: the first such row
+    assert boxed.islands(qoff, findex, fflag, kinds, wflag, -1, *(np.empty_like(a) for a in
+                         (buff, ioff, answer, limits))) == n1 + 1
+    kinds[fr] = 0  # ... and one on island 0 before it
+    assert boxed.islands(qoff, findex, fflag, kinds, wflag, -1, *(np.empty_like(a) for a in
+                         (buff, ioff, answer, limits))) == fr
+    for kw in ({"mstart": np.array([0, Ms.size], np.int64)},  # M past its array
+               {"mstart": np.array([-1, 0], np.int64)},
+               {"qoff": np.array([0, n1, n1 + n2 + 1], np.int64)},  # rows past the arrays
+               {"qoff": np.array([0, 2 ** 40, n1 + n2], np.int64)},  # n * n past 2^63
+               {"findex": findex[:n1 - 1]},
+               {"Ms": Ms[:-1]},
+               {"buff": np.array([0, buff[1], buff[2] - 1], np.int64)},
+               {"buff": np.array([0, np.iinfo(np.int64).min, buff[2]], np.int64)}):  # (no overflow)
+        with pytest.raises(ValueError, match="offsets"):
+            run(**kw)
+    for q_off in ([0, 2 ** 41], [0, -1], [np.iinfo(np.int64).min, 0], [5, 2]):  # (no overflow)
+        with pytest.raises(ValueError, match="rows lie outside"):
+            boxed.islands(np.array(q_off, np.int64), np.zeros(0, np.int64), np.zeros(1, np.uint8),
+                          np.zeros(0, np.int8), np.zeros(1, np.uint8), -1,
+                          *(np.empty(k, np.int64) for k in (2, 2, 1, 1)))
