@@ -358,7 +358,7 @@ def square_matrix(M, name: str = "M") -> np.ndarray:
         a = np.zeros((0, 0))  # [] is the empty matrix
     if a.ndim != 2 or a.shape[0] != a.shape[1]:
         raise ValueError(f"{name} must be a square 2-D matrix, got shape {a.shape}")
-    return c_aligned(a)
+    return np.ascontiguousarray(a)  # (a is aligned: real_array; so is any copy)
 
 
 def vector(v, n: int, name: str) -> np.ndarray:
@@ -664,7 +664,7 @@ def _box_bound(x, n, name, side):
         a = np.full(n, float(a))
     if a.shape != (n,):
         raise ValueError(f"{name} must be a scalar or have shape ({n},) to match M, got shape {a.shape}")
-    return c_aligned(a)
+    return np.ascontiguousarray(a)  # (a is aligned: real_array or np.full)
 
 
 SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
