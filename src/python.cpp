@@ -11,6 +11,7 @@
 #include "lemke/certify.hpp"
 #include "lemke/lcp.hpp"
 #include "lemke/unrevised.hpp"
+#include "python_arrays.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -20,11 +21,11 @@ void bind_boxed(nb::module_& m);  // src/python_boxed.cpp
 void bind_front(nb::module_& m);  // src/python_front.cpp
 void bind_front_box(nb::module_& m);  // src/python_front_box.cpp
 
-using Matrix = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using Vector = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using Buffer = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using Indices = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using IndexOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Matrix = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using Vector = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using Buffer = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using Indices = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using IndexOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 
 // The length of an optional array argument (None: 0).
 template <class A>
@@ -143,10 +144,10 @@ static Tuple7 solve_one(int method, Matrix M, Vector q, Vector d, Indices beta, 
     return {r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage};
 }
 
-using Flat = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using FlatOut = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using IntOut2 = nb::ndarray<std::int64_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using FloatOut2 = nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using Flat = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using FlatOut = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using IntOut2 = Aligned<nb::ndarray<std::int64_t, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using FloatOut2 = Aligned<nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
 
 // cold.batch's arguments: problems lo..hi-1 laid end to end (see lemke::batch). Every
 // offset is checked against its array before the GIL is released (ValueError otherwise).

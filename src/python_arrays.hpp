@@ -5,6 +5,50 @@
 // arrays against what Python reports, and a front that finds them different stays off.
 #pragma once
 #include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+
+// Aligned<A>: an nb::ndarray argument A that an entry reads through typed pointers (double,
+// int64), taken only when its data is aligned for its scalar (or it holds no entry).
+// nanobind passes a C-contiguous array through whatever its address (e.g.
+// np.frombuffer(bytearray(8 * n + 1), offset=1)), and reading that as doubles is undefined
+// behaviour (UBSan's alignment check); Aligned declines it, and the call raises TypeError
+// (incompatible function arguments), as for an argument of another dtype. The one check of
+// alignment for every _core entry that takes typed arrays (src/python*.cpp's aliases); the
+// Python callers hand them aligned arrays (_validate's conversions copy unaligned ones).
+template <class A>
+struct Aligned : A {
+    Aligned() = default;
+    explicit Aligned(A&& a) : A(std::move(a)) {}
+};
+
+// Whether the array a's data may be read as its scalar type.
+template <class A>
+bool data_aligned(const A& a) {
+    using T = std::remove_pointer_t<decltype(a.data())>;
+    return a.size() == 0 || reinterpret_cast<std::uintptr_t>(a.data()) % alignof(T) == 0;
+}
+
+namespace nanobind::detail {
+template <class A>
+struct type_caster<Aligned<A>> {
+    using Inner = make_caster<A>;
+    NB_TYPE_CASTER(Aligned<A>, Inner::Name)
+    bool from_python(handle src, uint8_t flags, cleanup_list* cleanup) noexcept {
+        Inner inner;
+        if (!inner.from_python(src, flags, cleanup)) return false;
+        if (!data_aligned(inner.value)) return false;
+        value = Aligned<A>(std::move(inner.value));
+        return true;
+    }
+    static handle from_cpp(const Aligned<A>& a, rv_policy policy, cleanup_list* cleanup) noexcept {
+        return Inner::from_cpp(static_cast<const A&>(a), policy, cleanup);
+    }
+};
+}  // namespace nanobind::detail
 
 // NumPy's array object, as far as read here.
 struct ArrayFields {

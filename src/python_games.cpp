@@ -20,11 +20,11 @@ using namespace nb::literals;
 namespace {
 
 using lemke::idx;
-using Payoffs = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using VecIn = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using VecOut = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using LabelsIn = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using LabelsOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using Payoffs = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using VecIn = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using VecOut = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using LabelsIn = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using LabelsOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 
 idx len(std::size_t s) { return static_cast<idx>(s); }
 

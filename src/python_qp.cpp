@@ -15,6 +15,7 @@
 
 #include "lemke/qp.hpp"
 #include "lemke/unrevised.hpp"
+#include "python_arrays.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -24,11 +25,11 @@ namespace {
 using lemke::idx;
 namespace qp = lemke::qp;
 
-using In2 = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using In1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using Out2 = nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using Out1 = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using IdxOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using In2 = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using In1 = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using Out2 = Aligned<nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using Out1 = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using IdxOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 using FlagsOut = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
 using NewMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
@@ -124,7 +125,7 @@ Code4 solve(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method
                  0, 0);
 }
 
-using IdxIn = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using IdxIn = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 
 // qp.solve from a warm start: warm (int64) the KKT-MLCP's basic pairs, distinct, in
 // [0, pairs) (else ValueError); BAD_WARM (with this QP's count of pairs as the last

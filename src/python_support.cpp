@@ -23,6 +23,7 @@
 #include "lemke/certify.hpp"
 #include "lemke/linalg.hpp"
 #include "lemke/mlcp.hpp"
+#include "python_arrays.hpp"
 
 namespace nb = nanobind;
 using namespace nb::literals;
@@ -31,12 +32,12 @@ namespace {
 
 using lemke::idx;
 
-using In2 = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using In1 = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using Out2 = nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
-using Out1 = nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using IdxIn = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using IdxOut = nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using In2 = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using In1 = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using Out2 = Aligned<nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
+using Out1 = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using IdxIn = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using IdxOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
 using NewMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
 
@@ -80,14 +81,6 @@ const std::uint8_t* seam_flags(const FlagsIn& a, idx n, const char* what) {
     if (a.dtype() != nb::dtype<bool>() && a.dtype() != nb::dtype<std::uint8_t>())
         throw nb::type_error((std::string(what) + " must be bool or uint8").c_str());
     return static_cast<const std::uint8_t*>(a.data());
-}
-
-// A float64 argument of the seam's entries that is not 8-byte aligned (nanobind passes an
-// unaligned C-contiguous array through, and reading it as doubles is undefined): TypeError.
-template <class A>
-void seam_aligned(const A& a, const char* what) {
-    if (reinterpret_cast<std::uintptr_t>(a.data()) % alignof(double) != 0)
-        throw nb::type_error((std::string(what) + " must be aligned").c_str());
 }
 
 // The seam's entries' answer (code, z, w, residual, x): code 0 the point of the basis passes
@@ -135,9 +128,6 @@ SeamOut lcp_basis(In2 M, In1 q, FlagsIn z_basic, double tol, std::optional<In1> 
     idx n = len(q);
     if (len(M, 0) != n || len(M, 1) != n)
         throw nb::value_error("lcp_basis: M must be n x n, q of length n");
-    seam_aligned(M, "lcp_basis: M");
-    seam_aligned(q, "lcp_basis: q");
-    if (rhs) seam_aligned(*rhs, "lcp_basis: rhs");
     const std::uint8_t* flags = seam_flags(z_basic, n, "lcp_basis: z_basic");
     std::vector<idx> beta(static_cast<std::size_t>(n));
     idx k = lemke::basic_indices(flags, n, beta.data());
@@ -171,11 +161,6 @@ SeamOut box_basis(In2 M, In1 q, In1 lo, In1 hi, FlagsIn zb, FlagsIn zh, bool war
     idx n = len(q);
     if (len(M, 0) != n || len(M, 1) != n || len(lo) != n || len(hi) != n)
         throw nb::value_error("box_basis: M must be n x n, q, lo and hi of length n");
-    seam_aligned(M, "box_basis: M");
-    seam_aligned(q, "box_basis: q");
-    seam_aligned(lo, "box_basis: lo");
-    seam_aligned(hi, "box_basis: hi");
-    if (rhs) seam_aligned(*rhs, "box_basis: rhs");
     const std::uint8_t* b = seam_flags(zb, n, "box_basis: zb");
     const std::uint8_t* h = seam_flags(zh, n, "box_basis: zh");
     std::vector<double> work(static_cast<std::size_t>(lemke::BoxBasis::work_size(n) + 3 * n));

@@ -424,6 +424,7 @@ def fuzz(run):
         qp_conversions(run, np.random.default_rng(2041))
         basis_seam(run, np.random.default_rng(2033))
         box_batch_checks(run, np.random.default_rng(2033))
+        unaligned_entries(run)
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -703,3 +704,117 @@ def box_batch_checks(run, rng):
         run.attempt(f"fuzz box batch checks {t}", refused_or(lambda: batch(a)))
         run.attempt(f"fuzz box islands checks {t}",
                     refused_or(lambda: islands(a["qoff"], a["fi"], a["fflag"], a["state"], a["wflag"])))
+
+# --- unaligned arrays on every _core entry that reads typed arrays (branch align): nanobind
+# passes a C-contiguous array through whatever its address, and reading it as doubles or int64
+# is undefined (UBSan's alignment check, in -fsanitize=undefined). Every entry whose signature
+# takes float64 or int64 ndarrays (typed_entries: read from the signatures, so a new entry is
+# in) is called with small arrays of consistent shapes (3 entries a dimension), then with each
+# such argument in turn, and all at once, unaligned (writable, one byte into a bytearray):
+# TypeError (src/python_arrays.hpp's Aligned refuses it) or the aligned call's answer.
+
+ENTRY_INITS = ("lcp_front_init", "games_front_init", "qp_front_init", "blcp_front_init")  # (state)
+
+
+def _split_params(text):
+    """The parameters of a nanobind signature's argument list, split at top-level commas."""
+    out, depth, cur = [], 0, ""
+    for ch in text:
+        depth += ch in "[(" and 1 or (ch in "])" and -1 or 0)
+        if ch == "," and depth == 0:
+            out.append(cur.strip())
+            cur = ""
+        else:
+            cur += ch
+    return out + ([cur.strip()] if cur.strip() else [])
+
+
+def typed_entries():
+    """[(name, function, params)] of the _core (and _core.boxed) functions whose signature
+    takes float64 or int64 ndarrays; params [(kind, ndim)]: kind a dtype name, 'flags' (an
+    ndarray of no dtype: bool flags), or the Python type's name."""
+    import re
+    found = []
+    for prefix, mod in (("", _core), ("boxed.", _core.boxed)):
+        for name in sorted(dir(mod)):
+            fn = getattr(mod, name)
+            sig = (getattr(fn, "__doc__", None) or "").split("\n")[0]
+            if name.startswith("_") or not callable(fn) or name in ENTRY_INITS or not sig.startswith(name + "("):
+                continue
+            if not re.search(r"ndarray\[dtype=(float64|int64)", sig):
+                continue
+            body = sig[len(name) + 1: sig.rindex(") ->")]
+            params = []
+            for p in _split_params(body):
+                t = p.split(":", 1)[1].split(" = ")[0].strip() if ":" in p else "object"
+                if t.startswith("ndarray["):
+                    m = re.search(r"dtype=(\w+)", t)
+                    shape = re.search(r"shape=\(([^)]*)\)", t)
+                    params.append((m.group(1) if m else "flags", shape.group(1).count("*") if shape else 1))
+                else:
+                    params.append((t.split("|")[0].strip(), 0))
+            found.append((prefix + name, fn, params))
+    return found
+
+
+def entry_args(params):
+    """Fresh arguments for params: arrays of 3 entries a dimension, ints 3, floats 1e-9."""
+    out = []
+    for kind, nd in params:
+        if kind == "float64":
+            out.append(np.eye(3) * 2.0 + 0.25 if nd == 2 else np.linspace(0.5, 1.5, 3 ** nd).reshape((3,) * nd))
+        elif kind == "int64":
+            out.append(np.arange(3 ** nd, dtype=np.int64).reshape((3,) * nd) % 3)
+        elif kind in ("uint8", "int8"):
+            out.append(np.zeros((3,) * nd, dtype=kind))
+        elif kind == "flags":
+            out.append(np.zeros(3, dtype=bool))
+        else:
+            out.append({"int": 3, "float": 1e-9, "bool": False}.get(kind))
+    return out
+
+
+def writable_unaligned(a):
+    """a's values in a writable C-contiguous array of a's dtype, one byte off alignment."""
+    u = np.frombuffer(bytearray(b"\0" + np.ascontiguousarray(a).tobytes()), dtype=a.dtype,
+                      offset=1).reshape(a.shape)
+    return u
+
+
+def _entry_answer(fn, args):
+    """fn(*args)'s answer and the arguments' bytes after it (outputs written), or the name of
+    the refusal it raised."""
+    try:
+        got = fn(*args)
+    except REFUSED as e:
+        return f"refused {type(e).__name__}"
+    return repr(got), [a.tobytes() if isinstance(a, np.ndarray) else a for a in args]
+
+
+def unaligned_calls(fn, params):
+    """[(which, answer)]: the aligned call's answer (which None), then each float64 / int64
+    argument's unaligned call (which its index) and all of them at once (which 'all')."""
+    want = _entry_answer(fn, entry_args(params))
+    out = [(None, want)]
+    typed = [i for i, (kind, nd) in enumerate(params) if kind in ("float64", "int64")]
+    for pick in [[i] for i in typed] + [typed]:
+        args = entry_args(params)
+        for i in pick:
+            args[i] = writable_unaligned(args[i])
+        out.append((pick[0] if len(pick) == 1 else "all", _entry_answer(fn, args)))
+    return out
+
+
+def unaligned_entries(run):
+    entries = typed_entries()
+    if len(entries) < 50:
+        raise AssertionError(f"only {len(entries)} typed _core entries found")
+    for name, fn, params in entries:
+        def check(fn=fn, params=params, name=name):
+            calls = unaligned_calls(fn, params)
+            want = calls[0][1]
+            for which, got in calls[1:]:
+                if got != "refused TypeError" and got != want:
+                    raise AssertionError(f"{name}: unaligned argument {which}: {got!r:.200} (aligned: {want!r:.200})")
+            return [got if isinstance(got, str) else "answer" for _, got in calls]
+        run.attempt(f"fuzz unaligned {name}", check)

@@ -40,7 +40,7 @@ import numpy as np
 from ._frozen import frozen
 from . import _core, _npc
 from ._result import Value
-from ._validate import square_matrix, vector
+from ._validate import c_aligned, square_matrix, vector
 
 #: The certifiability bound (src/lemke/certify.hpp; the module docstring).
 CERTIFIABLE = _core.CERTIFIABLE
@@ -104,7 +104,7 @@ def check_mlcp(E, e, n, x, tol):
     summed in double-double (its rounding allowance, EPS_EXT, is that of x86's long
     double).  In the C++ core (``check_mlcp`` in ``src/lemke/certify.cpp``): the numbers of
     :func:`_check_mlcp_numpy`, bit for bit."""
-    c = np.ascontiguousarray
+    c = c_aligned
     y = np.empty(e.size)
     ok, residual = _core.check_mlcp(c(E, dtype=np.float64), c(e, dtype=np.float64), int(n),
                                     c(x, dtype=np.float64), float(tol), y)
@@ -118,7 +118,7 @@ def _check_mlcp_numpy(E, e, n, x, tol, residual2):
     # In double-double, so that the test needs no allowance for rounding in computing E x
     # beyond EPS_EXT (an allowance of eps would grow with |x| and pass any huge x).
     y = np.empty(N)
-    c = np.ascontiguousarray
+    c = c_aligned
     residual2(c(E, dtype=np.float64), c(x, dtype=np.float64), c(e, dtype=np.float64), y)
     e_max, E_max = absmax(e), absmax(E)
     s_z = tol * max(absmax(x), e_max / E_max if E_max > 0.0 else 0.0)

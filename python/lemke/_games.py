@@ -312,8 +312,10 @@ def solve_bimatrix(A, B, *, init_label=0, method="lemke-howson", prior=None, war
                      prior=prior, warm_start=warm_start, exact=exact)
     if not (type(A) is np.ndarray and type(B) is np.ndarray and (A.dtype is _F64 or A.dtype == _F64)
             and (B.dtype is _F64 or B.dtype == _F64) and A.ndim == 2 and A.shape == B.shape and A.size
-            and A.flags.c_contiguous and B.flags.c_contiguous) or method != "lemke-howson":
+            and (fa := A.flags).c_contiguous and (fb := B.flags).c_contiguous) or method != "lemke-howson":
         A, B = _as_payoffs(A, B)  # the common case skips this: the kernel checks finiteness
+    elif not (fa.aligned and fb.aligned):  # (the same values aligned: the kernel reads doubles)
+        A, B = _validate.c_aligned(A), _validate.c_aligned(B)
     m, n = A.shape
     k = init_label if type(init_label) is int and 0 <= init_label < m + n else _label(init_label, m, n)
     if method not in METHODS:

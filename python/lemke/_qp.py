@@ -759,7 +759,7 @@ def _guess_vector(initvals, n):
     if not np.isfinite(x0).all():
         bad = np.flatnonzero(~np.isfinite(x0))
         raise ValueError(f"initvals has a non-finite entry at index {int(bad[0])}")
-    return np.ascontiguousarray(x0)
+    return _validate.c_aligned(x0)
 
 
 def _initvals_start(initvals, P, q, G, h, A, b, lb, ub):
@@ -992,7 +992,7 @@ def kkt(data, x, y, z, z_box, tol):
     the objective, each summed there in double-double (their values at the point as given,
     not the rounding of evaluating them)."""
     stats = np.empty(4)
-    c = np.ascontiguousarray
+    c = _validate.c_aligned
     P, q, G, h, A, b, lb, ub = data
     ok = _core.qp_kkt_check(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol,
                             stats)

@@ -51,14 +51,18 @@ def float64_array(x, name: str) -> np.ndarray:
         raise TypeError(f"{name} must be a numeric array: {exc}") from None
     if a.dtype.kind not in "fiub":  # float, int, unsigned, bool
         raise TypeError(f"{name} must hold real numbers, got dtype {a.dtype}")
-    return a if a.dtype == np.float64 else a.astype(np.float64)
+    if a.dtype != np.float64:
+        return a.astype(np.float64)
+    # (an unaligned one copied: the core reads its arrays as doubles, and refuses unaligned
+    # ones, src/python_arrays.hpp's Aligned; the copy holds the same bits)
+    return a if a.flags.aligned else a.copy()
 
 
 # ------------------------------------------------ array-likes for the native fronts
 
 _ND = np.ndarray
 _F64, _I64 = np.dtype(np.float64), np.dtype(np.int64)
-_asarray, _contiguous = np.asarray, np.ascontiguousarray
+_asarray = np.asarray
 _as_f64, _all_f64 = _core.as_f64, _core.all_f64  # (src/python_front.cpp: made_f64)
 
 
@@ -84,7 +88,7 @@ def plain(x, nd: int, dtype=_F64, kinds: str = "fiub"):
         return None
     if a.ndim != nd or a.dtype.kind not in kinds:
         return None
-    return _contiguous(a, dtype=dtype)
+    return c_aligned(a, dtype)
 
 
 def _scalar_bound(x, n: int, side: int):
@@ -332,10 +336,19 @@ def _caller_level() -> int:
 
 
 def kernel_array(a: np.ndarray) -> np.ndarray:
-    """``a`` as the core's bindings take it: C-contiguous and writable (a copy only when it is
-    not; the core never writes to its input, but some bindings take their inputs as plain,
-    writable arrays)."""
-    return a if a.flags.c_contiguous and a.flags.writeable else np.array(a, order="C")
+    """``a`` as the core's bindings take it: C-contiguous, aligned and writable (a copy only
+    when it is not; the core never writes to its input, but some bindings take their inputs
+    as plain, writable arrays, and all refuse unaligned ones)."""
+    return a if a.flags.carray else np.array(a, order="C")
+
+
+def c_aligned(a, dtype=None) -> np.ndarray:
+    """``np.ascontiguousarray(a, dtype)``, copied once more when that is not aligned (as an
+    array that starts off its scalar's alignment inside a buffer stays): the core's bindings
+    read their arrays as doubles or int64 and refuse unaligned ones (src/python_arrays.hpp's
+    ``Aligned``); the copy holds the same values."""
+    a = np.ascontiguousarray(a, dtype=dtype)
+    return a if a.flags.aligned else a.copy()
 
 
 def square_matrix(M, name: str = "M") -> np.ndarray:
@@ -345,7 +358,7 @@ def square_matrix(M, name: str = "M") -> np.ndarray:
         a = np.zeros((0, 0))  # [] is the empty matrix
     if a.ndim != 2 or a.shape[0] != a.shape[1]:
         raise ValueError(f"{name} must be a square 2-D matrix, got shape {a.shape}")
-    return np.ascontiguousarray(a)
+    return np.ascontiguousarray(a)  # (a is aligned: real_array; so is any copy)
 
 
 def vector(v, n: int, name: str) -> np.ndarray:
@@ -576,7 +589,7 @@ def bimatrix(A, B) -> dict:
         if bad.size:
             i, j = bad[0]
             raise ValueError(f"payoff matrix {name} has a non-finite entry {P[i, j]} at ({i}, {j})")
-        out.append(np.ascontiguousarray(P))
+        out.append(c_aligned(P))
     A, B = out
     if A.shape != B.shape:
         raise ValueError(f"payoff matrices A and B must have the same shape (m x n), got "
@@ -651,7 +664,7 @@ def _box_bound(x, n, name, side):
         a = np.full(n, float(a))
     if a.shape != (n,):
         raise ValueError(f"{name} must be a scalar or have shape ({n},) to match M, got shape {a.shape}")
-    return np.ascontiguousarray(a)
+    return np.ascontiguousarray(a)  # (a is aligned: real_array or np.full)
 
 
 SYMMETRY_TOL = 1e-10  # relative: a larger asymmetry of P is an error, a smaller one rounding
