@@ -4,11 +4,13 @@
 // mismatch (one the engine would read past) raises ValueError. Output arrays are
 // never converted (a float32 or non-contiguous buffer raises instead of being copied).
 #include <algorithm>
+#include <vector>
 
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/tuple.h>
 
+#include "lemke/basis.hpp"
 #include "lemke/boxed.hpp"
 #include "lemke/boxed_batch.hpp"
 #include "python_arrays.hpp"
@@ -120,11 +122,15 @@ bool friction_point(CMatrix M, CVector q, CVector lo, CVector hi, CIndices F, CF
     const std::uint8_t* b = flag_data(zb, "friction_point", "zb");
     const std::uint8_t* h = flag_data(zh, "friction_point", "zh");
     const idx* f = F.data();
-    bool rows_ok = static_cast<idx>(F.shape(0)) == 2 * nf;
-    for (idx c = 0; c < 2 * nf && rows_ok; ++c) rows_ok = f[c] >= 0 && f[c] < n;
+    // (F as extend writes it: a friction row given twice made more coupled rows than the
+    // work holds)
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(n));
+    bool rows_ok = static_cast<idx>(F.shape(0)) == 2 * nf &&
+                   lemke::FrictionBasis::rows_valid(f, nf, n, seen.data());
     if (!rows_ok || static_cast<idx>(zb.shape(0)) < n + 2 * nf ||
         static_cast<idx>(zh.shape(0)) < n + 2 * nf || static_cast<idx>(z.shape(0)) != n)
-        throw nb::value_error("friction_point: F must hold 2 nf rows of M, zb and zh n + 2 nf "
+        throw nb::value_error("friction_point: F must hold nf distinct friction rows of M, then nf normal "
+                              "rows that are not friction rows, zb and zh n + 2 nf "
                               "flags, z be of length n");
     nb::gil_scoped_release release;
     return lemke::boxed::friction_point(mat(M, n), q.data(), lo.data(), hi.data(), f, nf, b, h,

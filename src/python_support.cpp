@@ -187,6 +187,68 @@ SeamOut box_basis(In2 M, In1 q, In1 lo, In1 hi, FlagsIn zb, FlagsIn zh, bool war
     return a.out();
 }
 
+// The seam's friction basis system (basis.hpp's FrictionBasis) on the caller's data: F the
+// friction rows then their normal rows (2 nf: the friction rows distinct, no normal a
+// friction row, as extend writes them), zb basic and zh at hi (n + 2 nf flags each: extend's
+// variables), the block of the caller's rows with w_i = 0 (each sliding row's +-mu M[:, i]
+// in its normal's column) factored, the point z checked by boxed::coupled_check
+// (friction_check's verdict; z and w returned as that check leaves them: z clipped into the
+// coupled bounds at it, w = M z + q), rhs (k entries, in the block rows' order) solved by
+// the same factors. Below 0: boxed::prologue's code, or BAD_FINDEX where a friction row's
+// bounds are not -+mu (mu finite, >= 0) or its normal's lo < 0 (front's rule); 2 also
+// where the extended block is singular by its pattern.
+SeamOut friction_basis(In2 M, In1 q, In1 lo, In1 hi, IdxIn F, FlagsIn zb, FlagsIn zh,
+                       double tol, std::optional<In1> rhs, bool transpose) {
+    idx n = len(q), nf = len(F) / 2;
+    if (len(M, 0) != n || len(M, 1) != n || len(lo) != n || len(hi) != n || len(F) != 2 * nf)
+        throw nb::value_error("friction_basis: M must be n x n, q, lo and hi of length n, F "
+                              "of even length");
+    const std::int64_t* f = F.data();
+    std::vector<std::uint8_t> kind(static_cast<std::size_t>(n));
+    {
+        if (!lemke::FrictionBasis::rows_valid(f, nf, n, kind.data()))
+            throw nb::value_error("friction_basis: F must hold nf distinct friction rows of M, "
+                                  "then nf normal rows that are not friction rows");
+    }
+    idx N = n + 2 * nf;
+    const std::uint8_t* b = seam_flags(zb, N, "friction_basis: zb (n + 2 nf)");
+    const std::uint8_t* h = seam_flags(zh, N, "friction_basis: zh (n + 2 nf)");
+    lemke::boxed::FrontLayout L{n, nf, true};
+    std::vector<double> work(static_cast<std::size_t>(lemke::FrictionBasis::work_size(n) + n));
+    std::vector<double> buf(static_cast<std::size_t>(L.length()));
+    std::vector<idx> ints(static_cast<std::size_t>(lemke::FrictionBasis::index_size(n)));
+    std::vector<idx> piv(static_cast<std::size_t>(2 * n));
+    lemke::FrictionBasis basis(mat(M), q.data(), lo.data(), hi.data(), f, nf, work.data(),
+                               ints.data(), kind.data(), piv.data());
+    double* z = work.data() + lemke::FrictionBasis::work_size(n);
+    // (the block's rows, for rhs's length; a refused pattern: no block, rhs not read)
+    bool pattern = basis.apply(b, h, z);
+    idx k = pattern ? basis.block.k : (rhs ? len(*rhs) : 0);
+    SeamAnswer a(n, k, rhs, "friction_basis");
+    {
+        nb::gil_scoped_release release;
+        int code = lemke::boxed::prologue(mat(M), q.data(), lo.data(), hi.data());
+        for (idx c = 0; c < nf && code == 0; ++c) {
+            idx i = f[c];
+            const double *l = lo.data(), *u = hi.data();
+            if (!(u[i] >= 0.0 && u[i] < lemke::INF && l[i] == -u[i] && l[f[nf + c]] >= 0.0))
+                code = lemke::boxed::BAD_FINDEX;
+        }
+        if (code != 0) {
+            a.code = code;
+        } else if (!pattern || !basis.point(b, h, z)) {
+            a.code = 2;
+        } else {
+            a.solve(basis, rhs, transpose);
+            bool ok = basis.check(z, tol, buf.data(), a.residual);
+            std::copy(buf.begin() + L.z(), buf.begin() + L.z() + n, a.z);
+            std::copy(buf.begin() + L.w(), buf.begin() + L.w() + n, a.w);
+            a.code = ok ? 0 : 1;
+        }
+    }
+    return a.out();
+}
+
 // certify.lcp_ray_check(M, q, d, z, z0, ray, tol): whether the ray is a secondary ray.
 bool lcp_ray_check(In2 M, In1 q, In1 d, In1 z, double z0, In1 ray, double tol) {
     idx n = len(q);
@@ -329,6 +391,8 @@ void bind_support(nb::module_& m) {
     m.def("lcp_basis", &lcp_basis, "M"_a, "q"_a, "z_basic"_a, "tol"_a, "rhs"_a = nb::none(),
           "transpose"_a = false);
     m.def("box_basis", &box_basis, "M"_a, "q"_a, "lo"_a, "hi"_a, "zb"_a, "zh"_a, "warm_rule"_a,
+          "tol"_a, "rhs"_a = nb::none(), "transpose"_a = false);
+    m.def("friction_basis", &friction_basis, "M"_a, "q"_a, "lo"_a, "hi"_a, "F"_a, "zb"_a, "zh"_a,
           "tol"_a, "rhs"_a = nb::none(), "transpose"_a = false);
     m.def("lcp_ray_check", &lcp_ray_check, "M"_a, "q"_a, "d"_a, "z"_a, "z0"_a, "ray"_a, "tol"_a);
     m.def("residual2", &residual2, "E"_a, "x"_a, "e"_a, nb::arg("y").noconvert());

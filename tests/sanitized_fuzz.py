@@ -425,6 +425,7 @@ def fuzz(run):
         basis_seam(run, np.random.default_rng(2033))
         box_batch_checks(run, np.random.default_rng(2033))
         unaligned_entries(run)
+        friction_seam(run, np.random.default_rng(2034))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -576,11 +577,24 @@ def _seam_sizes(n, flags, got):
     return got
 
 
-def basis_seam(run, rng):
+def _seam_problems(rng):
+    """(n, M, q) on every size 0-40 and some larger, M well conditioned."""
     for n in list(range(41)) + [63, 64, 65, 130]:
         A = rng.normal(size=(n, n))
         M = A + np.sqrt(max(n, 1)) * np.eye(n)
-        q = rng.normal(size=n)
+        yield n, M, rng.normal(size=n)
+
+
+# an array in the forms the seam's entries refuse or convert
+ODD = {"unaligned": lambda a: np.frombuffer(b"\0" + a.tobytes(), dtype=a.dtype, offset=1).reshape(a.shape),
+       "swapped": lambda a: a.astype(a.dtype.newbyteorder()),
+       "strided": lambda a: np.repeat(a, 2, axis=0)[::2], "int32": lambda a: a.astype(np.int32),
+       "float": lambda a: a.astype(float), "2-D": lambda a: a.reshape(1, -1), "short": lambda a: a[:-1],
+       "long": lambda a: np.concatenate([a, a[:1]]), "empty": lambda a: a[:0]}
+
+
+def basis_seam(run, rng):
+    for n, M, q in _seam_problems(rng):
         for t in range(4):
             flags = (rng.random(n) < (0.2, 0.6, 1.0, 0.0)[t]).astype(np.uint8 if t % 2 else bool)
             k = int(np.count_nonzero(flags))
@@ -608,12 +622,7 @@ def basis_seam(run, rng):
     M, q = problems.random_psd(5, rng)
     f = np.array([1, 0, 1, 1, 0], dtype=np.uint8)
     rhs = np.ones(3)
-    unaligned = lambda a: np.frombuffer(b"\0" + a.tobytes(), dtype=a.dtype, offset=1).reshape(a.shape)
-    odd = {"unaligned": unaligned, "swapped": lambda a: a.astype(a.dtype.newbyteorder()),
-           "strided": lambda a: np.repeat(a, 2, axis=0)[::2], "int32": lambda a: a.astype(np.int32),
-           "float": lambda a: a.astype(float), "2-D": lambda a: a.reshape(1, -1), "short": lambda a: a[:-1],
-           "long": lambda a: np.concatenate([a, a[:1]]), "empty": lambda a: a[:0]}
-    for name, g in odd.items():
+    for name, g in ODD.items():
         run.attempt(f"fuzz seam {name} flags", refused_or(lambda: _core.lcp_basis(M, q, g(f), 1e-9, rhs)))
         run.attempt(f"fuzz seam {name} q", refused_or(lambda: _core.lcp_basis(M, g(q), f, 1e-9, rhs)))
         run.attempt(f"fuzz seam {name} rhs", refused_or(lambda: _core.lcp_basis(M, q, f, 1e-9, g(rhs), True)))
@@ -818,3 +827,71 @@ def unaligned_entries(run):
                     raise AssertionError(f"{name}: unaligned argument {which}: {got!r:.200} (aligned: {want!r:.200})")
             return [got if isinstance(got, str) else "answer" for _, got in calls]
         run.attempt(f"fuzz unaligned {name}", check)
+# --- the seam's friction basis system (branch seam2): _core.friction_basis called directly
+# on sizes 0-40 and some larger, with random friction rows and normals, random extended flags
+# (patterns singular by themselves among them), rhs of the right length and one off, both
+# solves, and malformed arguments (F with extreme, repeated, out-of-range or friction-row
+# normals, odd lengths, other dtypes and layouts; flags of other lengths): an answer whose
+# arrays have the sizes the basis gives, or a ValueError / TypeError; never a read or write
+# outside the arrays.
+
+def _friction_rows(n, rng):
+    """F (friction rows then normals, int64) and bounds that the friction rule allows."""
+    perm = rng.permutation(n)
+    nf = int(rng.integers(0, n // 2 + 1))
+    fr, rest = perm[:nf], perm[nf:]
+    normal = rng.choice(rest, size=nf) if nf and rest.size else np.zeros(0, np.int64)
+    lo = np.where(rng.random(n) < 0.7, -rng.random(n), -np.inf)
+    hi = np.where(rng.random(n) < 0.7, rng.random(n), np.inf)
+    mu = rng.random(nf)
+    lo[fr], hi[fr] = -mu, mu
+    lo[normal] = 0.0
+    return np.concatenate([fr, normal]).astype(np.int64), lo, hi
+
+
+def friction_seam(run, rng):
+    for n, M, q in _seam_problems(rng):
+        for t in range(4):
+            F, lo, hi = _friction_rows(n, rng)
+            N = n + F.size
+            zb = (rng.random(N) < (0.2, 0.6, 1.0, 0.0)[t]).astype(np.uint8 if t % 2 else bool)
+            zh = (rng.random(N) < 0.5).astype(zb.dtype)
+            for length in (int(rng.integers(0, n + 1)), n + 1):
+                rhs = rng.normal(size=length)
+                run.attempt(f"fuzz seam friction {n} {t} {length}", refused_or(
+                    lambda: _friction_sizes(n, _core.friction_basis(M, q, lo, hi, F, zb, zh, 1e-9,
+                                                                    rhs, t > 1))))
+            run.attempt(f"fuzz seam friction {n} {t} no rhs", refused_or(
+                lambda: _friction_sizes(n, _core.friction_basis(M, q, lo, hi, F, zb, zh, 1e-9))))
+    M, q = problems.random_psd(6, rng)
+    F = np.array([1, 3, 0, 0], dtype=np.int64)
+    lo, hi = np.array([0.0, -0.5, 0.0, -0.3, -1.0, -1.0]), np.array([np.inf, 0.5, 1.0, 0.3, 1.0, 2.0])
+    zb = np.array([1, 1, 0, 0, 1, 0, 0, 1, 1, 0], dtype=np.uint8)
+    zh = np.zeros(10, dtype=np.uint8)
+    extremes = [0, 5, 6, -1, I64.max, I64.min, 1 << 31, 1 << 62]
+    for t in range(40):
+        Fb = F.copy()
+        Fb[int(rng.integers(4))] = extremes[int(rng.integers(len(extremes)))] if t % 2 else F[int(rng.integers(4))]
+        run.attempt(f"fuzz seam friction F {t}", refused_or(
+            lambda: _friction_sizes(6, _core.friction_basis(M, q, lo, hi, Fb, zb, zh, 1e-9, np.ones(3)))))
+    for name, g in ODD.items():
+        run.attempt(f"fuzz seam friction {name} F", refused_or(lambda: _core.friction_basis(M, q, lo, hi, g(F), zb, zh, 1e-9)))
+        run.attempt(f"fuzz seam friction {name} zb", refused_or(lambda: _core.friction_basis(M, q, lo, hi, F, g(zb), zh, 1e-9)))
+        run.attempt(f"fuzz seam friction {name} zh", refused_or(lambda: _core.friction_basis(M, q, lo, hi, F, zb, g(zh), 1e-9)))
+        run.attempt(f"fuzz seam friction {name} hi", refused_or(lambda: _core.friction_basis(M, q, lo, g(hi), F, zb, zh, 1e-9)))
+        run.attempt(f"fuzz seam friction {name} M", refused_or(lambda: _core.friction_basis(g(M), q, lo, hi, F, zb, zh, 1e-9)))
+        run.attempt(f"fuzz seam friction {name} rhs", refused_or(
+            lambda: _core.friction_basis(M, q, lo, hi, F, zb, zh, 1e-9, g(np.ones(3)), True)))
+
+
+def _friction_sizes(n, got):
+    """friction_basis's answer checked for its sizes (z and w n entries, x at most n)."""
+    code, z, w, residual, x = got
+    if code in (0, 1):
+        if z.shape != (n,) or w.shape != (n,):
+            raise AssertionError(f"friction_basis: z, w of shapes {z.shape}, {w.shape} for n = {n}")
+    elif z is not None or w is not None:
+        raise AssertionError(f"friction_basis: code {code} with a point")
+    if x is not None and (x.ndim != 1 or x.size > n):
+        raise AssertionError(f"friction_basis: x of shape {x.shape} for n = {n}")
+    return got

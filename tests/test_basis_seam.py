@@ -1,6 +1,7 @@
-"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis and BoxBasis, issue 31 item 2)
+"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis and FrictionBasis, issue 31 item 2)
 through their private entries ``_core.lcp_basis(M, q, z_basic, tol, rhs=None,
-transpose=False)`` and ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol, rhs=None,
+transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol, rhs=None,
+transpose=False)`` and ``_core.friction_basis(M, q, lo, hi, F, zb, zh, tol, rhs=None,
 transpose=False)``, checked
 independently of the core: the solve and the transpose solve against numpy.linalg.solve on
 the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
@@ -258,6 +259,15 @@ def _box_rows_and_fixed(lo, hi, zb, zh, warm_rule):
     return rows, v
 
 
+def _box_violation(z, w, lo, hi):
+    """The box LCP conditions, here, row by row: w >= 0 at lo, w <= 0 at hi, w = 0 strictly
+    inside, lo <= z <= hi; each row's violation."""
+    at_lo, at_hi = z <= lo, z >= hi
+    viol = np.where(at_lo & at_hi, 0.0, np.where(at_lo, np.maximum(-w, 0.0),
+                    np.where(at_hi, np.maximum(w, 0.0), np.abs(w))))
+    return np.maximum(viol, np.maximum(lo - z, 0.0) + np.maximum(z - hi, 0.0))
+
+
 @pytest.mark.parametrize("warm_rule", [False, True])
 def test_box_point_solves_and_conditions(warm_rule):
     rng = np.random.default_rng(21 + warm_rule)
@@ -290,11 +300,7 @@ def test_box_point_solves_and_conditions(warm_rule):
         scale = np.abs(M) @ np.abs(zref) + np.abs(q) + 1.0
         assert np.all(np.abs(z - zref) <= 1e-8 * scale), t
         assert np.all(np.abs(w - (M @ z + q)) <= 1e-12 * scale)
-        # the box LCP conditions, here: w >= 0 at lo, w <= 0 at hi, w = 0 strictly inside
-        at_lo, at_hi = z <= lo, z >= hi
-        viol = np.where(at_lo & at_hi, 0.0, np.where(at_lo, np.maximum(-w, 0.0),
-                        np.where(at_hi, np.maximum(w, 0.0), np.abs(w))))
-        viol = np.maximum(viol, np.maximum(lo - z, 0.0) + np.maximum(z - hi, 0.0)) / scale
+        viol = _box_violation(z, w, lo, hi) / scale
         seen[code] += 1
         if code == 0:
             assert viol.max() <= 1e-8, (t, viol.max())
@@ -342,3 +348,201 @@ def test_box_engine_point_is_the_seams_bit_for_bit():
             rw = lemke.solve_blcp(M, q2, lo, hi, warm_start=ws)
             hits += _warm_hit(rw, _core.box_basis(M, q2, lo, hi, zb, zh, True, TOL))
     assert hits >= 60
+
+
+# --- the box kind with a friction index (FrictionBasis): _core.friction_basis(M, q, lo, hi,
+# F, zb, zh, tol, rhs=None, transpose=False); F the friction rows then their normals, zb and
+# zh the extended problem's flags (n + 2 nf: z, then β-, then λ)
+
+def _friction_case(seed, k):
+    from test_blcp import contacts  # tests/ is on sys.path under pytest
+    M, q, lo, hi, fi, mu = contacts(seed, k)
+    F = np.flatnonzero(fi >= 0)
+    return M, q, lo, hi, fi.astype(np.int64), F, fi[F].astype(np.int64)
+
+
+def _friction_system(M, q, lo, hi, F, normal, zb, zh):
+    """The block, its rows and right-hand side, the fixed z's, by the rule stated in
+    basis.hpp (here in numpy); None where the extended block is singular by its pattern."""
+    n, nf = q.size, F.size
+    zb, zh = zb.astype(bool), zh.astype(bool)
+    hf, lf = hi < np.inf, lo > -np.inf
+    eq = zb[:n] | (~lf & np.isposinf(hi))
+    v = np.where(hf, hi, 0.0)
+    v = np.where(lf, lo, v)
+    v = np.where(zh[:n] & hf, hi, v)
+    z = np.where(eq, 0.0, v)
+    bp, bm, lam = zb[F], zb[n:n + nf], zb[n + nf:]
+    if np.any(np.where(lam, ~(bp | bm), bp & bm)):
+        return None
+    slope = np.where(bp, hi[F], -hi[F])
+    sliding = lam & (bp != bm)
+    eq[F] = (bp | bm) & ~sliding
+    z[F] = 0.0
+    inside = sliding & eq[normal]
+    out = sliding & ~eq[normal]
+    z[F[out]] = slope[out] * z[normal[out]]
+    rows = np.flatnonzero(eq)
+    pos = np.full(n, -1)
+    pos[rows] = np.arange(rows.size)
+    B = M[np.ix_(rows, rows)].copy()
+    for c in np.flatnonzero(inside):
+        B[:, pos[normal[c]]] += slope[c] * M[rows, F[c]]
+    rhs = -(q + M @ z)[rows]
+    return rows, B, rhs, z, slope, inside
+
+
+def _friction_flags(n, F, rng):
+    """Random extended flags with a pattern each friction row may have (β+, β-, λ and β+,
+    λ and β-, none basic)."""
+    nf = F.size
+    zb = rng.random(n + 2 * nf) < 0.5
+    zh = ~zb & (rng.random(n + 2 * nf) < 0.5)
+    for c in range(nf):
+        s = rng.integers(5)
+        zb[F[c]], zb[n + c], zb[n + nf + c] = [(1, 0, 0), (0, 1, 0), (1, 0, 1), (0, 1, 1),
+                                               (0, 0, 0)][s]
+    return zb, zh
+
+
+def test_friction_point_solves_and_conditions():
+    rng = np.random.default_rng(31)
+    seen = {0: 0, 1: 0, "sliding": 0}
+    for t in range(90):
+        M, q, lo, hi, fi, F, normal = _friction_case(t, 1 + t % 6)
+        n, nf = q.size, F.size
+        if t % 3 == 0:  # a solution's basis (the engine's), q moved a little: usually passing
+            flags = lemke.solve_blcp(M, q, lo, hi, findex=fi).warm_start._kernel_flags()
+            zb, zh = flags[:n + 2 * nf], flags[n + 2 * nf:]
+            q = q + 1e-4 * rng.normal(size=n)
+        else:
+            zb, zh = _friction_flags(n, F, rng)
+        rows, B, b, zfix, slope, inside = _friction_system(M, q, lo, hi, F, normal, zb, zh)
+        k = rows.size
+        rhs = rng.normal(size=k)
+        transpose = bool(t % 2)
+        code, z, w, residual, x = _core.friction_basis(M, q, lo, hi, np.concatenate([F, normal]),
+                                                       zb, zh, TOL, rhs, transpose)
+        if code == 2:  # a singular block (rounding decides on these random ones)
+            assert np.linalg.cond(B) > 1e10, t
+            continue
+        assert code in (0, 1), (t, code)
+        Bs = B.T if transpose else B
+        assert x.shape == (k,) and _backward_ok(Bs, x, rhs), t
+        if k:
+            assert _close_to_numpy(Bs, x, rhs), t
+        zref = zfix.copy()
+        if k:
+            zref[rows] = np.linalg.solve(B, b)
+        zref[F[inside]] = slope[inside] * zref[normal[inside]]
+        seen["sliding"] += int(inside.sum())
+        # the check's coupled bounds at the point, z clipped into them
+        lo_c, hi_c = lo.copy(), hi.copy()
+        lo_c[F], hi_c[F] = -hi[F] * zref[normal], hi[F] * zref[normal]
+        zref = np.clip(zref, np.minimum(lo_c, hi_c), hi_c)
+        scale = np.abs(M) @ np.abs(zref) + np.abs(q) + 1.0
+        assert np.all(np.abs(z - zref) <= 1e-8 * scale), t
+        assert np.all(np.abs(w - (M @ z + q)) <= 1e-12 * scale)
+        # the friction conditions, here: the box LCP's with the bounds in force -+mu z_f
+        lo_c[F], hi_c[F] = -hi[F] * z[normal], hi[F] * z[normal]
+        viol = _box_violation(z, w, lo_c, hi_c) / scale
+        seen[code] += 1
+        if code == 0:
+            assert viol.max() <= 1e-8, (t, viol.max())
+            assert residual <= 1e-8 * scale.max()
+        else:
+            assert viol.max() > 1e-12, (t, viol.max())
+    assert seen[0] >= 10 and seen[1] >= 10 and seen["sliding"] >= 5, seen
+
+
+def test_friction_engine_point_is_the_seams_bit_for_bit():
+    """A friction warm start answered with 0 pivots by its basis's point on the caller's
+    rows (boxed::friction_point, now FrictionBasis::point, with the normals in their boxes
+    and friction_check passing) is the seam's answer bit for bit (z, w, residual)."""
+    rng = np.random.default_rng(33)
+    hits = 0
+    for t in range(60):
+        M, q, lo, hi, fi, F, normal = _friction_case(t, 1 + t % 6)
+        n, nf = q.size, F.size
+        r = lemke.solve_blcp(M, q, lo, hi, findex=fi)
+        ws = r.warm_start
+        flags = ws._kernel_flags()
+        zb, zh = flags[:n + 2 * nf], flags[n + 2 * nf:]
+        for s in range(2):
+            q2 = q + 1e-3 * np.abs(q) * rng.normal(size=n)
+            rw = lemke.solve_blcp(M, q2, lo, hi, findex=fi, warm_start=ws)
+            code, z, w, residual, x = _core.friction_basis(M, q2, lo, hi,
+                                                           np.concatenate([F, normal]), zb, zh, TOL)
+            if rw.pivots != 0 or code != 0 or np.any(z[normal] < lo[normal]):
+                continue
+            assert rw.status == lemke.Status.SOLVED
+            assert z.tobytes() == np.asarray(rw.z).tobytes()
+            assert w.tobytes() == np.asarray(rw.w).tobytes()
+            assert residual == rw.residual
+            hits += 1
+    assert hits >= 40, hits
+
+
+def test_friction_singular_patterns_and_refused():
+    M, q, lo, hi, fi, F, normal = _friction_case(2, 3)
+    n, nf = q.size, F.size
+    Fn = np.concatenate([F, normal])
+    zb, zh = _friction_flags(n, F, np.random.default_rng(1))
+    for pattern in ((0, 0, 1), (1, 1, 0), (1, 1, 1)):  # (β+, β-, λ) singular by pattern
+        bad = zb.copy()
+        bad[F[0]], bad[n], bad[n + nf] = pattern
+        if pattern == (1, 1, 1):  # λ with both: not singular by its pattern
+            assert _core.friction_basis(M, q, lo, hi, Fn, bad, zh, TOL)[0] in (0, 1, 2)
+            continue
+        code, z, w, _, x = _core.friction_basis(M, q, lo, hi, Fn, bad, zh, TOL, np.ones(3))
+        assert code == 2 and z is None and w is None and x is None
+    with pytest.raises(ValueError):  # rhs of the wrong length
+        k = _friction_system(M, q, lo, hi, F, normal, zb, zh)[0].size
+        _core.friction_basis(M, q, lo, hi, Fn, zb, zh, TOL, np.ones(k + 1))
+    with pytest.raises(ValueError):  # flags of n entries, not n + 2 nf
+        _core.friction_basis(M, q, lo, hi, Fn, zb[:n], zh[:n], TOL)
+    with pytest.raises(ValueError):  # odd F
+        _core.friction_basis(M, q, lo, hi, Fn[:-1], zb, zh, TOL)
+    for bad_F in (np.concatenate([F[:1], F[:1], normal[:2]]),  # a friction row twice
+                  np.concatenate([F, F[::-1]]),                 # a normal that is a friction row
+                  np.concatenate([F, normal + n])):             # out of range
+        with pytest.raises(ValueError):
+            _core.friction_basis(M, q, lo, hi, bad_F.astype(np.int64), zb[:n + 2 * (bad_F.size // 2)],
+                                 zh[:n + 2 * (bad_F.size // 2)], TOL)
+    # (an int32 F is converted by nanobind: the same answer)
+    assert (_core.friction_basis(M, q, lo, hi, Fn.astype(np.int32), zb, zh, TOL)[1].tobytes()
+            == _core.friction_basis(M, q, lo, hi, Fn, zb, zh, TOL)[1].tobytes())
+    with pytest.raises(TypeError):
+        _core.friction_basis(M, q, lo, hi, Fn, zb.astype(np.int64), zh, TOL)
+    unaligned = np.frombuffer(b"\0" + M.tobytes(), dtype=float, offset=1).reshape(M.shape)
+    with pytest.raises(TypeError):
+        _core.friction_basis(unaligned, q, lo, hi, Fn, zb, zh, TOL)
+    lo2 = lo.copy()
+    lo2[0] = np.nan
+    assert _core.friction_basis(M, q, lo2, hi, Fn, zb, zh, TOL)[0] == _core.boxed.NOT_FINITE
+    hi2 = hi.copy()
+    hi2[F[0]] = 2.0 * hi[F[0]] + 1.0  # not -+mu
+    assert _core.friction_basis(M, q, lo, hi2, Fn, zb, zh, TOL)[0] == _core.boxed.BAD_FINDEX
+    # no friction rows: the box kind's warm point (BoxBasis with the warm rule), the same
+    # numbers once clipped into [lo, hi] as the friction check clips
+    e = np.zeros(0, np.int64)
+    b, h = zb[:n], zh[:n]
+    got = _core.friction_basis(M, q, lo, hi, e, b, h, TOL)
+    ref = _core.box_basis(M, q, lo, hi, b, h, True, TOL)
+    assert got[0] == ref[0] and np.array_equal(got[1], np.clip(ref[1], lo, hi))
+
+
+def test_friction_rows_refused_where_extend_would_not_write_them():
+    """boxed.friction_point and friction_basis refuse an F that extend cannot write (a
+    friction row given twice: as many coupled rows as F names, more than the work held)."""
+    M, q, lo, hi, fi, F, normal = _friction_case(4, 2)
+    n = q.size
+    nf = 10 * n  # row F[0] given 10n times, each sliding on normal[0] (basic): past 3n ints
+    Fb = np.concatenate([np.full(nf, F[0]), np.full(nf, normal[0])]).astype(np.int64)
+    zb = np.zeros(n + 2 * nf, bool)
+    zb[normal[0]] = zb[n:n + nf] = zb[n + nf:] = True  # β- and λ basic: sliding
+    zh = np.zeros_like(zb)
+    with pytest.raises(ValueError):
+        _core.boxed.friction_point(M, q, lo, hi, Fb, zb, zh, np.empty(n))
+    with pytest.raises(ValueError):
+        _core.friction_basis(M, q, lo, hi, Fb, zb, zh, TOL)

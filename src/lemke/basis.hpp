@@ -3,8 +3,10 @@
 // once by the kernels' LU (linalg's eliminate: partial pivoting, two pivots per pass; no
 // LAPACK), solved with it and with its transpose, the point mapped back to z (and w) and
 // checked row by row by the kind's acceptance code. Built so far: the LCP kind (LcpBasis,
-// used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis) and the box
-// kind without friction (BoxBasis, used by boxed.cpp's basis_point). Gradients and a sparse
+// used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis), the box
+// kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
+// (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
+// entry _core.friction_basis). Gradients and a sparse
 // engine are to plug in here: hence the transpose solve.
 #pragma once
 #include <cstdint>
@@ -57,6 +59,14 @@ struct BasisBlock {
         pivots = nullptr;
         if (kept != nullptr) return solve_gathered_kept(M, index, a, y, x, k, kept);
         build();
+        return factor_solve_built(y, x);
+    }
+
+    // The same with the block already in `a` (a kind whose block is not M[index, index]:
+    // FrictionBasis builds its own).
+    bool factor_solve_built(double* y, double* x) {
+        factors = nullptr;
+        pivots = nullptr;
         if (!solve_in_place(Mat<double>(a, k, k), y, x, k, piv)) return false;
         if (piv != nullptr) {
             factors = a;
@@ -225,6 +235,163 @@ struct BoxBasis {
     bool check(const double* z, double tol, const double* R, double* w, idx n_round,
                double& residual) const {
         return boxed::box_check(M, q, lo, hi, z, tol, w, R, n_round, residual);
+    }
+};
+
+// c ? a : b by bit masks (no branch: bit for bit a or b)
+inline double pick_bits(bool c, double a, double b) {
+    std::int64_t m = -static_cast<std::int64_t>(c);
+    return bits_float((float_bits(a) & m) | (float_bits(b) & ~m));
+}
+
+// The box kind with a friction index: a basis of boxed::extend's extended problem (zb
+// basic, zh at hi: N = n + 2 nf flags, extend's variables) solved on the caller's n rows.
+// Each row is one equation read from its variables' states (apply): an ordinary row w_i = 0
+// when z_i is basic or free, else z_i at its bound by BoxBasis's warm rule; a friction row
+// z_i = +-mu z_f (sliding) when λ and one of β+, β- are basic, z_i = 0 when neither is, else
+// w_i = 0. The block (build) is M[index, index] with each sliding row's slope_i M[r, i]
+// added into its normal's column (when the normal is in the block; else z_i is fixed by the
+// normal's z), so B is of the LCP's size and there is no extended matrix; the right-hand
+// side -(q + M z_fixed)[index]. recover puts x into z and each coupled z_i = slope_i z_f;
+// check: boxed::coupled_check, friction_check's verdict on the caller's z (the coupled
+// bounds at it). F: the friction rows, then their normal rows (2 nf, extend's F). No
+// refinement (friction_point had none). work: work_size(n) doubles (the block, y, x, the
+// slopes); ints: index_size(n); kind: n flags; piv: nullptr or 2n entries.
+struct FrictionBasis {
+    Mat<const double> M;
+    const double *q, *lo, *hi;
+    const idx* F;
+    idx nf;
+    double* slope;                // a sliding row's z_i = slope_i z_f (+-mu)
+    idx *coupled, *index, *pos;   // the ranks of the sliding rows whose normal is in the
+    std::uint8_t* kind;           // block; the block's rows (w_i = 0); a row's place (-1)
+    idx ns = 0;                   // (the coupled count)
+    BasisBlock block;
+    static constexpr std::uint8_t FIXED = 0, EQUATION = 1, SLIDING = 2;
+
+    static idx work_size(idx n) { return n * (n + 3); }
+    static idx index_size(idx n) { return 3 * n; }
+
+    // Whether F is as extend writes it: nf distinct friction rows in [0, n), then nf normal
+    // rows in [0, n), none a friction row (so nf <= n/2 and the coupled rows fit `ints`;
+    // the bindings refuse any other F). seen: n flags (overwritten).
+    static bool rows_valid(const idx* F, idx nf, idx n, std::uint8_t* seen) {
+        for (idx i = 0; i < n; ++i) seen[i] = 0;
+        for (idx c = 0; c < 2 * nf; ++c)
+            if (F[c] < 0 || F[c] >= n) return false;
+        for (idx c = 0; c < nf; ++c)
+            if (seen[F[c]]++) return false;
+        for (idx c = nf; c < 2 * nf; ++c)
+            if (seen[F[c]]) return false;
+        return true;
+    }
+
+    FrictionBasis(Mat<const double> M_, const double* q_, const double* lo_, const double* hi_,
+                  const idx* F_, idx nf_, double* work, idx* ints, std::uint8_t* kind_,
+                  idx* piv = nullptr)
+        : M(M_), q(q_), lo(lo_), hi(hi_), F(F_), nf(nf_), slope(work + M_.rows * (M_.rows + 2)),
+          coupled(ints), index(ints + M_.rows), pos(ints + 2 * M_.rows), kind(kind_),
+          block{M_, ints + M_.rows, 0, work, piv} {}
+
+    // The rows' states into kind, the fixed z's, the block's rows and the coupled ones.
+    // (Selects rather than branches where the row states decide: they follow the data.)
+    // False where the extended block is singular by its pattern (λ basic with β+ and β- at
+    // 0; β+ and β- both basic with λ at 0).
+    bool apply(const std::uint8_t* zb, const std::uint8_t* zh, double* z) {
+        idx n = M.rows;
+        for (idx i = 0; i < n; ++i) {  // an ordinary row: BoxBasis's warm rule
+            // (bit masks, not branches: the compiler branched on zb and zh here, mispredicted
+            // from row to row)
+            bool hf = hi[i] < INF, lf = lo[i] > -INF;
+            bool eq = (zb[i] != 0) | (!lf & (hi[i] == INF));
+            double v = pick_bits(hf, hi[i], 0.0);
+            v = pick_bits(lf, lo[i], v);
+            v = pick_bits((zh[i] != 0) & hf, hi[i], v);
+            z[i] = pick_bits(eq, 0.0, v);
+            kind[i] = static_cast<std::uint8_t>(eq);  // (EQUATION 1, FIXED 0)
+        }
+        for (idx c = 0; c < nf; ++c) {  // a friction row: β+ (the row), β- (n + c), λ (n + nf + c)
+            idx i = F[c];
+            bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
+            if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
+            slope[i] = pick_bits(bp, hi[i], -hi[i]);
+            bool sliding = lam & (bp != bm);
+            kind[i] = sliding ? SLIDING : static_cast<std::uint8_t>(bp | bm);  // (EQUATION or FIXED)
+            z[i] = 0.0;
+        }
+        idx nb = 0;
+        for (idx i = 0; i < n; ++i) {
+            idx eq = kind[i] == EQUATION;
+            index[nb] = i;
+            pos[i] = eq * (nb + 1) - 1;  // (nb, or -1)
+            nb += eq;
+        }
+        block.k = nb;
+        ns = 0;
+        for (idx c = 0; c < nf; ++c) {
+            idx i = F[c], f = F[nf + c];
+            bool sliding = kind[i] == SLIDING, in_block = kind[f] == EQUATION;
+            z[i] = pick_bits(sliding & !in_block, slope[i] * z[f], z[i]);
+            coupled[ns] = c;
+            ns += sliding & in_block;
+        }
+        return true;
+    }
+
+    // The block (nb x nb) into block.a and its right-hand side -(q + M z)[index] into y().
+    void build(const double* z) const {
+        idx n = M.rows, nb = block.k;
+        double *A = block.a, *y = block.y();
+        for (idx t = 0; t < nb; ++t) {
+            idx r = index[t];
+            const double* row = M.row(r);
+            y[t] = -(q[r] + dot(row, z, n));
+            double* br = A + t * nb;
+            for (idx u = 0; u < nb; ++u) br[u] = row[index[u]];
+            for (idx k = 0; k < ns; ++k) {
+                idx c = coupled[k], i = F[c];
+                br[pos[F[nf + c]]] += slope[i] * row[i];
+            }
+        }
+    }
+
+    // The point of the basis into z (n entries): apply, build, factor B, solve, recover.
+    // False where apply is, when B is singular or z is not finite.
+    bool point(const std::uint8_t* zb, const std::uint8_t* zh, double* z) {
+        if (!apply(zb, zh, z)) return false;
+        if (block.k > 0) {
+            build(z);
+            if (!block.factor_solve_built(block.y(), block.x())) return false;
+            recover(block.x(), z);
+        }
+        return all_finite(z, M.rows);
+    }
+
+    // x put into z at the block's rows, then each coupled z_i = slope_i z_f.
+    void recover(const double* xb, double* z) const {
+        for (idx t = 0; t < block.k; ++t) z[index[t]] = xb[t];
+        for (idx k = 0; k < ns; ++k) {
+            idx c = coupled[k];
+            z[F[c]] = slope[F[c]] * z[F[nf + c]];
+        }
+    }
+
+    // B x = rhs, B' x = rhs (one entry per block row) after point, by its factors.
+    bool solve(const double* rhs, double* out) const { return block.solve(rhs, out); }
+    bool solve_transpose(const double* rhs, double* out) const {
+        return block.solve_transpose(rhs, out);
+    }
+
+    // The verdict of friction_check on the caller's z (n entries: copied into buf's z,
+    // FrontLayout{n, nf, true}, then clipped there into the coupled bounds at it; w = M z + q
+    // into buf's w; R and C: check_scales', there too; N = n + 2 nf as n_round).
+    bool check(const double* z, double tol, double* buf, double& residual) const {
+        idx n = M.rows;
+        boxed::FrontLayout L{n, nf, true};
+        double* zc = buf + L.z();
+        if (zc != z)
+            for (idx i = 0; i < n; ++i) zc[i] = z[i];
+        return boxed::coupled_check(M, q, lo, hi, F, nf, L.N(), tol, buf, residual);
     }
 };
 

@@ -671,85 +671,17 @@ bool basis_point(Mat<const double> M, const double* q, const double* lo, const d
 }
 
 namespace {
-// c ? a : b by bit masks (no branch: bit for bit a or b)
-inline double pick(bool c, double a, double b) {
-    std::int64_t m = -static_cast<std::int64_t>(c);
-    return bits_float((float_bits(a) & m) | (float_bits(b) & ~m));
-}
-}  // namespace
-
-namespace {
 // friction_point with the thread's work given (front looks it up once for this and the
-// check after it)
+// check after it): the seam's FrictionBasis (basis.hpp) on the work as before (n * n + 3 n
+// doubles, 3 n indices, n flags)
 bool friction_point_in(Mat<const double> M, const double* q, const double* lo,
                        const double* hi, const idx* F, idx nf, const std::uint8_t* zb,
                        const std::uint8_t* zh, double* z, BoxedWork& W) {
-    // (Selects rather than branches where the row states decide: they follow the data.)
     idx n = M.rows;
-    double* A = W.check_area(n * n + 3 * n);  // the block (nb x nb), y, x, slope
-    double* y = A + n * n;
-    double* x = y + n;
-    double* slope = x + n;  // a sliding row's z_i = slope_i z_f (+-mu)
-    idx* coupled = W.check_indices(3 * n);  // the ranks of the sliding rows whose normal is in
-    idx* index = coupled + n;               // the block; the rows of the block (w_i = 0);
-    idx* pos = index + n;                   // a row's place among them (-1)
+    double* area = W.check_area(FrictionBasis::work_size(n));
+    idx* ints = W.check_indices(FrictionBasis::index_size(n));
     std::uint8_t* kind = W.check_flags(n);
-    constexpr std::uint8_t EQUATION = 1, SLIDING = 2;  // (FIXED 0)
-    for (idx i = 0; i < n; ++i) {  // an ordinary row: basis_point's warm rule
-        // (bit masks, not branches: the compiler branched on zb and zh here, mispredicted
-        // from row to row)
-        bool hf = hi[i] < INF, lf = lo[i] > -INF;
-        bool eq = (zb[i] != 0) | (!lf & (hi[i] == INF));
-        double v = pick(hf, hi[i], 0.0);
-        v = pick(lf, lo[i], v);
-        v = pick((zh[i] != 0) & hf, hi[i], v);
-        z[i] = pick(eq, 0.0, v);
-        kind[i] = static_cast<std::uint8_t>(eq);  // (EQUATION 1, FIXED 0)
-    }
-    for (idx c = 0; c < nf; ++c) {  // a friction row: β+ (the row itself), β- (n + c), λ (n + nf + c)
-        idx i = F[c];
-        bool bp = zb[i] != 0, bm = zb[n + c] != 0, lam = zb[n + nf + c] != 0;
-        if (lam ? !(bp || bm) : (bp && bm)) return false;  // (a singular extended block)
-        slope[i] = pick(bp, hi[i], -hi[i]);
-        bool sliding = lam & (bp != bm);
-        kind[i] = sliding ? SLIDING : static_cast<std::uint8_t>(bp | bm);  // (EQUATION or FIXED)
-        z[i] = 0.0;
-    }
-    idx nb = 0;
-    for (idx i = 0; i < n; ++i) {
-        idx eq = kind[i] == EQUATION;
-        index[nb] = i;
-        pos[i] = eq * (nb + 1) - 1;  // (nb, or -1)
-        nb += eq;
-    }
-    idx ns = 0;
-    for (idx c = 0; c < nf; ++c) {
-        idx i = F[c], f = F[nf + c];
-        bool sliding = kind[i] == SLIDING, in_block = kind[f] == EQUATION;
-        z[i] = pick(sliding & !in_block, slope[i] * z[f], z[i]);
-        coupled[ns] = c;
-        ns += sliding & in_block;
-    }
-    if (nb > 0) {
-        for (idx t = 0; t < nb; ++t) {
-            idx r = index[t];
-            const double* row = M.row(r);
-            y[t] = -(q[r] + dot(row, z, n));
-            double* br = A + t * nb;
-            for (idx u = 0; u < nb; ++u) br[u] = row[index[u]];
-            for (idx k = 0; k < ns; ++k) {
-                idx c = coupled[k], i = F[c];
-                br[pos[F[nf + c]]] += slope[i] * row[i];
-            }
-        }
-        if (!solve_in_place(Mat<double>(A, nb, nb), y, x, nb)) return false;
-        for (idx t = 0; t < nb; ++t) z[index[t]] = x[t];
-        for (idx k = 0; k < ns; ++k) {
-            idx c = coupled[k];
-            z[F[c]] = slope[F[c]] * z[F[nf + c]];
-        }
-    }
-    return all_finite(z, n);
+    return FrictionBasis(M, q, lo, hi, F, nf, area, ints, kind).point(zb, zh, z);
 }
 }  // namespace
 
@@ -1150,6 +1082,11 @@ bool normals_inside(const double* z, const double* lo, const double* hi, const i
 }
 
 }  // namespace
+
+bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual) {
+    return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual, work());
+}
 
 int front(int phase, Mat<const double> M, const double* q, const double* lo, const double* hi,
           const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,

@@ -214,6 +214,13 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
                     const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
                     double* z);
 
+// The caller's z (buf's z, FrontLayout{n, nf, true}) judged with the coupled bounds at it
+// (friction_check's verdict once its zx is mapped back; FrictionBasis::check): the friction
+// rows' bounds -+mu z_f into buf's lo and hi, R and C of check_scales on the caller's data,
+// z clipped into those bounds, w = M z + q, box_check with n_round N (= n + 2 nf).
+bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
+                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual);
+
 // Whether (z, z0) + t ray is a ray of the augmented box problem (boxed.is_ray; the sizes
 // of d, z, ray are the binding's to check).
 bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
