@@ -93,7 +93,7 @@ struct SeamAnswer {
     nb::capsule z_owner, w_owner, x_owner;
     double *z, *w, *x;
     int code = 0;
-    bool solved = false;
+    bool solved = false, checked = true;  // (w None when not checked)
     double residual = 0.0;
     SeamAnswer(idx n_, idx k_, const std::optional<In1>& rhs, const char* fn) : n(n_), k(k_) {
         if (rhs && len(*rhs) != k)
@@ -114,7 +114,7 @@ struct SeamAnswer {
         };
         bool point = code == 0 || code == 1;
         return {code, point ? vec(z, n, z_owner) : nb::none(),
-                point ? vec(w, n, w_owner) : nb::none(), residual,
+                point && checked ? vec(w, n, w_owner) : nb::none(), residual,
                 solved ? vec(x, k, x_owner) : nb::none()};
     }
 };
@@ -244,6 +244,51 @@ SeamOut friction_basis(In2 M, In1 q, In1 lo, In1 hi, IdxIn F, FlagsIn zb, FlagsI
             std::copy(buf.begin() + L.z(), buf.begin() + L.z() + n, a.z);
             std::copy(buf.begin() + L.w(), buf.begin() + L.w() + n, a.w);
             a.code = ok ? 0 : 1;
+        }
+    }
+    return a.out();
+}
+
+// The seam's MLCP basis system (basis.hpp's MlcpBasis) on the caller's stacked data (E N x
+// N, e N, n equations first): the reduction's redundant equations and undetermined u
+// (indices in [0, n)) left out, v_k basic where v_basic[k] (N - n flags), the block E[rows,
+// cols] refined-solved (MLCPToLCP.basis_point's point, bit for bit), x (N entries) and, with
+// tol, y = E x + e (N entries: w is y[n:]) and check_mlcp's verdict (code 0 or 1; without
+// tol code 0 and w None), rhs (k entries) solved by the same LU. Code 2: no square block,
+// B singular or x not finite (x, w None).
+SeamOut mlcp_basis(In2 E, In1 e, std::int64_t n, IdxIn redundant, IdxIn undetermined,
+                   FlagsIn v_basic, std::optional<double> tol, std::optional<In1> rhs,
+                   bool transpose) {
+    idx N = len(e);
+    if (len(E, 0) != N || len(E, 1) != N || n < 0 || n > N)
+        throw nb::value_error("mlcp_basis: E must be N x N, e of length N, 0 <= n <= N");
+    const std::uint8_t* vb = seam_flags(v_basic, N - n, "mlcp_basis: v_basic (N - n)");
+    std::vector<std::uint8_t> drop(static_cast<std::size_t>(2 * n), 0);
+    for (int t = 0; t < 2; ++t) {
+        const IdxIn& a = t == 0 ? redundant : undetermined;
+        for (idx i = 0; i < len(a); ++i) {
+            std::int64_t r = a.data()[i];
+            if (r < 0 || r >= n) throw nb::value_error("mlcp_basis: an index is out of [0, n)");
+            drop[static_cast<std::size_t>(t * n + r)] = 1;
+        }
+    }
+    std::vector<double> work(static_cast<std::size_t>(lemke::MlcpBasis::work_size(N)));
+    std::vector<idx> ints(static_cast<std::size_t>(lemke::MlcpBasis::index_size(N)));
+    std::vector<idx> piv(static_cast<std::size_t>(2 * N));
+    lemke::MlcpBasis basis(mat(E), e.data(), n, ints.data(), work.data(), piv.data());
+    bool square = basis.apply(drop.data(), drop.data() + n, vb);
+    idx k = square ? basis.block.k : (rhs ? len(*rhs) : 0);
+    SeamAnswer a(N, k, rhs, "mlcp_basis");
+    {
+        nb::gil_scoped_release release;
+        if (!square || !basis.point(a.z)) {
+            a.code = 2;
+        } else {
+            a.solve(basis, rhs, transpose);
+            if (tol)
+                a.code = basis.check(a.z, *tol, a.w, a.residual) ? 0 : 1;
+            else
+                a.checked = false;
         }
     }
     return a.out();
@@ -394,6 +439,8 @@ void bind_support(nb::module_& m) {
           "tol"_a, "rhs"_a = nb::none(), "transpose"_a = false);
     m.def("friction_basis", &friction_basis, "M"_a, "q"_a, "lo"_a, "hi"_a, "F"_a, "zb"_a, "zh"_a,
           "tol"_a, "rhs"_a = nb::none(), "transpose"_a = false);
+    m.def("mlcp_basis", &mlcp_basis, "E"_a, "e"_a, "n"_a, "redundant"_a, "undetermined"_a,
+          "v_basic"_a, "tol"_a = nb::none(), "rhs"_a = nb::none(), "transpose"_a = false);
     m.def("lcp_ray_check", &lcp_ray_check, "M"_a, "q"_a, "d"_a, "z"_a, "z0"_a, "ray"_a, "tol"_a);
     m.def("residual2", &residual2, "E"_a, "x"_a, "e"_a, nb::arg("y").noconvert());
     m.def("check_mlcp", &check_mlcp, "E"_a, "e"_a, "n"_a, "x"_a, "tol"_a,

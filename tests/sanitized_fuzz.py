@@ -426,6 +426,7 @@ def fuzz(run):
         box_batch_checks(run, np.random.default_rng(2033))
         unaligned_entries(run)
         friction_seam(run, np.random.default_rng(2034))
+        mlcp_seam(run, np.random.default_rng(2035))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -886,12 +887,77 @@ def friction_seam(run, rng):
 
 def _friction_sizes(n, got):
     """friction_basis's answer checked for its sizes (z and w n entries, x at most n)."""
+    return _point_sizes("friction_basis", n, got)
+
+
+def _point_sizes(name, n, got, w_optional=False):
+    """A seam entry's answer (code, z, w, residual, x) checked for its sizes: z and w n
+    entries (w None allowed with w_optional), x at most n; the answer."""
     code, z, w, residual, x = got
     if code in (0, 1):
-        if z.shape != (n,) or w.shape != (n,):
-            raise AssertionError(f"friction_basis: z, w of shapes {z.shape}, {w.shape} for n = {n}")
+        if z.shape != (n,) or (w is None and not w_optional) or (w is not None and w.shape != (n,)):
+            raise AssertionError(f"{name}: z, w of shapes {z.shape}, {w is not None and w.shape} for n = {n}")
     elif z is not None or w is not None:
-        raise AssertionError(f"friction_basis: code {code} with a point")
+        raise AssertionError(f"{name}: code {code} with a point")
     if x is not None and (x.ndim != 1 or x.size > n):
-        raise AssertionError(f"friction_basis: x of shape {x.shape} for n = {n}")
+        raise AssertionError(f"{name}: x of shape {x.shape} for n = {n}")
     return got
+
+
+# --- the seam's MLCP basis system (branch seam3): _core.mlcp_basis called directly on
+# stacked systems of n free rows and m pairs (n + m from 0 to 40 and some larger), with
+# random, extreme and repeated redundant / undetermined indices, random v_basic flags
+# (blocks not square, singular and empty among them), rhs of the right length and one off,
+# both solves, with and without tol, and malformed arguments (other dtypes, layouts and
+# lengths, NaN and infinities): an answer whose arrays have the sizes the basis gives (x and
+# w N entries, the solve one per block row), or a ValueError / TypeError; never a read or
+# write outside the arrays.
+
+def _mlcp_sizes(N, got):
+    """mlcp_basis's answer checked for its sizes (x N entries, w N or None, the solve at
+    most N)."""
+    return _point_sizes("mlcp_basis", N, got, w_optional=True)
+
+
+def mlcp_seam(run, rng):
+    for N, E, e in _seam_problems(rng):
+        for t in range(4):
+            n = int(rng.integers(0, N + 1))
+            drop = lambda: rng.integers(0, n, size=int(rng.integers(0, 3))).astype(np.int64) if n else np.zeros(0, np.int64)
+            red, und = drop(), drop()
+            vb = (rng.random(N - n) < (0.2, 0.6, 1.0, 0.0)[t]).astype(np.uint8 if t % 2 else bool)
+            Es = E
+            if t == 1 and N - n >= 1:  # a zero column: singular where v_0 is basic
+                Es = E.copy()
+                Es[:, n] = 0.0
+            k = n - np.unique(red).size + int(np.count_nonzero(vb))
+            for length in (k, k + 1):
+                rhs = rng.normal(size=max(length, 0))
+                for tol in (None, 1e-9):
+                    run.attempt(f"fuzz seam mlcp {N} {n} {t} {length - k} {tol}", refused_or(
+                        lambda: _mlcp_sizes(N, _core.mlcp_basis(Es, e, n, red, und, vb, tol, rhs, t > 1))))
+            run.attempt(f"fuzz seam mlcp {N} {n} {t} no rhs", refused_or(
+                lambda: _mlcp_sizes(N, _core.mlcp_basis(Es, e, n, red, und, vb, 1e-9))))
+    E, e = problems.random_psd(6, rng)
+    red, und = np.array([1], np.int64), np.array([0], np.int64)
+    vb = np.array([1, 0, 1, 1], dtype=np.uint8)
+    extremes = [0, 1, 2, -1, 6, I64.max, I64.min, 1 << 31, 1 << 62]
+    for t in range(30):
+        bad = np.array([extremes[int(rng.integers(len(extremes)))]], np.int64)
+        run.attempt(f"fuzz seam mlcp index {t}", refused_or(
+            lambda: _mlcp_sizes(6, _core.mlcp_basis(E, e, 2, bad if t % 2 else red, und if t % 2 else bad, vb, 1e-9, np.ones(3)))))
+    for n in (-1, 7, I64.max, I64.min):
+        run.attempt(f"fuzz seam mlcp n {n}", refused_or(lambda: _core.mlcp_basis(E, e, n, red, und, vb)))
+    for name, g in ODD.items():
+        run.attempt(f"fuzz seam mlcp {name} E", refused_or(lambda: _core.mlcp_basis(g(E), e, 2, red, und, vb, 1e-9)))
+        run.attempt(f"fuzz seam mlcp {name} e", refused_or(lambda: _core.mlcp_basis(E, g(e), 2, red, und, vb, 1e-9)))
+        run.attempt(f"fuzz seam mlcp {name} redundant", refused_or(lambda: _core.mlcp_basis(E, e, 2, g(red), und, vb, 1e-9)))
+        run.attempt(f"fuzz seam mlcp {name} v_basic", refused_or(lambda: _core.mlcp_basis(E, e, 2, red, und, g(vb), 1e-9)))
+        run.attempt(f"fuzz seam mlcp {name} rhs", refused_or(
+            lambda: _core.mlcp_basis(E, e, 2, red, und, vb, 1e-9, g(np.ones(3)), True)))
+    for bad in (np.nan, np.inf, -np.inf):
+        for where in ("E", "e", "rhs"):
+            E2, e2, r2 = E.copy(), e.copy(), np.ones(3)
+            {"E": E2[2], "e": e2, "rhs": r2}[where][1] = bad
+            run.attempt(f"fuzz seam mlcp {bad} in {where}", refused_or(
+                lambda: _mlcp_sizes(6, _core.mlcp_basis(E2, e2, 2, red, und, vb, 1e-9, r2, where == "rhs"))))

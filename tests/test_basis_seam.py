@@ -1,8 +1,10 @@
-"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis and FrictionBasis, issue 31 item 2)
-through their private entries ``_core.lcp_basis(M, q, z_basic, tol, rhs=None,
-transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol, rhs=None,
-transpose=False)`` and ``_core.friction_basis(M, q, lo, hi, F, zb, zh, tol, rhs=None,
-transpose=False)``, checked
+"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis, FrictionBasis and
+MlcpBasis, issue 31 item 2) through their private entries ``_core.lcp_basis(M, q, z_basic,
+tol, rhs=None, transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol,
+rhs=None, transpose=False)``, ``_core.friction_basis(M, q, lo, hi, F, zb, zh, tol, rhs=None,
+transpose=False)`` and ``_core.mlcp_basis(E, e, n, redundant, undetermined, v_basic,
+tol=None, rhs=None, transpose=False)`` (its point MLCPToLCP.basis_point's, bit for bit
+against the routine it replaced), checked
 independently of the core: the solve and the transpose solve against numpy.linalg.solve on
 the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
 z and w against the LCP (box LCP) conditions computed here, and the engines' point of a
@@ -546,3 +548,164 @@ def test_friction_rows_refused_where_extend_would_not_write_them():
         _core.boxed.friction_point(M, q, lo, hi, Fb, zb, zh, np.empty(n))
     with pytest.raises(ValueError):
         _core.friction_basis(M, q, lo, hi, Fb, zb, zh, TOL)
+
+
+# --- the MLCP kind (MlcpBasis, branch seam3): _core.mlcp_basis(E, e, n, redundant,
+# undetermined, v_basic, tol=None, rhs=None, transpose=False) on the stacked system
+# E x + e = (0, w), x = (u, v), the block E[rows, cols] of the kept equations and determined
+# u and the basic v's.
+
+def _old_mlcp_basis_point(E, e, n, v_basic, red):
+    """MLCPToLCP.basis_point as it was before the seam (numpy's gathers, then the core's
+    refined_solve through the Python wrapper): the reference of the seam's bits."""
+    from lemke._reductions.mlcp_lcp import refined_solve
+    N = e.size
+    rows, cols = _mlcp_blocks(E, n, red, v_basic)
+    if rows.size != cols.size:
+        return None
+    x = np.zeros(N)
+    if rows.size:
+        xb = refined_solve(E[np.ix_(rows, cols)], -e[rows])
+        if xb is None:
+            return None
+        x[cols] = xb
+    x[n:] = np.maximum(x[n:], 0.0)
+    return x
+
+
+def _random_mlcp(n, m, rng):
+    N = n + m
+    A = rng.normal(size=(N, N))
+    E = A @ A.T + np.eye(N) if rng.random() < 0.5 else A + np.sqrt(N) * np.eye(N)
+    return E, rng.normal(size=N)
+
+
+def _mlcp_blocks(E, n, red, v_basic):
+    keep_eq = np.setdiff1d(np.arange(n), red.redundant)
+    keep_u = np.setdiff1d(np.arange(n), red.undetermined)
+    vb = n + np.flatnonzero(v_basic)
+    return np.concatenate([keep_eq, vb]), np.concatenate([keep_u, vb])
+
+
+def _mlcp_call(E, e, n, red, v_basic, tol=None, rhs=None, transpose=False):
+    return _core.mlcp_basis(E, e, n, red.redundant.astype(np.int64),
+                            red.undetermined.astype(np.int64), v_basic, tol, rhs, transpose)
+
+
+@pytest.mark.parametrize("transpose", [False, True])
+def test_mlcp_solves_match_numpy_on_random_bases(transpose):
+    from lemke._reductions.mlcp_lcp import MLCPToLCP
+    rng = np.random.default_rng(31 + transpose)
+    for n, m in [(0, 3), (1, 1), (2, 5), (3, 0), (4, 9), (7, 12), (12, 20)]:
+        for t in range(4):
+            E, e = _random_mlcp(n, m, rng)
+            red = MLCPToLCP(E, e, n)
+            assert red.code == _core.MLCP_OK
+            v_basic = rng.random(m) < (0.0, 0.3, 0.7, 1.0)[t]
+            rows, cols = _mlcp_blocks(E, n, red, v_basic)
+            rhs = rng.normal(size=rows.size)
+            code, x, y, residual, sol = _mlcp_call(E, e, n, red, v_basic, TOL, rhs, transpose)
+            assert code in (0, 1)
+            B = E[np.ix_(rows, cols)]
+            Bs = B.T if transpose else B
+            if rows.size:
+                assert _backward_ok(Bs, sol, rhs) and _close_to_numpy(Bs, sol, rhs)
+                # the point: x_cols = B^-1 (-e_rows), its v clipped at 0 (a clip moves no
+                # entry farther from numpy's solution, so the same bound holds)
+                ref = np.linalg.solve(B, -e[rows])
+                ref = np.where(cols >= n, np.maximum(ref, 0.0), ref)
+                bound = 64 * rows.size * EPS * np.linalg.cond(B, 1) * (np.abs(ref).max() + 1e-300)
+                assert np.max(np.abs(x[cols] - ref)) <= bound
+            else:
+                assert sol.shape == (0,)
+            off = np.setdiff1d(np.arange(n + m), cols)
+            assert np.all(x[off] == 0.0) and np.all(x[n:] >= 0.0)
+            assert not np.signbit(x[n:]).any()  # (numpy's maximum: -0.0 clipped to +0.0)
+            # y = E x + e, and the verdict against the MLCP conditions computed here
+            assert np.allclose(y, E @ x + e, rtol=0, atol=1e-12 * (np.abs(E).max() * np.abs(x).max() + np.abs(e).max()))
+            eq, v, w = y[:n], x[n:], y[n:]
+            scale = max(np.abs(E).max(), np.abs(e).max())
+            holds = (np.all(np.abs(eq) <= 1e-7 * scale * max(1.0, np.abs(x).max()))
+                     and np.all(w >= -1e-7 * scale * max(1.0, np.abs(x).max()))
+                     and np.all(np.minimum(v, np.abs(w)) <= 1e-7 * scale * max(1.0, np.abs(x).max())))
+            assert holds or code == 1  # (a pass holds at a looser tolerance, checked here)
+            ok_ref = lemke._certify.check_mlcp(E, e, n, x, TOL)
+            assert (code == 0) == ok_ref[1] and residual == ok_ref[2]
+            assert y[n:].tobytes() == ok_ref[0].tobytes()
+            # without tol: the point alone, the same bits, no w
+            code2, x2, y2, _, _ = _mlcp_call(E, e, n, red, v_basic)
+            assert code2 == 0 and y2 is None and x2.tobytes() == x.tobytes()
+
+
+def test_mlcp_singular_and_not_square_reported():
+    from lemke._reductions.mlcp_lcp import MLCPToLCP
+    rng = np.random.default_rng(7)
+    E, e = _random_mlcp(2, 4, rng)
+    red = MLCPToLCP(E, e, 2)
+    v_basic = np.array([1, 1, 0, 0], bool)
+    E2 = E.copy()
+    E2[:, 3] = 0.0  # v_1's column zero: the block singular (a zero pivot, exactly)
+    code, x, y, _, sol = _mlcp_call(E2, e, 2, red, v_basic, TOL, np.ones(4))
+    assert code == 2 and x is None and y is None and sol is None
+    assert _old_mlcp_basis_point(E2, e, 2, v_basic, red) is None
+    # a block not square: one u undetermined, no equation redundant
+    red.undetermined = np.array([1])
+    assert _mlcp_call(E, e, 2, red, v_basic, TOL)[0] == 2
+    assert red.basis_point(E, e, v_basic) is None
+    # bad arguments refused
+    with pytest.raises(ValueError):
+        _core.mlcp_basis(E, e, 2, np.array([2], np.int64), np.zeros(0, np.int64), v_basic)
+    with pytest.raises(ValueError):
+        _core.mlcp_basis(E, e, 2, np.zeros(0, np.int64), np.zeros(0, np.int64), v_basic[:3])
+    with pytest.raises(ValueError):
+        _core.mlcp_basis(E[:, :5], e, 2, np.zeros(0, np.int64), np.zeros(0, np.int64), v_basic)
+    with pytest.raises(TypeError):
+        _core.mlcp_basis(E, e, 2, np.zeros(0, np.int64), np.zeros(0, np.int64),
+                         v_basic.astype(np.int64))
+    with pytest.raises(ValueError):  # rhs of the wrong length
+        _core.mlcp_basis(E, e, 2, np.zeros(0, np.int64), np.zeros(0, np.int64), v_basic,
+                         TOL, np.ones(3))
+
+
+def _siconos_mlcp_cases():
+    from siconos_mlcp import read_mlcp
+    from lemke._mlcp import _as_mlcp
+    from pathlib import Path
+    folder = Path(__file__).resolve().parent / "data" / "siconos" / "mlcp"
+    for path in sorted(folder.glob("*.dat")):
+        A, B, C, D, a, b = read_mlcp(path)
+        yield path.name, _as_mlcp(A, B, C, D, a, b)
+
+
+def test_mlcp_basis_point_is_the_old_one_bit_for_bit():
+    """MLCPToLCP.basis_point through the seam against the routine it replaced, on the
+    Siconos MLCP files' final bases (those solve_mlcp ends on) and on random bases of
+    them, and on random problems."""
+    from lemke._reductions.mlcp_lcp import MLCPToLCP
+    rng = np.random.default_rng(2026)
+    cases = list(_siconos_mlcp_cases())
+    assert len(cases) >= 10
+    for t in range(20):
+        n, m = int(rng.integers(0, 8)), int(rng.integers(0, 12))
+        E, e = _random_mlcp(n, m, rng)
+        cases.append((f"random {t}", (E, e, n)))
+    compared = solved_bases = 0
+    for name, (E, e, n) in cases:
+        m = e.size - n
+        red = MLCPToLCP(E, e, n)
+        if red.code != _core.MLCP_OK:
+            continue
+        bases = [rng.random(m) < p for p in (0.0, 0.25, 0.5, 1.0)]
+        if name.endswith(".dat"):
+            res = lemke.solve_mlcp(E[:n, :n], E[n:, n:], E[:n, n:], E[n:, :n], e[:n], e[n:])
+            vb = np.zeros(m, bool)
+            vb[list(res.warm_start.z_basic)] = True
+            bases.append(vb)
+            solved_bases += 1
+        for vb in bases:
+            new, old = red.basis_point(E, e, vb), _old_mlcp_basis_point(E, e, n, vb, red)
+            assert (new is None) == (old is None), name
+            if new is not None:
+                assert new.tobytes() == old.tobytes(), name
+                compared += 1
+    assert solved_bases >= 10 and compared >= 60

@@ -108,6 +108,8 @@ class _Recorder:
 
     def __getattr__(self, name):
         real = getattr(_core, name)
+        if name == "mlcp_basis":
+            return self._mlcp_basis
         if name not in FAMILY:
             return real
 
@@ -115,6 +117,33 @@ class _Recorder:
             self.calls.append((name, _copy(args)))
             return real(*args)
         return call
+
+
+    def _mlcp_basis(self, E, e, n, redundant, undetermined, v_basic, *rest):
+        """The seam's MLCP point (MLCPToLCP.basis_point since branch seam3) recorded as the
+        refined_solve call the point made before (the block E[rows, cols] and -e[rows] as
+        the front gathered them, x and lo fresh from np.empty), so that the frozen
+        references still judge those solves; and its answer checked to be that solve's x
+        scattered to cols and its v clipped at 0, bit for bit."""
+        got = _core.mlcp_basis(E, e, n, redundant, undetermined, v_basic, *rest)
+        keep_eq, keep_u = np.setdiff1d(np.arange(n), redundant), np.setdiff1d(np.arange(n), undetermined)
+        vb = n + np.flatnonzero(v_basic)
+        rows, cols = np.concatenate([keep_eq, vb]), np.concatenate([keep_u, vb])
+        if rows.size != cols.size or not rows.size:  # (no solve made)
+            assert got[0] == 2 or (not rows.size and not got[1].any())
+            return got
+        k = rows.size
+        args = [np.ascontiguousarray(E[np.ix_(rows, cols)]), np.ascontiguousarray(-e[rows]), 2,
+                frozen.empty(k), frozen.empty(k)]
+        self.calls.append(("refined_solve", _copy(args)))
+        if not _core.refined_solve(*args):
+            assert got[0] == 2
+            return got
+        x = np.zeros(e.size)
+        x[cols] = args[3]
+        x[n:] = np.maximum(x[n:], 0.0)
+        assert got[0] == 0 and got[1].tobytes() == x.tobytes()
+        return got
 
 
 FRONTS = ["lemke._certify", "lemke._pivot_column", "lemke._reductions.mlcp_lcp", "lemke._mlcp",

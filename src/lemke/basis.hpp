@@ -6,7 +6,8 @@
 // used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis), the box
 // kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
 // (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
-// entry _core.friction_basis). Gradients and a sparse
+// entry _core.friction_basis) and the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
+// through _core.mlcp_basis; its solve refined, as that routine's was). Gradients and a sparse
 // engine are to plug in here: hence the transpose solve.
 #pragma once
 #include <cstdint>
@@ -392,6 +393,97 @@ struct FrictionBasis {
         if (zc != z)
             for (idx i = 0; i < n; ++i) zc[i] = z[i];
         return boxed::coupled_check(M, q, lo, hi, F, nf, L.N(), tol, buf, residual);
+    }
+};
+
+// The MLCP kind: the stacked N x N system E x + e = (0, w) of _mlcp (n equations and free
+// u first, then the m = N - n pairs v >= 0, w >= 0), a basis of MLCPToLCP's reduction: every
+// determined u basic (all but the reduction's undetermined ones, set to 0), v_k basic where
+// v_basic[k], the equations kept (all but the redundant ones) and w_k = 0 for each basic v_k
+// (apply), so B = E[rows, cols], a block of kept rows and columns, not principal. The point
+// (MLCPToLCP.basis_point's): B x = -e[rows] by linalg's refined_solve (one LU of B, two steps
+// of refinement in double-double; the same function and operations as that Python routine
+// called, so the same bits), x put at cols, 0 elsewhere, v clipped at 0 (recover, numpy's
+// maximum's bits: +0.0 for -0.0); check: certify's check_mlcp (_certify.check_mlcp's
+// numbers). solve and solve_transpose: by the LU refined_solve left (no refinement).
+// work: work_size(N) doubles; ints: index_size(N); piv: 2N entries.
+struct MlcpBasis {
+    Mat<const double> E;
+    const double* e;
+    idx n;
+    idx *rows, *cols;  // the block's rows and columns (apply)
+    double* work;      // the block, refined_solve's work (its factors), rhs, x, lo
+    idx* piv;
+    BasisBlock block;  // the factors, for solve and solve_transpose
+
+    static idx work_size(idx N) { return N * (2 * N + 5); }
+    static idx index_size(idx N) { return 2 * N; }
+
+    MlcpBasis(Mat<const double> E_, const double* e_, idx n_, idx* ints, double* work_,
+              idx* piv_)
+        : E(E_), e(e_), n(n_), rows(ints), cols(ints + E_.rows), work(work_), piv(piv_),
+          block{E_, ints, 0, nullptr, piv_} {}
+
+    // The block's rows and columns: redundant[i] (n flags) drops equation i, undetermined[i]
+    // (n flags) drops u_i, v_basic (N - n flags) adds row and column n + k. False when the
+    // counts differ (no square block).
+    bool apply(const std::uint8_t* redundant, const std::uint8_t* undetermined,
+               const std::uint8_t* v_basic) {
+        idx N = E.rows, nr = 0, nc = 0;
+        for (idx i = 0; i < n; ++i) {
+            if (!redundant[i]) rows[nr++] = i;
+            if (!undetermined[i]) cols[nc++] = i;
+        }
+        for (idx i = n; i < N; ++i)
+            if (v_basic[i - n]) {
+                rows[nr++] = i;
+                cols[nc++] = i;
+            }
+        block.k = nr;
+        return nr == nc;
+    }
+
+    // The point of the basis into x (N entries) after apply: build B and -e[rows], refined
+    // solve, recover. False when B is singular or x is not finite (x is then 0 or garbage).
+    bool point(double* x) {
+        idx N = E.rows, k = block.k;
+        block.factors = nullptr;
+        block.pivots = nullptr;
+        for (idx i = 0; i < N; ++i) x[i] = 0.0;
+        if (k > 0) {
+            double* K = work;
+            double* f = K + k * k;  // refined_solve's k (k + 2)
+            double *rhs = f + k * (k + 2), *xb = rhs + k, *lo = xb + k;
+            for (idx r = 0; r < k; ++r) {
+                const double* er = E.row(rows[r]);
+                double* kr = K + r * k;
+                for (idx c = 0; c < k; ++c) kr[c] = er[cols[c]];
+                rhs[r] = -e[rows[r]];
+            }
+            if (!refined_solve(Mat<const double>(K, k, k), rhs, 2, xb, lo, f, piv)) return false;
+            block.a = f;
+            block.factors = f;
+            block.pivots = piv;
+            for (idx c = 0; c < k; ++c) x[cols[c]] = xb[c];
+        }
+        recover(x);
+        return true;
+    }
+
+    // v = max(v, 0) in place (numpy's maximum's bits: 0 > v ? 0 : v, so -0.0 becomes +0.0).
+    void recover(double* x) const {
+        for (idx i = n; i < E.rows; ++i) x[i] = pmax(0.0, x[i]);
+    }
+
+    // B x = rhs, B' x = rhs (k entries, in rows' and cols' order) after point, by its LU.
+    bool solve(const double* rhs, double* out) const { return block.solve(rhs, out); }
+    bool solve_transpose(const double* rhs, double* out) const {
+        return block.solve_transpose(rhs, out);
+    }
+
+    // y = E x + e (N entries, double-double) and check_mlcp's verdict.
+    bool check(const double* x, double tol, double* y, double& residual) const {
+        return check_mlcp(E, e, n, x, tol, y, residual);
     }
 };
 

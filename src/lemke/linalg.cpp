@@ -805,14 +805,20 @@ bool kept_factors(const KeptMatrix* kept, const idx* index, idx k, const double*
 }
 
 bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo) {
-    idx k = K.rows, j = K.cols - K.rows;
-    if (j < 0 || !all_finite(x + k, j)) return false;
+    idx k = K.rows;
+    if (K.cols < k) return false;
     SolveWork& w = solve_work;
     w.layout(k);
-    Mat<double> A(w.f.data(), k, k);
-    double* y = w.f.data() + k * k;
+    return refined_solve(K, rhs, steps, x, lo, w.f.data(), w.piv.data());
+}
+
+bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo,
+                   double* work, idx* piv) {
+    idx k = K.rows, j = K.cols - K.rows;
+    if (j < 0 || !all_finite(x + k, j)) return false;
+    Mat<double> A(work, k, k);
+    double* y = work + k * k;
     double* d = y + k;
-    idx* piv = w.piv.data();
     for (idx i = 0; i < k; ++i) d[i] = 0.0;
     for (idx r = 0; r < k; ++r) {
         const double* kr = K.row(r);

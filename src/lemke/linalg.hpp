@@ -377,6 +377,10 @@ bool solve(Mat<const double> H, const double* b, double* x, idx k);
 // then `steps` steps of refinement with residuals in double-double and x carried in
 // double-double (x[:k] + lo). Returns ok (x[:k] is garbage when not).
 bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo);
+// The same in the caller's work: k (k + 2) doubles (the factors of K[:, :k] in the first
+// k * k, row-major, for lu_solve and lu_solve_transpose), piv 2k (the pivots).
+bool refined_solve(Mat<const double> K, const double* rhs, idx steps, double* x, double* lo,
+                   double* work, idx* piv);
 
 // invert_in_place with its work arrays from this thread's workspace.
 bool invert_in_place(Mat<double> G, idx k);

@@ -23,6 +23,7 @@ import numpy as np
 from .. import _core
 from .._certify import absmax as _size
 from .._npc import filled, nz, sub
+from .._validate import c_aligned
 
 RANK_TOL = 1e-9  # an exchange pivot must exceed this on the equilibrated data
 EPS = float(np.finfo(np.float64).eps)
@@ -158,33 +159,15 @@ class MLCPToLCP:
 
 def basis_point(E, e, n, v_basic, red):
     """The point of the basis (all determined u basic, v_k basic where v_basic[k]) from the
-    caller's data: one dense solve and one step of iterative refinement.  None if singular."""
-    N = e.size
-    keep_eq = _all_but(n, red.redundant)
-    keep_u = _all_but(n, red.undetermined)
-    vb = n + nz(v_basic)
-    rows = np.concatenate([keep_eq, vb])
-    cols = np.concatenate([keep_u, vb])
-    if rows.size != cols.size:
-        return None
-    x = np.zeros(N)
-    if rows.size:
-        xb = refined_solve(sub(E, rows, cols), -e[rows])
-        if xb is None:
-            return None
-        x[cols] = xb
-    x[n:] = np.maximum(x[n:], 0.0)
-    return x
-
-
-def _all_but(n, drop):
-    """``0 .. n-1`` without the indices in ``drop`` (``np.setdiff1d(np.arange(n), drop)``
-    without its sort)."""
-    if not drop.size:
-        return np.arange(n)
-    keep = np.ones(n, dtype=bool)
-    keep[drop] = False
-    return nz(keep)
+    caller's data: one dense solve and two steps of iterative refinement on the block of the
+    kept equations and determined u and the basic v's (the seam's MLCP basis system,
+    ``MlcpBasis`` in ``src/lemke/basis.hpp``, through ``_core.mlcp_basis``; v clipped at 0).
+    None if there is no square block, it is singular or the point is not finite."""
+    code, x, _, _, _ = _core.mlcp_basis(
+        c_aligned(E, dtype=np.float64), c_aligned(e, dtype=np.float64), int(n),
+        c_aligned(red.redundant, dtype=np.int64), c_aligned(red.undetermined, dtype=np.int64),
+        np.ascontiguousarray(v_basic, dtype=bool))
+    return None if code == 2 else x
 
 
 def refined_solve(K, rhs, steps=2, given=None, low=False):
