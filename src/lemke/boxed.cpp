@@ -611,10 +611,13 @@ void check_scales_in(Mat<const double> M, const double* q, const double* lo, con
         p[i] = pmin(pmax(0.0, lo[i]), hi[i]);
         p_zero = p_zero && p[i] == 0.0;
     }
-    for (idx i = 0; i < n; ++i) qs[i] = p_zero ? q[i] : q[i] + dot(M.row(i), p, n);
-    // (qs not finite: equilibrate_finite_kept refuses before any sweep; equilibrate's scales)
-    if (!(kept && equilibrate_finite_kept(M, qs, R, C, work4 + 2 * n, *kept)))
-        equilibrate(M, qs, R, C, work4 + 2 * n);
+    // p = 0 (every lo <= 0 <= hi): q itself, no copy (q + M 0 is q: the same scales)
+    if (!p_zero)
+        for (idx i = 0; i < n; ++i) qs[i] = q[i] + dot(M.row(i), p, n);
+    const double* qe = p_zero ? q : qs;
+    // (qe not finite: equilibrate_finite_kept refuses before any sweep; equilibrate's scales)
+    if (!(kept && equilibrate_finite_kept(M, qe, R, C, work4 + 2 * n, *kept)))
+        equilibrate(M, qe, R, C, work4 + 2 * n);
 }
 
 }  // namespace

@@ -37,14 +37,27 @@ void flags_of(const std::int8_t* c, idx n, idx nf, std::uint8_t* f) {
         f[j] = static_cast<std::uint8_t>(s == 2);
         f[N + j] = static_cast<std::uint8_t>(s == 1);
     };
+    // a friction code's three digits (base 3: beta+, beta-, lambda), looked up rather than
+    // divided out (the divisions' chain was most of this loop)
+    struct Digits {
+        std::uint8_t d[27][3];
+        constexpr Digits() : d{} {
+            for (int e = 0; e < 27; ++e) {
+                d[e][0] = static_cast<std::uint8_t>(e / 9);
+                d[e][1] = static_cast<std::uint8_t>((e / 3) % 3);
+                d[e][2] = static_cast<std::uint8_t>(e % 3);
+            }
+        }
+    };
+    static constexpr Digits digits{};
     idx r = 0;
     for (idx i = 0; i < n; ++i) {
         int e = c[i];
         if (e >= FRICTION_STATE) {
-            e -= FRICTION_STATE;
-            set(i, e / 9);
-            set(n + r, (e / 3) % 3);
-            set(n + nf + r, e % 3);
+            const std::uint8_t* d = digits.d[e - FRICTION_STATE];
+            set(i, d[0]);
+            set(n + r, d[1]);
+            set(n + nf + r, d[2]);
             ++r;
         } else {
             set(i, e);
