@@ -18,7 +18,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _validate
-from ._batch import FEW, _SEQ, _cubes, _flat, _packed, _plain, _run, _workers
+from ._batch import FEW, _SEQ, _flat, _packed, _plain, _run, _workers
 from ._blcp import (BoxWarmStart, _carried, _check_warm, _from_codes, _label_index, _lazy,
                     _row_index, as_blcp, solve_blcp)
 from ._core import boxed
@@ -327,6 +327,16 @@ class BLCPManyResult(ManyItems):
         return BoxWarmStartBatch._trusted(self._n_rows, self._state, read_only=True)
 
 
+def _work(n_b, fflag, wflag):
+    """A box batch's estimated multiply-adds (``_batch.INLINE_WORK``): the sum of n^3, eight
+    times n^3 for a friction island that starts cold (a run on its 2n-row extended problem);
+    a warm island's first try is its old basis's point on the caller's rows, as a warm LCP
+    island's is (a box batch of 300 small warm islands was handed to the pool at 8 n^3 and
+    took twice the time inline)."""
+    n = n_b.astype(float)
+    return float(np.dot(n * n * n, np.where((fflag != 0) & (wflag == 0), 8.0, 1.0)))
+
+
 def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, options=None,
                     workers=None) -> BLCPManyResult:
     r"""Solve the box LCPs of many islands (of different sizes, with friction indices and
@@ -452,7 +462,7 @@ def solve_blcp_many(M, q, lo, hi, *, findex=None, warm_start=None, sizes=None, o
     _run(boxed.batch, (Mflat, mstart, qflat, loflat, hiflat, qoff, fiflat, fflag, state, wflag),
          (limits, opts.pivot_tol, opts.tie_tol, opts.tol, bufs, buff, ints, ioff, state_out,
           out_i, out_f), B, workers,
-         work=None if workers == 1 else 8 * _cubes(n_b) if fiflat.size else _cubes(n_b))  # (1: unread)
+         work=None if workers == 1 else _work(n_b, fflag, wflag))  # (1: unread)
     special = {}
     given = _Given(warm_start, given)
     stage = out_i[:, 5]
