@@ -13,6 +13,7 @@
 #include "lemke/basis.hpp"
 #include "lemke/boxed.hpp"
 #include "lemke/boxed_batch.hpp"
+#include "lemke/reductions.hpp"
 #include "python_arrays.hpp"
 
 namespace nb = nanobind;
@@ -181,6 +182,36 @@ std::tuple<NumpyMatrix, NumpyVector, NumpyVector, NumpyVector> extend(
     return {NumpyMatrix(p, {Ns, Ns}, work_obj), NumpyVector(p + Ns * Ns, {Ns}, work_obj),
             NumpyVector(p + Ns * Ns + Ns, {Ns}, work_obj),
             NumpyVector(p + Ns * Ns + 2 * Ns, {rest}, work_obj)};
+}
+
+// reductions.hpp's FrictionBox::check (recover, then the caller's check with the coupled
+// bounds): the extended answer zx (N = n + 2 nf entries) mapped back with F as extend writes
+// it; (passed, residual, z, w, lo, hi: the caller's answer and the bounds in force, as the
+// check leaves them, in one new buffer).
+std::tuple<bool, double, NumpyVector, NumpyVector, NumpyVector, NumpyVector> friction_recover(
+    CMatrix M, CVector q, CVector lo, CVector hi, CIndices F, CVector zx, double tol) {
+    idx n = problem_size(M, q, lo, hi, "friction_recover");
+    idx nf = static_cast<idx>(F.shape(0)) / 2;
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(n));
+    if (static_cast<idx>(F.shape(0)) != 2 * nf ||
+        !lemke::FrictionBasis::rows_valid(F.data(), nf, n, seen.data()) ||
+        static_cast<idx>(zx.shape(0)) != n + 2 * nf)
+        throw nb::value_error("friction_recover: F must hold nf distinct friction rows of M, then "
+                              "nf normal rows that are not friction rows, zx n + 2 nf entries");
+    lemke::boxed::FrontLayout L{n, nf, true};
+    double* buf = new double[static_cast<std::size_t>(L.length())]();
+    nb::capsule owner(buf, [](void* p) noexcept { delete[] static_cast<double*>(p); });
+    double residual = 0.0;
+    bool passed;
+    {
+        nb::gil_scoped_release release;
+        lemke::reductions::FrictionBox red{mat(M, n), q.data(), lo.data(), hi.data(), nullptr, nf};
+        passed = red.check(F.data(), zx.data(), tol, buf, residual);
+    }
+    std::size_t un = static_cast<std::size_t>(n);
+    return {passed, residual, NumpyVector(buf + L.z(), {un}, owner),
+            NumpyVector(buf + L.w(), {un}, owner), NumpyVector(buf + L.lo(), {un}, owner),
+            NumpyVector(buf + L.hi(), {un}, owner)};
 }
 
 std::tuple<int, double> front(int phase, CMatrix M, CVector q, CVector lo, CVector hi,
@@ -395,6 +426,8 @@ void bind_boxed(nb::module_& m) {
           "tol"_a);
     b.def("extend", &extend, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "nf"_a, "work"_a,
           "F"_a.noconvert());
+    b.def("friction_recover", &friction_recover, "M"_a, "q"_a, "lo"_a, "hi"_a, "F"_a, "zx"_a,
+          "tol"_a);
     b.def("front", &front, "phase"_a, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "warm"_a,
           "has_warm"_a, "tol"_a, "buf"_a.noconvert(), "ints"_a.noconvert(),
           "work"_a.noconvert());

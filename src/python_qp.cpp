@@ -12,8 +12,10 @@
 
 #include <cstdint>
 #include <tuple>
+#include <vector>
 
 #include "lemke/qp.hpp"
+#include "lemke/reductions.hpp"
 #include "lemke/unrevised.hpp"
 #include "python_arrays.hpp"
 
@@ -29,6 +31,7 @@ using In2 = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::dev
 using In1 = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 using Out2 = Aligned<nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
 using Out1 = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
+using CIdx = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 using IdxOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 using FlagsOut = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
@@ -214,6 +217,114 @@ std::tuple<std::int64_t, std::int64_t> box_basis(In1 lo, In1 up, IdxOut final, s
     return {count, pairs};
 }
 
+// reductions.hpp's pairs, for tests/test_reductions_core.py. A new float64 array of n
+// entries (rows x cols) owning its memory, zeros.
+double* owned(idx count, nb::capsule& owner) {
+    double* p = new double[count > 0 ? static_cast<std::size_t>(count) : 1]();
+    owner = nb::capsule(p, [](void* q) noexcept { delete[] static_cast<double*>(q); });
+    return p;
+}
+
+// BoxQp::apply: (ok, M, lo, up) of the box LCP (M, q, lo, up); q is the caller's. Shapes that
+// do not match: (False, ...) with zeros, as qp_screen.
+std::tuple<bool, NewMatrix, NewVector, NewVector> box_apply(In2 P, In1 q, In2 G, In1 h, In2 A,
+                                                            In1 b, In1 lb, In1 ub) {
+    idx n = len(q);
+    nb::capsule owner;
+    double* work = owned(lemke::reductions::BoxQp::work_length(n), owner);
+    bool ok = false;
+    if (shapes_match(P, q, G, h, A, b, lb, ub) && len(G, 0) == 0 && len(A, 0) == 0) {
+        qp::Data d = data(P, q, G, h, A, b, lb, ub);
+        nb::gil_scoped_release release;
+        ok = lemke::reductions::BoxQp{d}.apply(work);
+    }
+    std::size_t un = static_cast<std::size_t>(n);
+    return {ok, NewMatrix(work, {un, un}, owner), NewVector(work + n * n, {un}, owner),
+            NewVector(work + n * (n + 1), {un}, owner)};
+}
+
+// BoxQp's recover, recover_basis and check from the box LCP's answer z, w (n each) and its
+// final basis (final[:k] basic, final[k:m] at upper): (passed, zb, stats, basis, count,
+// pairs), x being z; None where the data are not a box-only QP that screen takes. ValueError
+// on mismatched lengths.
+nb::object box_recover(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 z, In1 w,
+                       CIdx final, std::int64_t k, std::int64_t m, double tol) {
+    idx n = len(q);
+    if (len(z) != n || len(w) != n || k < 0 || m < k || m > len(final))
+        throw nb::value_error("qp_box_recover: z and w of length n, 0 <= k <= m <= len(final)");
+    const std::int64_t* f = final.data();
+    for (idx i = 0; i < m; ++i)
+        if (f[i] < 0 || f[i] >= n) throw nb::value_error("qp_box_recover: final[:m] in [0, n)");
+    if (!shapes_match(P, q, G, h, A, b, lb, ub) || len(G, 0) != 0 || len(A, 0) != 0)
+        return nb::none();
+    qp::Data d = data(P, q, G, h, A, b, lb, ub);
+    lemke::reductions::BoxQp red{d};
+    std::vector<double> work(static_cast<std::size_t>(red.work_length(n) + 1));
+    if (!red.apply(work.data())) return nb::none();
+    nb::capsule o1, o2;
+    double* zb = owned(n, o1);
+    double* stats = owned(4, o2);
+    std::int64_t* basis = new std::int64_t[static_cast<std::size_t>(2 * n + 1)]();
+    nb::capsule o3(basis, [](void* p) noexcept { delete[] static_cast<std::int64_t*>(p); });
+    idx count = 0, pairs = 0;
+    bool passed;
+    {
+        nb::gil_scoped_release release;
+        red.recover(w.data(), zb);
+        passed = red.check(work.data(), z.data(), zb, tol, stats);
+        red.recover_basis(work.data(), f, k, m, basis, count, pairs);
+    }
+    using Basis = nb::ndarray<nb::numpy, std::int64_t, nb::ndim<1>>;
+    return nb::make_tuple(passed, NewVector(zb, {static_cast<std::size_t>(n)}, o1),
+                          NewVector(stats, {4}, o2),
+                          Basis(basis, {static_cast<std::size_t>(count)}, o3), count, pairs);
+}
+
+// reductions::multiplier_apply: (code, M, g) of the multiplier LCP (m x m, m).
+std::tuple<int, NewMatrix, NewVector> multiplier_lcp(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b,
+                                                     In1 lb, In1 ub) {
+    std::vector<double> M, g;
+    idx m = 0;
+    int code = qp::BAD_INPUT;
+    if (shapes_match(P, q, G, h, A, b, lb, ub)) {
+        qp::Data d = data(P, q, G, h, A, b, lb, ub);
+        nb::gil_scoped_release release;
+        code = lemke::reductions::multiplier_apply(d, M, g, m);
+    }
+    if (code != qp::OK) m = 0;
+    nb::capsule oM, og;
+    double* Mo = owned(m * m, oM);
+    double* go = owned(m, og);
+    for (idx t = 0; t < m * m; ++t) Mo[t] = M[static_cast<std::size_t>(t)];
+    for (idx t = 0; t < m; ++t) go[t] = g[static_cast<std::size_t>(t)];
+    std::size_t um = static_cast<std::size_t>(m);
+    return {code, NewMatrix(Mo, {um, um}, oM), NewVector(go, {um}, og)};
+}
+
+// reductions::multiplier_recover: the LCP's answer zz (m) with its basic z's lcp_basic into
+// out (OutLayout's x, y, z, zb, stats, at least 2n + p0 + m0 + 4) and basic (at least
+// m0 + 2n); (code, passed, count, pairs). ValueError on buffers too short.
+std::tuple<int, bool, std::int64_t, std::int64_t> multiplier_recover(
+    In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 zz, CIdx lcp_basic, double tol,
+    Out1 out, IdxOut basic) {
+    idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
+    if (len(out) < qp::OutLayout{n, p0, m0}.basis() || len(basic) < m0 + 2 * n)
+        throw nb::value_error("qp_multiplier_recover: out of length at least 2n + p0 + m0 + 4, "
+                              "basic (int64) m0 + 2n");
+    if (!shapes_match(P, q, G, h, A, b, lb, ub)) return {qp::BAD_INPUT, false, 0, 0};
+    qp::Data d = data(P, q, G, h, A, b, lb, ub);
+    idx count = 0, pairs = 0;
+    bool passed = false;
+    int code;
+    {
+        nb::gil_scoped_release release;
+        code = lemke::reductions::multiplier_recover(d, zz.data(), len(zz), lcp_basic.data(),
+                                                     len(lcp_basic), tol, out.data(),
+                                                     basic.data(), count, pairs, passed);
+    }
+    return {code, passed, count, pairs};
+}
+
 // For the tests: the pieces whose bits the solves depend on.
 void forward_rows(In2 L, Out2 R) {
     idx n = len(L, 0);
@@ -305,6 +416,14 @@ void bind_qp(nb::module_& m) {
           nb::arg("out").noconvert(), nb::arg("final").noconvert());
     m.def("qp_box_basis", &box_basis, "lo"_a, "up"_a, "final"_a, "k"_a, "m"_a,
           nb::arg("out").noconvert());
+    m.def("qp_box_apply", &box_apply, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a);
+    m.def("qp_box_recover", &box_recover, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a,
+          "ub"_a, "z"_a, "w"_a, "final"_a, "k"_a, "m"_a, "tol"_a);
+    m.def("qp_multiplier_lcp", &multiplier_lcp, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a,
+          "lb"_a, "ub"_a);
+    m.def("qp_multiplier_recover", &multiplier_recover, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a,
+          "b"_a, "lb"_a, "ub"_a, "zz"_a, "lcp_basic"_a, "tol"_a, nb::arg("out").noconvert(),
+          nb::arg("basic").noconvert());
     m.def("qp_forward_rows", &forward_rows, "L"_a, nb::arg("R").noconvert());
     m.def("qp_dot4", &dot4, "a"_a, "r0"_a, "r1"_a, "r2"_a, "r3"_a);
     m.def("qp_qr_rows", &qr_rows, nb::arg("WE").noconvert(), nb::arg("V").noconvert(),

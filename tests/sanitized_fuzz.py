@@ -35,6 +35,11 @@ and again in the test's own process, fingerprint against fingerprint).
 * the box batch's bindings boxed.islands and boxed.batch called directly (each island's rows
   judged in one pass, branch boxsmall) with random and extreme offsets, friction indices,
   flags, row states and island ranges: an answer or a ValueError / TypeError.
+* the core's reductions' private ends (src/lemke/reductions.hpp, branch reductions):
+  boxed.friction_recover, qp_box_apply, qp_box_recover, qp_multiplier_lcp and
+  qp_multiplier_recover on sizes 0-20 and some larger, with answers of the right length and
+  one off, random and extreme basic indices and final bases, and malformed arrays: an answer,
+  None or ValueError / TypeError.
 
 A mismatch with the fresh thread raises (a finding, reported as an exception by the Runner).
 """
@@ -427,6 +432,7 @@ def fuzz(run):
         unaligned_entries(run)
         friction_seam(run, np.random.default_rng(2034))
         mlcp_seam(run, np.random.default_rng(2035))
+        reductions_core(run, np.random.default_rng(2036))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -961,3 +967,86 @@ def mlcp_seam(run, rng):
             {"E": E2[2], "e": e2, "rhs": r2}[where][1] = bad
             run.attempt(f"fuzz seam mlcp {bad} in {where}", refused_or(
                 lambda: _mlcp_sizes(6, _core.mlcp_basis(E2, e2, 2, red, und, vb, 1e-9, r2, where == "rhs"))))
+
+
+# --- the core's reductions as apply/recover pairs (branch reductions, src/lemke/reductions.hpp):
+# boxed.friction_recover (FrictionBox's recover and check), qp_box_apply / qp_box_recover
+# (BoxQp), qp_multiplier_lcp / qp_multiplier_recover (qp.cpp's MultiplierLcp) called directly
+# on sizes 0-20 and some larger, with random data (friction rows and normals, bounds of every
+# kind, G, A and fixed variables), random and extreme basic indices and final bases, answers
+# of the right length and one off, and malformed arguments (ODD's forms): an answer, None or
+# a ValueError / TypeError; never a read or write outside the arrays.
+
+def _reduction_qp(rng, n, m, p):
+    B = rng.normal(size=(n, n))
+    P = B @ B.T + 0.1 * np.eye(n)
+    lb = np.where(rng.random(n) < 0.5, -rng.random(n), -np.inf)
+    ub = np.where(rng.random(n) < 0.5, rng.random(n), np.inf)
+    fixed = rng.random(n) < 0.1
+    ub[fixed] = lb[fixed] = 0.0
+    h = rng.random(m) + 0.1
+    h[rng.random(m) < 0.2] = np.inf
+    return P, rng.normal(size=n), rng.normal(size=(m, n)), h, rng.normal(size=(p, n)), np.zeros(p), lb, ub
+
+
+def reductions_core(run, rng):
+    for n in list(range(0, 21)) + [40, 65]:
+        A_ = rng.normal(size=(n, n))
+        M, q = A_ @ A_.T + np.eye(n), rng.normal(size=n)
+        if n:
+            F, lo, hi = _friction_rows(n, rng)
+            nf = F.size // 2
+            for length in (n + 2 * nf, n + 2 * nf + 1, n):
+                zx = np.abs(rng.normal(size=length))
+                run.attempt(f"fuzz reductions friction {n} {length}", refused_or(
+                    lambda: _core.boxed.friction_recover(M, q, lo, hi, F, zx, 1e-9)))
+        data = _reduction_qp(rng, n, 0, 0)
+        run.attempt(f"fuzz reductions box apply {n}", refused_or(lambda: _core.qp_box_apply(*data)))
+        z, w = rng.normal(size=n), rng.normal(size=n)
+        final = rng.permutation(n).astype(np.int64)
+        for k, m in ((0, 0), (n // 2, n), (n, n), (0, n + 1), (n, n - 1)):
+            run.attempt(f"fuzz reductions box recover {n} {k} {m}", refused_or(
+                lambda: _core.qp_box_recover(*data, z, w, final, k, m, 1e-9)))
+        for mg, p in ((0, 0), (n, n // 3), (2 * n, 1 if n else 0)):
+            qd = _reduction_qp(rng, n, mg, p)
+            got = run.attempt(f"fuzz reductions multipliers {n} {mg} {p}", refused_or(
+                lambda: _core.qp_multiplier_lcp(*qd)))
+            mm = got[2].size if isinstance(got, tuple) else 0
+            L = _core.qp_layout(n, p, mg)
+            for zl, basic in ((mm, np.arange(mm // 2, dtype=np.int64)), (mm + 1, np.zeros(0, np.int64)),
+                              (mm, np.array([mm, -1], np.int64)[: 1 + (mm % 2)]),
+                              (mm, np.array([I64.max, I64.min], np.int64))):
+                zz = np.abs(rng.normal(size=zl))
+                out, bo = np.zeros(L[-1]), np.empty(mg + 2 * n, np.int64)
+                run.attempt(f"fuzz reductions multipliers recover {n} {mg} {p} {zl - mm} {basic.size}", refused_or(
+                    lambda: (_core.qp_multiplier_recover(*qd, zz, basic, 1e-9, out, bo), out.tobytes())))
+            run.attempt(f"fuzz reductions multipliers short {n} {mg} {p}", refused_or(
+                lambda: _core.qp_multiplier_recover(*qd, np.zeros(mm), np.zeros(0, np.int64), 1e-9,
+                                                    np.empty(max(L[4], 1) - 1), np.empty(mg + 2 * n, np.int64))))
+    M, q = problems.random_psd(6, rng)
+    F, lo, hi = np.array([1, 3, 0, 0], np.int64), np.array([0.0, -0.5, 0.0, -0.3, -1.0, -1.0]), np.array([np.inf, 0.5, 1.0, 0.3, 1.0, 2.0])
+    zx = np.ones(10)
+    data = _reduction_qp(rng, 6, 0, 0)
+    qd = _reduction_qp(rng, 6, 5, 2)
+    L = _core.qp_layout(6, 2, 5)
+    final = np.arange(6, dtype=np.int64)
+    for name, g in ODD.items():
+        run.attempt(f"fuzz reductions friction {name} F", refused_or(lambda: _core.boxed.friction_recover(M, q, lo, hi, g(F), zx, 1e-9)))
+        run.attempt(f"fuzz reductions friction {name} zx", refused_or(lambda: _core.boxed.friction_recover(M, q, lo, hi, F, g(zx), 1e-9)))
+        run.attempt(f"fuzz reductions friction {name} M", refused_or(lambda: _core.boxed.friction_recover(g(M), q, lo, hi, F, zx, 1e-9)))
+        run.attempt(f"fuzz reductions box {name} P", refused_or(lambda: _core.qp_box_apply(g(data[0]), *data[1:])))
+        run.attempt(f"fuzz reductions box {name} lb", refused_or(lambda: _core.qp_box_apply(*data[:6], g(data[6]), data[7])))
+        run.attempt(f"fuzz reductions box recover {name} final", refused_or(
+            lambda: _core.qp_box_recover(*data, np.zeros(6), np.zeros(6), g(final), 2, 4, 1e-9)))
+        run.attempt(f"fuzz reductions box recover {name} w", refused_or(
+            lambda: _core.qp_box_recover(*data, np.zeros(6), g(np.zeros(6)), final, 2, 4, 1e-9)))
+        run.attempt(f"fuzz reductions multipliers {name} G", refused_or(lambda: _core.qp_multiplier_lcp(*qd[:2], g(qd[2]), *qd[3:])))
+        run.attempt(f"fuzz reductions multipliers recover {name} zz", refused_or(
+            lambda: _core.qp_multiplier_recover(*qd, g(np.zeros(9)), np.zeros(0, np.int64), 1e-9,
+                                                np.empty(L[-1]), np.empty(17, np.int64))))
+        run.attempt(f"fuzz reductions multipliers recover {name} basic", refused_or(
+            lambda: _core.qp_multiplier_recover(*qd, np.zeros(9), g(np.array([0, 1], np.int64)), 1e-9,
+                                                np.empty(L[-1]), np.empty(17, np.int64))))
+        run.attempt(f"fuzz reductions multipliers recover {name} out", refused_or(
+            lambda: _core.qp_multiplier_recover(*qd, np.zeros(9), np.zeros(0, np.int64), 1e-9,
+                                                g(np.empty(L[-1])), np.empty(17, np.int64))))

@@ -7,6 +7,7 @@
 #include "basis.hpp"
 #include "certify.hpp"
 #include "multiversion.hpp"
+#include "reductions.hpp"
 #include "tableau.hpp"
 
 namespace lemke {
@@ -825,7 +826,7 @@ void extend_rows(Mat<const double> M, const double* q, const double* lo, const d
 
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
             const idx* findex, idx nf, double* work_out, idx* F) {
-    extend_rows(M, q, lo, hi, findex, nf, work_out, F, nullptr);
+    reductions::FrictionBox{M, q, lo, hi, findex, nf}.apply(work_out, F);
 }
 
 SolveResult solve(Mat<const double> M, const double* q, const double* lo, const double* hi,
@@ -1068,8 +1069,7 @@ bool friction_check(Mat<const double> M, const double* q, const double* lo, cons
                     double& residual) {
     idx n = M.rows;
     double* z = buf + FrontLayout{n, nf, true}.z();
-    for (idx i = 0; i < n; ++i) z[i] = zx[i];
-    for (idx c = 0; c < nf; ++c) z[F[c]] = zx[F[c]] - zx[n + c];
+    reductions::FrictionBox{M, q, lo, hi, nullptr, nf}.recover(F, zx, z);
     return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual, work());
 }
 
@@ -1127,6 +1127,8 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             if (F[c] < 0 || F[c] >= n) return BAD_FINDEX;
     }
     double* z = buf + FL.run().z();
+    // (the friction index's reduction: the extended problem and its map back)
+    reductions::FrictionBox red{M, q, lo, hi, findex, nf};
     if (phase == PREPARE) {
         Mat<const double> A = M;
         const double *qa = q, *la = lo, *ha = hi;
@@ -1140,7 +1142,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             // the caller's rows, the coupled bounds at this point); when it passes with the
             // normals in their boxes, that is the answer (0 pivots). Otherwise the extended
             // problem's point decides as before (below).
-            friction_order(findex, n, nf, F);
+            red.rows(F);
             BoxedWork& W = work();
             if (friction_point_in(M, q, lo, hi, F, nf, warm, warm + N, buf + FL.z(), W) &&
                 normals_inside(buf + FL.z(), lo, hi, F, nf) &&
@@ -1158,7 +1160,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
                     need[r] = warm[r] || (r < n && findex[r] < 0 && lo[r] == -INF && hi[r] == INF);
                 part = true;
             }
-            extend_rows(M, q, lo, hi, findex, nf, work_in, F, need);
+            red.apply(work_in, F, need);
             A = Mat<const double>(work_in + FL.work_M(), N, N);
             qa = work_in + FL.work_q();
             la = work_in + FL.work_lo();
@@ -1178,7 +1180,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             check_scales_kept(A, qa, la, ha, scales.data(), scales.data() + n, kept);
         }
         if (!has_warm || !basis_point(A, qa, la, ha, warm, warm + N, true, z, kept)) {
-            if (part) extend(M, q, lo, hi, findex, nf, work_in, F);
+            if (part) red.apply(work_in, F);
             residual = INF;
             return NEED_RUN;
         }
@@ -1190,11 +1192,11 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
             // Otherwise that check decides first, as before: failed, a run from the basis
             // (NEED_RUN); passed, the caller's check's verdict (SOLVED, or UNDECIDED: the
             // general path).
-            bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf, residual);
+            bool ok = red.check(F, z, tol, buf, residual);
             bool inside = normals_inside(z, lo, hi, F, nf);
             if (!(ok && inside)) {
                 double ext_residual;
-                extend(M, q, lo, hi, findex, nf, work_in, F);  // (every row, for the check)
+                red.apply(work_in, F);  // (every row, for the check)
                 check_scales(A, qa, la, ha, R, C);
                 if (!box_check(A, qa, la, ha, z, tol, w, R, 0, ext_residual)) {
                     residual = INF;
@@ -1218,7 +1220,7 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
         for (idx i = 0; i < N; ++i) d[i] = 0.0;
     }
     if (friction) {
-        bool ok = friction_check(M, q, lo, hi, F, nf, z, N, tol, buf, residual);
+        bool ok = red.check(F, z, tol, buf, residual);
         if (!ok) {
             residual = INF;
             return UNDECIDED;
@@ -1228,4 +1230,27 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
 }
 
 }  // namespace boxed
+
+// ----------------------------------------------------------------------------- reductions.hpp's FrictionBox
+
+namespace reductions {
+
+void FrictionBox::rows(idx* F) const { boxed::friction_order(findex, n(), nf, F); }
+
+void FrictionBox::apply(double* work, idx* F, const std::uint8_t* need) const {
+    boxed::extend_rows(M, q, lo, hi, findex, nf, work, F, need);
+}
+
+void FrictionBox::recover(const idx* F, const double* zx, double* z) const {
+    idx k = n();
+    for (idx i = 0; i < k; ++i) z[i] = zx[i];
+    for (idx c = 0; c < nf; ++c) z[F[c]] = zx[F[c]] - zx[k + c];
+}
+
+bool FrictionBox::check(const idx* F, const double* zx, double tol, double* buf,
+                        double& residual) const {
+    return boxed::friction_check(M, q, lo, hi, F, nf, zx, N(), tol, buf, residual);
+}
+
+}  // namespace reductions
 }  // namespace lemke

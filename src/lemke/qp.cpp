@@ -13,6 +13,7 @@
 #include "lcp.hpp"
 #include "multiversion.hpp"
 #include "pivoting.hpp"
+#include "reductions.hpp"
 #include "unrevised.hpp"
 
 namespace lemke {
@@ -1795,28 +1796,72 @@ int restart(const QPWork& w, const Rows& R, idx r, const std::vector<idx>& neare
     return SOLVED;
 }
 
+// ----------------------------------------------------------------------------- the multiplier LCP
+
+// The fused path's reduction (reductions.hpp's third pair; declared here, its work being
+// QPWork): a strictly convex QP on screened data (ds, lo, up), P's Cholesky factor in w.L,
+// as the LCP (M, g) of its inequality multipliers, of R.m rows; `recover` maps the LCP's
+// answer (w.zz, its basic z's) back to the caller's x, y, z, zb and basis, `check` judges
+// them on the data (kkt_rows).
+struct MultiplierLcp {
+    const Data& ds;
+    const double *lo, *up;
+    QPWork& w;
+
+    // factors (the rows, the substitutions through L, the QR of the equalities, g into w.g),
+    // then with `dense` M = C2 C2' into w.M (gram_rows, 16 rows at a time, the thread's
+    // deadline looked at between them; without, the LCP stays in factored form, C2 = R.C's
+    // columns p..n, as gram solves it). OK, DEPENDENT_EQUALITIES or a stop.
+    int apply(Rows& R, bool dense) {
+        int code = factors(ds, lo, up, w, R);
+        if (code != OK || !dense) return code;
+        if ((code = deadline_passed()) >= 0) return code;  // (after the factorizations)
+        for (idx i0 = 0; i0 < R.m; i0 += 16) {  // (a stop here leaves the cache empty: layout dropped it)
+            if (i0 > 0 && (code = deadline_passed()) >= 0) return code;
+            gram_rows(R.C, R.p, i0, std::min<idx>(i0 + 16, R.m), w.M);
+        }
+        return OK;
+    }
+    // apply on the factors kept from the same matrices (the cache): g alone, by factors'
+    // operations (right_hand_sides); M is w.M as it was.
+    Rows apply_vectors() { return right_hand_sides(ds, lo, up, w); }
+    // The LCP's answer (w.zz, the basic z's lcp_basic[:k]) mapped back: the basis as
+    // mlcp_basis numbers it into basic (res.k, res.pairs), the point from the factors (x,
+    // the equality multipliers), caller_form (qpsolvers' y, z, zb; x snapped to its active
+    // bounds).
+    void recover(const Rows& R, const idx* lcp_basic, idx k, const Outs& o, idx* basic,
+                 Result& res) {
+        idx n = ds.n(), p = R.p, m = R.m;
+        // mlcp_basis reads the LCP's basis whole before it writes there (they may share `basic`)
+        idx* lb_copy = w.lcp_basic;
+        for (idx i = 0; i < k; ++i) lb_copy[i] = lcp_basic[i];
+        mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k, basic, w.bflags, res.k, res.pairs);
+        double* v = w.v;
+        for (idx t = p; t < n; ++t) v[t] = -w.c[t];
+        for (idx i = 0; i < m; ++i) {
+            double zi = w.zz[i];
+            if (zi != 0.0) {
+                const double* Ci = R.C.row(i);
+                for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
+            }
+        }
+        point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
+        caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
+    }
+    // The KKT check on the data at the fused path's tolerance, min(tol, STRICT_TOL).
+    bool check(const Outs& o, double tol) {
+        return kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    }
+};
+
 // solve's end from the multiplier LCP's answer (w.zz, the basic z's lcp_basic[:k]): the
 // basis as mlcp_basis numbers it into basic (res.k, res.pairs), the point, caller_form and
-// the KKT check on the data; whether it passes.
+// the KKT check on the data (MultiplierLcp's recover and check); whether it passes.
 bool finish(const Data& ds, const double* lo, const double* up, QPWork& w, const Rows& R,
             const idx* lcp_basic, idx k, double tol, const Outs& o, idx* basic, Result& res) {
-    idx n = ds.n(), p = R.p, m = R.m;
-    // mlcp_basis reads the LCP's basis whole before it writes there (they may share `basic`)
-    idx* lb_copy = w.lcp_basic;
-    for (idx i = 0; i < k; ++i) lb_copy[i] = lcp_basic[i];
-    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k, basic, w.bflags, res.k, res.pairs);
-    double* v = w.v;
-    for (idx t = p; t < n; ++t) v[t] = -w.c[t];
-    for (idx i = 0; i < m; ++i) {
-        double zi = w.zz[i];
-        if (zi != 0.0) {
-            const double* Ci = R.C.row(i);
-            for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
-        }
-    }
-    point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
-    caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
-    return kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    MultiplierLcp red{ds, lo, up, w};
+    red.recover(R, lcp_basic, k, o, basic, res);
+    return red.check(o, tol);
 }
 
 }  // namespace
@@ -2285,7 +2330,7 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
     if (hit && same_structure(dt, lo, up, w, p, m, pat)) {
         // the matrices of the last solve on this thread: its factors and M, new right-hand sides
         sparse_ready(dt, w);
-        R = right_hand_sides(ds, lo, up, w);
+        R = MultiplierLcp{ds, lo, up, w}.apply_vectors();
     } else {
         if (hit) {  // the same matrices, another structure: the full screen's Ps (the same bits)
             thread_local std::vector<double> ps;
@@ -2298,16 +2343,11 @@ Result solve(const Data& dt, int method, idx max_pivots, double pivot_tol, doubl
             if (res.code == NOT_DEFINITE && ds.P.p == scr.data()) screen_of() = {true, dt};
             return res;
         }
-        int code = factors(ds, lo, up, w, R);
+        // the multiplier LCP (M, g): factors, then M = C2 C2' (the deadline looked at between)
+        int code = MultiplierLcp{ds, lo, up, w}.apply(R, true);
         if (code != OK) {
             res.code = code;
             return res;
-        }
-        if ((res.code = deadline_passed()) >= 0) return res;  // (after the factorizations)
-        res.code = OK;
-        for (idx i0 = 0; i0 < m; i0 += 16) {  // (a stop here leaves the cache empty: layout dropped it)
-            if (i0 > 0 && (res.code = deadline_passed()) >= 0) return res;
-            gram_rows(R.C, p, i0, std::min<idx>(i0 + 16, m), w.M);
         }
         if ((res.code = deadline_passed()) >= 0) return res;
         remember(dt, ds, lo, up, w, R.m_g, scr);
@@ -2425,7 +2465,7 @@ Result solve_gram(const Data& dt, idx max_pivots, double pivot_tol, double tie_t
         }
     }
     Rows R;
-    int code = factors(ds, lo, up, w, R);
+    int code = MultiplierLcp{ds, lo, up, w}.apply(R, false);  // (its LCP in factored form)
     if (code != OK) {
         res.code = code;
         return res;
@@ -2466,45 +2506,105 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
     idx n = dt.n();
     thread_local std::vector<double> scr;
     scr.resize(static_cast<std::size_t>(n * (2 * n + 2) + 1));
-    double* Ps = scr.data();
-    double* lo = Ps + n * n;
-    double* up = lo + n;
-    double* Lw = up + n;
-    if (!screen(dt, Ps, lo, up)) {
+    // the box LCP (reductions.hpp's BoxQp): screen's Ps, lo, up into scr, P's factor after them
+    reductions::BoxQp red{dt};
+    double* rw = scr.data();
+    double* Lw = rw + reductions::BoxQp::work_length(n);
+    if (!red.apply(rw)) {
         res.code = BAD_INPUT;
         return res;
     }
-    Mat<const double> P(Ps, n, n);
+    Mat<const double> P = red.M(rw);
     if (!cholesky(P, Mat<double>(Lw, n, n))) {
         res.code = deadline_passed() >= 0 ? TIME_LIMIT : NOT_DEFINITE;
         return res;
     }
     double* buf = out;
-    boxed::SolveResult r = boxed::solve(P, dt.q, lo, up, warm, 0, max_pivots, pivot_tol,
-                                        tie_tol, tol, buf, final);
+    boxed::SolveResult r = boxed::solve(P, red.q(), red.lo(rw), red.up(rw), warm, 0, max_pivots,
+                                        pivot_tol, tie_tol, tol, buf, final);
     res.pivots = r.pivots;
     if (!(r.code == SOLVED && r.ok)) {
         res.code = is_stop(r.code) ? r.code : NOT_SOLVED;
         return res;
     }
-    const double* x = buf;
+    const double* x = buf;  // (the run's z)
     const double* w = buf + n;
     BoxOutLayout L{n};  // (its zb after boxed's buffer)
     double* zb = out + L.zb();
-    for (idx j = 0; j < n; ++j) zb[j] = -w[j];
-    Data ds = dt;
-    ds.P = P;
-    ds.lb = lo;
-    ds.ub = up;
-    // (b and h passed as y and z: empty for a box-only QP)
-    if (!kkt_check(ds, x, dt.b, dt.h, zb, pmin(tol, STRICT_TOL), out + L.stats())) {
+    red.recover(w, zb);
+    if (!red.check(rw, x, zb, pmin(tol, STRICT_TOL), out + L.stats())) {
         res.code = CHECK_FAILED;
         return res;
     }
-    box_basis(lo, up, n, final, r.k, r.m, final + n, res.k, res.pairs);
+    red.recover_basis(rw, final, r.k, r.m, final + n, res.k, res.pairs);
     res.code = OK;
     return res;
 }
 
 }  // namespace qp
+
+// ----------------------------------------------------------------------------- reductions.hpp's
+// ends of the multiplier LCP, for the tests
+
+namespace reductions {
+
+namespace {
+
+// screen, P's factor and MultiplierLcp's apply (dense) on this thread's work; the code.
+int multiplier_prepare(const qp::Data& d, std::vector<double>& scr, qp::Data& ds, qp::Rows& R) {
+    using namespace qp;
+    if (!screened(d, scr, ds)) return BAD_INPUT;
+    idx p, m;
+    row_counts(d, ds.lb, ds.ub, p, m);
+    QPWork& w = work();
+    w.layout(d.n(), p, m, true);  // (drops the factor cache: solve factors afresh after this)
+    if (!cholesky(ds.P, w.L)) return deadline_passed() >= 0 ? TIME_LIMIT : NOT_DEFINITE;
+    return MultiplierLcp{ds, ds.lb, ds.ub, w}.apply(R, true);
+}
+
+}  // namespace
+
+int multiplier_apply(const qp::Data& d, std::vector<double>& M, std::vector<double>& g,
+                     idx& m) {
+    thread_local std::vector<double> scr;
+    qp::Data ds;
+    qp::Rows R;
+    m = 0;
+    int code = multiplier_prepare(d, scr, ds, R);
+    if (code != qp::OK) return code;
+    qp::QPWork& w = qp::work();
+    m = R.m;
+    M.assign(w.M.p, w.M.p + m * m);
+    g.assign(w.g, w.g + m);
+    return qp::OK;
+}
+
+int multiplier_recover(const qp::Data& d, const double* zz, idx m_given, const idx* lcp_basic,
+                       idx k, double tol, double* out, idx* basic, idx& count, idx& pairs,
+                       bool& passed) {
+    thread_local std::vector<double> scr;
+    qp::Data ds;
+    qp::Rows R;
+    count = pairs = 0;
+    passed = false;
+    idx n = d.n(), p0 = d.p0(), m0 = d.m0();
+    for (idx t = 0; t < qp::OutLayout{n, p0, m0}.basis(); ++t) out[t] = 0.0;
+    int code = multiplier_prepare(d, scr, ds, R);
+    if (code != qp::OK) return code;
+    if (m_given != R.m || k < 0 || k > R.m) return qp::BAD_INPUT;
+    for (idx i = 0; i < k; ++i)
+        if (lcp_basic[i] < 0 || lcp_basic[i] >= R.m) return qp::BAD_INPUT;
+    qp::QPWork& w = qp::work();
+    for (idx i = 0; i < R.m; ++i) w.zz[i] = pmax(zz[i], 0.0);  // (solve's clip)
+    qp::MultiplierLcp red{ds, ds.lb, ds.ub, w};
+    qp::Result res;
+    qp::Outs o = qp::out_views(out, n, p0, m0);
+    red.recover(R, lcp_basic, k, o, basic, res);
+    passed = red.check(o, tol);
+    count = res.k;
+    pairs = res.pairs;
+    return qp::OK;
+}
+
+}  // namespace reductions
 }  // namespace lemke
