@@ -1,7 +1,8 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
 // qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box), and a few pieces whose bits the tests check
 // (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts,
-// qp_warm_ends, qp_cache_hits).
+// qp_warm_ends, qp_cache_hits; reductions.hpp's pairs: qp_box_apply, qp_box_recover,
+// qp_multiplier_lcp, qp_multiplier_recover).
 // Sizes are checked here, before the GIL is released: where the kernel answers data
 // of mismatched shapes (screen: False; solve, solve_gram: BAD_INPUT) this answers the same;
 // where it would read or write out of bounds this raises ValueError. Arrays of the wrong
@@ -217,8 +218,8 @@ std::tuple<std::int64_t, std::int64_t> box_basis(In1 lo, In1 up, IdxOut final, s
     return {count, pairs};
 }
 
-// reductions.hpp's pairs, for tests/test_reductions_core.py. A new float64 array of n
-// entries (rows x cols) owning its memory, zeros.
+// reductions.hpp's pairs, for tests/test_reductions_core.py. `count` zeroed doubles that
+// `owner` frees (for the new arrays made on them).
 double* owned(idx count, nb::capsule& owner) {
     double* p = new double[count > 0 ? static_cast<std::size_t>(count) : 1]();
     owner = nb::capsule(p, [](void* q) noexcept { delete[] static_cast<double*>(q); });
