@@ -6,8 +6,9 @@
 // used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis), the box
 // kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
 // (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
-// entry _core.friction_basis) and the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
-// through _core.mlcp_basis; its solve refined, as that routine's was). Gradients and a sparse
+// entry _core.friction_basis), the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
+// through _core.mlcp_basis; its solve refined, as that routine's was) and the games kind
+// (SupportBasis, used by _games._resolve_float through _core.game_basis). Gradients and a sparse
 // engine are to plug in here: hence the transpose solve.
 #pragma once
 #include <algorithm>
