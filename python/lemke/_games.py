@@ -46,8 +46,7 @@ _MATRICES = (2, 2)
 #: None, since the native front calls the engine itself).
 _LEMKE_HOWSON = _core.lemke_howson
 _TRACE = _core.games_trace
-_CHECK = _core.games_check
-_GAME_BASIS = _core.game_basis  # the games kind's basis system (_resolve_float)
+_GAME_BASIS = _core.game_basis  # the games kind's basis system (_resolve_float; its check)
 _FRONT = _core.games_front  # solve_bimatrix's commonest call whole (src/python_games.cpp)
 _NOT_FINITE = _core.GAMES_NOT_FINITE  # a payoff is not finite: nothing done
 _UNCHECKED = _core.GAMES_UNCHECKED  # every label present, at a point that fails the check

@@ -552,8 +552,7 @@ struct SupportBasis {
     SupportBasis(Mat<const double> A_, Mat<const double> B_, double* work, idx* ints,
                  idx* piv = nullptr)
         : A(A_), B(B_), S(ints + (A_.rows + A_.cols)), J(S + A_.rows), T(J + A_.cols),
-          I(T + A_.cols), bx{B_, S, 0, work, piv}, by{A_, T, 0, work, piv} {
-        marks = ints;
+          I(T + A_.cols), bx{B_, S, 0, work, piv}, by{A_, T, 0, work, piv}, marks(ints) {
         idx k = std::min(A_.rows, A_.cols) + 1;
         by.a = work + k * (k + 2);
         if (piv != nullptr) by.piv = piv + 2 * k;
