@@ -5,12 +5,16 @@
 // never reaches the engine.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "lemke/basis.hpp"
 #include "lemke/games.hpp"
 #include "python_arrays.hpp"
 
@@ -158,6 +162,67 @@ void front_init(nb::handle result_cls, nb::handle solved, nb::handle method, Vec
     gf.on = numpy_layout().ok;
 }
 
+// The seam's games basis system (basis.hpp's SupportBasis) on the caller's payoffs, for
+// _games._resolve_float: the vertex pair x_basic (P's n labels) and y_basic (Q's m labels),
+// each label in [0, m + n) (ValueError otherwise; repeats make the blocks not square), its
+// two bordered blocks factored, the point (x, y) and, with tol, games::check's verdict and
+// out = (regret, row payoff, column payoff). Returns (code, x, y, out, v): code 0 the point
+// passes the check (or no tol given: out None), 1 it fails, 2 no square blocks (|S| != |J|,
+// |T| != |I| or an empty support), a block singular or its solution not finite, 3 a weight
+// below -SupportBasis::CLIP (x, y None with 2 and 3), games::NOT_FINITE a payoff is not
+// finite; v: rhs (one entry per row of x's block, then of y's) solved by diag(x's block,
+// y's block), or with transpose by its transpose, None without rhs or a point or when that
+// solve is not finite.
+std::tuple<int, nb::object, nb::object, nb::object, nb::object> game_basis(
+    Payoffs A, Payoffs B, const std::vector<std::int64_t>& x_basic,
+    const std::vector<std::int64_t>& y_basic, std::optional<double> tol, std::optional<VecIn> rhs,
+    bool transpose) {
+    payoffs_ok("game_basis", A, B, true);
+    idx m = len(A.shape(0)), n = len(A.shape(1));
+    if (len(x_basic.size()) != n || len(y_basic.size()) != m)
+        throw nb::value_error("game_basis: x_basic must hold n labels, y_basic m");
+    std::vector<idx> labels(static_cast<std::size_t>(m + n));
+    for (idx t = 0; t < m + n; ++t) {
+        std::int64_t v = t < n ? x_basic[static_cast<std::size_t>(t)]
+                               : y_basic[static_cast<std::size_t>(t - n)];
+        if (v < 0 || v >= m + n) throw nb::value_error("game_basis: a label is out of [0, m + n)");
+        labels[static_cast<std::size_t>(t)] = v;
+    }
+    lemke::Mat<const double> Am(A.data(), m, n), Bm(B.data(), m, n);
+    std::vector<double> work(static_cast<std::size_t>(lemke::SupportBasis::work_size(m, n)));
+    std::vector<idx> ints(static_cast<std::size_t>(lemke::SupportBasis::index_size(m, n)));
+    std::vector<idx> piv(static_cast<std::size_t>(lemke::SupportBasis::piv_size(m, n)));
+    lemke::SupportBasis basis(Am, Bm, work.data(), ints.data(), piv.data());
+    bool square = basis.apply(labels.data());
+    idx k = basis.bx.k + basis.by.k;
+    if (square && rhs && len(rhs->shape(0)) != k)
+        throw nb::value_error("game_basis: rhs must have one entry per row of the two blocks");
+    nb::object x = new_array(m), y = new_array(n), out = new_array(3);
+    nb::object v = rhs && square ? new_array(k) : nb::none();
+    auto data = [](const nb::object& a) {
+        return reinterpret_cast<double*>(reinterpret_cast<const ArrayFields*>(a.ptr())->data);
+    };
+    double *xd = data(x), *yd = data(y), *od = data(out), *vd = v.is_none() ? nullptr : data(v);
+    int code;
+    bool solved = false;
+    {
+        nb::gil_scoped_release release;
+        if (!lemke::all_finite(A.data(), m * n) || !lemke::all_finite(B.data(), m * n)) {
+            code = lemke::games::NOT_FINITE;
+        } else if (!square || !basis.point(xd, yd)) {
+            code = basis.negative ? 3 : 2;
+        } else {
+            if (vd != nullptr)
+                solved = transpose ? basis.solve_transpose(rhs->data(), vd)
+                                   : basis.solve(rhs->data(), vd);
+            code = !tol || basis.check(xd, yd, *tol, od) ? 0 : 1;
+        }
+    }
+    bool point = code == 0 || code == 1;
+    return {code, point ? x : nb::none(), point ? y : nb::none(),
+            point && tol ? out : nb::none(), solved ? v : nb::none()};
+}
+
 }  // namespace
 
 // (declared in python_arrays.hpp: solve_bimatrix's entry calls it too)
@@ -235,4 +300,6 @@ void bind_games(nb::module_& m) {
     m.attr("GAMES_HISTORY") = lemke::games::HISTORY;
     m.attr("GAMES_NOT_FINITE") = lemke::games::NOT_FINITE;
     m.attr("GAMES_UNCHECKED") = lemke::games::UNCHECKED;
+    m.def("game_basis", &game_basis, "A"_a, "B"_a, "x_basic"_a, "y_basic"_a, "tol"_a = nb::none(),
+          "rhs"_a = nb::none(), "transpose"_a = false);
 }

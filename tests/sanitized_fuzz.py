@@ -35,6 +35,9 @@ and again in the test's own process, fingerprint against fingerprint).
 * the box batch's bindings boxed.islands and boxed.batch called directly (each island's rows
   judged in one pass, branch boxsmall) with random and extreme offsets, friction indices,
   flags, row states and island ranges: an answer or a ValueError / TypeError.
+* the seam's games basis system _core.game_basis (basis.hpp's SupportBasis, branch
+  gamesbasis) on games of 1-40 actions a side with random, final and malformed vertex
+  pairs: an answer of the game's sizes or a ValueError / TypeError.
 * the core's reductions' private ends (src/lemke/reductions.hpp, branch reductions):
   boxed.friction_recover, qp_box_apply, qp_box_recover, qp_multiplier_lcp and
   qp_multiplier_recover on sizes 0-20 and some larger, with answers of the right length and
@@ -432,7 +435,8 @@ def fuzz(run):
         unaligned_entries(run)
         friction_seam(run, np.random.default_rng(2034))
         mlcp_seam(run, np.random.default_rng(2035))
-        reductions_core(run, np.random.default_rng(2036))
+        games_seam(run, np.random.default_rng(2036))
+        reductions_core(run, np.random.default_rng(2037))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -967,6 +971,76 @@ def mlcp_seam(run, rng):
             {"E": E2[2], "e": e2, "rhs": r2}[where][1] = bad
             run.attempt(f"fuzz seam mlcp {bad} in {where}", refused_or(
                 lambda: _mlcp_sizes(6, _core.mlcp_basis(E2, e2, 2, red, und, vb, 1e-9, r2, where == "rhs"))))
+
+
+# --- the seam's games basis system (branch gamesbasis): _core.game_basis called directly on
+# games of 1-40 actions a side (and some larger), with the kernels' final vertex pairs,
+# random ones (supports of unequal sizes, empty and singular blocks among them), labels
+# repeated, extreme and out of range, label lists of other lengths, rhs of the right length
+# and one off, both solves, with and without tol, NaN and infinite payoffs and malformed
+# payoff arrays: an answer whose arrays have the game's sizes (x m, y n, out 3, the solve
+# one entry per row of the two blocks), or a ValueError / TypeError; never a read or write
+# outside the arrays.
+
+def _game_sizes(m, n, got):
+    """game_basis's answer (code, x, y, out, v) checked for its sizes."""
+    code, x, y, out, v = got
+    if code in (0, 1):
+        if x.shape != (m,) or y.shape != (n,) or (out is not None and out.shape != (3,)):
+            raise AssertionError(f"game_basis: x, y of shapes {x.shape}, {y.shape} for {m} x {n}")
+    elif x is not None or y is not None or out is not None or v is not None:
+        raise AssertionError(f"game_basis: code {code} with a point")
+    if v is not None and (v.ndim != 1 or v.size > 2 * (min(m, n) + 1)):
+        raise AssertionError(f"game_basis: v of shape {v.shape} for {m} x {n}")
+    return got
+
+
+def games_seam(run, rng):
+    from lemke import _games
+    sizes = [(m, n) for m in (1, 2, 3, 5, 8) for n in (1, 2, 4, 7)]
+    sizes += [(int(rng.integers(1, 41)), int(rng.integers(1, 41))) for _ in range(12)] + [(64, 65), (130, 3)]
+    for m, n in sizes:
+        A = rng.integers(0, 3, (m, n)).astype(float) if (m + n) % 2 else rng.normal(size=(m, n))
+        B = rng.integers(0, 3, (m, n)).astype(float) if (m + n) % 3 == 0 else rng.normal(size=(m, n))
+        at = _games._layout(m, n)
+        pairs = []
+        for k in range(0, m + n, max(1, (m + n) // 4)):
+            buf = np.empty(at["length"])
+            _core.lemke_howson(A, B, k, _games._slack_start(m, n), _games._DEFAULT_PARAMS, buf)
+            lab = buf[at["labels"]:].view(np.int64)
+            pairs.append((lab[:n].copy(), lab[n : n + m].copy()))
+        for _ in range(4):
+            p = rng.permutation(m + n)
+            pairs.append((p[:n], p[n:]))
+        for t, (xb, yb) in enumerate(pairs):
+            ks = int(np.count_nonzero(xb < m))
+            kt = int(np.count_nonzero(yb >= m))
+            for length in (ks + kt + 2, ks + kt + 3):
+                rhs = rng.normal(size=length)
+                for tol in (None, 1e-9):
+                    run.attempt(f"fuzz seam games {m} {n} {t} {length} {tol}", refused_or(
+                        lambda: _game_sizes(m, n, _core.game_basis(A, B, xb, yb, tol, rhs, t % 2 == 1))))
+    m, n = 3, 4
+    A, B = rng.normal(size=(m, n)), rng.normal(size=(m, n))
+    xb, yb = np.array([0, 1, 5, 6]), np.array([2, 3, 4])
+    extremes = [0, 6, 7, -1, I64.max, I64.min, 1 << 31, 1 << 62]
+    for t in range(30):
+        xs, ys = xb.copy(), yb.copy()
+        (xs if t % 2 else ys)[int(rng.integers(3))] = extremes[int(rng.integers(len(extremes)))]
+        run.attempt(f"fuzz seam games labels {t}", refused_or(
+            lambda: _game_sizes(m, n, _core.game_basis(A, B, xs, ys, 1e-9, np.ones(7)))))
+    for name, g in ODD.items():
+        run.attempt(f"fuzz seam games {name} A", refused_or(lambda: _core.game_basis(g(A), B, xb, yb, 1e-9)))
+        run.attempt(f"fuzz seam games {name} B", refused_or(lambda: _core.game_basis(A, g(B), xb, yb, 1e-9)))
+        run.attempt(f"fuzz seam games {name} x_basic", refused_or(lambda: _core.game_basis(A, B, g(xb), yb, 1e-9)))
+        run.attempt(f"fuzz seam games {name} rhs", refused_or(
+            lambda: _core.game_basis(A, B, xb, yb, 1e-9, g(np.ones(7)), True)))
+    for bad in (np.nan, np.inf, -np.inf):
+        for where in ("A", "B", "rhs"):
+            A2, B2, r2 = A.copy(), B.copy(), np.ones(7)
+            {"A": A2[2], "B": B2[1], "rhs": r2}[where][1] = bad
+            run.attempt(f"fuzz seam games {bad} in {where}", refused_or(
+                lambda: _game_sizes(m, n, _core.game_basis(A2, B2, xb, yb, 1e-9, r2, where == "rhs"))))
 
 
 # --- the core's reductions as apply/recover pairs (branch reductions, src/lemke/reductions.hpp):

@@ -709,3 +709,275 @@ def test_mlcp_basis_point_is_the_old_one_bit_for_bit():
                 assert new.tobytes() == old.tobytes(), name
                 compared += 1
     assert solved_bases >= 10 and compared >= 60
+
+
+# --- the games kind (branch gamesbasis): SupportBasis through _core.game_basis(A, B,
+# x_basic, y_basic, tol=None, rhs=None, transpose=False) -> (code, x, y, out, v), the
+# re-solve of _games._resolve_float. Checked here without the core: the two bordered blocks
+# built from the labels, their solve and transpose solve against numpy, the point against a
+# Nash check written here (each player's regret against every pure strategy), and the
+# verdicts against the numpy routine it replaced.
+
+def _game_blocks(A, B, x_basic, y_basic):
+    """The bordered blocks of a vertex pair, built here: S (row actions basic in P), J
+    (columns whose slack is not basic in P), T (columns basic in Q), I (rows whose slack
+    is not basic in Q); x's block [B[S, J]' -1; 1 0], y's [A[I, T] -1; 1 0]. None when
+    the sizes differ or a support is empty."""
+    m, n = A.shape
+    S = sorted(i for i in set(x_basic) if i < m)
+    J = sorted(set(range(n)) - {v - m for v in x_basic if v >= m})
+    T = sorted(v - m for v in set(y_basic) if v >= m)
+    I = sorted(set(range(m)) - {v for v in y_basic if v < m})
+    if len(S) != len(J) or len(T) != len(I) or not S or not T:
+        return None
+
+    def bordered(P):
+        k = P.shape[0]
+        K = np.zeros((k + 1, k + 1))
+        K[:k, :k] = P
+        K[:k, k] = -1.0
+        K[k, :k] = 1.0
+        return K
+
+    return S, T, bordered(B[np.ix_(S, J)].T), bordered(A[np.ix_(I, T)])
+
+
+def _nash_regrets(A, B, x, y):
+    """Each player's regret against every pure strategy: max_i (A y)_i - x'A y and
+    max_j (x'B)_j - x'B y (numpy, not the core's games::check)."""
+    Ay, xB = A @ y, x @ B
+    return Ay.max() - x @ Ay, xB.max() - xB @ y
+
+
+def _assert_nash(A, B, x, y, tol=TOL):
+    m, n = A.shape
+    assert x.shape == (m,) and y.shape == (n,)
+    assert x.min() >= 0 and y.min() >= 0
+    assert abs(x.sum() - 1) <= 4 * m * EPS and abs(y.sum() - 1) <= 4 * n * EPS
+    ra, rb = _nash_regrets(A, B, x, y)
+    slack = 64 * EPS * (m + n)
+    assert ra <= tol * np.ptp(A) + slack * np.abs(A).max(), (ra, np.ptp(A))
+    assert rb <= tol * np.ptp(B) + slack * np.abs(B).max(), (rb, np.ptp(B))
+
+
+def _final_bases(A, B, cap=None):
+    """(kernel code, x_basic, y_basic) of Lemke-Howson's final basis dropping each label
+    (with cap: the vertex pair where a path stopped after cap pivots)."""
+    from lemke import _games
+    m, n = A.shape
+    at = _games._layout(m, n)
+    params = _games._DEFAULT_PARAMS.copy()
+    if cap is not None:
+        params[0] = cap
+    for k in range(m + n):
+        buf = np.empty(at["length"])
+        code = _core.lemke_howson(A, B, k, _games._slack_start(m, n), params, buf)[0]
+        labels = buf[at["labels"]:].view(np.int64)
+        yield code, tuple(labels[:n].tolist()), tuple(labels[n : n + m].tolist())
+
+
+def _game_cases(rng, count, top, randoms, stopped=()):
+    """count random games (1 to top - 1 actions a side; normal, integer and badly scaled
+    payoffs in turn) with their vertex pairs: the kernels' final ones, `randoms` random
+    splits of the labels and the pairs where paths stopped after each cap in `stopped`."""
+    for t in range(count):
+        m, n = (int(v) for v in rng.integers(1, top, 2))
+        A, B = _random_game(rng, m, n, t % 3)
+        bases = [b[1:] for b in _final_bases(A, B)]
+        for cap in stopped:
+            bases += [b[1:] for b in _final_bases(A, B, cap)]
+        for _ in range(randoms):
+            p = rng.permutation(m + n)
+            bases.append((tuple(p[:n].tolist()), tuple(p[n:].tolist())))
+        yield t, A, B, bases
+
+
+def _numpy_resolve(A, B, x_basic, y_basic, tol):
+    """main's _games._resolve_float before the seam (numpy.linalg.solve), its verdict and
+    point: None, or (x, y)."""
+    blocks = _game_blocks(A, B, x_basic, y_basic)
+    if blocks is None:
+        return None
+    m, n = A.shape
+    S, T, Kx, Ky = blocks
+    x, y = np.zeros(m), np.zeros(n)
+    try:
+        for K, sup, v in ((Kx, S, x), (Ky, T, y)):
+            rhs = np.zeros(K.shape[0])
+            rhs[-1] = 1.0
+            v[sup] = np.linalg.solve(K, rhs)[:-1]
+    except np.linalg.LinAlgError:
+        return None
+    if x.min() < -1e-12 or y.min() < -1e-12:
+        return None
+    x, y = np.maximum(x, 0.0), np.maximum(y, 0.0)
+    x /= x.sum()
+    y /= y.sum()
+    return (x, y) if _core.games_check(A, B, x, y, tol, np.empty(3)) else None
+
+
+def _random_game(rng, m, n, kind):
+    if kind == 0:
+        return rng.normal(size=(m, n)), rng.normal(size=(m, n))
+    if kind == 1:  # integer payoffs: degenerate games
+        return rng.integers(0, 3, (m, n)).astype(float), rng.integers(0, 3, (m, n)).astype(float)
+    return rng.normal(size=(m, n)) * 1e4, rng.random((m, n)) * 1e-3  # scales far apart
+
+
+@pytest.mark.parametrize("transpose", [False, True])
+def test_game_basis_solves_against_numpy(transpose):
+    """The blocks of equilibrium bases (the kernels' final ones) and of random vertex pairs:
+    v = diag(x's block, y's block)^-1 rhs (or of its transpose) against numpy on the blocks
+    built here; the point's support weights against numpy's solution, clipped and
+    normalized."""
+    rng = np.random.default_rng(31)
+    solved = 0
+    for t, A, B, bases in _game_cases(rng, 60, 12, 5):
+        for xb, yb in bases:
+            blocks = _game_blocks(A, B, xb, yb)
+            k = 0 if blocks is None else blocks[2].shape[0] + blocks[3].shape[0]
+            rhs = rng.normal(size=k)
+            code, x, y, out, v = _core.game_basis(A, B, xb, yb, TOL, rhs if k else None, transpose)
+            if blocks is None:
+                assert code == 2 and x is None and y is None and out is None and v is None
+                continue
+            S, T, Kx, Ky = blocks
+            if min(np.linalg.svd(K, compute_uv=False)[-1] for K in (Kx, Ky)) < 1e-8:
+                continue  # (near singular: the LU's answer and numpy's far apart)
+            assert code in (0, 1, 3)
+            Kb = np.zeros((k, k))
+            kx = Kx.shape[0]
+            Kb[:kx, :kx], Kb[kx:, kx:] = Kx, Ky
+            Ks = Kb.T if transpose else Kb
+            if code == 3:  # a weight below -1e-12: numpy's solution has one too
+                assert x is None and y is None and v is None
+                e = np.zeros(k)
+                e[kx - 1] = e[k - 1] = 1.0
+                ref = np.linalg.solve(Kb, e)
+                assert min(ref[: kx - 1].min(), ref[kx:-1].min()) < -1e-12 + 1e-9
+                continue
+            # (normwise: the transpose solve by the LU of the block is backward stable in norm,
+            # not row by row)
+            r = np.abs(Ks @ v - rhs).max()
+            assert r <= 8 * (k + 1) * EPS * (np.abs(Ks).sum(axis=1).max() * np.abs(v).max() + np.abs(rhs).max())
+            assert _close_to_numpy(Ks, v, rhs)
+            for K, sup, got in ((Kx, S, x), (Ky, T, y)):
+                e = np.zeros(K.shape[0])
+                e[-1] = 1.0
+                ref = np.maximum(np.linalg.solve(K, e)[:-1], 0.0)
+                ref /= ref.sum()
+                bound = 64 * K.shape[0] * EPS * np.linalg.cond(K, 1)
+                assert np.max(np.abs(got[sup] - ref)) <= bound
+                assert np.all(np.delete(got, sup) == 0.0) and not np.signbit(got).any()
+            solved += code == 0
+    assert solved >= 300
+
+
+def test_game_basis_point_is_a_nash_equilibrium():
+    """On every final basis of random nondegenerate games the point passes, and it is an
+    equilibrium by the Nash check written here; whatever passes (random vertex pairs of
+    degenerate games included) is one too, and the verdict out = (regret, payoffs) is the
+    core's games::check's."""
+    rng = np.random.default_rng(32)
+    passed = 0
+    for t in range(80):
+        m, n = (int(v) for v in rng.integers(1, 16, 2))
+        A, B = _random_game(rng, m, n, t % 3)
+        for code_k, xb, yb in _final_bases(A, B):
+            code, x, y, out, _ = _core.game_basis(A, B, xb, yb, TOL)
+            if t % 3 != 1:
+                assert code_k == int(lemke.Status.SOLVED) and code == 0
+            if code == 0:
+                _assert_nash(A, B, x, y)
+                ref = np.empty(3)
+                assert _core.games_check(A, B, x, y, TOL, ref) and ref.tobytes() == out.tobytes()
+                # without tol: the same point, unchecked
+                code2, x2, y2, out2, _ = _core.game_basis(A, B, list(xb), np.array(yb))
+                assert code2 == 0 and out2 is None
+                assert x2.tobytes() == x.tobytes() and y2.tobytes() == y.tobytes()
+                passed += 1
+    assert passed >= 800
+
+
+def test_game_basis_verdicts_are_the_numpy_routines():
+    """The re-solve's verdict (an equilibrium or None) through the seam is the numpy
+    routine's it replaced on equilibrium bases, random vertex pairs and the bases of paths
+    stopped early, of random and degenerate games; the points agree to rounding (their
+    bits may differ: numpy's LAPACK and the kernels' LU round differently)."""
+    from lemke import _games
+    rng = np.random.default_rng(33)
+    seen = {True: 0, False: 0}
+    for t, A, B, bases in _game_cases(rng, 150, 10, 6, (1, 3)):
+        m, n = A.shape
+        for xb, yb in bases:
+            old = _numpy_resolve(A, B, xb, yb, TOL)
+            new = _games._resolve_float(A, B, _games.GameBasis(m, n, tuple(sorted(xb)), tuple(sorted(yb))), TOL)
+            assert (old is None) == (new is None), (t, xb, yb)
+            if new is not None:
+                assert np.max(np.abs(new[0] - old[0])) <= 1e-12 and np.max(np.abs(new[1] - old[1])) <= 1e-12
+            seen[new is not None] += 1
+    assert seen[True] >= 500 and seen[False] >= 300
+
+
+def test_game_basis_degenerate_and_refused():
+    """Degenerate games: a repeated column (a singular block), a weight below -1e-12
+    (refused: code 3), supports of unequal sizes, empty supports; bad labels and payoffs
+    refused; the 36 x 39 game whose path ends UNCHECKED re-solved by the seam into an
+    equilibrium, the answer solve_bimatrix gives."""
+    from pathlib import Path
+    from lemke import _games
+    # a repeated column: y's block [A[I, T] -1; 1 0] with T = {0, 1} and A[:, 0] == A[:, 1]
+    A = np.array([[1.0, 1.0], [0.0, 0.0]])
+    B = np.array([[1.0, 0.0], [0.0, 1.0]])
+    assert _core.game_basis(A, B, (0, 1), (2, 3), TOL)[0] == 2  # S = {0, 1}, T = {0, 1}
+    assert _numpy_resolve(A, B, (0, 1), (2, 3), TOL) is None
+    # unequal sizes, an empty support: no square block
+    assert _core.game_basis(A, B, (0, 2), (2, 3), TOL)[0] == 2  # S = {0}, J = {0, 1}
+    assert _core.game_basis(A, B, (2, 3), (0, 1), TOL)[0] == 2  # S and T empty
+    # a weight below -1e-12: matching pennies' supports with one payoff flipped
+    A = np.array([[1.0, -1.0], [-1.0, 1.0]])
+    B = np.array([[-1.0, 1.0], [1.0, -1.0]])
+    code, x, y, out, _ = _core.game_basis(A, B, (0, 1), (2, 3), TOL)
+    assert code == 0
+    _assert_nash(A, B, x, y)
+    assert np.array_equal(x, [0.5, 0.5]) and np.array_equal(y, [0.5, 0.5])
+    # x's block: x_0 (b00 - b01) = x_1 (b11 - b10) and x_0 + x_1 = 1
+    Bp = np.array([[-1.0, 3.0], [1.0, -1.0]])  # x = (1/3, 2/3): an equilibrium
+    Bn = np.array([[1.0, 0.0], [2.0, 0.0]])    # x = (2, -1): refused
+    code, x, y, out, _ = _core.game_basis(A, Bp, (0, 1), (2, 3), TOL)
+    assert code == 0 and np.allclose(x, [1 / 3, 2 / 3], rtol=0, atol=4 * EPS)
+    _assert_nash(A, Bp, x, y)
+    code, x, y, out, v = _core.game_basis(A, Bn, (0, 1), (2, 3), TOL, np.ones(6))
+    assert code == 3 and x is None and y is None and out is None and v is None
+    assert _numpy_resolve(A, Bn, (0, 1), (2, 3), TOL) is None
+    # bad arguments
+    with pytest.raises(ValueError):
+        _core.game_basis(A, B, (0, 1, 2), (2, 3), TOL)  # n labels of P
+    with pytest.raises(ValueError):
+        _core.game_basis(A, B, (0, 4), (2, 3), TOL)  # a label out of [0, m + n)
+    with pytest.raises(ValueError):
+        _core.game_basis(A, B, (0, -1), (2, 3), TOL)
+    with pytest.raises(ValueError):
+        _core.game_basis(A, B, (0, 1), (2, 3), TOL, np.ones(5))  # rhs: 3 + 3 rows
+    with pytest.raises(ValueError):
+        _core.game_basis(A, B[:, :1], (0, 1), (2, 3), TOL)
+    with pytest.raises(ValueError):
+        _core.game_basis(np.zeros((0, 2)), np.zeros((0, 2)), (0, 1), (), TOL)
+    An = A.copy()
+    An[1, 1] = np.nan
+    assert _core.game_basis(An, B, (0, 1), (2, 3), TOL)[0] == _core.GAMES_NOT_FINITE
+    # repeated labels: no square block (a label in both polytopes, or twice in one)
+    assert _core.game_basis(A, B, (0, 0), (2, 3), TOL)[0] == 2
+    # the path that ends UNCHECKED (tests/data/games/): its basis re-solved
+    d = np.load(Path(__file__).parent / "data" / "games" / "unchecked_36x39.npz")
+    A, B, k = d["A"].astype(float), d["B"].astype(float), int(d["k"])
+    code_k, xb, yb = list(_final_bases(A, B))[k]
+    assert code_k == _core.GAMES_UNCHECKED
+    code, x, y, out, _ = _core.game_basis(A, B, xb, yb, TOL)
+    assert code == 0
+    _assert_nash(A, B, x, y)
+    assert _numpy_resolve(A, B, xb, yb, TOL) is not None
+    res = lemke.solve_bimatrix(A, B, init_label=k)
+    assert res.status == lemke.Status.SOLVED and res.restarts >= 1
+    assert np.asarray(res.x).tobytes() == x.tobytes() and np.asarray(res.y).tobytes() == y.tobytes()
+    assert res.regret == out[0] and res.payoffs == (out[1], out[2])

@@ -46,7 +46,7 @@ _MATRICES = (2, 2)
 #: None, since the native front calls the engine itself).
 _LEMKE_HOWSON = _core.lemke_howson
 _TRACE = _core.games_trace
-_CHECK = _core.games_check
+_GAME_BASIS = _core.game_basis  # the games kind's basis system (_resolve_float; its check)
 _FRONT = _core.games_front  # solve_bimatrix's commonest call whole (src/python_games.cpp)
 _NOT_FINITE = _core.GAMES_NOT_FINITE  # a payoff is not finite: nothing done
 _UNCHECKED = _core.GAMES_UNCHECKED  # every label present, at a point that fails the check
@@ -486,35 +486,16 @@ def _supports(basis: GameBasis):
 
 
 def _resolve_float(A, B, basis, tol):
-    """Solve the support system of ``basis`` in floating point; the checked point or None."""
+    """Solve the support system of ``basis`` in floating point; the checked point
+    ``(x, y, out)`` (out: regret, row payoff, column payoff) or None.  One call to the
+    games kind's basis system (``_core.game_basis``: src/lemke/basis.hpp's SupportBasis,
+    the two bordered blocks of the supports and tight sets of ``_supports`` solved by the
+    kernels' LU, a weight below -1e-12 refused, the others clipped at 0 and normalized,
+    then ``games::check``)."""
     if basis is None:
         return None
-    m, n = basis.m, basis.n
-    S, J, T, I = _supports(basis)
-    if len(S) != len(J) or len(T) != len(I) or not S or not T:
-        return None
-    x = np.zeros(m)
-    y = np.zeros(n)
-    try:
-        for P, sup, tight, v in ((B, S, J, x), (A.T, T, I, y)):
-            k = len(sup)
-            M = np.zeros((k + 1, k + 1))
-            M[:k, :k] = P[np.ix_(sup, tight)].T
-            M[:k, k] = -1.0
-            M[k, :k] = 1.0
-            rhs = np.zeros(k + 1)
-            rhs[k] = 1.0
-            v[sup] = np.linalg.solve(M, rhs)[:k]
-    except np.linalg.LinAlgError:
-        return None
-    if x.min() < -1e-12 or y.min() < -1e-12:
-        return None
-    x = np.maximum(x, 0.0)
-    y = np.maximum(y, 0.0)
-    x /= x.sum()
-    y /= y.sum()
-    out = np.empty(3)
-    return (x, y, out) if _CHECK(A, B, x, y, tol, out) else None
+    code, x, y, out, _ = _GAME_BASIS(A, B, basis.x_basic, basis.y_basic, tol)
+    return (x, y, out) if code == 0 else None
 
 
 def _certify(A, B, k, basis, pivots, restarts, method, cap, path=None):

@@ -6,14 +6,17 @@
 // used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis), the box
 // kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
 // (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
-// entry _core.friction_basis) and the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
-// through _core.mlcp_basis; its solve refined, as that routine's was). Gradients and a sparse
+// entry _core.friction_basis), the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
+// through _core.mlcp_basis; its solve refined, as that routine's was) and the games kind
+// (SupportBasis, used by _games._resolve_float through _core.game_basis). Gradients and a sparse
 // engine are to plug in here: hence the transpose solve.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 
 #include "boxed.hpp"
 #include "certify.hpp"
+#include "games.hpp"
 #include "linalg.hpp"
 
 namespace lemke {
@@ -484,6 +487,181 @@ struct MlcpBasis {
     // y = E x + e (N entries, double-double) and check_mlcp's verdict.
     bool check(const double* x, double tol, double* y, double& residual) const {
         return check_mlcp(E, e, n, x, tol, y, residual);
+    }
+};
+
+// numpy's sum of a float64 vector (add.reduce's pairwise_sum, numpy 2.x: under 8 entries a
+// running sum from 0.0; up to 128 eight running sums, added ((0+1)+(2+3))+((4+5)+(6+7)), the
+// rest one by one; beyond, halves of multiples of 8 summed apart), bit for bit: the games
+// kind's point is normalized by it, as _games._resolve_float's numpy code was.
+inline double numpy_sum(const double* a, idx n) {
+    if (n < 8) {
+        double res = 0.0;
+        for (idx i = 0; i < n; ++i) res += a[i];
+        return res;
+    }
+    if (n <= 128) {
+        double r[8];
+        for (idx j = 0; j < 8; ++j) r[j] = a[j];
+        idx i = 8;
+        for (; i < n - n % 8; i += 8)
+            for (idx j = 0; j < 8; ++j) r[j] += a[i + j];
+        double res = ((r[0] + r[1]) + (r[2] + r[3])) + ((r[4] + r[5]) + (r[6] + r[7]));
+        for (; i < n; ++i) res += a[i];
+        return res;
+    }
+    idx n2 = n / 2;
+    n2 -= n2 % 8;
+    return numpy_sum(a, n2) + numpy_sum(a + n2, n - n2);
+}
+
+// The games kind (named so as not to clash with Python's GameBasis): a vertex pair of the
+// best-response polytopes (A, B m x n; labels 0..m-1 the row actions, m..m+n-1 the column
+// actions), given as P's n basic labels then Q's m (the kernels' final labels, or a
+// GameBasis's x_basic + y_basic). apply reads the supports and tight sets off them: S the
+// row actions basic in P (x's support) and J the columns whose slack is not basic in P (the
+// column player's best responses), T the columns basic in Q (y's support) and I the rows
+// whose slack is not basic in Q, each ascending (as _games._supports). It refuses |S| != |J|,
+// |T| != |I| or an empty support. The two bordered blocks (build), one per player:
+//   x's: [B[S, J]' -1; 1' 0] (rows J then the sum row, columns S then the value v), and
+//   y's: [A[I, T]  -1; 1' 0] (rows I then the sum row, columns T then u),
+// each solved for the right-hand side (0, ..., 0, 1) by the kernels' LU (BasisBlock: no
+// LAPACK, no refinement). recover: x_S, y_T put into x, y (0 elsewhere); a weight below
+// -CLIP refuses the point, the others clipped at 0 (numpy's maximum: -0.0 gives +0.0) and
+// each strategy divided by its numpy_sum. check: games::check on the caller's payoffs.
+// solve and solve_transpose: the block-diagonal system diag(x's block, y's block) on a
+// stacked vector (|S| + 1 entries, then |T| + 1). The point's bits are not those of the
+// numpy routine it replaced (numpy.linalg.solve: OpenBLAS's LAPACK, whose kernels, and so
+// bits, depend on the CPU); they are the same on every instruction set.
+// work: work_size(m, n) doubles; ints: index_size(m, n); piv: nullptr or piv_size(m, n).
+struct SupportBasis {
+    Mat<const double> A, B;
+    idx *S, *J, *T, *I;  // the supports and tight sets (apply)
+    idx ks = 0, kt = 0;  // |S| = |J|, |T| = |I|
+    bool negative = false;  // point refused by recover: a weight below -CLIP
+    BasisBlock bx, by;      // the bordered blocks, ks + 1 and kt + 1 rows
+    static constexpr double CLIP = 1e-12;
+
+    static idx work_size(idx m, idx n) {
+        idx k = std::min(m, n) + 1;
+        return 2 * k * (k + 2);
+    }
+    static idx index_size(idx m, idx n) { return 3 * (m + n); }
+    static idx piv_size(idx m, idx n) { return 4 * (std::min(m, n) + 1); }
+
+    SupportBasis(Mat<const double> A_, Mat<const double> B_, double* work, idx* ints,
+                 idx* piv = nullptr)
+        : A(A_), B(B_), S(ints + (A_.rows + A_.cols)), J(S + A_.rows), T(J + A_.cols),
+          I(T + A_.cols), bx{B_, S, 0, work, piv}, by{A_, T, 0, work, piv}, marks(ints) {
+        idx k = std::min(A_.rows, A_.cols) + 1;
+        by.a = work + k * (k + 2);
+        if (piv != nullptr) by.piv = piv + 2 * k;
+    }
+
+    // S, J, T, I from P's n labels and Q's m (each in [0, m + n): the caller checks).
+    // False when |S| != |J|, |T| != |I| or a support is empty (no square blocks).
+    bool apply(const idx* labels) {
+        idx m = A.rows, n = A.cols, L = m + n;
+        for (idx c = 0; c < L; ++c) marks[c] = 0;
+        for (idx t = 0; t < n; ++t) marks[labels[t]] |= 1;      // basic in P
+        for (idx t = n; t < L; ++t) marks[labels[t]] |= 2;      // basic in Q
+        ks = kt = 0;
+        idx kj = 0, ki = 0;
+        for (idx i = 0; i < m; ++i) {
+            if (marks[i] & 1) S[ks++] = i;
+            if (!(marks[i] & 2)) I[ki++] = i;
+        }
+        for (idx j = 0; j < n; ++j) {
+            if (!(marks[m + j] & 1)) J[kj++] = j;
+            if (marks[m + j] & 2) T[kt++] = j;
+        }
+        bool square = ks == kj && kt == ki && ks > 0 && kt > 0;
+        bx.k = square ? ks + 1 : 0;
+        by.k = square ? kt + 1 : 0;
+        return square;
+    }
+
+    // The two bordered blocks into bx.a and by.a and their right-hand sides into y().
+    void build() const {
+        bordered(B, J, S, ks, true, bx);
+        bordered(A, I, T, kt, false, by);
+    }
+
+    // The point of the basis into x (m) and y (n) after apply: build, factor and solve each
+    // block, recover. False when a block is singular or its solution not finite, or recover
+    // refuses (negative is then set).
+    bool point(double* x, double* y) {
+        negative = false;
+        build();
+        if (!bx.factor_solve_built(bx.y(), bx.x())) return false;
+        if (!by.factor_solve_built(by.y(), by.x())) return false;
+        return recover(bx.x(), by.x(), x, y);
+    }
+
+    // x_S and y_T (the blocks' solutions, their last entries the values) mapped back to x
+    // and y: refused (false, negative set) when a weight is below -CLIP; else clipped at 0
+    // and normalized.
+    bool recover(const double* xs, const double* yt, double* x, double* y) {
+        idx m = A.rows, n = A.cols;
+        for (idx i = 0; i < m; ++i) x[i] = 0.0;
+        for (idx j = 0; j < n; ++j) y[j] = 0.0;
+        for (idx c = 0; c < ks; ++c) x[S[c]] = xs[c];
+        for (idx c = 0; c < kt; ++c) y[T[c]] = yt[c];
+        for (idx c = 0; c < ks; ++c) negative |= xs[c] < -CLIP;
+        for (idx c = 0; c < kt; ++c) negative |= yt[c] < -CLIP;
+        if (negative) return false;
+        normalize(x, m);
+        normalize(y, n);
+        return true;
+    }
+
+    // diag(x's block, y's block) v = rhs, or its transpose (ks + kt + 2 entries: x's block's
+    // rows first), after point, by its factors.
+    bool solve(const double* rhs, double* out) const {
+        return bx.solve(rhs, out) && by.solve(rhs + bx.k, out + bx.k);
+    }
+    bool solve_transpose(const double* rhs, double* out) const {
+        return bx.solve_transpose(rhs, out) && by.solve_transpose(rhs + bx.k, out + bx.k);
+    }
+
+    // games::check on the caller's payoffs: out (3) gets (regret, row payoff, column payoff).
+    bool check(const double* x, const double* y, double tol, double* out) const {
+        return games::check(A, B, x, y, tol, out);
+    }
+
+  private:
+    idx* marks;  // m + n label marks (apply's)
+
+    // A block [P[rows, cols] or its transpose, -1; 1' 0] and the right-hand side (0, 1):
+    // with `transposed` the entry (r, c) is P[cols[c], rows[r]] (x's block, B[S, J]'), else
+    // P[rows[r], cols[c]] (y's block, A[I, T]).
+    static void bordered(Mat<const double> P, const idx* rows, const idx* cols, idx k,
+                         bool transposed, const BasisBlock& b) {
+        idx K = k + 1;
+        double* a = b.a;
+        for (idx r = 0; r < k; ++r) {
+            double* ar = a + r * K;
+            if (transposed) {
+                for (idx c = 0; c < k; ++c) ar[c] = P.row(cols[c])[rows[r]];
+            } else {
+                const double* pr = P.row(rows[r]);
+                for (idx c = 0; c < k; ++c) ar[c] = pr[cols[c]];
+            }
+            ar[k] = -1.0;
+        }
+        double* last = a + k * K;
+        for (idx c = 0; c < k; ++c) last[c] = 1.0;
+        last[k] = 0.0;
+        double* yb = b.y();
+        for (idx r = 0; r < k; ++r) yb[r] = 0.0;
+        yb[k] = 1.0;
+    }
+
+    // v clipped at 0 (numpy's maximum(v, 0.0): +0.0 for -0.0) and divided by its numpy_sum.
+    static void normalize(double* v, idx len) {
+        for (idx i = 0; i < len; ++i) v[i] = pmax(0.0, v[i]);
+        double s = numpy_sum(v, len);
+        for (idx i = 0; i < len; ++i) v[i] /= s;
     }
 };
 
