@@ -16,6 +16,7 @@ import pytest
 
 import lemke
 from lemke import _core
+from helpers import kkt_blocks
 
 EPS = np.finfo(float).eps
 TOL = 1e-9  # Options().tol
@@ -709,3 +710,170 @@ def test_mlcp_basis_point_is_the_old_one_bit_for_bit():
                 assert new.tobytes() == old.tobytes(), name
                 compared += 1
     assert solved_bases >= 10 and compared >= 60
+
+
+# --- the QP's KKT rows of an active set (KktBasis, _qp._polished's system) ----------------
+
+def _old_polished_candidate(qp, basis, tol):
+    """_qp._polished's candidate point as its numpy code made it before the seam (the
+    reference of the seam's bits): ``(new, ok, res)``, or None when singular."""
+    from lemke._npc import absmax
+    from lemke._qp import _data, kkt
+    from lemke._reductions.mlcp_lcp import refined_solve
+    n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
+    F, B, S, bound, K, rhs = kkt_blocks(qp, basis.z_basic)
+    GS = qp.G[S]
+    f, s = F.size, F.size + p + S.size
+    out = refined_solve(K, rhs, steps=3, given=bound[B], low=True)
+    if out is None:
+        return None
+    sol, lo = out
+    x = np.empty(n)
+    x[F] = sol[:f]
+    x[B] = bound[B]
+    exact_lo = np.zeros(n + s - f)
+    exact_lo[F] = lo[:f]
+    exact_lo[n:] = lo[f:]
+    KB = np.concatenate([qp.P[B], qp.A[:, B].T, GS[:, B].T], axis=1)
+    zb = np.empty(B.size)
+    _core.residual2(np.concatenate([KB, KB], axis=1), np.concatenate([x, sol[f:], exact_lo]),
+                    qp.q[B], zb)
+    mult = np.concatenate([sol[f:], -zb])
+    mult[np.abs(mult) <= EPS * absmax(mult)] = 0.0
+    z = np.zeros(mg)
+    z[S] = mult[p:p + S.size]
+    z_box = np.zeros(n)
+    z_box[B] = mult[p + S.size:]
+    new = (x, mult[:p].copy(), z, z_box)
+    ok, *res = kkt(_data(qp), *new, tol)
+    return new, ok, res
+
+
+def _old_polished(qp, point, basis, tol):
+    """_qp._polished before the seam, whole."""
+    from lemke._qp import _data, kkt
+    cand = _old_polished_candidate(qp, basis, tol)
+    if cand is None or not cand[1]:
+        return point, None
+    new, _, res = cand
+    res0 = kkt(_data(qp), *point, tol)[1:]
+    return (new, res) if max(res[:3]) < max(res0[:3]) else (point, res0)
+
+
+def _kkt_call(qp, beta, tol=None, rhs=None, transpose=False):
+    c = lemke._validate.c_aligned
+    return _core.kkt_basis(c(qp.P), qp.q, c(qp.G), qp.h, c(qp.A), qp.b, qp.lb, qp.ub,
+                           np.asarray(beta, dtype=np.int64), tol, rhs, transpose)
+
+
+def _random_qp(n, p, m, rng, rank=None):
+    """A QP with every kind of variable (free, lower, upper, boxed, fixed), p equalities
+    and m inequalities, P positive semidefinite of rank `rank` (n when None), feasible at a
+    point x0 inside the bounds."""
+    from lemke._qp import _QP
+    r = n if rank is None else rank
+    L = rng.normal(size=(n, r))
+    P = L @ L.T
+    q = rng.normal(size=n)
+    kinds = rng.integers(0, 5, size=n)
+    x0 = rng.normal(size=n)
+    lb = np.where(np.isin(kinds, (1, 3, 4)), x0 - rng.random(n), -np.inf)
+    ub = np.where(np.isin(kinds, (2, 3)), x0 + rng.random(n), np.inf)
+    lb[kinds == 4] = ub[kinds == 4] = x0[kinds == 4]
+    A = rng.normal(size=(p, n))
+    G = rng.normal(size=(m, n))
+    h = G @ x0 + rng.random(m) * (rng.random(m) < 0.7)
+    return _QP(P, q, G if m else None, h if m else None, A if p else None, A @ x0 if p else None,
+               lb, ub)
+
+
+_QP_SHAPES = [(1, 0, 1), (2, 1, 0), (3, 0, 3), (4, 1, 2), (5, 2, 6), (6, 0, 0), (8, 3, 5),
+              (10, 2, 12), (12, 4, 4), (16, 0, 20)]
+
+
+def _captured_polish_calls(problems):
+    """(qp, point, basis, tol) of every _qp._polished call while the KKT-MLCP path solves
+    the problems (the final bases polishing runs on)."""
+    from lemke import _qp
+    from lemke._options import as_options
+    calls, orig = [], _qp._polished
+
+    def capture(qp, point, basis, tol):
+        calls.append((qp, tuple(a.copy() for a in point), basis, tol))
+        return orig(qp, point, basis, tol)
+
+    _qp._polished = capture
+    try:
+        for qp in problems:
+            _qp._solve(qp, "tableau", as_options(None), None, certify=True)
+    finally:
+        _qp._polished = orig
+    return calls
+
+
+def _same_bits(a, b):
+    return all(np.asarray(u).tobytes() == np.asarray(v).tobytes() for u, v in zip(a, b))
+
+
+def test_kkt_basis_is_the_old_polish_bit_for_bit():
+    """_qp._polished through the seam (KktBasis) against its former numpy code: the
+    candidate point, its verdict and statistics, and _polished's choice, bit for bit, on the
+    final bases the KKT-MLCP path polishes (random QPs of every variable kind, P definite
+    and semidefinite, and the 61 Maros-Meszaros problems solve_qp solves, each solved by
+    that path here), and on random
+    bases of the random QPs (singular systems among them)."""
+    import sys
+    from pathlib import Path
+    from lemke import _qp
+    rng = np.random.default_rng(2611)
+    problems = []
+    for t in range(3):
+        for n, p, m in _QP_SHAPES:
+            problems.append(_random_qp(n, p, m, rng, rank=None if t == 0 else max(1, n // 2)))
+    calls = _captured_polish_calls(problems)
+    here = Path(__file__).resolve().parent
+    sys.path.insert(0, str(here.parent / "benchmarks"))
+    try:
+        from maros_meszaros import load
+    finally:
+        sys.path.pop(0)
+    mm = []
+    for path in sorted((here / "data" / "maros-meszaros").glob("*.mat")):
+        if path.stem != "VALUES":  # (its P indefinite as stored)
+            (P, q, G, h, A, b, lb, ub), _ = load(path)
+            mm.append(_qp._QP(*_qp.qpsolvers_form(P, q, G, h, A, b, lb, ub)[0]))
+    mm_calls = _captured_polish_calls(mm)
+    assert len(calls) >= 20 and len(mm_calls) == 61
+    kept = compared = 0
+    for qp, point, basis, tol in calls + mm_calls:
+        old = _old_polished(qp, point, basis, tol)
+        new = _qp._polished(qp, point, basis, tol)
+        assert _same_bits(old[0], new[0])
+        assert (old[1] is None) == (new[1] is None)
+        if old[1] is not None:
+            assert _same_bits(old[1], new[1]) and list(old[1]) == list(new[1])
+        kept += old[0][0] is not point[0]
+        cand = _old_polished_candidate(qp, basis, tol)
+        code, got, stats, _ = _kkt_call(qp, basis.z_basic, tol)
+        assert (cand is None) == (code == 2)
+        if cand is not None:
+            assert _same_bits(cand[0], got) and (code == 0) == cand[1]
+            assert np.array(cand[2]).tobytes() == stats.tobytes()
+            compared += 1
+    assert kept >= 30 and compared >= 80
+    # random bases of the random QPs (the singular ones reported by both)
+    singular = 0
+    for qp in problems:
+        pairs = qp.shifted.size + qp.G.shape[0] + qp.boxed.size
+        for prob in (0.0, 0.3, 0.6, 1.0):
+            basis = lemke.WarmStart(pairs, tuple(np.flatnonzero(rng.random(pairs) < prob)))
+            cand = _old_polished_candidate(qp, basis, TOL)
+            code, got, stats, _ = _kkt_call(qp, basis.z_basic, TOL)
+            assert (cand is None) == (code == 2)
+            if cand is None:
+                singular += 1
+                assert got is None and stats is None
+            else:
+                assert _same_bits(cand[0], got) and (code == 0) == cand[1]
+                assert np.array(cand[2]).tobytes() == stats.tobytes()
+    assert singular >= 5
