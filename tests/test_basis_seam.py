@@ -1,10 +1,12 @@
-"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis, FrictionBasis and
-MlcpBasis, issue 31 item 2) through their private entries ``_core.lcp_basis(M, q, z_basic,
-tol, rhs=None, transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol,
-rhs=None, transpose=False)``, ``_core.friction_basis(M, q, lo, hi, F, zb, zh, tol, rhs=None,
-transpose=False)`` and ``_core.mlcp_basis(E, e, n, redundant, undetermined, v_basic,
-tol=None, rhs=None, transpose=False)`` (its point MLCPToLCP.basis_point's, bit for bit
-against the routine it replaced), checked
+"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis, FrictionBasis,
+MlcpBasis and KktBasis, issue 31 item 2) through their private entries ``_core.lcp_basis(M,
+q, z_basic, tol, rhs=None, transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh,
+warm_rule, tol, rhs=None, transpose=False)``, ``_core.friction_basis(M, q, lo, hi, F, zb,
+zh, tol, rhs=None, transpose=False)``, ``_core.mlcp_basis(E, e, n, redundant, undetermined,
+v_basic, tol=None, rhs=None, transpose=False)`` (its point MLCPToLCP.basis_point's, bit for
+bit against the routine it replaced) and ``_core.kkt_basis(P, q, G, h, A, b, lb, ub, basic,
+tol=None, rhs=None, transpose=False)`` (its point _qp._polished's, bit for bit against the
+numpy code it replaced, kept here as the oracle), checked
 independently of the core: the solve and the transpose solve against numpy.linalg.solve on
 the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
 z and w against the LCP (box LCP) conditions computed here, and the engines' point of a
@@ -877,3 +879,116 @@ def test_kkt_basis_is_the_old_polish_bit_for_bit():
                 assert _same_bits(cand[0], got) and (code == 0) == cand[1]
                 assert np.array(cand[2]).tobytes() == stats.tobytes()
     assert singular >= 5
+
+
+def _qp_stats(qp, x, y, z, zb):
+    """(primal, dual, gap, obj) by qpsolvers' formulas, in numpy (the infinite bounds' terms
+    left out of the gap)."""
+    P, q, G, h, A, b, lb, ub = qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
+    viol = [np.abs(A @ x - b), np.maximum(G @ x - h, 0.0), np.maximum(lb - x, 0.0),
+            np.maximum(x - ub, 0.0)]
+    primal = max([0.0] + [float(v.max()) for v in viol if v.size])
+    dual = float(np.abs(P @ x + q + A.T @ y + G.T @ z + zb).max(initial=0.0))
+    lo, up = np.isfinite(lb), np.isfinite(ub)
+    gap = abs(x @ P @ x + q @ x + b @ y + h @ z + lb[lo] @ np.minimum(zb[lo], 0.0)
+              + ub[up] @ np.maximum(zb[up], 0.0))
+    return primal, dual, gap, 0.5 * x @ P @ x + q @ x
+
+
+@pytest.mark.parametrize("transpose", [False, True])
+def test_kkt_solves_match_numpy_and_the_point_solves_its_rows(transpose):
+    """The KKT basis system's solve and transpose solve against numpy.linalg.solve on the
+    block K[:, :s] built here (rows F, A, G_S; columns x_F, y, z_S), and its point checked
+    here: x_B at its bounds, z and zb zero off S and B, A x = b, G_S x = h_S and every
+    stationarity row (F's from the solve, B's by zb) to a backward-error bound, the
+    statistics qpsolvers' formulas, and the verdict against the KKT conditions computed
+    here (a point far from them fails it)."""
+    from helpers import assert_qp_kkt
+    rng = np.random.default_rng(91 + transpose)
+    checked = singular = passed = failed = 0
+    for n, p, m in _QP_SHAPES:
+        for t in range(12):
+            qp = _random_qp(n, p, m, rng)
+            pairs = qp.shifted.size + qp.G.shape[0] + qp.boxed.size
+            basis = tuple(np.flatnonzero(rng.random(pairs) < t / 11))
+            F, B, S, bound, K, rhs0 = kkt_blocks(qp, basis)
+            s = rhs0.size
+            rhs = rng.normal(size=s)
+            code, point, stats, sol = _kkt_call(qp, basis, TOL, rhs, transpose)
+            if code == 2:
+                singular += 1
+                assert point is None and stats is None and sol is None
+                continue
+            Ks = K[:, :s]
+            if s and np.linalg.cond(Ks) > 1e10:
+                continue  # (singular to rounding: no bound to hold the solves to)
+            checked += 1
+            x, y, z, zb = point
+            Kt = Ks.T if transpose else Ks
+            if s:  # (normwise: a KKT block's zeros leave LU no row-wise bound)
+                size = np.abs(Kt).sum(1).max() * np.abs(sol).max() + np.abs(rhs).max()
+                assert np.abs(Kt @ sol - rhs).max() <= 8 * (s + 1) * EPS * size
+                assert _close_to_numpy(Kt, sol, rhs)
+            else:
+                assert sol.shape == (0,)
+            assert x[B].tobytes() == bound[B].tobytes()
+            off_S = np.setdiff1d(np.arange(qp.G.shape[0]), S)
+            assert np.all(z[off_S] == 0.0) and np.all(zb[F] == 0.0)
+            # the rows: K (x_F, y, z_S, x_B) = rhs0, and B's stationarity rows with zb
+            u = np.concatenate([x[F], y, z[S], x[B]])
+            scale = np.abs(K) @ np.abs(u) + np.abs(rhs0)  # (refined: row-wise backward error)
+            assert np.all(np.abs(K @ u - rhs0) <= 8 * (s + 1) * EPS * scale)
+            g = qp.P @ x + qp.q + qp.A.T @ y + qp.G.T @ z
+            mult = np.abs(np.concatenate([y, z, zb])).max(initial=0.0)
+            size = np.abs(qp.P[B]) @ np.abs(x) + np.abs(qp.q[B]) + mult * (
+                np.abs(qp.A[:, B]).sum(0) + np.abs(qp.G[:, B]).sum(0) + 1.0)
+            assert np.all(np.abs(g[B] + zb[B]) <= 64 * (n + 1) * EPS * size)
+            # the statistics, and the verdict
+            ref = _qp_stats(qp, x, y, z, zb)
+            big = max(1.0, np.abs(x).max(initial=0.0), mult) ** 2 * max(
+                [1.0] + [np.abs(a).max() for a in (qp.P, qp.q, qp.A, qp.b, qp.G, qp.h) if a.size])
+            assert np.allclose(stats, ref, rtol=1e-9, atol=1e-12 * big)
+            if code == 0:
+                passed += 1
+                res = type("R", (), dict(x=x, y=y, z=z, z_box=zb, obj=stats[3]))
+                assert_qp_kkt(qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub, res, rtol=1e-7)
+            else:  # fails: a condition the point breaks beyond the check's tolerance
+                fixed = qp.lb[B] == qp.ub[B]
+                at_lo, at_up = (bound[B] == qp.lb[B]) & ~fixed, (bound[B] == qp.ub[B]) & ~fixed
+                assert (max(ref[:3]) > 1e-9 * big or np.any(z < 0) or np.any(zb[B][at_lo] > 0)
+                        or np.any(zb[B][at_up] < 0))
+                failed += 1
+    assert checked >= 40 and singular >= 10 and passed >= 5 and failed >= 30
+
+
+def test_kkt_basis_final_bases_pass_and_bad_input_refused():
+    """The final bases of the random QPs: the seam's point passes its check where
+    _polished keeps it (and the tests' own KKT check there); bad arguments refused."""
+    from helpers import assert_qp_kkt
+    rng = np.random.default_rng(12)
+    problems = [_random_qp(n, p, m, rng) for n, p, m in _QP_SHAPES]
+    passed = 0
+    for qp, point, basis, tol in _captured_polish_calls(problems):
+        code, new, stats, _ = _kkt_call(qp, basis.z_basic, tol)
+        if code == 0:
+            passed += 1
+            res = type("R", (), dict(x=new[0], y=new[1], z=new[2], z_box=new[3], obj=stats[3]))
+            assert_qp_kkt(qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub, res, rtol=1e-8)
+        # without tol: the same point, no verdict
+        code2, new2, stats2, _ = _kkt_call(qp, basis.z_basic)
+        assert stats2 is None and (code2 == 2) == (code == 2)
+        if code != 2:
+            assert code2 == 0 and _same_bits(new, new2)
+    assert passed >= 7
+    qp = problems[4]
+    pairs = qp.shifted.size + qp.G.shape[0] + qp.boxed.size
+    c = lemke._validate.c_aligned
+    args = [c(qp.P), qp.q, c(qp.G), qp.h, c(qp.A), qp.b, qp.lb, qp.ub]
+    for bad in ([pairs], [-1], [0, 0]):
+        with pytest.raises(ValueError):
+            _core.kkt_basis(*args, np.array(bad, np.int64))
+    with pytest.raises(ValueError):  # P not n x n
+        _core.kkt_basis(c(qp.P[:, :-1]), *args[1:], np.zeros(0, np.int64))
+    with pytest.raises(ValueError):  # rhs of the wrong length
+        s = kkt_blocks(qp, ())[5].size
+        _core.kkt_basis(*args, np.zeros(0, np.int64), TOL, np.ones(s + 1))
