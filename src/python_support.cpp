@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -464,9 +465,9 @@ std::tuple<int, nb::object, nb::object, nb::object> kkt_basis(
     idx s = basis.rows();
     if (rhs && len(*rhs) != s)
         throw nb::value_error("kkt_basis: rhs must have one entry per block row");
-    std::vector<double> work(static_cast<std::size_t>(basis.work_size()));
+    std::unique_ptr<double[]> work(new double[static_cast<std::size_t>(basis.work_size() + 1)]);
     std::vector<idx> piv(static_cast<std::size_t>(2 * s + 1));
-    basis.work = work.data();
+    basis.work = work.get();  // (not zeroed: point writes what it reads)
     basis.piv = piv.data();
     nb::capsule owner, x_owner;
     double* out = new_block(2 * n + p0 + m0 + 4, owner);  // x, y, z, zb, stats

@@ -6,8 +6,10 @@
 // used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis), the box
 // kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
 // (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
-// entry _core.friction_basis) and the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
-// through _core.mlcp_basis; its solve refined, as that routine's was). Gradients and a sparse
+// entry _core.friction_basis), the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
+// through _core.mlcp_basis; its solve refined, as that routine's was) and a QP's KKT rows of
+// an active set (KktBasis, _qp._polished's system through _core.kkt_basis; refined, with the
+// held variables' columns given). Gradients and a sparse
 // engine are to plug in here: hence the transpose solve.
 #pragma once
 #include <cstdint>
@@ -583,8 +585,7 @@ struct KktBasis {
         block.pivots = nullptr;
         double* K = work;
         double *rhs = K + s * c, *xs = rhs + s, *lo = xs + c, *f = lo + s;
-        for (idx i = 0; i < s * c; ++i) K[i] = 0.0;
-        for (idx r = 0; r < nf; ++r) {  // stationarity on F: P_FF, A_F', G_SF', P_FB
+        for (idx r = 0; r < nf; ++r) {  // stationarity on F: P_FF, A_F', G_SF', P_FB (whole rows)
             idx j = F[r];
             const double* pr = d.P.row(j);
             double* kr = K + r * c;
@@ -599,6 +600,7 @@ struct KktBasis {
             const double* ar = eq ? d.A.row(i) : d.G.row(S[i - p]);
             double* kr = K + (nf + i) * c;
             for (idx t = 0; t < nf; ++t) kr[t] = ar[F[t]];
+            for (idx t = nf; t < s; ++t) kr[t] = 0.0;  // (y's and z_S's columns)
             for (idx t = 0; t < nh; ++t) kr[s + t] = ar[B[t]];
             rhs[nf + i] = eq ? d.b[i] : d.h[S[i - p]];
         }
