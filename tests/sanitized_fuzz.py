@@ -38,6 +38,10 @@ and again in the test's own process, fingerprint against fingerprint).
 * the seam's games basis system _core.game_basis (basis.hpp's SupportBasis, branch
   gamesbasis) on games of 1-40 actions a side with random, final and malformed vertex
   pairs: an answer of the game's sizes or a ValueError / TypeError.
+* the seam's _core.kkt_basis (basis.hpp's KktBasis, _qp._polished's system, branch polish) on
+  QPs of 0-40 variables and more with every kind of bound, random, empty and full bases,
+  rhs of the right length and one off, and malformed indices, arrays and data (see its
+  block at the end).
 
 A mismatch with the fresh thread raises (a finding, reported as an exception by the Runner).
 """
@@ -431,6 +435,7 @@ def fuzz(run):
         friction_seam(run, np.random.default_rng(2034))
         mlcp_seam(run, np.random.default_rng(2035))
         games_seam(run, np.random.default_rng(2036))
+        kkt_seam(run, np.random.default_rng(2036))
 
 
 # --- the box batch's gathers (branch boxisl): many_field with a per-island answer offset and
@@ -1035,3 +1040,88 @@ def games_seam(run, rng):
             {"A": A2[2], "B": B2[1], "rhs": r2}[where][1] = bad
             run.attempt(f"fuzz seam games {bad} in {where}", refused_or(
                 lambda: _game_sizes(m, n, _core.game_basis(A2, B2, xb, yb, 1e-9, r2, where == "rhs"))))
+# --- the seam's KKT basis system of a QP (branch polish): _core.kkt_basis called directly on
+# QPs of n = 0-40 variables and some more (every kind of bound: free, one-sided, boxed,
+# fixed), p equalities and m inequalities, with random, empty and full bases of their pairs
+# (singular systems among them), rhs of the right length and one off, both solves, with and
+# without tol, and malformed arguments (basic indices out of range, repeated or extreme;
+# other dtypes, layouts and lengths; P, G, A of other shapes; NaN and infinities in the data,
+# bounds and rhs): an answer whose arrays have the sizes the QP gives (x and zb n, y p, z m,
+# stats 4 or None, the solve one per block row), or a ValueError / TypeError; never a read
+# or write outside the arrays.
+
+def _kkt_qp(n, p, m, rng):
+    """(P, q, G, h, A, b, lb, ub) with every kind of bound, the KKT MLCP's pair count, and
+    the block's row count of a basis (a function of the basic pairs)."""
+    L = rng.normal(size=(n, max(n // 2, 1)))
+    kinds = rng.integers(0, 5, size=n)
+    lb = np.where(np.isin(kinds, (1, 3, 4)), -rng.random(n), -np.inf)
+    ub = np.where(np.isin(kinds, (2, 3)), rng.random(n), np.inf)
+    ub[kinds == 4] = lb[kinds == 4]
+    shifted = (kinds > 0) & (kinds < 4)
+    nn, nbox = int(np.count_nonzero(shifted)), int(np.count_nonzero(kinds == 3))
+
+    def rows(basic):  # |F| + p + |S|: F the shifted x' basic and not at an upper bound, free x
+        v = np.zeros(nn + m + nbox, bool)
+        v[basic] = True
+        up = np.zeros(n, bool)
+        up[kinds == 3] = v[nn + m:]
+        x_basic = np.zeros(n, bool)
+        x_basic[shifted] = v[:nn]
+        free = (kinds == 0) | (x_basic & ~up)
+        return int(np.count_nonzero(free)) + p + int(np.count_nonzero(v[nn:nn + m]))
+    return (L @ L.T, rng.normal(size=n), rng.normal(size=(m, n)), rng.random(m),
+            rng.normal(size=(p, n)), rng.normal(size=p), lb, ub), nn + m + nbox, rows
+
+
+def _kkt_sizes(n, p, m, got):
+    """kkt_basis's answer (code, point, stats, x) checked for its sizes; the answer."""
+    code, point, stats, x = got
+    if code in (0, 1):
+        shapes = tuple(a.shape for a in point)
+        if shapes != ((n,), (p,), (m,), (n,)) or (stats is not None and stats.shape != (4,)):
+            raise AssertionError(f"kkt_basis: point of shapes {shapes} for {n}, {p}, {m}")
+    elif point is not None or stats is not None:
+        raise AssertionError(f"kkt_basis: code {code} with a point")
+    if x is not None and (x.ndim != 1 or x.size > n + p + m):
+        raise AssertionError(f"kkt_basis: x of shape {x.shape}")
+    return got
+
+
+def kkt_seam(run, rng):
+    for n in list(range(41)) + [64, 97]:
+        for t in range(4):
+            p, m = int(rng.integers(0, n // 2 + 2)), int(rng.integers(0, n + 3))
+            data, pairs, rows = _kkt_qp(n, p, m, rng)
+            basic = np.flatnonzero(rng.random(pairs) < (0.3, 0.7, 1.0, 0.0)[t]).astype(np.int64)
+            k = rows(basic)
+            for length in (k, k + 1, max(k - 1, 0)):
+                rhs = rng.normal(size=length)
+                for tol in (None, 1e-9):
+                    run.attempt(f"fuzz seam kkt {n} {p} {m} {t} {length} {tol}", refused_or(
+                        lambda: _kkt_sizes(n, p, m, _core.kkt_basis(*data, basic, tol, rhs, t > 1))))
+            run.attempt(f"fuzz seam kkt {n} {p} {m} {t} no rhs", refused_or(
+                lambda: _kkt_sizes(n, p, m, _core.kkt_basis(*data, basic, 1e-9))))
+    data, pairs, rows = _kkt_qp(6, 2, 4, rng)
+    basic = np.arange(min(pairs, 3), dtype=np.int64)
+    k = rows(basic)
+    extremes = [0, pairs - 1, pairs, -1, I64.max, I64.min, 1 << 31, 1 << 62]
+    for t in range(30):
+        bad = np.array([extremes[int(rng.integers(len(extremes)))]] * (1 + t % 2), np.int64)
+        run.attempt(f"fuzz seam kkt index {t}", refused_or(
+            lambda: _kkt_sizes(6, 2, 4, _core.kkt_basis(*data, bad, 1e-9, np.ones(k)))))
+    for name, g in ODD.items():
+        for i, what in enumerate(("P", "q", "G", "h", "A", "b", "lb", "ub")):
+            args = list(data)
+            args[i] = g(args[i])
+            run.attempt(f"fuzz seam kkt {name} {what}", refused_or(
+                lambda: _core.kkt_basis(*args, basic, 1e-9)))
+        run.attempt(f"fuzz seam kkt {name} basic", refused_or(lambda: _core.kkt_basis(*data, g(basic), 1e-9)))
+        run.attempt(f"fuzz seam kkt {name} rhs", refused_or(
+            lambda: _core.kkt_basis(*data, basic, 1e-9, g(np.ones(k)), True)))
+    for bad in (np.nan, np.inf, -np.inf):
+        for i, what in enumerate(("P", "q", "G", "h", "A", "b", "lb", "ub", "rhs")):
+            args, r2 = [a.copy() for a in data], np.ones(k)
+            (args[i] if i < 8 else r2).reshape(-1)[1] = bad
+            run.attempt(f"fuzz seam kkt {bad} in {what}", refused_or(
+                lambda: _kkt_sizes(6, 2, 4, _core.kkt_basis(*args, basic, 1e-9, r2, what == "rhs"))))
