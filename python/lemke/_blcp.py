@@ -869,25 +869,47 @@ def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=(), reset=None)
     n = q.size
     extra, rec = 0, 0
     _check_warm(warm_start, n, friction)
-    if warm_start is not None:
-        if not tried:
-            res = _one_call(*_kernel_arrays(M, q, lo, hi), None, warm_start, opts, validated=True)
-            if res is not None:
-                return res
-        res = _warm(M, q, lo, hi, opts, warm_start)
-        if res.status == Status.SOLVED:
-            return res
-        extra, rec = res.pivots, 1
-        if reset is not None and res.status not in STOPPED:  # as _one_call: friction rows cold
-            run = _Run(n).go(M, q, lo, hi, _reset(warm_start._kernel_flags(), n, reset), _WARM,
-                             opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
-            if run.code == 0 and run.ok:
-                return _solved(run, n, lo, hi, rec, extra + run.pivots)
+    res = warm = None  # the result a rung settled it with; the warm run's
+
+    # The ladder (_ladder.py): the warm start in one kernel call (_one_call), its basis
+    # (_warm), its friction rows cold (_reset), then cold and _finish's rungs.
+    def one_call():
+        nonlocal res
+        res = _one_call(*_kernel_arrays(M, q, lo, hi), None, warm_start, opts, validated=True)
+
+    def from_warm():
+        nonlocal res, warm, extra, rec
+        warm = _warm(M, q, lo, hi, opts, warm_start)
+        if warm.status == Status.SOLVED:
+            res = warm
+        else:
+            extra, rec = warm.pivots, 1
+
+    def friction_cold():  # as _one_call
+        nonlocal res, extra, rec
+        run = _Run(n).go(M, q, lo, hi, _reset(warm_start._kernel_flags(), n, reset), _WARM,
+                         opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+        if run.code == 0 and run.ok:
+            res = _solved(run, n, lo, hi, rec, extra + run.pivots)
+        else:
             extra, rec = extra + max(run.pivots, 0), 2
-    run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
-    if run.code == boxed.NOT_FINITE:
-        raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
-    return _finish(M, q, lo, hi, opts, run, extra, rec)
+
+    def cold():
+        nonlocal res
+        run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+        if run.code == boxed.NOT_FINITE:
+            raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
+        res = _finish(M, q, lo, hi, opts, run, extra, rec)
+
+    climb(lambda: res is not None,
+          Rung("the warm start in one call", lambda: warm_start is not None and not tried,
+               one_call),
+          Rung("the warm start's basis", lambda: warm_start is not None, from_warm),
+          Rung("its friction rows cold",
+               lambda: warm is not None and reset is not None and warm.status not in STOPPED,
+               friction_cold),
+          Rung("cold", always, cold))
+    return res
 
 
 def _friction_vars(F, n):

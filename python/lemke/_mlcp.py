@@ -247,16 +247,22 @@ def _restarted(E, e, n, red, M, o, method, lcp_ws, tol, ray_stop=False):
     ``MAX_RESTARTS`` times while the point misses on the caller's data.  ``ray_stop``: every
     solve's recovery runs end at their first ray (solve_lcp's ``_ray_stop``).  Returns
     ``(result, evaluation, pivots)``."""
-    res = solve_lcp(M, red.q, method=method, warm_start=lcp_ws, options=o, _ray_stop=ray_stop)
-    pivots = res.pivots
-    out = _evaluate(E, e, n, red, res, tol)
-    for _ in range(MAX_RESTARTS):
-        if out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
-            break
-        res = solve_lcp(M, red.q, method=method, warm_start=res.warm_start, options=o,
-                        _ray_stop=ray_stop)
-        pivots += res.pivots
-        out = _evaluate(E, e, n, red, res, tol)
+    res = out = None
+    pivots = 0
+
+    def solve(warm):  # a rung: solve_lcp from the basis warm() gives, its point evaluated
+        def run():
+            nonlocal res, out, pivots
+            res = solve_lcp(M, red.q, method=method, warm_start=warm(), options=o,
+                            _ray_stop=ray_stop)
+            pivots += res.pivots
+            out = _evaluate(E, e, n, red, res, tol)
+        return run
+
+    restart = solve(lambda: res.warm_start)
+    climb(lambda: out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE),
+          Rung("the step's solve", always, solve(lambda: lcp_ws)),
+          *(Rung("restart from the final basis", always, restart) for _ in range(MAX_RESTARTS)))
     return res, out, pivots
 
 
