@@ -150,11 +150,11 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     };
     // The ladder (ladder.hpp): the warm start's basis, the same with its friction rows cold,
     // cold, then the other covering vectors and exact ties; the first run solved and checked
-    // settles it, a stop or a checked ray (left to the general path) ends it.
+    // settles it, a checked ray (left to the general path) ends it. (A stop does not end it
+    // after the other covering vectors, as it does in _blcp._one_call: kept as it was.)
     SolveResult r;
     ladder::Cap cap{limit, 0};
     bool ok = false, ended = false;
-    int from = -1;  // the rung that solved it
     auto go = [&](const std::uint8_t* flags, int mode, idx left, double tie) {
         r = solve(A, qa, la, ha, flags, mode, left, pt, tie, tol, ext, final, xp);
         cap.charge(r.pivots);
