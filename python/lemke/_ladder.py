@@ -32,11 +32,6 @@ def always() -> bool:
     return True
 
 
-def never() -> bool:
-    """A ladder that no answer settles (every rung that applies runs)."""
-    return False
-
-
 def climb(settled, *rungs) -> int:
     """Run each rung in order that applies; after each that ran, ``settled()`` (the answer
     accepted by the kind's check, a stop, or the climb ended by a rung) ends the climb.
