@@ -442,7 +442,7 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
                          ray_ok = ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
                          ended = ray_ok;
                      }),
-        ladder::rung("covering vector 1/|q|", recovers, [&] { recovery(0); }),
+        ladder::rung("covering vector 1/R, careful", recovers, [&] { recovery(0); }),
         ladder::rung("covering vector |q|, exact", recovers, [&] { recovery(1); }),
         ladder::rung("random covering vector", recovers, [&] { recovery(2); }),
         ladder::rung("the other method", recovers, [&] { recovery(3); }));
