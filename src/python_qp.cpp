@@ -1,7 +1,7 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
 // qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box), and a few pieces whose bits the tests check
 // (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts,
-// qp_warm_ends, qp_cache_hits).
+// qp_warm_ends, qp_cache_hits), and the seam's QP basis system (qp_basis: qp::basis_seam).
 // Sizes are checked here, before the GIL is released: where the kernel answers data
 // of mismatched shapes (screen: False; solve, solve_gram: BAD_INPUT) this answers the same;
 // where it would read or write out of bounds this raises ValueError. Arrays of the wrong
