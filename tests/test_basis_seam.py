@@ -6,7 +6,11 @@ zh, tol, rhs=None, transpose=False)``, ``_core.mlcp_basis(E, e, n, redundant, un
 v_basic, tol=None, rhs=None, transpose=False)`` (its point MLCPToLCP.basis_point's, bit for
 bit against the routine it replaced) and ``_core.kkt_basis(P, q, G, h, A, b, lb, ub, basic,
 tol=None, rhs=None, transpose=False)`` (its point _qp._polished's, bit for bit against the
-numpy code it replaced, kept here as the oracle), checked
+numpy code it replaced, kept here as the oracle), and the QP kind's QpBasis (src/lemke/qp.cpp) through
+``_core.qp_basis(P, q, G, h, A, b, lb, ub, active, tol, steps=2, z=None, rhs=None,
+transpose=False)`` (its KKT solves against numpy, its point against a KKT check written
+here, and the point of the fused path's warm start and of the factored path bit for bit the
+seam's), checked
 independently of the core: the solve and the transpose solve against numpy.linalg.solve on
 the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
 z and w against the LCP (box LCP) conditions computed here, and the engines' point of a
@@ -1262,3 +1266,197 @@ def test_kkt_basis_final_bases_pass_and_bad_input_refused():
     with pytest.raises(ValueError):  # rhs of the wrong length
         s = kkt_blocks(qp, ())[5].size
         _core.kkt_basis(*args, np.zeros(0, np.int64), TOL, np.ones(s + 1))
+# --- the QP kind (qp.cpp's QpBasis, _core.qp_basis) -----------------------------------------
+
+def _random_qp_seam(n, p0, m0, rng, bounds=False, fixed=0):
+    """A strictly convex QP (P = B B'/n + I/10) with p0 equalities and m0 inequalities that a
+    random x0 satisfies (slack uniform in [0, 1]); with bounds, about a third of the
+    variables bounded below, a third above (x0 inside), and `fixed` variables fixed at x0."""
+    B = rng.normal(size=(n, n))
+    P = B @ B.T / n + 0.1 * np.eye(n)
+    x0 = rng.normal(size=n)
+    A = rng.normal(size=(p0, n))
+    G = rng.normal(size=(m0, n))
+    lb, ub = np.full(n, -np.inf), np.full(n, np.inf)
+    if bounds:
+        u = rng.random(n)
+        lb[u < 1 / 3] = x0[u < 1 / 3] - rng.random(int((u < 1 / 3).sum()))
+        ub[u > 2 / 3] = x0[u > 2 / 3] + rng.random(int((u > 2 / 3).sum()))
+        for j in rng.choice(n, size=fixed, replace=False):
+            lb[j] = ub[j] = x0[j]
+    return (P, 3 * rng.normal(size=n), G, G @ x0 + rng.random(m0), A, A @ x0, lb, ub)
+
+
+def _qp_rows(G, h, A, lb, ub):
+    """The KKT system's rows as the kernel numbers them (rows_of), built here: E (A, then a
+    fixed variable's unit row) and C (G's rows with h finite, then x_j <= ub_j for the
+    variables not fixed, then -x_j <= -lb_j)."""
+    n = lb.size
+    eye = np.eye(n)
+    fixed = lb == ub
+    E = np.vstack([A] + [eye[j][None] for j in np.flatnonzero(fixed)]).reshape(-1, n)
+    C = np.vstack([G[np.isfinite(h)]] + [eye[j][None] for j in np.flatnonzero(~fixed & (ub < np.inf))]
+                  + [-eye[j][None] for j in np.flatnonzero(~fixed & (lb > -np.inf))]).reshape(-1, n)
+    return E, C
+
+
+def _qp_kkt_matrix(P, E, CS):
+    """K = [[P, E', C_S'], [E, 0, 0], [C_S, 0, 0]], built here."""
+    n, p, k = P.shape[0], E.shape[0], CS.shape[0]
+    K = np.zeros((n + p + k, n + p + k))
+    K[:n, :n] = P
+    K[:n, n:n + p] = E.T
+    K[:n, n + p:] = CS.T
+    K[n:n + p, :n] = E
+    K[n + p:, :n] = CS
+    return K
+
+
+def _qp_kkt_ok(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol=1e-9):
+    """An independent KKT check (qpsolvers' convention P x + q + A'y + G'z + z_box = 0):
+    each condition to tol relative to its terms' sizes."""
+    big = np.abs(P) @ np.abs(x) + np.abs(q) + np.abs(A.T) @ np.abs(y) + np.abs(G.T) @ np.abs(z) + np.abs(zb) + 1.0
+    stat = np.abs(P @ x + q + A.T @ y + G.T @ z + zb) <= tol * big
+    gx = G @ x
+    gsize = np.abs(G) @ np.abs(x) + np.abs(h) + 1.0
+    primal = (np.all(np.abs(A @ x - b) <= tol * (np.abs(A) @ np.abs(x) + np.abs(b) + 1.0))
+              and np.all(gx - h <= tol * gsize) and np.all(x >= lb - tol * (np.abs(lb) + 1.0))
+              and np.all(x <= ub + tol * (np.abs(ub) + 1.0)))
+    dual = (np.all(z >= 0) and np.all(zb[np.isneginf(lb)] >= 0) and np.all(zb[np.isposinf(ub)] <= 0))
+    comp = np.all(np.abs(z * (h - gx)) <= tol * gsize * (np.abs(z) + 1.0))
+    return bool(np.all(stat) and primal and dual and comp)
+
+
+@pytest.mark.parametrize("transpose", [False, True])
+def test_qp_solves_match_numpy_on_random_sets(transpose):
+    """solve on random active sets of random QPs (equalities, inequalities, bounds, fixed
+    variables) against numpy.linalg.solve on K built here; K is symmetric (so solve_transpose
+    is solve: the same bits) and both match numpy's K' solve."""
+    rng = np.random.default_rng(31)
+    done = 0
+    for t in range(60):
+        n = int(rng.integers(2, 30))
+        p0 = int(rng.integers(0, n // 2 + 1))
+        m0 = int(rng.integers(0, 2 * n))
+        data = _random_qp_seam(n, p0, m0, rng, bounds=t % 2 == 1, fixed=int(t % 4 == 3 and n > p0 + 1))
+        P, q, G, h, A, b, lb, ub = data
+        E, C = _qp_rows(G, h, A, lb, ub)
+        p, m = E.shape[0], C.shape[0]
+        active = np.zeros(m, dtype=bool)
+        k = int(rng.integers(0, max(min(m, n - p), 0) + 1))
+        active[rng.choice(m, size=k, replace=False)] = True
+        K = _qp_kkt_matrix(P, E, C[active])
+        assert np.array_equal(K, K.T)
+        rhs = rng.normal(size=n + p + k)
+        got = _core.qp_basis(*data, active, TOL, rhs=rhs, transpose=transpose)
+        assert got[0] in (0, 1)
+        sol = got[6]
+        ref = np.linalg.solve(K.T if transpose else K, rhs)
+        assert np.allclose(sol, ref, rtol=1e-7, atol=1e-7 * np.abs(ref).max())
+        assert np.max(np.abs(K @ sol - rhs)) <= 1e-9 * (np.abs(K).max() * np.abs(sol).max() + np.abs(rhs).max())
+        other = _core.qp_basis(*data, active, TOL, rhs=rhs, transpose=not transpose)[6]
+        assert other.tobytes() == sol.tobytes()
+        done += 1
+    assert done == 60
+
+
+def test_qp_point_against_kkt_conditions():
+    """The refined point of the optimal active set passes the kernel's check (code 0) and a
+    KKT check written here; the point of a set that misses an active row (the empty set
+    where the unconstrained minimizer is infeasible) fails both."""
+    rng = np.random.default_rng(32)
+    seen = failed = 0
+    for t in range(40):
+        n = int(rng.integers(2, 25))
+        data = _random_qp_seam(n, int(rng.integers(0, n // 3 + 1)), int(rng.integers(1, 2 * n)), rng,
+                          bounds=t % 2 == 1)
+        P, q, G, h, A, b, lb, ub = data
+        r = lemke.solve_qp(*data)
+        if r.status != lemke.Status.SOLVED:
+            continue
+        E, C = _qp_rows(G, h, A, lb, ub)
+        fixed = lb == ub
+        # the active set: rows of G with z > 0, the bounds with z_box of their sign
+        zbs = np.asarray(r.z_box)
+        active = np.concatenate([np.asarray(r.z)[np.isfinite(h)] > 0,
+                                 zbs[~fixed & (ub < np.inf)] > 0, zbs[~fixed & (lb > -np.inf)] < 0])
+        code, x, y, z, zb, stats, _ = _core.qp_basis(*data, active, TOL)
+        assert code == 0
+        assert _qp_kkt_ok(*data, x, y, z, zb)
+        assert np.allclose(x, r.x, rtol=1e-8, atol=1e-8 * (1 + np.abs(r.x).max()))
+        seen += 1
+        if active.any():
+            code, x, y, z, zb, stats, _ = _core.qp_basis(*data, np.zeros_like(active), TOL)
+            if code == 1:  # (the set's point is a KKT point only by chance)
+                assert not _qp_kkt_ok(*data, x, y, z, zb)
+                failed += 1
+    assert seen >= 35 and failed >= 25
+
+
+def test_qp_warm_point_is_the_seams_bit_for_bit():
+    """A warm solve_qp whose old active set solves the new q (0 pivots: warm_point's point
+    of the set, QpBasis::point_given on the LCP's z) answers the seam's point of that set and
+    z, bit for bit (x, y, z); the factored path (m0 >= 4n: gram, QpBasis::point refined
+    twice) answers the seam's refined point of its final set bit for bit."""
+    rng = np.random.default_rng(33)
+    hits = grams = 0
+    for t in range(40):
+        n = int(rng.integers(3, 25))
+        data = _random_qp_seam(n, int(rng.integers(0, n // 3 + 1)), int(rng.integers(1, 2 * n)), rng)
+        P, q, G, h, A, b, lb, ub = data
+        r = lemke.solve_qp(*data)
+        if r.status != lemke.Status.SOLVED:
+            continue
+        for s in range(3):
+            q2 = q + 1e-7 * rng.normal(size=n)
+            rw = lemke.solve_qp(P, q2, G, h, A, b, lb, ub, warm_start=r.warm_start)
+            if rw.status != lemke.Status.SOLVED or rw.pivots != 0:
+                continue
+            active = np.zeros(G.shape[0], dtype=bool)
+            active[np.asarray(rw.warm_start.z_basic, dtype=np.int64)] = True
+            code, x, y, z, zb, stats, _ = _core.qp_basis(P, q2, G, h, A, b, lb, ub, active, TOL,
+                                                         z=np.asarray(rw.z))
+            assert code == 0
+            assert x.tobytes() == np.asarray(rw.x).tobytes()
+            assert y.tobytes() == np.asarray(rw.y).tobytes()
+            assert z.tobytes() == np.asarray(rw.z).tobytes()
+            hits += 1
+        m0 = 4 * n + int(rng.integers(0, n))
+        dg = _random_qp_seam(n, int(rng.integers(0, n // 3 + 1)), m0, rng)
+        _core.qp_front_codes()
+        rg = lemke.solve_qp(*dg)
+        if rg.status != lemke.Status.SOLVED or _core.qp_front_codes() != [("solve_gram", 0)]:
+            continue
+        active = np.zeros(m0, dtype=bool)
+        active[np.asarray(rg.warm_start.z_basic, dtype=np.int64)] = True
+        code, x, y, z, zb, stats, _ = _core.qp_basis(*dg, active, TOL)
+        assert code == 0
+        assert x.tobytes() == np.asarray(rg.x).tobytes()
+        assert z.tobytes() == np.asarray(rg.z).tobytes()
+        grams += 1
+    assert hits >= 100 and grams >= 35
+
+
+def test_qp_refused_sets_and_bad_arguments():
+    """More active rows than free directions, or dependent ones (a row twice), are refused
+    (code 2, no point); a P not definite is the kernel's NOT_DEFINITE; flags, z or rhs of
+    the wrong length raise ValueError, flags of another dtype TypeError."""
+    rng = np.random.default_rng(34)
+    data = _random_qp_seam(6, 2, 8, rng)
+    P, q, G, h, A, b, lb, ub = data
+    code, x, *_ = _core.qp_basis(*data, np.ones(8, dtype=bool), TOL)
+    assert code == 2 and x is None
+    G2 = G.copy()
+    G2[1] = G2[0]
+    active = np.zeros(8, dtype=np.uint8)
+    active[:2] = 1
+    assert _core.qp_basis(P, q, G2, h, A, b, lb, ub, active, TOL)[0] == 2
+    assert _core.qp_basis(-P, q, G, h, A, b, lb, ub, active, TOL)[0] == _core.QP_NOT_DEFINITE
+    with pytest.raises(ValueError):
+        _core.qp_basis(*data, np.zeros(7, dtype=bool), TOL)
+    with pytest.raises(ValueError):
+        _core.qp_basis(*data, active, TOL, z=np.zeros(7))
+    with pytest.raises(ValueError):
+        _core.qp_basis(*data, active, TOL, rhs=np.zeros(6 + 2 + 3))
+    with pytest.raises(TypeError):
+        _core.qp_basis(*data, active.astype(np.int64), TOL)

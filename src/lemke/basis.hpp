@@ -851,4 +851,9 @@ struct KktBasis {
     }
 };
 
+// The QP kind's basis system (QpBasis: apply, point, point_given, recover, solve,
+// solve_transpose, numbering, check) is in qp.cpp, not here: it is a view on that file's
+// QPWork and Rows (the engine's factors and caches, internal to it), its solve a null-space
+// solve through them, not an LU of a block (private entry _core.qp_basis: qp::basis_seam).
+
 }  // namespace lemke
