@@ -1,17 +1,21 @@
 // lemke._core's QP functions (bind_qp): the kernels lemke/_qp.py calls (qp_screen,
 // qp_cholesky, qp_kkt_check, qp_solve, qp_solve_warm, qp_solve_guess, qp_solve_gram, qp_solve_box), and a few pieces whose bits the tests check
 // (qp_forward_rows, qp_dot4, qp_qr_rows, qp_gram_lcp, unrevised_factored, the counts,
-// qp_warm_ends, qp_cache_hits; reductions.hpp's pairs: qp_box_apply, qp_box_recover,
-// qp_multiplier_lcp, qp_multiplier_recover).
+// qp_warm_ends, qp_cache_hits), the seam's QP basis system (qp_basis: qp::basis_seam), and
+// reductions.hpp's pairs (qp_box_apply, qp_box_recover, qp_multiplier_lcp,
+// qp_multiplier_recover).
 // Sizes are checked here, before the GIL is released: where the kernel answers data
 // of mismatched shapes (screen: False; solve, solve_gram: BAD_INPUT) this answers the same;
 // where it would read or write out of bounds this raises ValueError. Arrays of the wrong
 // dtype or layout raise TypeError (outputs are never converted).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/tuple.h>
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -392,6 +396,57 @@ std::tuple<int, std::int64_t> unrevised_factored(In2 Fs, In1 d, In1 q, std::int6
     return {static_cast<int>(status), pivots};
 }
 
+// The seam's QP basis system (qp.cpp's QpBasis, qp::basis_seam) on the caller's data:
+// active (m flags, bool or uint8: the multiplier LCP's rows in rows_of's order, G's rows with
+// h finite, then the upper bounds of the variables not fixed, then their lower bounds), the
+// point with z given (m entries, unrefined: warm_point's and the fused path's) or refined
+// `steps` times (gram's), checked at min(tol, STRICT_TOL); rhs (n + p + k) solved (or, with
+// transpose, by solve_transpose) by the set's factors. Returns (code, x, y, z, zb, stats,
+// sol): code 0 the point passes the check, 1 it fails, 2 the set refused (x .. stats None),
+// below 0 the kernels' code for data they refuse; sol None without rhs or when not finite.
+// Flags, z or rhs of the wrong length: ValueError (naming m, p and k).
+using FlagsRo = nb::ndarray<nb::ro, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+using SeamQp = std::tuple<int, nb::object, nb::object, nb::object, nb::object, nb::object, nb::object>;
+
+SeamQp qp_basis(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, FlagsRo active,
+                double tol, std::int64_t steps, std::optional<In1> z, std::optional<In1> rhs,
+                bool transpose) {
+    if (!shapes_match(P, q, G, h, A, b, lb, ub))
+        throw nb::value_error("qp_basis: P must be n x n, G m x n, A p x n, h m, b p, q, lb, ub n");
+    if (active.dtype() != nb::dtype<bool>() && active.dtype() != nb::dtype<std::uint8_t>())
+        throw nb::type_error("qp_basis: active must be bool or uint8");
+    if (steps < 0 || steps > 16) throw nb::value_error("qp_basis: steps in [0, 16]");
+    idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
+    qp::OutLayout L{n, p0, m0};
+    std::vector<double> out(static_cast<std::size_t>(L.basis()));
+    idx rl = rhs ? len(*rhs) : 0;
+    std::vector<double> sol(static_cast<std::size_t>(rl > 0 ? rl : 1));
+    qp::BasisSeam a;
+    {
+        nb::gil_scoped_release release;
+        a = qp::basis_seam(data(P, q, G, h, A, b, lb, ub),
+                           static_cast<const std::uint8_t*>(active.data()), len(active),
+                           z ? z->data() : nullptr, z ? len(*z) : 0, steps, tol, out.data(),
+                           rhs ? rhs->data() : nullptr, rl, transpose, sol.data());
+    }
+    if (a.code == 3)
+        throw nb::value_error(("qp_basis: active and z must have m = " + std::to_string(a.m) +
+                               " entries, rhs n + p + k = " + std::to_string(n + a.p + a.k))
+                                  .c_str());
+    auto vec = [](const double* from, idx size) -> nb::object {
+        double* data = new double[size > 0 ? size : 1];
+        nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<double*>(p); });
+        for (idx t = 0; t < size; ++t) data[t] = from[t];
+        return nb::cast(NewVector(data, {static_cast<std::size_t>(size)}, owner));
+    };
+    bool point = a.code == 0 || a.code == 1;
+    nb::object none = nb::none();
+    return {a.code, point ? vec(out.data() + L.x(), n) : none,
+            point ? vec(out.data() + L.y(), p0) : none, point ? vec(out.data() + L.z(), m0) : none,
+            point ? vec(out.data() + L.zb(), n) : none, point ? vec(out.data() + L.stats(), 4) : none,
+            point && a.solved ? vec(sol.data(), rl) : none};
+}
+
 }  // namespace
 
 void bind_qp(nb::module_& m) {
@@ -465,6 +520,9 @@ void bind_qp(nb::module_& m) {
         qp::BoxOutLayout L{n};
         return std::make_tuple(L.x(), L.zb(), L.stats(), L.final(), L.length());
     }, "n"_a);
+    m.def("qp_basis", &qp_basis, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "active"_a, "tol"_a, "steps"_a = qp::REFINE, "z"_a = nb::none(), "rhs"_a = nb::none(),
+          "transpose"_a = false);
     m.attr("QP_OK") = qp::OK;
     m.attr("QP_NOT_DEFINITE") = qp::NOT_DEFINITE;
     m.attr("QP_NOT_APPLICABLE") = qp::NOT_APPLICABLE;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <tuple>
@@ -429,6 +430,73 @@ std::int64_t relabel_ids(IdxIn old, IdxIn new_, IdxIn basic, IdxOut out) {
     return lemke::relabel_ids(old.data(), n, new_.data(), m, b, nb_, out.data());
 }
 
+
+// The seam's KKT basis system of a QP (basis.hpp's KktBasis, _qp._polished's point) on the
+// validated data (P n x n, q n, G m0 x n, h m0, A p0 x n, b p0, lb, ub n; absent bounds
+// infinite): basic (int64, distinct, in [0, pairs)) the KKT MLCP's basic pairs
+// (QPToMLCP's numbering: the shifted x', the rows of G, the boxed variables' upper
+// multipliers), the active set's KKT rows refined-solved with x_B given, (x, y, z, zb) and,
+// with tol, qp::kkt_check's verdict (code 0 or 1) and stats (primal, dual, gap, obj); without
+// tol code 0 and stats None. rhs (rows() entries: rows F, A, G_S) solved by the same LU (B x
+// = rhs, or B' x = rhs with transpose), None without rhs or when not finite. Code 2: the
+// block singular or the solution not finite (point and stats None).
+std::tuple<int, nb::object, nb::object, nb::object> kkt_basis(
+    In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, IdxIn basic,
+    std::optional<double> tol, std::optional<In1> rhs, bool transpose) {
+    idx n = len(q), m0 = len(G, 0), p0 = len(A, 0);
+    if (len(P, 0) != n || len(P, 1) != n || len(G, 1) != n || len(h) != m0 || len(A, 1) != n ||
+        len(b) != p0 || len(lb) != n || len(ub) != n)
+        throw nb::value_error("kkt_basis: P must be n x n, G m x n, A p x n, h m, b p, q, lb "
+                              "and ub n");
+    lemke::qp::Data d{mat(P), q.data(), mat(G), h.data(), mat(A), b.data(), lb.data(),
+                      ub.data()};
+    std::vector<idx> ints(static_cast<std::size_t>(lemke::KktBasis::index_size(n, m0)));
+    std::vector<double> bound(static_cast<std::size_t>(n));
+    lemke::KktBasis basis(d, ints.data(), bound.data());
+    idx pairs = basis.pairs();
+    std::vector<std::uint8_t> v(static_cast<std::size_t>(pairs), 0);
+    for (idx t = 0; t < len(basic); ++t) {
+        std::int64_t i = basic.data()[t];
+        if (i < 0 || i >= pairs || v[static_cast<std::size_t>(i)])
+            throw nb::value_error("kkt_basis: basic must hold distinct pairs in [0, pairs)");
+        v[static_cast<std::size_t>(i)] = 1;
+    }
+    basis.apply(v.data());
+    idx s = basis.rows();
+    if (rhs && len(*rhs) != s)
+        throw nb::value_error("kkt_basis: rhs must have one entry per block row");
+    std::unique_ptr<double[]> work(new double[static_cast<std::size_t>(basis.work_size() + 1)]);
+    std::vector<idx> piv(static_cast<std::size_t>(2 * s + 1));
+    basis.work = work.get();  // (not zeroed: point writes what it reads)
+    basis.piv = piv.data();
+    nb::capsule owner, x_owner;
+    double* out = new_block(2 * n + p0 + m0 + 4, owner);  // x, y, z, zb, stats
+    double *x = out, *y = x + n, *z = y + p0, *zb = z + m0, *stats = zb + n;
+    double* sol = rhs ? new_block(s, x_owner) : nullptr;
+    int code = 0;
+    bool solved = false;
+    {
+        nb::gil_scoped_release release;
+        if (!basis.point(x, y, z, zb)) {
+            code = 2;
+        } else {
+            if (sol != nullptr)
+                solved = transpose ? basis.solve_transpose(rhs->data(), sol)
+                                   : basis.solve(rhs->data(), sol);
+            if (tol) code = basis.check(x, y, z, zb, *tol, stats) ? 0 : 1;
+        }
+    }
+    auto vec = [&owner](double* data, idx size) -> nb::object {
+        return nb::cast(NewVector(data, {static_cast<std::size_t>(size)}, owner));
+    };
+    nb::object point = nb::none(), st = nb::none(), xs = nb::none();
+    if (code != 2) {
+        point = nb::make_tuple(vec(x, n), vec(y, p0), vec(z, m0), vec(zb, n));
+        if (tol) st = vec(stats, 4);
+    }
+    if (solved) xs = nb::cast(NewVector(sol, {static_cast<std::size_t>(s)}, x_owner));
+    return {code, point, st, xs};
+}
 }  // namespace
 
 void bind_support(nb::module_& m) {
@@ -461,4 +529,6 @@ void bind_support(nb::module_& m) {
     m.attr("MLCP_OK") = lemke::MLCP_OK;
     m.attr("MLCP_INCONSISTENT") = lemke::MLCP_INCONSISTENT;
     m.attr("MLCP_SINGULAR") = lemke::MLCP_SINGULAR;
+    m.def("kkt_basis", &kkt_basis, "P"_a, "q"_a, "G"_a, "h"_a, "A"_a, "b"_a, "lb"_a, "ub"_a,
+          "basic"_a, "tol"_a = nb::none(), "rhs"_a = nb::none(), "transpose"_a = false);
 }

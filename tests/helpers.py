@@ -281,3 +281,38 @@ def native_fronts_off():
     finally:
         _result.native_fronts_init()
     assert _core.lcp_front_on()
+
+
+def kkt_blocks(qp, z_basic):
+    """The active set of a basis of a QP's KKT MLCP (``qp`` its QPToMLCP; ``z_basic`` the basic
+    pairs: the shifted x', the rows of G, the boxed variables' upper multipliers), as
+    ``_qp._polished``'s numpy code read it before the seam (src/lemke/basis.hpp's KktBasis
+    now): ``(F, B, S, bound, K, rhs)``, F the free variables, B those held at ``bound``, S
+    the active rows of G, K the rows of F, A and G_S over the columns x_F, y, z_S, then x_B,
+    and rhs = (-q_F, b, h_S)."""
+    from lemke._npc import filled, nz, sub
+    n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
+    nn, nb = qp.shifted.size, qp.boxed.size
+    v = np.zeros(nn + mg + nb, dtype=bool)
+    v[list(z_basic)] = True
+    bound = filled(n, np.nan)
+    lower = qp.shifted[~v[:nn]]
+    bound[lower] = qp.x0[lower]
+    upper = qp.shifted[qp.boxed[v[nn + mg:]]]
+    bound[upper] = qp.ub[upper]
+    bound[qp.fixed] = qp.lb[qp.fixed]
+    S = nz(v[nn:nn + mg])
+    held = ~np.isnan(bound)
+    B, F = nz(held), nz(~held)
+    GS = qp.G[S]
+    f, k, s = F.size, F.size + p, F.size + p + S.size
+    K = np.zeros((s, s + B.size))
+    K[:f, :f] = sub(qp.P, F, F)
+    K[:f, f:k] = qp.A[:, F].T
+    K[:f, k:s] = GS[:, F].T
+    K[f:k, :f] = qp.A[:, F]
+    K[k:s, :f] = GS[:, F]
+    K[:f, s:] = sub(qp.P, F, B)
+    K[f:k, s:] = qp.A[:, B]
+    K[k:s, s:] = GS[:, B]
+    return F, B, S, bound, K, np.concatenate([-qp.q[F], qp.b, qp.h[S]])

@@ -32,12 +32,20 @@ and again in the test's own process, fingerprint against fingerprint).
   of those forms, cold, warm and from a guess, bit for bit the float64 arrays' answer;
   Python-number bounds of every type and value; malformed data, rows and bounds; junk warm
   starts and guesses with converted data: an answer, None or ValueError / TypeError.
+* the seam's QP basis system _core.qp_basis (src/lemke/qp.cpp's QpBasis) on QPs of 0-30
+  variables with equalities, inequalities, bounds and fixed variables, random, empty, full
+  and dependent active sets, z given or not, rhs of the right length and one off, both
+  solves, and malformed arguments: an answer of the QP's sizes, or a ValueError / TypeError;
 * the box batch's bindings boxed.islands and boxed.batch called directly (each island's rows
   judged in one pass, branch boxsmall) with random and extreme offsets, friction indices,
   flags, row states and island ranges: an answer or a ValueError / TypeError.
 * the seam's games basis system _core.game_basis (basis.hpp's SupportBasis, branch
   gamesbasis) on games of 1-40 actions a side with random, final and malformed vertex
   pairs: an answer of the game's sizes or a ValueError / TypeError.
+* the seam's _core.kkt_basis (basis.hpp's KktBasis, _qp._polished's system, branch polish) on
+  QPs of 0-40 variables and more with every kind of bound, random, empty and full bases,
+  rhs of the right length and one off, and malformed indices, arrays and data (see its
+  block at the end).
 * the core's reductions' private ends (src/lemke/reductions.hpp, branch reductions):
   boxed.friction_recover, qp_box_apply, qp_box_recover, qp_multiplier_lcp and
   qp_multiplier_recover on sizes 0-20 and some larger, with answers of the right length and
@@ -436,6 +444,8 @@ def fuzz(run):
         friction_seam(run, np.random.default_rng(2034))
         mlcp_seam(run, np.random.default_rng(2035))
         games_seam(run, np.random.default_rng(2036))
+        kkt_seam(run, np.random.default_rng(2036))
+        qp_seam(run, np.random.default_rng(2036))
         reductions_core(run, np.random.default_rng(2037))
 
 
@@ -1041,6 +1051,175 @@ def games_seam(run, rng):
             {"A": A2[2], "B": B2[1], "rhs": r2}[where][1] = bad
             run.attempt(f"fuzz seam games {bad} in {where}", refused_or(
                 lambda: _game_sizes(m, n, _core.game_basis(A2, B2, xb, yb, 1e-9, r2, where == "rhs"))))
+# --- the seam's KKT basis system of a QP (branch polish): _core.kkt_basis called directly on
+# QPs of n = 0-40 variables and some more (every kind of bound: free, one-sided, boxed,
+# fixed), p equalities and m inequalities, with random, empty and full bases of their pairs
+# (singular systems among them), rhs of the right length and one off, both solves, with and
+# without tol, and malformed arguments (basic indices out of range, repeated or extreme;
+# other dtypes, layouts and lengths; P, G, A of other shapes; NaN and infinities in the data,
+# bounds and rhs): an answer whose arrays have the sizes the QP gives (x and zb n, y p, z m,
+# stats 4 or None, the solve one per block row), or a ValueError / TypeError; never a read
+# or write outside the arrays.
+
+def _kkt_qp(n, p, m, rng):
+    """(P, q, G, h, A, b, lb, ub) with every kind of bound, the KKT MLCP's pair count, and
+    the block's row count of a basis (a function of the basic pairs)."""
+    L = rng.normal(size=(n, max(n // 2, 1)))
+    kinds = rng.integers(0, 5, size=n)
+    lb = np.where(np.isin(kinds, (1, 3, 4)), -rng.random(n), -np.inf)
+    ub = np.where(np.isin(kinds, (2, 3)), rng.random(n), np.inf)
+    ub[kinds == 4] = lb[kinds == 4]
+    shifted = (kinds > 0) & (kinds < 4)
+    nn, nbox = int(np.count_nonzero(shifted)), int(np.count_nonzero(kinds == 3))
+
+    def rows(basic):  # |F| + p + |S|: F the shifted x' basic and not at an upper bound, free x
+        v = np.zeros(nn + m + nbox, bool)
+        v[basic] = True
+        up = np.zeros(n, bool)
+        up[kinds == 3] = v[nn + m:]
+        x_basic = np.zeros(n, bool)
+        x_basic[shifted] = v[:nn]
+        free = (kinds == 0) | (x_basic & ~up)
+        return int(np.count_nonzero(free)) + p + int(np.count_nonzero(v[nn:nn + m]))
+    return (L @ L.T, rng.normal(size=n), rng.normal(size=(m, n)), rng.random(m),
+            rng.normal(size=(p, n)), rng.normal(size=p), lb, ub), nn + m + nbox, rows
+
+
+def _kkt_sizes(n, p, m, got):
+    """kkt_basis's answer (code, point, stats, x) checked for its sizes; the answer."""
+    code, point, stats, x = got
+    if code in (0, 1):
+        shapes = tuple(a.shape for a in point)
+        if shapes != ((n,), (p,), (m,), (n,)) or (stats is not None and stats.shape != (4,)):
+            raise AssertionError(f"kkt_basis: point of shapes {shapes} for {n}, {p}, {m}")
+    elif point is not None or stats is not None:
+        raise AssertionError(f"kkt_basis: code {code} with a point")
+    if x is not None and (x.ndim != 1 or x.size > n + p + m):
+        raise AssertionError(f"kkt_basis: x of shape {x.shape}")
+    return got
+
+
+def kkt_seam(run, rng):
+    for n in list(range(41)) + [64, 97]:
+        for t in range(4):
+            p, m = int(rng.integers(0, n // 2 + 2)), int(rng.integers(0, n + 3))
+            data, pairs, rows = _kkt_qp(n, p, m, rng)
+            basic = np.flatnonzero(rng.random(pairs) < (0.3, 0.7, 1.0, 0.0)[t]).astype(np.int64)
+            k = rows(basic)
+            for length in (k, k + 1, max(k - 1, 0)):
+                rhs = rng.normal(size=length)
+                for tol in (None, 1e-9):
+                    run.attempt(f"fuzz seam kkt {n} {p} {m} {t} {length} {tol}", refused_or(
+                        lambda: _kkt_sizes(n, p, m, _core.kkt_basis(*data, basic, tol, rhs, t > 1))))
+            run.attempt(f"fuzz seam kkt {n} {p} {m} {t} no rhs", refused_or(
+                lambda: _kkt_sizes(n, p, m, _core.kkt_basis(*data, basic, 1e-9))))
+    data, pairs, rows = _kkt_qp(6, 2, 4, rng)
+    basic = np.arange(min(pairs, 3), dtype=np.int64)
+    k = rows(basic)
+    extremes = [0, pairs - 1, pairs, -1, I64.max, I64.min, 1 << 31, 1 << 62]
+    for t in range(30):
+        bad = np.array([extremes[int(rng.integers(len(extremes)))]] * (1 + t % 2), np.int64)
+        run.attempt(f"fuzz seam kkt index {t}", refused_or(
+            lambda: _kkt_sizes(6, 2, 4, _core.kkt_basis(*data, bad, 1e-9, np.ones(k)))))
+    for name, g in ODD.items():
+        for i, what in enumerate(("P", "q", "G", "h", "A", "b", "lb", "ub")):
+            args = list(data)
+            args[i] = g(args[i])
+            run.attempt(f"fuzz seam kkt {name} {what}", refused_or(
+                lambda: _core.kkt_basis(*args, basic, 1e-9)))
+        run.attempt(f"fuzz seam kkt {name} basic", refused_or(lambda: _core.kkt_basis(*data, g(basic), 1e-9)))
+        run.attempt(f"fuzz seam kkt {name} rhs", refused_or(
+            lambda: _core.kkt_basis(*data, basic, 1e-9, g(np.ones(k)), True)))
+    for bad in (np.nan, np.inf, -np.inf):
+        for i, what in enumerate(("P", "q", "G", "h", "A", "b", "lb", "ub", "rhs")):
+            args, r2 = [a.copy() for a in data], np.ones(k)
+            (args[i] if i < 8 else r2).reshape(-1)[1] = bad
+            run.attempt(f"fuzz seam kkt {bad} in {what}", refused_or(
+                lambda: _kkt_sizes(6, 2, 4, _core.kkt_basis(*args, basic, 1e-9, r2, what == "rhs"))))
+# --- the seam's QP basis system (branch qpbasis): _core.qp_basis called directly on QPs of
+# 0-30 variables (equalities, inequalities, bounds, fixed variables), with random, empty,
+# full and dependent active sets (two equal rows of G), z given or not, rhs of the right
+# length and one off, both solves, and malformed arguments (flags, z and rhs of other dtypes,
+# layouts and lengths, P not definite, NaN and infinities): an answer whose arrays have the
+# QP's sizes (x and zb n, y p0, z m0, stats 4, the solve n + p + k), or a ValueError /
+# TypeError; never a read or write outside the arrays.
+
+def _qp_seam_sizes(n, p0, m0, got):
+    """qp_basis's answer checked for its sizes; the answer."""
+    code, x, y, z, zb, stats, sol = got
+    if code in (0, 1):
+        if (x.shape, y.shape, z.shape, zb.shape, stats.shape) != ((n,), (p0,), (m0,), (n,), (4,)):
+            raise AssertionError(f"qp_basis: shapes {x.shape} {y.shape} {z.shape} {zb.shape} for {n} {p0} {m0}")
+    elif any(a is not None for a in (x, y, z, zb, stats, sol)):
+        raise AssertionError(f"qp_basis: code {code} with a point")
+    if sol is not None and (sol.ndim != 1 or sol.size < n):
+        raise AssertionError(f"qp_basis: sol of shape {sol.shape} for n = {n}")
+    return got
+
+
+def _qp_seam_data(n, rng):
+    """A strictly convex QP of n variables (equalities, inequalities, some bounds, one fixed
+    variable when n > 2) and its multiplier LCP's row count m and equality count p."""
+    B = rng.normal(size=(n, n))
+    P = B @ B.T / max(n, 1) + 0.1 * np.eye(n)
+    x0 = rng.normal(size=n)
+    p0, m0 = int(rng.integers(0, n // 2 + 1)), int(rng.integers(0, 2 * n + 2))
+    A, G = rng.normal(size=(p0, n)), rng.normal(size=(m0, n))
+    lb = np.where(rng.random(n) < 0.3, x0 - 1.0, -np.inf)
+    ub = np.where(rng.random(n) < 0.3, x0 + 1.0, np.inf)
+    if n > 2:
+        lb[0] = ub[0] = x0[0]
+    fixed = lb == ub
+    m = m0 + int((~fixed & (ub < np.inf)).sum() + (~fixed & (lb > -np.inf)).sum())
+    return (P, rng.normal(size=n), G, G @ x0 + rng.random(m0), A, A @ x0, lb, ub), m, p0 + int(fixed.sum())
+
+
+def qp_seam(run, rng):
+    for n in list(range(31)):
+        data, m, p = _qp_seam_data(n, rng)
+        p0, m0 = data[4].shape[0], data[2].shape[0]
+        for t in range(4):
+            active = (rng.random(m) < (0.2, 0.6, 1.0, 0.0)[t]).astype(np.uint8 if t % 2 else bool)
+            d = data
+            if t == 1 and m0 >= 2:  # dependent rows where both are active
+                G2 = data[2].copy()
+                G2[1] = G2[0]
+                d = data[:2] + (G2,) + data[3:]
+                active[:2] = 1
+            k = int(np.count_nonzero(active))
+            z = rng.random(m) * active if t % 2 else None
+            for length in (n + p + k, n + p + k + 1):
+                rhs = rng.normal(size=length)
+                run.attempt(f"fuzz seam qp {n} {t} {length - n - p - k}", refused_or(
+                    lambda: _qp_seam_sizes(n, p0, m0, _core.qp_basis(*d, active, 1e-9, 2, z, rhs, t > 1))))
+            run.attempt(f"fuzz seam qp {n} {t} no rhs", refused_or(
+                lambda: _qp_seam_sizes(n, p0, m0, _core.qp_basis(*d, active, 1e-9, t))))
+    data, m, p = _qp_seam_data(6, rng)
+    active = np.zeros(m, dtype=np.uint8)
+    active[:2] = 1
+    rhs, z = np.ones(6 + p + 2), np.zeros(m)
+    for name, g in ODD.items():
+        run.attempt(f"fuzz seam qp {name} active", refused_or(lambda: _core.qp_basis(*data, g(active), 1e-9)))
+        run.attempt(f"fuzz seam qp {name} z", refused_or(lambda: _core.qp_basis(*data, active, 1e-9, 0, g(z))))
+        run.attempt(f"fuzz seam qp {name} rhs", refused_or(
+            lambda: _core.qp_basis(*data, active, 1e-9, 2, None, g(rhs), True)))
+        run.attempt(f"fuzz seam qp {name} P", refused_or(lambda: _core.qp_basis(g(data[0]), *data[1:], active, 1e-9)))
+        run.attempt(f"fuzz seam qp {name} h", refused_or(
+            lambda: _core.qp_basis(*data[:3], g(data[3]), *data[4:], active, 1e-9)))
+    for steps in (-1, 17, I64.max):
+        run.attempt(f"fuzz seam qp steps {steps}", refused_or(lambda: _core.qp_basis(*data, active, 1e-9, steps)))
+    run.attempt("fuzz seam qp not definite", refused_or(
+        lambda: _qp_seam_sizes(6, data[4].shape[0], data[2].shape[0], _core.qp_basis(-data[0], *data[1:], active, 1e-9))))
+    for bad in (np.nan, np.inf, -np.inf):
+        for where in (0, 1, 3, 5, "z", "rhs"):
+            d, z2, r2 = [a.copy() for a in data], z.copy(), rhs.copy()
+            arr = {"z": z2, "rhs": r2}[where] if isinstance(where, str) else d[where]
+            if arr.size == 0:
+                continue
+            arr.reshape(-1)[min(1, arr.size - 1)] = bad
+            run.attempt(f"fuzz seam qp {bad} in {where}", refused_or(
+                lambda: _qp_seam_sizes(6, d[4].shape[0], d[2].shape[0], _core.qp_basis(
+                    *d, active, 1e-9, 2, z2 if where == "z" else None, r2, True))))
 
 
 # --- the core's reductions as apply/recover pairs (branch reductions, src/lemke/reductions.hpp):

@@ -1,10 +1,16 @@
-"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis, FrictionBasis and
-MlcpBasis, issue 31 item 2) through their private entries ``_core.lcp_basis(M, q, z_basic,
-tol, rhs=None, transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh, warm_rule, tol,
-rhs=None, transpose=False)``, ``_core.friction_basis(M, q, lo, hi, F, zb, zh, tol, rhs=None,
-transpose=False)`` and ``_core.mlcp_basis(E, e, n, redundant, undetermined, v_basic,
-tol=None, rhs=None, transpose=False)`` (its point MLCPToLCP.basis_point's, bit for bit
-against the routine it replaced), checked
+"""The seam's basis systems (src/lemke/basis.hpp's LcpBasis, BoxBasis, FrictionBasis,
+MlcpBasis and KktBasis, issue 31 item 2) through their private entries ``_core.lcp_basis(M,
+q, z_basic, tol, rhs=None, transpose=False)``, ``_core.box_basis(M, q, lo, hi, zb, zh,
+warm_rule, tol, rhs=None, transpose=False)``, ``_core.friction_basis(M, q, lo, hi, F, zb,
+zh, tol, rhs=None, transpose=False)``, ``_core.mlcp_basis(E, e, n, redundant, undetermined,
+v_basic, tol=None, rhs=None, transpose=False)`` (its point MLCPToLCP.basis_point's, bit for
+bit against the routine it replaced) and ``_core.kkt_basis(P, q, G, h, A, b, lb, ub, basic,
+tol=None, rhs=None, transpose=False)`` (its point _qp._polished's, bit for bit against the
+numpy code it replaced, kept here as the oracle), and the QP kind's QpBasis (src/lemke/qp.cpp) through
+``_core.qp_basis(P, q, G, h, A, b, lb, ub, active, tol, steps=2, z=None, rhs=None,
+transpose=False)`` (its KKT solves against numpy, its point against a KKT check written
+here, and the point of the fused path's warm start and of the factored path bit for bit the
+seam's), checked
 independently of the core: the solve and the transpose solve against numpy.linalg.solve on
 the block built here (M[beta, beta] and its transpose), singular blocks reported, the point's
 z and w against the LCP (box LCP) conditions computed here, and the engines' point of a
@@ -16,6 +22,7 @@ import pytest
 
 import lemke
 from lemke import _core
+from helpers import kkt_blocks
 
 EPS = np.finfo(float).eps
 TOL = 1e-9  # Options().tol
@@ -981,3 +988,475 @@ def test_game_basis_degenerate_and_refused():
     assert res.status == lemke.Status.SOLVED and res.restarts >= 1
     assert np.asarray(res.x).tobytes() == x.tobytes() and np.asarray(res.y).tobytes() == y.tobytes()
     assert res.regret == out[0] and res.payoffs == (out[1], out[2])
+# --- the QP's KKT rows of an active set (KktBasis, _qp._polished's system) ----------------
+
+def _old_polished_candidate(qp, basis, tol):
+    """_qp._polished's candidate point as its numpy code made it before the seam (the
+    reference of the seam's bits): ``(new, ok, res)``, or None when singular."""
+    from lemke._npc import absmax
+    from lemke._qp import _data, kkt
+    from lemke._reductions.mlcp_lcp import refined_solve
+    n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
+    F, B, S, bound, K, rhs = kkt_blocks(qp, basis.z_basic)
+    GS = qp.G[S]
+    f, s = F.size, F.size + p + S.size
+    out = refined_solve(K, rhs, steps=3, given=bound[B], low=True)
+    if out is None:
+        return None
+    sol, lo = out
+    x = np.empty(n)
+    x[F] = sol[:f]
+    x[B] = bound[B]
+    exact_lo = np.zeros(n + s - f)
+    exact_lo[F] = lo[:f]
+    exact_lo[n:] = lo[f:]
+    KB = np.concatenate([qp.P[B], qp.A[:, B].T, GS[:, B].T], axis=1)
+    zb = np.empty(B.size)
+    _core.residual2(np.concatenate([KB, KB], axis=1), np.concatenate([x, sol[f:], exact_lo]),
+                    qp.q[B], zb)
+    mult = np.concatenate([sol[f:], -zb])
+    mult[np.abs(mult) <= EPS * absmax(mult)] = 0.0
+    z = np.zeros(mg)
+    z[S] = mult[p:p + S.size]
+    z_box = np.zeros(n)
+    z_box[B] = mult[p + S.size:]
+    new = (x, mult[:p].copy(), z, z_box)
+    ok, *res = kkt(_data(qp), *new, tol)
+    return new, ok, res
+
+
+def _old_polished(qp, point, basis, tol):
+    """_qp._polished before the seam, whole."""
+    from lemke._qp import _data, kkt
+    cand = _old_polished_candidate(qp, basis, tol)
+    if cand is None or not cand[1]:
+        return point, None
+    new, _, res = cand
+    res0 = kkt(_data(qp), *point, tol)[1:]
+    return (new, res) if max(res[:3]) < max(res0[:3]) else (point, res0)
+
+
+def _kkt_call(qp, beta, tol=None, rhs=None, transpose=False):
+    c = lemke._validate.c_aligned
+    return _core.kkt_basis(c(qp.P), qp.q, c(qp.G), qp.h, c(qp.A), qp.b, qp.lb, qp.ub,
+                           np.asarray(beta, dtype=np.int64), tol, rhs, transpose)
+
+
+def _random_qp(n, p, m, rng, rank=None):
+    """A QP with every kind of variable (free, lower, upper, boxed, fixed), p equalities
+    and m inequalities, P positive semidefinite of rank `rank` (n when None), feasible at a
+    point x0 inside the bounds."""
+    from lemke._qp import _QP
+    r = n if rank is None else rank
+    L = rng.normal(size=(n, r))
+    P = L @ L.T
+    q = rng.normal(size=n)
+    kinds = rng.integers(0, 5, size=n)
+    x0 = rng.normal(size=n)
+    lb = np.where(np.isin(kinds, (1, 3, 4)), x0 - rng.random(n), -np.inf)
+    ub = np.where(np.isin(kinds, (2, 3)), x0 + rng.random(n), np.inf)
+    lb[kinds == 4] = ub[kinds == 4] = x0[kinds == 4]
+    A = rng.normal(size=(p, n))
+    G = rng.normal(size=(m, n))
+    h = G @ x0 + rng.random(m) * (rng.random(m) < 0.7)
+    return _QP(P, q, G if m else None, h if m else None, A if p else None, A @ x0 if p else None,
+               lb, ub)
+
+
+_QP_SHAPES = [(1, 0, 1), (2, 1, 0), (3, 0, 3), (4, 1, 2), (5, 2, 6), (6, 0, 0), (8, 3, 5),
+              (10, 2, 12), (12, 4, 4), (16, 0, 20)]
+
+
+def _captured_polish_calls(problems):
+    """(qp, point, basis, tol) of every _qp._polished call while the KKT-MLCP path solves
+    the problems (the final bases polishing runs on)."""
+    from lemke import _qp
+    from lemke._options import as_options
+    calls, orig = [], _qp._polished
+
+    def capture(qp, point, basis, tol):
+        calls.append((qp, tuple(a.copy() for a in point), basis, tol))
+        return orig(qp, point, basis, tol)
+
+    _qp._polished = capture
+    try:
+        for qp in problems:
+            _qp._solve(qp, "tableau", as_options(None), None, certify=True)
+    finally:
+        _qp._polished = orig
+    return calls
+
+
+def _same_bits(a, b):
+    return all(np.asarray(u).tobytes() == np.asarray(v).tobytes() for u, v in zip(a, b))
+
+
+def test_kkt_basis_is_the_old_polish_bit_for_bit():
+    """_qp._polished through the seam (KktBasis) against its former numpy code: the
+    candidate point, its verdict and statistics, and _polished's choice, bit for bit, on the
+    final bases the KKT-MLCP path polishes (random QPs of every variable kind, P definite
+    and semidefinite, and the 61 Maros-Meszaros problems solve_qp solves, each solved by
+    that path here), and on random
+    bases of the random QPs (singular systems among them)."""
+    import sys
+    from pathlib import Path
+    from lemke import _qp
+    rng = np.random.default_rng(2611)
+    problems = []
+    for t in range(3):
+        for n, p, m in _QP_SHAPES:
+            problems.append(_random_qp(n, p, m, rng, rank=None if t == 0 else max(1, n // 2)))
+    calls = _captured_polish_calls(problems)
+    here = Path(__file__).resolve().parent
+    sys.path.insert(0, str(here.parent / "benchmarks"))
+    try:
+        from maros_meszaros import load
+    finally:
+        sys.path.pop(0)
+    mm = []
+    for path in sorted((here / "data" / "maros-meszaros").glob("*.mat")):
+        if path.stem != "VALUES":  # (its P indefinite as stored)
+            (P, q, G, h, A, b, lb, ub), _ = load(path)
+            mm.append(_qp._QP(*_qp.qpsolvers_form(P, q, G, h, A, b, lb, ub)[0]))
+    mm_calls = _captured_polish_calls(mm)
+    assert len(calls) >= 20 and len(mm_calls) == 61
+    kept = compared = 0
+    for qp, point, basis, tol in calls + mm_calls:
+        old = _old_polished(qp, point, basis, tol)
+        new = _qp._polished(qp, point, basis, tol)
+        assert _same_bits(old[0], new[0])
+        assert (old[1] is None) == (new[1] is None)
+        if old[1] is not None:
+            assert _same_bits(old[1], new[1]) and list(old[1]) == list(new[1])
+        kept += old[0][0] is not point[0]
+        cand = _old_polished_candidate(qp, basis, tol)
+        code, got, stats, _ = _kkt_call(qp, basis.z_basic, tol)
+        assert (cand is None) == (code == 2)
+        if cand is not None:
+            assert _same_bits(cand[0], got) and (code == 0) == cand[1]
+            assert np.array(cand[2]).tobytes() == stats.tobytes()
+            compared += 1
+    assert kept >= 30 and compared >= 80
+    # random bases of the random QPs (the singular ones reported by both)
+    singular = 0
+    for qp in problems:
+        pairs = qp.shifted.size + qp.G.shape[0] + qp.boxed.size
+        for prob in (0.0, 0.3, 0.6, 1.0):
+            basis = lemke.WarmStart(pairs, tuple(np.flatnonzero(rng.random(pairs) < prob)))
+            cand = _old_polished_candidate(qp, basis, TOL)
+            code, got, stats, _ = _kkt_call(qp, basis.z_basic, TOL)
+            assert (cand is None) == (code == 2)
+            if cand is None:
+                singular += 1
+                assert got is None and stats is None
+            else:
+                assert _same_bits(cand[0], got) and (code == 0) == cand[1]
+                assert np.array(cand[2]).tobytes() == stats.tobytes()
+    assert singular >= 5
+
+
+def _qp_stats(qp, x, y, z, zb):
+    """(primal, dual, gap, obj) by qpsolvers' formulas, in numpy (the infinite bounds' terms
+    left out of the gap)."""
+    P, q, G, h, A, b, lb, ub = qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub
+    viol = [np.abs(A @ x - b), np.maximum(G @ x - h, 0.0), np.maximum(lb - x, 0.0),
+            np.maximum(x - ub, 0.0)]
+    primal = max([0.0] + [float(v.max()) for v in viol if v.size])
+    dual = float(np.abs(P @ x + q + A.T @ y + G.T @ z + zb).max(initial=0.0))
+    lo, up = np.isfinite(lb), np.isfinite(ub)
+    gap = abs(x @ P @ x + q @ x + b @ y + h @ z + lb[lo] @ np.minimum(zb[lo], 0.0)
+              + ub[up] @ np.maximum(zb[up], 0.0))
+    return primal, dual, gap, 0.5 * x @ P @ x + q @ x
+
+
+@pytest.mark.parametrize("transpose", [False, True])
+def test_kkt_solves_match_numpy_and_the_point_solves_its_rows(transpose):
+    """The KKT basis system's solve and transpose solve against numpy.linalg.solve on the
+    block K[:, :s] built here (rows F, A, G_S; columns x_F, y, z_S), and its point checked
+    here: x_B at its bounds, z and zb zero off S and B, A x = b, G_S x = h_S and every
+    stationarity row (F's from the solve, B's by zb) to a backward-error bound, the
+    statistics qpsolvers' formulas, and the verdict against the KKT conditions computed
+    here (a point far from them fails it)."""
+    from helpers import assert_qp_kkt
+    rng = np.random.default_rng(91 + transpose)
+    checked = singular = passed = failed = 0
+    for n, p, m in _QP_SHAPES:
+        for t in range(12):
+            qp = _random_qp(n, p, m, rng)
+            pairs = qp.shifted.size + qp.G.shape[0] + qp.boxed.size
+            basis = tuple(np.flatnonzero(rng.random(pairs) < t / 11))
+            F, B, S, bound, K, rhs0 = kkt_blocks(qp, basis)
+            s = rhs0.size
+            rhs = rng.normal(size=s)
+            code, point, stats, sol = _kkt_call(qp, basis, TOL, rhs, transpose)
+            if code == 2:
+                singular += 1
+                assert point is None and stats is None and sol is None
+                continue
+            Ks = K[:, :s]
+            if s and np.linalg.cond(Ks) > 1e10:
+                continue  # (singular to rounding: no bound to hold the solves to)
+            checked += 1
+            x, y, z, zb = point
+            Kt = Ks.T if transpose else Ks
+            if s:  # (normwise: a KKT block's zeros leave LU no row-wise bound)
+                size = np.abs(Kt).sum(1).max() * np.abs(sol).max() + np.abs(rhs).max()
+                assert np.abs(Kt @ sol - rhs).max() <= 8 * (s + 1) * EPS * size
+                assert _close_to_numpy(Kt, sol, rhs)
+            else:
+                assert sol.shape == (0,)
+            assert x[B].tobytes() == bound[B].tobytes()
+            off_S = np.setdiff1d(np.arange(qp.G.shape[0]), S)
+            assert np.all(z[off_S] == 0.0) and np.all(zb[F] == 0.0)
+            # the rows: K (x_F, y, z_S, x_B) = rhs0, and B's stationarity rows with zb
+            u = np.concatenate([x[F], y, z[S], x[B]])
+            scale = np.abs(K) @ np.abs(u) + np.abs(rhs0)  # (refined: row-wise backward error)
+            assert np.all(np.abs(K @ u - rhs0) <= 8 * (s + 1) * EPS * scale)
+            g = qp.P @ x + qp.q + qp.A.T @ y + qp.G.T @ z
+            mult = np.abs(np.concatenate([y, z, zb])).max(initial=0.0)
+            size = np.abs(qp.P[B]) @ np.abs(x) + np.abs(qp.q[B]) + mult * (
+                np.abs(qp.A[:, B]).sum(0) + np.abs(qp.G[:, B]).sum(0) + 1.0)
+            assert np.all(np.abs(g[B] + zb[B]) <= 64 * (n + 1) * EPS * size)
+            # the statistics, and the verdict
+            ref = _qp_stats(qp, x, y, z, zb)
+            big = max(1.0, np.abs(x).max(initial=0.0), mult) ** 2 * max(
+                [1.0] + [np.abs(a).max() for a in (qp.P, qp.q, qp.A, qp.b, qp.G, qp.h) if a.size])
+            assert np.allclose(stats, ref, rtol=1e-9, atol=1e-12 * big)
+            if code == 0:
+                passed += 1
+                res = type("R", (), dict(x=x, y=y, z=z, z_box=zb, obj=stats[3]))
+                assert_qp_kkt(qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub, res, rtol=1e-7)
+            else:  # fails: a condition the point breaks beyond the check's tolerance
+                fixed = qp.lb[B] == qp.ub[B]
+                at_lo, at_up = (bound[B] == qp.lb[B]) & ~fixed, (bound[B] == qp.ub[B]) & ~fixed
+                assert (max(ref[:3]) > 1e-9 * big or np.any(z < 0) or np.any(zb[B][at_lo] > 0)
+                        or np.any(zb[B][at_up] < 0))
+                failed += 1
+    assert checked >= 40 and singular >= 10 and passed >= 5 and failed >= 30
+
+
+def test_kkt_basis_final_bases_pass_and_bad_input_refused():
+    """The final bases of the random QPs: the seam's point passes its check where
+    _polished keeps it (and the tests' own KKT check there); bad arguments refused."""
+    from helpers import assert_qp_kkt
+    rng = np.random.default_rng(12)
+    problems = [_random_qp(n, p, m, rng) for n, p, m in _QP_SHAPES]
+    passed = 0
+    for qp, point, basis, tol in _captured_polish_calls(problems):
+        code, new, stats, _ = _kkt_call(qp, basis.z_basic, tol)
+        if code == 0:
+            passed += 1
+            res = type("R", (), dict(x=new[0], y=new[1], z=new[2], z_box=new[3], obj=stats[3]))
+            assert_qp_kkt(qp.P, qp.q, qp.G, qp.h, qp.A, qp.b, qp.lb, qp.ub, res, rtol=1e-8)
+        # without tol: the same point, no verdict
+        code2, new2, stats2, _ = _kkt_call(qp, basis.z_basic)
+        assert stats2 is None and (code2 == 2) == (code == 2)
+        if code != 2:
+            assert code2 == 0 and _same_bits(new, new2)
+    assert passed >= 7
+    qp = problems[4]
+    pairs = qp.shifted.size + qp.G.shape[0] + qp.boxed.size
+    c = lemke._validate.c_aligned
+    args = [c(qp.P), qp.q, c(qp.G), qp.h, c(qp.A), qp.b, qp.lb, qp.ub]
+    for bad in ([pairs], [-1], [0, 0]):
+        with pytest.raises(ValueError):
+            _core.kkt_basis(*args, np.array(bad, np.int64))
+    with pytest.raises(ValueError):  # P not n x n
+        _core.kkt_basis(c(qp.P[:, :-1]), *args[1:], np.zeros(0, np.int64))
+    with pytest.raises(ValueError):  # rhs of the wrong length
+        s = kkt_blocks(qp, ())[5].size
+        _core.kkt_basis(*args, np.zeros(0, np.int64), TOL, np.ones(s + 1))
+# --- the QP kind (qp.cpp's QpBasis, _core.qp_basis) -----------------------------------------
+
+def _random_qp_seam(n, p0, m0, rng, bounds=False, fixed=0):
+    """A strictly convex QP (P = B B'/n + I/10) with p0 equalities and m0 inequalities that a
+    random x0 satisfies (slack uniform in [0, 1]); with bounds, about a third of the
+    variables bounded below, a third above (x0 inside), and `fixed` variables fixed at x0."""
+    B = rng.normal(size=(n, n))
+    P = B @ B.T / n + 0.1 * np.eye(n)
+    x0 = rng.normal(size=n)
+    A = rng.normal(size=(p0, n))
+    G = rng.normal(size=(m0, n))
+    lb, ub = np.full(n, -np.inf), np.full(n, np.inf)
+    if bounds:
+        u = rng.random(n)
+        lb[u < 1 / 3] = x0[u < 1 / 3] - rng.random(int((u < 1 / 3).sum()))
+        ub[u > 2 / 3] = x0[u > 2 / 3] + rng.random(int((u > 2 / 3).sum()))
+        for j in rng.choice(n, size=fixed, replace=False):
+            lb[j] = ub[j] = x0[j]
+    return (P, 3 * rng.normal(size=n), G, G @ x0 + rng.random(m0), A, A @ x0, lb, ub)
+
+
+def _qp_rows(G, h, A, lb, ub):
+    """The KKT system's rows as the kernel numbers them (rows_of), built here: E (A, then a
+    fixed variable's unit row) and C (G's rows with h finite, then x_j <= ub_j for the
+    variables not fixed, then -x_j <= -lb_j)."""
+    n = lb.size
+    eye = np.eye(n)
+    fixed = lb == ub
+    E = np.vstack([A] + [eye[j][None] for j in np.flatnonzero(fixed)]).reshape(-1, n)
+    C = np.vstack([G[np.isfinite(h)]] + [eye[j][None] for j in np.flatnonzero(~fixed & (ub < np.inf))]
+                  + [-eye[j][None] for j in np.flatnonzero(~fixed & (lb > -np.inf))]).reshape(-1, n)
+    return E, C
+
+
+def _qp_kkt_matrix(P, E, CS):
+    """K = [[P, E', C_S'], [E, 0, 0], [C_S, 0, 0]], built here."""
+    n, p, k = P.shape[0], E.shape[0], CS.shape[0]
+    K = np.zeros((n + p + k, n + p + k))
+    K[:n, :n] = P
+    K[:n, n:n + p] = E.T
+    K[:n, n + p:] = CS.T
+    K[n:n + p, :n] = E
+    K[n + p:, :n] = CS
+    return K
+
+
+def _qp_kkt_ok(P, q, G, h, A, b, lb, ub, x, y, z, zb, tol=1e-9):
+    """An independent KKT check (qpsolvers' convention P x + q + A'y + G'z + z_box = 0):
+    each condition to tol relative to its terms' sizes."""
+    big = np.abs(P) @ np.abs(x) + np.abs(q) + np.abs(A.T) @ np.abs(y) + np.abs(G.T) @ np.abs(z) + np.abs(zb) + 1.0
+    stat = np.abs(P @ x + q + A.T @ y + G.T @ z + zb) <= tol * big
+    gx = G @ x
+    gsize = np.abs(G) @ np.abs(x) + np.abs(h) + 1.0
+    primal = (np.all(np.abs(A @ x - b) <= tol * (np.abs(A) @ np.abs(x) + np.abs(b) + 1.0))
+              and np.all(gx - h <= tol * gsize) and np.all(x >= lb - tol * (np.abs(lb) + 1.0))
+              and np.all(x <= ub + tol * (np.abs(ub) + 1.0)))
+    dual = (np.all(z >= 0) and np.all(zb[np.isneginf(lb)] >= 0) and np.all(zb[np.isposinf(ub)] <= 0))
+    comp = np.all(np.abs(z * (h - gx)) <= tol * gsize * (np.abs(z) + 1.0))
+    return bool(np.all(stat) and primal and dual and comp)
+
+
+@pytest.mark.parametrize("transpose", [False, True])
+def test_qp_solves_match_numpy_on_random_sets(transpose):
+    """solve on random active sets of random QPs (equalities, inequalities, bounds, fixed
+    variables) against numpy.linalg.solve on K built here; K is symmetric (so solve_transpose
+    is solve: the same bits) and both match numpy's K' solve."""
+    rng = np.random.default_rng(31)
+    done = 0
+    for t in range(60):
+        n = int(rng.integers(2, 30))
+        p0 = int(rng.integers(0, n // 2 + 1))
+        m0 = int(rng.integers(0, 2 * n))
+        data = _random_qp_seam(n, p0, m0, rng, bounds=t % 2 == 1, fixed=int(t % 4 == 3 and n > p0 + 1))
+        P, q, G, h, A, b, lb, ub = data
+        E, C = _qp_rows(G, h, A, lb, ub)
+        p, m = E.shape[0], C.shape[0]
+        active = np.zeros(m, dtype=bool)
+        k = int(rng.integers(0, max(min(m, n - p), 0) + 1))
+        active[rng.choice(m, size=k, replace=False)] = True
+        K = _qp_kkt_matrix(P, E, C[active])
+        assert np.array_equal(K, K.T)
+        rhs = rng.normal(size=n + p + k)
+        got = _core.qp_basis(*data, active, TOL, rhs=rhs, transpose=transpose)
+        assert got[0] in (0, 1)
+        sol = got[6]
+        ref = np.linalg.solve(K.T if transpose else K, rhs)
+        assert np.allclose(sol, ref, rtol=1e-7, atol=1e-7 * np.abs(ref).max())
+        assert np.max(np.abs(K @ sol - rhs)) <= 1e-9 * (np.abs(K).max() * np.abs(sol).max() + np.abs(rhs).max())
+        other = _core.qp_basis(*data, active, TOL, rhs=rhs, transpose=not transpose)[6]
+        assert other.tobytes() == sol.tobytes()
+        done += 1
+    assert done == 60
+
+
+def test_qp_point_against_kkt_conditions():
+    """The refined point of the optimal active set passes the kernel's check (code 0) and a
+    KKT check written here; the point of a set that misses an active row (the empty set
+    where the unconstrained minimizer is infeasible) fails both."""
+    rng = np.random.default_rng(32)
+    seen = failed = 0
+    for t in range(40):
+        n = int(rng.integers(2, 25))
+        data = _random_qp_seam(n, int(rng.integers(0, n // 3 + 1)), int(rng.integers(1, 2 * n)), rng,
+                          bounds=t % 2 == 1)
+        P, q, G, h, A, b, lb, ub = data
+        r = lemke.solve_qp(*data)
+        if r.status != lemke.Status.SOLVED:
+            continue
+        E, C = _qp_rows(G, h, A, lb, ub)
+        fixed = lb == ub
+        # the active set: rows of G with z > 0, the bounds with z_box of their sign
+        zbs = np.asarray(r.z_box)
+        active = np.concatenate([np.asarray(r.z)[np.isfinite(h)] > 0,
+                                 zbs[~fixed & (ub < np.inf)] > 0, zbs[~fixed & (lb > -np.inf)] < 0])
+        code, x, y, z, zb, stats, _ = _core.qp_basis(*data, active, TOL)
+        assert code == 0
+        assert _qp_kkt_ok(*data, x, y, z, zb)
+        assert np.allclose(x, r.x, rtol=1e-8, atol=1e-8 * (1 + np.abs(r.x).max()))
+        seen += 1
+        if active.any():
+            code, x, y, z, zb, stats, _ = _core.qp_basis(*data, np.zeros_like(active), TOL)
+            if code == 1:  # (the set's point is a KKT point only by chance)
+                assert not _qp_kkt_ok(*data, x, y, z, zb)
+                failed += 1
+    assert seen >= 35 and failed >= 25
+
+
+def test_qp_warm_point_is_the_seams_bit_for_bit():
+    """A warm solve_qp whose old active set solves the new q (0 pivots: warm_point's point
+    of the set, QpBasis::point_given on the LCP's z) answers the seam's point of that set and
+    z, bit for bit (x, y, z); the factored path (m0 >= 4n: gram, QpBasis::point refined
+    twice) answers the seam's refined point of its final set bit for bit."""
+    rng = np.random.default_rng(33)
+    hits = grams = 0
+    for t in range(40):
+        n = int(rng.integers(3, 25))
+        data = _random_qp_seam(n, int(rng.integers(0, n // 3 + 1)), int(rng.integers(1, 2 * n)), rng)
+        P, q, G, h, A, b, lb, ub = data
+        r = lemke.solve_qp(*data)
+        if r.status != lemke.Status.SOLVED:
+            continue
+        for s in range(3):
+            q2 = q + 1e-7 * rng.normal(size=n)
+            rw = lemke.solve_qp(P, q2, G, h, A, b, lb, ub, warm_start=r.warm_start)
+            if rw.status != lemke.Status.SOLVED or rw.pivots != 0:
+                continue
+            active = np.zeros(G.shape[0], dtype=bool)
+            active[np.asarray(rw.warm_start.z_basic, dtype=np.int64)] = True
+            code, x, y, z, zb, stats, _ = _core.qp_basis(P, q2, G, h, A, b, lb, ub, active, TOL,
+                                                         z=np.asarray(rw.z))
+            assert code == 0
+            assert x.tobytes() == np.asarray(rw.x).tobytes()
+            assert y.tobytes() == np.asarray(rw.y).tobytes()
+            assert z.tobytes() == np.asarray(rw.z).tobytes()
+            hits += 1
+        m0 = 4 * n + int(rng.integers(0, n))
+        dg = _random_qp_seam(n, int(rng.integers(0, n // 3 + 1)), m0, rng)
+        _core.qp_front_codes()
+        rg = lemke.solve_qp(*dg)
+        if rg.status != lemke.Status.SOLVED or _core.qp_front_codes() != [("solve_gram", 0)]:
+            continue
+        active = np.zeros(m0, dtype=bool)
+        active[np.asarray(rg.warm_start.z_basic, dtype=np.int64)] = True
+        code, x, y, z, zb, stats, _ = _core.qp_basis(*dg, active, TOL)
+        assert code == 0
+        assert x.tobytes() == np.asarray(rg.x).tobytes()
+        assert z.tobytes() == np.asarray(rg.z).tobytes()
+        grams += 1
+    assert hits >= 100 and grams >= 35
+
+
+def test_qp_refused_sets_and_bad_arguments():
+    """More active rows than free directions, or dependent ones (a row twice), are refused
+    (code 2, no point); a P not definite is the kernel's NOT_DEFINITE; flags, z or rhs of
+    the wrong length raise ValueError, flags of another dtype TypeError."""
+    rng = np.random.default_rng(34)
+    data = _random_qp_seam(6, 2, 8, rng)
+    P, q, G, h, A, b, lb, ub = data
+    code, x, *_ = _core.qp_basis(*data, np.ones(8, dtype=bool), TOL)
+    assert code == 2 and x is None
+    G2 = G.copy()
+    G2[1] = G2[0]
+    active = np.zeros(8, dtype=np.uint8)
+    active[:2] = 1
+    assert _core.qp_basis(P, q, G2, h, A, b, lb, ub, active, TOL)[0] == 2
+    assert _core.qp_basis(-P, q, G, h, A, b, lb, ub, active, TOL)[0] == _core.QP_NOT_DEFINITE
+    with pytest.raises(ValueError):
+        _core.qp_basis(*data, np.zeros(7, dtype=bool), TOL)
+    with pytest.raises(ValueError):
+        _core.qp_basis(*data, active, TOL, z=np.zeros(7))
+    with pytest.raises(ValueError):
+        _core.qp_basis(*data, active, TOL, rhs=np.zeros(6 + 2 + 3))
+    with pytest.raises(TypeError):
+        _core.qp_basis(*data, active.astype(np.int64), TOL)

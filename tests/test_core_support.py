@@ -110,6 +110,8 @@ class _Recorder:
         real = getattr(_core, name)
         if name == "mlcp_basis":
             return self._mlcp_basis
+        if name == "kkt_basis":
+            return self._kkt_basis
         if name not in FAMILY:
             return real
 
@@ -145,6 +147,29 @@ class _Recorder:
         assert got[0] == 0 and got[1].tobytes() == x.tobytes()
         return got
 
+
+    def _kkt_basis(self, P, q, G, h, A, b, lb, ub, basic, *rest):
+        """The seam's KKT point (_qp._polished since branch polish) recorded as the
+        refined_solve call _polished made before (its K, rhs, 3 steps, x with x_B given
+        after np.empty's bytes, lo from np.empty), so that the frozen references still
+        judge those solves; and its answer's x checked to be that solve's, bit for bit (the
+        rest: tests/test_basis_seam.py's comparison with the former code)."""
+        from helpers import kkt_blocks
+        from lemke._reductions.qp_mlcp import QPToMLCP
+        got = _core.kkt_basis(P, q, G, h, A, b, lb, ub, basic, *rest)
+        F, B, _, bound, K, rhs = kkt_blocks(QPToMLCP(P, q, G, h, A, b, lb, ub), basic)
+        k = rhs.size
+        x = frozen.empty(k + B.size)
+        x[k:] = bound[B]
+        args = [np.ascontiguousarray(K), np.ascontiguousarray(rhs), 3, x, frozen.empty(k)]
+        self.calls.append(("refined_solve", _copy(args)))
+        if not _core.refined_solve(*args):
+            assert got[0] == 2
+            return got
+        point = np.empty(q.size)
+        point[F], point[B] = x[:F.size], bound[B]
+        assert got[0] in (0, 1) and got[1][0].tobytes() == point.tobytes()
+        return got
 
 FRONTS = ["lemke._certify", "lemke._pivot_column", "lemke._reductions.mlcp_lcp", "lemke._mlcp",
           "lemke._result", "lemke._lcp"]
@@ -190,7 +215,8 @@ def test_the_mlcp_front_on_the_siconos_files(recorder):
 
 def test_the_qp_front(recorder, monkeypatch):
     """solve_qp on the goldens' QPs (the small Maros-Meszaros files, HS21, random convex
-    QPs): the KKT systems' reduction, refined_solve with given unknowns, check_mlcp.  On
+    QPs): the KKT systems' reduction, refined_solve with given unknowns (_polished's, now
+    the seam's kkt_basis: recorded as the solve it made), check_mlcp.  On
     the Python path with step 8 as it was when the references were recorded (its own rule,
     after NOT_DEFINITE only: ``_qp._RELAXED`` off), so that the QPs that step 8 now answers
     (QAFIRO, QPCBLEND, random/20/10, ...) still reach the KKT-MLCP path here."""
@@ -198,6 +224,7 @@ def test_the_qp_front(recorder, monkeypatch):
 
     monkeypatch.setattr(_qp, "_QP_FRONT", lambda *a: None)
     monkeypatch.setattr(_qp, "_RELAXED", False)
+    monkeypatch.setattr(_qp, "_core", recorder)  # (_polished's kkt_basis; no other call recorded)
     for _, args in golden.qp_cases():
         for method in golden.METHODS:
             lemke.solve_qp(*args, method=method)

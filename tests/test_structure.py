@@ -19,7 +19,7 @@ PACKAGE = Path(lemke.__file__).parent
 #: (or, inside the _io and _reductions packages, its siblings, acyclically).
 LAYERS = [
     {"_layout", "_core", "_frozen", "_npc"},  # (the compiled core imports nothing of the package)
-    {"_status", "_options", "_validate", "_version", "_progress"},
+    {"_status", "_options", "_validate", "_version", "_progress", "_ladder"},
     {"_result"},
     {"_certify"},
     {"_reductions", "_games_exact"},

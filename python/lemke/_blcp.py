@@ -42,6 +42,7 @@ import numpy as np
 from ._frozen import frozen
 from ._options import _DEFAULT, as_options, time_limited, timed
 from . import _progress, _validate
+from ._ladder import Cap, Rung, always, climb
 from ._result import LazyField, Outcome, lazy_state, native_fronts_init
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ core's box engine (src/lemke/boxed.*)
@@ -740,7 +741,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     ez, ew, ed, eR, eray = (slice(*L[name]) for name in ("z", "w", "covering", "row_scale", "ray"))
     limit, pt, tt = opts.pivot_limit(N), opts.pivot_tol, opts.tie_tol
     solve = boxed.solve
-    pivots = rec = 0
+    rec = 0
 
     def done(k, m, pivots, residual, rec, from_warm):
         # a run solved and checked: with a friction index the check on the caller's data
@@ -751,48 +752,70 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
             if code != 0:
                 return None
         return _lazy(buf, ints, N, k, m, n, lo, hi, friction, pivots, residual, rec, None)
-    if ws is not None:  # _warm: a run from the warm start's basis
-        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm, _WARM, limit, pt, tt, tol,
+    # The ladder (_ladder.py; boxed::batch's one_call has the same rungs): the warm start's
+    # basis (_warm), the same with its friction rows cold (_reset), _solve's cold run, then
+    # _finish's rungs (other covering vectors, exact ties); a run solved and checked settles
+    # it; a checked ray (the general path reports it) or a stop ends it.
+    cap = Cap(limit)
+    cold = _no_warm(N)
+    c = k = m = 0
+    residual = 0.0
+    accepted = ended = False
+
+    def go(flags, mode, left, tie):
+        nonlocal c, k, m, residual, accepted
+        c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, flags, mode, left, pt, tie, tol,
                                              ext, final)
-        pivots = max(p, 0)
-        if not (c == 0 and ok):  # _finish: the point of its final basis, recomputed
+        cap.charge(p)
+        accepted = c == 0 and ok
+        return z0, ok
+
+    def from_warm():
+        nonlocal residual, accepted, rec
+        _, ok = go(warm, _WARM, limit, tt)
+        if not accepted:  # _finish: the point of its final basis, recomputed
             point = _checked_point(A, qa, la, ha, *_basis_flags(final, k, m, N), tol, ext[eR])
             if point is not None:
                 ok = True
                 ext[ez], ext[ew], residual = point
-        if ok:
-            return done(k, m, pivots, residual, 0, True)
-        rec = 1
-        if nf and c not in STOPPED:  # the warm basis with its friction rows cold (_reset)
-            warm2 = _reset(warm, N, _friction_vars(ints[slice(*L["friction_rows"])], n))
-            c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, warm2, _WARM,
-                                                 max(0, limit - pivots), pt, tt, tol, ext, final)
-            pivots += max(p, 0)
-            if c == 0 and ok:
-                return done(k, m, pivots, residual, 1, True)
+        accepted = ok
+        if not ok:
+            rec = 1
+
+    def friction_cold():
+        nonlocal rec
+        go(_reset(warm, N, _friction_vars(ints[slice(*L["friction_rows"])], n)), _WARM,
+           max(0, cap.left()), tt)
+        if not accepted:
             rec = 2
-    # _solve's cold run, then _finish's ladder (other covering vectors, exact ties)
-    cold = _no_warm(N)
-    c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, cold, 0, max(0, limit - pivots), pt, tt,
-                                         tol, ext, final)
-    pivots += max(p, 0)
-    if not (c == 0 and ok):
-        if c == Status.RAY_TERMINATION and is_box_ray(A, qa, la, ha, ext[ed], ext[ez], z0,
-                                                       ext[eray], tol):
-            return None  # (the general path reports the ray)
-        for mode, tie in ((1, tt), (2, 0.0)):
-            left = limit - pivots
-            if left <= 0:
-                break
-            c, p, z0, ok, residual, k, m = solve(A, qa, la, ha, cold, mode, left, pt, tie, tol,
-                                                 ext, final)
-            pivots += max(p, 0)
+
+    def cold_run():
+        nonlocal ended
+        z0, _ = go(cold, 0, max(0, cap.left()), tt)
+        ended = (not accepted and c == Status.RAY_TERMINATION
+                 and is_box_ray(A, qa, la, ha, ext[ed], ext[ez], z0, ext[eray], tol))
+
+    def other(mode, tie):
+        def run():
+            nonlocal rec, ended
+            go(cold, mode, cap.left(), tie)
             rec += 1
-            if c == 0 and ok or c in STOPPED:
-                break
-        if not (c == 0 and ok):
-            return None
-    return done(k, m, pivots, residual, rec, False)
+            ended = c in STOPPED
+        return run
+
+    def left():
+        return cap.left() > 0
+
+    solved_by = climb(lambda: accepted or ended,
+                      Rung("the warm start's basis", lambda: ws is not None, from_warm),
+                      Rung("its friction rows cold",
+                           lambda: ws is not None and nf and c not in STOPPED, friction_cold),
+                      Rung("cold", always, cold_run),
+                      Rung("other covering vectors", left, other(1, tt)),
+                      Rung("exact ties", left, other(2, 0.0)))
+    if not accepted:
+        return None
+    return done(k, m, cap.pivots, residual, rec, solved_by < 2)
 
 
 def _lazy(buf, final, N, k, m, n, lo, hi, friction, pivots, residual, rec, ws):
@@ -846,25 +869,47 @@ def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=(), reset=None)
     n = q.size
     extra, rec = 0, 0
     _check_warm(warm_start, n, friction)
-    if warm_start is not None:
-        if not tried:
-            res = _one_call(*_kernel_arrays(M, q, lo, hi), None, warm_start, opts, validated=True)
-            if res is not None:
-                return res
-        res = _warm(M, q, lo, hi, opts, warm_start)
-        if res.status == Status.SOLVED:
-            return res
-        extra, rec = res.pivots, 1
-        if reset is not None and res.status not in STOPPED:  # as _one_call: friction rows cold
-            run = _Run(n).go(M, q, lo, hi, _reset(warm_start._kernel_flags(), n, reset), _WARM,
-                             opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
-            if run.code == 0 and run.ok:
-                return _solved(run, n, lo, hi, rec, extra + run.pivots)
+    res = warm = None  # the result a rung settled it with; the warm run's
+
+    # The ladder (_ladder.py): the warm start in one kernel call (_one_call), its basis
+    # (_warm), its friction rows cold (_reset), then cold and _finish's rungs.
+    def one_call():
+        nonlocal res
+        res = _one_call(*_kernel_arrays(M, q, lo, hi), None, warm_start, opts, validated=True)
+
+    def from_warm():
+        nonlocal res, warm, extra, rec
+        warm = _warm(M, q, lo, hi, opts, warm_start)
+        if warm.status == Status.SOLVED:
+            res = warm
+        else:
+            extra, rec = warm.pivots, 1
+
+    def friction_cold():  # as _one_call
+        nonlocal res, extra, rec
+        run = _Run(n).go(M, q, lo, hi, _reset(warm_start._kernel_flags(), n, reset), _WARM,
+                         opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+        if run.code == 0 and run.ok:
+            res = _solved(run, n, lo, hi, rec, extra + run.pivots)
+        else:
             extra, rec = extra + max(run.pivots, 0), 2
-    run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
-    if run.code == boxed.NOT_FINITE:
-        raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
-    return _finish(M, q, lo, hi, opts, run, extra, rec)
+
+    def cold():
+        nonlocal res
+        run = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
+        if run.code == boxed.NOT_FINITE:
+            raise ValueError("M and q must be finite")  # as_blcp has said where, for lo and hi
+        res = _finish(M, q, lo, hi, opts, run, extra, rec)
+
+    climb(lambda: res is not None,
+          Rung("the warm start in one call", lambda: warm_start is not None and not tried,
+               one_call),
+          Rung("the warm start's basis", lambda: warm_start is not None, from_warm),
+          Rung("its friction rows cold",
+               lambda: warm is not None and reset is not None and warm.status not in STOPPED,
+               friction_cold),
+          Rung("cold", always, cold))
+    return res
 
 
 def _friction_vars(F, n):
@@ -923,19 +968,36 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
         raise ValueError("M and q must be finite")
     pivots = extra + max(run.pivots, 0)
     if ladder and not (run.code == 0 and run.ok) and run.code not in STOPPED:
-        if not (run.code == Status.RAY_TERMINATION and is_box_ray(M, q, lo, hi, run.d, run.z, run.z0, run.ray, opts.tol)):
-            for mode, tie in ((1, opts.tie_tol), (2, 0.0)):
-                left = opts.pivot_limit(n) - pivots
-                if left <= 0:
-                    break
-                nxt = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), mode, opts, left, tie)
-                pivots += max(nxt.pivots, 0)
+        # The ladder (_ladder.py): a ray checked ends it; else cold runs with the other
+        # covering vectors, then exact ties, while pivots are left; a run solved and checked
+        # settles it, a ray is kept over a run that ended otherwise.
+        cap = Cap(opts.pivot_limit(n), pivots)
+        ray = False
+
+        def ray_checked():
+            nonlocal ray
+            ray = is_box_ray(M, q, lo, hi, run.d, run.z, run.z0, run.ray, opts.tol)
+
+        def cold(mode, tie):
+            def go():
+                nonlocal run, rec
+                nxt = _Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), mode, opts,
+                                 cap.left(), tie)
+                cap.charge(nxt.pivots)
                 rec += 1
-                if nxt.code == 0 and nxt.ok:
+                if (nxt.code == 0 and nxt.ok) or (nxt.code == Status.RAY_TERMINATION
+                                                  and run.code != Status.RAY_TERMINATION):
                     run = nxt
-                    break
-                if nxt.code == Status.RAY_TERMINATION and run.code != Status.RAY_TERMINATION:
-                    run = nxt
+            return go
+
+        def left():
+            return cap.left() > 0
+
+        climb(lambda: ray or (run.code == 0 and run.ok),
+              Rung("the ray checked", lambda: run.code == Status.RAY_TERMINATION, ray_checked),
+              Rung("other covering vectors", left, cold(1, opts.tie_tol)),
+              Rung("exact ties", left, cold(2, 0.0)))
+        pivots = cap.pivots
     if run.code == 0 and run.ok:
         return _solved(run, n, lo, hi, rec, pivots)
     status = Status(run.code) if run.code >= 0 else Status.NUMERICAL_FAILURE

@@ -28,6 +28,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _core, _progress, _validate
+from ._ladder import Rung, climb
 from . import _games_exact as ex
 from ._options import _DEFAULT, Options, as_options, time_limited, timed
 from ._options import deadline as deadline_scope
@@ -364,23 +365,41 @@ def _finish(A, B, k, basis, code, pivots, restarts, method, fbuf, opts, exact, c
     ``ibuf``: the Lemke-Howson kernel's labels and path state (for the exact continuation)."""
     m, n = A.shape
     status = _status(code)
-    stopped = status in STOPPED  # by its time limit or an interrupt: no more work
-    if status != Status.SOLVED and basis is not None and not exact and not stopped:
+    path = None if ibuf is None else _path_state(ibuf, m, n, k)
+    done = None  # the result a rung settled it with
+
+    def resolve():
         # The path ended with every label present (or broke down) at a point that fails the
         # check: re-solve the final basis' support system afresh (rounding of a long path).
+        nonlocal status, restarts
         fixed = _resolve_float(A, B, basis, opts.tol)
         if fixed is not None:
             fbuf[:m], fbuf[m : m + n], fbuf[m + n : m + n + 3] = fixed  # x, y, out: the layout's floats
             status = Status.SOLVED
             restarts += 1
-    path = None if ibuf is None else _path_state(ibuf, m, n, k)
-    if exact and not stopped:
-        return _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts), path)
-    if status != Status.SOLVED and method == "lemke-howson" and cold and not stopped:
+
+    def certified():
+        nonlocal done
+        done = _certify(A, B, k, basis, pivots, restarts, method, _max_pivots(opts), path)
+
+    def exact_method():
         # Last resort, never needed in the tests: the exact method cannot fail.
+        nonlocal done
         res = _certify(A, B, k, None, pivots, restarts, method, _max_pivots(opts), path)
         if res.success:
-            return _as_float(res)
+            done = _as_float(res)
+
+    if status not in STOPPED:  # (by its time limit or an interrupt: no more work)
+        # The ladder (_ladder.py) after the kernel's paths (games.cpp's, in the core).
+        climb(lambda: done is not None or status == Status.SOLVED,
+              Rung("support re-solve",
+                   lambda: status != Status.SOLVED and basis is not None and not exact, resolve),
+              Rung("exact certificate", lambda: exact, certified),
+              Rung("exact method",
+                   lambda: status != Status.SOLVED and method == "lemke-howson" and cold,
+                   exact_method))
+        if done is not None:
+            return done
     fbuf.flags.writeable = False
     at = _layout(m, n)
     r, p = at["regret"], at["payoffs"]

@@ -24,6 +24,7 @@ import numpy as np
 from ._frozen import frozen
 from . import _core, _progress, _validate
 from ._certify import absmax as _size, check_mlcp, is_mlcp_ray
+from ._ladder import Rung, always, climb
 from ._lcp import METHODS, solve_lcp
 from ._npc import nz
 from ._options import as_options, time_limited, timed
@@ -163,21 +164,28 @@ def solve_stacked(E, e, n, method, opts, warm_start=None) -> MLCPResult:
         vb = np.zeros(m, dtype=bool)
         vb[list(warm_start.z_basic)] = True
         lcp_ws = WarmStart._trusted(m, tuple(nz(red.to_reduced(vb)).tolist()))
-    pivots = 0
-    outcomes = []
+    outcomes = []  # (M, options, result, evaluation, pivots) of each rung run
     steps = list(_ladder(red, opts))
-    for i, (_, M, o) in enumerate(steps):
-        # (a step with another after it ends its recovery runs at their first ray, which
-        # _evaluate checks on the caller's data: solve_lcp's private _ray_stop, the core's
-        # stop_at_ray; the last step tries them all)
-        res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws, opts.tol, i + 1 < len(steps))
-        pivots += p
-        outcomes.append((M, o, res, out))
-        if out[2] or res.status == Status.MAX_PIVOTS or res.status in STOPPED:
-            break
-        lcp_ws = None
+
+    def step(i, M, o):
+        def run():
+            # (a step with another after it ends its recovery runs at their first ray, which
+            # _evaluate checks on the caller's data: solve_lcp's private _ray_stop, the
+            # core's stop_at_ray; the last step tries them all; the warm start is the first
+            # step's)
+            res, out, p = _restarted(E, e, n, red, M, o, method, lcp_ws if i == 0 else None,
+                                     opts.tol, i + 1 < len(steps))
+            outcomes.append((M, o, res, out, p))
+        return run
+
+    def settled():  # a point that passes on the caller's data, or a cap or stop reached
+        _, _, res, out, _ = outcomes[-1]
+        return out[2] or res.status == Status.MAX_PIVOTS or res.status in STOPPED
+
+    climb(settled, *(Rung(name, always, step(i, M, o)) for i, (name, M, o) in enumerate(steps)))
+    pivots = sum(t[4] for t in outcomes)
     # The first solved try; else the first ray (for its certificate); else the first try.
-    M, o, res, (x, w, ok, residual, basis) = next(
+    M, o, res, (x, w, ok, residual, basis), _ = next(
         (t for t in outcomes if t[3][2]),
         next((t for t in outcomes if t[2].status == Status.RAY_TERMINATION), outcomes[0]),
     )
@@ -224,7 +232,9 @@ LADDER = (
 
 def _ladder(red, opts):
     """The steps of ``LADDER`` that apply: ``(name, M, options)``; the last one only when
-    the caller's pivot tolerance is below it."""
+    the caller's pivot tolerance is below it.  ``solve_stacked`` climbs them as rungs
+    (``_ladder.climb``), each ``_restarted``; they apply by the options alone, so they are
+    chosen here, before the climb (a step knows whether another comes after it)."""
     for name, matrix, pivot_tol in LADDER:
         if pivot_tol is not None and opts.pivot_tol >= pivot_tol:
             continue
@@ -237,16 +247,22 @@ def _restarted(E, e, n, red, M, o, method, lcp_ws, tol, ray_stop=False):
     ``MAX_RESTARTS`` times while the point misses on the caller's data.  ``ray_stop``: every
     solve's recovery runs end at their first ray (solve_lcp's ``_ray_stop``).  Returns
     ``(result, evaluation, pivots)``."""
-    res = solve_lcp(M, red.q, method=method, warm_start=lcp_ws, options=o, _ray_stop=ray_stop)
-    pivots = res.pivots
-    out = _evaluate(E, e, n, red, res, tol)
-    for _ in range(MAX_RESTARTS):
-        if out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE):
-            break
-        res = solve_lcp(M, red.q, method=method, warm_start=res.warm_start, options=o,
-                        _ray_stop=ray_stop)
-        pivots += res.pivots
-        out = _evaluate(E, e, n, red, res, tol)
+    res = out = None
+    pivots = 0
+
+    def solve(warm):  # a rung: solve_lcp from the basis warm() gives, its point evaluated
+        def run():
+            nonlocal res, out, pivots
+            res = solve_lcp(M, red.q, method=method, warm_start=warm(), options=o,
+                            _ray_stop=ray_stop)
+            pivots += res.pivots
+            out = _evaluate(E, e, n, red, res, tol)
+        return run
+
+    restart = solve(lambda: res.warm_start)
+    climb(lambda: out[2] or res.status not in (Status.SOLVED, Status.NUMERICAL_FAILURE),
+          Rung("the step's solve", always, solve(lambda: lcp_ws)),
+          *(Rung("restart from the final basis", always, restart) for _ in range(MAX_RESTARTS)))
     return res, out, pivots
 
 

@@ -21,21 +21,19 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _progress, _validate
-from ._npc import count, every, filled, nz, sub
+from ._npc import count, every, filled
 from ._blcp import solve_blcp
-from ._certify import Certificate, absmax as _size, data_scale as _data_scale
+from ._certify import Certificate, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
 from ._lcp import METHODS
 from ._mlcp import solve_stacked
 from ._options import as_options, time_limited, timed
-from ._reductions.mlcp_lcp import refined_solve
 from ._reductions.qp_mlcp import QPToMLCP
 from ._result import LazyField, Outcome, WarmStart
 from ._status import STOPPED, Status
 from . import _core
 from ._layout import METHODS as _METHOD_NAMES
 
-EPS = float(np.finfo(np.float64).eps)
 BOX_FIRST = 16  # box-only QPs: below, plain data goes to _core.qp_solve_box; from here, solve_blcp first
 
 
@@ -1024,72 +1022,31 @@ def _polished(qp, point, basis, tol):
         P x + A'y + G_S'z_S + I_B'zb_B = -q,   A x = b,   G_S x = h_S,   x_B = bound_B
 
     is solved for the variables not held at a bound (F) and the multipliers of A and G_S,
-    with ``x_B`` given: the rows of F, A and G_S, factored once
-    (``refined_solve`` of src/lemke/linalg.cpp: LU on one thread, of the size of F plus the active
-    rows, not of all n variables and the bounds) and refined with residuals summed in
-    double-double over every column, x_B's included, and the solution carried in
+    with ``x_B`` given, by the seam's KKT basis system (``KktBasis`` in
+    src/lemke/basis.hpp, through ``_core.kkt_basis``): the rows of F, A and G_S, factored
+    once (``refined_solve`` of src/lemke/linalg.cpp: LU on one thread, of the size of F plus
+    the active rows, not of all n variables and the bounds) and refined with residuals
+    summed in double-double over every column, x_B's included, and the solution carried in
     double-double.  The bound multipliers zb_B then follow from the rows of B at that exact
     solution, summed in double-double too.  The point the MLCP path
     recovers has been through the shift of the bounds (``x = lb + x'``) and the MLCP's own
     rounding, this one only through the rounding of the answer (multipliers at the
     rounding level of the solve made zero).  It replaces ``point`` only when it passes the
-    row-wise KKT check at ``tol`` and its largest residual (primal, dual, gap, summed in
-    double-double) is smaller; a singular system (dependent active rows) leaves ``point``
-    as it is.  Returns ``(point, stats)``: the point kept and kkt's (primal, dual, gap, obj)
-    at it, None where they were not computed."""
-    n, p, mg = qp.n, qp.A.shape[0], qp.G.shape[0]
-    nn, nb = qp.shifted.size, qp.boxed.size
-    v = np.zeros(nn + mg + nb, dtype=bool)
-    v[list(basis.z_basic)] = True
-    bound = filled(n, np.nan)  # the bound x_j is held at, NaN where it is free
-    lower = qp.shifted[~v[:nn]]
-    bound[lower] = qp.x0[lower]
-    upper = qp.shifted[qp.boxed[v[nn + mg:]]]
-    bound[upper] = qp.ub[upper]
-    bound[qp.fixed] = qp.lb[qp.fixed]
-    S = nz(v[nn:nn + mg])
-    held = ~np.isnan(bound)
-    B, F = nz(held), nz(~held)
-    GS = qp.G[S]
-    # Columns x_F, y, z_S, then x_B (given); rows: stationarity on F, A x = b, G_S x = h_S.
-    f, k, s = F.size, F.size + p, F.size + p + S.size
-    K = np.zeros((s, s + B.size))
-    K[:f, :f] = sub(qp.P, F, F)
-    K[:f, f:k] = qp.A[:, F].T
-    K[:f, k:s] = GS[:, F].T
-    K[f:k, :f] = qp.A[:, F]
-    K[k:s, :f] = GS[:, F]
-    K[:f, s:] = sub(qp.P, F, B)
-    K[f:k, s:] = qp.A[:, B]
-    K[k:s, s:] = GS[:, B]
-    out = refined_solve(K, np.concatenate([-qp.q[F], qp.b, qp.h[S]]), steps=3, given=bound[B],
-                        low=True)
-    if out is None:
+    row-wise KKT check at ``tol`` (the system's check, ``qp::kkt_check``) and its largest
+    residual (primal, dual, gap, summed in double-double) is smaller; a singular system
+    (dependent active rows) leaves ``point`` as it is.  Returns ``(point, stats)``: the
+    point kept and kkt's (primal, dual, gap, obj) at it, None where they were not
+    computed."""
+    try:
+        beta = basis._beta  # (kept on the warm start, as solve_lcp keeps it)
+    except AttributeError:
+        beta = basis.__dict__["_beta"] = np.array(basis.z_basic, dtype=_I64)
+    c = _validate.c_aligned
+    code, new, res, _ = _core.kkt_basis(c(qp.P), qp.q, c(qp.G), qp.h, c(qp.A), qp.b, qp.lb,
+                                        qp.ub, beta, tol)
+    if code != 0:
         return point, None
-    sol, lo = out
-    x = np.empty(n)
-    x[F] = sol[:f]
-    x[B] = bound[B]
-    # The rows of B: zb_B = -(P_B. x + q_B + A_B' y + G_SB' z_S) at the exact solution (sol
-    # + lo, summed in double-double): the rounding of the exact zb_B.
-    exact_lo = np.zeros(n + s - f)
-    exact_lo[F] = lo[:f]
-    exact_lo[n:] = lo[f:]
-    KB = np.concatenate([qp.P[B], qp.A[:, B].T, GS[:, B].T], axis=1)
-    zb = np.empty(B.size)
-    _core.residual2(np.concatenate([KB, KB], axis=1), np.concatenate([x, sol[f:], exact_lo]), qp.q[B], zb)
-    # A multiplier at the solve's rounding level (eps times the largest) is zero: left in,
-    # it would fail the row-wise test in a stationarity row whose terms are all that small.
-    mult = np.concatenate([sol[f:], -zb])
-    mult[np.abs(mult) <= EPS * _size(mult)] = 0.0
-    z = np.zeros(mg)
-    z[S] = mult[p:p + S.size]
-    z_box = np.zeros(n)
-    z_box[B] = mult[p + S.size:]
-    new = (x, mult[:p].copy(), z, z_box)
-    ok, *res = kkt(_data(qp), *new, tol)
-    if not ok:
-        return point, None
+    res = res.tolist()
     res0 = kkt(_data(qp), *point, tol)[1:]
     return (new, res) if max(res[:3]) < max(res0[:3]) else (point, res0)
 

@@ -7,8 +7,10 @@
 // kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
 // (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
 // entry _core.friction_basis), the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
-// through _core.mlcp_basis; its solve refined, as that routine's was) and the games kind
-// (SupportBasis, used by _games._resolve_float through _core.game_basis). Gradients and a sparse
+// through _core.mlcp_basis; its solve refined, as that routine's was), the games kind
+// (SupportBasis, used by _games._resolve_float through _core.game_basis) and a QP's KKT rows
+// of an active set (KktBasis, _qp._polished's system through _core.kkt_basis; refined, with
+// the held variables' columns given). Gradients and a sparse
 // engine are to plug in here: hence the transpose solve.
 #pragma once
 #include <algorithm>
@@ -18,6 +20,7 @@
 #include "certify.hpp"
 #include "games.hpp"
 #include "linalg.hpp"
+#include "qp.hpp"
 
 namespace lemke {
 
@@ -664,5 +667,193 @@ struct SupportBasis {
         for (idx i = 0; i < len; ++i) v[i] /= s;
     }
 };
+
+// The QP's KKT rows of an active set on the caller's data (_qp._polished's system): a basis
+// of QPToMLCP's KKT MLCP (v flags over its pairs: the shifted x' (nn), the rows of G (m0),
+// the boxed variables' upper multipliers (nbox); _reductions.qp_mlcp numbers them) says
+// which constraints hold with equality (apply): a row of G whose multiplier is basic (S), a
+// bound whose shifted x' is not basic (x at x0: lb where finite, else ub) or whose upper
+// multiplier is basic (x at ub), every fixed variable (lb = ub); the variables held (B) at
+// their bound, the others free here (F). The KKT rows
+//     P x + A'y + G_S'z_S + I_B'zb_B = -q,   A x = b,   G_S x = h_S,   x_B = bound_B
+// are solved for x_F, y, z_S with x_B given: the rows of F, A and G_S (K: columns x_F, y,
+// z_S, then x_B, given), by linalg's refined_solve with `given` (one LU of the square block,
+// three steps of refinement in double-double, x_B's columns in every residual; the same
+// function, operations and order as _polished's numpy code called, so the same bits). The
+// point (recover): x, the bound multipliers zb_B = -(P_B. x + q_B + A_B'y + G_SB'z_S) at the
+// exact solution (sol + lo, summed in double-double by residual2 over the row [KB, KB]),
+// the multipliers at the solve's rounding level (|.| <= eps max|.|) made +0.0; check:
+// qp::kkt_check (the row-wise KKT check, and kkt's statistics). solve and solve_transpose:
+// by the LU refined_solve left (the square block K[:, :s], s = |F| + p0 + |S|; no
+// refinement). ints: index_size(n, m0); bound: n doubles; work: work_size() doubles after
+// apply; piv: 2 rows() entries.
+struct KktBasis {
+    qp::Data d;
+    idx nn = 0, nbox = 0;        // the shifted variables, the boxed ones among them
+    idx nf = 0, nh = 0, ns = 0;  // |F|, |B|, |S| (apply)
+    idx *F, *B, *S;              // the free and the held variables, the active rows of G
+    double* bound;               // the bound x_j is held at, NaN where it is free
+    double* work = nullptr;
+    idx* piv = nullptr;
+    BasisBlock block;            // the factors, for solve and solve_transpose
+
+    static idx index_size(idx n, idx m0) { return 2 * n + m0; }
+
+    KktBasis(const qp::Data& d_, idx* ints, double* bound_)
+        : d(d_), F(ints), B(ints + d_.n()), S(ints + 2 * d_.n()), bound(bound_),
+          block{Mat<const double>(), nullptr, 0, nullptr} {
+        for (idx j = 0; j < d.n(); ++j) {  // (QPToMLCP._kinds)
+            bool lo = std::fabs(d.lb[j]) < INF, up = std::fabs(d.ub[j]) < INF;
+            if ((lo || up) && !(lo && up && d.lb[j] == d.ub[j])) {
+                ++nn;
+                nbox += lo && up;
+            }
+        }
+    }
+
+    // The KKT MLCP's pairs (v's length); the block's rows s and K's columns (s + |B|).
+    idx pairs() const { return nn + d.m0() + nbox; }
+    idx rows() const { return nf + d.p0() + ns; }
+    idx cols() const { return d.n() + d.p0() + ns; }
+    // K, rhs, x (the solution, then x_B), lo, refined_solve's work, a row of [KB, KB], the
+    // point and exact lo (2 cols each), the multipliers.
+    idx work_size() const {
+        idx s = rows(), c = cols();
+        return s * c + 2 * s + c + s * (s + 2) + 4 * c + (c - nf);
+    }
+
+    // The active set of the basis v (pairs() flags): bound, F, B and S.
+    void apply(const std::uint8_t* v) {
+        idx n = d.n(), m0 = d.m0(), t = 0, box = 0;
+        for (idx j = 0; j < n; ++j) {
+            double l = d.lb[j], u = d.ub[j];
+            bool lo = std::fabs(l) < INF, up = std::fabs(u) < INF;
+            double at = std::numeric_limits<double>::quiet_NaN();
+            if (lo && up && l == u) {
+                at = l;  // fixed
+            } else if (lo || up) {
+                if (!v[t]) at = lo ? l : u;  // x' not basic: x at x0
+                if (lo && up) {
+                    if (v[nn + m0 + box]) at = u;  // the upper multiplier basic
+                    ++box;
+                }
+                ++t;
+            }
+            bound[j] = at;
+        }
+        ns = 0;
+        for (idx i = 0; i < m0; ++i)
+            if (v[nn + i]) S[ns++] = i;
+        nf = nh = 0;
+        for (idx j = 0; j < n; ++j) {
+            if (bound[j] != bound[j])
+                F[nf++] = j;
+            else
+                B[nh++] = j;
+        }
+        block.k = rows();
+    }
+
+    // The point of the active set into x (n), y (p0), z (m0), zb (n) after apply: K and its
+    // right-hand side (-q_F, b, h_S), x_B given, refined_solve (3 steps), recover. False
+    // when K's square block is singular or the solution is not finite.
+    bool point(double* x, double* y, double* z, double* zb) {
+        idx p = d.p0(), s = rows(), c = cols();
+        block.factors = nullptr;
+        block.pivots = nullptr;
+        double* K = work;
+        double *rhs = K + s * c, *xs = rhs + s, *lo = xs + c, *f = lo + s;
+        for (idx r = 0; r < nf; ++r) {  // stationarity on F: P_FF, A_F', G_SF', P_FB (whole rows)
+            idx j = F[r];
+            const double* pr = d.P.row(j);
+            double* kr = K + r * c;
+            for (idx t = 0; t < nf; ++t) kr[t] = pr[F[t]];
+            for (idx i = 0; i < p; ++i) kr[nf + i] = d.A(i, j);
+            for (idx i = 0; i < ns; ++i) kr[nf + p + i] = d.G(S[i], j);
+            for (idx t = 0; t < nh; ++t) kr[s + t] = pr[B[t]];
+            rhs[r] = -d.q[j];
+        }
+        for (idx i = 0; i < p + ns; ++i) {  // A x = b, G_S x = h_S: A_F, A_B (G_S's)
+            bool eq = i < p;
+            const double* ar = eq ? d.A.row(i) : d.G.row(S[i - p]);
+            double* kr = K + (nf + i) * c;
+            for (idx t = 0; t < nf; ++t) kr[t] = ar[F[t]];
+            for (idx t = nf; t < s; ++t) kr[t] = 0.0;  // (y's and z_S's columns)
+            for (idx t = 0; t < nh; ++t) kr[s + t] = ar[B[t]];
+            rhs[nf + i] = eq ? d.b[i] : d.h[S[i - p]];
+        }
+        for (idx t = 0; t < nh; ++t) xs[s + t] = bound[B[t]];
+        if (!refined_solve(Mat<const double>(K, s, c), rhs, 3, xs, lo, f, piv)) return false;
+        block.a = f;
+        block.factors = f;
+        block.pivots = piv;
+        recover(xs, lo, x, y, z, zb);
+        return true;
+    }
+
+    // The solution (xs: x_F, y, z_S; lo its low parts) mapped to (x, y, z, zb): x_B its
+    // bounds, zb_B from the rows of B at xs + lo, the multipliers at rounding level zeroed.
+    void recover(const double* xs, const double* lo, double* x, double* y, double* z,
+                 double* zb) const {
+        idx n = d.n(), p = d.p0(), s = rows(), c = cols(), nm = c - nf;
+        double* row = work + s * c + 2 * s + c + s * (s + 2);  // 2c
+        double* xx = row + 2 * c;                             // 2c: x, y, z_S, then their lo
+        double* mult = xx + 2 * c;                            // y, z_S, -zb_B
+        for (idx r = 0; r < nf; ++r) x[F[r]] = xs[r];
+        for (idx t = 0; t < nh; ++t) x[B[t]] = bound[B[t]];
+        for (idx j = 0; j < n; ++j) {
+            xx[j] = x[j];
+            xx[c + j] = 0.0;
+        }
+        for (idx r = 0; r < nf; ++r) xx[c + F[r]] = lo[r];
+        for (idx i = 0; i < p + ns; ++i) {
+            xx[n + i] = xs[nf + i];
+            xx[c + n + i] = lo[nf + i];
+            mult[i] = xs[nf + i];
+        }
+        for (idx t = 0; t < nh; ++t) {  // zb_B = -(row of [KB, KB]) . xx - q_j
+            idx j = B[t];
+            const double* pr = d.P.row(j);
+            for (idx k = 0; k < n; ++k) row[k] = pr[k];
+            for (idx i = 0; i < p; ++i) row[n + i] = d.A(i, j);
+            for (idx i = 0; i < ns; ++i) row[n + p + i] = d.G(S[i], j);
+            for (idx k = 0; k < c; ++k) row[c + k] = row[k];
+            double g;
+            residual2(Mat<const double>(row, 1, 2 * c), xx, 2 * c, d.q + j, &g);
+            mult[p + ns + t] = -g;
+        }
+        // (_npc.absmax's NaN: nothing zeroed)
+        bool nan = false;
+        for (idx i = 0; i < nm; ++i) nan |= mult[i] != mult[i];
+        if (!nan) {
+            double floor = EPS * absmax(mult, nm);
+            for (idx i = 0; i < nm; ++i)
+                if (std::fabs(mult[i]) <= floor) mult[i] = 0.0;
+        }
+        for (idx i = 0; i < p; ++i) y[i] = mult[i];
+        for (idx i = 0; i < d.m0(); ++i) z[i] = 0.0;
+        for (idx i = 0; i < ns; ++i) z[S[i]] = mult[p + i];
+        for (idx j = 0; j < n; ++j) zb[j] = 0.0;
+        for (idx t = 0; t < nh; ++t) zb[B[t]] = mult[p + ns + t];
+    }
+
+    // K[:, :s] x = rhs, K[:, :s]' x = rhs (s entries: rows F, A, G_S; columns x_F, y, z_S)
+    // after point, by its LU.
+    bool solve(const double* rhs, double* out) const { return block.solve(rhs, out); }
+    bool solve_transpose(const double* rhs, double* out) const {
+        return block.solve_transpose(rhs, out);
+    }
+
+    // qp::kkt_check's verdict at tol, stats (4): primal, dual, gap, obj.
+    bool check(const double* x, const double* y, const double* z, const double* zb, double tol,
+               double* stats) const {
+        return qp::kkt_check(d, x, y, z, zb, tol, stats);
+    }
+};
+
+// The QP kind's basis system (QpBasis: apply, point, point_given, recover, solve,
+// solve_transpose, numbering, check) is in qp.cpp, not here: it is a view on that file's
+// QPWork and Rows (the engine's factors and caches, internal to it), its solve a null-space
+// solve through them, not an LU of a block (private entry _core.qp_basis: qp::basis_seam).
 
 }  // namespace lemke

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "ladder.hpp"
+
 namespace lemke {
 namespace boxed {
 
@@ -146,34 +148,47 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
         s.residual = res;
         return s;
     };
+    // The ladder (ladder.hpp): the warm start's basis, the same with its friction rows cold,
+    // cold, then the other covering vectors and exact ties; the first run solved and checked
+    // settles it, a checked ray (left to the general path) ends it. (A stop does not end it
+    // after the other covering vectors, as it does in _blcp._one_call: kept as it was.)
     SolveResult r;
-    if (has_warm) {
-        r = solve(A, qa, la, ha, warm, 1 | PARTIAL, limit, pt, tt, tol, ext, final, xp);
-        pivots = std::max<idx>(r.pivots, 0);
-        bool ok = r.code == 0 && r.ok;
+    ladder::Cap cap{limit, 0};
+    bool ok = false, ended = false;
+    auto go = [&](const std::uint8_t* flags, int mode, idx left, double tie) {
+        r = solve(A, qa, la, ha, flags, mode, left, pt, tie, tol, ext, final, xp);
+        cap.charge(r.pivots);
+        ok = r.code == 0 && r.ok;
         residual = r.residual;
-        if (!ok) {  // _checked_point: the point of the final basis, recomputed and judged
-            std::uint8_t* zb = sized(S.zb, N);
-            std::uint8_t* zh = sized(S.zh, N);
-            std::fill(zb, zb + N, std::uint8_t(0));
-            std::fill(zh, zh + N, std::uint8_t(0));
-            for (idx t = 0; t < r.k; ++t) zb[final[t]] = 1;
-            for (idx t = r.k; t < r.m; ++t) zh[final[t]] = 1;
-            double* z = sized(S.z, N);
-            if (basis_point(A, qa, la, ha, zb, zh, false, z)) {
-                double* w = sized(S.w, N);
-                double res2;
-                if (box_check(A, qa, la, ha, z, tol, w, ext + L.row_scale(), 0, res2)) {
-                    ok = true;
-                    std::copy(z, z + N, ext + L.z());
-                    std::copy(w, w + N, ext + L.w());
-                    residual = res2;
+    };
+    std::uint8_t* cold = nullptr;
+    int solved_by = ladder::climb(
+        [&] { return ok || ended; },
+        ladder::rung("the warm start's basis", [&] { return has_warm; }, [&] {
+            go(warm, 1 | PARTIAL, cap.left(), tt);
+            if (!ok) {  // _checked_point: the point of the final basis, recomputed and judged
+                std::uint8_t* zb = sized(S.zb, N);
+                std::uint8_t* zh = sized(S.zh, N);
+                std::fill(zb, zb + N, std::uint8_t(0));
+                std::fill(zh, zh + N, std::uint8_t(0));
+                for (idx t = 0; t < r.k; ++t) zb[final[t]] = 1;
+                for (idx t = r.k; t < r.m; ++t) zh[final[t]] = 1;
+                double* z = sized(S.z, N);
+                if (basis_point(A, qa, la, ha, zb, zh, false, z)) {
+                    double* w = sized(S.w, N);
+                    double res2;
+                    if (box_check(A, qa, la, ha, z, tol, w, ext + L.row_scale(), 0, res2)) {
+                        ok = true;
+                        std::copy(z, z + N, ext + L.z());
+                        std::copy(w, w + N, ext + L.w());
+                        residual = res2;
+                    }
                 }
             }
-        }
-        if (ok) return solved(r, pivots, 0, residual, true);
-        rec = 1;
-        if (nf > 0 && !is_stop(r.code)) {  // _blcp._reset: the friction rows cold
+            if (!ok) rec = 1;
+        }),
+        ladder::rung("its friction rows cold (_blcp._reset)",
+                     [&] { return has_warm && nf > 0 && !is_stop(r.code); }, [&] {
             std::uint8_t* warm2 = sized(S.warm2, 2 * N);
             std::copy(warm, warm + 2 * N, warm2);
             const idx* F = ints + FL.friction_rows();
@@ -181,35 +196,28 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
                 const idx vars[3] = {F[c], n + c, n + nf + c};
                 for (idx v : vars) warm2[v] = warm2[N + v] = 0;
             }
-            r = solve(A, qa, la, ha, warm2, 1 | PARTIAL, std::max<idx>(0, limit - pivots), pt, tt,
-                      tol, ext, final, xp);
-            pivots += std::max<idx>(r.pivots, 0);
-            if (r.code == 0 && r.ok) return solved(r, pivots, 1, r.residual, true);
-            rec = 2;
-        }
-    }
-    std::uint8_t* cold = sized(S.cold, 2 * N);
-    std::fill(cold, cold + 2 * N, std::uint8_t(0));
-    r = solve(A, qa, la, ha, cold, 0, std::max<idx>(0, limit - pivots), pt, tt, tol, ext, final,
-              xp);
-    pivots += std::max<idx>(r.pivots, 0);
-    if (!(r.code == 0 && r.ok)) {
-        if (r.code == RAY_TERMINATION &&
-            is_ray(A, qa, la, ha, ext + L.covering(), ext + L.z(), r.z0, ext + L.ray(), tol))
-            return o;  // (the general path reports the ray)
-        const int modes[2] = {1, 2};
-        const double ties[2] = {tt, 0.0};
-        for (int t = 0; t < 2; ++t) {
-            idx left = limit - pivots;
-            if (left <= 0) break;
-            r = solve(A, qa, la, ha, cold, modes[t], left, pt, ties[t], tol, ext, final, xp);
-            pivots += std::max<idx>(r.pivots, 0);
+            go(warm2, 1 | PARTIAL, cap.left_or_0(), tt);
+            if (!ok) rec = 2;
+        }),
+        ladder::rung("cold", ladder::Always{}, [&] {
+            cold = sized(S.cold, 2 * N);
+            std::fill(cold, cold + 2 * N, std::uint8_t(0));
+            go(cold, 0, cap.left_or_0(), tt);
+            ended = !ok && r.code == RAY_TERMINATION &&
+                    is_ray(A, qa, la, ha, ext + L.covering(), ext + L.z(), r.z0, ext + L.ray(),
+                           tol);  // (the general path reports the ray)
+        }),
+        ladder::rung("other covering vectors", [&] { return cap.left() > 0; }, [&] {
+            go(cold, 1, cap.left(), tt);
             ++rec;
-            if (r.code == 0 && r.ok) break;
-        }
-        if (!(r.code == 0 && r.ok)) return o;
-    }
-    return solved(r, pivots, rec, r.residual, false);
+        }),
+        ladder::rung("exact ties", [&] { return cap.left() > 0; }, [&] {
+            go(cold, 2, cap.left(), 0.0);
+            ++rec;
+        }));
+    if (!ok) return o;
+    pivots = cap.pivots;
+    return solved(r, pivots, rec, residual, solved_by < 2);
 }
 
 }  // namespace

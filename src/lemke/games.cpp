@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "ladder.hpp"
 #include "multiversion.hpp"
 #include "simd.hpp"
 
@@ -650,17 +651,28 @@ LHResult lemke_howson(Mat<const double> A, Mat<const double> B, idx k, const idx
     LHViews v = lh_layout(work, m, n);
     idx pivots = 0, restarts = 0;
     int status = NUMERICAL_FAILURE;
-    for (int attempt = 0; attempt < 3; ++attempt) {
-        if (attempt == 1 && tie_tol == 0.0) continue;  // the first run had exact ties already
-        if (attempt > 0) restarts += 1;
-        double tt = attempt == 0 ? tie_tol : 0.0;
+    // The ladder (ladder.hpp): the path, again with exact ties, then the third path (its
+    // perturbation); each path after the first is a restart.
+    auto path = [&](double tt, bool perturb) {
         idx p = 0;
-        status = lh_path(A, B, scale, k, startP, startQ, attempt == 2, max_pivots - pivots,
+        status = lh_path(A, B, scale, k, startP, startQ, perturb, max_pivots - pivots,
                          pivot_tol, tt, x, y, basisP, basisQ, state, v, p);
         pivots += p;
-        if (status == SOLVED || status == MAX_PIVOTS || is_stop(status) || pivots >= max_pivots)
-            break;
-    }
+    };
+    ladder::climb(
+        [&] {
+            return status == SOLVED || status == MAX_PIVOTS || is_stop(status) ||
+                   pivots >= max_pivots;
+        },
+        ladder::rung("the path", ladder::Always{}, [&] { path(tie_tol, false); }),
+        ladder::rung("exact ties", [&] { return !(tie_tol == 0.0); }, [&] {
+            restarts += 1;
+            path(0.0, false);
+        }),  // (skipped when the first path had exact ties already)
+        ladder::rung("perturbed", ladder::Always{}, [&] {
+            restarts += 1;
+            path(0.0, true);
+        }));
     bool good = normalize(x, m) && normalize(y, n);
     if (!good) {
         out[0] = INF;

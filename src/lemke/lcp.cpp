@@ -5,6 +5,7 @@
 
 #include "basis.hpp"
 #include "certify.hpp"
+#include "ladder.hpp"
 #include "pivoting.hpp"
 #include "tableau.hpp"
 #include "unrevised.hpp"
@@ -191,32 +192,36 @@ struct Run {
 };
 
 // pivot_once, then the recoveries from a cycle (exact ties; then a perturbed covering
-// vector); start 1 goes on after first_run's run (code after pivots). Then the check.
+// vector): a ladder (ladder.hpp) whose rungs go on while the run cycles; start 1 goes on after
+// first_run's run (code after pivots). Then the check.
 Run run_checked(Method method, Mat<const double> M, const double* q, idx max_pivots,
                 double pivot_tol, double tie_tol, double tol, const Views& v,
                 std::uint8_t* z_basic, bool careful, int start, int code, idx pivots,
                 std::vector<double>& work) {
     idx n = M.rows;
     idx recoveries = start - 1;
-    double tt = tie_tol;
-    for (int attempt = start; attempt < 3; ++attempt) {
-        if (attempt > 0) {
-            if (code != CYCLING || (attempt == 1 && tie_tol <= 0.0)) continue;
-            tt = 0.0;
-            if (attempt == 2)
-                for (idx i = 0; i < n; ++i)
-                    v.cov[i] *= 1.0 + PERTURBATION * unit_random(label_key(i));
-        }
+    ladder::Cap cap{max_pivots, pivots};
+    auto once = [&](double tt) {
         recoveries += 1;
         idx p = 0;
-        code = pivot_once(method, M, q, tt, max_pivots - pivots, pivot_tol, v, z_basic, careful, p);
-        pivots += p;
-    }
+        code = pivot_once(method, M, q, tt, cap.left(), pivot_tol, v, z_basic, careful, p);
+        cap.charge(p);
+    };
+    ladder::climb([] { return false; },
+                  ladder::rung("the run", [&] { return start == 0; }, [&] { once(tie_tol); }),
+                  ladder::rung("exact ties", [&] { return code == CYCLING && !(tie_tol <= 0.0); },
+                               [&] { once(0.0); }),
+                  ladder::rung("perturbed covering vector", [&] { return code == CYCLING; },
+                               [&] {
+                                   for (idx i = 0; i < n; ++i)
+                                       v.cov[i] *= 1.0 + PERTURBATION * unit_random(label_key(i));
+                                   once(0.0);
+                               }));
     work.resize(static_cast<std::size_t>(2 * n));
     Run r;
     r.ok = check_rows(M, q, v.x, tol, v.w, v.R, work.data(), false, r.residual);
     r.code = r.ok ? SOLVED : code;
-    r.pivots = pivots;
+    r.pivots = cap.pivots;
     r.recoveries = recoveries;
     return r;
 }
@@ -312,103 +317,34 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
     int code = MAX_PIVOTS;
     bool ok = false;
     double residual = 0.0;
-    idx pivots = 0, recoveries = 0;
+    idx recoveries = 0;
+    ladder::Cap cap{max_pivots, 0};
     Method other = method == TABLEAU ? UNREVISED : TABLEAU;
     BufferLayout L{n};
     std::vector<double> buf2;  // the recovery runs' own, allocated only when one runs
     std::vector<std::uint8_t> z_basic2;
     bool have_ray = false, ray_known = false, ray_ok = false;
-    for (int step = -1; step < RETRIES; ++step) {
-        Method run_method = method;
-        double ptol = pivot_tol, ttol = tie_tol;
-        bool careful = false;
-        int run_start = start, run_code = first_code;
-        idx run_pivots = first_pivots;
-        double* run_buf = buf;
-        std::uint8_t* run_basic = z_basic.data();
-        if (step >= 0) {
-            if (d != nullptr || (code == SOLVED && ok) || pivots >= max_pivots || is_stop(code))
-                break;
-            if (step == 0 && code == RAY_TERMINATION) {
-                ray_known = true;
-                ray_ok = ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
-                if (ray_ok) break;
-            }
-            if (step == 0) {
-                buf2.assign(static_cast<std::size_t>(L.length()), 0.0);
-                z_basic2.assign(static_cast<std::size_t>(n), 0);
-            }
-            std::copy(buf, buf + L.length(), buf2.data());
-            Views v2(buf2.data(), n);
-            bool exact = retry_covering(step, q, v.R, v2.cov, n);
-            run_method = step == RETRIES - 1 ? other : method;
-            ptol = exact ? 0.0 : pivot_tol;
-            ttol = exact ? 0.0 : tie_tol;
-            run_buf = buf2.data();
-            run_basic = z_basic2.data();
-            careful = true;
-            run_start = 0;
-            run_code = CYCLING;
-            run_pivots = 0;
+    bool ended = false;  // a rung ended the climb (a checked ray, a stop, stop_at_ray)
+    // A recovery run of the ladder: covering vector `step` (retry_covering), the last by the
+    // other method, in its own buffer; taken when it does better than the answer so far.
+    auto recovery = [&](int step) {
+        if (step == 0) {
+            buf2.assign(static_cast<std::size_t>(L.length()), 0.0);
+            z_basic2.assign(static_cast<std::size_t>(n), 0);
         }
-        Views rv(run_buf, n);
-        Run r = run_checked(run_method, M, q, max_pivots - pivots, ptol, ttol, tol, rv, run_basic,
-                            careful, run_start, run_code, run_pivots, work);
-        pivots += r.pivots;
-        if (step == -1) {
-            code = r.code;
-            ok = r.ok;
-            residual = r.residual;
-            recoveries = r.recoveries;
-            if (code == SOLVED && !ok && d == nullptr) {
-                // Solved on a point that fails the check: the point of its final basis first.
-                std::vector<double> zw(static_cast<std::size_t>(2 * n));
-                double rb;
-                bool okb = basis_point_checked(M, q, z_basic.data(), tol, v.R, zw.data(),
-                                               zw.data() + n, rb);
-                if (okb) {
-                    for (idx i = 0; i < n; ++i) {
-                        v.x[i] = zw[i];
-                        v.w[i] = zw[n + i];
-                    }
-                    v.x[n] = 0.0;
-                    ok = okb;
-                    residual = rb;
-                } else if (n >= RESTART_FROM && pivots < max_pivots) {
-                    // Then Lemke's method restarted from that basis, kept only when it passes.
-                    buf2.assign(buf, buf + L.length());
-                    z_basic2.assign(static_cast<std::size_t>(n), 0);
-                    std::vector<idx> beta(static_cast<std::size_t>(n));
-                    idx kb = basic_indices(z_basic.data(), n, beta.data());
-                    double m_max;
-                    finite_absmax(M, m_max);
-                    bool ok3;
-                    double r3;
-                    int code3;
-                    Views v2(buf2.data(), n);
-                    idx p3 = restart(M, q, z_basic.data(), beta.data(), kb, m_max,
-                                     max_pivots - pivots, pivot_tol, tie_tol, tol, v2,
-                                     z_basic2.data(), ok3, r3, code3);
-                    pivots += p3;
-                    recoveries += 1;
-                    if (!ok3 && is_stop(code3)) {
-                        ok = false;
-                        code = code3;  // the point stays the first run's, unchecked
-                    }
-                    if (ok3) {
-                        std::copy(buf2.begin(), buf2.end(), buf);
-                        z_basic = z_basic2;
-                        ok = ok3;
-                        residual = r3;
-                    }
-                }
-            }
-            continue;
-        }
+        std::copy(buf, buf + L.length(), buf2.data());
+        Views rv(buf2.data(), n);
+        bool exact = retry_covering(step, q, v.R, rv.cov, n);
+        Method run_method = step == RETRIES - 1 ? other : method;
+        Run r = run_checked(run_method, M, q, cap.left(), exact ? 0.0 : pivot_tol,
+                            exact ? 0.0 : tie_tol, tol, rv, z_basic2.data(), true, 0, CYCLING, 0,
+                            work);
+        cap.pivots += r.pivots;
         recoveries += r.recoveries + 1;
         if (is_stop(r.code)) {  // stopped by its budget: the best answer so far stands
             if (!(code == SOLVED && ok)) code = r.code;
-            break;
+            ended = true;
+            return;
         }
         bool take = r.code == SOLVED && (r.ok || code != SOLVED);
         if (!take && r.code == SOLVED && code == SOLVED && !ok &&
@@ -439,9 +375,78 @@ RunResult checked(Method method, Mat<const double> M, const double* q, const dou
                 ray_known = true;
                 ray_ok = false;
             }
-            break;
+            ended = true;
         }
-    }
+    };
+    // The recovery runs apply without a covering vector given, while pivots are left.
+    auto recovers = [&] { return d == nullptr && !cap.spent(); };
+    // The final basis of a first run solved on a point that fails the check.
+    auto missed = [&] { return code == SOLVED && !ok && d == nullptr; };
+    ladder::climb(
+        [&] { return (code == SOLVED && ok) || is_stop(code) || ended; },
+        ladder::rung("the cold run", ladder::Always{}, [&] {
+            Run r = run_checked(method, M, q, cap.left(), pivot_tol, tie_tol, tol, v,
+                                z_basic.data(), false, start, first_code, first_pivots, work);
+            cap.pivots += r.pivots;
+            code = r.code;
+            ok = r.ok;
+            residual = r.residual;
+            recoveries = r.recoveries;
+        }),
+        ladder::rung("the final basis's point", missed, [&] {
+            std::vector<double> zw(static_cast<std::size_t>(2 * n));
+            double rb;
+            bool okb = basis_point_checked(M, q, z_basic.data(), tol, v.R, zw.data(),
+                                           zw.data() + n, rb);
+            if (okb) {
+                for (idx i = 0; i < n; ++i) {
+                    v.x[i] = zw[i];
+                    v.w[i] = zw[n + i];
+                }
+                v.x[n] = 0.0;
+                ok = okb;
+                residual = rb;
+            }
+        }),
+        ladder::rung("restart from the final basis",
+                     [&] { return missed() && n >= RESTART_FROM && !cap.spent(); }, [&] {
+            // Lemke's method restarted from that basis, kept only when it passes.
+            buf2.assign(buf, buf + L.length());
+            z_basic2.assign(static_cast<std::size_t>(n), 0);
+            std::vector<idx> beta(static_cast<std::size_t>(n));
+            idx kb = basic_indices(z_basic.data(), n, beta.data());
+            double m_max;
+            finite_absmax(M, m_max);
+            bool ok3;
+            double r3;
+            int code3;
+            Views v2(buf2.data(), n);
+            idx p3 = restart(M, q, z_basic.data(), beta.data(), kb, m_max, cap.left(), pivot_tol,
+                             tie_tol, tol, v2, z_basic2.data(), ok3, r3, code3);
+            cap.pivots += p3;
+            recoveries += 1;
+            if (!ok3 && is_stop(code3)) {
+                ok = false;
+                code = code3;  // the point stays the first run's, unchecked
+            }
+            if (ok3) {
+                std::copy(buf2.begin(), buf2.end(), buf);
+                z_basic = z_basic2;
+                ok = ok3;
+                residual = r3;
+            }
+        }),
+        ladder::rung("the ray checked", [&] { return recovers() && code == RAY_TERMINATION; },
+                     [&] {
+                         ray_known = true;
+                         ray_ok = ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
+                         ended = ray_ok;
+                     }),
+        ladder::rung("covering vector 1/R, careful", recovers, [&] { recovery(0); }),
+        ladder::rung("covering vector |q|, exact", recovers, [&] { recovery(1); }),
+        ladder::rung("random covering vector", recovers, [&] { recovery(2); }),
+        ladder::rung("the other method", recovers, [&] { recovery(3); }));
+    idx pivots = cap.pivots;
     if (code == RAY_TERMINATION)
         ok = ray_known ? ray_ok : ray_check(M, q, v.cov, v.x, v.x[n], v.ray, tol, v.R, v.C);
     out.code = code;
@@ -497,38 +502,42 @@ RunResult solve_one(Method method, Mat<const double> M, const double* q, const d
     } else if (k != 0) {
         bool tried = k < 0;
         if (tried) k = -2 - k;
-        // the warm start's stages (cold.warm_stages)
-        int found;
-        double m_max, residual = 0.0;
-        found = tried ? 1 : old_basis(M, q, d, beta, k, tol, v, basic, residual, work, keep);
-        if (found <= 0) return warm_verdict(found, k, residual);
+        // the warm start's stages (cold.warm_stages): a ladder whose rung that settles the
+        // solve is its stage (0: the old basis's point; 1: the restart from it)
+        int found = 1;  // (old_basis's verdict: tried already by first_run, its point failed)
+        double residual = 0.0;
         RunResult out;
-        if (found != 2 && n >= RESTART_FROM) {
-            finite_absmax(M, m_max);  // (M is finite: old_basis, or first_run's, tested it)
-            std::vector<std::uint8_t> flags(static_cast<std::size_t>(2 * n), 0);
-            std::uint8_t* z_start = flags.data();
-            std::uint8_t* z_basic = flags.data() + n;
-            for (idx i = 0; i < k; ++i) z_start[beta[i]] = 1;
-            bool ok;
-            int code;
-            pivots = restart(M, q, z_start, beta, k, m_max, max_pivots, pivot_tol, tie_tol, tol,
-                             v, z_basic, ok, residual, code);
-            if (!ok && is_stop(code)) {  // the restart's point, unchecked
-                out.code = code;
-                out.pivots = pivots;
-                out.k = basic_indices(z_basic, n, basic);
-                out.stage = 1;
-                return out;
-            }
-            if (ok) {
-                out.code = SOLVED;
-                out.pivots = pivots;
-                out.k = basic_indices(z_basic, n, basic);
-                out.ok = true;
-                out.residual = residual;
-                out.stage = 1;
-                return out;
-            }
+        bool restarted = false;  // the restart's answer stands (checked, or stopped unchecked)
+        int stage = ladder::climb(
+            [&] { return found <= 0 || restarted; },
+            ladder::rung("the old basis's point", [&] { return !tried; }, [&] {
+                found = old_basis(M, q, d, beta, k, tol, v, basic, residual, work, keep);
+            }),
+            ladder::rung("restart from the old basis",
+                         [&] { return found == 1 && n >= RESTART_FROM; }, [&] {
+                double m_max;
+                finite_absmax(M, m_max);  // (M is finite: old_basis, or first_run's, tested it)
+                std::vector<std::uint8_t> flags(static_cast<std::size_t>(2 * n), 0);
+                std::uint8_t* z_start = flags.data();
+                std::uint8_t* z_basic = flags.data() + n;
+                for (idx i = 0; i < k; ++i) z_start[beta[i]] = 1;
+                bool ok;
+                int code;
+                pivots = restart(M, q, z_start, beta, k, m_max, max_pivots, pivot_tol, tie_tol,
+                                 tol, v, z_basic, ok, residual, code);
+                restarted = ok || is_stop(code);
+                if (restarted) {  // checked, or the restart's point, unchecked
+                    out.code = ok ? static_cast<int>(SOLVED) : code;
+                    out.pivots = pivots;
+                    out.k = basic_indices(z_basic, n, basic);
+                    out.ok = ok;
+                    out.residual = ok ? residual : 0.0;
+                }
+            }));
+        if (found <= 0) return warm_verdict(found, k, residual);
+        if (restarted) {
+            out.stage = stage;
+            return out;
         }
         scaled = true;
     }

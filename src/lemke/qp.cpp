@@ -1323,12 +1323,147 @@ void active_residuals(const Data& dt, const double* lb, const double* ub, const 
     }
 }
 
-// qp._gram: the factored LCP, the active set's point refined `steps` times, the check.
+// The QP kind's basis system (the seam, issue 31 item 2: basis.hpp's members apply, point,
+// recover, solve, solve_transpose, check). Here, not in basis.hpp: it is a view on this
+// file's QPWork and Rows (the engine's own factors and caches, which point's skipped terms
+// need to keep their bits), not a block built from the caller's data. A basis is an active
+// set S of the multiplier LCP's rows (rows_of's C: G's rows with h finite, then the upper
+// bounds, then the lower ones); its KKT system, in the caller's variables,
+//     K (x, yy, z_S) = (-rd, rpE, rpS),   K = [[P, E', C_S'], [E, 0, 0], [C_S, 0, 0]]
+// (E: A's rows, then the fixed variables' unit rows), is solved through the factors, not as
+// a block: L (P's Cholesky factor, w.L; P + shift I on the proximal path), the QR of E
+// (w.V, w.beta, R.E) and the QR of F2_S' (apply: K2, V2, w.beta2). dt: the screened data
+// (P its Ps, lb and ub the screened bounds), as every user has it.
+struct QpBasis {
+    const Data& dt;
+    const double *lb, *ub;
+    QPWork& w;
+    const Rows& R;
+    const idx* S = nullptr;  // the set (apply: in w.S)
+    idx k = 0;
+    Mat<double> K2, V2;  // F2_S (k x r) and its QR (qr_rows)
+
+    QpBasis(const Data& dt_, const double* lb_, const double* ub_, QPWork& w_, const Rows& R_)
+        : dt(dt_), lb(lb_), ub(ub_), w(w_), R(R_) {}
+
+    // S = the rows whose flag is set (m flags: the LCP's basic z's), F2_S into K2 and its QR.
+    // False (nothing to solve) when S has more rows than free directions (k > n - p) or
+    // the QR's rank test refuses F2_S' (qr_rows <= RANK_TOL).
+    bool apply(const std::uint8_t* flags) {
+        idx m = R.m, p = R.p, r = dt.n() - p;
+        k = 0;
+        for (idx i = 0; i < m; ++i)
+            if (flags[i]) ++k;
+        if (k > r) return false;
+        idx* s = w.S;
+        k = 0;
+        for (idx i = 0; i < m; ++i)
+            if (flags[i]) s[k++] = i;
+        S = s;
+        K2 = Mat<double>(w.K2.p, k, r);
+        V2 = Mat<double>(w.V2.p, k, r);
+        for (idx j = 0; j < k; ++j) {
+            const double* Fi = R.C.row(S[j]) + p;
+            double* K2j = K2.row(j);
+            for (idx t = 0; t < r; ++t) K2j[t] = Fi[t];
+        }
+        return qr_rows(K2, V2, w.beta2) > RANK_TOL;
+    }
+
+    // K (x, yy, z_S) = (-rd, rpE, rpS) after apply (active_solve: x n entries, yy p, zz m
+    // written at S, zero elsewhere). rd, rpE, rpS are read only.
+    void solve(const double* rd, const double* rpE, const double* rpS, double* x, double* yy,
+               double* zz) const {
+        active_solve(w.L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, x, yy, zz);
+    }
+    // K' u = rhs: K is symmetric (P symmetric, the off-diagonal blocks each other's
+    // transposes), so solve itself (tests/test_basis_seam.py checks both against numpy).
+    void solve_transpose(const double* rd, const double* rpE, const double* rpS, double* x,
+                         double* yy, double* zz) const {
+        solve(rd, rpE, rpS, x, yy, zz);
+    }
+
+    // The point of the set after apply: solve on (q, f, d_S), then `steps` refinements (the
+    // residuals on dt in double-double, active_residuals, solved and added), z_S clipped at
+    // 0, recover into o. The iterate in (w.xi, w.yy, w.zg); o's x, y, z, zb the residuals'
+    // scratch. w.spP is built (P's nonzeros by rows, for the residuals' and check's sums);
+    // the caller turns it off after check.
+    void point(idx steps, const Outs& o) {
+        idx n = dt.n(), p = R.p;
+        double *rd = w.rd, *rpE = w.rpE, *rpS = w.rpS;
+        for (idx t = 0; t < n; ++t) rd[t] = dt.q[t];
+        for (idx t = 0; t < p; ++t) rpE[t] = R.f[t];
+        for (idx j = 0; j < k; ++j) rpS[j] = R.d[S[j]];
+        double *xi = w.xi, *yy = w.yy, *zz = w.zg, *dx = w.dx, *dy = w.dy, *dz = w.dz;
+        solve(rd, rpE, rpS, xi, yy, zz);
+        idx p0 = dt.p0(), m0 = dt.m0();
+        // P's nonzeros by rows (kept where at most a quarter): the refinement's sums over P and
+        // the check's take them alone, with the same bits (axpy2_P, kkt_rows).  (layout() made
+        // w's SparseRows off and the cache empty: they are the point's own here.)
+        w.spP.build(dt.P.p, n, n);
+        for (idx step = 0; step < steps; ++step) {
+            for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
+            caller_form(o, n, p0, m0, yy, zz, R, false);
+            active_residuals(dt, lb, ub, o, R, S, k, w, rd, rpE, rpS);
+            solve(rd, rpE, rpS, dx, dy, dz);
+            for (idx t = 0; t < n; ++t) xi[t] += dx[t];
+            for (idx t = 0; t < p; ++t) yy[t] += dy[t];
+            for (idx j = 0; j < k; ++j) zz[S[j]] += dz[S[j]];
+        }
+        for (idx j = 0; j < k; ++j) zz[S[j]] = pmax(zz[S[j]], 0.0);
+        recover(xi, yy, zz, o);
+    }
+
+    // The point of given multipliers zz (m entries, >= 0: the multiplier LCP's answer; no
+    // apply, no refinement): v2 = -(c2 + sum_i zz_i F2_i) over the rows `rows` in their
+    // order (nullptr: all m in order; a row with zz_i = 0 adds nothing), then x and yy
+    // (point: L, the QR of E) into o.x and w.yy, recover.
+    void point_given(const double* zz, const idx* rows, idx count, const Outs& o) {
+        idx n = dt.n(), p = R.p;
+        double* v = w.v;
+        for (idx t = p; t < n; ++t) v[t] = -w.c[t];
+        for (idx j = 0; j < count; ++j) {
+            idx i = rows != nullptr ? rows[j] : j;
+            double zi = zz[i];
+            if (zi != 0.0) {
+                const double* Ci = R.C.row(i);
+                for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
+            }
+        }
+        qp::point(w.L, R, w, w.c, v, zz, o.x, w.yy);
+        recover(o.x, w.yy, zz, o);
+    }
+
+    // The map back to the caller's form: x into o.x, (yy, zz) into o's y, z, zb, the
+    // active bounds' and fixed variables' x snapped to their bounds (caller_form).
+    void recover(const double* x, const double* yy, const double* zz, const Outs& o) const {
+        idx n = dt.n();
+        if (x != o.x)
+            for (idx t = 0; t < n; ++t) o.x[t] = x[t];
+        caller_form(o, n, dt.p0(), dt.m0(), yy, zz, R, true);
+    }
+
+    // The set `set` (kb rows of C) as the KKT-MLCP numbers its basis (mlcp_basis) into
+    // basic; res.k, res.pairs.
+    void numbering(const idx* set, idx kb, idx* basic, Result& res) const {
+        mlcp_basis(lb, ub, dt.n(), R.m_g, R.ckind, R.m, set, kb, basic, w.bflags, res.k,
+                   res.pairs);
+    }
+
+    // The KKT check of o on dt at min(tol, STRICT_TOL) (kkt_rows with w's sparse rows);
+    // o.stats gets (primal, dual, gap, obj).
+    bool check(const Outs& o, double tol) const {
+        return kkt_rows(dt, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    }
+};
+
+// qp._gram: the factored LCP, the active set's point refined `steps` times, the check (the
+// set's basis system, QpBasis).
 Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows& R,
             idx max_pivots, double pivot_tol, double tie_tol, double tol, const Outs& o,
             idx* basic, idx steps) {
     Result res;
-    idx n = dt.n(), p = R.p, m = R.m, r = n - p;
+    idx p = R.p;
     std::uint8_t* flags = w.gflags;
     idx pivots = 0;
     int status = gram_lcp(R.C, w.g, p, max_pivots, pivot_tol, tie_tol, flags, pivots);
@@ -1337,56 +1472,14 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
         res.code = is_stop(status) ? status : NOT_SOLVED;
         return res;
     }
-    idx k = 0;
-    for (idx i = 0; i < m; ++i)
-        if (flags[i]) ++k;
-    if (k > r) {
+    QpBasis basis(dt, lb, ub, w, R);
+    if (!basis.apply(flags)) {
         res.code = NOT_SOLVED;
         return res;
     }
-    idx* S = w.S;
-    k = 0;
-    for (idx i = 0; i < m; ++i)
-        if (flags[i]) S[k++] = i;
-    Mat<double> K2(w.K2.p, k, r), V2(w.V2.p, k, r);
-    for (idx j = 0; j < k; ++j) {
-        const double* Fi = R.C.row(S[j]) + p;
-        double* K2j = K2.row(j);
-        for (idx t = 0; t < r; ++t) K2j[t] = Fi[t];
-    }
-    if (qr_rows(K2, V2, w.beta2) <= RANK_TOL) {
-        res.code = NOT_SOLVED;
-        return res;
-    }
-    double *rd = w.rd, *rpE = w.rpE, *rpS = w.rpS;
-    for (idx t = 0; t < n; ++t) rd[t] = dt.q[t];
-    for (idx t = 0; t < p; ++t) rpE[t] = R.f[t];
-    for (idx j = 0; j < k; ++j) rpS[j] = R.d[S[j]];
-    double *xi = w.xi, *yy = w.yy, *zz = w.zg, *dx = w.dx, *dy = w.dy, *dz = w.dz;
-    Mat<const double> L = w.L;
-    active_solve(L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, xi, yy, zz);
-    idx p0 = dt.p0(), m0 = dt.m0();
-    // P's nonzeros by rows (kept where at most a quarter): the refinement's sums over P and
-    // the check's take them alone, with the same bits (axpy2_P, kkt_rows).  (layout() made
-    // w's SparseRows off and the cache empty: they are gram's own here.)
-    w.spP.build(dt.P.p, n, n);
-    for (idx step = 0; step < steps; ++step) {
-        for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
-        caller_form(o, n, p0, m0, yy, zz, R, false);
-        active_residuals(dt, lb, ub, o, R, S, k, w, rd, rpE, rpS);
-        active_solve(L, R, w, S, k, K2, V2, w.beta2, rd, rpE, rpS, dx, dy, dz);
-        for (idx t = 0; t < n; ++t) xi[t] += dx[t];
-        for (idx t = 0; t < p; ++t) yy[t] += dy[t];
-        for (idx j = 0; j < k; ++j) zz[S[j]] += dz[S[j]];
-    }
-    for (idx j = 0; j < k; ++j) zz[S[j]] = pmax(zz[S[j]], 0.0);
-    for (idx t = 0; t < n; ++t) o.x[t] = xi[t];
-    caller_form(o, n, p0, m0, yy, zz, R, true);
-    mlcp_basis(lb, ub, n, R.m_g, R.ckind, m, S, k, basic, w.bflags, res.k, res.pairs);
-    Data checked = dt;
-    checked.lb = lb;
-    checked.ub = ub;
-    bool passed = kkt_rows(checked, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    basis.point(steps, o);
+    basis.numbering(basis.S, basis.k, basic, res);
+    bool passed = basis.check(o, tol);
     w.spP.on = false;
     if (!passed) {
         res.code = CHECK_FAILED;
@@ -1714,19 +1807,11 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         S.swap(next);
     }
     idx kb = static_cast<idx>(S.size());
+    QpBasis basis(ds, lo, up, w, R);
     if (ok) {
-        double* v = w.v;
-        for (idx t = p; t < n; ++t) v[t] = -w.c[t];
-        for (idx j = 0; j < kb; ++j) {
-            double zi = zz[S[j]];
-            if (zi != 0.0) {
-                const double* Ci = R.C.row(S[j]);
-                for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
-            }
-        }
-        point(w.L, R, w, w.c, v, zz, o.x, w.yy);
-        caller_form(o, n, ds.p0(), ds.m0(), w.yy, zz, R, true);
-        if (!kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+        // (the set's point from its z: the terms of S's rows in S's order, unrefined)
+        basis.point_given(zz, S.data(), kb, o);
+        if (!basis.check(o, tol)) {
             // the LCP is solved and its point fails the check: what the cold LCP would give
             // (x is unique, P definite), so the caller's fallback, not another LCP run
             res.code = CHECK_FAILED;
@@ -1739,7 +1824,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         for (idx i = 0; i < m; ++i) zz[i] = 0.0;
         return false;
     }
-    mlcp_basis(lo, up, n, R.m_g, R.ckind, m, S.data(), kb, basic, w.bflags, res.k, res.pairs);
+    basis.numbering(S.data(), kb, basic, res);
     res.code = OK;
     return true;
 }
@@ -1825,32 +1910,25 @@ struct MultiplierLcp {
     // apply on the factors kept from the same matrices (the cache): g alone, by factors'
     // operations (right_hand_sides); M is w.M as it was.
     Rows apply_vectors() { return right_hand_sides(ds, lo, up, w); }
-    // The LCP's answer (w.zz, the basic z's lcp_basic[:k]) mapped back: the basis as
-    // mlcp_basis numbers it into basic (res.k, res.pairs), the point from the factors (x,
-    // the equality multipliers), caller_form (qpsolvers' y, z, zb; x snapped to its active
-    // bounds).
+    // The LCP's answer (w.zz, the basic z's lcp_basic[:k]) mapped back through the set's
+    // basis system (QpBasis): the basis as mlcp_basis numbers it into basic (numbering;
+    // res.k, res.pairs), the point of the given multipliers from the factors (point_given:
+    // x, the equality multipliers; caller_form: qpsolvers' y, z, zb, x snapped to its
+    // active bounds).
     void recover(const Rows& R, const idx* lcp_basic, idx k, const Outs& o, idx* basic,
                  Result& res) {
-        idx n = ds.n(), p = R.p, m = R.m;
-        // mlcp_basis reads the LCP's basis whole before it writes there (they may share `basic`)
+        QpBasis basis(ds, lo, up, w, R);
+        // numbering reads the LCP's basis whole before it writes there (they may share `basic`)
         idx* lb_copy = w.lcp_basic;
         for (idx i = 0; i < k; ++i) lb_copy[i] = lcp_basic[i];
-        mlcp_basis(lo, up, n, R.m_g, R.ckind, m, lb_copy, k, basic, w.bflags, res.k, res.pairs);
-        double* v = w.v;
-        for (idx t = p; t < n; ++t) v[t] = -w.c[t];
-        for (idx i = 0; i < m; ++i) {
-            double zi = w.zz[i];
-            if (zi != 0.0) {
-                const double* Ci = R.C.row(i);
-                for (idx t = p; t < n; ++t) v[t] -= zi * Ci[t];
-            }
-        }
-        point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
-        caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
+        basis.numbering(lb_copy, k, basic, res);
+        // (the point of the LCP's z: every row's term in row order, unrefined)
+        basis.point_given(w.zz, nullptr, R.m, o);
     }
-    // The KKT check on the data at the fused path's tolerance, min(tol, STRICT_TOL).
-    bool check(const Outs& o, double tol) {
-        return kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    // The KKT check on the data at the fused path's tolerance, min(tol, STRICT_TOL)
+    // (QpBasis::check).
+    bool check(const Rows& R, const Outs& o, double tol) {
+        return QpBasis(ds, lo, up, w, R).check(o, tol);
     }
 };
 
@@ -1861,7 +1939,7 @@ bool finish(const Data& ds, const double* lo, const double* up, QPWork& w, const
             const idx* lcp_basic, idx k, double tol, const Outs& o, idx* basic, Result& res) {
     MultiplierLcp red{ds, lo, up, w};
     red.recover(R, lcp_basic, k, o, basic, res);
-    return red.check(o, tol);
+    return red.check(R, o, tol);
 }
 
 }  // namespace
@@ -2541,6 +2619,73 @@ Result solve_box(const Data& dt, const std::uint8_t* warm, idx max_pivots, doubl
     return res;
 }
 
+BasisSeam basis_seam(const Data& dt, const std::uint8_t* active, idx m_active, const double* z,
+                     idx m_z, idx steps, double tol, double* out, const double* rhs, idx rhs_len,
+                     bool transpose, double* sol) {
+    BasisSeam a;
+    idx n = dt.n(), p0 = dt.p0(), m0 = dt.m0();
+    for (idx t = 0; t < OutLayout{n, p0, m0}.basis(); ++t) out[t] = 0.0;
+    std::vector<double> scr;
+    Data ds;
+    if (!screened(dt, scr, ds)) {
+        a.code = BAD_INPUT;
+        return a;
+    }
+    const double* lo = ds.lb;
+    const double* up = ds.ub;
+    idx p, m;
+    row_counts(dt, lo, up, p, m);
+    a.p = p;
+    a.m = m;
+    if (m_active != m || (z != nullptr && m_z != m)) {
+        a.code = 3;
+        return a;
+    }
+    QPWork w;
+    w.layout(n, p, m, false);
+    if (!cholesky(ds.P, w.L)) {
+        a.code = NOT_DEFINITE;
+        return a;
+    }
+    Rows R;
+    int code = factors(ds, lo, up, w, R);
+    if (code != OK) {
+        a.code = code;
+        return a;
+    }
+    QpBasis basis(ds, lo, up, w, R);
+    if (!basis.apply(active)) {
+        a.code = 2;
+        return a;
+    }
+    a.k = basis.k;
+    if (rhs != nullptr && rhs_len != n + p + basis.k) {
+        a.code = 3;
+        return a;
+    }
+    Outs o = out_views(out, n, p0, m0);
+    if (z != nullptr)
+        basis.point_given(z, nullptr, m, o);
+    else
+        basis.point(steps, o);
+    a.code = basis.check(o, tol) ? 0 : 1;
+    w.spP.on = false;
+    if (rhs != nullptr) {
+        idx k = basis.k;
+        std::vector<double> rd(static_cast<std::size_t>(n)), zz(static_cast<std::size_t>(m));
+        for (idx t = 0; t < n; ++t) rd[t] = -rhs[t];
+        const double *rpE = rhs + n, *rpS = rhs + n + p;
+        double *x = sol, *yy = sol + n;
+        if (transpose)
+            basis.solve_transpose(rd.data(), rpE, rpS, x, yy, zz.data());
+        else
+            basis.solve(rd.data(), rpE, rpS, x, yy, zz.data());
+        for (idx j = 0; j < k; ++j) sol[n + p + j] = zz[basis.S[j]];
+        a.solved = all_finite(sol, n + p + k);
+    }
+    return a;
+}
+
 }  // namespace qp
 
 // ----------------------------------------------------------------------------- reductions.hpp's
@@ -2600,7 +2745,7 @@ int multiplier_recover(const qp::Data& d, const double* zz, idx m_given, const i
     qp::Result res;
     qp::Outs o = qp::out_views(out, n, p0, m0);
     red.recover(R, lcp_basic, k, o, basic, res);
-    passed = red.check(o, tol);
+    passed = red.check(R, o, tol);
     count = res.k;
     pairs = res.pairs;
     return qp::OK;

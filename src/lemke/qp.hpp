@@ -174,5 +174,28 @@ idx inequalities(const double* h, idx m0, const double* lb, const double* ub, id
 // Step 8 with fewer than GRAM_RATIO n inequalities: how many flat directions of P it takes on.
 idx flat_allowed(idx p0, const double* h, idx m0, const double* lb, const double* ub, idx n);
 
+// The QP kind's basis system (qp.cpp's QpBasis, the seam) on the caller's data, for
+// _core.qp_basis and its tests: screen, L of P (cholesky: P definite), the factors (as
+// solve_gram computes them, in a workspace of its own: the thread's solve cache untouched),
+// the set `active` applied (m flags over the multiplier LCP's rows in rows_of's order: G's
+// rows with h finite, then the upper bounds of the variables not fixed, then their lower
+// bounds), the point (with z given, m entries: point_given, unrefined, as warm_point and the
+// fused path take it; else point with `steps` refinements, as gram), recovered into out
+// (OutLayout's x, y, z, zb and stats: 2n + p0 + m0 + 4 doubles) and checked (check: kkt_rows
+// at min(tol, STRICT_TOL)); with rhs (n + p + k: K (x, yy, z_S) = rhs, K the set's KKT
+// matrix, p = p0 + the fixed variables, k = the set's rows) the solve (or, with transpose,
+// solve_transpose) into sol (the same lengths). code: 0 the point passes the check, 1 it
+// fails, 2 apply refused the set (more rows than n - p, or F2_S' below RANK_TOL), 3 active,
+// z or rhs of the wrong length (m, p, k say the right ones), else the kernels' BAD_INPUT,
+// NOT_DEFINITE, DEPENDENT_EQUALITIES or a stop. solved: sol finite.
+struct BasisSeam {
+    int code = 0;
+    idx p = 0, m = 0, k = 0;
+    bool solved = false;
+};
+BasisSeam basis_seam(const Data& d, const std::uint8_t* active, idx m_active, const double* z,
+                     idx m_z, idx steps, double tol, double* out, const double* rhs, idx rhs_len,
+                     bool transpose, double* sol);
+
 }  // namespace qp
 }  // namespace lemke
