@@ -28,6 +28,7 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _core, _progress, _validate
+from ._certify import games_check
 from . import _games_exact as ex
 from ._options import _DEFAULT, Options, as_options, time_limited, timed
 from ._options import deadline as deadline_scope
@@ -46,7 +47,7 @@ _MATRICES = (2, 2)
 #: None, since the native front calls the engine itself).
 _LEMKE_HOWSON = _core.lemke_howson
 _TRACE = _core.games_trace
-_CHECK = _core.games_check
+_CHECK = games_check  # (_certify's: every kind's check there, by name)
 _FRONT = _core.games_front  # solve_bimatrix's commonest call whole (src/python_games.cpp)
 _NOT_FINITE = _core.GAMES_NOT_FINITE  # a payoff is not finite: nothing done
 _UNCHECKED = _core.GAMES_UNCHECKED  # every label present, at a point that fails the check
