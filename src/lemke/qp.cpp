@@ -1157,8 +1157,6 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
 
 void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
              const QPWork& w);
-bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
-              const double* z, const double* zb, double tol, double* stats);
 
 // qp.active_residuals (P the screened Ps, lb/ub the screened bounds).
 void active_residuals(const Data& dt, const double* lb, const double* ub, const Outs& o,
