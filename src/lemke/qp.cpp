@@ -1157,6 +1157,13 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
 
 void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
              const QPWork& w);
+// kkt_rows (the acceptance module, certify.cpp) on solve's cache: QPWork's nonzeros of P, A
+// and G (sw null: the dense sums).
+inline bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
+                     const double* z, const double* zb, double tol, double* stats) {
+    if (sw == nullptr) return qp::kkt_rows(dt, nullptr, nullptr, nullptr, x, y, z, zb, tol, stats);
+    return qp::kkt_rows(dt, &sw->spP, &sw->spA, &sw->spG, x, y, z, zb, tol, stats);
+}
 
 // qp.active_residuals (P the screened Ps, lb/ub the screened bounds).
 void active_residuals(const Data& dt, const double* lb, const double* ub, const Outs& o,
@@ -1255,7 +1262,7 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     Data checked = dt;
     checked.lb = lb;
     checked.ub = ub;
-    bool passed = kkt_rows(checked, &w.spP, &w.spA, &w.spG, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    bool passed = kkt_rows(checked, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
     w.spP.on = false;
     if (!passed) {
         res.code = CHECK_FAILED;
@@ -1438,7 +1445,7 @@ bool warm_point(const Data& ds, const double* lo, const double* up, QPWork& w, c
         }
         point(w.L, R, w, w.c, v, zz, o.x, w.yy);
         caller_form(o, n, ds.p0(), ds.m0(), w.yy, zz, R, true);
-        if (!kkt_rows(ds, &w.spP, &w.spA, &w.spG, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
+        if (!kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats)) {
             // the LCP is solved and its point fails the check: what the cold LCP would give
             // (x is unique, P definite), so the caller's fallback, not another LCP run
             res.code = CHECK_FAILED;
@@ -1529,7 +1536,7 @@ bool finish(const Data& ds, const double* lo, const double* up, QPWork& w, const
     }
     point(w.L, R, w, w.c, v, w.zz, o.x, w.yy);
     caller_form(o, n, ds.p0(), ds.m0(), w.yy, w.zz, R, true);
-    return kkt_rows(ds, &w.spP, &w.spA, &w.spG, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
+    return kkt_rows(ds, &w, o.x, o.y, o.z, o.zb, pmin(tol, STRICT_TOL), o.stats);
 }
 
 }  // namespace
