@@ -5,8 +5,9 @@ write.
 
 Two ways in:
 
-* **through the front**: ``_blcp.boxed`` is replaced by a tee that runs each call of the
-  front (solve, front, box_check, check_scales, basis_point, friction_point, is_ray, extend)
+* **through the front**: ``_blcp.boxed`` (and ``_certify``'s box checks) is replaced by a
+  tee that runs each call of the front (solve, front, box_check, check_scales, basis_point,
+  friction_point, is_ray, extend)
   on copies of its arguments, checks the outputs and hands them on; then
   the box LCP tests' problems (tests/test_blcp.py: the Siconos relay files, the seeded
   family, degenerate ties, the small integer fuzz, extreme values, friction contacts, the
@@ -24,7 +25,7 @@ import pytest
 
 import frozen
 import lemke
-from lemke import _blcp, _core
+from lemke import _blcp, _certify, _core
 
 cboxed = _core.boxed
 FUNCS = ("solve", "front", "box_check", "check_scales", "basis_point", "friction_point", "is_ray",
@@ -68,6 +69,10 @@ class Tee:
 def tee(monkeypatch):
     t = Tee()
     monkeypatch.setattr(_blcp, "boxed", t)
+    # the checks the front calls through _certify (box_check, check_scales; is_box_ray's is_ray)
+    monkeypatch.setattr(_certify, "boxed", t)
+    monkeypatch.setattr(_certify, "box_check", t.box_check)
+    monkeypatch.setattr(_certify, "check_scales", t.check_scales)
     # the native front (src/python_front_box.cpp) calls the kernels itself: off, so that
     # every call goes through the tee (tests/test_front_box.py compares the two fronts)
     monkeypatch.setattr(_blcp, "_FRONT", lambda *a: None)

@@ -279,3 +279,28 @@ def test_the_package_imports_only_numpy_scipy_and_its_extras():
                 if top not in allowed and top not in sys.stdlib_module_names:
                     bad.setdefault(str(p.relative_to(PACKAGE)), set()).add(top)
     assert not bad, bad
+
+
+def test_acceptance_is_one_module():
+    """Every kind's check is reachable from ``_certify`` by name, and no other module of the
+    package calls the core's checks directly (the fronts call them through ``_certify``)."""
+    from lemke import _certify
+
+    for name in ("check_lcp", "is_lcp_solution", "is_lcp_ray", "check_mlcp", "is_mlcp_ray",
+                 "box_check", "check_scales", "is_box_ray", "kkt_check", "games_check",
+                 "check_farkas", "check_direction"):
+        assert callable(getattr(_certify, name)), name
+    kernels = {"box_check", "check_scales", "is_ray", "games_check", "qp_kkt_check",
+               "lcp_check", "lcp_ray_check", "check_mlcp"}
+    bad = []
+    for p in PACKAGE.rglob("*.py"):
+        if p.name == "_certify.py":
+            continue
+        for n in ast.walk(ast.parse(p.read_text())):
+            if (isinstance(n, ast.Attribute) and n.attr in kernels
+                    and isinstance(n.value, ast.Name) and n.value.id in ("boxed", "_core")):
+                bad.append(f"{p.relative_to(PACKAGE)}:{n.lineno} {n.value.id}.{n.attr}")
+            if isinstance(n, ast.ImportFrom) and (n.module or "").endswith("_core"):
+                bad += [f"{p.relative_to(PACKAGE)}:{n.lineno} {a.name}" for a in n.names
+                        if a.name in kernels]
+    assert not bad, bad

@@ -47,7 +47,8 @@ from ._result import LazyField, Outcome, lazy_state, native_fronts_init
 from ._status import STOPPED, Status
 from ._core import boxed  # the C++ core's box engine (src/lemke/boxed.*)
 from ._core import refined_solve
-from . import _core
+from . import _certify, _core
+from ._certify import is_box_ray  # (the box LCP's checks: _certify, by name)
 
 METHODS = ("bounded",)
 _F64 = np.dtype(np.float64)
@@ -948,8 +949,8 @@ def _warm(M, q, lo, hi, opts, ws):
     zh[list(ws.at_upper)] = True
     run = _Run(n)
     if boxed.basis_point(M, q, lo, hi, zb, zh, True, run.z):
-        boxed.check_scales(M, q, lo, hi, run.R, run.C)
-        ok, residual = boxed.box_check(M, q, lo, hi, run.z, opts.tol, run.w, run.R)
+        _certify.check_scales(M, q, lo, hi, run.R, run.C)
+        ok, residual = _certify.box_check(M, q, lo, hi, run.z, opts.tol, run.w, run.R)
         if ok:
             run.code, run.pivots, run.z0, run.ok, run.residual = 0, 0, 0.0, True, residual
             run.d[:] = 0.0
@@ -1053,16 +1054,8 @@ def _checked_point(M, q, lo, hi, zb, zh, tol, R):
     if z is None:
         return None
     w = np.empty(q.size)
-    ok, residual = boxed.box_check(M, q, lo, hi, z, tol, w, R)
+    ok, residual = _certify.box_check(M, q, lo, hi, z, tol, w, R)
     return (z, w, residual) if ok else None
-
-
-def is_box_ray(M, q, lo, hi, d, z, z0, ray, tol=1e-9) -> bool:
-    """Whether ``(z, z0) + t ray`` (t >= 0) stays a solution of the augmented box problem
-    (w + d z0 in place of w) for every t, judged row by row on the caller's data
-    (``boxed::is_ray``, which says how)."""
-    a = [_validate.kernel_array(np.asarray(x, dtype=float)) for x in (M, q, lo, hi, d, z, ray)]
-    return bool(boxed.is_ray(*a[:6], float(z0), a[6], float(tol)))
 
 
 # --------------------------------------------------------------------------- friction
@@ -1131,7 +1124,7 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
         return None
     z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
     w = np.empty(n)
-    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    ok, residual = _certify.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
     return (z, w, residual, lo_in, hi_in) if ok else None
 
 
@@ -1186,8 +1179,8 @@ def _judged(M, q, lo, hi, F, normal, z, tol, N):
     n = q.size
     z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
     R, C, w = np.empty(n), np.empty(n), np.empty(n)
-    boxed.check_scales(M, q, lo, hi, R, C)
-    ok, residual = boxed.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    _certify.check_scales(M, q, lo, hi, R, C)
+    ok, residual = _certify.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
     return (z, w, residual, lo_in, hi_in, R, C) if ok else None
 
 
@@ -1216,13 +1209,13 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     z[F] = zx[F] - zx[n:n + k]
     zc, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
     R, C = np.empty(n), np.empty(n)
-    boxed.check_scales(M, q, lo, hi, R, C)
+    _certify.check_scales(M, q, lo, hi, R, C)
     w = np.empty(n)
     # The check on the caller's data decides, whatever the extended problem's own check said
     # (its rows λ ± w_i are sums of larger terms, and can miss that check by rounding where
     # the caller's rows pass).
     status = inner.status
-    ok, residual = boxed.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
+    ok, residual = _certify.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
     flags = None if ok or inner.warm_start is None else inner.warm_start._kernel_flags()
     if flags is not None:
         # The point of the final basis, from the extended data by one dense solve (more
@@ -1233,7 +1226,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
             z2[F] = zx2[F] - zx2[n:n + k]
             z2, lo2, hi2 = _coupled(z2, lo, hi, F, normal)
             w2 = np.empty(n)
-            ok2, res2 = boxed.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
+            ok2, res2 = _certify.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
             if ok2:
                 ok, residual, zc, w, lo_in, hi_in = ok2, res2, z2, w2, lo2, hi2
         if not ok and flags is not None:
@@ -1249,7 +1242,7 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     else:
         if status == Status.SOLVED:
             status = Status.NUMERICAL_FAILURE
-        boxed.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, qx.size)  # w of the point returned
+        _certify.box_check(M, q, lo_in, hi_in, z, opts.tol, w, R, qx.size)  # w of the point returned
     for a in (z, w, lo_in, hi_in, R, C):
         a.setflags(write=False)
     ws = inner.warm_start

@@ -1,36 +1,69 @@
-"""Acceptance: is a point a solution, is a direction a ray, is a certificate a proof -- on
-the caller's data (LCPs, MLCPs, QP certificates; the other kinds' checks: below).
+"""Acceptance, every kind's, in one module: is a point a solution, is a direction a ray, is
+a certificate a proof -- on the caller's data.
 
 The same functions serve the solvers (to accept or downgrade a result), the tests and the
-benchmarks, so every part of the project judges answers the same way.  The kernels keep a
-fused copy of the LCP test for speed (the C++ core's ``src/lemke/certify.cpp``,
-which *is* the LCP rule below: ``check_lcp`` calls it, and
-``tests/test_certify.py`` checks that the fused check inside a solve gives the verdict of
-``is_lcp_solution``).  The box LCP's, the fused QP path's and the games' checks are the
-core's own, beside their engines (``boxed::box_check`` and ``friction_check``,
-``qp::kkt_check``, ``games::check``); what ``tol`` means in each is stated in
-:mod:`lemke._options`' docstring.
+benchmarks, so every part of the project judges answers the same way.  Every check that
+decides "solved" is reachable here by name: the LCP's (``check_lcp``, ``is_lcp_solution``,
+``is_lcp_ray``), the MLCP's (``check_mlcp``, ``is_mlcp_ray``), the box LCP's
+(``box_check``, ``check_scales``, ``is_box_ray``), the QP's (``kkt_check``; the Farkas
+vectors and descent directions of a ``Certificate``: ``check_farkas``,
+``check_direction``) and the games' (``games_check``); the fronts call them through this
+module.  Their code in the C++ core is one module too, ``src/lemke/certify.{hpp,cpp}``
+(the LCP's row-wise check, which the kernels fuse into every solve and which *is* the LCP
+rule below: ``check_lcp`` calls it, and ``tests/test_certify.py`` checks that the check
+inside a solve gives the verdict of ``is_lcp_solution``; the MLCP's; ``boxed::box_check``,
+``coupled_check``, ``friction_check``, ``is_ray``; ``qp::kkt_check``; ``games::check``),
+where the engines call them.
 
-**The recipe.**  Every test compares a quantity that is zero (or non-negative) in exact
-arithmetic with ``tol`` (``Options.tol``, default 1e-9) times the size of the terms it is
-formed from, plus the rounding of forming it:
+**What ``tol`` means** (``Options.tol``, default 1e-9, always relative).  Every test
+compares a quantity that is zero (or non-negative) in exact arithmetic with ``tol`` times
+the size of the terms it is formed from, plus the rounding of forming it:
 
-* **LCP point** (``check_lcp``): row by row, ``t = tol + (n + 2) eps`` times
-  ``r_i = |M_i.| |z| + |q_i|`` (the componentwise backward error; details in
-  ``src/lemke/certify.hpp``), and a point so large that the rounding of M z dwarfs the data is
-  refused (``CERTIFIABLE``).
-* **MLCP point** (``check_mlcp``): the same rule on the stacked system ``E x + e``, against
-  the size of the whole stacked system (its rows have no common scale once a QP's KKT rows
-  are stacked), with ``E x + e`` summed in double-double and the same ``CERTIFIABLE`` bound.
-* **QP KKT point**: the MLCP test of its KKT system (``_qp``), whose residuals are then
-  reported in qpsolvers' terms.
-* **Directions** -- an LCP ray (``is_lcp_ray``), an MLCP ray (``is_mlcp_ray``), a Farkas
-  vector (``check_farkas``) and a direction of unbounded descent (``check_direction``):
-  normalized to largest entry 1, each condition against ``tol`` times the data's size,
-  times ``RAY_SLACK`` (a direction is formed by subtracting two points, each accepted with
-  the point allowance).  The LCP ray is judged row by row like an LCP point instead
-  (``src/lemke/certify.hpp``), and its z part must be non-zero next to the whole direction:
-  a direction that only moves z0 is the primary ray, which every LCP has.
+* **LCP point** (``check_lcp``, ``is_lcp_solution``; ``src/lemke/certify.hpp``): made on the
+  caller's data row by row: with ``r_i = |M_i.| |z| + |q_i|`` (the componentwise backward
+  error), ``t = tol + (n + 2) eps`` and f_i the rounding of q's largest entry in row i's
+  equilibrated units, ``w_i >= -(t r_i + f_i)``, and ``|w_i| <= t r_i + f_i`` unless z_i is
+  zero (small enough that zeroing it moves no w_j by more than row j's allowance); z >= 0
+  in the same sense; and z must be small enough to be certified at all (in the
+  row-equilibrated coordinates, ``eps max_i R_i |M_i.| |z| <= CERTIFIABLE t max(max_i R_i
+  |q_i|, 1)``, CERTIFIABLE = 1000: a z such as the |z| ~ 1e16 of a pivot on rounding noise
+  answers a different problem).
+* **MLCP point** (``check_mlcp``): the LCP rule above on the stacked system ``E x + e``,
+  against the size of the whole stacked system (its rows have no common scale once a QP's
+  KKT rows are stacked), with ``E x + e`` summed in double-double (its rounding
+  allowance EPS_EXT, x86's long double epsilon) and the same ``CERTIFIABLE`` bound.
+* **Box LCP point** (``box_check``, with the scales of ``check_scales``): the LCP's t,
+  r_i, f_i and certifiability bound, applied to the natural map: z within its bounds (a
+  fixed z_i exactly at it), and a w_i beyond ``t r_i + f_i`` in either sign needs z_i at
+  the bound it pushes against (its distance from it small enough to count as zero, as for
+  an LCP's z_i); with a friction index the caller's z is judged so on the caller's rows,
+  with the bounds in force ``-+mu_i z_f`` (z clamped into them first) and the rounding of
+  the extended problem's size (``coupled_check``, ``friction_check`` in the core).
+* **QP KKT point** (``kkt_check``; ``qp::kkt_check``, the fused path at
+  ``min(tol, 1e-12)``; the KKT-MLCP path's answers by the MLCP test of their KKT system,
+  reported in qpsolvers' terms): with ``t = tol + 4 eps`` and ``f = 4 (n + 2) eps``,
+  stationarity row j may be off by ``t s_j + f (|P_.j|_1 max|x| + |A_.j|_1 max|y| +
+  |G_.j|_1 max|z| + max|z_box|)`` (s_j the sum of the sizes of the row's terms), an
+  equality or inequality row i by ``t s_i + f max|x| |row_i|_1``, a bound by
+  ``t (|bound| + |x_j|) + f max|x|``; z >= 0 and the signs of z_box exactly; a
+  multiplier that is not zero needs its row active to within that allowance, or must be
+  small enough to count as zero (as must z_i where h_i = +inf).  The ``f`` terms are the
+  rounding floor: a computed vector is exact only to about f times its largest entry
+  (normwise, not entry by entry), so a row whose terms are all at the rounding level (an
+  exact 0 that comes out as 1e-15) is judged against what that rounding can move it by,
+  not against 1e-12 of its own tiny terms (``tests/test_qp_kkt_check.py`` states the rule).
+* **Game** (``games_check``; ``games::check``): x and y are distributions (no negative
+  entry, each sums to 1 within 1e-12 times its length), and each player's regret is at most
+  ``tol`` times the range of that player's payoffs, plus rounding (64 eps (m + n) times the
+  payoffs' largest size).
+* **Directions** -- an LCP ray (``is_lcp_ray``), a box LCP ray (``is_box_ray``), an MLCP
+  ray (``is_mlcp_ray``), a Farkas vector (``check_farkas``) and a direction of unbounded
+  descent (``check_direction``): normalized to largest entry 1, each condition against
+  ``tol`` times the data's size, times ``RAY_SLACK`` (a direction is formed by subtracting
+  two points, each accepted with the point allowance).  The LCP ray is judged row by row
+  like an LCP point instead (``src/lemke/certify.hpp``), and its z part must be non-zero
+  next to the whole direction: a direction that only moves z0 is the primary ray, which
+  every LCP has; the box LCP ray row by row too (``boxed::is_ray``).
 """
 from __future__ import annotations
 
@@ -39,8 +72,9 @@ import numpy as np
 
 from ._frozen import frozen
 from . import _core, _npc
+from ._core import boxed  # the box engine's bindings (its checks: at the end)
 from ._result import Value
-from ._validate import c_aligned, square_matrix, vector
+from ._validate import c_aligned, kernel_array, square_matrix, vector
 
 #: The certifiability bound (src/lemke/certify.hpp; the module docstring).
 CERTIFIABLE = _core.CERTIFIABLE
@@ -99,7 +133,7 @@ def is_lcp_ray(M, q, d, z, z0, ray, tol: float = 1e-9) -> bool:
 
 def check_mlcp(E, e, n, x, tol):
     """``(w, ok, residual)`` for the stacked MLCP ``E x + e = (0, w)``: the LCP acceptance
-    rule of :class:`lemke.Options` on the pairs, and ``|equation| <= s_w`` on the
+    rule (the module docstring) on the pairs, and ``|equation| <= s_w`` on the
     equations, with the tolerances taken from the whole stacked system and ``E x + e``
     summed in double-double (its rounding allowance, EPS_EXT, is that of x86's long
     double).  In the C++ core (``check_mlcp`` in ``src/lemke/certify.cpp``): the numbers of
@@ -249,3 +283,43 @@ def check_direction(qp, dx, tol):
     if value >= -s:
         return None
     return Certificate("dual_infeasible", value, dx=dx)
+
+
+# ----------------------------------------------------------------------------- box LCPs, QPs, games
+# Their checks run in the core (src/lemke/certify.cpp, the engines call them there); the
+# fronts reach them here, by these names.  The kernels are bound once, at import (a front's
+# call costs what a call of the kernel costs).
+
+
+#: ``box_check(M, q, lo, hi, z, tol, w, R, n_round=0) -> (ok, residual)``: a box LCP's
+#: point on the caller's data (the module docstring), w = M z + q into w; R the row scales
+#: of :data:`check_scales` (or of the run); n_round the size whose rounding is allowed for.
+box_check = boxed.box_check
+#: ``check_scales(M, q, lo, hi, R, C)``: the scales :data:`box_check` judges with when no
+#: run made them (the equilibration of M and q + M p, p the point of the bounds nearest 0).
+check_scales = boxed.check_scales
+#: ``games_check(A, B, x, y, tol, out) -> ok``: whether (x, y) is an equilibrium of (A, B)
+#: (the module docstring); out (3) gets (regret, row payoff, column payoff).
+games_check = _core.games_check
+_QP_KKT = _core.qp_kkt_check
+
+
+def is_box_ray(M, q, lo, hi, d, z, z0, ray, tol=1e-9) -> bool:
+    """Whether ``(z, z0) + t ray`` (t >= 0) stays a solution of the augmented box problem
+    (w + d z0 in place of w) for every t, judged row by row on the caller's data
+    (``boxed::is_ray``, which says how)."""
+    a = [kernel_array(np.asarray(x, dtype=float)) for x in (M, q, lo, hi, d, z, ray)]
+    return bool(boxed.is_ray(*a[:6], float(z0), a[6], float(tol)))
+
+
+def kkt_check(data, x, y, z, z_box, tol):
+    """``(ok, primal, dual, gap, obj)`` on the validated data ``(P, q, G, h, A, b, lb, ub)``
+    (absent rows empty, absent bounds infinite): whether the point passes the fused path's
+    row-wise KKT check (``qp::kkt_check``) at ``tol``, and qpsolvers' residuals and
+    the objective, each summed there in double-double (their values at the point as given,
+    not the rounding of evaluating them)."""
+    stats = np.empty(4)
+    c = c_aligned
+    P, q, G, h, A, b, lb, ub = data
+    ok = _QP_KKT(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol, stats)
+    return (bool(ok), *stats.tolist())

@@ -19,36 +19,12 @@ so multiplying M and q by any positive constant gives the same pivots and the sa
     because both are near zero.  0 asks for exact ties.  See ``src/lemke/pivoting.hpp`` for
     the rule and why the default sits above the rounding of well-conditioned bases.
 ``tol`` (default ``1e-9``)
-    Acceptance test for a solution, made on the caller's data row by row
-    (``src/lemke/certify.hpp``): with ``r_i = |M_i.| |z| + |q_i|``, ``t = tol + (n + 2) eps``
-    and f_i the rounding of q's largest entry in row i's equilibrated units,
-    ``w_i >= -(t r_i + f_i)``, and ``|w_i| <= t r_i + f_i`` unless z_i is zero (small enough
-    that zeroing it moves no w_j by more than row j's allowance); and z must be small
-    enough to be certified at all (in the row-equilibrated coordinates,
-    ``eps max_i R_i |M_i.| |z| <= 1000 t max(max_i R_i |q_i|, 1)``: a z such as the
-    |z| ~ 1e16 of a pivot on rounding noise answers a different problem).
-    A QP's answer is judged on the caller's data by its own row-wise KKT check (the fused
-    path at ``min(tol, 1e-12)``): with ``t = tol + 4 eps`` and ``f = 4 (n + 2) eps``,
-    stationarity row j may be off by ``t s_j + f (|P_.j|_1 max|x| + |A_.j|_1 max|y| +
-    |G_.j|_1 max|z| + max|z_box|)`` (s_j the sum of the sizes of the row's terms), an
-    equality or inequality row i by ``t s_i + f max|x| |row_i|_1``, a bound by
-    ``t (|bound| + |x_j|) + f max|x|``; z >= 0 and the signs of z_box exactly; a
-    multiplier that is not zero needs its row active to within that allowance, or must be
-    small enough to count as zero (as must z_i where h_i = +inf).  The ``f`` terms are the
-    rounding floor: a computed vector is exact only to about f times its largest entry
-    (normwise, not entry by entry), so a row whose terms are all at the rounding level
-    (an exact 0 that comes out as 1e-15) is judged against what that rounding can move it
-    by, not against 1e-12 of its own tiny terms.
-    The other kinds use ``tol`` as follows.  An MLCP's point: the LCP rule above on the
-    stacked system ``E x + e`` (``_certify.check_mlcp``, whose docstring has the details).
-    A box LCP's point (``box_check`` in ``src/lemke/boxed.cpp``): the same t, r_i, f_i and
-    certifiability bound, applied to the natural map: z within its bounds (a fixed z_i
-    exactly at it), and a w_i beyond ``t r_i + f_i`` in either sign needs z_i at the bound
-    it pushes against (its distance from it small enough to count as zero, as for a z_i
-    above); with a friction index the caller's z is judged so on the caller's rows, with the
-    bounds in force ``-+mu_i z_f`` (z clamped into them first) and the rounding of the
-    extended problem's size.  A game's point: each player's regret at most ``tol`` times
-    the range of that player's payoffs, plus rounding (``games::check``).
+    The acceptance test of an answer, made on the caller's data: each quantity that is zero
+    (or non-negative) in exact arithmetic against ``tol`` times the size of the terms it is
+    formed from, plus the rounding of forming it (an LCP's point row by row, with
+    ``t = tol + (n + 2) eps`` times ``r_i = |M_i.| |z| + |q_i|``).  What it means for each
+    kind (LCP, MLCP, box LCP, QP, game, rays and certificates) is stated once, in
+    :mod:`lemke._certify`'s docstring, the module of every check.
 ``time_limit`` (default None: none)
     Seconds of wall-clock time for the whole call (a batch: for all its problems).  Every
     engine looks at the clock every few tens of microseconds of work, so the limit is kept to

@@ -25,6 +25,7 @@ from ._npc import count, every, filled
 from ._blcp import solve_blcp
 from ._certify import Certificate, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
+from ._certify import kkt_check as kkt  # the fused path's KKT check (qp::kkt_check)
 from ._lcp import METHODS
 from ._mlcp import solve_stacked
 from ._options import as_options, time_limited, timed
@@ -981,20 +982,6 @@ def _solve(qp, method, opts, warm_start, certify):
     elif status in (Status.RAY_TERMINATION, Status.PRIMAL_INFEASIBLE):
         status = Status.NUMERICAL_FAILURE  # an auxiliary problem: no certificate sought
     return _result(qp, x, y, z, z_box, status, r.pivots, certificate, r.warm_start, stats)
-
-
-def kkt(data, x, y, z, z_box, tol):
-    """``(ok, primal, dual, gap, obj)`` on the validated data ``(P, q, G, h, A, b, lb, ub)``
-    (absent rows empty, absent bounds infinite): whether the point passes the fused path's
-    row-wise KKT check (``qp::kkt_check``) at ``tol``, and qpsolvers' residuals and
-    the objective, each summed there in double-double (their values at the point as given,
-    not the rounding of evaluating them)."""
-    stats = np.empty(4)
-    c = _validate.c_aligned
-    P, q, G, h, A, b, lb, ub = data
-    ok = _core.qp_kkt_check(c(P), q, c(G), h, c(A), b, lb, ub, c(x), c(y), c(z), c(z_box), tol,
-                            stats)
-    return (bool(ok), *stats.tolist())
 
 
 def _data(qp):

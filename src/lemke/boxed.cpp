@@ -87,13 +87,6 @@ inline void start_point(const double* lo, const double* hi, std::uint8_t* at_hi,
     }
 }
 
-// Whether x[:n] has a non-zero entry (a NaN counts).
-inline bool nonzero(const double* x, idx n) {
-    for (idx i = 0; i < n; ++i)
-        if (x[i] != 0.0) return true;
-    return false;
-}
-
 bool trivial_start(const double* lo, const double* hi, const std::uint8_t* at_hi,
                    const double* w, idx n) {
     for (idx i = 0; i < n; ++i) {
@@ -497,96 +490,6 @@ void scaled_rows(Mat<const double> M, const double* R, const double* C, Mat<doub
     }
 }
 
-// 1 / c into r when c is a power of two whose reciprocal is a normal double (then x * r is
-// x / c bit for bit: both round the same exact number once); false otherwise.
-inline bool pow2_reciprocal(double c, double& r) {
-    std::int64_t b = float_bits(c);
-    std::int64_t e = b >> 52;  // the biased exponent (sign 0)
-    if ((b & 0xFFFFFFFFFFFFFLL) != 0 || e < 1 || e > 2045) return false;
-    r = bits_float((2046 - e) << 52);
-    return true;
-}
-
-// x / c, by a multiplication where that is exact (pow2_reciprocal): the same bits.
-inline double div_exact(double x, double c) {
-    double r;
-    return pow2_reciprocal(c, r) ? x * r : x / c;
-}
-
-// Each row's M z and size, the size of M p: two rows at a time (dot_and_size_lanes2, the
-// same bits as row_dot_and_size), inlined into box_check_in's clones.
-LEMKE_ALWAYS_INLINE void pair_rows(Mat<const double> M, const double* y, idx i, double* mz,
-                                   double* size) {
-    idx n = M.rows;
-    if (i + 1 < n) {
-        double pair[4];
-        dot_and_size_lanes2(M.row(i), M.row(i + 1), y, n, pair);
-        mz[0] = pair[0];
-        mz[1] = pair[1];
-        size[0] = pair[2];
-        size[1] = pair[3];
-    } else {
-        dot_and_size_lanes(M.row(i), y, n, mz[0], size[0]);
-    }
-}
-
-// The rows whose rounding box_check allows for; the check itself (see the header). Compiled
-// per instruction set, as check_rows: every box solve ends here.
-LEMKE_CLONES
-bool box_check_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                  const double* z, double tol, double* w, const double* R, idx n_round,
-                  double& residual, double* work3) {
-    idx n = M.rows;
-    idx nr = n > n_round ? n : n_round;
-    double t = tol + static_cast<double>(nr + 2) * EPS;
-    double* rows = work3;
-    double* floors = work3 + n;
-    double* p = work3 + 2 * n;
-    bool p_zero = true;
-    double q_top = 0.0;
-    for (idx i = 0; i < n; ++i) {
-        p[i] = pmin(pmax(0.0, lo[i]), hi[i]);
-        p_zero = p_zero && p[i] == 0.0;
-        q_top = pmax(q_top, R[i] * std::fabs(q[i]));
-    }
-    double big = 0.0, data = 1.0;
-    bool z_zero = !nonzero(z, n);
-    double mz[2] = {0.0, 0.0}, size[2] = {0.0, 0.0}, pd[2], psize[2] = {0.0, 0.0};
-    for (idx i = 0; i < n; ++i) {
-        idx h = i % 2;  // rows i and i + 1 from even i (pair_rows)
-        if (h == 0) {
-            if (!z_zero) pair_rows(M, z, i, mz, size);
-            if (!p_zero) pair_rows(M, p, i, pd, psize);
-        }
-        w[i] = q[i] + mz[h];
-        rows[i] = size[h] + std::fabs(q[i]);
-        floors[i] = div_exact(static_cast<double>(nr + 2) * EPS * q_top, R[i]);
-        big = pmax(big, R[i] * size[h]);
-        data = pmax(data, R[i] * (std::fabs(q[i]) + psize[h]));
-    }
-    bool ok = EPS * big <= CERTIFIABLE * t * data;
-    residual = 0.0;
-    for (idx i = 0; i < n; ++i) {
-        double zi = z[i], wi = w[i];
-        if (!(zi == zi && wi == wi)) {
-            ok = false;
-            residual = NAN;
-            continue;
-        }
-        residual = pmax(residual, std::fabs(zi - pmin(pmax(zi - wi, lo[i]), hi[i])));
-        if (lo[i] == hi[i]) {
-            if (zi != lo[i]) ok = false;
-            continue;
-        }
-        double s_w = t * rows[i] + floors[i];
-        double off = pmax(lo[i] - zi, zi - hi[i]);
-        if (wi > s_w) off = pmax(off, zi - lo[i]);
-        if (wi < -s_w) off = pmax(off, hi[i] - zi);
-        if (off > 0.0 && off > zero_size(M, rows, i, t, floors)) ok = false;
-    }
-    return ok;
-}
-
 // qs = q + M z (the start point's w), two rows at a time (pair_rows: row_dot_and_size's
 // bits); compiled per instruction set.
 LEMKE_CLONES
@@ -600,28 +503,9 @@ void shifted_q(Mat<const double> M, const double* q, const double* z, double* qs
     }
 }
 
-// check_scales with its 4n doubles of work given; `kept` (not null): through
-// equilibrate_finite_kept (the same scales: M is finite here, prologue), M's entry in *kept.
-void check_scales_in(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                     double* R, double* C, double* work4, KeptMatrix** kept = nullptr) {
-    idx n = M.rows;
-    double* qs = work4;
-    double* p = work4 + n;
-    bool p_zero = true;
-    for (idx i = 0; i < n; ++i) {
-        p[i] = pmin(pmax(0.0, lo[i]), hi[i]);
-        p_zero = p_zero && p[i] == 0.0;
-    }
-    // p = 0 (every lo <= 0 <= hi): q itself, no copy (q + M 0 is q: the same scales)
-    if (!p_zero)
-        for (idx i = 0; i < n; ++i) qs[i] = q[i] + dot(M.row(i), p, n);
-    const double* qe = p_zero ? q : qs;
-    // (qe not finite: equilibrate_finite_kept refuses before any sweep; equilibrate's scales)
-    if (!(kept && equilibrate_finite_kept(M, qe, R, C, work4 + 2 * n, *kept)))
-        equilibrate(M, qe, R, C, work4 + 2 * n);
-}
-
 }  // namespace
+
+BoxedWork& thread_work() { return work(); }
 
 // Compiled per instruction set: all_finite's eight running sums on vectors (every box solve
 // reads M once here).
@@ -642,25 +526,6 @@ int prologue(Mat<const double> M, const double* q, const double* lo, const doubl
         if (lo[i] == INF || hi[i] == -INF) return BAD_BOUNDS;
     }
     return 0;
-}
-
-bool box_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-               const double* z, double tol, double* w, const double* R, idx n_round,
-               double& residual) {
-    double* work3 = work().check_area(3 * M.rows);
-    return box_check_in(M, q, lo, hi, z, tol, w, R, n_round, residual, work3);
-}
-
-void check_scales(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                  double* R, double* C) {
-    double* work4 = work().check_area(4 * M.rows);
-    check_scales_in(M, q, lo, hi, R, C, work4);
-}
-
-void check_scales_kept(Mat<const double> M, const double* q, const double* lo,
-                       const double* hi, double* R, double* C, KeptMatrix*& kept) {
-    double* work4 = work().check_area(4 * M.rows);
-    check_scales_in(M, q, lo, hi, R, C, work4, &kept);
 }
 
 bool basis_point(Mat<const double> M, const double* q, const double* lo, const double* hi,
@@ -693,50 +558,6 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
                     const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
                     double* z) {
     return friction_point_in(M, q, lo, hi, F, nf, zb, zh, z, work());
-}
-
-bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
-            const double* d, const double* z, double z0, const double* ray, double tol) {
-    idx n = M.rows;
-    if (!(all_finite(ray, n + 1) && std::fabs(z0) < INF && z0 >= 0.0)) return false;
-    double g = static_cast<double>(n + 3) * EPS;
-    double t = tol + g;
-    double* dz = work().check_area(n);
-    double top = 0.0;
-    for (idx i = 0; i < n; ++i) top = pmax(top, std::fabs(ray[i]));
-    for (idx i = 0; i < n; ++i) dz[i] = std::fabs(ray[i]) > g * top ? ray[i] : 0.0;
-    double dz0 = std::fabs(ray[n]) > g * pmax(top, 1.0) ? ray[n] : 0.0;
-    if (dz0 < 0.0 || (top == 0.0 && dz0 == 0.0)) return false;
-    double q_top = 0.0;
-    for (idx i = 0; i < n; ++i) q_top = pmax(q_top, std::fabs(q[i]));
-    double m_top;
-    finite_absmax(M, m_top);
-    for (idx i = 0; i < n; ++i) {
-        double mz, size, mdz, dsize;
-        row_dot_and_size(M.row(i), z, n, mz, size);
-        row_dot_and_size(M.row(i), dz, n, mdz, dsize);
-        double u = (mz + q[i]) + d[i] * z0;
-        double du = mdz + d[i] * dz0;
-        double su = t * ((size + std::fabs(q[i])) + std::fabs(d[i] * z0)) + g * q_top;
-        double sdu = t * (dsize + std::fabs(d[i] * dz0)) + g * top * m_top;
-        if (lo[i] == hi[i]) {
-            if (dz[i] != 0.0) return false;
-            continue;
-        }
-        bool at_lo = lo[i] > -INF && std::fabs(z[i] - lo[i]) <= t * pmax(std::fabs(lo[i]), 1.0) * 10;
-        bool at_hi = hi[i] < INF && std::fabs(z[i] - hi[i]) <= t * pmax(std::fabs(hi[i]), 1.0) * 10;
-        if (dz[i] != 0.0) {
-            if ((dz[i] > 0.0 && hi[i] < INF) || (dz[i] < 0.0 && lo[i] > -INF)) return false;
-            if (std::fabs(u) > su || std::fabs(du) > sdu) return false;
-        } else if (at_lo) {
-            if (u < -su || du < -sdu) return false;
-        } else if (at_hi) {
-            if (u > su || du > sdu) return false;
-        } else if (std::fabs(u) > su || std::fabs(du) > sdu) {
-            return false;
-        }
-    }
-    return true;
 }
 
 namespace {
@@ -1036,43 +857,6 @@ SolveResult solve(Mat<const double> M, const double* q, const double* lo, const 
 
 namespace {
 
-// The caller's z (buf's, FrontLayout) judged with the coupled bounds at it: friction_check's
-// verdict, once z is mapped back.
-bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual,
-                   BoxedWork& W) {
-    idx n = M.rows;
-    FrontLayout L{n, nf, true};
-    double *z = buf + L.z(), *w = buf + L.w(), *lo_in = buf + L.lo(), *hi_in = buf + L.hi();
-    double *R = buf + L.row_scale(), *C = buf + L.col_scale();
-    for (idx i = 0; i < n; ++i) {
-        lo_in[i] = lo[i];
-        hi_in[i] = hi[i];
-    }
-    for (idx c = 0; c < nf; ++c) {
-        idx i = F[c];
-        double mu = hi[i];
-        lo_in[i] = -mu * z[F[nf + c]];
-        hi_in[i] = mu * z[F[nf + c]];
-    }
-    // (check_scales then box_check, their work area looked up once: the same area)
-    double* work4 = W.check_area(4 * n);
-    check_scales_in(M, q, lo, hi, R, C, work4);
-    for (idx i = 0; i < n; ++i) z[i] = pmin(pmax(z[i], pmin(lo_in[i], hi_in[i])), hi_in[i]);
-    return box_check_in(M, q, lo_in, hi_in, z, tol, w, R, N, residual, work4);
-}
-
-// The friction index's answer from the extended one zx, judged on the caller's data
-// (boxed.friction_check), into buf's caller's fields (FrontLayout).
-bool friction_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                    const idx* F, idx nf, const double* zx, idx N, double tol, double* buf,
-                    double& residual) {
-    idx n = M.rows;
-    double* z = buf + FrontLayout{n, nf, true}.z();
-    reductions::FrictionBox{M, q, lo, hi, nullptr, nf}.recover(F, zx, z);
-    return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual, work());
-}
-
 // Whether every friction row's normal impulse z_f lies in its box (so that the friction
 // rows' bounds in force are those of the z returned).
 bool normals_inside(const double* z, const double* lo, const double* hi, const idx* F, idx nf) {
@@ -1085,11 +869,6 @@ bool normals_inside(const double* z, const double* lo, const double* hi, const i
 }
 
 }  // namespace
-
-bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual) {
-    return coupled_check(M, q, lo, hi, F, nf, N, tol, buf, residual, work());
-}
 
 int front(int phase, Mat<const double> M, const double* q, const double* lo, const double* hi,
           const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,

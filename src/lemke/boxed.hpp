@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "certify.hpp"  // the box checks (box_check, ...), with every kind's
+#include "multiversion.hpp"
 #include "pivoting.hpp"
 
 namespace lemke {
@@ -179,19 +181,8 @@ struct BoxedWork {
 // 0, NOT_FINITE or BAD_BOUNDS (boxed.prologue).
 int prologue(Mat<const double> M, const double* q, const double* lo, const double* hi);
 
-// w = M z + q and the verdict on the caller's data (boxed.box_check); n_round: the size
-// whose rounding is allowed for (max with n).
-bool box_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-               const double* z, double tol, double* w, const double* R, idx n_round,
-               double& residual);
-
-// The scales box_check judges with when no run made them (boxed.check_scales).
-void check_scales(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                  double* R, double* C);
-// check_scales, the same scales, through linalg.equilibrate_finite_kept (a warm start's
-// 0-pivot re-solve on the same M: the sweeps' records of M); `kept`: M's entry, or nullptr.
-void check_scales_kept(Mat<const double> M, const double* q, const double* lo,
-                       const double* hi, double* R, double* C, KeptMatrix*& kept);
+// The box LCP's checks (box_check, check_scales, check_scales_kept, coupled_check,
+// friction_check, is_ray): certify.hpp, the acceptance module (included above).
 
 // The point of a basis (zb basic, zh at hi) into z (boxed.basis_point); false when the
 // block is singular or the point not finite.
@@ -214,18 +205,6 @@ bool friction_point(Mat<const double> M, const double* q, const double* lo, cons
                     const idx* F, idx nf, const std::uint8_t* zb, const std::uint8_t* zh,
                     double* z);
 
-// The caller's z (buf's z, FrontLayout{n, nf, true}) judged with the coupled bounds at it
-// (friction_check's verdict once its zx is mapped back; FrictionBasis::check): the friction
-// rows' bounds -+mu z_f into buf's lo and hi, R and C of check_scales on the caller's data,
-// z clipped into those bounds, w = M z + q, box_check with n_round N (= n + 2 nf).
-bool coupled_check(Mat<const double> M, const double* q, const double* lo, const double* hi,
-                   const idx* F, idx nf, idx N, double tol, double* buf, double& residual);
-
-// Whether (z, z0) + t ray is a ray of the augmented box problem (boxed.is_ray; the sizes
-// of d, z, ray are the binding's to check).
-bool is_ray(Mat<const double> M, const double* q, const double* lo, const double* hi,
-            const double* d, const double* z, double z0, const double* ray, double tol);
-
 // The extended box LCP of a friction index into work (FrontLayout's work: Mx, qx, lox, hix),
 // F (2 nf) the friction rows then their normal rows (boxed.extend).
 void extend(Mat<const double> M, const double* q, const double* lo, const double* hi,
@@ -246,6 +225,52 @@ int front(int phase, Mat<const double> M, const double* q, const double* lo, con
           const idx* findex, idx findex_len, const std::uint8_t* warm, idx warm_len,
           bool has_warm, double tol, double* buf, idx buf_len, idx* ints, idx ints_len,
           double* work, idx work_len, double& residual);
+
+// The thread's workspace (the engine's, boxed.cpp; certify.cpp's box checks take their
+// scratch from its check_area).
+BoxedWork& thread_work();
+
+// --- helpers of the engine and of its check (certify.cpp) ---
+
+// Whether x[:n] has a non-zero entry (a NaN counts).
+inline bool nonzero(const double* x, idx n) {
+    for (idx i = 0; i < n; ++i)
+        if (x[i] != 0.0) return true;
+    return false;
+}
+
+// 1 / c into r when c is a power of two whose reciprocal is a normal double (then x * r is
+// x / c bit for bit: both round the same exact number once); false otherwise.
+inline bool pow2_reciprocal(double c, double& r) {
+    std::int64_t b = float_bits(c);
+    std::int64_t e = b >> 52;  // the biased exponent (sign 0)
+    if ((b & 0xFFFFFFFFFFFFFLL) != 0 || e < 1 || e > 2045) return false;
+    r = bits_float((2046 - e) << 52);
+    return true;
+}
+
+// x / c, by a multiplication where that is exact (pow2_reciprocal): the same bits.
+inline double div_exact(double x, double c) {
+    double r;
+    return pow2_reciprocal(c, r) ? x * r : x / c;
+}
+
+// Each row's M z and size, the size of M p: two rows at a time (dot_and_size_lanes2, the
+// same bits as row_dot_and_size), inlined into box_check_in's clones.
+LEMKE_ALWAYS_INLINE void pair_rows(Mat<const double> M, const double* y, idx i, double* mz,
+                                   double* size) {
+    idx n = M.rows;
+    if (i + 1 < n) {
+        double pair[4];
+        dot_and_size_lanes2(M.row(i), M.row(i + 1), y, n, pair);
+        mz[0] = pair[0];
+        mz[1] = pair[1];
+        size[0] = pair[2];
+        size[1] = pair[3];
+    } else {
+        dot_and_size_lanes(M.row(i), y, n, mz[0], size[0]);
+    }
+}
 
 }  // namespace boxed
 }  // namespace lemke

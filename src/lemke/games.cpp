@@ -16,14 +16,7 @@ void GamesWork::reserve(idx nf, idx ni, idx nz) {
     if (static_cast<idx>(z.size()) < nz) z.resize(static_cast<std::size_t>(nz));
 }
 
-namespace {
-
 // --- the condensed tableau: shared by both methods ------------------------------------------
-
-struct Range {
-    double lo, hi;
-    bool finite;
-};
 
 // games.payoff_range: the least and the largest payoff and whether every payoff is finite
 // (sum of v * 0, NaN when one is not). Eight lanes: the minimum and the maximum of a set do
@@ -69,6 +62,8 @@ Range payoff_range(Mat<const double> A) {
 #endif
     return {lo, hi, z == 0.0};
 }
+
+namespace {
 
 double positive_scale(double lo, double hi) { return hi > lo ? pow2_scale(hi - lo) : 0.0; }
 
@@ -365,80 +360,6 @@ bool place(Tab& t, const idx* target, idx count, idx n_labels, double* col, doub
         swap_labels(t.basis, t.nonbasic, t.pos, t.inb, best, s);
     }
     return true;
-}
-
-// --- the check on the caller's payoffs ------------------------------------------------------
-
-idx support(const double* v, idx len, idx* index) {
-    idx k = 0;
-    for (idx i = 0; i < len; ++i)
-        if (v[i] != 0.0) index[k++] = i;
-    return k;
-}
-
-struct Regrets {
-    double ra, rb, pa, pb;
-};
-
-// games.regrets: acc (n), index (max(m, n)) scratch.
-Regrets regrets(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
-                double* acc, idx* index) {
-    idx m = A.rows, n = A.cols;
-    idx k = support(y, n, index);
-    double best_a = -INF, pay_a = 0.0;
-    for (idx i = 0; i < m; ++i) {
-        const double* a = A.row(i);
-        double t = 0.0;
-        for (idx q = 0; q < k; ++q) {
-            idx j = index[q];
-            t += a[j] * y[j];
-        }
-        best_a = pmax(best_a, t);
-        pay_a += x[i] * t;
-    }
-    for (idx j = 0; j < n; ++j) acc[j] = 0.0;
-    k = support(x, m, index);
-    for (idx q = 0; q < k; ++q) {
-        idx i = index[q];
-        double xi = x[i];
-        const double* b = B.row(i);
-        for (idx j = 0; j < n; ++j) acc[j] += b[j] * xi;
-    }
-    double best_b = -INF, pay_b = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        best_b = pmax(best_b, acc[j]);
-        pay_b += y[j] * acc[j];
-    }
-    return {best_a - pay_a, best_b - pay_b, pay_a, pay_b};
-}
-
-double allowance(double lo, double hi, idx m, idx n, double tol) {
-    double big = pmax(std::fabs(lo), std::fabs(hi));
-    return tol * (hi - lo) + ROUNDING_SLACK * 2.2e-16 * static_cast<double>(m + n) * big;
-}
-
-// games.verdict.
-bool verdict(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
-             double allow_a, double allow_b, double* out, double* acc, idx* index) {
-    idx m = A.rows, n = A.cols;
-    bool ok = true;
-    double sx = 0.0;
-    for (idx i = 0; i < m; ++i) {
-        ok &= x[i] >= 0.0;
-        sx += x[i];
-    }
-    double sy = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        ok &= y[j] >= 0.0;
-        sy += y[j];
-    }
-    ok &= std::fabs(sx - 1.0) <= 1e-12 * static_cast<double>(m) &&
-          std::fabs(sy - 1.0) <= 1e-12 * static_cast<double>(n);
-    Regrets r = regrets(A, B, x, y, acc, index);
-    out[0] = pmax(r.ra, r.rb);
-    out[1] = r.pa;
-    out[2] = r.pb;
-    return ok && r.ra <= allow_a && r.rb <= allow_b;
 }
 
 // games.normalize: v / sum(v), negative rounding clamped to 0; false when nothing is left.
@@ -874,18 +795,6 @@ TraceResult trace(Mat<const double> A, Mat<const double> B, const double* p, con
                       allowance(rb.lo, rb.hi, m, n, tol), out, v.acc, v.index);
     if (ok) return {SOLVED, pivots};
     return {status == SOLVED ? UNCHECKED : status, pivots};
-}
-
-bool check(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
-           double tol, double* out) {
-    idx m = A.rows, n = A.cols;
-    Range ra = payoff_range(A), rb = payoff_range(B);
-    thread_local std::vector<double> acc;
-    thread_local std::vector<idx> index;
-    acc.resize(static_cast<std::size_t>(std::max<idx>(n, 1)));
-    index.resize(static_cast<std::size_t>(std::max<idx>(std::max(m, n), 1)));
-    return verdict(A, B, x, y, allowance(ra.lo, ra.hi, m, n, tol),
-                   allowance(rb.lo, rb.hi, m, n, tol), out, acc.data(), index.data());
 }
 
 }  // namespace games

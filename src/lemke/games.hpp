@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "certify.hpp"  // the check (games::check, ...), with every kind's
 #include "pivoting.hpp"
 
 namespace lemke {
@@ -82,10 +83,16 @@ TraceResult trace(Mat<const double> A, Mat<const double> B, const double* p, con
                   idx max_pivots, double pivot_tol, double tie_tol, double tol, double* x,
                   double* y, idx* basis_out, double* out);
 
-// games.check: is (x, y) an equilibrium of (A, B)? out (3) gets (regret, row payoff, column
-// payoff).
-bool check(Mat<const double> A, Mat<const double> B, const double* x, const double* y,
-           double tol, double* out);
+// The check of an equilibrium (check, verdict, allowance): certify.hpp, the acceptance
+// module (included above).
+
+// games.payoff_range: the least and the largest payoff, and whether every payoff is finite
+// (the engine's scaling and the check's allowance).
+struct Range {
+    double lo, hi;
+    bool finite;
+};
+Range payoff_range(Mat<const double> A);
 
 }  // namespace games
 

@@ -51,44 +51,6 @@ struct Unset : std::allocator<T> {
     void construct(U* p, A&&... a) { ::new (static_cast<void*>(p)) U(std::forward<A>(a)...); }
 };
 
-// The nonzeros of a matrix by rows, in row order, their columns and values (the factor
-// cache's Ps, A and G, for kkt_check's sums, which skip their exact zeros with the same
-// bits, and read the values here: those of the matrix they were built from, whose bits the
-// cache's hit test found the caller's again, packed instead of scattered over its rows): on
-// when at most a quarter of the entries are nonzero (else the dense, vectorized loops are
-// as quick).
-struct SparseRows {
-    std::vector<idx> start, col;
-    std::vector<double> val;
-    bool on = false;
-    void build(const double* M, idx rows, idx cols, bool always = false) {
-        start.resize(static_cast<std::size_t>(rows + 1));
-        col.clear();
-        val.clear();
-        on = false;
-        idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
-        idx count = 0;  // (counted first: a dense matrix is given up without a push)
-        for (idx i = 0; i < rows && count <= most; ++i) {
-            const double* Mi = M + i * cols;
-            for (idx j = 0; j < cols; ++j) count += Mi[j] != 0.0 ? 1 : 0;
-        }
-        if (count > most) return;
-        col.reserve(static_cast<std::size_t>(count));
-        val.reserve(static_cast<std::size_t>(count));
-        for (idx i = 0; i < rows; ++i) {
-            start[i] = static_cast<idx>(col.size());
-            const double* Mi = M + i * cols;
-            for (idx j = 0; j < cols; ++j)
-                if (Mi[j] != 0.0) {
-                    col.push_back(j);
-                    val.push_back(Mi[j]);
-                }
-        }
-        start[rows] = static_cast<idx>(col.size());
-        on = rows > 0;
-    }
-};
-
 // The bits of an array (the factor cache's P, A and G), kept compact for same_matrices'
 // test, which runs on every call: the runs of entries that are not all +0 (literal runs; a
 // gap of fewer than GAP +0 entries between two of them is kept in the run) with their bits
@@ -516,9 +478,7 @@ double symmetrize(Mat<const double> P, Mat<double> Ps) {
 
 // ----------------------------------------------------------------------------- compensated sums
 
-struct Dot2 {
-    double sum, size, norm;
-};
+}  // namespace
 
 // (dot2 and axpy2_matrix: one variant per instruction set, so that the avx512f one runs
 // std::fma as an instruction, not a call into libm: fma is rounded once either way, the same bits)
@@ -533,80 +493,7 @@ Dot2 dot2(const double* x, const double* y, idx n, double c) {
     return {s + err, size, norm};
 }
 
-// dot2 of every row of M with x, c_i = -rhs[i] (with every_row false only the rows where
-// rhs[i] < INF; the others are left as they are), into out: four rows at a time, each row's chains of dependent double-double
-// steps in dot2's order (the same bits), the four interleaved (one row's chain is latency-bound:
-// the check's rows of A and G were a tenth of a first solve at n = 100).
-LEMKE_CLONES
-void dot2_rows(Mat<const double> M, const double* x, const double* rhs, bool every_row, Dot2* out) {
-    idx n = M.cols, i = 0;
-    thread_local std::vector<idx> rows;
-    rows.clear();
-    for (idx t = 0; t < M.rows; ++t)
-        if (every_row || rhs[t] < INF) rows.push_back(t);
-    idx k = static_cast<idx>(rows.size());
-    // the rows after the last four first, by dot2: a call after the vector loop left the
-    // vector registers' upper halves dirty on return (GCC takes the call to have cleaned
-    // them, dot2 does not), and every SSE instruction of the caller's next library then
-    // paid for it (daqp 2.5x slower in the same process)
-    for (idx t = k - k % 4; t < k; ++t) {
-        idx row = rows[static_cast<std::size_t>(t)];
-        out[row] = dot2(M.row(row), x, n, -rhs[row]);
-    }
-    k -= k % 4;
-    for (; i + 4 <= k; i += 4) {
-        const double* r[4];
-        double s[4], err[4], size[4], norm[4];
-        for (int q = 0; q < 4; ++q) {
-            r[q] = M.row(rows[static_cast<std::size_t>(i + q)]);
-            double c = -rhs[rows[static_cast<std::size_t>(i + q)]];
-            s[q] = c;
-            err[q] = 0.0;
-            size[q] = std::fabs(c);
-            norm[q] = 0.0;
-        }
-#ifdef LEMKE_SIMD
-        // (the four rows' lanes of one vector: each lane's operations are acc2's and dot2's,
-        // the fused multiply-add std::fma's, rounded once, lane by lane)
-        using simd::v4d;
-        auto abs4 = [](v4d v) {
-            const std::int64_t m = 0x7FFFFFFFFFFFFFFFLL;
-            return reinterpret_cast<v4d>(reinterpret_cast<simd::v4l>(v) & simd::v4l{m, m, m, m});
-        };
-        v4d vs = {s[0], s[1], s[2], s[3]}, ve = {0.0, 0.0, 0.0, 0.0};
-        v4d vz = {size[0], size[1], size[2], size[3]}, vn = ve;
-        for (idx j = 0; j < n; ++j) {
-            v4d a = {r[0][j], r[1][j], r[2][j], r[3][j]};
-            v4d b = simd::splat4(x[j]);
-            v4d p = a * b, e;
-            for (int q = 0; q < 4; ++q) e[q] = std::fma(a[q], b[q], -p[q]);
-            v4d t = vs + p;
-            v4d z = t - vs;
-            v4d f = (vs - (t - z)) + (p - z);
-            vs = t;
-            ve = ve + (e + f);
-            vz += abs4(p);
-            vn += abs4(a);
-        }
-        for (int q = 0; q < 4; ++q) {
-            s[q] = vs[q];
-            err[q] = ve[q];
-            size[q] = vz[q];
-            norm[q] = vn[q];
-        }
-#else
-        for (idx j = 0; j < n; ++j) {
-            double xj = x[j];
-            for (int q = 0; q < 4; ++q) {
-                acc2(s[q], err[q], r[q][j], xj);
-                size[q] += std::fabs(r[q][j] * xj);
-                norm[q] += std::fabs(r[q][j]);
-            }
-        }
-#endif
-        for (int q = 0; q < 4; ++q) out[rows[static_cast<std::size_t>(i + q)]] = {s[q] + err[q], size[q], norm[q]};
-    }
-}
+namespace {
 
 // One term a x of axpy2 into (s, err, size).
 inline void axpy2_term(double& s, double& err, double& size, double a, double x) {
@@ -622,6 +509,8 @@ inline void axpy2(double* s, double* err, double* size, idx n, double a, const d
     for (idx j = 0; j < n; ++j) axpy2_term(s[j], err[j], size[j], a, x[j]);
 }
 
+}  // namespace
+
 // axpy2 of every row of M with coefficient coef[i] (qp.axpy2_matrix, axpy2_rows).
 LEMKE_CLONES
 void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coef,
@@ -629,24 +518,7 @@ void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coe
     for (idx i = 0; i < M.rows; ++i) axpy2(s, err, size, n, coef[i], M.row(i));
 }
 
-// acc[j] += a |M_ij| for every row i of M, in row order (qp.add_abs_rows): a times the
-// absolute column sums of M, the floor's weights in kkt_check. Nothing when a is 0.
-LEMKE_CLONES
-void add_abs_rows(double* acc, idx n, double a, Mat<const double> M) {
-    if (!(a > 0.0)) return;
-    for (idx i = 0; i < M.rows; ++i) {
-        const double* Mi = M.row(i);
-        for (idx j = 0; j < n; ++j) acc[j] += a * std::fabs(Mi[j]);
-    }
-}
-
-// Whether multiplier a of row Gi counts as zero: removing it moves no stationarity row j by
-// more than allow[j] (qp.counts_as_zero).
-inline bool counts_as_zero(double a, const double* Gi, const double* allow, idx n) {
-    for (idx j = 0; j < n; ++j)
-        if (!(std::fabs(a * Gi[j]) <= allow[j])) return false;
-    return true;
-}
+namespace {
 
 // ----------------------------------------------------------------------------- rows
 
@@ -1286,8 +1158,13 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
 
 void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
              const QPWork& w);
-bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
-              const double* z, const double* zb, double tol, double* stats);
+// kkt_rows (the acceptance module, certify.cpp) on solve's cache: QPWork's nonzeros of P, A
+// and G (sw null: the dense sums).
+inline bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
+                     const double* z, const double* zb, double tol, double* stats) {
+    if (sw == nullptr) return qp::kkt_rows(dt, nullptr, nullptr, nullptr, x, y, z, zb, tol, stats);
+    return qp::kkt_rows(dt, &sw->spP, &sw->spA, &sw->spG, x, y, z, zb, tol, stats);
+}
 
 // qp.active_residuals (P the screened Ps, lb/ub the screened bounds).
 void active_residuals(const Data& dt, const double* lb, const double* ub, const Outs& o,
@@ -1489,6 +1366,8 @@ Result gram(const Data& dt, const double* lb, const double* ub, QPWork& w, Rows&
     return res;
 }
 
+}  // namespace
+
 // axpy2_matrix over M's nonzeros only (sp), rows with coef[i] = 0 skipped: each term it
 // skips is an exact +-0 (kkt_rows says why that keeps the bits).
 LEMKE_CLONES
@@ -1503,6 +1382,8 @@ void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<
         }
     }
 }
+
+namespace {
 
 // active_residuals' sums over P (s, err, size from q, 0, 0): axpy2_matrix, or with w.spP (gram's:
 // P's nonzeros by rows, where at most a quarter) and x finite, axpy2_sparse.  A skipped
@@ -1526,167 +1407,6 @@ void axpy2_P(double* s, double* err, double* size, const double* x, const Data& 
             for (idx i = 0; i < n; ++i) axpy2_term(s[j], err[j], size[j], x[i], dt.P(i, j));
         }
     }
-}
-
-// add_abs_rows, over M's nonzeros only when sp is given (the terms skipped add +0).
-void add_abs(double* acc, idx n, double a, Mat<const double> M, const SparseRows* sp) {
-    if (sp == nullptr) {
-        add_abs_rows(acc, n, a, M);
-        return;
-    }
-    if (!(a > 0.0)) return;
-    for (idx i = 0; i < M.rows; ++i)
-        for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) acc[sp->col[t]] += a * std::fabs(sp->val[t]);
-}
-
-// dot2(M_i, x, n, c), over M_i's nonzeros only when sp is given (the same size and norm; the
-// same sum but perhaps the sign of a zero one, which kkt_rows reads only through |.| and
-// comparisons).
-LEMKE_CLONES
-Dot2 row_dot2(Mat<const double> M, const SparseRows* sp, idx i, const double* x, double c) {
-    const double* Mi = M.row(i);
-    if (sp == nullptr) return dot2(Mi, x, M.cols, c);
-    double s = c, err = 0.0, size = std::fabs(c), norm = 0.0;
-    for (idx t = sp->start[i]; t < sp->start[i + 1]; ++t) {
-        idx j = sp->col[t];
-        double a = sp->val[t];
-        acc2(s, err, a, x[j]);
-        size += std::fabs(a * x[j]);
-        norm += std::fabs(a);
-    }
-    return {s + err, size, norm};
-}
-
-// kkt_check; with sw (solve's cache, whose Ps, A, G are dt's P, A, G: same_matrices) the
-// sums over P, A and G take only their nonzeros (sw's SparseRows, where on) when x, y, z, zb
-// are finite: a skipped term is an exact +-0 (a finite number times 0), which changes no sum
-// and no error term (the errors never hold -0), only perhaps the sign of a sum that is zero,
-// and no sign of a zero reaches a verdict or a stat: the residuals are read through |.|,
-// comparisons and pmax from +0, and the gap's double-double sum starts at +0, to which
-// x_j s_j = +-0 adds +0. The same bits as the dense loops (tests/test_qp_kkt_sparse.py
-// compares them).
-// (cloned: its double-double sums' std::fma is an instruction in the AVX-512 clone, a libm
-// call in the others, ~250 a call; the same exact product error either way)
-LEMKE_CLONES
-bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
-              const double* z, const double* zb, double tol, double* stats) {
-    idx n = dt.n();
-    double t = tol + 4.0 * EPS;
-    thread_local std::vector<double> work;
-    work.resize(static_cast<std::size_t>(4 * n + 1));
-    double* s = work.data();
-    double* err = s + n;
-    double* size = s + 2 * n;
-    double* allow = s + 3 * n;
-    for (idx j = 0; j < n; ++j) {
-        s[j] = dt.q[j];
-        err[j] = 0.0;
-        size[j] = std::fabs(dt.q[j]);
-    }
-    const SparseRows *sP = nullptr, *sA = nullptr, *sG = nullptr;
-    if (sw != nullptr && all_finite(x, n) && all_finite(y, dt.p0()) && all_finite(z, dt.m0()) &&
-        all_finite(zb, n)) {
-        if (sw->spP.on) sP = &sw->spP;
-        if (sw->spA.on) sA = &sw->spA;
-        if (sw->spG.on) sG = &sw->spG;
-    }
-    if (sP != nullptr) axpy2_sparse(s, err, size, x, dt.P, *sP);
-    else axpy2_matrix(s, err, size, n, x, dt.P);
-    double gap_hi = 0.0, gap_lo = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        acc2(gap_hi, gap_lo, x[j], s[j]);
-        gap_lo += x[j] * err[j];
-    }
-    double xPq_hi = gap_hi, xPq_lo = gap_lo;
-    if (sA != nullptr) axpy2_sparse(s, err, size, y, dt.A, *sA);
-    else axpy2_matrix(s, err, size, n, y, dt.A);
-    if (sG != nullptr) axpy2_sparse(s, err, size, z, dt.G, *sG);
-    else axpy2_matrix(s, err, size, n, z, dt.G);
-    // The rounding floor (qp.kkt_check states the rule): each of x, y, z, zb is exact only to
-    // f = 4 (n + 2) eps times its own largest entry; allow[j] first holds what those errors
-    // move stationarity row j by, divided by f.
-    double f = 4.0 * static_cast<double>(n + 2) * EPS;
-    double x_top = 0.0, y_top = 0.0, z_top = 0.0, zb_top = 0.0;
-    for (idx j = 0; j < n; ++j) x_top = pmax(x_top, std::fabs(x[j]));
-    for (idx i = 0; i < dt.p0(); ++i) y_top = pmax(y_top, std::fabs(y[i]));
-    for (idx i = 0; i < dt.m0(); ++i) z_top = pmax(z_top, std::fabs(z[i]));
-    for (idx j = 0; j < n; ++j) zb_top = pmax(zb_top, std::fabs(zb[j]));
-    for (idx j = 0; j < n; ++j) allow[j] = zb_top;
-    add_abs(allow, n, x_top, dt.P, sP);
-    add_abs(allow, n, y_top, dt.A, sA);
-    add_abs(allow, n, z_top, dt.G, sG);
-    bool ok = true;
-    double dual = 0.0;
-    for (idx j = 0; j < n; ++j) {
-        double r, e;
-        two_sum(s[j], zb[j], r, e);
-        r += e + err[j];
-        allow[j] = t * (size[j] + std::fabs(zb[j])) + f * allow[j];
-        dual = pmax(dual, std::fabs(r));
-        if (!(std::fabs(r) <= allow[j])) ok = false;
-    }
-    double floor = f * x_top;
-    double primal = 0.0;
-    // (the dense rows' dot2 four at a time first: the same sums, the same bits)
-    thread_local std::vector<Dot2> rd;
-    rd.resize(static_cast<std::size_t>(std::max(dt.p0(), dt.m0())));
-    if (sA == nullptr) dot2_rows(dt.A, x, dt.b, true, rd.data());
-    for (idx i = 0; i < dt.p0(); ++i) {
-        Dot2 d = sA == nullptr ? rd[static_cast<std::size_t>(i)] : row_dot2(dt.A, sA, i, x, -dt.b[i]);
-        primal = pmax(primal, std::fabs(d.sum));
-        acc2(gap_hi, gap_lo, dt.b[i], y[i]);
-        if (!(std::fabs(d.sum) <= t * d.size + floor * d.norm)) ok = false;
-    }
-    if (sG == nullptr) dot2_rows(dt.G, x, dt.h, false, rd.data());
-    for (idx i = 0; i < dt.m0(); ++i) {
-        if (!(dt.h[i] < INF)) {  // no constraint: its z_i must count as zero (either sign)
-            if (z[i] != 0.0 && !counts_as_zero(z[i], dt.G.row(i), allow, n)) ok = false;
-            continue;
-        }
-        Dot2 d = sG == nullptr ? rd[static_cast<std::size_t>(i)] : row_dot2(dt.G, sG, i, x, -dt.h[i]);
-        double r = d.sum;
-        double sz = t * d.size + floor * d.norm;
-        primal = pmax(primal, r);
-        acc2(gap_hi, gap_lo, dt.h[i], z[i]);
-        double zi = z[i];
-        if (!(r <= sz && zi >= 0.0)) {
-            ok = false;
-        } else if (zi > 0.0 && -r > sz && !counts_as_zero(zi, dt.G.row(i), allow, n)) {
-            ok = false;
-        }
-    }
-    for (idx j = 0; j < n; ++j) {
-        double zj = zb[j];
-        bool lo = dt.lb[j] > -INF, up = dt.ub[j] < INF;
-        double s_lo = t * (std::fabs(dt.lb[j]) + std::fabs(x[j])) + floor;
-        double s_up = t * (std::fabs(dt.ub[j]) + std::fabs(x[j])) + floor;
-        if (lo) {
-            double r = dt.lb[j] - x[j];
-            primal = pmax(primal, r);
-            if (zj < 0.0) acc2(gap_hi, gap_lo, dt.lb[j], zj);
-            if (r > s_lo) ok = false;
-        }
-        if (up) {
-            double r = x[j] - dt.ub[j];
-            primal = pmax(primal, r);
-            if (zj > 0.0) acc2(gap_hi, gap_lo, dt.ub[j], zj);
-            if (r > s_up) ok = false;
-        }
-        bool active;
-        if (dt.lb[j] == dt.ub[j]) active = true;
-        else if (zj < 0.0) active = lo && x[j] - dt.lb[j] <= s_lo;
-        else if (zj > 0.0) active = up && dt.ub[j] - x[j] <= s_up;
-        else active = true;
-        if (!active && std::fabs(zj) > allow[j]) ok = false;
-        if (!(x[j] == x[j])) ok = false;
-    }
-    double obj_hi = xPq_hi, obj_lo = xPq_lo;
-    for (idx j = 0; j < n; ++j) acc2(obj_hi, obj_lo, dt.q[j], x[j]);
-    stats[0] = primal;
-    stats[1] = dual;
-    stats[2] = std::fabs(gap_hi + gap_lo);
-    stats[3] = 0.5 * (obj_hi + obj_lo);
-    return ok;
 }
 
 // acc[i] += Mj[i] z, size[i] += |Mj[i] z| (i < m): one term of warm_point's sums per row.
@@ -2243,20 +1963,6 @@ bool cholesky(Mat<const double> P, Mat<double> L) { return cholesky_body(P, L, f
 LEMKE_CLONES
 bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L) {
     return cholesky_body(P, L, true, shift);
-}
-
-bool kkt_check(const Data& dt, const double* x, const double* y, const double* z,
-               const double* zb, double tol, double* stats) {
-    return kkt_rows(dt, nullptr, x, y, z, zb, tol, stats);
-}
-
-bool kkt_check_sparse(const Data& dt, const double* x, const double* y, const double* z,
-                      const double* zb, double tol, double* stats) {
-    QPWork sw;
-    sw.spP.build(dt.P.p, dt.n(), dt.n(), true);
-    sw.spA.build(dt.A.p, dt.p0(), dt.n(), true);
-    sw.spG.build(dt.G.p, dt.m0(), dt.n(), true);
-    return kkt_rows(dt, &sw, x, y, z, zb, tol, stats);
 }
 
 idx zero_diagonal(Mat<const double> P) {

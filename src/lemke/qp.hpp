@@ -8,6 +8,9 @@
 #pragma once
 #include <cstdint>
 
+#include <vector>
+
+#include "certify.hpp"  // the KKT check (kkt_check, ...), with every kind's
 #include "linalg.hpp"
 #include "status.hpp"  // the kernels' codes: OK, NOT_DEFINITE .. NOT_APPLICABLE, BAD_WARM
 
@@ -90,17 +93,8 @@ bool cholesky(Mat<const double> P, Mat<double> L);
 // hold them), without the copy.
 bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L);
 
-// qp.kkt_check: whether (x, y, z, zb) passes the row-wise KKT check (each row against its
-// terms' sizes times tol + 4 eps, plus the rounding floor: each of x, y, z, zb exact only to
-// 4 (n + 2) eps times its largest entry; tests/test_qp_kkt_check.py states the rule); stats (4)
-// gets (primal, dual, gap, obj).
-bool kkt_check(const Data& d, const double* x, const double* y, const double* z,
-               const double* zb, double tol, double* stats);
-// kkt_check as solve runs it on its cached matrices: the sums over P, A and G over their
-// nonzeros only (every matrix, however dense); the same verdict and stats bit for bit (for
-// tests/test_qp_kkt_sparse.py, which compares the two).
-bool kkt_check_sparse(const Data& d, const double* x, const double* y, const double* z,
-                      const double* zb, double tol, double* stats);
+// The KKT check (kkt_check, kkt_check_sparse, kkt_rows): certify.hpp, the acceptance
+// module (included above).
 
 // qp.solve on data of matching shapes: writes out[:2n + p0 + m0 + 4] (x, y, z, zb,
 // stats) and the basis (int64) after it (room for m0 + 2n); method 0 tableau, 1 unrevised.
@@ -196,6 +190,58 @@ struct BasisSeam {
 BasisSeam basis_seam(const Data& d, const std::uint8_t* active, idx m_active, const double* z,
                      idx m_z, idx steps, double tol, double* out, const double* rhs, idx rhs_len,
                      bool transpose, double* sol);
+// --- shared by the kernels and the KKT check (certify.cpp) ---
+
+// The nonzeros of a matrix by rows, in row order, their columns and values (the factor
+// cache's Ps, A and G, for kkt_check's sums, which skip their exact zeros with the same
+// bits, and read the values here: those of the matrix they were built from, whose bits the
+// cache's hit test found the caller's again, packed instead of scattered over its rows): on
+// when at most a quarter of the entries are nonzero (else the dense, vectorized loops are
+// as quick).
+struct SparseRows {
+    std::vector<idx> start, col;
+    std::vector<double> val;
+    bool on = false;
+    void build(const double* M, idx rows, idx cols, bool always = false) {
+        start.resize(static_cast<std::size_t>(rows + 1));
+        col.clear();
+        val.clear();
+        on = false;
+        idx most = always ? rows * cols : rows * cols / 4;  // (a denser one is not kept)
+        idx count = 0;  // (counted first: a dense matrix is given up without a push)
+        for (idx i = 0; i < rows && count <= most; ++i) {
+            const double* Mi = M + i * cols;
+            for (idx j = 0; j < cols; ++j) count += Mi[j] != 0.0 ? 1 : 0;
+        }
+        if (count > most) return;
+        col.reserve(static_cast<std::size_t>(count));
+        val.reserve(static_cast<std::size_t>(count));
+        for (idx i = 0; i < rows; ++i) {
+            start[i] = static_cast<idx>(col.size());
+            const double* Mi = M + i * cols;
+            for (idx j = 0; j < cols; ++j)
+                if (Mi[j] != 0.0) {
+                    col.push_back(j);
+                    val.push_back(Mi[j]);
+                }
+        }
+        start[rows] = static_cast<idx>(col.size());
+        on = rows > 0;
+    }
+};
+
+struct Dot2 {
+    double sum, size, norm;
+};
+
+// The compensated sums (qp.cpp; the KKT check's too): dot2 (one row's double-double sum,
+// its size and norm), axpy2_matrix and axpy2_sparse (stationarity's sums, every row of M,
+// or its nonzeros with the rows of coef = 0 skipped).
+Dot2 dot2(const double* x, const double* y, idx n, double c);
+void axpy2_matrix(double* s, double* err, double* size, idx n, const double* coef,
+                  Mat<const double> M);
+void axpy2_sparse(double* s, double* err, double* size, const double* coef, Mat<const double> M,
+                  const SparseRows& sp);
 
 }  // namespace qp
 }  // namespace lemke
