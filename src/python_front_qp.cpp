@@ -106,15 +106,21 @@ qp::Data data_of(const Arg& P, const Arg& q, const double* G, const double* h, i
 nb::object solved(const nb::object& buf, idx n, idx pivots, PyObject* fields,
                   const nb::object& src) {
     reinterpret_cast<ArrayFields*>(buf.ptr())->flags &= ~WRITEABLE;
-    nb::object stop = nb::steal(PyLong_FromSsize_t(n));
-    if (!stop.is_valid()) throw nb::python_error();
-    nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
-    if (!sl.is_valid()) throw nb::python_error();
+    // x = buf[:n]: NumPy's C API (new_view, the view that slice makes), else the slice
+    nb::object x = new_view(buf, 0, n);
+    if (!x.is_valid()) {
+        nb::object stop = nb::steal(PyLong_FromSsize_t(n));
+        if (!stop.is_valid()) throw nb::python_error();
+        nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
+        if (!sl.is_valid()) throw nb::python_error();
+        x = nb::steal(PyObject_GetItem(buf.ptr(), sl.ptr()));
+        if (!x.is_valid()) throw nb::python_error();
+    }
     auto [res, dict] = new_result(qf.result_cls);
     PyObject* d = dict.ptr();
     Py_INCREF(qf.solved);
     Py_INCREF(Py_None);
-    bool ok = put(d, qf.k_x, PyObject_GetItem(buf.ptr(), sl.ptr())) &&
+    bool ok = put(d, qf.k_x, x.release().ptr()) &&
               put(d, qf.k_status, qf.solved) &&
               put(d, qf.k_pivots, PyLong_FromLongLong(pivots)) &&
               put(d, qf.k_certificate, Py_None) &&
