@@ -1714,37 +1714,6 @@ struct Group {
     }
 };
 
-// forward (r := L^-1 r) on c <= 3 rows at once: each row from its own first nonzero with its
-// own skip flag, every sum (dot's, inlined: dot is dot_lanes) and division as forward makes
-// them, so the same bits; the rows' independent chains interleaved, where forward took them
-// one after the other (forward_rows_from's rows past its fours: at n = 10 the two rows of a
-// mixed QP's E were two latency-bound chains of dots and divisions in turn).
-LEMKE_ALWAYS_INLINE void forward_few(Mat<const double> L, double* const* r, idx c,
-                                     const idx* lstart) {
-    idx n = L.rows;
-    idx s[3];
-    bool skip[3];
-    idx j0 = n;
-    for (idx q = 0; q < c; ++q) {
-        idx t = 0;
-        while (t < n && r[q][t] == 0.0) ++t;
-        s[q] = t;
-        skip[q] = lstart != nullptr;
-        j0 = std::min(j0, t);
-    }
-    for (idx j = j0; j < n; ++j) {
-        const double* Lj = L.row(j);
-        for (idx q = 0; q < c; ++q) {
-            if (j < s[q]) continue;
-            double* x = r[q];
-            idx b = s[q];
-            if (skip[q] && lstart[j] > b) b += (lstart[j] - b) & ~static_cast<idx>(7);
-            x[j] = (x[j] - dot_lanes(Lj + b, x + b, j - b)) / Lj[j];
-            if (skip[q] && !std::isfinite(x[j])) skip[q] = false;
-        }
-    }
-}
-
 LEMKE_CLONES
 void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
     idx n = L.rows, k = R.rows;
@@ -1785,11 +1754,7 @@ void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart) {
             a.finish(j, d, 1.0 / Lj[j], last > a.s);
         }
     }
-    if (i < k) {  // (at most 3 rows left)
-        double* rows[3];
-        for (idx q = 0; q < k - i; ++q) rows[q] = R.row(i + q);
-        forward_few(L, rows, k - i, lstart);
-    }
+    for (; i < k; ++i) forward(L, R.row(i), lstart);
 }
 
 void forward_rows(Mat<const double> L, Mat<double> R) {
