@@ -576,6 +576,7 @@ void swap_rows(Mat<double> A, idx i, idx j, idx k) {
     }
 }
 
+LEMKE_CLONES  // clang: a declaration before a cloned function's first use must say so too
 bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse = true);
 
 }  // namespace

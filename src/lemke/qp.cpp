@@ -18,6 +18,12 @@
 namespace lemke {
 namespace qp {
 
+// clang: a declaration before a cloned function's first use must say so too (not qp.hpp's:
+// a cloned declaration makes GCC call the clones by name from other files, and GCC's are
+// local symbols)
+LEMKE_CLONES void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart);
+LEMKE_CLONES bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L);
+
 namespace {
 
 // The QP kernels' workspace, one per thread, laid out in one place (QPWork::layout) for a
@@ -1285,6 +1291,7 @@ void active_solve(Mat<const double> L, const Rows& R, QPWork& w, const idx* S, i
 
 void axpy2_P(double* s, double* err, double* size, const double* x, const Data& dt,
              const QPWork& w);
+LEMKE_CLONES  // clang: a declaration before a cloned function's first use must say so too
 bool kkt_rows(const Data& dt, const QPWork* sw, const double* x, const double* y,
               const double* z, const double* zb, double tol, double* stats);
 
