@@ -67,10 +67,9 @@ struct BoxQp {
     // work: n (n + 2) doubles, Ps then lo then up.
     static idx work_length(idx n) { return n * (n + 2); }
     // screen into work; false when screen refuses the data (nothing else then holds).
-    bool apply(double* work) const {
-        idx k = n();
-        return qp::screen(d, work, work + k * k, work + k * (k + 1));
-    }
+    // (Defined in qp.cpp, after screen: clang refuses a first use of a cloned function
+    // before its multiversioned definition.)
+    bool apply(double* work) const;
     Mat<const double> M(const double* work) const { return Mat<const double>(work, n(), n()); }
     const double* q() const { return d.q; }
     const double* lo(const double* work) const { return work + n() * n(); }
