@@ -756,7 +756,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     # The ladder (_ladder.py; boxed::batch's one_call has the same rungs): the warm start's
     # basis (_warm), the same with its friction rows cold (_reset), _solve's cold run, then
     # _finish's rungs (other covering vectors, exact ties); a run solved and checked settles
-    # it; a checked ray (the general path reports it) or a stop ends it.
+    # it; a checked ray (the general path reports it) or a stop in any rung ends it.
     cap = Cap(limit)
     cold = _no_warm(N)
     c = k = m = 0
@@ -798,19 +798,18 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
 
     def other(mode, tie):
         def run():
-            nonlocal rec, ended
+            nonlocal rec
             go(cold, mode, cap.left(), tie)
             rec += 1
-            ended = c in STOPPED
         return run
 
     def left():
         return cap.left() > 0
 
-    solved_by = climb(lambda: accepted or ended,
+    solved_by = climb(lambda: accepted or ended or c in STOPPED,
                       Rung("the warm start's basis", lambda: ws is not None, from_warm),
-                      Rung("its friction rows cold",
-                           lambda: ws is not None and nf and c not in STOPPED, friction_cold),
+                      Rung("its friction rows cold", lambda: ws is not None and nf,
+                           friction_cold),
                       Rung("cold", always, cold_run),
                       Rung("other covering vectors", left, other(1, tt)),
                       Rung("exact ties", left, other(2, 0.0)))
