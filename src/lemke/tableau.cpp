@@ -203,25 +203,6 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
     idx m = T.ld;
     double inv = 1.0 / col[r];
     double* tr = T.row(r);
-    bool next = s_next >= 0;
-    if (!magb && m <= 32 && m % 4 == 0 && T.rows >= 16) {
-        // the small tableaux of 16 rows or more (rows of at most 32 doubles, magb not
-        // kept), whose ratio test is a vector pass (tableau_lemke): rhs and col_next in
-        // their own vector pass, then the rows alone (the same operations on each entry;
-        // below 16 rows no faster: n = 12 1.03 -> 1.06 us). The pivot row is made in place
-        // and the row updates read it from T (no copy into prow: a pivot's stores are its
-        // cost here); its entry s becomes inv after them. Column s of every row they update
-        // is then overwritten (f inv), so what they read there is never used: the same bits.
-        for (idx j = 0; j < m; ++j) tr[j] = -tr[j] * inv;
-        double rr = 0.0, mr = 0.0;
-        pivot_row_values(rhs, nullptr, r, inv, rr, mr);
-        side_entries(T, col, rhs, next ? col_next : nullptr, s_next, next ? tr[s_next] : 0.0, rr);
-        if (rhs) rhs[r] = rr;
-        if (next) col_next[r] = tr[s_next];
-        update_any<false, false, false>(T, r, col, nullptr, nullptr, nullptr, tr, s, -1, inv, 0.0, 0.0);
-        tr[s] = inv;
-        return;
-    }
     for (idx j = 0; j < m; ++j) {
         double v = -tr[j] * inv;
         prow[j] = v;
@@ -230,6 +211,18 @@ void pivot_now(const Mat<double>& T, double* rhs, double* magb, idx r, idx s, co
     tr[s] = inv;
     double rr = 0.0, mr = 0.0;
     pivot_row_values(rhs, magb, r, inv, rr, mr);
+    bool next = s_next >= 0;
+    if (!magb && m <= 32 && m % 4 == 0 && T.rows >= 16) {
+        // the small tableaux of 16 rows or more (rows of at most 32 doubles, magb not
+        // kept), whose ratio test is a vector pass (tableau_lemke): rhs and col_next in
+        // their own vector pass, then the rows alone (the same operations on each entry;
+        // below 16 rows no faster: n = 12 1.03 -> 1.06 us)
+        side_entries(T, col, rhs, next ? col_next : nullptr, s_next, next ? prow[s_next] : 0.0, rr);
+        if (rhs) rhs[r] = rr;
+        if (next) col_next[r] = prow[s_next];
+        update_any<false, false, false>(T, r, col, nullptr, nullptr, nullptr, prow, s, -1, inv, 0.0, 0.0);
+        return;
+    }
     if (rhs && magb) {
         if (next) update_any<true, true, true>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
         else update_any<true, true, false>(T, r, col, rhs, magb, col_next, prow, s, s_next, inv, rr, mr);
