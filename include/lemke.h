@@ -19,7 +19,9 @@
 extern "C" {
 #endif
 
-/* Status codes: the values of lemke.Status (Python), plus negative codes for bad input. */
+/* Status codes: the values of lemke.Status (Python), plus negative codes for bad input. A
+ * function returns one of these and nothing else (the core's internal codes are each mapped
+ * to one of them). */
 enum lemke_status {
     LEMKE_SOLVED = 0,            /* z solves the LCP and passed the check */
     LEMKE_MAX_PIVOTS = 1,        /* the pivot limit was reached */

@@ -8,6 +8,7 @@
 #include <new>
 #include <vector>
 
+#include "capi_status.hpp"
 #include "lemke/boxed.hpp"
 #include "lemke/boxed_batch.hpp"
 #include "lemke/certify.hpp"
@@ -76,8 +77,8 @@ int solve(idx n, const double* M, const double* q, const lemke_options* options,
     lemke::RunResult r = lemke::solve(lemke::TABLEAU, A, q, nullptr, beta.data(), n_warm,
                                       max_pivots, o.pivot_tol, o.tie_tol, o.tol, buf.data(),
                                       basic.data());
-    if (r.code == lemke::NOT_FINITE) return LEMKE_NOT_FINITE;
-    int status = r.code == lemke::TRIVIAL ? LEMKE_SOLVED : r.code;
+    int status = lemke::c_status(r.code);  // (TRIVIAL: SOLVED)
+    if (status == LEMKE_NOT_FINITE) return status;
     double* x = buf.data() + L.z();
     double* wv = buf.data() + L.w();
     idx k = r.k;
@@ -158,8 +159,7 @@ int blcp(idx n, const double* M, const double* q, const double* lo, const double
                          ints_len, work.data(), work_len, residual);
     };
     int code = front(bx::PREPARE);
-    if (code == bx::NOT_FINITE) return LEMKE_NOT_FINITE;
-    if (code != bx::NEED_RUN) return LEMKE_INVALID_ARGUMENT;  // BAD_BOUNDS, BAD_FINDEX
+    if (code != bx::NEED_RUN) return lemke::c_status(code);  // NOT_FINITE, BAD_BOUNDS, BAD_FINDEX
     // The problem solved: the extended one with friction rows, else the caller's.
     lemke::Mat<const double> Ae = A;
     const double *qa = q, *la = lo, *ha = hi;

@@ -7,6 +7,7 @@
 
 #include <cstring>
 
+#include "capi_status.hpp"
 #include "lemke/budget.hpp"
 #include "lemke/certify.hpp"
 #include "lemke/lcp.hpp"
@@ -239,6 +240,15 @@ NB_MODULE(_core, m) {
     m.attr("TABLEAU") = static_cast<int>(lemke::TABLEAU);
     m.attr("UNREVISED") = static_cast<int>(lemke::UNREVISED);
     m.attr("CERTIFIABLE") = lemke::CERTIFIABLE;
+    // status.hpp's every kernel code by name, and the C API's mapping of a code to its
+    // LEMKE_* status (capi_status.hpp): for tests/test_status_codes.py
+    m.def("_kernel_codes", [] {
+        nb::list out;
+        for (const lemke::KernelCode& k : lemke::KERNEL_CODES) out.append(nb::make_tuple(k.name, k.code));
+        return out;
+    });
+    m.def("_c_status", [](int code) { return lemke::c_status(code); });
+    m.def("_lcp_status", [](int code) { return lemke::lcp_status(code); });
     bind_support(m);
     bind_games(m);
     bind_boxed(m);

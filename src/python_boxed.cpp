@@ -186,32 +186,75 @@ std::tuple<NumpyMatrix, NumpyVector, NumpyVector, NumpyVector> extend(
 
 // reductions.hpp's FrictionBox::check (recover, then the caller's check with the coupled
 // bounds): the extended answer zx (N = n + 2 nf entries) mapped back with F as extend writes
-// it; (passed, residual, z, w, lo, hi: the caller's answer and the bounds in force, as the
-// check leaves them, in one new buffer).
-std::tuple<bool, double, NumpyVector, NumpyVector, NumpyVector, NumpyVector> friction_recover(
-    CMatrix M, CVector q, CVector lo, CVector hi, CIndices F, CVector zx, double tol) {
+// it, or the caller's z already (n entries, nf > 0: the check alone, FrictionBasis::check's
+// verdict); (passed, residual, z, w, lo, hi, R, C: the caller's answer, the bounds in force
+// and check_scales' scales, as the check leaves them, in one new buffer).
+std::tuple<bool, double, NumpyVector, NumpyVector, NumpyVector, NumpyVector, NumpyVector,
+           NumpyVector>
+friction_recover(CMatrix M, CVector q, CVector lo, CVector hi, CIndices F, CVector zx,
+                 double tol) {
     idx n = problem_size(M, q, lo, hi, "friction_recover");
     idx nf = static_cast<idx>(F.shape(0)) / 2;
+    idx len = static_cast<idx>(zx.shape(0));
     std::vector<std::uint8_t> seen(static_cast<std::size_t>(n));
     if (static_cast<idx>(F.shape(0)) != 2 * nf ||
         !lemke::FrictionBasis::rows_valid(F.data(), nf, n, seen.data()) ||
-        static_cast<idx>(zx.shape(0)) != n + 2 * nf)
+        (len != n + 2 * nf && len != n))
         throw nb::value_error("friction_recover: F must hold nf distinct friction rows of M, then "
-                              "nf normal rows that are not friction rows, zx n + 2 nf entries");
+                              "nf normal rows that are not friction rows, zx n + 2 nf or n "
+                              "entries");
     lemke::boxed::FrontLayout L{n, nf, true};
-    double* buf = new double[static_cast<std::size_t>(L.length())]();
+    // The check's buffer is the front's (FrontLayout: the run's area first, unused here), kept
+    // per thread; the six fields returned (z, w, lo, hi, R, C: 6 n doubles from L.z(), in that
+    // order) are copied out into a buffer of their own.
+    static thread_local std::vector<double> scratch;
+    if (scratch.size() < static_cast<std::size_t>(L.length()))
+        scratch.resize(static_cast<std::size_t>(L.length()));
+    double* full = scratch.data();
+    std::size_t six = 6 * static_cast<std::size_t>(n);
+    double* buf = new double[six + 1];
     nb::capsule owner(buf, [](void* p) noexcept { delete[] static_cast<double*>(p); });
     double residual = 0.0;
     bool passed;
     {
         nb::gil_scoped_release release;
+        std::fill(full + L.z(), full + L.z() + six, 0.0);
         lemke::reductions::FrictionBox red{mat(M, n), q.data(), lo.data(), hi.data(), nullptr, nf};
-        passed = red.check(F.data(), zx.data(), tol, buf, residual);
+        if (len == red.N()) {
+            passed = red.check(F.data(), zx.data(), tol, full, residual);
+        } else {
+            double* z = full + L.z();
+            for (idx i = 0; i < n; ++i) z[i] = zx.data()[i];
+            passed = lemke::boxed::coupled_check(red.M, red.q, red.lo, red.hi, F.data(), nf,
+                                                 red.N(), tol, full, residual);
+        }
+        std::copy(full + L.z(), full + L.z() + six, buf);
     }
     std::size_t un = static_cast<std::size_t>(n);
-    return {passed, residual, NumpyVector(buf + L.z(), {un}, owner),
-            NumpyVector(buf + L.w(), {un}, owner), NumpyVector(buf + L.lo(), {un}, owner),
-            NumpyVector(buf + L.hi(), {un}, owner)};
+    return {passed,
+            residual,
+            NumpyVector(buf, {un}, owner),
+            NumpyVector(buf + un, {un}, owner),
+            NumpyVector(buf + 2 * un, {un}, owner),
+            NumpyVector(buf + 3 * un, {un}, owner),
+            NumpyVector(buf + 4 * un, {un}, owner),
+            NumpyVector(buf + 5 * un, {un}, owner)};
+}
+
+// reductions.hpp's FrictionBox::recover alone: the caller's z (n) from the extended answer
+// zx (N = n + 2 nf; F as extend writes it, 2 nf entries), unclipped, into z.
+void friction_z(CIndices F, CVector zx, OutVector z) {
+    idx n = static_cast<idx>(z.shape(0));
+    idx nf = static_cast<idx>(F.shape(0)) / 2;
+    std::vector<std::uint8_t> seen(static_cast<std::size_t>(n));
+    if (static_cast<idx>(F.shape(0)) != 2 * nf ||
+        !lemke::FrictionBasis::rows_valid(F.data(), nf, n, seen.data()) ||
+        static_cast<idx>(zx.shape(0)) != n + 2 * nf)
+        throw nb::value_error("friction_z: F must hold nf distinct friction rows of z, then nf "
+                              "normal rows that are not friction rows, zx n + 2 nf entries");
+    lemke::reductions::FrictionBox red{lemke::Mat<const double>(nullptr, n, n), nullptr, nullptr,
+                                       nullptr, nullptr, nf};
+    red.recover(F.data(), zx.data(), z.data());
 }
 
 std::tuple<int, double> front(int phase, CMatrix M, CVector q, CVector lo, CVector hi,
@@ -428,6 +471,7 @@ void bind_boxed(nb::module_& m) {
           "F"_a.noconvert());
     b.def("friction_recover", &friction_recover, "M"_a, "q"_a, "lo"_a, "hi"_a, "F"_a, "zx"_a,
           "tol"_a);
+    b.def("friction_z", &friction_z, "F"_a, "zx"_a, "z"_a.noconvert());
     b.def("front", &front, "phase"_a, "M"_a, "q"_a, "lo"_a, "hi"_a, "findex"_a, "warm"_a,
           "has_warm"_a, "tol"_a, "buf"_a.noconvert(), "ints"_a.noconvert(),
           "work"_a.noconvert());

@@ -230,8 +230,7 @@ nb::object lcp_front(nb::handle M_h, nb::handle q_h, nb::handle ws, nb::handle b
         nb::gil_scoped_release release;
         r = run();
     }
-    bool settled = r.ok && (r.code == lemke::SOLVED || r.code == lemke::TRIVIAL ||
-                            r.code == lemke::RAY_TERMINATION);
+    bool settled = lemke::lcp_settled(r.code, r.ok);
     if (!settled)
         return nb::make_tuple(r.code, r.pivots, r.k, r.ok, r.residual, r.recoveries, r.stage, buf);
     // LCPResult._lazy: the status, pivots, residual, recoveries (when not 0), the source of
@@ -1263,7 +1262,7 @@ nb::object many_unsettled(nb::handle out_i_h, nb::handle out_f_h) {
     for (Py_ssize_t b = 0; b < oi->dimensions[0]; ++b) {
         std::int64_t c = code[5 * b];
         if (c == lemke::NOT_FINITE) not_finite.append(b);
-        if (ok[2 * b] == 0.0 || (c != lemke::SOLVED && c != lemke::TRIVIAL && c != lemke::RAY_TERMINATION))
+        if (!lemke::lcp_settled(static_cast<int>(c), ok[2 * b] != 0.0))
             special.append(b);
     }
     return nb::make_tuple(not_finite, special);

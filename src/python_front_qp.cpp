@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "lemke/budget.hpp"
+#include "lemke/ladder.hpp"
 #include "lemke/qp.hpp"
 #include "python_arrays.hpp"
 
@@ -106,15 +107,21 @@ qp::Data data_of(const Arg& P, const Arg& q, const double* G, const double* h, i
 nb::object solved(const nb::object& buf, idx n, idx pivots, PyObject* fields,
                   const nb::object& src) {
     reinterpret_cast<ArrayFields*>(buf.ptr())->flags &= ~WRITEABLE;
-    nb::object stop = nb::steal(PyLong_FromSsize_t(n));
-    if (!stop.is_valid()) throw nb::python_error();
-    nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
-    if (!sl.is_valid()) throw nb::python_error();
+    // x = buf[:n]: NumPy's C API (new_view, the view that slice makes), else the slice
+    nb::object x = new_view(buf, 0, n);
+    if (!x.is_valid()) {
+        nb::object stop = nb::steal(PyLong_FromSsize_t(n));
+        if (!stop.is_valid()) throw nb::python_error();
+        nb::object sl = nb::steal(PySlice_New(nullptr, stop.ptr(), nullptr));
+        if (!sl.is_valid()) throw nb::python_error();
+        x = nb::steal(PyObject_GetItem(buf.ptr(), sl.ptr()));
+        if (!x.is_valid()) throw nb::python_error();
+    }
     auto [res, dict] = new_result(qf.result_cls);
     PyObject* d = dict.ptr();
     Py_INCREF(qf.solved);
     Py_INCREF(Py_None);
-    bool ok = put(d, qf.k_x, PyObject_GetItem(buf.ptr(), sl.ptr())) &&
+    bool ok = put(d, qf.k_x, x.release().ptr()) &&
               put(d, qf.k_status, qf.solved) &&
               put(d, qf.k_pivots, PyLong_FromLongLong(pivots)) &&
               put(d, qf.k_certificate, Py_None) &&
@@ -147,7 +154,7 @@ nb::object box_small(const qp::Data& data) {
 thread_local std::vector<std::pair<int, int>> ran;
 
 // _qp._solve_definite (and its _solve_semidefinite) on plain data with the default options,
-// the same kernel calls in the same order: with at least GRAM_RATIO n inequalities (bounds
+// the same kernel calls in the same order, a ladder of three rungs (ladder.hpp): with at least GRAM_RATIO n inequalities (bounds
 // counted) the factored path first (the kernel's step 7); unless it solved or stopped, the
 // fused kernel; where that found P not definite, or its point failed the KKT check, and
 // step 7 did not run, the proximal factored path (step 8) unless P has more zero diagonal
@@ -168,22 +175,28 @@ nb::object cold(const qp::Data& data, idx p, idx m, bool many) {
     {
         nb::gil_scoped_release release;
         bool tried = false;  // step 7 ran (it did not answer NOT_APPLICABLE)
-        if (many) {
-            r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(), basic,
-                               false);
-            ran.emplace_back(1, r.code);
-            tried = r.code != qp::NOT_APPLICABLE;
-        }
-        if (!many || (r.code != qp::OK && !stopped(r.code))) {
-            r = qp::solve(data, qf.method, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, basic);
-            ran.emplace_back(0, r.code);
-            if ((r.code == qp::NOT_DEFINITE || r.code == qp::CHECK_FAILED) && !tried &&
-                qp::zero_diagonal(data.P) <= qp::flat_allowed(p, data.h, m, data.lb, data.ub, n)) {
+        // The ladder (ladder.hpp): solved and checked, or a stop, settles it.
+        lemke::ladder::climb(
+            [&] { return r.code == qp::OK || stopped(r.code); },
+            lemke::ladder::rung("the factored path (step 7)", [&] { return many; }, [&] {
+                r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(),
+                                   basic, false);
+                ran.emplace_back(1, r.code);
+                tried = r.code != qp::NOT_APPLICABLE;
+            }),
+            lemke::ladder::rung("the fused kernel", lemke::ladder::Always{}, [&] {
+                r = qp::solve(data, qf.method, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, basic);
+                ran.emplace_back(0, r.code);
+            }),
+            lemke::ladder::rung("the proximal factored path (step 8)", [&] {
+                return (r.code == qp::NOT_DEFINITE || r.code == qp::CHECK_FAILED) && !tried &&
+                       qp::zero_diagonal(data.P) <=
+                           qp::flat_allowed(p, data.h, m, data.lb, data.ub, n);
+            }, [&] {
                 r = qp::solve_gram(data, -1, qf.pivot_tol, qf.tie_tol, qf.tol, out, L.length(),
                                    basic, true, true, true);
                 ran.emplace_back(1, r.code);
-            }
-        }
+            }));
     }
     if (r.code != qp::OK) return nb::make_tuple(r.code, r.pivots, r.k, r.pairs);
     return solved(buf, n, r.pivots, qf.fields, nb::make_tuple(buf, n, p, m, r.k, r.pairs));

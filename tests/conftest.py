@@ -1,4 +1,5 @@
 import os
+import platform
 import shutil
 import subprocess
 import sys
@@ -166,9 +167,12 @@ def _cmake_cache(build):
 
 def sanitizer_runtimes(compiler):
     """The shared runtimes to preload: the compiler's libasan and, when it is a separate
-    library (GCC), libubsan (``<compiler> -print-file-name=...``)."""
+    library (GCC), libubsan (``<compiler> -print-file-name=...``); for clang its own
+    AddressSanitizer runtime, which holds UBSan's handlers too (clang's -print-file-name
+    also finds GCC's libasan.so, which is not the runtime its code was built for)."""
+    clang_rt = f"libclang_rt.asan-{platform.machine()}.so"
     found = []
-    for name in ("libasan.so", "libubsan.so"):
+    for name in (clang_rt, "libasan.so", "libubsan.so"):
         try:
             path = subprocess.run([compiler or "c++", f"-print-file-name={name}"], capture_output=True,
                                   text=True, timeout=30).stdout.strip()
@@ -176,6 +180,8 @@ def sanitizer_runtimes(compiler):
             continue
         if os.path.isabs(path) and os.path.exists(path):
             found.append(os.path.realpath(path))
+            if name == clang_rt:
+                return found
         elif name == "libasan.so":
             return []
     return found

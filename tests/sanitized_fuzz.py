@@ -47,7 +47,7 @@ and again in the test's own process, fingerprint against fingerprint).
   rhs of the right length and one off, and malformed indices, arrays and data (see its
   block at the end).
 * the core's reductions' private ends (src/lemke/reductions.hpp, branch reductions):
-  boxed.friction_recover, qp_box_apply, qp_box_recover, qp_multiplier_lcp and
+  boxed.friction_recover, boxed.friction_z, qp_box_apply, qp_box_recover, qp_multiplier_lcp and
   qp_multiplier_recover on sizes 0-20 and some larger, with answers of the right length and
   one off, random and extreme basic indices and final bases, and malformed arrays: an answer,
   None or ValueError / TypeError.
@@ -1223,7 +1223,8 @@ def qp_seam(run, rng):
 
 
 # --- the core's reductions as apply/recover pairs (branch reductions, src/lemke/reductions.hpp):
-# boxed.friction_recover (FrictionBox's recover and check), qp_box_apply / qp_box_recover
+# boxed.friction_recover (FrictionBox's recover and check; on the caller's z: the check),
+# boxed.friction_z (FrictionBox's recover alone), qp_box_apply / qp_box_recover
 # (BoxQp), qp_multiplier_lcp / qp_multiplier_recover (qp.cpp's MultiplierLcp) called directly
 # on sizes 0-20 and some larger, with random data (friction rows and normals, bounds of every
 # kind, G, A and fixed variables), random and extreme basic indices and final bases, answers
@@ -1253,6 +1254,10 @@ def reductions_core(run, rng):
                 zx = np.abs(rng.normal(size=length))
                 run.attempt(f"fuzz reductions friction {n} {length}", refused_or(
                     lambda: _core.boxed.friction_recover(M, q, lo, hi, F, zx, 1e-9)))
+                for zn in (n, n - 1, n + 1):
+                    zo = np.empty(zn)
+                    run.attempt(f"fuzz reductions friction z {n} {length} {zn}", refused_or(
+                        lambda: (_core.boxed.friction_z(F, zx, zo), zo.tobytes())))
         data = _reduction_qp(rng, n, 0, 0)
         run.attempt(f"fuzz reductions box apply {n}", refused_or(lambda: _core.qp_box_apply(*data)))
         z, w = rng.normal(size=n), rng.normal(size=n)
@@ -1287,6 +1292,9 @@ def reductions_core(run, rng):
         run.attempt(f"fuzz reductions friction {name} F", refused_or(lambda: _core.boxed.friction_recover(M, q, lo, hi, g(F), zx, 1e-9)))
         run.attempt(f"fuzz reductions friction {name} zx", refused_or(lambda: _core.boxed.friction_recover(M, q, lo, hi, F, g(zx), 1e-9)))
         run.attempt(f"fuzz reductions friction {name} M", refused_or(lambda: _core.boxed.friction_recover(g(M), q, lo, hi, F, zx, 1e-9)))
+        run.attempt(f"fuzz reductions friction z {name} F", refused_or(lambda: _core.boxed.friction_z(g(F), zx, np.empty(6))))
+        run.attempt(f"fuzz reductions friction z {name} zx", refused_or(lambda: _core.boxed.friction_z(F, g(zx), np.empty(6))))
+        run.attempt(f"fuzz reductions friction z {name} z", refused_or(lambda: _core.boxed.friction_z(F, zx, g(np.empty(6)))))
         run.attempt(f"fuzz reductions box {name} P", refused_or(lambda: _core.qp_box_apply(g(data[0]), *data[1:])))
         run.attempt(f"fuzz reductions box {name} lb", refused_or(lambda: _core.qp_box_apply(*data[:6], g(data[6]), data[7])))
         run.attempt(f"fuzz reductions box recover {name} final", refused_or(

@@ -90,16 +90,14 @@ def _final_flags(name):
     Mx, qx, lox, hix, F, normal = _blcp.friction_lcp(A, b, lo, hi, fi)
     flags = r.warm_start._kernel_flags()
     N = qx.size
-    R, C = np.empty(b.size), np.empty(b.size)
-    boxed.check_scales(A, b, lo, hi, R, C)
-    return A, b, lo, hi, fi, F, normal, flags[:N].copy(), flags[N:].copy(), R, N
+    return A, b, lo, hi, fi, F, normal, flags[:N].copy(), flags[N:].copy()
 
 
 @pytest.mark.parametrize("name", ["ray_cold", "refused_cold_warm"])
 def test_caller_point_accepts_the_right_basis_and_refuses_wrong_ones(name):
-    A, b, lo, hi, fi, F, normal, zb, zh, R, N = _final_flags(name)
+    A, b, lo, hi, fi, F, normal, zb, zh = _final_flags(name)
     n = b.size
-    got = _blcp._caller_point(A, b, lo, hi, F, normal, zb, zh, 1e-9, R, N)
+    got = _blcp._caller_point(A, b, lo, hi, F, normal, zb, zh, 1e-9)
     assert got is not None
     z, w, residual, lo_in, hi_in = got
     assert pyramid_rows(A, b, lo, hi, fi, z) <= 1.0
@@ -110,11 +108,11 @@ def test_caller_point_accepts_the_right_basis_and_refuses_wrong_ones(name):
     c = np.searchsorted(F, t)
     zb2 = zb.copy()
     zb2[t], zb2[n + c], zb2[n + F.size + c] = True, False, True
-    assert _blcp._caller_point(A, b, lo, hi, F, normal, zb2, zh, 1e-9, R, N) is None
+    assert _blcp._caller_point(A, b, lo, hi, F, normal, zb2, zh, 1e-9) is None
     # and so is a resting contact lifted off (its normal row at 0)
     zb3 = zb.copy()
     zb3[loaded] = False
-    assert _blcp._caller_point(A, b, lo, hi, F, normal, zb3, zh, 1e-9, R, N) is None
+    assert _blcp._caller_point(A, b, lo, hi, F, normal, zb3, zh, 1e-9) is None
 
 
 def test_a_singular_warm_basis_is_kept_in_part():

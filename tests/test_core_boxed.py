@@ -20,6 +20,8 @@ Two ways in:
   on random points and rays."""
 from collections import Counter
 
+import sys
+
 import numpy as np
 import pytest
 
@@ -52,6 +54,8 @@ class Tee:
         self.counts = Counter()
 
     def __getattr__(self, name):
+        if name == "friction_recover":
+            return self.friction_recover
         if name not in FUNCS:
             return getattr(cboxed, name)
 
@@ -63,6 +67,25 @@ class Tee:
                     orig[...] = new
             return rn
         return call
+
+
+    def friction_recover(self, M, q, lo, hi, FN, z, tol):
+        """The core's FrictionBox check (recover, the coupled bounds, check_scales, box_check:
+        ``_blcp``'s map back since branch frictionmap), its outputs checked against the
+        frozen references as the kernel calls that the Python copy of the map made before
+        (``check_scales(M, q, lo, hi, R, C)``, then ``box_check(M, q, lo_in, hi_in, z, tol, w,
+        R, N)``; the re-checks of ``_solve_friction``'s dense re-solve ``zx2`` and of
+        ``_caller_point`` reused the first check's R: box_check alone), in that order: the
+        same bits, or the test fails."""
+        caller = sys._getframe(1)
+        got = cboxed.friction_recover(M, q, lo, hi, FN, z, tol)
+        ok, residual, zc, w, lo_in, hi_in, R, C = got
+        name = caller.f_code.co_name
+        if name == "_judged" or (name == "_solve_friction" and caller.f_locals.get("zx2") is not z):
+            frozen.check((None, [M, q, lo, hi, R, C]), "check_scales")
+        frozen.check(((ok, residual), [M, q, lo_in, hi_in, zc, w, R]), "box_check")
+        self.counts["friction_recover"] += 1
+        return got
 
 
 @pytest.fixture

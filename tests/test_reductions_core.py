@@ -86,7 +86,7 @@ def test_friction_box_apply_recover(seed):
     r = lemke.solve_blcp(Mx, qx, lox, hix)
     assert r.status == lemke.Status.SOLVED
     _box_conditions(Mx, qx, lox, hix, r.z)
-    passed, residual, z, w, lo_in, hi_in = _core.boxed.friction_recover(M, q, lo, hi, F, r.z, TOL)
+    passed, residual, z, w, lo_in, hi_in, R, C = _core.boxed.friction_recover(M, q, lo, hi, F, r.z, TOL)
     # recover is the map z_i = β+ - β- (z then clipped into the coupled bounds by the check)
     z_map = r.z[:n].copy()
     z_map[fr] = r.z[fr] - r.z[n:n + nf]
@@ -118,7 +118,7 @@ def test_friction_box_recover_inverts_the_split():
         zx = np.concatenate([z, np.zeros(2 * nf)])
         zx[fr], zx[n:n + nf] = np.maximum(z[fr], 0), np.maximum(-z[fr], 0)
         zx[n + nf:] = rng.random(nf)
-        passed, _, z_back, w, _, _ = _core.boxed.friction_recover(M, q, lo, hi, F, zx, TOL)
+        passed, _, z_back, w, _, _, _, _ = _core.boxed.friction_recover(M, q, lo, hi, F, zx, TOL)
         assert np.array_equal(z_back, z)
         assert np.array_equal(w, M @ z + q) or np.allclose(w, M @ z + q, rtol=0, atol=1e-12 * np.abs(M).sum())
         with pytest.raises(AssertionError):
@@ -136,6 +136,46 @@ def test_friction_box_recover_refuses_bad_rows():
             _core.boxed.friction_recover(M, q, lo, hi, np.array(F, np.int64), np.zeros(5), TOL)
     with pytest.raises(ValueError):
         _core.boxed.friction_recover(M, q, lo, hi, np.array([1, 0], np.int64), np.zeros(4), TOL)
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_friction_box_recover_alone_and_on_the_callers_z(seed):
+    """``boxed.friction_z`` is FrictionBox's recover alone (z_i = β+ - β-, unclipped);
+    ``friction_recover`` given the caller's z (n entries) is the check alone, the same
+    verdict and bits as on the extended answer; R and C are the caller's check_scales."""
+    rng = np.random.default_rng(100 + seed)
+    M, q, lo, hi, findex = _contacts(rng, 1 + seed % 5)
+    n = q.size
+    F, Mx, qx, lox, hix = _extend(M, q, lo, hi, findex)
+    nf = F.size // 2
+    fr, normal = F[:nf], F[nf:]
+    r = lemke.solve_blcp(Mx, qx, lox, hix)
+    assert r.status == lemke.Status.SOLVED
+    for zx in (np.asarray(r.z), np.abs(rng.standard_normal(n + 2 * nf))):
+        z = np.full(n, np.nan)
+        _core.boxed.friction_z(F, zx, z)
+        want = zx[:n].copy()
+        want[fr] = zx[fr] - zx[n:n + nf]
+        assert np.array_equal(z, want)
+        a = _core.boxed.friction_recover(M, q, lo, hi, F, zx, TOL)
+        b = _core.boxed.friction_recover(M, q, lo, hi, F, z, TOL)
+        assert a[:2] == b[:2]
+        for u, v in zip(a[2:], b[2:]):
+            assert np.asarray(u).tobytes() == np.asarray(v).tobytes()
+        R, C = np.empty(n), np.empty(n)
+        _core.boxed.check_scales(M, q, lo, hi, R, C)
+        assert np.array_equal(a[6], R) and np.array_equal(a[7], C)
+        # z clipped into the coupled bounds at it (checked here with plain numpy)
+        lo_c, hi_c = lo.copy(), hi.copy()
+        lo_c[fr], hi_c[fr] = -hi[fr] * z[normal], hi[fr] * z[normal]
+        assert np.array_equal(a[4], lo_c) and np.array_equal(a[5], hi_c)
+        assert np.array_equal(a[2], np.clip(z, np.minimum(lo_c, hi_c), hi_c))
+        assert np.allclose(a[3], M @ a[2] + q, rtol=0, atol=1e-12 * (1 + np.abs(M).sum()))
+    assert not a[0]  # a random extended point is no solution
+    with pytest.raises(ValueError):
+        _core.boxed.friction_z(F, np.zeros(n + 2 * nf - 1), np.empty(n))
+    with pytest.raises(ValueError):
+        _core.boxed.friction_z(F, np.zeros(n + 2 * nf), np.empty(n - 1 if nf else n + 1))
 
 
 # ----------------------------------------------------------------------------- BoxQp

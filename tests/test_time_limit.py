@@ -294,3 +294,43 @@ def test_a_progress_callback_may_solve_with_lemke_itself(monkeypatch):
     assert r.success and r.x.tobytes() == ref.x.tobytes()
     p = problems.murty(8)
     assert inner and set(inner) == {lemke.solve_lcp(p.M, p.q).z.tobytes()}
+
+
+BOX_CHILD = textwrap.dedent("""
+    import sys, time
+    import numpy as np
+    import lemke
+    from lemke import problems
+    p = problems.murty(28)
+    n = 28
+    lo, hi = np.zeros(n), np.full(n, np.inf)
+    ws = lemke.solve_blcp(np.eye(n), np.ones(n), lo, hi).warm_start  # all at the lower bound
+    endless = {"max_pivots": 10**12, "time_limit": 20.0}  # (the limit: a failure's end)
+    print("ready", flush=True)
+    try:
+        if sys.argv[1] == "batch":  # boxed::batch's one_call (options given: not one by one)
+            lemke.solve_blcp_many([p.M], [p.q], [lo], [hi], warm_start=[ws], options=endless,
+                                  workers=1)
+        else:  # the single island: _blcp._one_call
+            lemke.solve_blcp(p.M, p.q, lo, hi, warm_start=ws, options=endless)
+    except KeyboardInterrupt:
+        print(f"interrupted {time.time():.6f}", flush=True)
+        sys.exit(130)
+    print("finished", flush=True)
+""")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", ["batch", "single"])
+def test_ctrl_c_ends_a_box_islands_ladder(path):
+    """SIGINT during a rung of a box island's ladder (the warm start's run: Murty, n = 28,
+    minutes) ends the ladder there, in the batch's native ladder (boxed_batch.cpp's one_call)
+    as in the single island's Python one (_blcp._one_call): no later rung (a fresh run, which
+    the interrupt does not reach) is started, so KeyboardInterrupt comes at once on both
+    paths.  (Before, the native ladder went on to the cold run, which the child's time limit
+    ends: "finished" after 20 s.)"""
+    line, rc, sent, _ = interrupt_child(BOX_CHILD, path)
+    assert line.startswith("interrupted"), line
+    latency = float(line.split()[1]) - sent
+    print(f"\nSIGINT to KeyboardInterrupt (box island, {path}): {latency * 1e3:.1f} ms")
+    assert rc == 130 and latency < 2.0

@@ -308,12 +308,12 @@ def solve_lcp_batch(M, q, *, method="tableau", options=None, workers=None, warm_
     f = _layout.fields(n)
     z = np.ascontiguousarray(bufs[:, f["z"]])
     w = np.ascontiguousarray(bufs[:, f["w"]])
-    status = np.where(out_i[:, 0] == _layout.TRIVIAL, 0, out_i[:, 0])
+    status = _layout.public_status(out_i[:, 0])
     pivots = out_i[:, 1].copy()
     residual = out_f[:, 1].copy()
-    # Everything but a checked solution (and q >= 0) goes through solve_lcp's own logic:
-    # the recomputation from the final basis, the ray check, the downgrades.
-    for b in np.flatnonzero((out_i[:, 0] != _layout.TRIVIAL) & ((out_i[:, 0] != 0) | (out_f[:, 0] == 0.0))):
+    # Everything but a checked solution (and q >= 0, always checked) goes through solve_lcp's
+    # own logic: the recomputation from the final basis, the ray check, the downgrades.
+    for b in np.flatnonzero((status != 0) | (out_f[:, 0] == 0.0)):
         code, piv, k, recoveries, _ = (int(v) for v in out_i[b])
         res = _outcome(M[0 if M.shape[0] == 1 else b], q[b], opts, code, piv, basics[b, :k],
                        bool(out_f[b, 0]), float(out_f[b, 1]), bufs[b].copy(), recoveries)
@@ -490,8 +490,9 @@ def _many(method, opts, workers, progress, warm_start, Mflat, qflat, B, sizes, o
     picked = _core.many_unsettled(out_i, out_f)  # (None: the native fronts are off)
     if picked is None:
         code = out_i[:, 0]
+        status = _layout.public_status(code)
         picked = (np.flatnonzero(code == _layout.NOT_FINITE).tolist(), np.flatnonzero(
-            (out_f[:, 0] == 0.0) | ((code != 0) & (code != _layout.TRIVIAL) & (code != _RAY))).tolist())
+            (out_f[:, 0] == 0.0) | ((status != 0) & (status != _RAY))).tolist())
     not_finite, unsettled = picked
     for b in not_finite:
         n, m, o = sizes[b], int(mstart[b]), int(qoff[b])

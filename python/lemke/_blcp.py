@@ -756,7 +756,7 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
     # The ladder (_ladder.py; boxed::batch's one_call has the same rungs): the warm start's
     # basis (_warm), the same with its friction rows cold (_reset), _solve's cold run, then
     # _finish's rungs (other covering vectors, exact ties); a run solved and checked settles
-    # it; a checked ray (the general path reports it) or a stop ends it.
+    # it; a checked ray (the general path reports it) or a stop in any rung ends it.
     cap = Cap(limit)
     cold = _no_warm(N)
     c = k = m = 0
@@ -798,19 +798,18 @@ def _one_call(M, q, lo, hi, findex, ws, opts, validated):
 
     def other(mode, tie):
         def run():
-            nonlocal rec, ended
+            nonlocal rec
             go(cold, mode, cap.left(), tie)
             rec += 1
-            ended = c in STOPPED
         return run
 
     def left():
         return cap.left() > 0
 
-    solved_by = climb(lambda: accepted or ended,
+    solved_by = climb(lambda: accepted or ended or c in STOPPED,
                       Rung("the warm start's basis", lambda: ws is not None, from_warm),
-                      Rung("its friction rows cold",
-                           lambda: ws is not None and nf and c not in STOPPED, friction_cold),
+                      Rung("its friction rows cold", lambda: ws is not None and nf,
+                           friction_cold),
                       Rung("cold", always, cold_run),
                       Rung("other covering vectors", left, other(1, tt)),
                       Rung("exact ties", left, other(2, 0.0)))
@@ -1076,10 +1075,11 @@ def friction_lcp(M, q, lo, hi, findex):
     return Mx, qx, lox, hix, F[:k], F[k:]
 
 
-def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
+def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol):
     """The point of an extended problem's basis (``zb`` basic, ``zh`` at hi; N = n + 2 nf
-    variables) computed on the caller's n rows, judged there: ``(z, w, residual, lo_in,
-    hi_in)`` when it passes the check with the coupled bounds, else None.
+    variables) computed on the caller's n rows, judged there by the core's check with the
+    coupled bounds (``boxed.friction_recover`` on the caller's z: FrictionBox's check):
+    ``(z, w, residual, lo_in, hi_in)`` when it passes, else None.
 
     Each caller's row gives one equation, read from the states of its variables: an
     ordinary row w_i = 0 when z_i is basic, else z_i at its bound; a friction row i (normal
@@ -1094,7 +1094,15 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     the check in every row (issue 32's scene, islands of 75-120 rows).  A warm start's own
     point is this system first too, unrefined and with each sliding row substituted into
     its normal's column (``boxed.friction_point``, in ``boxed::front``), where the
-    patterns that make the extended block singular are left to the extended point."""
+    patterns that make the extended block singular are left to the extended point.
+
+    Why this system stays here rather than in the core (``FrictionBasis``, which builds the
+    same rows): FrictionBasis substitutes each sliding row into its normal's column and
+    solves once, unrefined, while this path solves the n x n system with the sliding rows
+    kept as rows and refines it in double-double; the accepted points (and so the goldens'
+    and frozen digests' bits of the general path) are this solve's, and it runs only after
+    the extended point and its dense re-solve have failed the check (not a hot path).  The
+    map back and the check are the core's."""
     n = q.size
     k = F.size
     K = np.zeros((n, n))
@@ -1122,19 +1130,9 @@ def _caller_point(M, q, lo, hi, F, normal, zb, zh, tol, R, N):
     z = np.empty(n)
     if not refined_solve(K, rhs, 2, z, np.empty(n)) or not np.all(np.isfinite(z)):
         return None
-    z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
-    w = np.empty(n)
-    ok, residual = _certify.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    ok, residual, z, w, lo_in, hi_in, _, _ = boxed.friction_recover(
+        M, q, lo, hi, np.concatenate([F, normal]), z, tol)
     return (z, w, residual, lo_in, hi_in) if ok else None
-
-
-def _coupled(z, lo, hi, F, normal):
-    """The bounds in force at the caller's z (a friction row's -mu z_f, mu z_f) and z
-    clamped into them: ``(z, lo_in, hi_in)``."""
-    mu = hi[F]
-    lo_in, hi_in = lo.copy(), hi.copy()
-    lo_in[F], hi_in[F] = -mu * z[normal], mu * z[normal]
-    return np.clip(z, np.minimum(lo_in, hi_in), hi_in), lo_in, hi_in
 
 
 def _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, ws, opts):
@@ -1146,19 +1144,19 @@ def _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, ws, opts):
     them passes with the point's normal impulses in their boxes (the friction rows' bounds
     are then those of the z returned), else None (the extended problem's check then decides
     first, as :func:`_solve` makes it)."""
-    n, k, N = q.size, F.size, qx.size
+    n, N = q.size, qx.size
     flags = ws._kernel_flags()
     got = None
     z = np.empty(n)
-    if boxed.friction_point(M, q, lo, hi, np.concatenate([F, normal]), flags[:N], flags[N:], z):
-        got = _judged(M, q, lo, hi, F, normal, z, opts.tol, N)
+    FN = np.concatenate([F, normal])
+    if boxed.friction_point(M, q, lo, hi, FN, flags[:N], flags[N:], z):
+        got = _judged(M, q, lo, hi, FN, normal, z, opts.tol)
     if got is None:
         zx = np.empty(N)
         if not boxed.basis_point(Mx, qx, lox, hix, flags[:N], flags[N:], True, zx):
             return None
-        z = zx[:n].copy()
-        z[F] = zx[F] - zx[n:n + k]
-        got = _judged(M, q, lo, hi, F, normal, z, opts.tol, N)
+        boxed.friction_z(FN, zx, z)  # (FrictionBox's recover)
+        got = _judged(M, q, lo, hi, FN, normal, z, opts.tol)
         if got is None:
             return None
     z, w, residual, lo_in, hi_in, R, C = got
@@ -1169,18 +1167,15 @@ def _warm_friction(M, q, lo, hi, Mx, qx, lox, hix, F, normal, ws, opts):
                       R, C, 0)
 
 
-def _judged(M, q, lo, hi, F, normal, z, tol, N):
+def _judged(M, q, lo, hi, FN, normal, z, tol):
     """The caller's point z of a warm friction basis judged as ``_warm_friction`` judges it
-    (its normals in their boxes, then the check with the coupled bounds): ``(z, w,
-    residual, lo_in, hi_in, R, C)`` when it passes, else None."""
+    (its normals in their boxes, then the core's check with the coupled bounds,
+    ``boxed.friction_recover`` on the caller's z; FN: the friction rows, then ``normal``):
+    ``(z, w, residual, lo_in, hi_in, R, C)`` when it passes, else None."""
     zn = z[normal]
     if not np.all((zn >= lo[normal]) & (zn <= hi[normal])):
         return None
-    n = q.size
-    z, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
-    R, C, w = np.empty(n), np.empty(n), np.empty(n)
-    _certify.check_scales(M, q, lo, hi, R, C)
-    ok, residual = _certify.box_check(M, q, lo_in, hi_in, z, tol, w, R, N)
+    ok, residual, z, w, lo_in, hi_in, R, C = boxed.friction_recover(M, q, lo, hi, FN, z, tol)
     return (z, w, residual, lo_in, hi_in, R, C) if ok else None
 
 
@@ -1204,36 +1199,30 @@ def _solve_friction(M, q, lo, hi, findex, opts, warm_start, tried=False):
     inner = _solve(Mx, qx, lox, hix, opts, warm_start, tried=True, friction=None,
                    reset=_friction_vars(F, n) if F.size and warm_start is not None else None)
     k = F.size
+    FN = np.concatenate([F, normal])
     zx = inner.z
-    z = zx[:n].copy()
-    z[F] = zx[F] - zx[n:n + k]
-    zc, lo_in, hi_in = _coupled(z, lo, hi, F, normal)
-    R, C = np.empty(n), np.empty(n)
-    _certify.check_scales(M, q, lo, hi, R, C)
-    w = np.empty(n)
+    z = np.empty(n)
+    boxed.friction_z(FN, zx, z)  # (FrictionBox's recover: the point returned if none passes)
     # The check on the caller's data decides, whatever the extended problem's own check said
     # (its rows λ ± w_i are sums of larger terms, and can miss that check by rounding where
-    # the caller's rows pass).
+    # the caller's rows pass): the core's pair, FrictionBox's check on z.
     status = inner.status
-    ok, residual = _certify.box_check(M, q, lo_in, hi_in, zc, opts.tol, w, R, qx.size)
+    ok, residual, zc, w, lo_in, hi_in, R, C = boxed.friction_recover(M, q, lo, hi, FN, z, opts.tol)
     flags = None if ok or inner.warm_start is None else inner.warm_start._kernel_flags()
     if flags is not None:
         # The point of the final basis, from the extended data by one dense solve (more
         # accurate than the tableau after many pivots), judged again.
         zx2 = _basis_point(Mx, qx, lox, hix, flags[:qx.size], flags[qx.size:])
         if zx2 is not None:
-            z2 = zx2[:n].copy()
-            z2[F] = zx2[F] - zx2[n:n + k]
-            z2, lo2, hi2 = _coupled(z2, lo, hi, F, normal)
-            w2 = np.empty(n)
-            ok2, res2 = _certify.box_check(M, q, lo2, hi2, z2, opts.tol, w2, R, qx.size)
+            ok2, res2, z2, w2, lo2, hi2, _, _ = boxed.friction_recover(M, q, lo, hi, FN, zx2,
+                                                                       opts.tol)
             if ok2:
                 ok, residual, zc, w, lo_in, hi_in = ok2, res2, z2, w2, lo2, hi2
         if not ok and flags is not None:
             # The same basis read as equations on the caller's n rows, solved with
             # refinement (the extended block can be singular where the caller's is not).
             got = _caller_point(M, q, lo, hi, F, normal, flags[:qx.size], flags[qx.size:],
-                                opts.tol, R, qx.size)
+                                opts.tol)
             if got is not None:
                 ok = True
                 zc, w, residual, lo_in, hi_in = got

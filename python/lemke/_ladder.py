@@ -8,7 +8,7 @@ INTERRUPTED) came, or a rung ended the climb.  The same shape and vocabulary as 
 ``src/lemke/ladder.hpp`` (``rung``, ``climb``, ``Cap``), which runs the ladders in the core
 (the LCP's ``solve_one``, ``boxed::batch``'s island, Lemke-Howson's paths); this one runs
 those in the fronts, whose rungs are Python calls (``_mlcp.LADDER``, ``_blcp._finish``,
-``_games._finish``).  Two forms because a rung is an engine call in the language of the
+``_games._finish``, ``_qp._solve_definite``'s kernel order).  Two forms because a rung is an engine call in the language of the
 code around it: a C++ table inlines into the kernels' hot paths (a Python driver there would
 cost more than the LCP's whole 1 us solve), and the fronts' rungs are numpy and ``solve_lcp``
 calls that a native driver could only call back.

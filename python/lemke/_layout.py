@@ -44,3 +44,16 @@ def buffer_length(n):
 #: pays from about n = 100 on (contact problems lose below, and restarts end in bases with
 #: more z's basic at zero, which every later 0-pivot step pays in its LU).
 RESTART_FROM = 100
+
+
+#: The LCP driver's codes of a run whose answer is final when the kernel checked it (``ok``):
+#: SOLVED, TRIVIAL (q >= 0: z = 0) and RAY_TERMINATION (``lemke::lcp_settled``).
+SETTLED = frozenset({0, TRIVIAL, 2})
+
+
+def public_status(code):
+    """The LCP driver's code (an int, or an int64 array of them) as a public status code
+    (``lemke::lcp_status`` in src/lemke/status.hpp): TRIVIAL is SOLVED's 0, every other code
+    is itself (a Status, or NOT_FINITE, which the fronts report as an error).  Python's one
+    place where the driver's codes become statuses (_lcp, _batch, _result)."""
+    return code + (code == TRIVIAL) * -TRIVIAL

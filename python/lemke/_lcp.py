@@ -32,7 +32,7 @@ _CODES = _layout.METHODS
 _ND = np.ndarray
 _I64 = np.dtype(np.int64)
 _SOLVED = Status.SOLVED
-_TRIVIAL = _layout.TRIVIAL
+_SETTLED = _layout.SETTLED
 _RAY = int(Status.RAY_TERMINATION)
 _new = object.__new__
 _empty = np.empty
@@ -184,7 +184,7 @@ def solve_lcp(M, q, *, method="tableau", d=None, warm_start=None, options=None,
     else:
         out = run(_CODES[method], M, q, d, beta, kb, mp, pivot_tol, tie_tol, tol, buf, _NO_BASIS)
     code, pivots, k, ok, residual, recoveries, stage = out
-    if ok and (code == 0 or code == _TRIVIAL or code == _RAY):
+    if ok and code in _SETTLED:
         # Solved and checked (or q >= 0: z = 0), or a checked ray: the common cases, built
         # lazily (LCPResult._lazy, inlined).
         res = _new(LCPResult)

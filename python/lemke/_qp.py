@@ -26,6 +26,7 @@ from ._blcp import solve_blcp
 from ._certify import Certificate, data_scale as _data_scale
 from ._certify import check_direction as _check_direction, check_farkas as _check_farkas
 from ._certify import kkt_check as kkt  # the fused path's KKT check (qp::kkt_check)
+from ._ladder import Rung, always, climb
 from ._lcp import METHODS
 from ._mlcp import solve_stacked
 from ._options import as_options, time_limited, timed
@@ -828,23 +829,39 @@ def _solve_definite(args, method, opts):
     max_pivots = opts.max_pivots
     if max_pivots is None:
         max_pivots = -1
-    code = None
     absent = _ABSENT.get(n) or _absent(n)
-    if m + n * ((lb is not absent[2]) + (ub is not absent[3])) >= _GRAM_RATIO * n:
-        # at most that many inequalities: perhaps many more than variables (the kernel's
-        # step 7, an entry of its own; it counts them exactly, and returns NOT_APPLICABLE)
-        code, pivots, k, pairs = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots,
-                                                     opts.pivot_tol, opts.tie_tol, opts.tol, out,
-                                                     _basis_view(out, n, p, m), False)
-    if code in _STOP_CODES:
-        return _stopped(code, pivots, n, p, m)
-    if code != _OK:
-        tried = code is not None and code != _NOT_APPLICABLE  # step 7 ran
-        code, pivots, k, pairs = _core.qp_solve(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method],
-                                                max_pivots, opts.pivot_tol, opts.tie_tol,
-                                                opts.tol, out)
-        if (code == _NOT_DEFINITE or (code == _CHECK_FAILED and _RELAXED)) and not tried:
-            return _solve_semidefinite(args, opts)
+    # The ladder (_ladder.py; the native front's `cold` has the same rungs): step 7, the
+    # fused kernel, step 8; solved and checked, or a stop, settles it.
+    ran = [None, 0, 0, 0]  # the last kernel's (code, pivots, k, pairs)
+    tried = False  # step 7 ran (it did not answer NOT_APPLICABLE)
+    semi = None  # step 8's result
+
+    def gram():  # at most that many inequalities: perhaps many more than variables (the
+        # kernel's step 7, an entry of its own; it counts them exactly: NOT_APPLICABLE)
+        nonlocal tried
+        ran[:] = _core.qp_solve_gram(P, q, G, h, A, b, lb, ub, max_pivots, opts.pivot_tol,
+                                     opts.tie_tol, opts.tol, out, _basis_view(out, n, p, m),
+                                     False)
+        tried = ran[0] != _NOT_APPLICABLE
+
+    def fused():
+        ran[:] = _core.qp_solve(P, q, G, h, A, b, lb, ub, _METHOD_CODES[method], max_pivots,
+                                opts.pivot_tol, opts.tie_tol, opts.tol, out)
+
+    def semidefinite():
+        nonlocal semi
+        semi = _solve_semidefinite(args, opts)
+
+    last = climb(lambda: ran[0] == _OK or ran[0] in _STOP_CODES,
+                 Rung("the factored path (step 7)", lambda: m + n * (
+                     (lb is not absent[2]) + (ub is not absent[3])) >= _GRAM_RATIO * n, gram),
+                 Rung("the fused kernel", always, fused),
+                 Rung("the proximal factored path (step 8)", lambda: (
+                     ran[0] == _NOT_DEFINITE or (ran[0] == _CHECK_FAILED and _RELAXED))
+                      and not tried, semidefinite))
+    if last == 2:
+        return semi
+    code, pivots, k, pairs = ran
     if code in _STOP_CODES:
         return _stopped(code, pivots, n, p, m)
     if code != _OK:

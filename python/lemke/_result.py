@@ -713,7 +713,7 @@ class LCPManyResult(ManyItems):
     @cached
     def status(self) -> np.ndarray:
         code = self._ints(0)
-        return self._column(np.where(code == _layout.TRIVIAL, 0, code), "status", int)
+        return self._column(_layout.public_status(code), "status", int)
 
     @cached
     def pivots(self) -> np.ndarray:

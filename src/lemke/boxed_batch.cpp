@@ -150,8 +150,10 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     };
     // The ladder (ladder.hpp): the warm start's basis, the same with its friction rows cold,
     // cold, then the other covering vectors and exact ties; the first run solved and checked
-    // settles it, a checked ray (left to the general path) ends it. (A stop does not end it
-    // after the other covering vectors, as it does in _blcp._one_call: kept as it was.)
+    // settles it, a checked ray (left to the general path) or a stop (TIME_LIMIT,
+    // INTERRUPTED) in any rung ends it, as in _blcp._one_call: no rung runs after a stop (an
+    // interrupt is seen by the run it hits only: a later rung's fresh run would go on, and
+    // Ctrl-C would wait for the whole ladder).
     SolveResult r;
     ladder::Cap cap{limit, 0};
     bool ok = false, ended = false;
@@ -163,7 +165,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
     };
     std::uint8_t* cold = nullptr;
     int solved_by = ladder::climb(
-        [&] { return ok || ended; },
+        [&] { return ok || ended || is_stop(r.code); },
         ladder::rung("the warm start's basis", [&] { return has_warm; }, [&] {
             go(warm, 1 | PARTIAL, cap.left(), tt);
             if (!ok) {  // _checked_point: the point of the final basis, recomputed and judged
@@ -188,7 +190,7 @@ Outcome one_call(Mat<const double> M, const double* q, const double* lo, const d
             if (!ok) rec = 1;
         }),
         ladder::rung("its friction rows cold (_blcp._reset)",
-                     [&] { return has_warm && nf > 0 && !is_stop(r.code); }, [&] {
+                     [&] { return has_warm && nf > 0; }, [&] {
             std::uint8_t* warm2 = sized(S.warm2, 2 * N);
             std::copy(warm, warm + 2 * N, warm2);
             const idx* F = ints + FL.friction_rows();

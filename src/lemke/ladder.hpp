@@ -12,7 +12,7 @@
 // Users: lcp.cpp (the warm stages of solve_one, the cold solve's recoveries in `checked` and
 // the recoveries from a cycle in `run_checked`), boxed_batch.cpp (one island's runs: warm,
 // friction rows cold, cold, covering vectors, exact ties), games.cpp (Lemke-Howson's three
-// paths).
+// paths), python_front_qp.cpp (the QP front's kernel order: step 7, fused, step 8).
 #pragma once
 #include <algorithm>
 

@@ -440,10 +440,12 @@ double full_sweep(Mat<const double> M, const double* q, const double* R, const d
         if (memo->rec.size() < static_cast<std::size_t>(4 * n * (t + 1)))
             memo->rec.resize(static_cast<std::size_t>(4 * n * (t + 1)));
         rec = memo->rec.data() + 4 * n * t;
-        std::memcpy(rec, R, bytes);
-        std::memcpy(rec + n, C, bytes);
-        std::memcpy(rec + 2 * n, mrow, bytes);
-        std::memcpy(rec + 3 * n, cmax, bytes);
+        if (n > 0) {  // (n = 0: rec is null, and memcpy's pointers may not be, even for 0 bytes)
+            std::memcpy(rec, R, bytes);
+            std::memcpy(rec + n, C, bytes);
+            std::memcpy(rec + 2 * n, mrow, bytes);
+            std::memcpy(rec + 3 * n, cmax, bytes);
+        }
         memo->count = t + 1;
     }
     return qmax;
@@ -576,6 +578,7 @@ void swap_rows(Mat<double> A, idx i, idx j, idx k) {
     }
 }
 
+LEMKE_CLONES  // clang: a declaration before a cloned function's first use must say so too
 bool eliminate(Mat<double> A, double* y, double* x, idx k, idx* piv, bool sparse = true);
 
 }  // namespace

@@ -19,6 +19,12 @@
 namespace lemke {
 namespace qp {
 
+// clang: a declaration before a cloned function's first use must say so too (not qp.hpp's:
+// a cloned declaration makes GCC call the clones by name from other files, and GCC's are
+// local symbols)
+LEMKE_CLONES void forward_rows_from(Mat<const double> L, Mat<double> R, const idx* lstart);
+LEMKE_CLONES bool cholesky_shifted(Mat<const double> P, double shift, Mat<double> L);
+
 namespace {
 
 // The QP kernels' workspace, one per thread, laid out in one place (QPWork::layout) for a
@@ -2398,6 +2404,11 @@ BasisSeam basis_seam(const Data& dt, const std::uint8_t* active, idx m_active, c
 // ends of the multiplier LCP, for the tests
 
 namespace reductions {
+
+bool BoxQp::apply(double* work) const {
+    idx k = n();
+    return qp::screen(d, work, work + k * k, work + k * (k + 1));
+}
 
 namespace {
 

@@ -9,7 +9,9 @@
 // - FrictionBox: a box LCP with a friction index as the extended box LCP of N = n + 2 nf
 //   rows (Stewart-Trinkle rows: β+, β-, λ per friction row; boxed::extend), mapped back by
 //   z_i = β+ - β- on a friction row and judged with the coupled bounds (friction_check's
-//   verdict, boxed::coupled_check). Users: boxed::front, boxed::extend.
+//   verdict, boxed::coupled_check). Users: boxed::front, boxed::extend, and _blcp's general
+//   path through the private ends boxed.friction_recover (check) and boxed.friction_z
+//   (recover alone).
 // - BoxQp: a QP whose only constraints are bounds as the box LCP (Ps, q, lo, up) of n pairs
 //   (screen: Ps = (P + P')/2, |bounds| >= 1e20 infinite), mapped back by x = z, zb = -w,
 //   the basis by box_basis, judged by qp::kkt_check. User: qp::solve_box.
@@ -67,10 +69,9 @@ struct BoxQp {
     // work: n (n + 2) doubles, Ps then lo then up.
     static idx work_length(idx n) { return n * (n + 2); }
     // screen into work; false when screen refuses the data (nothing else then holds).
-    bool apply(double* work) const {
-        idx k = n();
-        return qp::screen(d, work, work + k * k, work + k * (k + 1));
-    }
+    // (Defined in qp.cpp, after screen: clang refuses a first use of a cloned function
+    // before its multiversioned definition.)
+    bool apply(double* work) const;
     Mat<const double> M(const double* work) const { return Mat<const double>(work, n(), n()); }
     const double* q() const { return d.q; }
     const double* lo(const double* work) const { return work + n() * n(); }

@@ -3,9 +3,11 @@
 // so that no kernel code takes a public status's number where the two can meet.
 //
 // Rules: a kernel's own code is negative (a public status is 0..8; a success is SOLVED's 0)
-// and distinct from every other kernel's; one meaning, one number (NOT_FINITE). Each front
-// maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam", its "status codes" row,
-// says where).
+// and distinct from every other kernel's; one meaning, one number (NOT_FINITE); each is
+// listed in KERNEL_CODES (the end of this file; tests/test_status_codes.py reads this file
+// and fails on one missing there, the C API's static_asserts on one without a LEMKE_*
+// status). Each front maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam", its
+// "status codes" row, says where).
 #pragma once
 
 #include "budget.hpp"
@@ -34,13 +36,13 @@ inline bool is_stop(int code) { return code == TIME_LIMIT || code == INTERRUPTED
 constexpr int NOT_FINITE = -1;
 
 // The LCP driver (lcp.hpp: RunResult.code, beside the Status codes). Mapped to SOLVED by
-// _lcp.py, python_front.cpp and capi.cpp.
+// lcp_status (below; in Python by _layout.public_status), the one mapping each side.
 constexpr int TRIVIAL = -2;  // q >= 0: z = 0
 
 // The box LCP engine (boxed.hpp: SolveResult.code and front's code, beside the Status codes).
-// _blcp.py maps every negative code to NUMERICAL_FAILURE or an error; capi.cpp maps them to
-// LEMKE_NOT_FINITE or LEMKE_INVALID_ARGUMENT (whose -3 and -4 are BAD_BOUNDS's and
-// SINGULAR's numbers: they never pass through).
+// _blcp.py maps every negative code to NUMERICAL_FAILURE or an error; the C API maps every
+// kernel code through capi_status.hpp's c_status alone (LEMKE_INVALID_ARGUMENT's -3 and
+// LEMKE_OUT_OF_MEMORY's -4 are BAD_BOUNDS's and SINGULAR's numbers: no code passes unmapped).
 namespace boxed {
 constexpr int NOT_FINITE = lemke::NOT_FINITE;  // M or q has a NaN or an infinity, or lo/hi a NaN
 constexpr int BAD_BOUNDS = -3;   // some lo_i > hi_i, or lo_i = +inf, or hi_i = -inf
@@ -90,5 +92,56 @@ static_assert(TRIVIAL < NOT_FINITE && boxed::BAD_BOUNDS < TRIVIAL && boxed::NEED
                   qp::BAD_INPUT < qp::CHECK_FAILED && qp::NOT_APPLICABLE < qp::BAD_INPUT &&
                   qp::BAD_WARM < qp::NOT_APPLICABLE,
               "the kernels' own codes: negative and distinct");
+
+}  // namespace lemke
+
+namespace lemke {
+
+// --- every kernel code by name, and the LCP driver's codes as public statuses ---------------
+
+// Every kernel's own code above, by name (its namespace's prefix, as the C++ spells it): the
+// table that the C API's static_asserts walk (capi_status.hpp: each maps to a documented
+// LEMKE_* value) and the tests enumerate (_core._kernel_codes; tests/test_status_codes.py
+// reads this header and fails on a code declared above and missing here).
+struct KernelCode {
+    const char* name;
+    int code;
+};
+inline constexpr KernelCode KERNEL_CODES[] = {
+    {"NOT_FINITE", NOT_FINITE},
+    {"TRIVIAL", TRIVIAL},
+    {"boxed::NOT_FINITE", boxed::NOT_FINITE},
+    {"boxed::BAD_BOUNDS", boxed::BAD_BOUNDS},
+    {"boxed::SINGULAR", boxed::SINGULAR},
+    {"boxed::BAD_FINDEX", boxed::BAD_FINDEX},
+    {"boxed::UNDECIDED", boxed::UNDECIDED},
+    {"boxed::NEED_RUN", boxed::NEED_RUN},
+    {"games::NOT_FINITE", games::NOT_FINITE},
+    {"games::UNCHECKED", games::UNCHECKED},
+    {"MLCP_OK", MLCP_OK},
+    {"MLCP_INCONSISTENT", MLCP_INCONSISTENT},
+    {"MLCP_SINGULAR", MLCP_SINGULAR},
+    {"qp::OK", qp::OK},
+    {"qp::NOT_DEFINITE", qp::NOT_DEFINITE},
+    {"qp::DEPENDENT_EQUALITIES", qp::DEPENDENT_EQUALITIES},
+    {"qp::NOT_SOLVED", qp::NOT_SOLVED},
+    {"qp::CHECK_FAILED", qp::CHECK_FAILED},
+    {"qp::BAD_INPUT", qp::BAD_INPUT},
+    {"qp::NOT_APPLICABLE", qp::NOT_APPLICABLE},
+    {"qp::BAD_WARM", qp::BAD_WARM},
+};
+
+// The LCP driver's code (RunResult.code: a Status, NOT_FINITE or TRIVIAL) as a public
+// status: TRIVIAL (q >= 0: z = 0, checked) is SOLVED, every other code is itself (NOT_FINITE:
+// each front reports the bad data its own way). The one place in C++ where TRIVIAL becomes
+// SOLVED (python_front.cpp, the C API through capi_status.hpp); Python's is
+// _layout.public_status.
+constexpr int lcp_status(int code) { return code == TRIVIAL ? SOLVED : code; }
+
+// A run of the LCP driver whose answer is final: checked (ok) and solved (TRIVIAL included)
+// or a ray (the kernel checked it). The rest go on in the fronts' recoveries.
+constexpr bool lcp_settled(int code, bool ok) {
+    return ok && (lcp_status(code) == SOLVED || code == RAY_TERMINATION);
+}
 
 }  // namespace lemke

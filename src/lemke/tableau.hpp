@@ -14,14 +14,15 @@ namespace lemke {
 inline idx block_size(idx n) { return n < 32 ? 1 : 8; }
 
 // The tableau engine's workspace, laid out once per size (one per thread, reused). T's rows
-// are padded to a multiple of eight doubles (ld) and start on 64-byte boundaries, so the
-// row updates run on whole, aligned vectors; the padding columns hold values nobody reads.
+// are padded (ld: to a multiple of four doubles below n = 48, of eight from n = 48, where
+// each row then starts on a 64-byte boundary), so the row updates run on whole vectors; the
+// padding columns hold values nobody reads.
 struct TableauWork {
     std::vector<double> f;   // T (n x ld), rhs, col, q0, magb, mags, prow (ld), keys, U, V (block x ld), col2
     std::vector<idx> i;      // basis, nonbasic, pos, start_basis, cand
     std::vector<std::uint8_t> flags;  // is_basic
     idx n = -1;
-    idx ld = 0;              // T's row stride: n + 1 rounded up to a multiple of 8
+    idx ld = 0;              // T's row stride: n + 1 rounded up to a multiple of 4 (n < 48) or 8
     idx off = 0;             // T's offset in f: its first row on a 64-byte boundary
     idx nv = 0;              // a vector's length in f: n rounded up to 8 (every one 64-byte aligned)
     idx block = 1;
