@@ -854,3 +854,33 @@ def test_solve_blcp_entry_is_the_python_function_to_its_callers(monkeypatch):
     assert f(M, q, lo, hi, findex=fi, method="bounded") == r
     with pytest.raises(ValueError, match="unknown method"):
         f(M, q, lo, hi, method="nope")
+
+
+@pytest.mark.parametrize("stop", [lemke.Status.TIME_LIMIT, lemke.Status.INTERRUPTED])
+def test_a_stop_ends_the_box_fronts_finish_ladder(monkeypatch, stop):
+    """The box front's general ladder (_blcp._finish): when a rung's run stops (a time limit,
+    an interrupt), the ladder ends there and says so; no later rung's fresh run (which an
+    interrupt would not reach) is started.  Before, the exact-ties rung ran after a stopped
+    covering-vector run, and the result carried the first run's failure."""
+    from lemke import _blcp
+
+    rng = np.random.default_rng(7)
+    n = 6
+    A = rng.standard_normal((n, n))
+    M, q = A @ A.T + np.eye(n), rng.standard_normal(n)
+    lo, hi = np.zeros(n), np.full(n, np.inf)
+    opts = lemke.Options()
+    first = _blcp._Run(n).go(M, q, lo, hi, np.zeros(2 * n, dtype=np.bool_), 0, opts, 10**6, opts.tie_tol)
+    first.code, first.ok = int(lemke.Status.NUMERICAL_FAILURE), False  # a run that failed
+    real, calls = _blcp._Run.go, []
+
+    def stopped(self, *args):
+        calls.append(args[5])  # the covering-vector mode of each rung's run
+        real(self, *args)
+        self.code, self.ok = int(stop), False
+        return self
+
+    monkeypatch.setattr(_blcp._Run, "go", stopped)
+    res = _blcp._finish(M, q, lo, hi, opts, first)
+    assert calls == [1]  # the other covering vectors' run only: no exact-ties run after it
+    assert res.status == stop

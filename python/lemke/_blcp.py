@@ -880,8 +880,8 @@ def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=(), reset=None)
     def from_warm():
         nonlocal res, warm, extra, rec
         warm = _warm(M, q, lo, hi, opts, warm_start)
-        if warm.status == Status.SOLVED:
-            res = warm
+        if warm.status == Status.SOLVED or warm.status in STOPPED:
+            res = warm  # (a stop ends the ladder: an interrupt reaches only the run it hit)
         else:
             extra, rec = warm.pivots, 1
 
@@ -891,6 +891,8 @@ def _solve(M, q, lo, hi, opts, warm_start, tried=False, friction=(), reset=None)
                          opts, max(0, opts.pivot_limit(n) - extra), opts.tie_tol)
         if run.code == 0 and run.ok:
             res = _solved(run, n, lo, hi, rec, extra + run.pivots)
+        elif run.code in STOPPED:
+            res = _finish(M, q, lo, hi, opts, run, extra, rec)
         else:
             extra, rec = extra + max(run.pivots, 0), 2
 
@@ -985,15 +987,15 @@ def _finish(M, q, lo, hi, opts, run, extra=0, rec=0, ladder=True):
                                  cap.left(), tie)
                 cap.charge(nxt.pivots)
                 rec += 1
-                if (nxt.code == 0 and nxt.ok) or (nxt.code == Status.RAY_TERMINATION
-                                                  and run.code != Status.RAY_TERMINATION):
+                if (nxt.code == 0 and nxt.ok) or nxt.code in STOPPED or (
+                        nxt.code == Status.RAY_TERMINATION and run.code != Status.RAY_TERMINATION):
                     run = nxt
             return go
 
         def left():
             return cap.left() > 0
 
-        climb(lambda: ray or (run.code == 0 and run.ok),
+        climb(lambda: ray or (run.code == 0 and run.ok) or run.code in STOPPED,
               Rung("the ray checked", lambda: run.code == Status.RAY_TERMINATION, ray_checked),
               Rung("other covering vectors", left, cold(1, opts.tie_tol)),
               Rung("exact ties", left, cold(2, 0.0)))

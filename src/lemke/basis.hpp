@@ -2,16 +2,15 @@
 // basis system with the same members: its basic block built from (M, q, basis) and factored
 // once by the kernels' LU (linalg's eliminate: partial pivoting, two pivots per pass; no
 // LAPACK), solved with it and with its transpose, the point mapped back to z (and w) and
-// checked row by row by the kind's acceptance code. Built so far: the LCP kind (LcpBasis,
-// used by lcp.cpp's basis_point and basis_point_checked and by _core.lcp_basis), the box
-// kind without friction (BoxBasis, used by boxed.cpp's basis_point) and with a friction index
-// (FrictionBasis, used by boxed.cpp's friction_point and the box front's warm start; private
-// entry _core.friction_basis), the MLCP kind (MlcpBasis, used by MLCPToLCP.basis_point
-// through _core.mlcp_basis; its solve refined, as that routine's was), the games kind
-// (SupportBasis, used by _games._resolve_float through _core.game_basis) and a QP's KKT rows
-// of an active set (KktBasis, _qp._polished's system through _core.kkt_basis; refined, with
-// the held variables' columns given). Gradients and a sparse
-// engine are to plug in here: hence the transpose solve.
+// checked row by row by the kind's acceptance code. The systems: LcpBasis (lcp.cpp's
+// basis_point and basis_point_checked; _core.lcp_basis), BoxBasis (boxed.cpp's basis_point;
+// _core.box_basis), FrictionBasis (boxed.cpp's friction_point and the box front's warm
+// start; _core.friction_basis), MlcpBasis (MLCPToLCP.basis_point through _core.mlcp_basis;
+// refined), SupportBasis (games: _games._resolve_float through _core.game_basis) and
+// KktBasis (a QP's KKT rows of an active set: _qp._polished through _core.kkt_basis;
+// refined, the held variables' columns given); the QP kind's QpBasis is in qp.cpp (see the
+// end of this file). Gradients and a sparse engine are to plug in here: hence the transpose
+// solve.
 #pragma once
 #include <algorithm>
 #include <cstdint>

@@ -6,8 +6,8 @@
 // and distinct from every other kernel's; one meaning, one number (NOT_FINITE); each is
 // listed in KERNEL_CODES (the end of this file; tests/test_status_codes.py reads this file
 // and fails on one missing there, the C API's static_asserts on one without a LEMKE_*
-// status). Each front maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam", its
-// "status codes" row, says where).
+// status). Each front maps its kernel's codes to a Status (ARCHITECTURE.md, "The seam",
+// subsection "Status codes", says where).
 #pragma once
 
 #include "budget.hpp"
