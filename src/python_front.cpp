@@ -1423,7 +1423,7 @@ void bind_front(nb::module_& m) {
     // (plain_all's Python steps then)
     m.def("all_f64", [](nb::tuple args, nb::tuple ranks) -> nb::object {
         Py_ssize_t k = args.size();
-        if (!front.on || ranks.size() != k) return nb::none();
+        if (!front.on || static_cast<Py_ssize_t>(ranks.size()) != k) return nb::none();
         nb::list out;
         bool some = false;
         for (Py_ssize_t i = 0; i < k; ++i) {

@@ -555,7 +555,6 @@ LHResult lemke_howson(Mat<const double> A, Mat<const double> B, idx k, const idx
     idx m = A.rows, n = A.cols;
     Range ra = payoff_range(A), rb = payoff_range(B);
     if (!(ra.finite && rb.finite)) return {NOT_FINITE, 0, 0};
-    idx L = m + n;
     idx max_pivots = float_to_int(params[0]);
     double pivot_tol = params[1], tie_tol = params[2], tol = params[3];
     LHLayout at{m, n};

@@ -1706,7 +1706,7 @@ struct Group {
         finite = true;
     }
     // the lane block column j's dot starts at (row j of L starting at lstart_j)
-    idx from(idx j, idx lstart_j) const {
+    idx from(idx /*j*/, idx lstart_j) const {
         if (finite && lstart_j > s) return s + ((lstart_j - s) & ~static_cast<idx>(7));
         return s;
     }
