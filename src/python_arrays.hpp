@@ -25,6 +25,19 @@ struct Aligned : A {
     explicit Aligned(A&& a) : A(std::move(a)) {}
 };
 
+// The typed array arguments and results the _core entries share (python_qp.cpp,
+// python_support.cpp): C-contiguous CPU arrays, aligned for their scalar.
+template <class T, int D>
+using CArray = Aligned<nanobind::ndarray<T, nanobind::ndim<D>, nanobind::c_contig,
+                                         nanobind::device::cpu>>;
+using In1 = CArray<const double, 1>;
+using In2 = CArray<const double, 2>;
+using Out1 = CArray<double, 1>;
+using Out2 = CArray<double, 2>;
+using IdxIn = CArray<const std::int64_t, 1>;
+using IdxOut = CArray<std::int64_t, 1>;
+using NewVector = nanobind::ndarray<nanobind::numpy, double, nanobind::ndim<1>>;
+
 // Whether the array a's data may be read as its scalar type.
 template <class A>
 bool data_aligned(const A& a) {

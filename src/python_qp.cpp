@@ -32,14 +32,7 @@ namespace {
 using lemke::idx;
 namespace qp = lemke::qp;
 
-using In2 = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
-using In1 = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using Out2 = Aligned<nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
-using Out1 = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using CIdx = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using IdxOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 using FlagsOut = nb::ndarray<nb::ndim<1>, nb::c_contig, nb::device::cpu>;
-using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
 using NewMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
 using Code4 = std::tuple<int, std::int64_t, std::int64_t, std::int64_t>;
 
@@ -133,7 +126,6 @@ Code4 solve(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, int method
                  0, 0);
 }
 
-using IdxIn = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
 
 // qp.solve from a warm start: warm (int64) the KKT-MLCP's basic pairs, distinct, in
 // [0, pairs) (else ValueError); BAD_WARM (with this QP's count of pairs as the last
@@ -253,7 +245,7 @@ std::tuple<bool, NewMatrix, NewVector, NewVector> box_apply(In2 P, In1 q, In2 G,
 // pairs), x being z; None where the data are not a box-only QP that screen takes. ValueError
 // on mismatched lengths.
 nb::object box_recover(In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 z, In1 w,
-                       CIdx final, std::int64_t k, std::int64_t m, double tol) {
+                       IdxIn final, std::int64_t k, std::int64_t m, double tol) {
     idx n = len(q);
     if (len(z) != n || len(w) != n || k < 0 || m < k || m > len(final))
         throw nb::value_error("qp_box_recover: z and w of length n, 0 <= k <= m <= len(final)");
@@ -310,7 +302,7 @@ std::tuple<int, NewMatrix, NewVector> multiplier_lcp(In2 P, In1 q, In2 G, In1 h,
 // out (OutLayout's x, y, z, zb, stats, at least 2n + p0 + m0 + 4) and basic (at least
 // m0 + 2n); (code, passed, count, pairs). ValueError on buffers too short.
 std::tuple<int, bool, std::int64_t, std::int64_t> multiplier_recover(
-    In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 zz, CIdx lcp_basic, double tol,
+    In2 P, In1 q, In2 G, In1 h, In2 A, In1 b, In1 lb, In1 ub, In1 zz, IdxIn lcp_basic, double tol,
     Out1 out, IdxOut basic) {
     idx n = len(q), p0 = len(A, 0), m0 = len(G, 0);
     if (len(out) < qp::OutLayout{n, p0, m0}.basis() || len(basic) < m0 + 2 * n)

@@ -33,13 +33,6 @@ namespace {
 
 using lemke::idx;
 
-using In2 = Aligned<nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
-using In1 = Aligned<nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using Out2 = Aligned<nb::ndarray<double, nb::ndim<2>, nb::c_contig, nb::device::cpu>>;
-using Out1 = Aligned<nb::ndarray<double, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using IdxIn = Aligned<nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using IdxOut = Aligned<nb::ndarray<std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>>;
-using NewVector = nb::ndarray<nb::numpy, double, nb::ndim<1>>;
 using NewMatrix = nb::ndarray<nb::numpy, double, nb::ndim<2>>;
 
 template <class A>
